@@ -1,0 +1,305 @@
+//! Building a mesh from raw parts in one pass, and taking it apart again.
+//!
+//! This is the symbolic phase of loading a file: the caller has already
+//! decided which corners pair up into edges, and the builder lays the
+//! arrays out directly (no operator calls), then validates.
+
+use glam::DVec3;
+
+use crate::mesh::{Corner, Edge, Face, Mesh, NONE, Vertex};
+use crate::validate::ValidationError;
+
+/// A DLFL as flat arrays, the form files store.
+///
+/// Corner `k` of face `f` has the global corner index
+/// `face_offsets[f] + k`. Each entry of `edges` names the two corners at
+/// which an edge originates; the edge of corner `c` runs from its vertex to
+/// the vertex of the next corner of its face.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RawMesh {
+    pub positions: Vec<DVec3>,
+    /// `faces + 1` offsets into `face_vertices`, starting at 0.
+    pub face_offsets: Vec<u32>,
+    pub face_vertices: Vec<u32>,
+    /// One flag per face; an empty vector means no face is a hole.
+    pub holes: Vec<bool>,
+    pub edges: Vec<[u32; 2]>,
+}
+
+impl RawMesh {
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+    /// The vertex indices of face `f`.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_vertices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
+    }
+    /// True if face `f` is a hole.
+    pub fn is_hole(&self, f: usize) -> bool {
+        self.holes.get(f).copied().unwrap_or(false)
+    }
+}
+
+/// Why raw parts do not form a valid DLFL.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BuildError {
+    #[error("face offsets are malformed: {0}")]
+    Offsets(String),
+    #[error("{0} entities exceed the kernel's 32-bit indices")]
+    TooLarge(usize),
+    #[error("hole flags: {flags} given for {faces} faces")]
+    HoleCount { flags: usize, faces: usize },
+    #[error("face {face} has no corners")]
+    EmptyFace { face: usize },
+    #[error("face {face} refers to vertex {vertex}, but there are only {count} vertices")]
+    VertexOutOfRange {
+        face: usize,
+        vertex: u32,
+        count: usize,
+    },
+    #[error("vertex {vertex} has a non-finite position ({x}, {y}, {z})")]
+    NonFinite {
+        vertex: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
+    #[error("vertex {vertex} is not used by any face")]
+    UnusedVertex { vertex: usize },
+    #[error("edge {edge} names corner {corner}, but there are only {count} corners")]
+    CornerOutOfRange {
+        edge: usize,
+        corner: u32,
+        count: usize,
+    },
+    #[error(
+        "corner {corner} (face {face}, corner {k}) starts more than one edge (edges {first} and {second})"
+    )]
+    CornerTwice {
+        corner: usize,
+        face: usize,
+        k: usize,
+        first: usize,
+        second: usize,
+    },
+    #[error(
+        "corner {corner} (face {face}, corner {k}) starts no edge, but only a point-sphere's corner may"
+    )]
+    CornerWithoutEdge {
+        corner: usize,
+        face: usize,
+        k: usize,
+    },
+    #[error("edge {edge}: its sides do not run oppositely between the same two vertices")]
+    Mismatched { edge: usize },
+    #[error("not a valid 2-manifold: {0}")]
+    Invalid(#[from] ValidationError),
+}
+
+fn to_u32(n: usize) -> Result<u32, BuildError> {
+    u32::try_from(n)
+        .ok()
+        .filter(|&k| k < NONE)
+        .ok_or(BuildError::TooLarge(n))
+}
+
+impl Mesh {
+    /// Builds a mesh from raw parts, then [`validate`](Mesh::validate)s it.
+    ///
+    /// Slot indices equal input indices: vertex `i` of `raw.positions` is
+    /// [`Mesh::vertex_at`]`(i)`, face `f` is [`Mesh::face_at`]`(f)` and
+    /// global corner `k` is [`Mesh::corner_at`]`(k)`, with each face's walk
+    /// starting at its first corner.
+    pub fn from_raw(raw: &RawMesh) -> Result<Mesh, BuildError> {
+        let nf = raw.face_count();
+        let nv = raw.positions.len();
+        let nc = raw.face_vertices.len();
+        to_u32(nv)?;
+        to_u32(nc)?;
+        to_u32(raw.edges.len())?;
+        if raw.face_offsets.first().is_some_and(|&o| o != 0) {
+            return Err(BuildError::Offsets("the first offset is not 0".into()));
+        }
+        if raw
+            .face_offsets
+            .last()
+            .map_or(nc != 0, |&o| o as usize != nc)
+        {
+            return Err(BuildError::Offsets(format!(
+                "the last offset is not the number of corners ({nc})"
+            )));
+        }
+        if !raw.holes.is_empty() && raw.holes.len() != nf {
+            return Err(BuildError::HoleCount {
+                flags: raw.holes.len(),
+                faces: nf,
+            });
+        }
+        for f in 0..nf {
+            let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+            if hi < lo {
+                return Err(BuildError::Offsets(format!("offsets decrease at face {f}")));
+            }
+            if hi == lo {
+                return Err(BuildError::EmptyFace { face: f });
+            }
+        }
+
+        let mut mesh = Mesh::default();
+        mesh.vertices.reserve(nv);
+        mesh.faces.reserve(nf);
+        mesh.corners.reserve(nc);
+        mesh.edges.reserve(raw.edges.len());
+        for (i, p) in raw.positions.iter().enumerate() {
+            if !p.is_finite() {
+                return Err(BuildError::NonFinite {
+                    vertex: i,
+                    x: p.x,
+                    y: p.y,
+                    z: p.z,
+                });
+            }
+            mesh.vertices.insert(Vertex {
+                position: *p,
+                corner: NONE,
+                count: 0,
+            });
+        }
+        for f in 0..nf {
+            let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+            mesh.faces.insert(Face {
+                corner: lo,
+                len: hi - lo,
+                hole: raw.is_hole(f),
+            });
+            for k in lo..hi {
+                let v = raw.face_vertices[k as usize];
+                if v as usize >= nv {
+                    return Err(BuildError::VertexOutOfRange {
+                        face: f,
+                        vertex: v,
+                        count: nv,
+                    });
+                }
+                let next = if k + 1 == hi { lo } else { k + 1 };
+                let prev = if k == lo { hi - 1 } else { k - 1 };
+                mesh.corners.insert(Corner {
+                    vertex: v,
+                    face: f as u32,
+                    next,
+                    prev,
+                    edge: NONE,
+                    vnext: NONE,
+                    vprev: NONE,
+                });
+                mesh.ring_insert(v, k);
+            }
+        }
+        if let Some(v) = (0..nv).find(|&v| mesh.v(v as u32).count == 0) {
+            return Err(BuildError::UnusedVertex { vertex: v });
+        }
+        let locate = |c: u32| -> (usize, usize) {
+            let f = raw.face_offsets.partition_point(|&o| o <= c) - 1;
+            (f, (c - raw.face_offsets[f]) as usize)
+        };
+        for (ei, &[a, b]) in raw.edges.iter().enumerate() {
+            for c in [a, b] {
+                if c as usize >= nc {
+                    return Err(BuildError::CornerOutOfRange {
+                        edge: ei,
+                        corner: c,
+                        count: nc,
+                    });
+                }
+                let prev = mesh.c(c).edge;
+                if prev != NONE {
+                    let (face, k) = locate(c);
+                    return Err(BuildError::CornerTwice {
+                        corner: c as usize,
+                        face,
+                        k,
+                        first: prev as usize,
+                        second: ei,
+                    });
+                }
+                mesh.c_mut(c).edge = ei as u32;
+            }
+            if a == b {
+                let (face, k) = locate(a);
+                return Err(BuildError::CornerTwice {
+                    corner: a as usize,
+                    face,
+                    k,
+                    first: ei,
+                    second: ei,
+                });
+            }
+            let (ca, cb) = (*mesh.c(a), *mesh.c(b));
+            if mesh.c(ca.next).vertex != cb.vertex || mesh.c(cb.next).vertex != ca.vertex {
+                return Err(BuildError::Mismatched { edge: ei });
+            }
+            mesh.edges.insert(Edge { corners: [a, b] });
+        }
+        for f in 0..nf {
+            let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+            for k in lo..hi {
+                if mesh.c(k).edge == NONE && hi - lo > 1 {
+                    return Err(BuildError::CornerWithoutEdge {
+                        corner: k as usize,
+                        face: f,
+                        k: (k - lo) as usize,
+                    });
+                }
+            }
+        }
+        mesh.validate()?;
+        Ok(mesh)
+    }
+
+    /// Flattens the mesh: live vertices in slot order, live faces in slot
+    /// order (holes flagged), each face's corners from
+    /// [`Mesh::face_corner`], and every edge as its two corner indices.
+    pub fn to_raw(&self) -> RawMesh {
+        let mut vmap = vec![NONE; self.vertices.capacity_slots()];
+        let mut positions = Vec::with_capacity(self.vertex_count());
+        for v in self.vertices.live_indices() {
+            vmap[v as usize] = positions.len() as u32;
+            positions.push(self.v(v).position);
+        }
+        let mut cmap = vec![NONE; self.corners.capacity_slots()];
+        let mut face_offsets = Vec::with_capacity(self.face_count() + 1);
+        let mut face_vertices = Vec::with_capacity(self.corner_count());
+        let mut holes = Vec::with_capacity(self.face_count());
+        face_offsets.push(0);
+        for f in self.faces.live_indices() {
+            let fx = *self.f(f);
+            let mut c = fx.corner;
+            for _ in 0..fx.len {
+                cmap[c as usize] = face_vertices.len() as u32;
+                face_vertices.push(vmap[self.c(c).vertex as usize]);
+                c = self.c(c).next;
+            }
+            face_offsets.push(face_vertices.len() as u32);
+            holes.push(fx.hole);
+        }
+        let edges = self
+            .edges
+            .live_indices()
+            .map(|e| {
+                let [a, b] = self.e(e).corners;
+                [cmap[a as usize], cmap[b as usize]]
+            })
+            .collect();
+        if !holes.iter().any(|&h| h) {
+            holes.clear();
+        }
+        RawMesh {
+            positions,
+            face_offsets,
+            face_vertices,
+            holes,
+            edges,
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! Meshes and checks for the kernel's unit tests.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::{Mesh, RawMesh};
+
+/// Builds a closed mesh from polygons by pairing each half-edge u→v with
+/// the single v→u. Test meshes only: panics on anything non-manifold.
+pub(crate) fn from_polygons(positions: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
+    let mut raw = RawMesh {
+        positions: positions.iter().map(|p| DVec3::from_array(*p)).collect(),
+        face_offsets: vec![0],
+        ..RawMesh::default()
+    };
+    for f in faces {
+        raw.face_vertices.extend_from_slice(f);
+        raw.face_offsets.push(raw.face_vertices.len() as u32);
+    }
+    let mut open: HashMap<(u32, u32), u32> = HashMap::new();
+    for f in 0..raw.face_count() {
+        let lo = raw.face_offsets[f];
+        let n = raw.face_offsets[f + 1] - lo;
+        for k in 0..n {
+            let c = lo + k;
+            let u = raw.face_vertices[c as usize];
+            let v = raw.face_vertices[(lo + (k + 1) % n) as usize];
+            if let Some(other) = open.remove(&(v, u)) {
+                raw.edges.push([other, c]);
+            } else {
+                assert!(
+                    open.insert((u, v), c).is_none(),
+                    "test mesh edge {u}->{v} used twice"
+                );
+            }
+        }
+    }
+    assert!(open.is_empty(), "test mesh is not closed");
+    Mesh::from_raw(&raw).expect("test mesh builds")
+}
+
+pub(crate) fn tetrahedron() -> Mesh {
+    from_polygons(
+        &[[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]],
+        &[&[0, 1, 2], &[0, 3, 1], &[0, 2, 3], &[1, 3, 2]],
+    )
+}
+
+pub(crate) fn cube() -> Mesh {
+    from_polygons(
+        &[
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+            [1., 0., 1.],
+            [1., 1., 1.],
+            [0., 1., 1.],
+        ],
+        &[
+            &[0, 3, 2, 1],
+            &[4, 5, 6, 7],
+            &[0, 1, 5, 4],
+            &[2, 3, 7, 6],
+            &[1, 2, 6, 5],
+            &[0, 4, 7, 3],
+        ],
+    )
+}
+
+/// An n×m quad torus.
+pub(crate) fn torus(n: u32, m: u32) -> Mesh {
+    let mut pos = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (a, b) = (
+                std::f64::consts::TAU * i as f64 / n as f64,
+                std::f64::consts::TAU * j as f64 / m as f64,
+            );
+            let r = 2.0 + 0.5 * b.cos();
+            pos.push([r * a.cos(), r * a.sin(), 0.5 * b.sin()]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    let quads: Vec<[u32; 4]> = (0..n)
+        .flat_map(|i| (0..m).map(move |j| [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]))
+        .collect();
+    let refs: Vec<&[u32]> = quads.iter().map(|q| q.as_slice()).collect();
+    from_polygons(&pos, &refs)
+}
+
+/// (V, E, F incl. holes, components, genus).
+pub(crate) fn counts(m: &Mesh) -> (usize, usize, usize, usize, i64) {
+    let t = m.topology();
+    (
+        m.vertex_count(),
+        m.edge_count(),
+        m.face_count(),
+        t.component_count(),
+        t.genus(),
+    )
+}
+
+/// A canonical description of the face structure: each face as its cycle
+/// of vertex positions (rotated to start at the smallest), sorted.
+pub(crate) fn canonical(m: &Mesh) -> Vec<(bool, Vec<[u64; 3]>)> {
+    let mut faces: Vec<(bool, Vec<[u64; 3]>)> = m
+        .faces()
+        .map(|f| {
+            let ps: Vec<[u64; 3]> = m
+                .face_positions(f)
+                .unwrap()
+                .iter()
+                .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+                .collect();
+            let k = (0..ps.len()).min_by_key(|&i| ps[i]).unwrap();
+            let mut r = ps[k..].to_vec();
+            r.extend_from_slice(&ps[..k]);
+            (m.is_hole(f).unwrap(), r)
+        })
+        .collect();
+    faces.sort();
+    faces
+}
+
+/// Validates and checks the kernel's own bookkeeping against a recount.
+pub(crate) fn check(m: &Mesh) {
+    if let Err(e) = m.validate() {
+        panic!("{e}");
+    }
+    let t = m.topology();
+    let closed_euler: i64 = m.vertex_count() as i64 - m.edge_count() as i64 + m.face_count() as i64;
+    assert_eq!(
+        closed_euler,
+        2 * t.component_count() as i64 - 2 * t.genus(),
+        "Euler bookkeeping"
+    );
+}

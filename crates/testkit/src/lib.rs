@@ -1,0 +1,72 @@
+//! Test support shared by holey's crates: a small seeded PRNG, so seeded
+//! property tests give the same sequence on every platform and version,
+//! and the location of the shared real-mesh data.
+
+use std::path::PathBuf;
+
+/// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and fully
+/// determined by its seed.
+#[derive(Clone, Debug)]
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `0..n` (n > 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        ((self.next_u64() >> 11) as u128 * n as u128 >> 53) as usize
+    }
+
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    pub fn chance(&mut self, p: f64) -> bool {
+        self.unit() < p
+    }
+
+    /// A uniformly chosen element.
+    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+}
+
+/// The shared folder of real meshes made by others (`../shared/data/meshes`
+/// relative to the repository), or `None` when it is absent. Tests that
+/// read it must say so and skip visibly when this is `None`.
+pub fn shared_meshes() -> Option<PathBuf> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/meshes");
+    if let Ok(dir) = std::env::var("HOLEY_SHARED_MESHES") {
+        let p = PathBuf::from(dir);
+        return p.is_dir().then_some(p);
+    }
+    root.is_dir().then(|| root.canonicalize().unwrap_or(root))
+}
+
+/// Returns the shared mesh folder, or prints a visible SKIP line naming the
+/// test and returns `None`.
+pub fn shared_meshes_or_skip(test: &str) -> Option<PathBuf> {
+    let dir = shared_meshes();
+    if dir.is_none() {
+        eprintln!(
+            "SKIP {test}: ../shared/data/meshes is absent (set HOLEY_SHARED_MESHES to point at it)"
+        );
+    }
+    dir
+}
