@@ -1,0 +1,1 @@
+//! Measures of an arbitrary polygon soup. (Being written.)

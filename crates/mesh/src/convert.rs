@@ -1,0 +1,1 @@
+//! Conversion between polygon soups and the DLFL kernel. (Being written.)

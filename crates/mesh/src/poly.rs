@@ -1,0 +1,129 @@
+use glam::DVec3;
+
+/// An indexed polygon mesh: positions, and faces as lists of vertex
+/// indices stored in compressed rows (`face_offsets` has one entry per
+/// face plus a final one). Nothing about its topology is assumed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PolyMesh {
+    pub positions: Vec<DVec3>,
+    pub face_offsets: Vec<u32>,
+    pub face_indices: Vec<u32>,
+}
+
+/// A structural problem in a [`PolyMesh`].
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PolyMeshError {
+    #[error("face {face} refers to vertex {index}, but there are only {count} vertices")]
+    IndexOutOfRange { face: usize, index: u32, count: usize },
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFinite { vertex: usize, x: f64, y: f64, z: f64 },
+    #[error("face offsets are malformed")]
+    Offsets,
+    #[error("{0} entries exceed 32-bit indices")]
+    TooLarge(usize),
+}
+
+impl PolyMesh {
+    /// An empty mesh.
+    pub fn new() -> Self {
+        PolyMesh {
+            positions: Vec::new(),
+            face_offsets: vec![0],
+            face_indices: Vec::new(),
+        }
+    }
+
+    /// Builds a mesh from positions and per-face index lists.
+    pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<DVec3>, faces: impl IntoIterator<Item = F>) -> Self {
+        let mut m = PolyMesh {
+            positions,
+            ..PolyMesh::new()
+        };
+        for f in faces {
+            m.push_face(f.as_ref());
+        }
+        m
+    }
+
+    /// Number of positions (referenced or not).
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+
+    /// The vertex indices of face `f`.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_indices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
+    }
+
+    /// All faces in order.
+    pub fn faces(&self) -> impl ExactSizeIterator<Item = &[u32]> + '_ {
+        (0..self.face_count()).map(|f| self.face(f))
+    }
+
+    /// Appends a face.
+    pub fn push_face(&mut self, face: &[u32]) {
+        if self.face_offsets.is_empty() {
+            self.face_offsets.push(0);
+        }
+        self.face_indices.extend_from_slice(face);
+        self.face_offsets.push(self.face_indices.len() as u32);
+    }
+
+    /// Checks offsets, index ranges and finiteness of positions.
+    pub fn check(&self) -> Result<(), PolyMeshError> {
+        if self.positions.len() >= u32::MAX as usize {
+            return Err(PolyMeshError::TooLarge(self.positions.len()));
+        }
+        if self.face_offsets.first() != Some(&0)
+            || self.face_offsets.last().map(|&o| o as usize) != Some(self.face_indices.len())
+            || self.face_offsets.windows(2).any(|w| w[1] < w[0])
+        {
+            return Err(PolyMeshError::Offsets);
+        }
+        for (i, p) in self.positions.iter().enumerate() {
+            if !p.is_finite() {
+                return Err(PolyMeshError::NonFinite {
+                    vertex: i,
+                    x: p.x,
+                    y: p.y,
+                    z: p.z,
+                });
+            }
+        }
+        let n = self.positions.len();
+        for f in 0..self.face_count() {
+            if let Some(&index) = self.face(f).iter().find(|&&i| i as usize >= n) {
+                return Err(PolyMeshError::IndexOutOfRange { face: f, index, count: n });
+            }
+        }
+        Ok(())
+    }
+
+    /// Triangulates every face as a fan from its first corner (faces with
+    /// fewer than three corners are dropped). Returns the triangles and,
+    /// for each, the face it came from.
+    pub fn fan_triangles(&self) -> (Vec<[u32; 3]>, Vec<u32>) {
+        let mut tris = Vec::with_capacity(self.face_indices.len());
+        let mut origin = Vec::with_capacity(self.face_indices.len());
+        for (f, face) in self.faces().enumerate() {
+            for k in 1..face.len().saturating_sub(1) {
+                tris.push([face[0], face[k], face[k + 1]]);
+                origin.push(f as u32);
+            }
+        }
+        (tris, origin)
+    }
+
+    /// Axis-aligned bounds of the referenced vertices, or `None` if no face
+    /// refers to any vertex.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let mut it = self.face_indices.iter().filter_map(|&i| self.positions.get(i as usize).copied());
+        let first = it.next()?;
+        Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+    }
+}
