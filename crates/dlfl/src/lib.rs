@@ -45,6 +45,9 @@ mod validate;
 #[cfg(test)]
 mod test_util;
 
+#[cfg(test)]
+mod properties;
+
 pub use build::{BuildError, RawMesh};
 pub use error::{Error, Result};
 pub use glam::DVec3;

@@ -818,15 +818,15 @@ impl Mesh {
             }
             None
         };
-        if !removed(pa) {
-            if let Some(t) = skip(a0) {
-                self.link(pa, t);
-            }
+        if !removed(pa)
+            && let Some(t) = skip(a0)
+        {
+            self.link(pa, t);
         }
-        if !removed(pb) {
-            if let Some(t) = skip(b0) {
-                self.link(pb, t);
-            }
+        if !removed(pb)
+            && let Some(t) = skip(b0)
+        {
+            self.link(pb, t);
         }
         self.ring_remove(a0);
         self.ring_remove(b0);

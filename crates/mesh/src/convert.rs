@@ -1,1 +1,542 @@
-//! Conversion between polygon soups and the DLFL kernel. (Being written.)
+//! Conversion between polygon soups and the DLFL kernel.
+//!
+//! **Import** ([`to_dlfl`]) pairs each half-edge u→v of the soup with the
+//! single v→u. What stays unpaired is boundary: each boundary loop is
+//! closed by a face flagged as a *hole*, so the DLFL stays a closed
+//! 2-manifold and the opening is written back out on export. Anything that
+//! is not an orientable 2-manifold with boundary is an error naming the
+//! offending edge or vertex, unless [`ImportOptions::split_nonmanifold`]
+//! asks to cut it apart:
+//! - an edge used by more than two faces, or twice in the same direction,
+//!   is cut: none of its half-edges is paired, so each side becomes boundary;
+//! - a vertex whose faces form several separate fans gets one copy per fan.
+//!
+//! **Export** ([`to_poly`]) writes the non-hole faces. Self-loops are
+//! dropped from face lists (a Sierpinski hexagon with three zero-length
+//! loops is written as the triangle it looks like), and faces left with
+//! fewer than three corners (two-gons, point-spheres) are omitted; the
+//! `.dlfl` format keeps all of them.
+
+use glam::DVec3;
+use holey_dlfl::{BuildError, FaceId, Mesh, RawMesh, VertexId};
+
+use crate::{PolyMesh, PolyMeshError};
+
+const NONE: u32 = u32::MAX;
+
+/// How to import a soup that is not a 2-manifold.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// Cut non-manifold and misoriented edges, split non-manifold vertices
+    /// into one copy per fan, and drop degenerate faces, instead of failing.
+    pub split_nonmanifold: bool,
+}
+
+/// Why a soup cannot be imported into the kernel.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ImportError {
+    #[error(transparent)]
+    Soup(#[from] PolyMeshError),
+    #[error("face {face} has {len} corner(s); the kernel imports faces of 2 or more corners")]
+    ShortFace { face: usize, len: usize },
+    #[error("face {face} repeats vertex {vertex} at consecutive corners (a zero-length edge)")]
+    DegenerateFace { face: usize, vertex: u32 },
+    #[error(
+        "non-manifold edge between vertices {u} and {v}: it is used by {count} face sides (faces {faces:?}); \
+         use the split-non-manifold option to cut it"
+    )]
+    NonManifoldEdge {
+        u: u32,
+        v: u32,
+        count: usize,
+        faces: Vec<usize>,
+    },
+    #[error(
+        "faces {faces:?} all use edge {u}→{v} in the same direction, so the surface is not consistently oriented; \
+         use the split-non-manifold option to cut it"
+    )]
+    Misoriented { u: u32, v: u32, faces: Vec<usize> },
+    #[error(
+        "non-manifold vertex {vertex} at ({x}, {y}, {z}): its faces form {fans} separate fans; \
+         use the split-non-manifold option to split it"
+    )]
+    NonManifoldVertex {
+        vertex: u32,
+        fans: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
+    #[error("corner {corner} of face {face} has no partner edge running the other way")]
+    Unpaired { face: usize, corner: usize },
+    #[error("internal: the paired soup did not build a valid DLFL: {0}")]
+    Build(#[from] BuildError),
+}
+
+/// What [`to_dlfl`] did besides building the mesh.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ImportReport {
+    /// Boundary loops closed by hole faces.
+    pub holes: usize,
+    /// Edges cut because they were non-manifold or misoriented.
+    pub cut_edges: usize,
+    /// Extra vertex copies made to split non-manifold vertices.
+    pub split_vertices: usize,
+    /// Faces dropped because they were degenerate.
+    pub dropped_faces: usize,
+    /// Soup vertices no face refers to (not imported).
+    pub unreferenced_vertices: usize,
+}
+
+/// A soup imported into the kernel.
+#[derive(Clone, Debug)]
+pub struct Imported {
+    pub mesh: Mesh,
+    /// The DLFL face of each soup face, in file order (`None` if dropped).
+    pub faces: Vec<Option<FaceId>>,
+    /// The DLFL vertex of each soup vertex (`None` if unreferenced). A
+    /// split vertex maps to its first copy.
+    pub vertices: Vec<Option<VertexId>>,
+    pub report: ImportReport,
+}
+
+/// Half-edge pairing of faces in compressed rows. Corner `c` (a position in
+/// `indices`) starts the half-edge from `indices[c]` to the next corner's vertex.
+struct Pairing {
+    /// Partner corner of each corner's half-edge, or `NONE` if unpaired.
+    twin: Vec<u32>,
+    cut_edges: usize,
+}
+
+fn face_of_corner(offsets: &[u32], c: u32) -> usize {
+    offsets.partition_point(|&o| o <= c) - 1
+}
+
+/// Successor of each corner within its face.
+fn next_corners(offsets: &[u32]) -> Vec<u32> {
+    let n = offsets.last().copied().unwrap_or(0) as usize;
+    let mut next = vec![0u32; n];
+    for w in offsets.windows(2) {
+        let (lo, hi) = (w[0], w[1]);
+        for c in lo..hi {
+            next[c as usize] = if c + 1 == hi { lo } else { c + 1 };
+        }
+    }
+    next
+}
+
+/// Pairs half-edges u→v with v→u. An undirected edge with exactly one
+/// half-edge each way is paired; one with a single half-edge is boundary;
+/// anything else is an error, or cut (left unpaired) when `cut` is set.
+fn pair_half_edges(
+    offsets: &[u32],
+    indices: &[u32],
+    next: &[u32],
+    nverts: usize,
+    cut: bool,
+) -> Result<Pairing, ImportError> {
+    let nc = indices.len();
+    // Half-edges grouped by origin vertex (compressed rows).
+    let mut start = vec![0u32; nverts + 1];
+    for &u in indices {
+        start[u as usize + 1] += 1;
+    }
+    for i in 0..nverts {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut out = vec![0u32; nc];
+    for (c, &u) in indices.iter().enumerate() {
+        out[fill[u as usize] as usize] = c as u32;
+        fill[u as usize] += 1;
+    }
+    let target = |c: u32| indices[next[c as usize] as usize];
+    let outgoing = |u: u32| &out[start[u as usize] as usize..start[u as usize + 1] as usize];
+
+    let mut twin = vec![NONE; nc];
+    let mut cut_edges = 0;
+    let mut same = Vec::new();
+    let mut back = Vec::new();
+    for c in 0..nc as u32 {
+        let (u, v) = (indices[c as usize], target(c));
+        same.clear();
+        back.clear();
+        same.extend(outgoing(u).iter().copied().filter(|&d| target(d) == v));
+        back.extend(outgoing(v).iter().copied().filter(|&d| target(d) == u));
+        // Decide each undirected edge once, from its smallest corner.
+        if same.iter().chain(&back).any(|&d| d < c) {
+            continue;
+        }
+        match (same.len(), back.len()) {
+            (1, 1) => {
+                twin[c as usize] = back[0];
+                twin[back[0] as usize] = c;
+            }
+            (1, 0) => {}
+            (s, b) => {
+                if cut {
+                    cut_edges += 1;
+                    continue;
+                }
+                let mut faces: Vec<usize> = same
+                    .iter()
+                    .chain(&back)
+                    .map(|&d| face_of_corner(offsets, d))
+                    .collect();
+                faces.sort_unstable();
+                return Err(if s + b > 2 {
+                    ImportError::NonManifoldEdge {
+                        u,
+                        v,
+                        count: s + b,
+                        faces,
+                    }
+                } else {
+                    ImportError::Misoriented { u, v, faces }
+                });
+            }
+        }
+    }
+    Ok(Pairing { twin, cut_edges })
+}
+
+/// Imports a soup into the kernel. See the module documentation.
+///
+/// Faces keep file order: soup face `i` becomes `imported.faces[i]`, which
+/// is also [`Mesh::face_at`]`(i)` when no face was dropped; holes follow.
+/// Each face's walk starts at its first corner.
+pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, ImportError> {
+    soup.check()?;
+    let split = options.split_nonmanifold;
+    let mut report = ImportReport::default();
+
+    // Faces to import: validate, or clean up in split mode.
+    let mut offsets = vec![0u32];
+    let mut indices: Vec<u32> = Vec::with_capacity(soup.face_indices.len());
+    let mut kept = Vec::with_capacity(soup.face_count());
+    let mut scratch = Vec::new();
+    for (f, face) in soup.faces().enumerate() {
+        scratch.clear();
+        scratch.extend_from_slice(face);
+        let repeat = (0..scratch.len())
+            .find(|&k| scratch.len() > 1 && scratch[k] == scratch[(k + 1) % scratch.len()]);
+        if let Some(k) = repeat {
+            if !split {
+                return Err(ImportError::DegenerateFace {
+                    face: f,
+                    vertex: scratch[k],
+                });
+            }
+            scratch.dedup();
+            while scratch.len() > 1 && scratch.first() == scratch.last() {
+                scratch.pop();
+            }
+        }
+        if scratch.len() < 2 || (split && scratch.len() < 3) {
+            if !split {
+                return Err(ImportError::ShortFace {
+                    face: f,
+                    len: scratch.len(),
+                });
+            }
+            report.dropped_faces += 1;
+            kept.push(false);
+            continue;
+        }
+        indices.extend_from_slice(&scratch);
+        offsets.push(indices.len() as u32);
+        kept.push(true);
+    }
+
+    // Compact referenced vertices, keeping index order.
+    let nv_soup = soup.positions.len();
+    let mut compact = vec![NONE; nv_soup];
+    for &u in &indices {
+        compact[u as usize] = 0;
+    }
+    let mut positions = Vec::new();
+    let mut original = Vec::new();
+    for (u, slot) in compact.iter_mut().enumerate() {
+        if *slot == 0 {
+            *slot = positions.len() as u32;
+            positions.push(soup.positions[u]);
+            original.push(u as u32);
+        }
+    }
+    report.unreferenced_vertices = nv_soup - positions.len();
+    for u in &mut indices {
+        *u = compact[*u as usize];
+    }
+
+    let next = next_corners(&offsets);
+    let nc = indices.len();
+    let mut prev = vec![0u32; nc];
+    for (c, &n) in next.iter().enumerate() {
+        prev[n as usize] = c as u32;
+    }
+    let pairing = pair_half_edges(&offsets, &indices, &next, positions.len(), split)?;
+    report.cut_edges = pairing.cut_edges;
+    let twin = pairing.twin;
+
+    // Fans. rot(c) = next(twin(c)) is the rotation successor of corner c
+    // around its vertex; it is undefined where c's half-edge is boundary.
+    // A fan starts at a corner whose incoming half-edge is boundary.
+    let mut fan = vec![NONE; nc];
+    let mut fan_vertex: Vec<u32> = Vec::new(); // fan id -> vertex
+    let mut fan_end_of_start: Vec<(u32, u32)> = Vec::new(); // (start, end) of open fans
+    for s in 0..nc as u32 {
+        if twin[prev[s as usize] as usize] != NONE {
+            continue;
+        }
+        let id = fan_vertex.len() as u32;
+        fan_vertex.push(indices[s as usize]);
+        let mut c = s;
+        loop {
+            fan[c as usize] = id;
+            let t = twin[c as usize];
+            if t == NONE {
+                break;
+            }
+            c = next[t as usize];
+        }
+        fan_end_of_start.push((s, c));
+    }
+    for s in 0..nc as u32 {
+        if fan[s as usize] != NONE {
+            continue;
+        }
+        let id = fan_vertex.len() as u32;
+        fan_vertex.push(indices[s as usize]);
+        let mut c = s;
+        while fan[c as usize] == NONE {
+            fan[c as usize] = id;
+            c = next[twin[c as usize] as usize];
+        }
+    }
+
+    // One vertex per fan: the first fan of a vertex keeps it, later fans
+    // are non-manifold and get copies (or fail).
+    let mut fans_per_vertex = vec![0u32; positions.len()];
+    let mut fan_target = vec![NONE; fan_vertex.len()];
+    for (id, &v) in fan_vertex.iter().enumerate() {
+        fans_per_vertex[v as usize] += 1;
+        if fans_per_vertex[v as usize] == 1 {
+            fan_target[id] = v;
+        }
+    }
+    if let Some(v) = fans_per_vertex.iter().position(|&n| n > 1) {
+        if !split {
+            let p = positions[v];
+            return Err(ImportError::NonManifoldVertex {
+                vertex: original[v],
+                fans: fans_per_vertex[v] as usize,
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            });
+        }
+    }
+    for (id, &v) in fan_vertex.iter().enumerate() {
+        if fan_target[id] == NONE {
+            fan_target[id] = positions.len() as u32;
+            positions.push(positions[v as usize]);
+            original.push(original[v as usize]);
+            report.split_vertices += 1;
+        }
+    }
+    for c in 0..nc {
+        indices[c] = fan_target[fan[c] as usize];
+    }
+
+    // Hole corners: one per open fan, at the fan's vertex, keyed by the
+    // boundary corner that ends the fan. The hole runs u→w against the
+    // boundary half-edge w→u that enters the fan's start s (from prev(s)),
+    // pairs with it, and continues at the hole corner of prev(s)'s fan.
+    let mut hole_of_end = vec![NONE; nc];
+    for (k, &(_, end)) in fan_end_of_start.iter().enumerate() {
+        hole_of_end[end as usize] = k as u32;
+    }
+    let nh = fan_end_of_start.len();
+    let mut hole_next = vec![NONE; nh];
+    let mut hole_partner = vec![NONE; nh];
+    for (k, &(s, _)) in fan_end_of_start.iter().enumerate() {
+        let p = prev[s as usize];
+        hole_partner[k] = p;
+        hole_next[k] = hole_of_end[p as usize];
+    }
+    let mut raw = RawMesh {
+        positions,
+        face_offsets: offsets,
+        face_vertices: indices,
+        holes: Vec::new(),
+        edges: Vec::with_capacity(nc / 2 + nh),
+    };
+    for c in 0..nc as u32 {
+        let t = twin[c as usize];
+        if t != NONE && c < t {
+            raw.edges.push([c, t]);
+        }
+    }
+    let nfaces = raw.face_count();
+    let mut placed = vec![NONE; nh];
+    for k0 in 0..nh {
+        if placed[k0] != NONE {
+            continue;
+        }
+        let mut k = k0;
+        while placed[k] == NONE {
+            let corner = raw.face_vertices.len() as u32;
+            placed[k] = corner;
+            let end = fan_end_of_start[k].1;
+            raw.face_vertices
+                .push(fan_target[fan[end as usize] as usize]);
+            k = hole_next[k] as usize;
+        }
+        raw.face_offsets.push(raw.face_vertices.len() as u32);
+        report.holes += 1;
+    }
+    for k in 0..nh {
+        raw.edges.push([placed[k], hole_partner[k]]);
+    }
+    if report.holes > 0 {
+        raw.holes = vec![false; raw.face_count()];
+        raw.holes[nfaces..].fill(true);
+    }
+
+    let mesh = Mesh::from_raw(&raw)?;
+    let mut face_ids = Vec::with_capacity(kept.len());
+    let mut next_face = 0usize;
+    for &k in &kept {
+        if k {
+            face_ids.push(mesh.face_at(next_face));
+            next_face += 1;
+        } else {
+            face_ids.push(None);
+        }
+    }
+    let mut vertices = vec![None; nv_soup];
+    for (i, &o) in original.iter().enumerate() {
+        if vertices[o as usize].is_none() {
+            vertices[o as usize] = mesh.vertex_at(i);
+        }
+    }
+    Ok(Imported {
+        mesh,
+        faces: face_ids,
+        vertices,
+        report,
+    })
+}
+
+/// Fills in `raw.edges` by pairing half-edges, for a `.dlfl` file written
+/// without `e` lines. Every half-edge must have exactly one partner
+/// running the other way (holes are explicit in `.dlfl`), and the faces
+/// must be free of multiple edges between the same two vertices.
+pub fn infer_edges(raw: &mut RawMesh) -> Result<(), ImportError> {
+    let nv = raw.positions.len();
+    if let Some(&index) = raw.face_vertices.iter().find(|&&u| u as usize >= nv) {
+        let face = face_of_corner(
+            &raw.face_offsets,
+            raw.face_vertices
+                .iter()
+                .position(|&u| u == index)
+                .unwrap_or(0) as u32,
+        );
+        return Err(PolyMeshError::IndexOutOfRange {
+            face,
+            index,
+            count: nv,
+        }
+        .into());
+    }
+    let next = next_corners(&raw.face_offsets);
+    let pairing = pair_half_edges(&raw.face_offsets, &raw.face_vertices, &next, nv, false)?;
+    raw.edges.clear();
+    for (c, &t) in pairing.twin.iter().enumerate() {
+        let c = c as u32;
+        if t == NONE {
+            let f = face_of_corner(&raw.face_offsets, c);
+            if raw.face_offsets[f + 1] - raw.face_offsets[f] == 1 {
+                continue; // a point-sphere's corner starts no edge
+            }
+            return Err(ImportError::Unpaired {
+                face: f,
+                corner: (c - raw.face_offsets[f]) as usize,
+            });
+        }
+        if c < t {
+            raw.edges.push([c, t]);
+        }
+    }
+    Ok(())
+}
+
+/// What [`to_poly`] left out.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Exported {
+    pub poly: PolyMesh,
+    /// The DLFL face each written face came from, in output order.
+    pub faces: Vec<FaceId>,
+    /// Self-loop corners dropped from face lists.
+    pub dropped_self_loops: usize,
+    /// Faces omitted because fewer than 3 corners were left (two-gons,
+    /// point-spheres, faces made only of self-loops).
+    pub dropped_faces: usize,
+}
+
+/// Exports the non-hole faces of a DLFL as a soup, in face slot order.
+/// Self-loops are removed from face lists and faces with fewer than three
+/// corners left are omitted (see the module documentation). Vertices are
+/// numbered in slot order among those the written faces use.
+pub fn to_poly(mesh: &Mesh) -> Exported {
+    let mut out = Exported::default();
+    let mut index = vec![NONE; mesh.vertices().last().map_or(0, |v| v.index() + 1)];
+    let mut faces: Vec<Vec<u32>> = Vec::with_capacity(mesh.face_count());
+    let mut face_ids = Vec::with_capacity(mesh.face_count());
+    let mut list = Vec::new();
+    for f in mesh.faces() {
+        if mesh.is_hole(f).unwrap_or(false) {
+            continue;
+        }
+        list.clear();
+        if let Ok(corners) = mesh.face_corners(f) {
+            list.extend(corners.filter_map(|c| mesh.corner_vertex(c).ok()));
+        }
+        let before = list.len();
+        list.dedup();
+        while list.len() > 1 && list.first() == list.last() {
+            list.pop();
+        }
+        let loops = before - list.len();
+        if list.len() < 3 {
+            out.dropped_faces += 1;
+            continue;
+        }
+        out.dropped_self_loops += loops;
+        faces.push(list.iter().map(|v| v.index() as u32).collect());
+        face_ids.push(f);
+    }
+    for face in &faces {
+        for &v in face {
+            index[v as usize] = 0;
+        }
+    }
+    let mut positions = Vec::new();
+    for v in mesh.vertices() {
+        if index[v.index()] == 0 {
+            index[v.index()] = positions.len() as u32;
+            positions.push(mesh.position(v).unwrap_or(DVec3::ZERO));
+        }
+    }
+    for face in &mut faces {
+        for v in face.iter_mut() {
+            *v = index[*v as usize];
+        }
+    }
+    out.poly = PolyMesh::from_faces(positions, faces);
+    out.faces = face_ids;
+    out
+}
+
+#[cfg(test)]
+mod tests;

@@ -14,9 +14,18 @@ pub struct PolyMesh {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PolyMeshError {
     #[error("face {face} refers to vertex {index}, but there are only {count} vertices")]
-    IndexOutOfRange { face: usize, index: u32, count: usize },
+    IndexOutOfRange {
+        face: usize,
+        index: u32,
+        count: usize,
+    },
     #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
-    NonFinite { vertex: usize, x: f64, y: f64, z: f64 },
+    NonFinite {
+        vertex: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
     #[error("face offsets are malformed")]
     Offsets,
     #[error("{0} entries exceed 32-bit indices")]
@@ -34,7 +43,10 @@ impl PolyMesh {
     }
 
     /// Builds a mesh from positions and per-face index lists.
-    pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<DVec3>, faces: impl IntoIterator<Item = F>) -> Self {
+    pub fn from_faces<F: AsRef<[u32]>>(
+        positions: Vec<DVec3>,
+        faces: impl IntoIterator<Item = F>,
+    ) -> Self {
         let mut m = PolyMesh {
             positions,
             ..PolyMesh::new()
@@ -98,7 +110,11 @@ impl PolyMesh {
         let n = self.positions.len();
         for f in 0..self.face_count() {
             if let Some(&index) = self.face(f).iter().find(|&&i| i as usize >= n) {
-                return Err(PolyMeshError::IndexOutOfRange { face: f, index, count: n });
+                return Err(PolyMeshError::IndexOutOfRange {
+                    face: f,
+                    index,
+                    count: n,
+                });
             }
         }
         Ok(())
@@ -122,7 +138,10 @@ impl PolyMesh {
     /// Axis-aligned bounds of the referenced vertices, or `None` if no face
     /// refers to any vertex.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
-        let mut it = self.face_indices.iter().filter_map(|&i| self.positions.get(i as usize).copied());
+        let mut it = self
+            .face_indices
+            .iter()
+            .filter_map(|&i| self.positions.get(i as usize).copied());
         let first = it.next()?;
         Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
     }

@@ -35,3 +35,6 @@ mod two_gons;
 
 pub use face_manifold::FaceManifold;
 pub use subdivide::Subdivided;
+
+#[cfg(test)]
+mod tests;
