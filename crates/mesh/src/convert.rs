@@ -324,17 +324,15 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
             fan_target[id] = v;
         }
     }
-    if let Some(v) = fans_per_vertex.iter().position(|&n| n > 1) {
-        if !split {
-            let p = positions[v];
-            return Err(ImportError::NonManifoldVertex {
-                vertex: original[v],
-                fans: fans_per_vertex[v] as usize,
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
+    if !split && let Some(v) = fans_per_vertex.iter().position(|&n| n > 1) {
+        let p = positions[v];
+        return Err(ImportError::NonManifoldVertex {
+            vertex: original[v],
+            fans: fans_per_vertex[v] as usize,
+            x: p.x,
+            y: p.y,
+            z: p.z,
+        });
     }
     for (id, &v) in fan_vertex.iter().enumerate() {
         if fan_target[id] == NONE {
