@@ -43,7 +43,7 @@ pub enum ImportError {
     DegenerateFace { face: usize, vertex: u32 },
     #[error(
         "non-manifold edge between vertices {u} and {v}: it is used by {count} face sides (faces {faces:?}); \
-         use the split-non-manifold option to cut it"
+         split it with --split-nonmanifold"
     )]
     NonManifoldEdge {
         u: u32,
@@ -53,12 +53,12 @@ pub enum ImportError {
     },
     #[error(
         "faces {faces:?} all use edge {u}→{v} in the same direction, so the surface is not consistently oriented; \
-         use the split-non-manifold option to cut it"
+         split it with --split-nonmanifold"
     )]
     Misoriented { u: u32, v: u32, faces: Vec<usize> },
     #[error(
         "non-manifold vertex {vertex} at ({x}, {y}, {z}): its faces form {fans} separate fans; \
-         use the split-non-manifold option to split it"
+         split it with --split-nonmanifold"
     )]
     NonManifoldVertex {
         vertex: u32,

@@ -1,0 +1,123 @@
+//! `holey info`: measure a mesh.
+
+use anyhow::Result;
+use holey_mesh::analysis::{MeshInfo, analyze, dlfl_info, weld_exact};
+
+use crate::input::{Input, load};
+
+#[derive(clap::Args)]
+#[command(after_help = "\
+Counts are of the mesh as stored: vertex indices as in the file, and
+unreferenced vertices not counted. For a .dlfl file they are of the DLFL
+structure itself: every edge record (self-loops and multiple edges
+included), faces without the holes, and holes as boundary loops.
+
+genus is the sum over components of (2 - χᵢ - bᵢ)/2, given only for a
+manifold, consistently oriented mesh; volume only for a closed one.
+
+Examples:
+  holey info bunny.obj
+  holey info --json @torus
+  holey info --weld soup.stl      # measure after merging identical positions")]
+pub struct Args {
+    /// The mesh: a file (OBJ, OFF, PLY, STL, .dlfl) or a primitive such as @cube.
+    pub mesh: String,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Merge vertices with bit-identical positions before measuring.
+    #[arg(long)]
+    pub weld: bool,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let loaded = load(&args.mesh)?;
+    let info = match loaded.input {
+        Input::Soup(soup) => {
+            if args.weld {
+                analyze(&weld_exact(&soup))
+            } else {
+                analyze(&soup)
+            }
+        }
+        Input::Dlfl(_) => {
+            let kernel = loaded_kernel(&args.mesh)?;
+            dlfl_info(&kernel)
+        }
+    };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&info)?);
+    } else {
+        print!("{}", render_text(&args.mesh, &info));
+    }
+    Ok(())
+}
+
+fn loaded_kernel(name: &str) -> Result<holey_dlfl::Mesh> {
+    Ok(load(name)?.into_kernel(false)?.mesh)
+}
+
+fn yes(b: bool) -> &'static str {
+    if b { "yes" } else { "no" }
+}
+
+/// The human-readable report.
+pub fn render_text(name: &str, i: &MeshInfo) -> String {
+    let sizes: Vec<String> = i
+        .face_sizes
+        .iter()
+        .map(|(k, v)| format!("{k}-gons: {v}"))
+        .collect();
+    let mut s = String::new();
+    s += &format!("mesh:          {name}\n");
+    s += &format!("vertices:      {}", i.vertices);
+    if i.unreferenced_vertices > 0 {
+        s += &format!(" (+{} unreferenced)", i.unreferenced_vertices);
+    }
+    s += "\n";
+    s += &format!("edges:         {}\n", i.edges);
+    s += &format!("faces:         {} ({})\n", i.faces, sizes.join(", "));
+    s += &format!("components:    {}\n", i.components);
+    s += &format!(
+        "closed:        {} ({} boundary edges in {} loops)\n",
+        yes(i.closed),
+        i.boundary_edges,
+        i.boundary_loops
+    );
+    s += &format!(
+        "manifold:      {} ({} non-manifold edges, {} non-manifold vertices)\n",
+        yes(i.manifold),
+        i.nonmanifold_edges,
+        i.nonmanifold_vertices
+    );
+    s += &format!(
+        "oriented:      {} ({} misoriented edges)\n",
+        yes(i.oriented),
+        i.misoriented_edges
+    );
+    s += &format!("euler:         {}\n", i.euler);
+    s += &format!(
+        "genus:         {}\n",
+        i.genus
+            .map_or("- (needs a manifold, oriented mesh)".into(), |g| g
+                .to_string())
+    );
+    s += &format!(
+        "degenerate:    {} self-loops, {} two-gons, {} point-spheres\n",
+        i.self_loops, i.two_gons, i.point_spheres
+    );
+    if let Some([lo, hi]) = i.bbox {
+        s += &format!(
+            "bbox:          [{}, {}, {}] .. [{}, {}, {}]\n",
+            lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+        );
+    }
+    s += &format!("area:          {}\n", i.area);
+    s += &format!(
+        "volume:        {}\n",
+        i.volume
+            .map_or("- (needs a closed, oriented mesh)".into(), |v| v
+                .to_string())
+    );
+    s
+}

@@ -1,0 +1,59 @@
+//! `holey`: change the topology of meshes.
+
+mod cmd;
+mod error;
+mod input;
+mod output;
+mod progress;
+
+use clap::{Parser, Subcommand};
+
+const ABOUT: &str = "holey changes the topology of meshes: it punches holes, joins parts, grows handles and builds very high-genus shapes.";
+
+const AFTER_HELP: &str = "\
+Meshes: every argument naming an input mesh takes a file (.obj, .off, .ply,
+.stl, .dlfl) or a built-in primitive written @name, e.g. @cube, @torus,
+@sphere:3 (run `holey primitives` for the list and their parameters).
+Outputs are written in the format their file extension names, atomically.
+
+Faces and corners are numbered in file order: face i is the i-th face read
+from (or written to) the file, from 0, and corner j is its j-th vertex.
+
+Exit status: 0 on success, 2 on bad input (a malformed file, a wrong id,
+a mesh the command cannot take), 1 when the system fails (disk, permissions).";
+
+#[derive(Parser)]
+#[command(name = "holey", version, about = ABOUT, after_help = AFTER_HELP)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Measure a mesh: counts, boundary, manifoldness, genus, volume.
+    Info(cmd::info::Args),
+    /// Convert a mesh between file formats.
+    Convert(cmd::convert::Args),
+    /// Write a built-in primitive to a file.
+    Primitive(cmd::primitive::Args),
+    /// List the built-in primitives and their parameters.
+    Primitives,
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Info(a) => cmd::info::run(a),
+        Command::Convert(a) => cmd::convert::run(a),
+        Command::Primitive(a) => cmd::primitive::run(a),
+        Command::Primitives => {
+            print!("{}", holey_shapes::primitive_help());
+            Ok(())
+        }
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(error::exit_status(&e));
+    }
+}

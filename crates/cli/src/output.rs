@@ -1,0 +1,52 @@
+//! Writing meshes in the format the output file's extension names.
+
+use std::path::Path;
+
+use anyhow::Result;
+use holey_dlfl::Mesh;
+use holey_io::{Format, WriteOptions};
+use holey_mesh::PolyMesh;
+use holey_mesh::convert::to_poly;
+
+use crate::error::from_io;
+
+/// Writes a DLFL: exactly as `.dlfl`, otherwise as a soup of its non-hole
+/// faces with self-loops dropped (see `holey_mesh::convert::to_poly`).
+pub fn write_kernel(path: &str, mesh: &Mesh, opts: &WriteOptions) -> Result<()> {
+    let p = Path::new(path);
+    match Format::from_path(p).map_err(from_io)? {
+        Format::Dlfl => holey_io::write_dlfl(p, &mesh.to_raw()).map_err(from_io),
+        _ => {
+            let out = to_poly(mesh);
+            if out.dropped_faces > 0 {
+                eprintln!(
+                    "note: {path}: {} face(s) with fewer than 3 corners (two-gons, point-spheres) are not written; .dlfl keeps them",
+                    out.dropped_faces
+                );
+            }
+            holey_io::write_poly(p, &out.poly, opts).map_err(from_io)
+        }
+    }
+}
+
+/// Writes a soup. For `.dlfl` it is imported into the kernel first, so it
+/// must be a 2-manifold (or `split_nonmanifold` set).
+pub fn write_soup(
+    path: &str,
+    soup: &PolyMesh,
+    opts: &WriteOptions,
+    split_nonmanifold: bool,
+) -> Result<()> {
+    let p = Path::new(path);
+    match Format::from_path(p).map_err(from_io)? {
+        Format::Dlfl => {
+            let imported = holey_mesh::convert::to_dlfl(
+                soup,
+                holey_mesh::convert::ImportOptions { split_nonmanifold },
+            )
+            .map_err(|e| crate::error::bad_input(format!("cannot write {path} as a DLFL: {e}")))?;
+            holey_io::write_dlfl(p, &imported.mesh.to_raw()).map_err(from_io)
+        }
+        _ => holey_io::write_poly(p, soup, opts).map_err(from_io),
+    }
+}

@@ -1,1 +1,0 @@
-//! Measures of an arbitrary polygon soup. (Being written.)
