@@ -1,0 +1,1 @@
+//! CPU rendering. (Being written.)

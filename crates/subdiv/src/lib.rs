@@ -1,0 +1,1 @@
+//! Smoothing subdivision. (Being written.)
