@@ -58,9 +58,8 @@ impl Loaded {
         let name = self.name;
         match self.input {
             Input::Soup(soup) => {
-                let Imported { mesh, .. } =
-                    to_dlfl(&soup, ImportOptions { split_nonmanifold })
-                        .map_err(|e| bad_input(format!("{name}: {e}")))?;
+                let Imported { mesh, .. } = to_dlfl(&soup, ImportOptions { split_nonmanifold })
+                    .map_err(|e| bad_input(format!("{name}: {e}")))?;
                 Ok(Kernel { mesh })
             }
             Input::Dlfl(mut raw) => {

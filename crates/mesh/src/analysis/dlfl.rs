@@ -46,10 +46,10 @@ pub fn dlfl_info(mesh: &Mesh) -> MeshInfo {
         faces += 1;
         let ps = mesh.face_positions(f).unwrap_or_default();
         *face_sizes.entry(ps.len()).or_insert(0) += 1;
-        match ps.len() {
-            1 => point_spheres += 1,
-            2 => two_gons += 1,
-            _ => {}
+        if mesh.is_point_sphere(f).unwrap_or(false) {
+            point_spheres += 1;
+        } else if ps.len() == 2 {
+            two_gons += 1;
         }
         for k in 1..ps.len().saturating_sub(1) {
             let (a, b, c) = (ps[0] - origin, ps[k] - origin, ps[k + 1] - origin);

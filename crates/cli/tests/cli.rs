@@ -1,0 +1,489 @@
+//! End-to-end tests of the `holey` binary: one test binary, each test
+//! running the real command line.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn holey(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_holey"))
+        .args(args)
+        .output()
+        .expect("the holey binary runs")
+}
+
+fn ok(args: &[&str]) -> String {
+    let out = holey(args);
+    assert!(
+        out.status.success(),
+        "holey {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8 output")
+}
+
+fn info(mesh: &str, extra: &[&str]) -> Value {
+    let mut args = vec!["info", "--json", mesh];
+    args.extend_from_slice(extra);
+    serde_json::from_str(&ok(&args)).expect("info prints JSON")
+}
+
+fn bad(args: &[&str]) -> String {
+    let out = holey(args);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "holey {args:?} should fail with status 2"
+    );
+    assert!(out.stdout.is_empty());
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn tmp() -> tempfile::TempDir {
+    tempfile::tempdir().expect("a temporary directory")
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+#[test]
+fn info_on_primitives() {
+    let cube = info("@cube", &[]);
+    assert_eq!(cube["vertices"], 8);
+    assert_eq!(cube["edges"], 12);
+    assert_eq!(cube["faces"], 6);
+    assert_eq!(cube["genus"], 0);
+    assert_eq!(cube["closed"], true);
+    assert_eq!(cube["volume"], 8.0);
+    assert_eq!(cube["face_sizes"]["4"], 6);
+    let torus = info("@torus", &[]);
+    assert_eq!(torus["genus"], 1);
+    assert_eq!(torus["euler"], 0);
+    let plane = info("@plane:4:3", &[]);
+    assert_eq!(plane["boundary_loops"], 1);
+    assert_eq!(plane["closed"], false);
+    assert_eq!(plane["volume"], Value::Null);
+    for field in [
+        "vertices",
+        "edges",
+        "faces",
+        "components",
+        "boundary_edges",
+        "boundary_loops",
+        "nonmanifold_edges",
+        "nonmanifold_vertices",
+        "closed",
+        "manifold",
+        "oriented",
+        "euler",
+        "genus",
+        "self_loops",
+        "two_gons",
+        "point_spheres",
+        "face_sizes",
+        "bbox",
+        "volume",
+    ] {
+        assert!(plane.get(field).is_some(), "info --json lacks {field}");
+    }
+    let text = ok(&["info", "@torus"]);
+    assert!(text.contains("genus:         1"), "{text}");
+}
+
+#[test]
+fn help_has_examples_for_every_command() {
+    for cmd in ["info", "convert", "primitive"] {
+        let help = ok(&[cmd, "--help"]);
+        assert!(help.contains("Examples:"), "{cmd} --help has no examples");
+    }
+    let top = ok(&["--help"]);
+    assert!(top.contains("@name") && top.contains("file order"));
+    assert!(ok(&["primitives"]).contains("@torus"));
+}
+
+#[test]
+fn convert_round_trips_through_every_format() {
+    let dir = tmp();
+    let base = info("@torus:12:8", &[]);
+    for ext in ["obj", "off", "ply", "dlfl"] {
+        let a = dir.path().join(format!("t.{ext}"));
+        ok(&["convert", "@torus:12:8", s(&a)]);
+        let back = dir.path().join(format!("back-{ext}.obj"));
+        ok(&["convert", s(&a), s(&back)]);
+        for v in [info(s(&a), &[]), info(s(&back), &[])] {
+            for key in ["vertices", "edges", "faces", "genus", "components", "bbox"] {
+                assert_eq!(v[key], base[key], "{ext}: {key}");
+            }
+        }
+    }
+    // STL holds triangles: the quads come back split in two.
+    let stl = dir.path().join("t.stl");
+    ok(&["convert", "@torus:12:8", s(&stl)]);
+    let t = info(s(&stl), &[]);
+    assert_eq!(t["faces"], 2 * 96);
+    assert_eq!(t["genus"], 1);
+    let ascii = dir.path().join("t-ascii.ply");
+    ok(&["convert", "@cube", s(&ascii), "--ascii"]);
+    assert!(
+        std::fs::read_to_string(&ascii)
+            .unwrap()
+            .contains("format ascii")
+    );
+}
+
+#[test]
+fn primitive_command_writes_files() {
+    let dir = tmp();
+    let out = dir.path().join("ico.obj");
+    ok(&["primitive", "icosahedron", s(&out)]);
+    let v = info(s(&out), &[]);
+    assert_eq!(
+        (v["vertices"].as_u64(), v["faces"].as_u64()),
+        (Some(12), Some(20))
+    );
+    let err = bad(&["primitive", "@sphere:99", s(&dir.path().join("x.obj"))]);
+    assert!(err.contains("sphere"), "{err}");
+    assert!(!dir.path().join("x.obj").exists());
+}
+
+#[test]
+fn malformed_input_is_status_2_with_line_and_no_output() {
+    let dir = tmp();
+    let cases = [
+        (
+            "badnum.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 3\n",
+            "badnum.obj:3",
+        ),
+        (
+            "range.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+            "range.obj:4",
+        ),
+        ("short.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "short.obj:3"),
+        (
+            "nan.obj",
+            "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n",
+            "nan.obj:3",
+        ),
+        (
+            "inf.off",
+            "OFF\n3 1 0\n0 0 0\n1 0 0\n0 inf 0\n3 0 1 2\n",
+            "inf.off:5",
+        ),
+    ];
+    for (name, text, expect) in cases {
+        let input = dir.path().join(name);
+        std::fs::write(&input, text).unwrap();
+        let out = dir.path().join(format!("{name}.ply"));
+        let err = bad(&["convert", s(&input), s(&out)]);
+        assert!(err.contains(expect), "{name}: {err}");
+        assert!(!out.exists(), "{name}: a partial output was written");
+        assert_eq!(
+            std::fs::read_to_string(&input).unwrap(),
+            text,
+            "input modified"
+        );
+        bad(&["info", s(&input)]);
+    }
+    // Truncated binary STL: a byte offset.
+    let stl = dir.path().join("cut.stl");
+    ok(&["convert", "@cube", s(&stl)]);
+    let bytes = std::fs::read(&stl).unwrap();
+    std::fs::write(&stl, &bytes[..bytes.len() - 7]).unwrap();
+    let err = bad(&["info", s(&stl)]);
+    assert!(err.contains("byte"), "{err}");
+    // Unknown extension, missing file, unknown primitive.
+    assert!(bad(&["info", "mesh.xyz"]).contains("mesh.xyz"));
+    assert!(bad(&["info", s(&dir.path().join("missing.obj"))]).contains("missing.obj"));
+    assert!(bad(&["info", "@nosuch"]).contains("@nosuch"));
+}
+
+#[test]
+fn failed_write_leaves_an_existing_output_untouched() {
+    let dir = tmp();
+    let out = dir.path().join("keep.dlfl");
+    std::fs::write(&out, "precious").unwrap();
+    // A non-manifold soup cannot become a DLFL without splitting.
+    let bowtie = dir.path().join("bowtie.obj");
+    std::fs::write(
+        &bowtie,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n",
+    )
+    .unwrap();
+    let err = bad(&["convert", s(&bowtie), s(&out)]);
+    assert!(err.contains("non-manifold vertex 0"), "{err}");
+    assert!(err.contains("--split-nonmanifold"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious");
+    ok(&["convert", s(&bowtie), s(&out), "--split-nonmanifold"]);
+    let v = info(s(&out), &[]);
+    assert_eq!(
+        (v["vertices"].as_u64(), v["components"].as_u64()),
+        (Some(6), Some(2))
+    );
+}
+
+#[test]
+fn dlfl_files_keep_what_other_formats_cannot() {
+    let dir = tmp();
+    // A sphere made of a self-loop and two monogons, plus a two-gon sphere
+    // and a point-sphere, written by hand.
+    let text = "dlfl 1\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 0\nf 0\ne 0:0 1:0\nf 1 2\nf 2 1\ne 2:0 3:0\ne 2:1 3:1\nf 3\n";
+    let path = dir.path().join("odd.dlfl");
+    std::fs::write(&path, text).unwrap();
+    let v = info(s(&path), &[]);
+    assert_eq!(v["vertices"], 4);
+    assert_eq!(v["edges"], 3);
+    assert_eq!(v["faces"], 5);
+    assert_eq!(v["self_loops"], 1);
+    assert_eq!(v["two_gons"], 2);
+    assert_eq!(v["point_spheres"], 1);
+    assert_eq!(v["components"], 3);
+    assert_eq!(v["genus"], 0);
+    let copy = dir.path().join("copy.dlfl");
+    ok(&["convert", s(&path), s(&copy)]);
+    assert_eq!(info(s(&copy), &[]), v);
+    // A .dlfl whose edges contradict its faces is refused with its line.
+    let broken = dir.path().join("broken.dlfl");
+    std::fs::write(
+        &broken,
+        "dlfl 1\nv 0 0 0\nv 1 0 0\nf 0 1\nf 0 1\ne 0:0 1:0\ne 0:1 1:1\n",
+    )
+    .unwrap();
+    let err = bad(&["info", s(&broken)]);
+    assert!(err.contains("broken.dlfl"), "{err}");
+}
+
+/// Values of one row of the shared README's table.
+struct Row {
+    file: String,
+    cells: Vec<String>,
+}
+
+fn readme_rows(readme: &str) -> Vec<Row> {
+    readme
+        .lines()
+        .filter(|l| l.starts_with("| ") && l.contains(".obj |"))
+        .filter_map(|l| {
+            let cells: Vec<String> = l
+                .trim_matches('|')
+                .split(" | ")
+                .map(|c| c.trim().to_owned())
+                .collect();
+            // The measured-properties table has 15 columns.
+            (cells.len() == 15).then(|| Row {
+                file: cells[0].clone(),
+                cells,
+            })
+        })
+        .collect()
+}
+
+fn leading_int(s: &str) -> i64 {
+    let t: String = s
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '-')
+        .collect();
+    t.parse().unwrap_or_else(|_| panic!("no integer in {s:?}"))
+}
+
+/// The shared README lists V, F, face sizes, closedness, boundary,
+/// non-manifold counts, components, χ, genus and volume for every mesh, and
+/// the same after welding. `holey info` must agree on every file. Reads
+/// ../shared/data/meshes; skipped visibly when it is absent.
+#[test]
+fn info_agrees_with_the_shared_readme_table() {
+    let Some(dir) =
+        holey_testkit::shared_meshes_or_skip("info_agrees_with_the_shared_readme_table")
+    else {
+        return;
+    };
+    let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    let rows = readme_rows(&readme);
+    assert_eq!(rows.len(), 16, "expected 16 meshes in the README table");
+    for row in rows {
+        let path: PathBuf = dir.join(&row.file);
+        let v = info(s(&path), &[]);
+        let c = &row.cells;
+        let ctx = &row.file;
+        assert_eq!(
+            v["vertices"].as_i64().unwrap(),
+            leading_int(&c[2]),
+            "{ctx} V"
+        );
+        if let Some(extra) = c[2].split("(+").nth(1) {
+            assert_eq!(
+                v["unreferenced_vertices"].as_i64().unwrap(),
+                leading_int(extra),
+                "{ctx} unreferenced"
+            );
+        }
+        assert_eq!(v["faces"].as_i64().unwrap(), leading_int(&c[3]), "{ctx} F");
+        for pair in c[4].split_whitespace() {
+            let (k, n) = pair.split_once(':').unwrap();
+            assert_eq!(
+                v["face_sizes"][k].as_i64().unwrap(),
+                n.parse::<i64>().unwrap(),
+                "{ctx} {k}-gons"
+            );
+        }
+        assert_eq!(
+            v["closed"].as_bool().unwrap(),
+            c[5].starts_with("yes"),
+            "{ctx} closed"
+        );
+        let inner = c[5].split('(').nth(1).unwrap();
+        let mut nums = inner.split(',').map(leading_int_trim);
+        assert_eq!(
+            v["boundary_edges"].as_i64().unwrap(),
+            nums.next().unwrap(),
+            "{ctx} be"
+        );
+        assert_eq!(
+            v["boundary_loops"].as_i64().unwrap(),
+            nums.next().unwrap(),
+            "{ctx} loops"
+        );
+        assert_eq!(
+            v["nonmanifold_edges"].as_i64().unwrap(),
+            leading_int(&c[6]),
+            "{ctx} nm edges"
+        );
+        assert_eq!(
+            v["nonmanifold_vertices"].as_i64().unwrap(),
+            leading_int(&c[7]),
+            "{ctx} nm verts"
+        );
+        assert_eq!(
+            v["misoriented_edges"].as_i64().unwrap(),
+            leading_int(&c[8]),
+            "{ctx} misoriented"
+        );
+        assert_eq!(
+            v["components"].as_i64().unwrap(),
+            leading_int(&c[9]),
+            "{ctx} comps"
+        );
+        assert_eq!(
+            v["euler"].as_i64().unwrap(),
+            leading_int(&c[10]),
+            "{ctx} chi"
+        );
+        if c[11] == "-" {
+            assert_eq!(v["genus"], Value::Null, "{ctx} genus");
+        } else {
+            assert_eq!(
+                v["genus"].as_i64().unwrap(),
+                leading_int(&c[11]),
+                "{ctx} genus"
+            );
+        }
+        if c[12] == "-" {
+            assert_eq!(v["volume"], Value::Null, "{ctx} volume");
+        } else {
+            let want: f64 = c[12].parse().unwrap();
+            let got = v["volume"].as_f64().unwrap();
+            // The README prints six significant digits.
+            assert!(
+                (got - want).abs() <= 5e-6 * want.abs().max(1.0),
+                "{ctx} volume {got} vs {want}"
+            );
+        }
+        if let Some(welded) = c[14].strip_prefix("welded: ") {
+            let w = info(s(&path), &["--weld"]);
+            for item in welded.split(", ") {
+                let (key, val) = item.split_once('=').unwrap();
+                let field = match key {
+                    "V" => "vertices",
+                    "closed" => "closed",
+                    "nm-edges" => "nonmanifold_edges",
+                    "nm-verts" => "nonmanifold_vertices",
+                    "comps" => "components",
+                    "chi" => "euler",
+                    "genus" => "genus",
+                    _ => continue, // si_pairs: self-intersections, a later issue
+                };
+                match field {
+                    "closed" => {
+                        assert_eq!(
+                            w["closed"].as_bool().unwrap(),
+                            val.starts_with("yes"),
+                            "{ctx} welded closed"
+                        );
+                        let be = leading_int(val.split('(').nth(1).unwrap());
+                        assert_eq!(w["boundary_edges"].as_i64().unwrap(), be, "{ctx} welded be");
+                    }
+                    "genus" if val == "-" => {
+                        assert_eq!(w["genus"], Value::Null, "{ctx} welded genus")
+                    }
+                    _ => assert_eq!(
+                        w[field].as_i64().unwrap(),
+                        leading_int(val),
+                        "{ctx} welded {key}"
+                    ),
+                }
+            }
+        }
+    }
+}
+
+fn leading_int_trim(s: &str) -> i64 {
+    leading_int(s.trim())
+}
+
+/// Every manifold mesh of the shared folder imports into the kernel and
+/// its .dlfl measures the same as the soup; the non-manifold ones are
+/// refused with the offending element named, and import with splitting.
+/// Reads ../shared/data/meshes; skipped visibly when absent.
+#[test]
+fn shared_meshes_import_into_the_kernel() {
+    let Some(dir) = holey_testkit::shared_meshes_or_skip("shared_meshes_import_into_the_kernel")
+    else {
+        return;
+    };
+    let out = tmp();
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "obj"))
+        .collect();
+    names.sort();
+    for path in names {
+        let soup = info(s(&path), &[]);
+        let target = out.path().join("k.dlfl");
+        let result = holey(&["convert", s(&path), s(&target)]);
+        let manifold = soup["manifold"].as_bool().unwrap() && soup["oriented"].as_bool().unwrap();
+        if manifold {
+            assert!(
+                result.status.success(),
+                "{path:?}: {}",
+                String::from_utf8_lossy(&result.stderr)
+            );
+            let k = info(s(&target), &[]);
+            for key in [
+                "vertices",
+                "edges",
+                "faces",
+                "components",
+                "boundary_edges",
+                "boundary_loops",
+                "euler",
+                "genus",
+            ] {
+                assert_eq!(k[key], soup[key], "{path:?}: {key}");
+            }
+        } else {
+            assert_eq!(result.status.code(), Some(2), "{path:?}");
+            let err = String::from_utf8_lossy(&result.stderr);
+            assert!(
+                err.contains("non-manifold") || err.contains("same direction"),
+                "{path:?}: {err}"
+            );
+            ok(&["convert", s(&path), s(&target), "--split-nonmanifold"]);
+            let k = info(s(&target), &[]);
+            assert_eq!(k["faces"], soup["faces"], "{path:?}");
+        }
+    }
+}
