@@ -31,6 +31,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The main job: build a gallery of models on built-in defaults.
+    Demo(cmd::demo::Args),
     /// Measure a mesh: counts, boundary, manifoldness, genus, volume.
     Info(cmd::info::Args),
     /// Convert a mesh between file formats.
@@ -44,6 +46,7 @@ enum Command {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Demo(a) => cmd::demo::run(a),
         Command::Info(a) => cmd::info::run(a),
         Command::Convert(a) => cmd::convert::run(a),
         Command::Primitive(a) => cmd::primitive::run(a),
