@@ -11,9 +11,21 @@ fn main() {
 }
 
 /// One insert_edge splitting a quad into two triangles, then the
-/// delete_edge that undoes it; reported per operation pair.
-#[divan::bench(args = [10_000u32, 1_000_000])]
-fn insert_then_delete_edge(bencher: Bencher, faces: u32) {
+/// delete_edge that undoes it, sweeping over the faces in order (the access
+/// pattern of operators that walk a mesh); counted per operation.
+#[divan::bench(args = [10_000u32, 1_000_000], sample_size = 20_000)]
+fn insert_delete_edge_sweep(bencher: Bencher, faces: u32) {
+    insert_delete(bencher, faces, 1);
+}
+
+/// The same at random faces of the mesh: bound by memory latency once the
+/// mesh is larger than the caches.
+#[divan::bench(args = [10_000u32, 1_000_000], sample_size = 20_000)]
+fn insert_delete_edge_random(bencher: Bencher, faces: u32) {
+    insert_delete(bencher, faces, 7919);
+}
+
+fn insert_delete(bencher: Bencher, faces: u32, stride: usize) {
     let side = (faces as f64).sqrt() as u32;
     let mut mesh = torus_mesh(side, side);
     let quads: Vec<(CornerId, CornerId)> = mesh
@@ -31,7 +43,7 @@ fn insert_then_delete_edge(bencher: Bencher, faces: u32) {
         .counter(divan::counter::ItemsCount::new(2usize))
         .bench_local(|| {
             let (a, b) = quads[k % quads.len()];
-            k = k.wrapping_add(7919);
+            k = k.wrapping_add(stride);
             if let Ok(e) = mesh.insert_edge(a, b) {
                 let _ = black_box(mesh.delete_edge(e));
             }

@@ -25,6 +25,17 @@ impl<T> Default for Arena<T> {
 }
 
 impl<T: Copy> Arena<T> {
+    /// An arena holding `values` in slots `0..n`, all live at generation 1.
+    pub(crate) fn from_values(values: Vec<T>) -> Self {
+        let n = values.len();
+        Arena {
+            values,
+            generations: vec![1; n],
+            free: Vec::new(),
+            live: n,
+        }
+    }
+
     /// Number of live values.
     #[inline]
     pub(crate) fn len(&self) -> usize {
@@ -104,10 +115,5 @@ impl<T: Copy> Arena<T> {
         self.values.capacity() * std::mem::size_of::<T>()
             + self.generations.capacity() * 4
             + self.free.capacity() * 4
-    }
-
-    pub(crate) fn reserve(&mut self, n: usize) {
-        self.values.reserve(n);
-        self.generations.reserve(n);
     }
 }

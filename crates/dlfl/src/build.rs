@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use crate::arena::Arena;
 use crate::mesh::{Corner, Edge, Face, Mesh, NONE, Vertex};
 use crate::validate::ValidationError;
 
@@ -146,11 +147,7 @@ impl Mesh {
             }
         }
 
-        let mut mesh = Mesh::default();
-        mesh.vertices.reserve(nv);
-        mesh.faces.reserve(nf);
-        mesh.corners.reserve(nc);
-        mesh.edges.reserve(raw.edges.len());
+        let mut vertices = Vec::with_capacity(nv);
         for (i, p) in raw.positions.iter().enumerate() {
             if !p.is_finite() {
                 return Err(BuildError::NonFinite {
@@ -160,15 +157,17 @@ impl Mesh {
                     z: p.z,
                 });
             }
-            mesh.vertices.insert(Vertex {
+            vertices.push(Vertex {
                 position: *p,
                 corner: NONE,
                 count: 0,
             });
         }
+        let mut faces = Vec::with_capacity(nf);
+        let mut corners = Vec::with_capacity(nc);
         for f in 0..nf {
             let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
-            mesh.faces.insert(Face {
+            faces.push(Face {
                 corner: lo,
                 len: hi - lo,
                 hole: raw.is_hole(f),
@@ -182,20 +181,42 @@ impl Mesh {
                         count: nv,
                     });
                 }
-                let next = if k + 1 == hi { lo } else { k + 1 };
-                let prev = if k == lo { hi - 1 } else { k - 1 };
-                mesh.corners.insert(Corner {
+                vertices[v as usize].count += 1;
+                corners.push(Corner {
                     vertex: v,
                     face: f as u32,
-                    next,
-                    prev,
+                    next: if k + 1 == hi { lo } else { k + 1 },
+                    prev: if k == lo { hi - 1 } else { k - 1 },
                     edge: NONE,
                     vnext: NONE,
                     vprev: NONE,
                 });
-                mesh.ring_insert(v, k);
             }
         }
+        // Vertex rings: chain each vertex's corners in index order. The
+        // last corner seen per vertex is kept in `vertex.corner` while
+        // linking, then the ring is closed.
+        for k in 0..nc as u32 {
+            let v = corners[k as usize].vertex as usize;
+            let last = vertices[v].corner;
+            if last == NONE {
+                corners[k as usize].vprev = k;
+                corners[k as usize].vnext = k;
+            } else {
+                let first = corners[last as usize].vnext;
+                corners[last as usize].vnext = k;
+                corners[k as usize].vprev = last;
+                corners[k as usize].vnext = first;
+                corners[first as usize].vprev = k;
+            }
+            vertices[v].corner = k;
+        }
+        let mut mesh = Mesh {
+            vertices: Arena::from_values(vertices),
+            faces: Arena::from_values(faces),
+            corners: Arena::from_values(corners),
+            edges: Arena::default(),
+        };
         if let Some(v) = (0..nv).find(|&v| mesh.v(v as u32).count == 0) {
             return Err(BuildError::UnusedVertex { vertex: v });
         }
@@ -203,6 +224,7 @@ impl Mesh {
             let f = raw.face_offsets.partition_point(|&o| o <= c) - 1;
             (f, (c - raw.face_offsets[f]) as usize)
         };
+        let mut edges = Vec::with_capacity(raw.edges.len());
         for (ei, &[a, b]) in raw.edges.iter().enumerate() {
             for c in [a, b] {
                 if c as usize >= nc {
@@ -239,8 +261,9 @@ impl Mesh {
             if mesh.c(ca.next).vertex != cb.vertex || mesh.c(cb.next).vertex != ca.vertex {
                 return Err(BuildError::Mismatched { edge: ei });
             }
-            mesh.edges.insert(Edge { corners: [a, b] });
+            edges.push(Edge { corners: [a, b] });
         }
+        mesh.edges = Arena::from_values(edges);
         for f in 0..nf {
             let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
             for k in lo..hi {

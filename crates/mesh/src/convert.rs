@@ -144,25 +144,37 @@ fn pair_half_edges(
     for i in 0..nverts {
         start[i + 1] += start[i];
     }
+    // Each row holds (corner, target vertex) so that scanning a row reads
+    // one contiguous run instead of chasing `next` per entry.
     let mut fill = start.clone();
-    let mut out = vec![0u32; nc];
+    let mut out = vec![(0u32, 0u32); nc];
     for (c, &u) in indices.iter().enumerate() {
-        out[fill[u as usize] as usize] = c as u32;
+        out[fill[u as usize] as usize] = (c as u32, indices[next[c] as usize]);
         fill[u as usize] += 1;
     }
-    let target = |c: u32| indices[next[c as usize] as usize];
     let outgoing = |u: u32| &out[start[u as usize] as usize..start[u as usize + 1] as usize];
 
     let mut twin = vec![NONE; nc];
     let mut cut_edges = 0;
     let mut same = Vec::new();
     let mut back = Vec::new();
-    for c in 0..nc as u32 {
-        let (u, v) = (indices[c as usize], target(c));
+    // Visit corners row by row (by origin vertex) so the row of u is hot.
+    for &(c, v) in &out {
+        let u = indices[c as usize];
         same.clear();
         back.clear();
-        same.extend(outgoing(u).iter().copied().filter(|&d| target(d) == v));
-        back.extend(outgoing(v).iter().copied().filter(|&d| target(d) == u));
+        same.extend(
+            outgoing(u)
+                .iter()
+                .filter(|&&(_, t)| t == v)
+                .map(|&(d, _)| d),
+        );
+        back.extend(
+            outgoing(v)
+                .iter()
+                .filter(|&&(_, t)| t == u)
+                .map(|&(d, _)| d),
+        );
         // Decide each undirected edge once, from its smallest corner.
         if same.iter().chain(&back).any(|&d| d < c) {
             continue;

@@ -34,22 +34,60 @@ struct Model {
 }
 
 fn primitive(spec: &str) -> Result<Mesh> {
-    let soup = holey_shapes::parse_primitive(spec).map_err(|e| bad_input(format!("{spec}: {e}")))?;
-    let imported = to_dlfl(&soup, ImportOptions::default()).map_err(|e| bad_input(format!("{spec}: {e}")))?;
+    let soup =
+        holey_shapes::parse_primitive(spec).map_err(|e| bad_input(format!("{spec}: {e}")))?;
+    let imported =
+        to_dlfl(&soup, ImportOptions::default()).map_err(|e| bad_input(format!("{spec}: {e}")))?;
     Ok(imported.mesh)
 }
 
 fn models() -> Vec<Model> {
     vec![
-        Model { name: "tetrahedron", what: "@tetrahedron", build: || primitive("@tetrahedron") },
-        Model { name: "cube", what: "@cube", build: || primitive("@cube") },
-        Model { name: "octahedron", what: "@octahedron", build: || primitive("@octahedron") },
-        Model { name: "dodecahedron", what: "@dodecahedron", build: || primitive("@dodecahedron") },
-        Model { name: "icosahedron", what: "@icosahedron", build: || primitive("@icosahedron") },
-        Model { name: "sphere", what: "@sphere:3", build: || primitive("@sphere:3") },
-        Model { name: "torus", what: "@torus", build: || primitive("@torus") },
-        Model { name: "cylinder", what: "@cylinder", build: || primitive("@cylinder") },
-        Model { name: "plane", what: "@plane (open: one hole face)", build: || primitive("@plane") },
+        Model {
+            name: "tetrahedron",
+            what: "@tetrahedron",
+            build: || primitive("@tetrahedron"),
+        },
+        Model {
+            name: "cube",
+            what: "@cube",
+            build: || primitive("@cube"),
+        },
+        Model {
+            name: "octahedron",
+            what: "@octahedron",
+            build: || primitive("@octahedron"),
+        },
+        Model {
+            name: "dodecahedron",
+            what: "@dodecahedron",
+            build: || primitive("@dodecahedron"),
+        },
+        Model {
+            name: "icosahedron",
+            what: "@icosahedron",
+            build: || primitive("@icosahedron"),
+        },
+        Model {
+            name: "sphere",
+            what: "@sphere:3",
+            build: || primitive("@sphere:3"),
+        },
+        Model {
+            name: "torus",
+            what: "@torus",
+            build: || primitive("@torus"),
+        },
+        Model {
+            name: "cylinder",
+            what: "@cylinder",
+            build: || primitive("@cylinder"),
+        },
+        Model {
+            name: "plane",
+            what: "@plane (open: one hole face)",
+            build: || primitive("@plane"),
+        },
     ]
 }
 
@@ -65,14 +103,16 @@ struct Row {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
     let mut rows = Vec::new();
     let total = Instant::now();
     for model in models() {
         let start = Instant::now();
         let mesh = (model.build)()?;
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        mesh.validate().with_context(|| format!("{} is not a valid DLFL", model.name))?;
+        mesh.validate()
+            .with_context(|| format!("{} is not a valid DLFL", model.name))?;
         write_model(&args.out, model.name, &mesh)?;
         let t = mesh.topology();
         rows.push(Row {
@@ -85,7 +125,10 @@ pub fn run(args: Args) -> Result<()> {
             ms,
         });
     }
-    println!("{:<14} {:>8} {:>8} {:>8} {:>6} {:>9}  {}", "model", "V", "E", "F", "genus", "ms", "made from");
+    println!(
+        "{:<14} {:>8} {:>8} {:>8} {:>6} {:>9}  {}",
+        "model", "V", "E", "F", "genus", "ms", "made from"
+    );
     for r in &rows {
         println!(
             "{:<14} {:>8} {:>8} {:>8} {:>6} {:>9.2}  {}",

@@ -361,7 +361,7 @@ fn reverse_faces_needs_whole_components() {
     let v0 = m.vertices().next().unwrap();
     let cs: Vec<_> = m.vertex_corners(v0).unwrap().collect();
     m.insert_edge(cs[0], cs[1]).unwrap();
-    let f = m.face_at(0).unwrap();
+    let f = m.corner_face(cs[0]).unwrap();
     m.reverse_component(f).unwrap();
     check(&m);
 }
