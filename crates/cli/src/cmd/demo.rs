@@ -126,8 +126,8 @@ pub fn run(args: Args) -> Result<()> {
         });
     }
     println!(
-        "{:<14} {:>8} {:>8} {:>8} {:>6} {:>9}  {}",
-        "model", "V", "E", "F", "genus", "ms", "made from"
+        "{:<14} {:>8} {:>8} {:>8} {:>6} {:>9}  made from",
+        "model", "V", "E", "F", "genus", "ms"
     );
     for r in &rows {
         println!(
