@@ -10,7 +10,16 @@ cargo fmt --all -- --check
 echo "== cargo clippy (all targets, -D warnings)"
 cargo clippy --workspace --all-targets --locked -- -D warnings
 
+shared="$(cd .. && pwd)/shared/data/meshes"
+if [ -n "${HOLEY_SHARED_MESHES:-}" ]; then shared="$HOLEY_SHARED_MESHES"; fi
+if [ -d "$shared" ]; then
+    echo "== shared meshes: $shared"
+else
+    echo "== NOTE: $shared is absent: the tests that read real meshes will print SKIP"
+fi
+
 echo "== cargo test (release: the geometry tests are heavy)"
-cargo test --workspace --release --locked
+# --show-output makes the SKIP lines of tests that skip visible.
+cargo test --workspace --release --locked -- --show-output
 
 echo "== all tests passed"
