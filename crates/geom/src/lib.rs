@@ -1,0 +1,1 @@
+//! Exact geometry. (Being written.)
