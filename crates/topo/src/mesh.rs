@@ -1,0 +1,214 @@
+//! Triangle meshes as the engine takes them, and their edges.
+//!
+//! The engine works on *any* list of triangles (§2.1 of the paper): edges of
+//! any degree, open, unoriented, disconnected, unwelded soups, duplicate and
+//! zero-area triangles. Edges are identified by vertex *indices*: two
+//! triangles of a soup that only touch at equal positions share no edge.
+
+use glam::DVec3;
+
+/// A triangle mesh: positions and triangles as index triples.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    pub positions: Vec<DVec3>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Why a mesh or a motion cannot be used.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("{what}: vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFinite {
+        what: &'static str,
+        vertex: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
+    #[error("triangle {triangle} refers to vertex {index}, but there are only {count} vertices")]
+    IndexOutOfRange {
+        triangle: usize,
+        index: u32,
+        count: usize,
+    },
+    #[error("the end positions give {got} vertices, the mesh has {expected}")]
+    VertexCountMismatch { expected: usize, got: usize },
+    #[error("{0} vertices exceed 32-bit indices")]
+    TooLarge(usize),
+}
+
+impl TriMesh {
+    /// Checks indices and that every position is finite.
+    pub fn check(&self) -> Result<(), MeshError> {
+        check_positions("mesh", &self.positions)?;
+        let n = self.positions.len();
+        if n >= u32::MAX as usize {
+            return Err(MeshError::TooLarge(n));
+        }
+        for (t, tri) in self.triangles.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
+                return Err(MeshError::IndexOutOfRange {
+                    triangle: t,
+                    index,
+                    count: n,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The three corner positions of triangle `t`.
+    pub fn corners(&self, t: usize) -> [DVec3; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+}
+
+/// Checks that every position is finite; `what` names the array in errors.
+pub fn check_positions(what: &'static str, positions: &[DVec3]) -> Result<(), MeshError> {
+    match positions.iter().position(|p| !p.is_finite()) {
+        Some(vertex) => {
+            let p = positions[vertex];
+            Err(MeshError::NonFinite {
+                what,
+                vertex,
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            })
+        }
+        None => Ok(()),
+    }
+}
+
+/// The undirected edges of a triangle mesh, by vertex index, with the
+/// triangles around each (any number: boundary, manifold, non-manifold).
+#[derive(Clone, Debug, Default)]
+pub struct Edges {
+    /// Edge `e` joins `ends[e][0] < ends[e][1]` (or equal for a degenerate
+    /// triangle that repeats a vertex).
+    pub ends: Vec<[u32; 2]>,
+    /// The edge of each triangle side `k` (from corner `k` to `k + 1`).
+    pub of_triangle: Vec<[u32; 3]>,
+    /// Triangles of edge `e`: `tris[offsets[e]..offsets[e + 1]]`.
+    pub offsets: Vec<u32>,
+    pub tris: Vec<u32>,
+}
+
+impl Edges {
+    /// Collects the edges of `mesh` (indices are assumed checked).
+    pub fn new(mesh: &TriMesh) -> Edges {
+        let nt = mesh.triangles.len();
+        // Sort the 3·nt sides by their undirected key.
+        let mut sides: Vec<(u64, u32)> = Vec::with_capacity(3 * nt);
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+                sides.push((key, (t * 3 + k) as u32));
+            }
+        }
+        sides.sort_unstable();
+        let mut ends = Vec::new();
+        let mut of_triangle = vec![[0u32; 3]; nt];
+        let mut offsets = vec![0u32];
+        let mut tris = Vec::with_capacity(3 * nt);
+        let mut i = 0;
+        while i < sides.len() {
+            let key = sides[i].0;
+            let e = ends.len() as u32;
+            ends.push([(key >> 32) as u32, key as u32]);
+            while i < sides.len() && sides[i].0 == key {
+                let side = sides[i].1 as usize;
+                of_triangle[side / 3][side % 3] = e;
+                let t = (side / 3) as u32;
+                // A triangle with a repeated vertex may use one edge twice.
+                if tris.last() != Some(&t) || tris.len() == *offsets.last().unwrap_or(&0) as usize {
+                    tris.push(t);
+                }
+                i += 1;
+            }
+            offsets.push(tris.len() as u32);
+        }
+        Edges {
+            ends,
+            of_triangle,
+            offsets,
+            tris,
+        }
+    }
+
+    /// Number of edges.
+    pub fn len(&self) -> usize {
+        self.ends.len()
+    }
+
+    /// True when there are no edges.
+    pub fn is_empty(&self) -> bool {
+        self.ends.is_empty()
+    }
+
+    /// The triangles that have edge `e` as a side.
+    pub fn triangles(&self, e: usize) -> &[u32] {
+        &self.tris[self.offsets[e] as usize..self.offsets[e + 1] as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad() -> TriMesh {
+        TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        }
+    }
+
+    #[test]
+    fn edges_of_two_triangles() {
+        let e = Edges::new(&quad());
+        assert_eq!(e.len(), 5);
+        let diagonal = e.of_triangle[0][2];
+        assert_eq!(e.ends[diagonal as usize], [0, 2]);
+        assert_eq!(e.triangles(diagonal as usize), &[0, 1]);
+        assert_eq!(e.of_triangle[1][0], diagonal);
+        let boundary = e.of_triangle[0][0];
+        assert_eq!(e.triangles(boundary as usize), &[0]);
+    }
+
+    #[test]
+    fn non_manifold_and_degenerate_edges() {
+        let mut m = quad();
+        m.positions.push(DVec3::Z);
+        m.triangles.push([0, 2, 4]);
+        m.triangles.push([1, 1, 3]);
+        let e = Edges::new(&m);
+        let diagonal = e.of_triangle[0][2] as usize;
+        assert_eq!(e.triangles(diagonal), &[0, 1, 2]);
+        let degenerate = e.of_triangle[3][0] as usize;
+        assert_eq!(e.ends[degenerate], [1, 1]);
+        assert_eq!(e.triangles(degenerate), &[3]);
+    }
+
+    #[test]
+    fn check_names_the_problem() {
+        let mut m = quad();
+        m.triangles.push([0, 1, 9]);
+        assert_eq!(
+            m.check(),
+            Err(MeshError::IndexOutOfRange {
+                triangle: 2,
+                index: 9,
+                count: 4
+            })
+        );
+        let mut n = quad();
+        n.positions[2].y = f64::NAN;
+        assert!(n.check().unwrap_err().to_string().contains("vertex 2"));
+    }
+}
