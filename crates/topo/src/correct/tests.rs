@@ -175,9 +175,8 @@ fn components_are_corrected_independently() {
     let s = setup(&mesh, |_, _| false);
     let mut raw = vec![false; s.n];
     raw[40] = true; // an error in the first grid
-    for v in off as usize..s.n {
-        raw[v] = true; // the second grid all odd: consistent, kept
-    }
+    // The second grid all odd: consistent, kept.
+    raw[off as usize..].fill(true);
     let out = run(&s, &raw, Scheme::Partition);
     assert!(!out.odd[40]);
     assert!(out.odd[off as usize..].iter().all(|&o| o));
