@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use anyhow::Result;
-use holey_dlfl::{Mesh, RawMesh};
+use holey_dlfl::{CornerId, FaceId, Mesh, RawMesh};
 use holey_io::MeshFile;
 use holey_mesh::PolyMesh;
 use holey_mesh::convert::{ImportOptions, Imported, infer_edges, to_dlfl};
@@ -25,9 +25,72 @@ pub struct Loaded {
     pub input: Input,
 }
 
-/// A mesh in the kernel.
+/// A mesh in the kernel, with its faces in file order.
 pub struct Kernel {
     pub mesh: Mesh,
+    /// Face `i` of the input as `holey info` numbers it (file order; for a
+    /// `.dlfl` file, `f` and `h` lines together).
+    pub faces: Vec<Option<FaceId>>,
+}
+
+impl Kernel {
+    /// The face numbered `index` in file order.
+    pub fn face(&self, index: usize) -> Result<FaceId> {
+        self.faces.get(index).copied().flatten().ok_or_else(|| {
+            bad_input(format!(
+                "face {index} does not exist: the input has {} faces",
+                self.faces.len()
+            ))
+        })
+    }
+
+    /// Corner `corner` of face `face` (file order; corner j is the face's j-th vertex).
+    pub fn corner(&self, face: usize, corner: usize) -> Result<CornerId> {
+        let f = self.face(face)?;
+        let len = self
+            .mesh
+            .face_len(f)
+            .map_err(|e| bad_input(e.to_string()))?;
+        self.mesh
+            .face_corners(f)
+            .map_err(|e| bad_input(e.to_string()))?
+            .nth(corner)
+            .ok_or_else(|| {
+                bad_input(format!(
+                    "face {face} has {len} corners; there is no corner {corner}"
+                ))
+            })
+    }
+}
+
+/// Parses a face:corner address such as `12:0`.
+pub fn parse_face_corner(s: &str) -> Result<(usize, usize)> {
+    let parse = |t: &str| t.trim().parse::<usize>().ok();
+    match s.split_once(':') {
+        Some((f, c)) => match (parse(f), parse(c)) {
+            (Some(f), Some(c)) => Ok((f, c)),
+            _ => Err(bad_input(format!(
+                "{s:?} is not FACE:CORNER (two non-negative integers)"
+            ))),
+        },
+        None => parse(s).map(|f| (f, 0)).ok_or_else(|| {
+            bad_input(format!(
+                "{s:?} is not FACE:CORNER (two non-negative integers)"
+            ))
+        }),
+    }
+}
+
+/// Parses a comma-separated list of face numbers such as `3,7,12`.
+pub fn parse_face_list(s: &str) -> Result<Vec<usize>> {
+    s.split(',')
+        .filter(|t| !t.trim().is_empty())
+        .map(|t| {
+            t.trim()
+                .parse::<usize>()
+                .map_err(|_| bad_input(format!("{t:?} in {s:?} is not a face number")))
+        })
+        .collect()
 }
 
 /// Reads a mesh argument.
@@ -58,16 +121,18 @@ impl Loaded {
         let name = self.name;
         match self.input {
             Input::Soup(soup) => {
-                let Imported { mesh, .. } = to_dlfl(&soup, ImportOptions { split_nonmanifold })
-                    .map_err(|e| bad_input(format!("{name}: {e}")))?;
-                Ok(Kernel { mesh })
+                let Imported { mesh, faces, .. } =
+                    to_dlfl(&soup, ImportOptions { split_nonmanifold })
+                        .map_err(|e| bad_input(format!("{name}: {e}")))?;
+                Ok(Kernel { mesh, faces })
             }
             Input::Dlfl(mut raw) => {
                 if raw.edges.is_empty() && raw.face_vertices.len() > raw.face_count() {
                     infer_edges(&mut raw).map_err(|e| bad_input(format!("{name}: {e}")))?;
                 }
                 let mesh = Mesh::from_raw(&raw).map_err(|e| bad_input(format!("{name}: {e}")))?;
-                Ok(Kernel { mesh })
+                let faces = (0..raw.face_count()).map(|f| mesh.face_at(f)).collect();
+                Ok(Kernel { mesh, faces })
             }
         }
     }

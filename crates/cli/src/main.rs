@@ -41,6 +41,16 @@ enum Command {
     Primitive(cmd::primitive::Args),
     /// List the built-in primitives and their parameters.
     Primitives,
+    /// Generalized Sierpinski polyhedra (thesis chapter VI).
+    Sierpinski(cmd::sierpinski::Args),
+    /// Generalized Menger sponges (thesis chapter VII).
+    Menger(cmd::menger::Args),
+    /// A multi-segment curved handle between two faces (thesis chapter IV).
+    Handle(cmd::handle::Args),
+    /// Draw a mesh to a PNG picture.
+    Render(cmd::render::Args),
+    /// Rind modeling: a crust with punched and peeled holes (thesis chapter V).
+    Rind(cmd::rind::Args),
 }
 
 fn main() {
@@ -50,6 +60,11 @@ fn main() {
         Command::Info(a) => cmd::info::run(a),
         Command::Convert(a) => cmd::convert::run(a),
         Command::Primitive(a) => cmd::primitive::run(a),
+        Command::Sierpinski(a) => cmd::sierpinski::run(a),
+        Command::Menger(a) => cmd::menger::run(a),
+        Command::Handle(a) => cmd::handle::run(a),
+        Command::Rind(a) => cmd::rind::run(a),
+        Command::Render(a) => cmd::render::run(a),
         Command::Primitives => {
             print!("{}", holey_shapes::primitive_help());
             Ok(())

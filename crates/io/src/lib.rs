@@ -230,6 +230,13 @@ pub fn write_dlfl(path: &Path, raw: &RawMesh) -> Result<(), IoError> {
     write_atomic(path, |w| dlfl::write(w, raw))
 }
 
+/// Writes `bytes` to `path` atomically (for pictures, reports and other
+/// non-mesh outputs): nothing is left at `path` unless the whole write
+/// succeeded, and an existing file there is replaced only then.
+pub fn write_bytes_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
+    write_atomic(path, |w| w.write_all(bytes))
+}
+
 /// Runs `body` on a temporary file in the destination's directory, then
 /// flushes, syncs and renames it over `path`. On any failure the temporary
 /// file is removed and `path` is untouched.

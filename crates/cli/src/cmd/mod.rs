@@ -2,5 +2,10 @@
 
 pub mod convert;
 pub mod demo;
+pub mod handle;
 pub mod info;
+pub mod menger;
 pub mod primitive;
+pub mod render;
+pub mod rind;
+pub mod sierpinski;

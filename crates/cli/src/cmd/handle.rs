@@ -1,0 +1,57 @@
+//! `holey handle`: a multi-segment curved handle (thesis chapter IV).
+
+use anyhow::Result;
+use holey_io::WriteOptions;
+use holey_model::handle::{HandleParams, create_handle};
+
+use crate::error::bad_input;
+use crate::input::{load, parse_face_corner};
+use crate::output::write_kernel;
+
+#[derive(clap::Args)]
+#[command(after_help = "\
+Joins two faces with a handle of K segments along a Hermite curve that
+leaves the first face's centroid along its normal (weight w1) and arrives
+at the second's against its normal (weight w2). Negative weights make a
+hole through the mesh instead. Faces in one component: genus rises by 1;
+in two components: they join. The corners (F:C, face F in file order as
+`holey info` counts, corner C its C-th vertex) are matched, so choosing
+other corners twists the handle. Between two d-gons a handle of s
+segments adds d(s-1) vertices, d(2s-1) edges and ds-2 faces.
+
+Examples:
+  holey handle @torus out.obj --from 0:0 --to 150:2 --segments 6 --w1 2 --w2 2
+  holey handle @cube tunnel.obj --from 0:0 --to 5:0 --segments 4 --w1 -1 --w2 -1")]
+pub struct Args {
+    /// Input mesh (a file or a primitive).
+    pub input: String,
+    /// Output file; its extension names the format.
+    pub output: String,
+    /// The first face and corner, as FACE:CORNER.
+    #[arg(long)]
+    pub from: String,
+    /// The second face and corner, as FACE:CORNER.
+    #[arg(long)]
+    pub to: String,
+    /// Number of segments.
+    #[arg(long, default_value_t = 4)]
+    pub segments: usize,
+    /// Weight of the first face's normal (negative: a hole).
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub w1: f64,
+    /// Weight of the second face's normal (negative: a hole).
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub w2: f64,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let (f1, c1) = parse_face_corner(&args.from)?;
+    let (f2, c2) = parse_face_corner(&args.to)?;
+    let mut kernel = load(&args.input)?.into_kernel(false)?;
+    let a = kernel.corner(f1, c1)?;
+    let b = kernel.corner(f2, c2)?;
+    let params = HandleParams::new(args.segments, args.w1, args.w2);
+    create_handle(&mut kernel.mesh, a, b, &params)
+        .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
+    write_kernel(&args.output, &kernel.mesh, &WriteOptions::default())
+}
