@@ -113,6 +113,26 @@ impl Mesh {
     /// global corner `k` is [`Mesh::corner_at`]`(k)`, with each face's walk
     /// starting at its first corner.
     pub fn from_raw(raw: &RawMesh) -> Result<Mesh, BuildError> {
+        let mesh = Mesh::from_raw_trusted(raw)?;
+        mesh.validate()?;
+        Ok(mesh)
+    }
+
+    /// Like [`Mesh::from_raw`], for generators whose output is a 2-manifold
+    /// by construction (subdivision of a valid mesh, say): every per-element
+    /// check runs — index ranges, finite positions, face offsets, each corner
+    /// starting exactly one edge whose sides run oppositely — but the global
+    /// pass that checks each vertex's rotation is one cycle runs only in
+    /// debug builds (as an error, not an assertion). Input read from files
+    /// must go through [`Mesh::from_raw`].
+    pub fn from_raw_trusted(raw: &RawMesh) -> Result<Mesh, BuildError> {
+        let mesh = Mesh::build_unvalidated(raw)?;
+        #[cfg(debug_assertions)]
+        mesh.validate()?;
+        Ok(mesh)
+    }
+
+    fn build_unvalidated(raw: &RawMesh) -> Result<Mesh, BuildError> {
         let nf = raw.face_count();
         let nv = raw.positions.len();
         let nc = raw.face_vertices.len();
@@ -276,7 +296,6 @@ impl Mesh {
                 }
             }
         }
-        mesh.validate()?;
         Ok(mesh)
     }
 

@@ -291,7 +291,7 @@ pub(crate) fn build(
             open.len()
         ))));
     }
-    let built = Mesh::from_raw(&raw)
+    let built = Mesh::from_raw_trusted(&raw)
         .map_err(|e| MengerError::Kernel(holey_dlfl::Error::Invalid(e.to_string())))?;
     let sponge = ExactSponge {
         level,

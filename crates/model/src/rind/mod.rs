@@ -230,7 +230,7 @@ impl Rind {
         let face_slot: Vec<usize> = mesh.faces().map(|f| f.index()).collect();
         let raw = mesh.to_raw();
         let shells = offset::build_shells(&raw, thickness, &vertex_slot, &face_slot)?;
-        let mut out = Mesh::from_raw(&shells.raw)?;
+        let mut out = Mesh::from_raw_trusted(&shells.raw)?;
         let nf = raw.face_count();
         let slots = face_slot.last().map_or(0, |&s| s + 1);
         let mut by_input = vec![None; slots];
