@@ -47,6 +47,8 @@ enum Command {
     Menger(cmd::menger::Args),
     /// A multi-segment curved handle between two faces (thesis chapter IV).
     Handle(cmd::handle::Args),
+    /// Catmull–Clark or Doo–Sabin smoothing.
+    Subdivide(cmd::subdivide::Args),
     /// Draw a mesh to a PNG picture.
     Render(cmd::render::Args),
     /// Rind modeling: a crust with punched and peeled holes (thesis chapter V).
@@ -65,6 +67,7 @@ fn main() {
         Command::Handle(a) => cmd::handle::run(a),
         Command::Rind(a) => cmd::rind::run(a),
         Command::Render(a) => cmd::render::run(a),
+        Command::Subdivide(a) => cmd::subdivide::run(a),
         Command::Primitives => {
             print!("{}", holey_shapes::primitive_help());
             Ok(())

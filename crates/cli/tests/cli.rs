@@ -487,3 +487,341 @@ fn shared_meshes_import_into_the_kernel() {
         }
     }
 }
+
+// ---- The high-genus tools (thesis chapters IV–VII) ----
+
+fn vef(v: &Value) -> (i64, i64, i64, i64) {
+    (
+        v["vertices"].as_i64().unwrap(),
+        v["edges"].as_i64().unwrap(),
+        v["faces"].as_i64().unwrap(),
+        v["genus"].as_i64().unwrap(),
+    )
+}
+
+#[test]
+fn sierpinski_tetrahedron_counts() {
+    let dir = tmp();
+    let expect = [
+        (1, (10, 30, 16, 3), 6),
+        (2, (34, 126, 64, 15), 30),
+        (3, (130, 510, 256, 63), 126),
+    ];
+    for (n, counts, loops) in expect {
+        let out = dir.path().join(format!("s{n}.dlfl"));
+        ok(&["sierpinski", "@tetrahedron", s(&out), "-n", &n.to_string()]);
+        let v = info(s(&out), &[]);
+        assert_eq!(vef(&v), counts, "iteration {n}");
+        assert_eq!(v["self_loops"], loops, "iteration {n}");
+        assert_eq!(v["components"], 1);
+        // OBJ drops the self-loops from face lists.
+        let obj = dir.path().join(format!("s{n}.obj"));
+        ok(&["convert", s(&out), s(&obj)]);
+        let o = info(s(&obj), &[]);
+        assert_eq!(o["self_loops"], 0);
+        assert_eq!(o["faces"].as_i64().unwrap(), counts.2);
+    }
+    assert!(bad(&["sierpinski", "@plane", s(&dir.path().join("x.obj"))]).contains("@plane"));
+}
+
+#[test]
+fn menger_sponges() {
+    let dir = tmp();
+    let one = dir.path().join("m1.obj");
+    ok(&["menger", "@cube", s(&one)]);
+    assert_eq!(vef(&info(s(&one), &[])), (64, 144, 72, 5));
+    let two = dir.path().join("m2.dlfl");
+    ok(&[
+        "menger",
+        "@cube",
+        s(&two),
+        "-n",
+        "2",
+        "--thickness-ratio",
+        "0.3333333333333333",
+    ]);
+    assert_eq!(info(s(&two), &[])["genus"], 81);
+    let exact = dir.path().join("m3.obj");
+    ok(&["menger", "@cube", s(&exact), "-n", "3", "--exact"]);
+    let e = info(s(&exact), &[]);
+    assert_eq!(e["genus"], 1409);
+    assert!((e["volume"].as_f64().unwrap() - 8.0 * (20.0f64 / 27.0).powi(3)).abs() < 1e-9);
+    let absolute = dir.path().join("ma.obj");
+    ok(&["menger", "@cube", s(&absolute), "--thickness", "0.5"]);
+    assert_eq!(info(s(&absolute), &[])["genus"], 5);
+    for bad_args in [
+        ["--thickness", "-1"],
+        ["--thickness", "5"],
+        ["--collapse-angle", "200"],
+    ] {
+        let target = dir.path().join("no.obj");
+        let mut args = vec!["menger", "@cube", s(&target)];
+        args.extend_from_slice(&bad_args);
+        bad(&args);
+        assert!(!target.exists());
+    }
+}
+
+#[test]
+fn curved_handles() {
+    let dir = tmp();
+    let out = dir.path().join("h.obj");
+    // Faces 0 (−z) and 5 (+z) of the cube, 3 segments: +8 V, +20 E, +10 F.
+    ok(&[
+        "handle",
+        "@cube",
+        s(&out),
+        "--from",
+        "0:0",
+        "--to",
+        "5:0",
+        "--segments",
+        "3",
+        "--w1",
+        "1",
+        "--w2",
+        "1",
+    ]);
+    assert_eq!(vef(&info(s(&out), &[])), (16, 32, 16, 1));
+    let tunnel = dir.path().join("t.obj");
+    ok(&[
+        "handle",
+        "@cube",
+        s(&tunnel),
+        "--from",
+        "0:0",
+        "--to",
+        "5:2",
+        "--segments",
+        "2",
+        "--w1",
+        "-1",
+        "--w2",
+        "-1",
+    ]);
+    assert_eq!(info(s(&tunnel), &[])["genus"], 1);
+    let missing = dir.path().join("x.obj");
+    assert!(
+        bad(&[
+            "handle",
+            "@cube",
+            s(&missing),
+            "--from",
+            "99:0",
+            "--to",
+            "5:0"
+        ])
+        .contains("face 99")
+    );
+    assert!(
+        bad(&[
+            "handle",
+            "@cube",
+            s(&missing),
+            "--from",
+            "0:9",
+            "--to",
+            "5:0"
+        ])
+        .contains("corner 9")
+    );
+    bad(&[
+        "handle",
+        "@cube",
+        s(&missing),
+        "--from",
+        "0:0",
+        "--to",
+        "0:1",
+    ]);
+    bad(&[
+        "handle",
+        "@cube",
+        s(&missing),
+        "--from",
+        "0:0",
+        "--to",
+        "5:0",
+        "--segments",
+        "0",
+    ]);
+    bad(&[
+        "handle",
+        "@cube",
+        s(&missing),
+        "--from",
+        "zero",
+        "--to",
+        "5:0",
+    ]);
+    assert!(!missing.exists());
+}
+
+#[test]
+fn rind_punch_and_peel() {
+    let dir = tmp();
+    // .dlfl keeps the thin walls between neighbouring punches exactly; as a
+    // soup two coincident wall quads read as non-manifold.
+    let out = dir.path().join("r.dlfl");
+    // k holes in a genus-0 crust: genus k − 1.
+    for (punch, genus) in [("0", 0), ("0,5", 1), ("0,1,2,5", 3)] {
+        ok(&[
+            "rind",
+            "@cube",
+            s(&out),
+            "--thickness",
+            "0.2",
+            "--punch",
+            punch,
+        ]);
+        let v = info(s(&out), &[]);
+        assert_eq!(v["genus"], genus, "punch {punch}");
+        assert_eq!(v["closed"], true);
+    }
+    let torus = dir.path().join("rt.dlfl");
+    ok(&[
+        "rind",
+        "@torus",
+        s(&torus),
+        "--thickness",
+        "0.05",
+        "--punch",
+        "0,100",
+    ]);
+    assert_eq!(info(s(&torus), &[])["genus"], 3); // 2g + k − 1
+    let peeled = dir.path().join("p.obj");
+    ok(&[
+        "rind",
+        "@cube",
+        s(&peeled),
+        "--thickness",
+        "0.2",
+        "--peel",
+        "1,2",
+    ]);
+    assert_eq!(info(s(&peeled), &[])["two_gons"], 0);
+    // Punching a face twice is a note, not an error.
+    let twice = holey(&[
+        "rind",
+        "@cube",
+        s(&out),
+        "--thickness",
+        "0.2",
+        "--punch",
+        "3,3",
+    ]);
+    assert!(twice.status.success());
+    assert!(String::from_utf8_lossy(&twice.stderr).contains("face 3"));
+    let none = dir.path().join("none.obj");
+    bad(&[
+        "rind",
+        "@cube",
+        s(&none),
+        "--thickness",
+        "5",
+        "--punch",
+        "0",
+    ]);
+    bad(&[
+        "rind",
+        "@cube",
+        s(&none),
+        "--thickness",
+        "0.2",
+        "--punch",
+        "42",
+    ]);
+    assert!(!none.exists());
+}
+
+#[test]
+fn subdivision_counts() {
+    let dir = tmp();
+    let cc = dir.path().join("cc.obj");
+    ok(&["subdivide", "@cube", s(&cc), "--scheme", "catmull-clark"]);
+    assert_eq!(vef(&info(s(&cc), &[])), (26, 48, 24, 0));
+    let ds = dir.path().join("ds.obj");
+    ok(&["subdivide", "@cube", s(&ds), "--scheme", "doo-sabin"]);
+    assert_eq!(vef(&info(s(&ds), &[])), (24, 48, 26, 0));
+    let torus = dir.path().join("t.obj");
+    ok(&[
+        "subdivide",
+        "@torus",
+        s(&torus),
+        "--scheme",
+        "catmull-clark",
+        "-n",
+        "2",
+    ]);
+    assert_eq!(info(s(&torus), &[])["genus"], 1);
+    bad(&["subdivide", "@cube", s(&cc), "--scheme", "loop"]);
+}
+
+#[test]
+fn render_is_deterministic_and_checks_its_options() {
+    let dir = tmp();
+    let a = dir.path().join("a.png");
+    let b = dir.path().join("b.png");
+    ok(&["render", "@torus", s(&a), "--edges", "--size", "320x240"]);
+    ok(&["render", "@torus", s(&b), "--edges", "--size", "320x240"]);
+    let (pa, pb) = (std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    assert_eq!(&pa[1..4], b"PNG");
+    assert_eq!(pa, pb, "the same input gave different pictures");
+    bad(&[
+        "render",
+        "@torus",
+        s(&dir.path().join("c.png")),
+        "--size",
+        "0x10",
+    ]);
+    bad(&[
+        "render",
+        "@torus",
+        s(&dir.path().join("c.png")),
+        "--view",
+        "sideways",
+    ]);
+    bad(&["render", "@torus", s(&dir.path().join("c.jpg"))]);
+}
+
+#[test]
+fn demo_writes_the_gallery() {
+    let dir = tmp();
+    let out = holey(&["demo", "--out", s(dir.path()), "--size", "240x180"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let table = String::from_utf8(out.stdout).unwrap();
+    let index = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
+    for name in [
+        "sierpinski-tetrahedron",
+        "menger-2",
+        "menger-3-exact",
+        "rind-sphere",
+        "handle-torus",
+        "cup",
+    ] {
+        assert!(table.contains(name), "table lacks {name}");
+        assert!(
+            index.contains(&format!("{name}.png")),
+            "gallery lacks {name}"
+        );
+        for ext in ["obj", "dlfl", "png"] {
+            assert!(
+                dir.path().join(format!("{name}.{ext}")).exists(),
+                "{name}.{ext}"
+            );
+        }
+    }
+    // The table's genus column agrees with the files.
+    let genus = |name: &str| {
+        info(s(&dir.path().join(format!("{name}.dlfl"))), &[])["genus"]
+            .as_i64()
+            .unwrap()
+    };
+    assert_eq!(genus("sierpinski-tetrahedron"), 63);
+    assert_eq!(genus("menger-3-exact"), 1409);
+    assert_eq!(genus("cup"), 1);
+}

@@ -9,3 +9,4 @@ pub mod primitive;
 pub mod render;
 pub mod rind;
 pub mod sierpinski;
+pub mod subdivide;
