@@ -6,12 +6,11 @@
 
 mod common45;
 
-use std::time::Instant;
 
 use common45::*;
 use holey_dlfl::DVec3;
 use holey_model::handle::{
-    HandleParams, Orientation, create_handle, create_handle_observed, plan_handle,
+    HandleParams, Orientation, create_handle, create_handle_observed,
 };
 
 #[test]
@@ -149,41 +148,3 @@ fn the_mesh_is_a_valid_manifold_after_every_step() {
     assert_eq!(m.genus(), 1);
 }
 
-/// Measurement, not a check: `cargo test -p holey-model --release --test
-/// fig18_curved_handle -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn measure_a_100_segment_handle_between_1000_gons() {
-    let c = poly("@cylinder:1000:1");
-    for (label, soup, f2, w) in [
-        (
-            "U handle between two cylinders",
-            union(&c, &c, DVec3::new(3.0, 0.0, 0.0)),
-            1002 + 1,
-            2.0,
-        ),
-        ("tunnel through one cylinder", c.clone(), 0, -1.0),
-    ] {
-        let mut m = mesh(&soup);
-        let (a, b) = (corner(&m, 1), corner(&m, f2));
-        let start = Instant::now();
-        let plan = plan_handle(&m, a, b, &HandleParams::new(100, w, w)).unwrap();
-        let planned = start.elapsed();
-        assert_eq!(plan.sections.len(), 99);
-        let start = Instant::now();
-        let r = create_handle(&mut m, a, b, &HandleParams::new(100, w, w)).unwrap();
-        let took = start.elapsed();
-        assert_eq!(r.sections.len(), 99);
-        let start = Instant::now();
-        m.validate().unwrap();
-        eprintln!(
-            "{label}: handle of 100 segments on 1000-gons in {:.2} ms (of which planning alone takes {:.2} ms; validate {:.2} ms); V={} E={} F={}",
-            took.as_secs_f64() * 1e3,
-            planned.as_secs_f64() * 1e3,
-            start.elapsed().as_secs_f64() * 1e3,
-            m.vertex_count(),
-            m.edge_count(),
-            m.face_count()
-        );
-    }
-}

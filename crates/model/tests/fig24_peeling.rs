@@ -10,7 +10,6 @@
 
 mod common45;
 
-use std::time::Instant;
 
 use common45::*;
 use holey_dlfl::Mesh;
@@ -340,49 +339,6 @@ fn a_punched_neighbour_also_counts_for_peeling() {
     ));
 }
 
-/// Measurement, not a check: `cargo test -p holey-model --release --test
-/// fig24_peeling -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn measure_punching_and_peeling_every_face_of_a_100k_face_rind() {
-    let soup = poly("@cube:129");
-    let faces = soup.face_count();
-    let m = mesh(&soup);
-    let start = Instant::now();
-    let rind = Rind::new(m.clone(), 0.001).unwrap();
-    let made = start.elapsed();
-    let mut punched = rind.clone();
-    let start = Instant::now();
-    for i in 0..faces {
-        punched.punch_index(i).unwrap();
-    }
-    let punch = start.elapsed();
-    assert_eq!(punched.mesh().genus(), faces as i64 - 1);
-    let mut peeled = rind.clone();
-    let start = Instant::now();
-    for i in 0..faces {
-        peeled.peel_index(i).unwrap();
-    }
-    let peel = start.elapsed();
-    assert!(peeled.mesh().is_empty());
-    // Peeling half (every face with an even index): a checkerboard-ish mix.
-    let mut half = rind.clone();
-    let start = Instant::now();
-    for i in (0..faces).step_by(2) {
-        half.peel_index(i).unwrap();
-    }
-    let half_t = start.elapsed();
-    half.mesh().validate().unwrap();
-    eprintln!(
-        "{faces} outer faces: rind {:.1} ms; punch all {:.1} ms ({:.2} µs/face); peel all {:.1} ms ({:.2} µs/face); peel every other {:.1} ms",
-        made.as_secs_f64() * 1e3,
-        punch.as_secs_f64() * 1e3,
-        punch.as_secs_f64() * 1e6 / faces as f64,
-        peel.as_secs_f64() * 1e3,
-        peel.as_secs_f64() * 1e6 / faces as f64,
-        half_t.as_secs_f64() * 1e3,
-    );
-}
 
 #[test]
 fn peeling_random_regions_in_random_order_follows_the_counts() {

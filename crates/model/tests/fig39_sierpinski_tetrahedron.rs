@@ -2,7 +2,6 @@
 //! applied to a tetrahedron (A) and a cube (B), through the public API.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
-use std::time::Instant;
 
 use holey_dlfl::Mesh;
 use holey_mesh::convert::{ImportOptions, to_dlfl};
@@ -68,28 +67,3 @@ fn sierpinski_refuses_open_meshes() {
     ));
 }
 
-/// Timing, not a check: `cargo test --release -p holey-model --test
-/// fig39_sierpinski_tetrahedron -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn measure_sierpinski_to_a_million_faces() {
-    for spec in ["@tetrahedron", "@cube"] {
-        let mut m = primitive(spec);
-        let mut k = 0;
-        while m.face_count() < 1_000_000 {
-            let t = Instant::now();
-            sierpinski(&mut m, 1).unwrap();
-            k += 1;
-            println!(
-                "{spec} iteration {k}: V {} E {} F {} in {:.3} s",
-                m.vertex_count(),
-                m.edge_count(),
-                m.face_count(),
-                t.elapsed().as_secs_f64()
-            );
-        }
-        let t = Instant::now();
-        m.validate().unwrap();
-        println!("  validate: {:.3} s", t.elapsed().as_secs_f64());
-    }
-}

@@ -4,7 +4,6 @@
 //! against the shared level-3 mesh.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
-use std::time::Instant;
 
 use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::analysis::{analyze, dlfl_info};
@@ -191,65 +190,3 @@ fn on_level3_boundary(p: DVec3) -> bool {
     any_kept && any_removed
 }
 
-/// Timing, not a check: `cargo test --release -p holey-model --test
-/// fig62_menger_cube -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn measure_menger_to_a_million_faces() {
-    // Levels 1-4 at a third of the mean edge; the edges then vary too much
-    // in length for a third of their mean (the shortest is under 2D), so
-    // level 5 uses 0.15.
-    let mut m = cube();
-    for (level, ratio) in [
-        (1, 1.0 / 3.0),
-        (2, 1.0 / 3.0),
-        (3, 1.0 / 3.0),
-        (4, 1.0 / 3.0),
-        (5, 0.15),
-    ] {
-        let params = MengerParams {
-            thickness: Thickness::RatioOfMeanEdge(ratio),
-            ..MengerParams::default()
-        };
-        let t = Instant::now();
-        menger(&mut m, &params).unwrap();
-        println!(
-            "thesis level {level} (R = {ratio:.3}): V {} E {} F {} in {:.3} s",
-            m.vertex_count(),
-            m.edge_count(),
-            m.face_count(),
-            t.elapsed().as_secs_f64()
-        );
-    }
-    let t = Instant::now();
-    m.validate().unwrap();
-    println!(
-        "  validate: {:.3} s, genus {}",
-        t.elapsed().as_secs_f64(),
-        m.genus()
-    );
-    // One level on a finely divided cube.
-    let poly = holey_shapes::parse_primitive("@cube:100").unwrap();
-    let mut m = to_dlfl(&poly, ImportOptions::default()).unwrap().mesh;
-    let t = Instant::now();
-    menger(&mut m, &thesis(1)).unwrap();
-    println!(
-        "thesis, one level on @cube:100: V {} E {} F {} in {:.3} s",
-        m.vertex_count(),
-        m.edge_count(),
-        m.face_count(),
-        t.elapsed().as_secs_f64()
-    );
-    for level in 1..=5 {
-        let mut m = cube();
-        let t = Instant::now();
-        menger(&mut m, &exact(level)).unwrap();
-        println!(
-            "exact level {level}: V {} E {} F {} in {:.3} s",
-            m.vertex_count(),
-            m.edge_count(),
-            m.face_count(),
-            t.elapsed().as_secs_f64()
-        );
-    }
-}

@@ -1,0 +1,152 @@
+//! The thesis's tools at about a million output faces (issue: high-genus
+//! tools, performance), plus the renderer.
+//!
+//! cargo bench -p holey-bench --bench tools
+
+use divan::{Bencher, black_box};
+use holey_dlfl::Mesh;
+use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_model::handle::{HandleParams, create_handle};
+use holey_model::menger::{MengerParams, Thickness, menger};
+use holey_model::rind::Rind;
+use holey_model::sierpinski::sierpinski;
+use holey_render::{RenderOptions, render};
+use holey_subdiv::{catmull_clark, doo_sabin};
+
+fn main() {
+    divan::main();
+}
+
+fn primitive(spec: &str) -> Mesh {
+    let soup = holey_shapes::parse_primitive(spec).unwrap_or_else(|e| panic!("{spec}: {e}"));
+    to_dlfl(&soup, ImportOptions::default())
+        .unwrap_or_else(|e| panic!("{spec}: {e}"))
+        .mesh
+}
+
+/// Nine Sierpinski iterations of a tetrahedron: 1,048,576 faces.
+#[divan::bench(sample_count = 5)]
+fn sierpinski_tetrahedron_9(bencher: Bencher) {
+    let base = primitive("@tetrahedron");
+    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
+        let _ = black_box(sierpinski(&mut m, 9));
+        m
+    });
+}
+
+/// One Menger level on a finely divided cube: about 0.9M faces.
+#[divan::bench(sample_count = 5)]
+fn menger_one_level_on_cube_100(bencher: Bencher) {
+    let base = primitive("@cube:100");
+    let params = MengerParams::default();
+    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
+        let _ = black_box(menger(&mut m, &params));
+        m
+    });
+}
+
+/// Menger levels 1–4 of a cube at a third of the mean edge (186k faces).
+#[divan::bench(sample_count = 5)]
+fn menger_cube_4_levels(bencher: Bencher) {
+    let base = primitive("@cube");
+    let params = MengerParams {
+        iterations: 4,
+        thickness: Thickness::RatioOfMeanEdge(1.0 / 3.0),
+        ..MengerParams::default()
+    };
+    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
+        let _ = black_box(menger(&mut m, &params));
+        m
+    });
+}
+
+/// The true sponge, level 5: 6.5M faces (level 4: 336k).
+#[divan::bench(args = [4usize, 5], sample_count = 3)]
+fn menger_exact(bencher: Bencher, level: usize) {
+    let base = primitive("@cube");
+    let params = MengerParams {
+        iterations: level,
+        exact: true,
+        ..MengerParams::default()
+    };
+    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
+        let _ = black_box(menger(&mut m, &params));
+        m
+    });
+}
+
+/// A 100-segment handle between the two caps of a 1000-gon cylinder (a
+/// tunnel): about 100k vertices added.
+#[divan::bench(sample_count = 10)]
+fn handle_100_segments_1000_gons(bencher: Bencher) {
+    let base = primitive("@cylinder:1000:1");
+    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
+        let (a, b) = (m.face_at(0), m.face_at(1));
+        if let (Some(a), Some(b)) = (a, b)
+            && let (Ok(ca), Ok(cb)) = (m.face_corner(a), m.face_corner(b))
+        {
+            let _ = black_box(create_handle(&mut m, ca, cb, &HandleParams::new(100, -1.0, -1.0)));
+        }
+        m
+    });
+}
+
+/// A rind of a 100k-face cube, then every outer face punched.
+#[divan::bench(sample_count = 5)]
+fn rind_100k_faces_punch_all(bencher: Bencher) {
+    let base = primitive("@cube:129");
+    bencher.with_inputs(|| base.clone()).bench_local_values(|m| {
+        let faces = m.face_count();
+        let Ok(mut rind) = Rind::new(m, 0.001) else { return 0 };
+        for i in 0..faces {
+            let _ = rind.punch_index(i);
+        }
+        rind.mesh().face_count()
+    });
+}
+
+/// Subdivision to about a million faces from a 4k-face torus.
+#[divan::bench(sample_count = 5)]
+fn catmull_clark_to_1m(bencher: Bencher) {
+    let base = primitive("@torus:64:64");
+    bencher.bench(|| black_box(catmull_clark(&base, 4)).map(|m| m.face_count()));
+}
+
+#[divan::bench(sample_count = 5)]
+fn doo_sabin_to_1m(bencher: Bencher) {
+    let base = primitive("@torus:64:64");
+    bencher.bench(|| black_box(doo_sabin(&base, 4)).map(|m| m.face_count()));
+}
+
+/// A 1M-triangle icosphere at 1024×768 (flat shading, 3×3 supersampling).
+#[divan::bench(sample_count = 5)]
+fn render_1m_triangles(bencher: Bencher) {
+    let soup = holey_shapes::parse_primitive("@sphere:8").unwrap_or_else(|e| panic!("{e}"));
+    let opts = RenderOptions {
+        width: 1024,
+        height: 768,
+        ..RenderOptions::default()
+    };
+    bencher.bench(|| black_box(render(&soup, &opts)).map(|i| i.width()));
+}
+
+/// A 10k-face mesh at 640×480, as for a sculpting frame.
+#[divan::bench(sample_count = 10)]
+fn render_10k_triangles(bencher: Bencher) {
+    let soup = holey_shapes::parse_primitive("@sphere:5").unwrap_or_else(|e| panic!("{e}"));
+    let opts = RenderOptions {
+        width: 640,
+        height: 480,
+        ..RenderOptions::default()
+    };
+    bencher.bench(|| black_box(render(&soup, &opts)).map(|i| i.width()));
+}
+
+/// Writing a Sierpinski result as a soup (self-loops dropped).
+#[divan::bench(sample_count = 5)]
+fn export_1m_face_sierpinski_to_soup(bencher: Bencher) {
+    let mut m = primitive("@tetrahedron");
+    let _ = sierpinski(&mut m, 9);
+    bencher.bench(|| black_box(to_poly(&m)).poly.face_count());
+}
+
