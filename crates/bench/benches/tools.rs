@@ -28,10 +28,12 @@ fn primitive(spec: &str) -> Mesh {
 #[divan::bench(sample_count = 5)]
 fn sierpinski_tetrahedron_9(bencher: Bencher) {
     let base = primitive("@tetrahedron");
-    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
-        let _ = black_box(sierpinski(&mut m, 9));
-        m
-    });
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let _ = black_box(sierpinski(&mut m, 9));
+            m
+        });
 }
 
 /// One Menger level on a finely divided cube: about 0.9M faces.
@@ -39,10 +41,12 @@ fn sierpinski_tetrahedron_9(bencher: Bencher) {
 fn menger_one_level_on_cube_100(bencher: Bencher) {
     let base = primitive("@cube:100");
     let params = MengerParams::default();
-    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
-        let _ = black_box(menger(&mut m, &params));
-        m
-    });
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let _ = black_box(menger(&mut m, &params));
+            m
+        });
 }
 
 /// Menger levels 1–4 of a cube at a third of the mean edge (186k faces).
@@ -54,10 +58,12 @@ fn menger_cube_4_levels(bencher: Bencher) {
         thickness: Thickness::RatioOfMeanEdge(1.0 / 3.0),
         ..MengerParams::default()
     };
-    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
-        let _ = black_box(menger(&mut m, &params));
-        m
-    });
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let _ = black_box(menger(&mut m, &params));
+            m
+        });
 }
 
 /// The true sponge, level 5: 6.5M faces (level 4: 336k).
@@ -69,10 +75,12 @@ fn menger_exact(bencher: Bencher, level: usize) {
         exact: true,
         ..MengerParams::default()
     };
-    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
-        let _ = black_box(menger(&mut m, &params));
-        m
-    });
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let _ = black_box(menger(&mut m, &params));
+            m
+        });
 }
 
 /// A 100-segment handle between the two caps of a 1000-gon cylinder (a
@@ -80,29 +88,40 @@ fn menger_exact(bencher: Bencher, level: usize) {
 #[divan::bench(sample_count = 10)]
 fn handle_100_segments_1000_gons(bencher: Bencher) {
     let base = primitive("@cylinder:1000:1");
-    bencher.with_inputs(|| base.clone()).bench_local_values(|mut m| {
-        let (a, b) = (m.face_at(0), m.face_at(1));
-        if let (Some(a), Some(b)) = (a, b)
-            && let (Ok(ca), Ok(cb)) = (m.face_corner(a), m.face_corner(b))
-        {
-            let _ = black_box(create_handle(&mut m, ca, cb, &HandleParams::new(100, -1.0, -1.0)));
-        }
-        m
-    });
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let (a, b) = (m.face_at(0), m.face_at(1));
+            if let (Some(a), Some(b)) = (a, b)
+                && let (Ok(ca), Ok(cb)) = (m.face_corner(a), m.face_corner(b))
+            {
+                let _ = black_box(create_handle(
+                    &mut m,
+                    ca,
+                    cb,
+                    &HandleParams::new(100, -1.0, -1.0),
+                ));
+            }
+            m
+        });
 }
 
 /// A rind of a 100k-face cube, then every outer face punched.
 #[divan::bench(sample_count = 5)]
 fn rind_100k_faces_punch_all(bencher: Bencher) {
     let base = primitive("@cube:129");
-    bencher.with_inputs(|| base.clone()).bench_local_values(|m| {
-        let faces = m.face_count();
-        let Ok(mut rind) = Rind::new(m, 0.001) else { return 0 };
-        for i in 0..faces {
-            let _ = rind.punch_index(i);
-        }
-        rind.mesh().face_count()
-    });
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|m| {
+            let faces = m.face_count();
+            let Ok(mut rind) = Rind::new(m, 0.001) else {
+                return 0;
+            };
+            for i in 0..faces {
+                let _ = rind.punch_index(i);
+            }
+            rind.mesh().face_count()
+        });
 }
 
 /// Subdivision to about a million faces from a 4k-face torus.
@@ -149,4 +168,3 @@ fn export_1m_face_sierpinski_to_soup(bencher: Bencher) {
     let _ = sierpinski(&mut m, 9);
     bencher.bench(|| black_box(to_poly(&m)).poly.face_count());
 }
-

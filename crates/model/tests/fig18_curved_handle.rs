@@ -6,12 +6,9 @@
 
 mod common45;
 
-
 use common45::*;
 use holey_dlfl::DVec3;
-use holey_model::handle::{
-    HandleParams, Orientation, create_handle, create_handle_observed,
-};
+use holey_model::handle::{HandleParams, Orientation, create_handle, create_handle_observed};
 
 #[test]
 fn a_handle_of_s_segments_between_d_gons_adds_d_s_minus_1_vertices() {
@@ -147,4 +144,3 @@ fn the_mesh_is_a_valid_manifold_after_every_step() {
     assert_eq!(steps, 4 + 5);
     assert_eq!(m.genus(), 1);
 }
-

@@ -10,7 +10,6 @@
 
 mod common45;
 
-
 use common45::*;
 use holey_dlfl::Mesh;
 use holey_mesh::PolyMesh;
@@ -338,7 +337,6 @@ fn a_punched_neighbour_also_counts_for_peeling() {
         PunchOutcome::NotPunchable { .. }
     ));
 }
-
 
 #[test]
 fn peeling_random_regions_in_random_order_follows_the_counts() {

@@ -2,7 +2,6 @@
 //! applied to a tetrahedron (A) and a cube (B), through the public API.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
-
 use holey_dlfl::Mesh;
 use holey_mesh::convert::{ImportOptions, to_dlfl};
 use holey_model::sierpinski::{SierpinskiError, sierpinski};
@@ -66,4 +65,3 @@ fn sierpinski_refuses_open_meshes() {
         Err(SierpinskiError::OpenSurface { .. })
     ));
 }
-

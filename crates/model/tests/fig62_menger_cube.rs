@@ -4,7 +4,6 @@
 //! against the shared level-3 mesh.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
-
 use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::analysis::{analyze, dlfl_info};
 use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
@@ -189,4 +188,3 @@ fn on_level3_boundary(p: DVec3) -> bool {
     }
     any_kept && any_removed
 }
-

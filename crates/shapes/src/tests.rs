@@ -1010,7 +1010,10 @@ fn help_lists_every_primitive() {
 /// Builds the largest allowed instance of every primitive and checks its
 /// counts (about 8 s in a release build; the test suite runs in release).
 #[test]
-#[cfg_attr(debug_assertions, ignore = "slow in debug builds; scripts/test.sh runs it in release")]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "slow in debug builds; scripts/test.sh runs it in release"
+)]
 fn largest_primitives_build() {
     for spec in [
         "@cube:1290",
