@@ -1,6 +1,8 @@
 //! End-to-end tests of the `holey` binary: one test binary, each test
 //! running the real command line.
 
+#![allow(clippy::unwrap_used)] // test helpers: a failed unwrap is a failed test
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
