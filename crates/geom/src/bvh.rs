@@ -1,0 +1,758 @@
+//! A bounding volume hierarchy over axis-aligned boxes (§3.2).
+//!
+//! **Build.** Top-down median split, as in the paper ("a fast, median-split,
+//! top-down, divide-and-conquer build inspired by Wald 2007"): at each node
+//! the primitives' centroid bounds are computed, the axis of largest extent
+//! is chosen, and a quickselect (`select_nth_unstable_by`) partitions the
+//! primitives at the median; the halves are built recursively (in parallel
+//! with rayon above [`PARALLEL_THRESHOLD`] primitives). Each level costs
+//! O(n), so the build is O(n log n), like a quicksort. No SAH: the median
+//! split gives a balanced tree of depth ⌈log₂(n / leaf size)⌉ whose node
+//! count is known from `n` alone, so each subtree is written straight into
+//! its own slice of the node array (pre-order: the left child follows its
+//! parent; the right child follows the left subtree).
+//!
+//! **Boxes** are closed: boxes that merely touch overlap. They are built
+//! from exact coordinates with `min`/`max` only (no rounding), so a box
+//! contains its primitive exactly and no overlap can be missed.
+//!
+//! **Queries.** One box against the tree ([`Bvh::query`]); a batch of boxes
+//! streamed over the tree ([`Bvh::overlap_pairs`], parallel over chunks of
+//! the batch, output in batch order then tree order: deterministic); all
+//! pairs of overlapping primitives ([`Bvh::self_overlaps`], a simultaneous
+//! descent of the tree against itself, parallel over the top levels, each
+//! unordered pair once). **Refit** recomputes boxes bottom-up after the
+//! primitives moved, either everywhere ([`Bvh::refit`]) or only above the
+//! primitives that changed ([`Bvh::refit_some`], O(k log n)): for local
+//! edits such as a sculpting brush. Refitting keeps the topology, so the
+//! tree degrades if primitives move far; rebuild then.
+
+use crate::error::GeomError;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// Most primitives in a leaf.
+pub const LEAF_SIZE: usize = 4;
+/// Subtrees with more primitives than this are built in parallel.
+pub const PARALLEL_THRESHOLD: usize = 8192;
+
+/// A closed axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    /// The empty box (overlaps nothing; identity of [`Aabb::union`]).
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::splat(f64::INFINITY),
+        max: DVec3::splat(f64::NEG_INFINITY),
+    };
+
+    pub fn new(min: DVec3, max: DVec3) -> Self {
+        Aabb { min, max }
+    }
+
+    /// The smallest box containing the points.
+    pub fn from_points(pts: &[DVec3]) -> Self {
+        pts.iter().fold(Aabb::EMPTY, |b, &p| b.grow(p))
+    }
+
+    #[inline]
+    pub fn grow(&self, p: DVec3) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    #[inline]
+    pub fn union(&self, o: &Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    /// Closed-box overlap (touching counts).
+    #[inline]
+    pub fn overlaps(&self, o: &Aabb) -> bool {
+        self.min.x <= o.max.x
+            && o.min.x <= self.max.x
+            && self.min.y <= o.max.y
+            && o.min.y <= self.max.y
+            && self.min.z <= o.max.z
+            && o.min.z <= self.max.z
+    }
+
+    #[inline]
+    pub fn centroid(&self) -> DVec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    pub fn is_finite(&self) -> bool {
+        self.min.is_finite() && self.max.is_finite()
+    }
+}
+
+const LEAF: u32 = 1 << 31;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bb: Aabb,
+    /// Leaf: first slot in `prims`. Internal: left child.
+    a: u32,
+    /// Leaf: `LEAF | count`. Internal: right child.
+    b: u32,
+}
+
+impl Node {
+    #[inline]
+    fn is_leaf(&self) -> bool {
+        self.b & LEAF != 0
+    }
+    #[inline]
+    fn range(&self) -> std::ops::Range<usize> {
+        let first = self.a as usize;
+        first..first + (self.b & !LEAF) as usize
+    }
+}
+
+/// The hierarchy. Primitive ids are the indices of the boxes given to
+/// [`Bvh::build`].
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// Primitive ids in leaf order.
+    prims: Vec<u32>,
+    /// Their boxes, in the same order.
+    prim_boxes: Vec<Aabb>,
+    /// Slot of each primitive id in `prims`.
+    slot_of: Vec<u32>,
+    /// Leaf node of each slot's leaf, by slot.
+    leaf_of_slot: Vec<u32>,
+    /// Parent of each node (`u32::MAX` for the root).
+    parent: Vec<u32>,
+}
+
+#[derive(Clone, Copy)]
+struct Item {
+    c: DVec3,
+    id: u32,
+}
+
+/// Node count of a subtree over `n` primitives (median split).
+fn subtree_nodes(n: usize, memo: &mut HashMap<usize, usize>) -> usize {
+    if n <= LEAF_SIZE {
+        return 1;
+    }
+    if let Some(&v) = memo.get(&n) {
+        return v;
+    }
+    let v = 1 + subtree_nodes(n / 2, memo) + subtree_nodes(n - n / 2, memo);
+    memo.insert(n, v);
+    v
+}
+
+fn build_rec(
+    items: &mut [Item],
+    nodes: &mut [Node],
+    base: u32,
+    first: u32,
+    boxes: &[Aabb],
+    sizes: &HashMap<usize, usize>,
+) {
+    let n = items.len();
+    if n <= LEAF_SIZE {
+        let bb = items
+            .iter()
+            .fold(Aabb::EMPTY, |b, it| b.union(&boxes[it.id as usize]));
+        nodes[0] = Node {
+            bb,
+            a: first,
+            b: LEAF | n as u32,
+        };
+        return;
+    }
+    // Axis of largest centroid extent, then the median by quickselect.
+    let cb = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.c));
+    let ext = cb.max - cb.min;
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    let mid = n / 2;
+    items.select_nth_unstable_by(mid, |p, q| p.c[axis].total_cmp(&q.c[axis]));
+    let (li, ri) = items.split_at_mut(mid);
+    let lsize = if mid <= LEAF_SIZE { 1 } else { sizes[&mid] };
+    let (head, rest) = nodes.split_at_mut(1);
+    let (ln, rn) = rest.split_at_mut(lsize);
+    let left = base + 1;
+    let right = base + 1 + lsize as u32;
+    if n > PARALLEL_THRESHOLD {
+        rayon::join(
+            || build_rec(li, ln, left, first, boxes, sizes),
+            || build_rec(ri, rn, right, first + mid as u32, boxes, sizes),
+        );
+    } else {
+        build_rec(li, ln, left, first, boxes, sizes);
+        build_rec(ri, rn, right, first + mid as u32, boxes, sizes);
+    }
+    head[0] = Node {
+        bb: ln[0].bb.union(&rn[0].bb),
+        a: left,
+        b: right,
+    };
+}
+
+impl Bvh {
+    /// Builds the hierarchy over `boxes` (primitive `i` has box `boxes[i]`).
+    /// Errors on non-finite boxes or more than 2³¹ boxes.
+    pub fn build(boxes: &[Aabb]) -> Result<Bvh, GeomError> {
+        let n = boxes.len();
+        if n >= (1usize << 31) {
+            return Err(GeomError::TooMany(n));
+        }
+        if let Some(index) = boxes.iter().position(|b| !b.is_finite()) {
+            return Err(GeomError::NonFinite { index });
+        }
+        if n == 0 {
+            return Ok(Bvh {
+                nodes: Vec::new(),
+                prims: Vec::new(),
+                prim_boxes: Vec::new(),
+                slot_of: Vec::new(),
+                leaf_of_slot: Vec::new(),
+                parent: Vec::new(),
+            });
+        }
+        let mut items: Vec<Item> = boxes
+            .par_iter()
+            .enumerate()
+            .map(|(i, b)| Item {
+                c: b.centroid(),
+                id: i as u32,
+            })
+            .collect();
+        let mut memo = HashMap::new();
+        let total = subtree_nodes(n, &mut memo);
+        let dummy = Node {
+            bb: Aabb::EMPTY,
+            a: 0,
+            b: 0,
+        };
+        let mut nodes = vec![dummy; total];
+        build_rec(&mut items, &mut nodes, 0, 0, boxes, &memo);
+        let prims: Vec<u32> = items.iter().map(|it| it.id).collect();
+        let prim_boxes: Vec<Aabb> = prims.par_iter().map(|&i| boxes[i as usize]).collect();
+        let mut slot_of = vec![0u32; n];
+        for (s, &p) in prims.iter().enumerate() {
+            slot_of[p as usize] = s as u32;
+        }
+        let mut parent = vec![u32::MAX; total];
+        let mut leaf_of_slot = vec![0u32; n];
+        for (i, nd) in nodes.iter().enumerate() {
+            if nd.is_leaf() {
+                for s in nd.range() {
+                    leaf_of_slot[s] = i as u32;
+                }
+            } else {
+                parent[nd.a as usize] = i as u32;
+                parent[nd.b as usize] = i as u32;
+            }
+        }
+        Ok(Bvh {
+            nodes,
+            prims,
+            prim_boxes,
+            slot_of,
+            leaf_of_slot,
+            parent,
+        })
+    }
+
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        self.prims.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.prims.is_empty()
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The box of the whole tree (`EMPTY` for an empty tree).
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bb)
+    }
+
+    /// Calls `f(id)` for every primitive whose box overlaps `bb`.
+    pub fn for_each_overlap(&self, bb: &Aabb, mut f: impl FnMut(u32)) {
+        if self.nodes.is_empty() || !self.nodes[0].bb.overlaps(bb) {
+            return;
+        }
+        // The tree is balanced (depth ≤ 31 for < 2³¹ primitives), so a fixed
+        // stack of 64 suffices; only nodes whose box overlaps are pushed.
+        let mut stack = [0u32; 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let nd = &self.nodes[stack[top] as usize];
+            if nd.is_leaf() {
+                for s in nd.range() {
+                    if self.prim_boxes[s].overlaps(bb) {
+                        f(self.prims[s]);
+                    }
+                }
+            } else {
+                if self.nodes[nd.b as usize].bb.overlaps(bb) {
+                    stack[top] = nd.b;
+                    top += 1;
+                }
+                if self.nodes[nd.a as usize].bb.overlaps(bb) {
+                    stack[top] = nd.a;
+                    top += 1;
+                }
+            }
+        }
+    }
+
+    /// Ids of the primitives whose boxes overlap `bb`, in tree order.
+    pub fn query(&self, bb: &Aabb) -> Vec<u32> {
+        let mut out = Vec::new();
+        self.for_each_overlap(bb, |i| out.push(i));
+        out
+    }
+
+    /// Streams `queries` over the tree: all `(query index, primitive id)`
+    /// with overlapping boxes, ordered by query index, then tree order.
+    /// Parallel and deterministic.
+    pub fn overlap_pairs(&self, queries: &[Aabb]) -> Vec<(u32, u32)> {
+        const CHUNK: usize = 1024;
+        let parts: Vec<Vec<(u32, u32)>> = queries
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(c, chunk)| {
+                let mut out = Vec::new();
+                for (k, q) in chunk.iter().enumerate() {
+                    let qi = (c * CHUNK + k) as u32;
+                    self.for_each_overlap(q, |p| out.push((qi, p)));
+                }
+                out
+            })
+            .collect();
+        concat(parts)
+    }
+
+    /// All unordered pairs of distinct primitives with overlapping boxes,
+    /// each once as `(smaller id, larger id)`. Parallel and deterministic
+    /// (the order is that of the simultaneous descent, independent of
+    /// thread scheduling).
+    pub fn self_overlaps(&self) -> Vec<(u32, u32)> {
+        if self.nodes.is_empty() {
+            return Vec::new();
+        }
+        let mut out = Vec::new();
+        self.self_rec(0, &mut out);
+        out
+    }
+
+    fn subtree_size(&self, i: u32) -> usize {
+        let nd = &self.nodes[i as usize];
+        if nd.is_leaf() {
+            nd.range().len()
+        } else {
+            // Slots are contiguous per subtree: from the leftmost leaf's first
+            // slot to the rightmost leaf's end.
+            let mut l = i;
+            while !self.nodes[l as usize].is_leaf() {
+                l = self.nodes[l as usize].a;
+            }
+            let mut r = i;
+            while !self.nodes[r as usize].is_leaf() {
+                r = self.nodes[r as usize].b;
+            }
+            self.nodes[r as usize].range().end - self.nodes[l as usize].range().start
+        }
+    }
+
+    fn self_rec(&self, i: u32, out: &mut Vec<(u32, u32)>) {
+        let nd = self.nodes[i as usize];
+        if nd.is_leaf() {
+            let r = nd.range();
+            for s in r.clone() {
+                for t in s + 1..r.end {
+                    if self.prim_boxes[s].overlaps(&self.prim_boxes[t]) {
+                        out.push(pair(self.prims[s], self.prims[t]));
+                    }
+                }
+            }
+            return;
+        }
+        if self.subtree_size(i) > PARALLEL_THRESHOLD {
+            let ((mut a, b), c) = rayon::join(
+                || {
+                    rayon::join(
+                        || {
+                            let mut v = Vec::new();
+                            self.self_rec(nd.a, &mut v);
+                            v
+                        },
+                        || {
+                            let mut v = Vec::new();
+                            self.self_rec(nd.b, &mut v);
+                            v
+                        },
+                    )
+                },
+                || self.cross_par(nd.a, nd.b),
+            );
+            a.extend(b);
+            a.extend(c);
+            out.extend(a);
+        } else {
+            self.self_rec(nd.a, out);
+            self.self_rec(nd.b, out);
+            self.cross(nd.a, nd.b, out);
+        }
+    }
+
+    fn cross_par(&self, i: u32, j: u32) -> Vec<(u32, u32)> {
+        let (ni, nj) = (self.nodes[i as usize], self.nodes[j as usize]);
+        if !ni.bb.overlaps(&nj.bb) {
+            return Vec::new();
+        }
+        let (si, sj) = (self.subtree_size(i), self.subtree_size(j));
+        if si + sj <= PARALLEL_THRESHOLD || (ni.is_leaf() && nj.is_leaf()) {
+            let mut v = Vec::new();
+            self.cross(i, j, &mut v);
+            return v;
+        }
+        let ((x1, y1), (x2, y2)) = if !ni.is_leaf() && (nj.is_leaf() || si >= sj) {
+            ((ni.a, j), (ni.b, j))
+        } else {
+            ((i, nj.a), (i, nj.b))
+        };
+        let (mut a, b) = rayon::join(|| self.cross_par(x1, y1), || self.cross_par(x2, y2));
+        a.extend(b);
+        a
+    }
+
+    fn cross(&self, i: u32, j: u32, out: &mut Vec<(u32, u32)>) {
+        let (ni, nj) = (self.nodes[i as usize], self.nodes[j as usize]);
+        if !ni.bb.overlaps(&nj.bb) {
+            return;
+        }
+        match (ni.is_leaf(), nj.is_leaf()) {
+            (true, true) => {
+                for s in ni.range() {
+                    let bs = &self.prim_boxes[s];
+                    if !bs.overlaps(&nj.bb) {
+                        continue;
+                    }
+                    for t in nj.range() {
+                        if bs.overlaps(&self.prim_boxes[t]) {
+                            out.push(pair(self.prims[s], self.prims[t]));
+                        }
+                    }
+                }
+            }
+            (false, true) => {
+                self.cross(ni.a, j, out);
+                self.cross(ni.b, j, out);
+            }
+            (true, false) => {
+                self.cross(i, nj.a, out);
+                self.cross(i, nj.b, out);
+            }
+            (false, false) => {
+                // Descend the larger box (keeps the recursion balanced).
+                let vi = volume(&ni.bb);
+                let vj = volume(&nj.bb);
+                if vi >= vj {
+                    self.cross(ni.a, j, out);
+                    self.cross(ni.b, j, out);
+                } else {
+                    self.cross(i, nj.a, out);
+                    self.cross(i, nj.b, out);
+                }
+            }
+        }
+    }
+
+    /// Recomputes all boxes from new primitive boxes (same count as built),
+    /// keeping the tree's topology.
+    pub fn refit(&mut self, boxes: &[Aabb]) -> Result<(), GeomError> {
+        self.check_boxes(boxes)?;
+        let prims = &self.prims;
+        self.prim_boxes
+            .par_iter_mut()
+            .zip(prims.par_iter())
+            .for_each(|(b, &p)| *b = boxes[p as usize]);
+        for i in (0..self.nodes.len()).rev() {
+            self.recompute(i);
+        }
+        Ok(())
+    }
+
+    /// Recomputes the boxes above the primitives in `changed` only
+    /// (O(k log n) for k changed primitives); `boxes` holds every
+    /// primitive's current box.
+    pub fn refit_some(&mut self, boxes: &[Aabb], changed: &[u32]) -> Result<(), GeomError> {
+        self.check_boxes(boxes)?;
+        let mut dirty: Vec<u32> = Vec::with_capacity(changed.len() * 8);
+        for &p in changed {
+            let Some(&slot) = self.slot_of.get(p as usize) else {
+                return Err(GeomError::LengthMismatch {
+                    what: "changed primitive id",
+                    got: p as usize,
+                    expected: self.prims.len(),
+                });
+            };
+            self.prim_boxes[slot as usize] = boxes[p as usize];
+            let mut n = self.leaf_of_slot[slot as usize];
+            while n != u32::MAX {
+                dirty.push(n);
+                n = self.parent[n as usize];
+            }
+        }
+        dirty.sort_unstable();
+        dirty.dedup();
+        // Children have larger indices than their parents (pre-order).
+        for &n in dirty.iter().rev() {
+            self.recompute(n as usize);
+        }
+        Ok(())
+    }
+
+    fn check_boxes(&self, boxes: &[Aabb]) -> Result<(), GeomError> {
+        if boxes.len() != self.prims.len() {
+            return Err(GeomError::LengthMismatch {
+                what: "boxes",
+                got: boxes.len(),
+                expected: self.prims.len(),
+            });
+        }
+        if let Some(index) = boxes.iter().position(|b| !b.is_finite()) {
+            return Err(GeomError::NonFinite { index });
+        }
+        Ok(())
+    }
+
+    fn recompute(&mut self, i: usize) {
+        let nd = self.nodes[i];
+        let bb = if nd.is_leaf() {
+            self.prim_boxes[nd.range()]
+                .iter()
+                .fold(Aabb::EMPTY, |b, x| b.union(x))
+        } else {
+            self.nodes[nd.a as usize]
+                .bb
+                .union(&self.nodes[nd.b as usize].bb)
+        };
+        self.nodes[i].bb = bb;
+    }
+
+    /// Checks the structural invariants (every box contains its children's
+    /// and primitives' boxes; every primitive in exactly one leaf). For
+    /// tests.
+    pub fn validate(&self) -> bool {
+        let mut seen = vec![false; self.prims.len()];
+        for (i, nd) in self.nodes.iter().enumerate() {
+            let inside = |b: &Aabb| nd.bb.min.cmple(b.min).all() && b.max.cmple(nd.bb.max).all();
+            if nd.is_leaf() {
+                for s in nd.range() {
+                    if seen[s] || !inside(&self.prim_boxes[s]) {
+                        return false;
+                    }
+                    seen[s] = true;
+                    if self.leaf_of_slot[s] as usize != i {
+                        return false;
+                    }
+                }
+            } else if !inside(&self.nodes[nd.a as usize].bb)
+                || !inside(&self.nodes[nd.b as usize].bb)
+            {
+                return false;
+            }
+        }
+        seen.iter().all(|&s| s)
+    }
+}
+
+#[inline]
+fn pair(a: u32, b: u32) -> (u32, u32) {
+    if a < b { (a, b) } else { (b, a) }
+}
+
+#[inline]
+fn volume(b: &Aabb) -> f64 {
+    let e = b.max - b.min;
+    e.x * e.y * e.z + e.x + e.y + e.z
+}
+
+fn concat<T>(parts: Vec<Vec<T>>) -> Vec<T> {
+    let n = parts.iter().map(Vec::len).sum();
+    let mut out = Vec::with_capacity(n);
+    for p in parts {
+        out.extend(p);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use holey_testkit::Rng;
+
+    fn random_boxes(rng: &mut Rng, n: usize, size: f64) -> Vec<Aabb> {
+        (0..n)
+            .map(|_| {
+                let c = DVec3::new(rng.unit(), rng.unit(), rng.unit());
+                let e = DVec3::new(rng.unit(), rng.unit(), rng.unit()) * size;
+                Aabb::new(c - e, c + e)
+            })
+            .collect()
+    }
+
+    fn brute_pairs(b: &[Aabb]) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        for i in 0..b.len() {
+            for j in i + 1..b.len() {
+                if b[i].overlaps(&b[j]) {
+                    out.push((i as u32, j as u32));
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn queries_match_brute_force() {
+        let mut rng = Rng::new(1);
+        for &n in &[0usize, 1, 3, 4, 5, 17, 100, 1000, 20_000] {
+            let boxes = random_boxes(&mut rng, n, 0.01);
+            let bvh = Bvh::build(&boxes).expect("finite");
+            assert!(bvh.validate());
+            assert_eq!(bvh.len(), n);
+            let queries = random_boxes(&mut rng, 300, 0.05);
+            for q in &queries {
+                let mut got = bvh.query(q);
+                got.sort_unstable();
+                let want: Vec<u32> = (0..n as u32)
+                    .filter(|&i| boxes[i as usize].overlaps(q))
+                    .collect();
+                assert_eq!(got, want);
+            }
+            let pairs = bvh.overlap_pairs(&queries);
+            let mut want = Vec::new();
+            for (qi, q) in queries.iter().enumerate() {
+                for p in bvh.query(q) {
+                    want.push((qi as u32, p));
+                }
+            }
+            assert_eq!(pairs, want);
+            if n <= 1000 {
+                let mut got = bvh.self_overlaps();
+                got.sort_unstable();
+                assert_eq!(got, brute_pairs(&boxes));
+            }
+        }
+    }
+
+    #[test]
+    fn self_overlaps_large_is_deterministic_and_complete() {
+        let mut rng = Rng::new(2);
+        let boxes = random_boxes(&mut rng, 30_000, 0.004);
+        let bvh = Bvh::build(&boxes).expect("finite");
+        let a = bvh.self_overlaps();
+        let b = Bvh::build(&boxes).expect("finite").self_overlaps();
+        assert_eq!(a, b);
+        // Completeness against a grid-free sweep on x.
+        let mut idx: Vec<usize> = (0..boxes.len()).collect();
+        idx.sort_by(|&i, &j| boxes[i].min.x.total_cmp(&boxes[j].min.x));
+        let mut want = Vec::new();
+        for (k, &i) in idx.iter().enumerate() {
+            for &j in &idx[k + 1..] {
+                if boxes[j].min.x > boxes[i].max.x {
+                    break;
+                }
+                if boxes[i].overlaps(&boxes[j]) {
+                    want.push(pair(i as u32, j as u32));
+                }
+            }
+        }
+        want.sort_unstable();
+        let mut got = a;
+        got.sort_unstable();
+        assert_eq!(got, want);
+    }
+
+    #[test]
+    fn touching_boxes_overlap_and_degenerate_inputs_work() {
+        // Identical boxes, flat boxes, touching boxes.
+        let b = Aabb::new(DVec3::ZERO, DVec3::ONE);
+        let mut boxes = vec![b; 10];
+        boxes.push(Aabb::new(
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(2.0, 1.0, 1.0),
+        ));
+        boxes.push(Aabb::new(DVec3::splat(3.0), DVec3::splat(3.0)));
+        let bvh = Bvh::build(&boxes).expect("finite");
+        let mut got = bvh.self_overlaps();
+        got.sort_unstable();
+        assert_eq!(got, brute_pairs(&boxes));
+        assert_eq!(got.len(), 45 + 10);
+        let bad = vec![Aabb::new(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 0.0))];
+        assert_eq!(
+            Bvh::build(&bad).err(),
+            Some(GeomError::NonFinite { index: 0 })
+        );
+    }
+
+    #[test]
+    fn refit_all_and_some() {
+        let mut rng = Rng::new(3);
+        let mut boxes = random_boxes(&mut rng, 5000, 0.01);
+        let mut bvh = Bvh::build(&boxes).expect("finite");
+        // Move 50 primitives.
+        let changed: Vec<u32> = (0..50).map(|_| rng.below(5000) as u32).collect();
+        for &c in &changed {
+            let d = DVec3::new(rng.unit(), rng.unit(), rng.unit()) * 0.3;
+            let b = boxes[c as usize];
+            boxes[c as usize] = Aabb::new(b.min + d, b.max + d);
+        }
+        bvh.refit_some(&boxes, &changed).expect("ok");
+        assert!(bvh.validate());
+        let q = Aabb::new(DVec3::splat(0.2), DVec3::splat(0.6));
+        let mut got = bvh.query(&q);
+        got.sort_unstable();
+        let want: Vec<u32> = (0..5000u32)
+            .filter(|&i| boxes[i as usize].overlaps(&q))
+            .collect();
+        assert_eq!(got, want);
+        // Full refit after moving everything.
+        for b in boxes.iter_mut() {
+            *b = Aabb::new(b.min * 2.0, b.max * 2.0);
+        }
+        bvh.refit(&boxes).expect("ok");
+        assert!(bvh.validate());
+        let mut got = bvh.query(&q);
+        got.sort_unstable();
+        let want: Vec<u32> = (0..5000u32)
+            .filter(|&i| boxes[i as usize].overlaps(&q))
+            .collect();
+        assert_eq!(got, want);
+        assert!(bvh.refit(&boxes[..10]).is_err());
+        assert!(bvh.refit_some(&boxes, &[9999]).is_err());
+    }
+}

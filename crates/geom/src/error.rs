@@ -1,0 +1,35 @@
+//! Errors of the geometry crate.
+
+use thiserror::Error;
+
+/// What can go wrong with input to this crate's constructions, BVHs and
+/// collision queries. Predicates never fail (they answer in the perturbed
+/// world); constructions and bulk queries check their input.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum GeomError {
+    /// A coordinate is NaN or infinite.
+    #[error("non-finite coordinate at point {index}")]
+    NonFinite { index: usize },
+    /// A triangle refers to a vertex index past the end of the positions.
+    #[error("triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices")]
+    VertexOutOfRange {
+        triangle: usize,
+        vertex: u32,
+        count: usize,
+    },
+    /// Two arrays that must have the same length do not.
+    #[error("length mismatch: {what} has {got} entries, expected {expected}")]
+    LengthMismatch {
+        what: &'static str,
+        got: usize,
+        expected: usize,
+    },
+    /// A construction was asked for a point that does not exist in the
+    /// perturbed world (e.g. the segment does not cross the plane, or the
+    /// three planes share a line).
+    #[error("degenerate construction: {0}")]
+    Degenerate(&'static str),
+    /// More elements than the 32-bit indices of this crate can address.
+    #[error("too many elements: {0} (at most 2^31)")]
+    TooMany(usize),
+}

@@ -1,0 +1,315 @@
+//! Exact arithmetic on floating-point expansions (Shewchuk 1997).
+//!
+//! A real number is represented exactly as an *expansion*: a sum
+//! `x = e_0 + e_1 + … + e_{m-1}` of doubles that are *nonoverlapping* (the
+//! lowest set bit of each component is above the highest set bit of the
+//! previous one) and sorted by increasing magnitude, with zeros removed.
+//! Because the components do not overlap, the largest one dominates the sum
+//! of all the others, so **the sign of the expansion is the sign of its last
+//! component** and the expansion is zero exactly when it has no component.
+//!
+//! The two error-free transformations everything is built on:
+//! - `two_sum(a, b) = (x, y)` with `x = fl(a + b)` and `x + y = a + b`
+//!   exactly (Knuth's branch-free six-operation form);
+//! - `two_prod(a, b) = (x, y)` with `x = fl(a·b)` and `x + y = a·b` exactly,
+//!   the low part recovered with one fused multiply-add.
+//!
+//! Sums merge the two component lists by magnitude and run one `two_sum`
+//! chain over them (Shewchuk's Fast-Expansion-Sum with the safer `two_sum`
+//! in every step); products scale one operand by each component of the
+//! other (Scale-Expansion) and add the partial products. Both keep the
+//! nonoverlapping property (Shewchuk 1997, Theorems 13 and 19, which assume
+//! IEEE round-to-nearest-even as Rust guarantees).
+//!
+//! Exactness needs the absence of overflow and of underflow below the
+//! subnormal range; the predicate drivers in [`crate::sos`] rescale their
+//! inputs by a power of two (an exact operation) so that the largest
+//! coordinate is about 1, which keeps every intermediate in range for the
+//! polynomial degrees used in this crate unless a single predicate mixes
+//! coordinates more than about 10^±40 apart.
+
+/// `(fl(a + b), err)` with `fl(a + b) + err == a + b` exactly.
+#[inline]
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let x = a + b;
+    let bv = x - a;
+    let av = x - bv;
+    let br = b - bv;
+    let ar = a - av;
+    (x, ar + br)
+}
+
+/// `(fl(a·b), err)` with `fl(a·b) + err == a·b` exactly (barring underflow).
+#[inline]
+pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let x = a * b;
+    (x, a.mul_add(b, -x))
+}
+
+/// An exact real number as a nonoverlapping expansion (see module docs).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Expansion {
+    /// Nonzero, nonoverlapping components by increasing magnitude.
+    c: Vec<f64>,
+}
+
+impl Expansion {
+    /// Zero.
+    pub fn zero() -> Self {
+        Expansion { c: Vec::new() }
+    }
+
+    /// The exact value of one double.
+    pub fn from_f64(x: f64) -> Self {
+        if x == 0.0 {
+            Self::zero()
+        } else {
+            Expansion { c: vec![x] }
+        }
+    }
+
+    /// The components (increasing magnitude, none zero).
+    pub fn components(&self) -> &[f64] {
+        &self.c
+    }
+
+    /// Sign of the exact value: -1, 0 or 1 (0 also for a NaN component,
+    /// which only non-finite input can produce).
+    pub fn sign(&self) -> i8 {
+        match self.c.last() {
+            Some(&x) if x > 0.0 => 1,
+            Some(&x) if x < 0.0 => -1,
+            _ => 0,
+        }
+    }
+
+    /// True when the value is exactly zero.
+    pub fn is_zero(&self) -> bool {
+        self.c.is_empty()
+    }
+
+    /// A double close to the value: the components summed from the smallest
+    /// up. Its relative error is below about 2·2⁻⁵³ for a nonoverlapping
+    /// expansion; [`crate::construct`] turns it into a faithful rounding.
+    pub fn estimate(&self) -> f64 {
+        self.c.iter().sum()
+    }
+
+    /// Exact sum.
+    pub fn add(&self, o: &Expansion) -> Expansion {
+        if self.c.is_empty() {
+            return o.clone();
+        }
+        if o.c.is_empty() {
+            return self.clone();
+        }
+        // Merge by magnitude, then one two_sum chain.
+        let (e, f) = (&self.c, &o.c);
+        let mut g = Vec::with_capacity(e.len() + f.len());
+        let (mut i, mut j) = (0, 0);
+        while i < e.len() && j < f.len() {
+            if e[i].abs() <= f[j].abs() {
+                g.push(e[i]);
+                i += 1;
+            } else {
+                g.push(f[j]);
+                j += 1;
+            }
+        }
+        g.extend_from_slice(&e[i..]);
+        g.extend_from_slice(&f[j..]);
+        let mut h = Vec::with_capacity(g.len());
+        let mut q = g[0];
+        for &x in &g[1..] {
+            let (s, err) = two_sum(q, x);
+            if err != 0.0 {
+                h.push(err);
+            }
+            q = s;
+        }
+        if q != 0.0 {
+            h.push(q);
+        }
+        Expansion { c: h }
+    }
+
+    /// Exact negation.
+    pub fn neg(&self) -> Expansion {
+        Expansion {
+            c: self.c.iter().map(|x| -x).collect(),
+        }
+    }
+
+    /// Exact difference.
+    pub fn sub(&self, o: &Expansion) -> Expansion {
+        self.add(&o.neg())
+    }
+
+    /// Exact product with one double (Scale-Expansion with zero elimination).
+    pub fn scale(&self, b: f64) -> Expansion {
+        if b == 0.0 || self.c.is_empty() {
+            return Self::zero();
+        }
+        let mut h = Vec::with_capacity(2 * self.c.len());
+        let (mut q, lo) = two_prod(self.c[0], b);
+        if lo != 0.0 {
+            h.push(lo);
+        }
+        for &e in &self.c[1..] {
+            let (p1, p0) = two_prod(e, b);
+            let (s, err) = two_sum(q, p0);
+            if err != 0.0 {
+                h.push(err);
+            }
+            let (s2, err2) = two_sum(p1, s);
+            if err2 != 0.0 {
+                h.push(err2);
+            }
+            q = s2;
+        }
+        if q != 0.0 {
+            h.push(q);
+        }
+        Expansion { c: h }
+    }
+
+    /// Exact product.
+    pub fn mul(&self, o: &Expansion) -> Expansion {
+        let (small, big) = if self.c.len() <= o.c.len() {
+            (self, o)
+        } else {
+            (o, self)
+        };
+        let mut acc = Expansion::zero();
+        for &b in &small.c {
+            acc = acc.add(&big.scale(b));
+        }
+        acc
+    }
+
+    /// Exact `a - b` of two doubles.
+    pub fn diff(a: f64, b: f64) -> Expansion {
+        let (x, y) = two_sum(a, -b);
+        let mut c = Vec::with_capacity(2);
+        if y != 0.0 {
+            c.push(y);
+        }
+        if x != 0.0 {
+            c.push(x);
+        }
+        Expansion { c }
+    }
+
+    /// Multiply by `2^k` (exact barring over/underflow).
+    pub fn ldexp(&self, k: i32) -> Expansion {
+        let f = pow2(k);
+        Expansion {
+            c: self.c.iter().map(|x| x * f).collect(),
+        }
+    }
+}
+
+/// `2^k` as a double for `k` in the normal range (clamped).
+pub(crate) fn pow2(k: i32) -> f64 {
+    let k = k.clamp(-1022, 1023);
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// The exponent `e` with `2^e <= |x| < 2^(e+1)` for a normal nonzero `x`
+/// (0 for zero or non-finite values).
+pub(crate) fn exponent_of(x: f64) -> i32 {
+    if x == 0.0 || !x.is_finite() {
+        return 0;
+    }
+    let bits = x.abs().to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32;
+    if e == 0 {
+        // Subnormal.
+        -1023 - (bits.leading_zeros() as i32 - 12)
+    } else {
+        e - 1023
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testutil::BigInt;
+    use holey_testkit::Rng;
+
+    fn big(e: &Expansion) -> BigInt {
+        let mut acc = BigInt::zero();
+        for &x in e.components() {
+            acc = acc.add(&BigInt::from_f64_scaled(x, 1100));
+        }
+        acc
+    }
+
+    #[test]
+    fn two_sum_and_two_prod_are_exact() {
+        let mut rng = Rng::new(1);
+        for _ in 0..10_000 {
+            let a = rng.range(-1.0, 1.0) * pow2(rng.below(80) as i32 - 40);
+            let b = rng.range(-1.0, 1.0) * pow2(rng.below(80) as i32 - 40);
+            let (x, y) = two_sum(a, b);
+            let lhs = BigInt::from_f64_scaled(x, 1100).add(&BigInt::from_f64_scaled(y, 1100));
+            let rhs = BigInt::from_f64_scaled(a, 1100).add(&BigInt::from_f64_scaled(b, 1100));
+            assert_eq!(lhs, rhs);
+            let (x, y) = two_prod(a, b);
+            let lhs = BigInt::from_f64_scaled(x, 1100).add(&BigInt::from_f64_scaled(y, 1100));
+            let rhs = BigInt::from_f64_scaled(a, 550).mul(&BigInt::from_f64_scaled(b, 550));
+            assert_eq!(lhs, rhs);
+        }
+    }
+
+    #[test]
+    fn random_polynomials_match_big_integers() {
+        let mut rng = Rng::new(7);
+        for _ in 0..2_000 {
+            // (a + b)(c - d) - e f with wildly different magnitudes, plus a
+            // cancelling term so that zero and tiny results occur.
+            let mut v = [0.0; 6];
+            for x in v.iter_mut() {
+                *x = rng.range(-1.0, 1.0) * pow2(rng.below(60) as i32 - 30);
+                if rng.chance(0.2) {
+                    *x = (rng.below(7) as f64) - 3.0;
+                }
+            }
+            let e = |x: f64| Expansion::from_f64(x);
+            let r = e(v[0])
+                .add(&e(v[1]))
+                .mul(&Expansion::diff(v[2], v[3]))
+                .sub(&e(v[4]).mul(&e(v[5])));
+            let s = 300;
+            let b = |x: f64| BigInt::from_f64_scaled(x, s);
+            let rb = b(v[0])
+                .add(&b(v[1]))
+                .mul(&b(v[2]).sub(&b(v[3])))
+                .sub(&b(v[4]).mul(&b(v[5])));
+            assert_eq!(r.sign(), rb.sign());
+            // Value check at a common scale (2^600 for products).
+            assert_eq!(
+                big(&r),
+                rb.mul(&BigInt::from_f64_scaled(1.0, 1100 - 600)),
+                "{v:?}"
+            );
+            // Nonoverlapping and increasing: each component exceeds the sum
+            // of the smaller ones in magnitude.
+            let c = r.components();
+            for w in c.windows(2) {
+                assert!(w[0].abs() < w[1].abs());
+            }
+        }
+    }
+
+    #[test]
+    fn exponent_and_pow2() {
+        assert_eq!(exponent_of(1.0), 0);
+        assert_eq!(exponent_of(1.5), 0);
+        assert_eq!(exponent_of(2.0), 1);
+        assert_eq!(exponent_of(-0.25), -2);
+        assert_eq!(exponent_of(1e-310), exponent_of(1e-310 * 2.0) - 1);
+        assert_eq!(pow2(10), 1024.0);
+        assert_eq!(pow2(-3), 0.125);
+    }
+}
