@@ -4,5 +4,6 @@
 //! section 3 and appendices A–C. (Being written.)
 
 pub mod correct;
+pub mod intersect;
 pub mod mesh;
 pub mod weights;

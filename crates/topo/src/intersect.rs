@@ -1,0 +1,427 @@
+//! Static intersections at the end of the frame (§3.3).
+//!
+//! The paper finds edge × triangle crossings with a BVH over edges, infers
+//! the triangle × triangle intersection segments combinatorially from
+//! them, then finds the points where three triangles meet. We run the same
+//! three steps from the triangle side: a BVH self-overlap query gives the
+//! candidate triangle pairs, a cheap exact plane-side test rejects most of
+//! them, and [`holey_geom::triangle_triangle_segment`] returns the two ends
+//! of each intersection segment — each end an edge × triangle crossing (or
+//! a vertex the two triangles share). Everything is decided exactly, with
+//! simulation of simplicity for degeneracies, in the perturbed world of
+//! `holey-geom`: identities are given by exact position classes, so the
+//! corners of an unwelded soup that sit at one position are one symbolic
+//! point.
+//!
+//! **Each intersection point exists once, keyed by what generates it**:
+//! `(mesh edge, triangle)` for a crossing, `{t1, t2, t3}` for a triple
+//! point. Every triangle the point lies on refers to the same point, so
+//! neighbouring triangles share it exactly; its coordinates are computed
+//! once, rounded once from exact values.
+//!
+//! The pieces of intersection segments between consecutive points form the
+//! intersection curves; their connected components are the curves.
+
+use std::cmp::Ordering;
+use std::collections::HashMap;
+
+use glam::DVec3;
+use holey_geom::{
+    Aabb, Bvh, SegEnd, SymPoint, edge_triangle_point, order_on_segment, triangle_triangle_segment,
+    triangle_triangle_triangle_point, triple_point,
+};
+use rayon::prelude::*;
+
+use crate::mesh::{Edges, TriMesh};
+
+/// A node of an intersection curve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Node {
+    /// An intersection point (index into [`Intersections::points`]).
+    Point(u32),
+    /// A vertex the two intersecting triangles share, by identity (its
+    /// position class): each triangle resolves it to its own corner.
+    Shared(u32),
+}
+
+/// What generates an intersection point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PointKind {
+    /// Mesh edge `edge` crosses triangle `tri`. `t` is the parameter along
+    /// the edge from `ends[0]` to `ends[1]`; `bary` are the barycentric
+    /// coordinates in `tri`.
+    EdgeTri {
+        edge: u32,
+        tri: u32,
+        t: f64,
+        bary: [f64; 3],
+    },
+    /// Three triangles meet; `bary[k]` are the coordinates in `tris[k]`.
+    Triple { tris: [u32; 3], bary: [[f64; 3]; 3] },
+}
+
+/// An intersection point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IPoint {
+    pub kind: PointKind,
+    pub position: DVec3,
+}
+
+/// A piece of an intersection curve: the segment between two consecutive
+/// nodes on the intersection of two triangles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    pub ends: [Node; 2],
+    pub tris: [u32; 2],
+}
+
+/// The self-intersections of a mesh at one set of positions.
+#[derive(Clone, Debug, Default)]
+pub struct Intersections {
+    pub points: Vec<IPoint>,
+    pub pieces: Vec<Piece>,
+    /// Curve (connected component of pieces) of each piece.
+    pub curve_of_piece: Vec<u32>,
+    pub curve_count: usize,
+    /// Triangle pairs that intersect along a segment, `t1 < t2`, sorted.
+    pub pairs: Vec<(u32, u32)>,
+    /// Mesh edges crossed by some triangle.
+    pub cut_edges: Vec<bool>,
+    /// Candidate pairs from the bounding-box pass, and how many the exact
+    /// plane-side filter rejected.
+    pub candidates: usize,
+    pub filtered: usize,
+}
+
+impl Intersections {
+    /// Number of triple points.
+    pub fn triple_points(&self) -> usize {
+        self.points
+            .iter()
+            .filter(|p| matches!(p.kind, PointKind::Triple { .. }))
+            .count()
+    }
+}
+
+/// Why the static intersection stage failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum IntersectError {
+    #[error("geometry: {0}")]
+    Geometry(#[from] holey_geom::GeomError),
+    #[error(
+        "the intersection point of edge {edge} and triangle {tri} could not be constructed: {reason}"
+    )]
+    Construction { edge: u32, tri: u32, reason: String },
+}
+
+/// The symbolic points of a mesh: positions with identities.
+pub(crate) struct Symbolic<'a> {
+    pub positions: &'a [DVec3],
+    pub ids: &'a [u32],
+}
+
+impl Symbolic<'_> {
+    pub fn point(&self, v: u32) -> SymPoint {
+        SymPoint::new(self.positions[v as usize], self.ids[v as usize])
+    }
+    pub fn tri(&self, t: [u32; 3]) -> [SymPoint; 3] {
+        t.map(|v| self.point(v))
+    }
+}
+
+/// Cheap exact rejection: true when all corners of `b` that are not
+/// corners of `a` lie strictly on one side of `a`'s plane.
+fn separated(a: [DVec3; 3], b: [DVec3; 3], b_shared: [bool; 3]) -> bool {
+    let mut side = 0i8;
+    for k in 0..3 {
+        if b_shared[k] {
+            continue;
+        }
+        let o = robust::orient3d(coord(a[0]), coord(a[1]), coord(a[2]), coord(b[k]));
+        let s = if o > 0.0 {
+            1
+        } else if o < 0.0 {
+            -1
+        } else {
+            return false;
+        };
+        if side != 0 && s != side {
+            return false;
+        }
+        side = s;
+    }
+    side != 0
+}
+
+fn coord(p: DVec3) -> robust::Coord3D<f64> {
+    robust::Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
+}
+
+/// Finds every self-intersection of `mesh` at `positions`, with identities
+/// `ids` (normally [`holey_geom::position_classes`] of `positions`).
+pub fn intersections(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+) -> Result<Intersections, IntersectError> {
+    let sym = Symbolic { positions, ids };
+    let tris = &mesh.triangles;
+    let boxes: Vec<Aabb> = tris
+        .iter()
+        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
+        .collect();
+    let bvh = Bvh::build(&boxes)?;
+    let candidates = bvh.self_overlaps();
+    let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
+
+    // Exact tests, in parallel; the output keeps the candidates' order.
+    let found: Vec<Option<(u32, u32, [SegEnd; 2])>> = candidates
+        .par_iter()
+        .map(|&(a, b)| {
+            let (t1, t2) = (a.min(b), a.max(b));
+            let (i1, i2) = (tid(t1), tid(t2));
+            let s2 = i2.map(|i| i1.contains(&i));
+            if s2.iter().filter(|&&s| s).count() >= 2 {
+                return None;
+            }
+            let s1 = i1.map(|i| i2.contains(&i));
+            let p1 = tris[t1 as usize].map(|v| positions[v as usize]);
+            let p2 = tris[t2 as usize].map(|v| positions[v as usize]);
+            if separated(p1, p2, s2) || separated(p2, p1, s1) {
+                return None;
+            }
+            triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))
+                .map(|ends| (t1, t2, ends))
+        })
+        .collect();
+    let filtered = found.iter().filter(|f| f.is_none()).count();
+    let mut segs: Vec<(u32, u32, [SegEnd; 2])> = found.into_iter().flatten().collect();
+    segs.sort_by_key(|s| (s.0, s.1));
+    segs.dedup_by_key(|s| (s.0, s.1));
+
+    // Edge × triangle points, keyed by (mesh edge, crossed triangle).
+    let key_of_end = |t1: u32, t2: u32, end: &SegEnd| -> Option<(u32, u32)> {
+        let SegEnd::Edge { p, q, tri } = end else {
+            return None;
+        };
+        // The edge belongs to whichever triangle is not `tri`.
+        let (owner, other) = if tri.map(|s| s.id) == tid(t2) {
+            (t1, t2)
+        } else {
+            (t2, t1)
+        };
+        let t = tris[owner as usize];
+        let k = (0..3).find(|&k| {
+            let (a, b) = (ids[t[k] as usize], ids[t[(k + 1) % 3] as usize]);
+            (a == p.id && b == q.id) || (a == q.id && b == p.id)
+        })?;
+        Some((edges.of_triangle[owner as usize][k], other))
+    };
+    let mut keys: Vec<(u32, u32)> = Vec::new();
+    let mut seg_nodes: Vec<[Option<(u32, u32)>; 2]> = Vec::with_capacity(segs.len());
+    for (t1, t2, ends) in &segs {
+        let a = key_of_end(*t1, *t2, &ends[0]);
+        let b = key_of_end(*t1, *t2, &ends[1]);
+        keys.extend(a.iter().chain(b.iter()).copied());
+        seg_nodes.push([a, b]);
+    }
+    keys.sort_unstable();
+    keys.dedup();
+    let constructed: Vec<Result<IPoint, IntersectError>> = keys
+        .par_iter()
+        .map(|&(e, t)| {
+            let [u, v] = edges.ends[e as usize];
+            let c = tris[t as usize];
+            let r = edge_triangle_point(
+                sym.point(u),
+                sym.point(v),
+                sym.point(c[0]),
+                sym.point(c[1]),
+                sym.point(c[2]),
+            )
+            .map_err(|err| IntersectError::Construction {
+                edge: e,
+                tri: t,
+                reason: err.to_string(),
+            })?;
+            Ok(IPoint {
+                kind: PointKind::EdgeTri {
+                    edge: e,
+                    tri: t,
+                    t: r.t,
+                    bary: r.bary,
+                },
+                position: r.pos,
+            })
+        })
+        .collect();
+    let mut points = Vec::with_capacity(constructed.len());
+    for p in constructed {
+        points.push(p?);
+    }
+    let point_of: HashMap<(u32, u32), u32> = keys
+        .iter()
+        .enumerate()
+        .map(|(i, &k)| (k, i as u32))
+        .collect();
+    let node_of = |key: Option<(u32, u32)>, end: &SegEnd| -> Node {
+        match (key, end) {
+            (Some(k), _) => Node::Point(point_of[&k]),
+            (None, SegEnd::Vertex(v)) => Node::Shared(v.id),
+            // An edge end whose edge could not be matched (cannot happen
+            // for a consistent mesh): treat as its first point's identity.
+            (None, SegEnd::Edge { p, .. }) => Node::Shared(p.id),
+        }
+    };
+
+    // Triple points: three pairwise-intersecting triangles meeting in a point.
+    let mut partners: Vec<Vec<u32>> = vec![Vec::new(); tris.len()];
+    for (t1, t2, _) in &segs {
+        partners[*t1 as usize].push(*t2);
+        partners[*t2 as usize].push(*t1);
+    }
+    for p in &mut partners {
+        p.sort_unstable();
+    }
+    let seg_index: HashMap<(u32, u32), usize> = segs
+        .iter()
+        .enumerate()
+        .map(|(i, s)| ((s.0, s.1), i))
+        .collect();
+    let mut triples: Vec<[u32; 3]> = Vec::new();
+    for (t1, t2, _) in &segs {
+        let (a, b) = (&partners[*t1 as usize], &partners[*t2 as usize]);
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].cmp(&b[j]) {
+                Ordering::Less => i += 1,
+                Ordering::Greater => j += 1,
+                Ordering::Equal => {
+                    if a[i] > *t2 {
+                        triples.push([*t1, *t2, a[i]]);
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+    }
+    let triple_found: Vec<Option<Result<IPoint, IntersectError>>> = triples
+        .par_iter()
+        .map(|&t| {
+            let s = t.map(|k| sym.tri(tris[k as usize]));
+            if !triangle_triangle_triangle_point(s[0], s[1], s[2]) {
+                return None;
+            }
+            Some(
+                triple_point(s[0], s[1], s[2])
+                    .map(|tp| IPoint {
+                        kind: PointKind::Triple {
+                            tris: t,
+                            bary: tp.bary,
+                        },
+                        position: tp.pos,
+                    })
+                    .map_err(|err| IntersectError::Construction {
+                        edge: u32::MAX,
+                        tri: t[0],
+                        reason: format!("triple point of triangles {t:?}: {err}"),
+                    }),
+            )
+        })
+        .collect();
+    // Points on the interior of each segment.
+    let mut on_seg: Vec<Vec<(u32, u32)>> = vec![Vec::new(); segs.len()]; // (point, third triangle)
+    for r in triple_found.into_iter().flatten() {
+        let p = r?;
+        let PointKind::Triple { tris: t, .. } = p.kind else {
+            continue;
+        };
+        let id = points.len() as u32;
+        points.push(p);
+        for (x, y, z) in [(t[0], t[1], t[2]), (t[0], t[2], t[1]), (t[1], t[2], t[0])] {
+            if let Some(&s) = seg_index.get(&(x.min(y), x.max(y))) {
+                on_seg[s].push((id, z));
+            }
+        }
+    }
+
+    // Pieces: consecutive nodes along each segment.
+    let mut pieces = Vec::new();
+    for (s, (t1, t2, ends)) in segs.iter().enumerate() {
+        let mut interior = std::mem::take(&mut on_seg[s]);
+        interior.sort_by(|&(_, ta), &(_, tb)| {
+            order_on_segment(ends, sym.tri(tris[ta as usize]), sym.tri(tris[tb as usize]))
+        });
+        let mut chain = vec![node_of(seg_nodes[s][0], &ends[0])];
+        chain.extend(interior.iter().map(|&(p, _)| Node::Point(p)));
+        chain.push(node_of(seg_nodes[s][1], &ends[1]));
+        for w in chain.windows(2) {
+            pieces.push(Piece {
+                ends: [w[0], w[1]],
+                tris: [*t1, *t2],
+            });
+        }
+    }
+
+    // Curves: connected components of the pieces.
+    let mut nodes: Vec<Node> = pieces.iter().flat_map(|p| p.ends).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let index = |n: &Node| nodes.binary_search(n).unwrap_or(0);
+    let mut parent: Vec<usize> = (0..nodes.len()).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for p in &pieces {
+        let (a, b) = (
+            find(&mut parent, index(&p.ends[0])),
+            find(&mut parent, index(&p.ends[1])),
+        );
+        if a != b {
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut curve_id = vec![u32::MAX; nodes.len()];
+    let mut curve_count = 0u32;
+    let curve_of_piece = pieces
+        .iter()
+        .map(|p| {
+            let r = find(&mut parent, index(&p.ends[0]));
+            if curve_id[r] == u32::MAX {
+                curve_id[r] = curve_count;
+                curve_count += 1;
+            }
+            curve_id[r]
+        })
+        .collect();
+
+    let mut cut_edges = vec![false; edges.len()];
+    for p in &points {
+        if let PointKind::EdgeTri { edge, .. } = p.kind {
+            cut_edges[edge as usize] = true;
+        }
+    }
+    Ok(Intersections {
+        points,
+        pieces,
+        curve_of_piece,
+        curve_count: curve_count as usize,
+        pairs: segs.iter().map(|s| (s.0, s.1)).collect(),
+        cut_edges,
+        candidates: candidates.len(),
+        filtered,
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,238 @@
+use glam::DVec3;
+use holey_geom::position_classes;
+
+use super::*;
+use crate::mesh::{Edges, TriMesh};
+
+pub(crate) fn run(mesh: &TriMesh) -> Intersections {
+    let edges = Edges::new(mesh);
+    let ids = position_classes(&mesh.positions).unwrap();
+    intersections(mesh, &mesh.positions, &edges, &ids).unwrap()
+}
+
+fn tri(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [DVec3; 3] {
+    [
+        DVec3::from_array(a),
+        DVec3::from_array(b),
+        DVec3::from_array(c),
+    ]
+}
+
+fn soup(tris: &[[DVec3; 3]]) -> TriMesh {
+    let mut m = TriMesh::default();
+    for t in tris {
+        let n = m.positions.len() as u32;
+        m.positions.extend_from_slice(t);
+        m.triangles.push([n, n + 1, n + 2]);
+    }
+    m
+}
+
+/// A closed octahedron of radius `r` around `c`.
+pub(crate) fn octahedron(c: DVec3, r: f64) -> TriMesh {
+    let p = [
+        DVec3::X,
+        -DVec3::X,
+        DVec3::Y,
+        -DVec3::Y,
+        DVec3::Z,
+        -DVec3::Z,
+    ]
+    .map(|d| c + d * r);
+    let t = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    TriMesh {
+        positions: p.to_vec(),
+        triangles: t.to_vec(),
+    }
+}
+
+pub(crate) fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
+    let mut m = a.clone();
+    let n = m.positions.len() as u32;
+    m.positions.extend_from_slice(&b.positions);
+    m.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    m
+}
+
+#[test]
+fn two_crossing_triangles() {
+    let m = soup(&[
+        tri([0., 0., 0.], [2., 0., 0.], [0., 2., 0.]),
+        tri([0.5, 0.5, -1.], [0.5, 0.5, 1.], [3., 3., 0.]),
+    ]);
+    let x = run(&m);
+    assert_eq!(x.pairs, vec![(0, 1)]);
+    assert_eq!(x.points.len(), 2);
+    assert_eq!(x.pieces.len(), 1);
+    assert_eq!(x.curve_count, 1);
+    // The vertical edge of triangle 1 crosses triangle 0 at (0.5, 0.5, 0).
+    let hit = x
+        .points
+        .iter()
+        .find(|p| matches!(p.kind, PointKind::EdgeTri { tri: 0, .. }))
+        .unwrap();
+    assert_eq!(hit.position, DVec3::new(0.5, 0.5, 0.0));
+    assert_eq!(x.cut_edges.iter().filter(|&&c| c).count(), 2);
+}
+
+#[test]
+fn two_octahedra_meet_in_one_closed_curve() {
+    let m = join(
+        &octahedron(DVec3::ZERO, 1.0),
+        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
+    );
+    let x = run(&m);
+    assert_eq!(x.curve_count, 1);
+    // A closed curve: every node has two pieces.
+    let mut degree: HashMap<Node, usize> = HashMap::new();
+    for p in &x.pieces {
+        for n in p.ends {
+            *degree.entry(n).or_default() += 1;
+        }
+    }
+    assert!(degree.values().all(|&d| d == 2), "{degree:?}");
+    assert_eq!(x.pieces.len(), x.points.len());
+}
+
+#[test]
+fn three_planes_make_a_triple_point() {
+    // Three big triangles through the origin in the coordinate planes.
+    let m = soup(&[
+        tri([-1., -1., 0.], [3., -1., 0.], [-1., 3., 0.]),
+        tri([-1., 0., -1.], [-1., 0., 3.], [3., 0., -1.]),
+        tri([0., -1., -1.], [0., 3., -1.], [0., -1., 3.]),
+    ]);
+    let x = run(&m);
+    assert_eq!(x.pairs.len(), 3);
+    assert_eq!(x.triple_points(), 1);
+    let tp = x
+        .points
+        .iter()
+        .find(|p| matches!(p.kind, PointKind::Triple { .. }))
+        .unwrap();
+    assert_eq!(tp.position, DVec3::ZERO);
+    // Each segment is split at the triple point.
+    assert_eq!(x.pieces.len(), 6);
+    assert_eq!(x.curve_count, 1);
+}
+
+#[test]
+fn touching_soup_triangles_do_not_intersect() {
+    // Two triangles of a soup sharing an edge by position only.
+    let m = soup(&[
+        tri([0., 0., 0.], [1., 0., 0.], [0., 1., 0.]),
+        tri([1., 0., 0.], [1., 1., 0.], [0., 1., 0.]),
+        tri([0., 0., 0.], [1., 0., 0.], [0., 0., 1.]),
+    ]);
+    let x = run(&m);
+    assert!(x.pairs.is_empty(), "{:?}", x.pairs);
+}
+
+#[test]
+fn coplanar_and_duplicate_triangles_never_fail() {
+    let a = tri([0., 0., 0.], [2., 0., 0.], [0., 2., 0.]);
+    let b = tri([0.5, 0.5, 0.], [2.5, 0.5, 0.], [0.5, 2.5, 0.]);
+    for m in [soup(&[a, b]), soup(&[a, a]), soup(&[a, b, a, b])] {
+        let x = run(&m);
+        // Every curve node of a point is an edge crossing or a triple point
+        // that some piece uses; pieces join existing points.
+        for p in &x.pieces {
+            for n in p.ends {
+                if let Node::Point(i) = n {
+                    assert!((i as usize) < x.points.len());
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn large_offset_and_tiny_coordinates() {
+    for (scale, offset) in [
+        (1.0, 0.0),
+        (1e-30, 0.0),
+        (1e30, 0.0),
+        (1.0, 4096.0),
+        (1.0, 1e12),
+        (1e-6, 1e6),
+    ] {
+        let mut m = join(
+            &octahedron(DVec3::ZERO, 1.0),
+            &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
+        );
+        for p in &mut m.positions {
+            *p = *p * scale + DVec3::splat(offset);
+        }
+        let x = run(&m);
+        assert_eq!(x.curve_count, 1, "scale {scale} offset {offset}");
+        assert_eq!(
+            x.pieces.len(),
+            x.points.len(),
+            "scale {scale} offset {offset}"
+        );
+    }
+}
+
+fn read(path: &std::path::Path) -> TriMesh {
+    let Ok(holey_io::MeshFile::Poly(p)) = holey_io::read_path(path) else {
+        panic!("cannot read {path:?}")
+    };
+    let (triangles, _) = p.fan_triangles();
+    TriMesh {
+        positions: p.positions,
+        triangles,
+    }
+}
+
+/// The number of intersecting triangle pairs of the shared meshes, against
+/// libigl's CGAL-exact counts in ../shared/data/meshes/README.md
+/// (polygon meshes fan-triangulated, as there). libigl counts every pair
+/// whose closed triangles meet other than at a shared vertex or edge,
+/// touching contacts included; we count pairs that cross in the perturbed
+/// world, so the counts agree exactly except on the contacts noted below,
+/// each verified as a contact (pair by pair against libigl's list). Reads
+/// the shared folder; skipped visibly when it is absent.
+#[test]
+fn intersecting_pairs_match_the_shared_readme() {
+    let Some(dir) =
+        holey_testkit::shared_meshes_or_skip("intersecting_pairs_match_the_shared_readme")
+    else {
+        return;
+    };
+    for (file, pairs) in [
+        ("self_intersectA.obj", 338),
+        ("self_intersectB.obj", 338),
+        // libigl's 161 include 5 pairs that only touch: each has an edge in
+        // the plane z = 0 and lies on one side of it, the two edges crossing
+        // at a point. Simulation of simplicity resolves such contacts as not
+        // crossing (checked pair by pair against libigl's list).
+        ("teapot.obj", 156),
+        // libigl's 56 include 5 touching contacts, checked with exact
+        // rational arithmetic: e.g. triangles 577 and 869 straddle each
+        // other's planes but their spans on the common line meet at a
+        // single point (overlap of length exactly 0); the other four touch
+        // along lines through a shared vertex.
+        ("beetle.obj", 51),
+        ("suzanne.obj", 90),
+        ("spot_control_mesh.obj", 26),
+        ("bigguyhalf.obj", 20),
+        ("fertility_poly.obj", 104),
+        ("bunny_oded.obj", 0),
+        ("menger_sponge_level3.obj", 0),
+        ("thingi10k_88566_garden_fence.obj", 0),
+        ("thingi10k_65004_arduino_case_soup.obj", 0),
+    ] {
+        let x = run(&read(&dir.join(file)));
+        assert_eq!(x.pairs.len(), pairs, "{file}");
+    }
+}
