@@ -424,4 +424,4 @@ pub fn intersections(
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -1,9 +1,16 @@
 //! # holey-topo: topology change for arbitrary triangle meshes
 //!
 //! Bernstein & Wojtan, *Putting Holes in Holey Geometry* (SIGGRAPH 2013),
-//! section 3 and appendices A–C. (Being written.)
+//! section 3 and appendices A–C.
 
 pub mod correct;
+pub mod cut;
+pub mod engine;
 pub mod intersect;
 pub mod mesh;
+pub mod orient;
 pub mod weights;
+
+pub use correct::Scheme;
+pub use engine::{Accumulator, Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change};
+pub use mesh::TriMesh;

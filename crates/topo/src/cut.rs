@@ -1,0 +1,480 @@
+//! Subdivision, gluing and deletion (§3.5).
+//!
+//! With the intersection curves and a parity field in hand:
+//!
+//! 1. **Decide which curves to resolve.** A curve component whose
+//!    triangles' vertices are all even or all odd is dropped. Mesh edges
+//!    whose ends have opposite parity but which no kept curve crosses get a
+//!    *false intersection vertex* at their midpoint; a triangle untouched by
+//!    kept curves with mixed parity gets a *false intersection edge* between
+//!    the two false vertices on its edges.
+//! 2. **Subdivide.** Each triangle touched by a kept curve, a false vertex
+//!    or a false edge is re-triangulated with its points and segments by a
+//!    constrained Delaunay triangulation (spade) in the triangle's own
+//!    barycentric chart: corners at (0,0), (1,0), (0,1); a point on an edge
+//!    placed exactly on that chart edge from its parameter along the mesh
+//!    edge; an interior point at its correctly rounded barycentric
+//!    coordinates. Constraints that cross (only possible through rounding)
+//!    are split where they cross (`add_constraint_and_split`), so the
+//!    triangulation never fails and never drops a constraint.
+//! 3. **Glue.** Every intersection point is one global vertex, keyed by what
+//!    generates it, so the triangles on both sides of a curve share it and
+//!    are joined there by construction. (The paper duplicates curve
+//!    vertices and then glues the duplicates.)
+//! 4. **Delete.** A sub-triangle takes the parity of its original corners;
+//!    one with none (all its corners on curves) is decided by 50 rounds of
+//!    diffusion across sub-triangle edges that are not curve edges, and an
+//!    undecided one is kept (even). Odd sub-triangles are deleted.
+//!
+//! In *resolve* mode (no parity field) every curve is kept and nothing is
+//! deleted: the result is the mesh cut along all its self-intersections and
+//! glued there, the arrangement.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+
+use crate::intersect::{Intersections, Node, PointKind};
+use crate::mesh::{Edges, TriMesh};
+
+/// What the subdivision did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CutReport {
+    pub curves_kept: usize,
+    pub curves_dropped: usize,
+    pub false_vertices: usize,
+    pub false_edges: usize,
+    /// Triangles re-triangulated.
+    pub triangles_split: usize,
+    /// Triangles (of the subdivided mesh) deleted as odd.
+    pub triangles_deleted: usize,
+    /// Sub-triangles with no original corner, decided by diffusion.
+    pub diffused: usize,
+    /// Sub-triangles still undecided after 50 rounds (kept).
+    pub undecided: usize,
+    /// Sub-triangles whose original corners disagreed.
+    pub conflicting: usize,
+    /// Vertices added where constraints crossed after rounding.
+    pub constraint_splits: usize,
+    /// Points that rounded onto the same chart position as another.
+    pub merged_points: usize,
+}
+
+/// A vertex of a chart triangulation.
+#[derive(Clone, Copy, Debug)]
+struct ChartVertex {
+    pos: Point2<f64>,
+    global: u32,
+}
+
+impl HasPosition for ChartVertex {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.pos
+    }
+}
+
+const NONE: u32 = u32::MAX;
+const CHART: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+
+/// The point of the chart's hypotenuse `u + v = 1` with `v ≈ s`, chosen
+/// so that `u + v = 1` holds exactly in floating point (Sterbenz: `1 − x`
+/// is exact for `x ∈ [½, 1]`). The triangulation's exact orientation tests
+/// then see it exactly on the chart edge, as it is symbolically.
+fn on_hypotenuse(s: f64) -> [f64; 2] {
+    let s = s.clamp(0.0, 1.0);
+    if s <= 0.5 {
+        let u = 1.0 - s;
+        [u, 1.0 - u]
+    } else {
+        [1.0 - s, s]
+    }
+}
+
+/// Chart position of the point at parameter `s` along side `k`, exactly on
+/// that chart edge.
+fn on_side(k: usize, s: f64) -> [f64; 2] {
+    let s = s.clamp(0.0, 1.0);
+    match k {
+        0 => [s, 0.0],
+        1 => on_hypotenuse(s),
+        _ => [0.0, 1.0 - s],
+    }
+}
+
+/// Chart position of barycentric coordinates (weights of the corners).
+/// Symbolically such points lie strictly inside; if rounding put one
+/// outside, it is moved exactly onto the nearest chart edge.
+fn from_bary(b: [f64; 3]) -> [f64; 2] {
+    let (u, v) = (b[1].max(0.0), b[2].max(0.0));
+    if u + v > 1.0 { on_hypotenuse(v / (u + v)) } else { [u, v] }
+}
+
+/// Union-find over global vertex ids, for points that merge.
+fn resolve(alias: &HashMap<u32, u32>, mut g: u32) -> u32 {
+    while let Some(&h) = alias.get(&g) {
+        g = h;
+    }
+    g
+}
+
+/// The subdivided (and, with a parity field, trimmed) mesh.
+pub struct Cut {
+    pub mesh: TriMesh,
+    pub report: CutReport,
+}
+
+/// Subdivides `mesh` (at `positions`) along the intersection curves `x`,
+/// glues, and deletes the odd part of `odd` (`None`: resolve mode).
+pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &Intersections, odd: Option<&[bool]>) -> Cut {
+    let n = positions.len();
+    let tris = &mesh.triangles;
+    let mut report = CutReport::default();
+
+    // 1. Curves to resolve.
+    let keep_curve: Vec<bool> = match odd {
+        None => vec![true; x.curve_count],
+        Some(odd) => {
+            let mut seen = vec![[false; 2]; x.curve_count];
+            for (p, piece) in x.pieces.iter().enumerate() {
+                let c = x.curve_of_piece[p] as usize;
+                for &t in &piece.tris {
+                    for &v in &tris[t as usize] {
+                        seen[c][usize::from(odd[v as usize])] = true;
+                    }
+                }
+            }
+            seen.iter().map(|s| s[0] && s[1]).collect()
+        }
+    };
+    report.curves_kept = keep_curve.iter().filter(|&&k| k).count();
+    report.curves_dropped = x.curve_count - report.curves_kept;
+    let kept_piece: Vec<bool> = x.curve_of_piece.iter().map(|&c| keep_curve[c as usize]).collect();
+    let mut active = vec![false; x.points.len()];
+    for (p, piece) in x.pieces.iter().enumerate() {
+        if kept_piece[p] {
+            for node in piece.ends {
+                if let Node::Point(i) = node {
+                    active[i as usize] = true;
+                }
+            }
+        }
+    }
+
+    // Global vertices: originals, then active points, then false vertices,
+    // then split vertices.
+    let mut out_positions: Vec<DVec3> = positions.to_vec();
+    let mut point_global = vec![NONE; x.points.len()];
+    for (i, p) in x.points.iter().enumerate() {
+        if active[i] {
+            point_global[i] = out_positions.len() as u32;
+            out_positions.push(p.position);
+        }
+    }
+
+    // Per-triangle lists of what lies on it.
+    let nt = tris.len();
+    let mut on_edge: Vec<Vec<(u32, f64)>> = vec![Vec::new(); edges.len()]; // (global, t along ends)
+    let mut interior: Vec<Vec<(u32, [f64; 3])>> = vec![Vec::new(); nt];
+    let mut cut_edge = vec![false; edges.len()];
+    let mut touched = vec![false; nt];
+    for (i, p) in x.points.iter().enumerate() {
+        if !active[i] {
+            continue;
+        }
+        let g = point_global[i];
+        match p.kind {
+            PointKind::EdgeTri { edge, tri, t, bary } => {
+                on_edge[edge as usize].push((g, t));
+                cut_edge[edge as usize] = true;
+                interior[tri as usize].push((g, bary));
+                touched[tri as usize] = true;
+                for &u in edges.triangles(edge as usize) {
+                    touched[u as usize] = true;
+                }
+            }
+            PointKind::Triple { tris: ts, bary } => {
+                for k in 0..3 {
+                    interior[ts[k] as usize].push((g, bary[k]));
+                    touched[ts[k] as usize] = true;
+                }
+            }
+        }
+    }
+    let mut constraints: Vec<Vec<[Node; 2]>> = vec![Vec::new(); nt];
+    for (p, piece) in x.pieces.iter().enumerate() {
+        if kept_piece[p] {
+            for &t in &piece.tris {
+                constraints[t as usize].push(piece.ends);
+                touched[t as usize] = true;
+            }
+        }
+    }
+    // False vertices and edges.
+    let mut false_vertex = vec![NONE; edges.len()];
+    let mut false_edges: Vec<Option<[u32; 2]>> = vec![None; nt];
+    if let Some(odd) = odd {
+        for (e, &[a, b]) in edges.ends.iter().enumerate() {
+            if odd[a as usize] != odd[b as usize] && !cut_edge[e] {
+                false_vertex[e] = out_positions.len() as u32;
+                out_positions.push((positions[a as usize] + positions[b as usize]) * 0.5);
+                on_edge[e].push((false_vertex[e], 0.5));
+                report.false_vertices += 1;
+            }
+        }
+        for t in 0..nt {
+            if touched[t] {
+                continue;
+            }
+            let fv: Vec<u32> = edges.of_triangle[t]
+                .iter()
+                .map(|&e| false_vertex[e as usize])
+                .filter(|&g| g != NONE)
+                .collect();
+            if fv.len() == 2 {
+                false_edges[t] = Some([fv[0], fv[1]]);
+                report.false_edges += 1;
+            }
+        }
+    }
+
+    // 2. Subdivide each affected triangle in its chart.
+    let mut out_tris: Vec<[u32; 3]> = Vec::with_capacity(nt);
+    let mut curve_edges: Vec<(u32, u32)> = Vec::new();
+    let mut alias: HashMap<u32, u32> = HashMap::new();
+    for t in 0..nt {
+        let tri = tris[t];
+        let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
+        let has_edge_points = edges.of_triangle[t].iter().any(|&e| !on_edge[e as usize].is_empty());
+        if degenerate || (!has_edge_points && interior[t].is_empty() && constraints[t].is_empty() && false_edges[t].is_none()) {
+            out_tris.push(tri);
+            continue;
+        }
+        report.triangles_split += 1;
+        let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> = ConstrainedDelaunayTriangulation::new();
+        let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
+        let mut global_of_handle: HashMap<usize, u32> = HashMap::new();
+        let mut insert = |cdt: &mut ConstrainedDelaunayTriangulation<ChartVertex>,
+                          global: u32,
+                          pos: [f64; 2],
+                          report: &mut CutReport,
+                          alias: &mut HashMap<u32, u32>| {
+            let before = cdt.num_vertices();
+            let Ok(h) = cdt.insert(ChartVertex { pos: Point2::new(pos[0], pos[1]), global }) else {
+                return;
+            };
+            if cdt.num_vertices() == before {
+                // Rounded onto an existing point: the two are one.
+                if let Some(&g0) = global_of_handle.get(&h.index())
+                    && g0 != global
+                {
+                    alias.insert(global, g0);
+                    report.merged_points += 1;
+                }
+            } else {
+                global_of_handle.insert(h.index(), global);
+            }
+            handle_of.insert(global, h);
+        };
+        for k in 0..3 {
+            insert(&mut cdt, tri[k], CHART[k], &mut report, &mut alias);
+        }
+        for k in 0..3 {
+            let e = edges.of_triangle[t][k] as usize;
+            let forward = tri[k] == edges.ends[e][0];
+            for &(g, s) in &on_edge[e] {
+                let s = if forward { s } else { 1.0 - s };
+                insert(&mut cdt, g, on_side(k, s), &mut report, &mut alias);
+            }
+        }
+        for &(g, b) in &interior[t] {
+            insert(&mut cdt, g, from_bary(b), &mut report, &mut alias);
+        }
+        let node_global = |node: Node| -> u32 {
+            match node {
+                Node::Point(i) => point_global[i as usize],
+                Node::Shared(id) => tri
+                    .iter()
+                    .copied()
+                    .find(|&v| ids[v as usize] == id)
+                    .unwrap_or(NONE),
+            }
+        };
+        let mut segs: Vec<[u32; 2]> = constraints[t]
+            .iter()
+            .map(|ends| [node_global(ends[0]), node_global(ends[1])])
+            .collect();
+        if let Some(fe) = false_edges[t] {
+            segs.push(fe);
+        }
+        let split = |p: Point2<f64>| ChartVertex { pos: p, global: NONE };
+        for [a, b] in segs {
+            let (Some(&ha), Some(&hb)) = (handle_of.get(&a), handle_of.get(&b)) else {
+                continue;
+            };
+            if ha != hb {
+                cdt.add_constraint_and_split(ha, hb, split);
+            }
+        }
+        // Globals for split vertices; the corners' 3D frame for them.
+        let p = tri.map(|v| positions[v as usize]);
+        let mut global: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
+        for v in cdt.vertices() {
+            let cv = *v.data();
+            let g = if cv.global == NONE {
+                report.constraint_splits += 1;
+                let g = out_positions.len() as u32;
+                let (u, w) = (cv.pos.x, cv.pos.y);
+                out_positions.push(p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * w);
+                g
+            } else {
+                global_of_handle.get(&v.fix().index()).copied().unwrap_or(cv.global)
+            };
+            global.push(g);
+        }
+        for f in cdt.inner_faces() {
+            let vs = f.vertices().map(|v| global[v.fix().index()]);
+            out_tris.push(vs);
+        }
+        for e in cdt.undirected_edges() {
+            if e.is_constraint_edge() {
+                let [a, b] = e.vertices().map(|v| global[v.fix().index()]);
+                curve_edges.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    for t in &mut out_tris {
+        for v in t.iter_mut() {
+            *v = resolve(&alias, *v);
+        }
+    }
+    for e in &mut curve_edges {
+        *e = (resolve(&alias, e.0).min(resolve(&alias, e.1)), resolve(&alias, e.0).max(resolve(&alias, e.1)));
+    }
+
+    // 4. Labels and deletion.
+    let keep: Vec<bool> = match odd {
+        None => vec![true; out_tris.len()],
+        Some(odd) => {
+            let labels = label(&out_tris, n, odd, &curve_edges, &mut report);
+            labels.iter().map(|&o| !o).collect()
+        }
+    };
+    report.triangles_deleted = keep.iter().filter(|&&k| !k).count();
+    let kept: Vec<[u32; 3]> = out_tris
+        .iter()
+        .zip(&keep)
+        .filter(|(_, k)| **k)
+        .map(|(t, _)| *t)
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .collect();
+    Cut {
+        mesh: compact(&out_positions, &kept),
+        report,
+    }
+}
+
+/// Parity of each sub-triangle: from its original corners, else by
+/// diffusion across non-curve edges; `true` = odd.
+fn label(tris: &[[u32; 3]], n_original: usize, odd: &[bool], curve_edges: &[(u32, u32)], report: &mut CutReport) -> Vec<bool> {
+    let mut state: Vec<Option<bool>> = tris
+        .iter()
+        .map(|t| {
+            let (mut o, mut e) = (0, 0);
+            for &v in t {
+                if (v as usize) < n_original {
+                    if odd[v as usize] { o += 1 } else { e += 1 }
+                }
+            }
+            if o > 0 && e > 0 {
+                report.conflicting += 1;
+            }
+            if o + e == 0 { None } else { Some(o > e) }
+        })
+        .collect();
+    if state.iter().all(Option::is_some) {
+        return state.into_iter().map(|s| s.unwrap_or(false)).collect();
+    }
+    let mut curve: Vec<(u32, u32)> = curve_edges.to_vec();
+    curve.sort_unstable();
+    curve.dedup();
+    let is_curve = |a: u32, b: u32| curve.binary_search(&(a.min(b), a.max(b))).is_ok();
+    // Adjacency across non-curve edges.
+    let mut sides: Vec<(u32, u32, u32)> = Vec::with_capacity(tris.len() * 3);
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if !is_curve(a, b) {
+                sides.push((a.min(b), a.max(b), i as u32));
+            }
+        }
+    }
+    sides.sort_unstable();
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); tris.len()];
+    let mut i = 0;
+    while i < sides.len() {
+        let mut j = i;
+        while j < sides.len() && (sides[j].0, sides[j].1) == (sides[i].0, sides[i].1) {
+            j += 1;
+        }
+        for a in i..j {
+            for b in i..j {
+                if a != b {
+                    neighbours[sides[a].2 as usize].push(sides[b].2);
+                }
+            }
+        }
+        i = j;
+    }
+    let undecided_before = state.iter().filter(|s| s.is_none()).count();
+    for _ in 0..50 {
+        let mut changed = false;
+        let snapshot = state.clone();
+        for (t, s) in state.iter_mut().enumerate() {
+            if s.is_some() {
+                continue;
+            }
+            let (mut o, mut e) = (0, 0);
+            for &u in &neighbours[t] {
+                match snapshot[u as usize] {
+                    Some(true) => o += 1,
+                    Some(false) => e += 1,
+                    None => {}
+                }
+            }
+            if o + e > 0 {
+                *s = Some(o > e);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    report.undecided = state.iter().filter(|s| s.is_none()).count();
+    report.diffused = undecided_before - report.undecided;
+    state.into_iter().map(|s| s.unwrap_or(false)).collect()
+}
+
+/// Drops unused vertices, keeping their order.
+pub(crate) fn compact(positions: &[DVec3], tris: &[[u32; 3]]) -> TriMesh {
+    let mut map = vec![NONE; positions.len()];
+    for t in tris {
+        for &v in t {
+            map[v as usize] = 0;
+        }
+    }
+    let mut out = TriMesh::default();
+    for (v, m) in map.iter_mut().enumerate() {
+        if *m == 0 {
+            *m = out.positions.len() as u32;
+            out.positions.push(positions[v]);
+        }
+    }
+    out.triangles = tris.iter().map(|t| t.map(|v| map[v as usize])).collect();
+    out
+}
+
+#[cfg(test)]
+mod tests;

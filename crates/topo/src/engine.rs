@@ -1,0 +1,317 @@
+//! The pipeline of §3: collision parity, static intersections, error
+//! correction, then subdivision, gluing and deletion.
+//!
+//! [`topology_change`] runs one frame: a triangle mesh at its start
+//! positions and the positions at the end of the frame (linear motion per
+//! vertex). [`Accumulator`] runs the drag of §4: raw parity accumulated
+//! over many frames, the corrected field available on demand for live
+//! preview, and the topology change applied once at release.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use holey_geom::ccd::{CcdOptions, Identities, Narrow, vertex_parities};
+use holey_geom::position_classes;
+
+use crate::correct::{Graph, Scheme, correct};
+use crate::cut::{Cut, CutReport, cut};
+use crate::intersect::{Intersections, intersections};
+use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
+use crate::orient::orient_consistently;
+use crate::weights::Weights;
+
+/// Options of the engine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Error-correction scheme.
+    pub scheme: Scheme,
+    /// Collision narrow phase: the exact root parity (default) or the
+    /// paper's floating-point cubic.
+    pub float_ccd: bool,
+    /// Make triangle orientations consistent across manifold edges after
+    /// the change, where the surface allows.
+    pub orient: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            scheme: Scheme::Partition,
+            float_ccd: false,
+            orient: true,
+        }
+    }
+}
+
+/// Why the engine refused its input.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TopoError {
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    #[error("collision detection: {0}")]
+    Geometry(#[from] holey_geom::GeomError),
+    #[error("static intersections: {0}")]
+    Intersections(#[from] crate::intersect::IntersectError),
+}
+
+/// Seconds spent in each stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timings {
+    pub collisions: f64,
+    pub intersections: f64,
+    pub correction: f64,
+    pub cut: f64,
+    pub total: f64,
+}
+
+/// What one topology change did (the report of the issue).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Report {
+    /// Vertex–triangle pairs with an odd number of collisions.
+    pub collisions: usize,
+    /// Narrow-phase collision tests run.
+    pub collision_tests: u64,
+    pub raw_odd_vertices: usize,
+    pub corrected_odd_vertices: usize,
+    pub intersection_points: usize,
+    pub triple_points: usize,
+    pub intersection_edges: usize,
+    pub intersection_curves: usize,
+    pub intersecting_pairs: usize,
+    pub cut: CutReport,
+    /// Components whose correction system was solved.
+    pub solved_components: usize,
+    /// Perturbations and retries: always 0. Degeneracies are resolved by
+    /// simulation of simplicity, exactly, without retrying.
+    pub perturbation_retries: usize,
+    pub orientation_flips: usize,
+    pub timings: Timings,
+}
+
+/// The result of a topology change.
+#[derive(Clone, Debug, Default)]
+pub struct Outcome {
+    pub mesh: TriMesh,
+    pub report: Report,
+    /// Raw parity per input vertex (`true` = odd).
+    pub raw_odd: Vec<bool>,
+    /// Corrected parity per input vertex.
+    pub corrected_odd: Vec<bool>,
+    /// The self-intersections of the input at its end positions.
+    pub intersections: Intersections,
+}
+
+/// The static half of the pipeline at given end positions, shared by the
+/// one-frame run, the accumulator's preview and its release.
+struct Static {
+    edges: Edges,
+    ids: Vec<u32>,
+    x: Intersections,
+    corrected: Vec<bool>,
+    solved: usize,
+    t_intersect: f64,
+    t_correct: f64,
+}
+
+fn static_stage(mesh: &TriMesh, end: &[DVec3], raw: &[bool], scheme: Scheme) -> Result<Static, TopoError> {
+    let t = Instant::now();
+    let edges = Edges::new(mesh);
+    let ids = position_classes(end)?;
+    let x = intersections(mesh, end, &edges, &ids)?;
+    let t_intersect = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let w = Weights::new(mesh, end, &edges);
+    let g = Graph {
+        vertices: end.len(),
+        ends: &edges.ends,
+        edge_weight: &w.edge,
+        vertex_weight: &w.vertex,
+        cut: &x.cut_edges,
+        total_area: w.total_area,
+    };
+    let c = correct(&g, raw, scheme);
+    Ok(Static {
+        edges,
+        ids,
+        x,
+        corrected: c.odd,
+        solved: c.solved_components,
+        t_intersect,
+        t_correct: t.elapsed().as_secs_f64(),
+    })
+}
+
+fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
+    mesh.check()?;
+    if end.len() != mesh.positions.len() {
+        return Err(MeshError::VertexCountMismatch {
+            expected: mesh.positions.len(),
+            got: end.len(),
+        }
+        .into());
+    }
+    check_positions("end positions", end)?;
+    Ok(())
+}
+
+fn finish(mesh: &TriMesh, end: &[DVec3], raw: Vec<bool>, collisions: (usize, u64, f64), options: &Options, started: Instant) -> Result<Outcome, TopoError> {
+    let s = static_stage(mesh, end, &raw, options.scheme)?;
+    let t = Instant::now();
+    let Cut { mesh: mut out, report: cut_report } = cut(mesh, end, &s.edges, &s.ids, &s.x, Some(&s.corrected));
+    let flips = if options.orient { orient_consistently(&mut out) } else { 0 };
+    let t_cut = t.elapsed().as_secs_f64();
+    let report = Report {
+        collisions: collisions.0,
+        collision_tests: collisions.1,
+        raw_odd_vertices: raw.iter().filter(|&&o| o).count(),
+        corrected_odd_vertices: s.corrected.iter().filter(|&&o| o).count(),
+        intersection_points: s.x.points.len(),
+        triple_points: s.x.triple_points(),
+        intersection_edges: s.x.pieces.len(),
+        intersection_curves: s.x.curve_count,
+        intersecting_pairs: s.x.pairs.len(),
+        cut: cut_report,
+        solved_components: s.solved,
+        perturbation_retries: 0,
+        orientation_flips: flips,
+        timings: Timings {
+            collisions: collisions.2,
+            intersections: s.t_intersect,
+            correction: s.t_correct,
+            cut: t_cut,
+            total: started.elapsed().as_secs_f64(),
+        },
+    };
+    Ok(Outcome {
+        mesh: out,
+        report,
+        raw_odd: raw,
+        corrected_odd: s.corrected,
+        intersections: s.x,
+    })
+}
+
+fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
+    CcdOptions {
+        narrow: if options.float_ccd { Narrow::Float } else { Narrow::Exact },
+        identities: Identities::ByIndex,
+        frame,
+    }
+}
+
+/// Topology change for one frame: `mesh` at its positions moves linearly to
+/// `end`. Collided parts that should vanish are cut out along the
+/// intersection curves and the rest is glued there.
+pub fn topology_change(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Outcome, TopoError> {
+    let started = Instant::now();
+    check(mesh, end)?;
+    let t = Instant::now();
+    let ccd = vertex_parities(&mesh.positions, end, &mesh.triangles, &ccd_options(options, 0))?;
+    let collisions = (ccd.odd_pairs.len(), ccd.candidates, t.elapsed().as_secs_f64());
+    finish(mesh, end, ccd.odd, collisions, options, started)
+}
+
+/// The self-intersection curves of a mesh cut and glued, nothing deleted:
+/// the arrangement of the surface (`holey resolve`).
+pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), TopoError> {
+    mesh.check()?;
+    let edges = Edges::new(mesh);
+    let ids = position_classes(&mesh.positions)?;
+    let x = intersections(mesh, &mesh.positions, &edges, &ids)?;
+    let Cut { mesh: out, report } = cut(mesh, &mesh.positions, &edges, &ids, &x, None);
+    Ok((out, x, report))
+}
+
+/// The self-intersections of a mesh (`holey selfint`).
+pub fn self_intersections(mesh: &TriMesh) -> Result<Intersections, TopoError> {
+    mesh.check()?;
+    let edges = Edges::new(mesh);
+    let ids = position_classes(&mesh.positions)?;
+    Ok(intersections(mesh, &mesh.positions, &edges, &ids)?)
+}
+
+/// Accumulates raw collision parity over the frames of a drag (§4): while
+/// the mouse is held, each frame runs collision detection only; the
+/// corrected parity can be computed every frame for preview; the topology
+/// change runs once, at release, with the accumulated parity. Dragging
+/// back to where the drag began accumulates an even number of collisions
+/// everywhere, which cancels the change.
+#[derive(Clone, Debug)]
+pub struct Accumulator {
+    mesh: TriMesh,
+    current: Vec<DVec3>,
+    raw: Vec<bool>,
+    frame: u64,
+    collisions: usize,
+    tests: u64,
+    seconds: f64,
+    options: Options,
+}
+
+impl Accumulator {
+    /// Starts a drag of `mesh` at its positions.
+    pub fn new(mesh: TriMesh, options: Options) -> Result<Accumulator, TopoError> {
+        mesh.check()?;
+        let n = mesh.positions.len();
+        Ok(Accumulator {
+            current: mesh.positions.clone(),
+            mesh,
+            raw: vec![false; n],
+            frame: 0,
+            collisions: 0,
+            tests: 0,
+            seconds: 0.0,
+            options,
+        })
+    }
+
+    /// Moves every vertex linearly from its current position to `next`,
+    /// accumulating collision parity.
+    pub fn advance(&mut self, next: &[DVec3]) -> Result<(), TopoError> {
+        check(&self.mesh, next)?;
+        let t = Instant::now();
+        let ccd = vertex_parities(&self.current, next, &self.mesh.triangles, &ccd_options(&self.options, self.frame))?;
+        for (r, o) in self.raw.iter_mut().zip(&ccd.odd) {
+            *r ^= o;
+        }
+        self.collisions += ccd.odd_pairs.len();
+        self.tests += ccd.candidates;
+        self.seconds += t.elapsed().as_secs_f64();
+        self.current = next.to_vec();
+        self.frame += 1;
+        Ok(())
+    }
+
+    /// Frames accumulated so far.
+    pub fn frames(&self) -> u64 {
+        self.frame
+    }
+
+    /// The accumulated raw parity (`true` = odd).
+    pub fn raw_parity(&self) -> &[bool] {
+        &self.raw
+    }
+
+    /// The current positions.
+    pub fn positions(&self) -> &[DVec3] {
+        &self.current
+    }
+
+    /// The corrected parity at the current positions, for live preview.
+    pub fn corrected_parity(&self) -> Result<Vec<bool>, TopoError> {
+        Ok(static_stage(&self.mesh, &self.current, &self.raw, self.options.scheme)?.corrected)
+    }
+
+    /// Applies the topology change with the accumulated parity.
+    pub fn release(self) -> Result<Outcome, TopoError> {
+        let started = Instant::now();
+        finish(
+            &self.mesh,
+            &self.current,
+            self.raw,
+            (self.collisions, self.tests, self.seconds),
+            &self.options,
+            started,
+        )
+    }
+}
