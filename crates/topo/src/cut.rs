@@ -119,6 +119,19 @@ fn resolve(alias: &HashMap<u32, u32>, mut g: u32) -> u32 {
     g
 }
 
+/// Merges the classes of `a` and `b`. The smaller id represents the class,
+/// so input vertices (numbered first) survive merges, and no chain of
+/// aliases can close into a cycle even when two charts merge the same
+/// pair in opposite directions.
+fn merge(alias: &mut HashMap<u32, u32>, a: u32, b: u32) -> bool {
+    let (ra, rb) = (resolve(alias, a), resolve(alias, b));
+    if ra == rb {
+        return false;
+    }
+    alias.insert(ra.max(rb), ra.min(rb));
+    true
+}
+
 /// The subdivided (and, with a parity field, trimmed) mesh.
 pub struct Cut {
     pub mesh: TriMesh,
@@ -268,8 +281,8 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
                 // Rounded onto an existing point: the two are one.
                 if let Some(&g0) = global_of_handle.get(&h.index())
                     && g0 != global
+                    && merge(alias, global, g0)
                 {
-                    alias.insert(global, g0);
                     report.merged_points += 1;
                 }
             } else {
