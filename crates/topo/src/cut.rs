@@ -108,7 +108,11 @@ fn on_side(k: usize, s: f64) -> [f64; 2] {
 /// outside, it is moved exactly onto the nearest chart edge.
 fn from_bary(b: [f64; 3]) -> [f64; 2] {
     let (u, v) = (b[1].max(0.0), b[2].max(0.0));
-    if u + v > 1.0 { on_hypotenuse(v / (u + v)) } else { [u, v] }
+    if u + v > 1.0 {
+        on_hypotenuse(v / (u + v))
+    } else {
+        [u, v]
+    }
 }
 
 /// Union-find over global vertex ids, for points that merge.
@@ -140,7 +144,14 @@ pub struct Cut {
 
 /// Subdivides `mesh` (at `positions`) along the intersection curves `x`,
 /// glues, and deletes the odd part of `odd` (`None`: resolve mode).
-pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &Intersections, odd: Option<&[bool]>) -> Cut {
+pub fn cut(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    x: &Intersections,
+    odd: Option<&[bool]>,
+) -> Cut {
     let n = positions.len();
     let tris = &mesh.triangles;
     let mut report = CutReport::default();
@@ -163,7 +174,11 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
     };
     report.curves_kept = keep_curve.iter().filter(|&&k| k).count();
     report.curves_dropped = x.curve_count - report.curves_kept;
-    let kept_piece: Vec<bool> = x.curve_of_piece.iter().map(|&c| keep_curve[c as usize]).collect();
+    let kept_piece: Vec<bool> = x
+        .curve_of_piece
+        .iter()
+        .map(|&c| keep_curve[c as usize])
+        .collect();
     let mut active = vec![false; x.points.len()];
     for (p, piece) in x.pieces.iter().enumerate() {
         if kept_piece[p] {
@@ -177,12 +192,37 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
 
     // Global vertices: originals, then active points, then false vertices,
     // then split vertices.
+    //
+    // Points that are distinct symbolically but constructed at exactly the
+    // same position (two edges crossing exactly, a curve through a vertex
+    // of the other sheet: the degenerate configurations of aligned meshes)
+    // are one vertex: the same position is the same point, so they are
+    // glued, and a zero-length curve piece between them vanishes. Keeping
+    // them apart would leave zero-area slivers whose side no vertex can
+    // decide.
     let mut out_positions: Vec<DVec3> = positions.to_vec();
     let mut point_global = vec![NONE; x.points.len()];
+    let mut on_curve = vec![false; n];
+    let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    let mut at: HashMap<[u64; 3], u32> = HashMap::new();
+    if x.points.iter().zip(&active).any(|(_, &a)| a) {
+        for (v, p) in positions.iter().enumerate() {
+            at.entry(key(*p)).or_insert(v as u32);
+        }
+    }
     for (i, p) in x.points.iter().enumerate() {
         if active[i] {
-            point_global[i] = out_positions.len() as u32;
-            out_positions.push(p.position);
+            let next = out_positions.len() as u32;
+            let g = *at.entry(key(p.position)).or_insert(next);
+            if g == next {
+                out_positions.push(p.position);
+            } else {
+                report.merged_points += 1;
+                if (g as usize) < n {
+                    on_curve[g as usize] = true;
+                }
+            }
+            point_global[i] = g;
         }
     }
 
@@ -211,6 +251,37 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
                 for k in 0..3 {
                     interior[ts[k] as usize].push((g, bary[k]));
                     touched[ts[k] as usize] = true;
+                }
+            }
+        }
+    }
+    // A point inside a triangle symbolically but exactly on one of its edges
+    // numerically (two ridges touching, an edge crossing an edge exactly)
+    // lies on the neighbouring triangles' chart edge too: give it to the
+    // edge, or the neighbour would keep the edge whole while this triangle
+    // splits it, and the glued surface would crack there.
+    for t in 0..nt {
+        for &(g, b) in &interior[t] {
+            let zeros = (0..3).filter(|&k| b[k] <= 0.0).count();
+            if zeros != 1 {
+                continue;
+            }
+            let Some(k) = (0..3).find(|&k| b[k] <= 0.0) else {
+                continue;
+            };
+            let side = (k + 1) % 3; // from corner `side` to corner `side + 1`
+            let (wa, wb) = (b[side], b[(side + 1) % 3]);
+            if wa + wb <= 0.0 {
+                continue;
+            }
+            let s = wb / (wa + wb);
+            let e = edges.of_triangle[t][side] as usize;
+            let forward = tris[t][side] == edges.ends[e][0];
+            if !on_edge[e].iter().any(|&(h, _)| h == g) {
+                on_edge[e].push((g, if forward { s } else { 1.0 - s }));
+                cut_edge[e] = true;
+                for &u in edges.triangles(e) {
+                    touched[u as usize] = true;
                 }
             }
         }
@@ -259,13 +330,21 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
     for t in 0..nt {
         let tri = tris[t];
         let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
-        let has_edge_points = edges.of_triangle[t].iter().any(|&e| !on_edge[e as usize].is_empty());
-        if degenerate || (!has_edge_points && interior[t].is_empty() && constraints[t].is_empty() && false_edges[t].is_none()) {
+        let has_edge_points = edges.of_triangle[t]
+            .iter()
+            .any(|&e| !on_edge[e as usize].is_empty());
+        if degenerate
+            || (!has_edge_points
+                && interior[t].is_empty()
+                && constraints[t].is_empty()
+                && false_edges[t].is_none())
+        {
             out_tris.push(tri);
             continue;
         }
         report.triangles_split += 1;
-        let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> = ConstrainedDelaunayTriangulation::new();
+        let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
+            ConstrainedDelaunayTriangulation::new();
         let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
         let mut global_of_handle: HashMap<usize, u32> = HashMap::new();
         let mut insert = |cdt: &mut ConstrainedDelaunayTriangulation<ChartVertex>,
@@ -273,8 +352,14 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
                           pos: [f64; 2],
                           report: &mut CutReport,
                           alias: &mut HashMap<u32, u32>| {
+            if handle_of.contains_key(&global) {
+                return;
+            }
             let before = cdt.num_vertices();
-            let Ok(h) = cdt.insert(ChartVertex { pos: Point2::new(pos[0], pos[1]), global }) else {
+            let Ok(h) = cdt.insert(ChartVertex {
+                pos: Point2::new(pos[0], pos[1]),
+                global,
+            }) else {
                 return;
             };
             if cdt.num_vertices() == before {
@@ -321,7 +406,10 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
         if let Some(fe) = false_edges[t] {
             segs.push(fe);
         }
-        let split = |p: Point2<f64>| ChartVertex { pos: p, global: NONE };
+        let split = |p: Point2<f64>| ChartVertex {
+            pos: p,
+            global: NONE,
+        };
         for [a, b] in segs {
             let (Some(&ha), Some(&hb)) = (handle_of.get(&a), handle_of.get(&b)) else {
                 continue;
@@ -342,7 +430,10 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
                 out_positions.push(p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * w);
                 g
             } else {
-                global_of_handle.get(&v.fix().index()).copied().unwrap_or(cv.global)
+                global_of_handle
+                    .get(&v.fix().index())
+                    .copied()
+                    .unwrap_or(cv.global)
             };
             global.push(g);
         }
@@ -357,20 +448,53 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
             }
         }
     }
+    // 3. A curve through a vertex shared by both sheets (equal positions,
+    // one identity): the sheets' copies of that vertex are one point of the
+    // curve, glued like the constructed points. Such a vertex lies on the
+    // cut, so it has no side and does not vote in the labelling.
+    let mut shared_ids: Vec<u32> = x
+        .pieces
+        .iter()
+        .zip(&kept_piece)
+        .filter(|(_, k)| **k)
+        .flat_map(|(piece, _)| piece.ends)
+        .filter_map(|node| match node {
+            Node::Shared(id) => Some(id),
+            Node::Point(_) => None,
+        })
+        .collect();
+    shared_ids.sort_unstable();
+    shared_ids.dedup();
+    if !shared_ids.is_empty() {
+        let mut first_of_id: HashMap<u32, u32> = HashMap::new();
+        for v in 0..n as u32 {
+            let id = ids[v as usize];
+            if shared_ids.binary_search(&id).is_ok() {
+                on_curve[v as usize] = true;
+                let f = *first_of_id.entry(id).or_insert(v);
+                if f != v && merge(&mut alias, f, v) {
+                    report.merged_points += 1;
+                }
+            }
+        }
+    }
     for t in &mut out_tris {
         for v in t.iter_mut() {
             *v = resolve(&alias, *v);
         }
     }
     for e in &mut curve_edges {
-        *e = (resolve(&alias, e.0).min(resolve(&alias, e.1)), resolve(&alias, e.0).max(resolve(&alias, e.1)));
+        *e = (
+            resolve(&alias, e.0).min(resolve(&alias, e.1)),
+            resolve(&alias, e.0).max(resolve(&alias, e.1)),
+        );
     }
 
     // 4. Labels and deletion.
     let keep: Vec<bool> = match odd {
         None => vec![true; out_tris.len()],
         Some(odd) => {
-            let labels = label(&out_tris, n, odd, &curve_edges, &mut report);
+            let labels = label(&out_tris, n, &on_curve, odd, &curve_edges, &mut report);
             labels.iter().map(|&o| !o).collect()
         }
     };
@@ -390,13 +514,20 @@ pub fn cut(mesh: &TriMesh, positions: &[DVec3], edges: &Edges, ids: &[u32], x: &
 
 /// Parity of each sub-triangle: from its original corners, else by
 /// diffusion across non-curve edges; `true` = odd.
-fn label(tris: &[[u32; 3]], n_original: usize, odd: &[bool], curve_edges: &[(u32, u32)], report: &mut CutReport) -> Vec<bool> {
+fn label(
+    tris: &[[u32; 3]],
+    n_original: usize,
+    on_curve: &[bool],
+    odd: &[bool],
+    curve_edges: &[(u32, u32)],
+    report: &mut CutReport,
+) -> Vec<bool> {
     let mut state: Vec<Option<bool>> = tris
         .iter()
         .map(|t| {
             let (mut o, mut e) = (0, 0);
             for &v in t {
-                if (v as usize) < n_original {
+                if (v as usize) < n_original && !on_curve[v as usize] {
                     if odd[v as usize] { o += 1 } else { e += 1 }
                 }
             }

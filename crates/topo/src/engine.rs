@@ -113,7 +113,12 @@ struct Static {
     t_correct: f64,
 }
 
-fn static_stage(mesh: &TriMesh, end: &[DVec3], raw: &[bool], scheme: Scheme) -> Result<Static, TopoError> {
+fn static_stage(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    raw: &[bool],
+    scheme: Scheme,
+) -> Result<Static, TopoError> {
     let t = Instant::now();
     let edges = Edges::new(mesh);
     let ids = position_classes(end)?;
@@ -154,11 +159,25 @@ fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
     Ok(())
 }
 
-fn finish(mesh: &TriMesh, end: &[DVec3], raw: Vec<bool>, collisions: (usize, u64, f64), options: &Options, started: Instant) -> Result<Outcome, TopoError> {
+fn finish(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    raw: Vec<bool>,
+    collisions: (usize, u64, f64),
+    options: &Options,
+    started: Instant,
+) -> Result<Outcome, TopoError> {
     let s = static_stage(mesh, end, &raw, options.scheme)?;
     let t = Instant::now();
-    let Cut { mesh: mut out, report: cut_report } = cut(mesh, end, &s.edges, &s.ids, &s.x, Some(&s.corrected));
-    let flips = if options.orient { orient_consistently(&mut out) } else { 0 };
+    let Cut {
+        mesh: mut out,
+        report: cut_report,
+    } = cut(mesh, end, &s.edges, &s.ids, &s.x, Some(&s.corrected));
+    let flips = if options.orient {
+        orient_consistently(&mut out)
+    } else {
+        0
+    };
     let t_cut = t.elapsed().as_secs_f64();
     let report = Report {
         collisions: collisions.0,
@@ -193,7 +212,11 @@ fn finish(mesh: &TriMesh, end: &[DVec3], raw: Vec<bool>, collisions: (usize, u64
 
 fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
     CcdOptions {
-        narrow: if options.float_ccd { Narrow::Float } else { Narrow::Exact },
+        narrow: if options.float_ccd {
+            Narrow::Float
+        } else {
+            Narrow::Exact
+        },
         identities: Identities::ByIndex,
         frame,
     }
@@ -202,12 +225,25 @@ fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
 /// Topology change for one frame: `mesh` at its positions moves linearly to
 /// `end`. Collided parts that should vanish are cut out along the
 /// intersection curves and the rest is glued there.
-pub fn topology_change(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Outcome, TopoError> {
+pub fn topology_change(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+) -> Result<Outcome, TopoError> {
     let started = Instant::now();
     check(mesh, end)?;
     let t = Instant::now();
-    let ccd = vertex_parities(&mesh.positions, end, &mesh.triangles, &ccd_options(options, 0))?;
-    let collisions = (ccd.odd_pairs.len(), ccd.candidates, t.elapsed().as_secs_f64());
+    let ccd = vertex_parities(
+        &mesh.positions,
+        end,
+        &mesh.triangles,
+        &ccd_options(options, 0),
+    )?;
+    let collisions = (
+        ccd.odd_pairs.len(),
+        ccd.candidates,
+        t.elapsed().as_secs_f64(),
+    );
     finish(mesh, end, ccd.odd, collisions, options, started)
 }
 
@@ -270,7 +306,12 @@ impl Accumulator {
     pub fn advance(&mut self, next: &[DVec3]) -> Result<(), TopoError> {
         check(&self.mesh, next)?;
         let t = Instant::now();
-        let ccd = vertex_parities(&self.current, next, &self.mesh.triangles, &ccd_options(&self.options, self.frame))?;
+        let ccd = vertex_parities(
+            &self.current,
+            next,
+            &self.mesh.triangles,
+            &ccd_options(&self.options, self.frame),
+        )?;
         for (r, o) in self.raw.iter_mut().zip(&ccd.odd) {
             *r ^= o;
         }

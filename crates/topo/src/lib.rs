@@ -12,5 +12,7 @@ pub mod orient;
 pub mod weights;
 
 pub use correct::Scheme;
-pub use engine::{Accumulator, Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change};
+pub use engine::{
+    Accumulator, Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
+};
 pub use mesh::TriMesh;

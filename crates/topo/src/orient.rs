@@ -98,7 +98,13 @@ mod tests {
 
     fn strip() -> TriMesh {
         TriMesh {
-            positions: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y, DVec3::new(2.0, 0.5, 0.0)],
+            positions: vec![
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::new(1.0, 1.0, 0.0),
+                DVec3::Y,
+                DVec3::new(2.0, 0.5, 0.0),
+            ],
             triangles: vec![[0, 1, 2], [0, 2, 3], [1, 4, 2]],
         }
     }
@@ -126,10 +132,21 @@ mod tests {
     #[test]
     fn a_mobius_band_does_not_loop() {
         // Four quads in a twisted ring: non-orientable.
-        let p: Vec<DVec3> = (0..8).map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0)).collect();
+        let p: Vec<DVec3> = (0..8)
+            .map(|i| DVec3::new((i % 4) as f64, (i / 4) as f64, 0.0))
+            .collect();
         let mut m = TriMesh {
             positions: p,
-            triangles: vec![[0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 4, 0], [3, 7, 4]],
+            triangles: vec![
+                [0, 1, 5],
+                [0, 5, 4],
+                [1, 2, 6],
+                [1, 6, 5],
+                [2, 3, 7],
+                [2, 7, 6],
+                [3, 4, 0],
+                [3, 7, 4],
+            ],
         };
         let _ = orient_consistently(&mut m);
         assert_eq!(m.triangles.len(), 8);

@@ -13,8 +13,13 @@
 //! Broad phase ([`vertex_parities`]): a [`Bvh`] over the swept segments of
 //! the vertices (the box of start and end), each triangle's swept box (the
 //! box of its six keyframe corners) streamed over it in parallel; a triangle
-//! skips the vertices it contains *by index*. Output is deterministic: the
-//! odd (vertex, triangle) pairs sorted, and per vertex the XOR of its pairs.
+//! skips the vertices it contains *by index*. When the motion is a few
+//! rigid translations (a solid sliding into another, Theorem 5.2), a
+//! specialised broad phase ([`groups`]) streams each vertex's needle over
+//! the shadows of the other parts' triangles instead. Pairs with exactly
+//! equal displacements have no relative motion and are not tested. Output
+//! is deterministic: the odd (vertex, triangle) pairs sorted, and per
+//! vertex the XOR of its pairs.
 //!
 //! # Identities and frames
 //!
@@ -39,6 +44,8 @@
 //! there.
 
 pub mod cubic;
+mod filter;
+mod groups;
 pub mod parity;
 
 pub use cubic::{FloatCollisions, collisions_float, coplanarity_cubic};
@@ -49,6 +56,7 @@ use crate::error::GeomError;
 use crate::identity::position_classes;
 use crate::sos::SymPoint;
 use glam::DVec3;
+use groups::Groups;
 use rayon::prelude::*;
 
 /// Which narrow phase to run.
@@ -144,6 +152,9 @@ fn check_input(start: &[DVec3], end: &[DVec3], tris: &[[u32; 3]]) -> Result<(), 
     Ok(())
 }
 
+/// Per chunk of work: odd pairs, narrow tests run, degenerate pairs skipped.
+type Part = (Vec<(u32, u32)>, u64, u64);
+
 /// Raw collision parity of every vertex of a triangle soup moving linearly
 /// from `start` to `end` (module docs). Parallel, deterministic.
 pub fn vertex_parities(
@@ -166,65 +177,103 @@ pub fn vertex_parities(
             )
         }
     };
-    let swept: Vec<Aabb> = start
-        .par_iter()
-        .zip(end.par_iter())
-        .map(|(&a, &b)| Aabb::new(a.min(b), a.max(b)))
-        .collect();
-    let bvh = Bvh::build(&swept)?;
     let mp = |v: u32| MovingPoint {
         start: SymPoint::new(start[v as usize], sid[v as usize]),
         end: SymPoint::new(end[v as usize], eid[v as usize]),
     };
-    const CHUNK: usize = 256;
-    /// Per chunk: odd pairs, narrow tests run, degenerate pairs skipped.
-    type Part = (Vec<(u32, u32)>, u64, u64);
-    let parts: Vec<Part> = tris
-        .par_chunks(CHUNK)
-        .enumerate()
-        .map(|(ci, chunk)| {
-            let mut odd = Vec::new();
-            let (mut cand, mut degen) = (0u64, 0u64);
-            for (k, tri) in chunk.iter().enumerate() {
-                let t = (ci * CHUNK + k) as u32;
-                let corners = tri.map(|v| [start[v as usize], end[v as usize]]);
-                let bb = Aabb::from_points(&[
-                    corners[0][0],
-                    corners[0][1],
-                    corners[1][0],
-                    corners[1][1],
-                    corners[2][0],
-                    corners[2][1],
-                ]);
+    let disp = |v: u32| end[v as usize] - start[v as usize];
+    // One narrow-phase test. A vertex and a triangle displaced by exactly
+    // the same vector (a static part against itself, a rigid part against
+    // itself) have no relative motion and cannot collide, whatever the
+    // perturbation says of a vertex lying exactly on the triangle.
+    let test = |v: u32, t: u32, part: &mut Part| {
+        let tri = tris[t as usize];
+        if tri.contains(&v) {
+            return;
+        }
+        let d = disp(v);
+        if tri.iter().all(|&c| disp(c) == d) {
+            return;
+        }
+        let is_odd = match opts.narrow {
+            Narrow::Exact => {
+                let corners = tri.map(|c| [start[c as usize], end[c as usize]]);
+                if let Some(odd) =
+                    filter::rigid_filter([start[v as usize], end[v as usize]], corners)
+                {
+                    part.1 += 1;
+                    if odd {
+                        part.0.push((v, t));
+                    }
+                    return;
+                }
                 let [a, b, c] = tri.map(mp);
-                bvh.for_each_overlap(&bb, |v| {
-                    if tri.contains(&v) {
+                match vertex_triangle_parity(mp(v), a, b, c) {
+                    CcdParity::Odd => true,
+                    CcdParity::Even => false,
+                    CcdParity::Degenerate => {
+                        part.2 += 1;
                         return;
                     }
-                    let x = mp(v);
-                    let is_odd = match opts.narrow {
-                        Narrow::Exact => match vertex_triangle_parity(x, a, b, c) {
-                            CcdParity::Odd => true,
-                            CcdParity::Even => false,
-                            CcdParity::Degenerate => {
-                                degen += 1;
-                                return;
-                            }
-                        },
-                        Narrow::Float => {
-                            let p = [start[v as usize], end[v as usize]];
-                            collisions_float(p, corners[0], corners[1], corners[2]).count % 2 == 1
-                        }
-                    };
-                    cand += 1;
-                    if is_odd {
-                        odd.push((v, t));
-                    }
-                });
+                }
             }
-            (odd, cand, degen)
-        })
-        .collect();
+            Narrow::Float => {
+                let corners = tri.map(|c| [start[c as usize], end[c as usize]]);
+                let p = [start[v as usize], end[v as usize]];
+                collisions_float(p, corners[0], corners[1], corners[2]).count % 2 == 1
+            }
+        };
+        part.1 += 1;
+        if is_odd {
+            part.0.push((v, t));
+        }
+    };
+    const CHUNK: usize = 256;
+    let parts: Vec<Part> = if let Some(groups) = Groups::detect(start, end, tris) {
+        let prepared = groups.prepare(start, end, tris)?;
+        prepared
+            .pairs
+            .iter()
+            .flat_map(|set| {
+                set.verts
+                    .par_chunks(CHUNK)
+                    .map(|chunk| {
+                        let mut part: Part = Default::default();
+                        for &v in chunk {
+                            set.candidates(v, start, end, |t| test(v, t, &mut part));
+                        }
+                        part
+                    })
+                    .collect::<Vec<Part>>()
+            })
+            .collect()
+    } else {
+        let swept: Vec<Aabb> = start
+            .par_iter()
+            .zip(end.par_iter())
+            .map(|(&a, &b)| Aabb::new(a.min(b), a.max(b)))
+            .collect();
+        let bvh = Bvh::build(&swept)?;
+        tris.par_chunks(CHUNK)
+            .enumerate()
+            .map(|(ci, chunk)| {
+                let mut part: Part = Default::default();
+                for (k, tri) in chunk.iter().enumerate() {
+                    let t = (ci * CHUNK + k) as u32;
+                    let bb = Aabb::from_points(&[
+                        start[tri[0] as usize],
+                        end[tri[0] as usize],
+                        start[tri[1] as usize],
+                        end[tri[1] as usize],
+                        start[tri[2] as usize],
+                        end[tri[2] as usize],
+                    ]);
+                    bvh.for_each_overlap(&bb, |v| test(v, t, &mut part));
+                }
+                part
+            })
+            .collect()
+    };
     let mut report = CcdReport {
         odd: vec![false; n],
         ..Default::default()
@@ -363,6 +412,53 @@ mod tests {
         // Determinism (parallel run twice).
         let again = vertex_parities(&start, &end, &tris, &CcdOptions::default()).expect("valid");
         assert_eq!(exact, again);
+    }
+
+    /// The rigid-group broad phase finds exactly the odd pairs an
+    /// all-pairs loop over the same narrow phase finds: three spheres
+    /// translated by different vectors, one of them with displacements
+    /// rounded per vertex as `p + d` computes them.
+    #[test]
+    fn rigid_groups_agree_with_all_pairs() {
+        let (pa, ta) = uv_sphere(16, 9, [0.0, 0.0, 0.0], 1.0);
+        let mut start = Vec::new();
+        let mut end = Vec::new();
+        let mut tris = Vec::new();
+        let moves = [
+            (DVec3::new(0.0, 0.0, 0.0), DVec3::ZERO),
+            (DVec3::new(7.3, 0.31, -0.2), DVec3::new(-6.1, 0.05, 0.1)),
+            (DVec3::new(0.4, -5.0, 0.13), DVec3::new(0.2, 4.4, -0.3)),
+        ];
+        for (offset, d) in moves {
+            let base = start.len() as u32;
+            for p in &pa {
+                let p0 = DVec3::from_array(*p) + offset;
+                start.push(p0);
+                end.push(p0 + d);
+            }
+            tris.extend(ta.iter().map(|t| t.map(|v| v + base)));
+        }
+        assert!(groups::Groups::detect(&start, &end, &tris).is_some());
+        let r = vertex_parities(&start, &end, &tris, &CcdOptions::default()).expect("valid");
+        let (sid, eid) = frame_ids(start.len(), 0).expect("small");
+        let mp = |v: u32| MovingPoint {
+            start: SymPoint::new(start[v as usize], sid[v as usize]),
+            end: SymPoint::new(end[v as usize], eid[v as usize]),
+        };
+        let mut want = Vec::new();
+        for v in 0..start.len() as u32 {
+            for (t, tri) in tris.iter().enumerate() {
+                if tri.contains(&v) {
+                    continue;
+                }
+                let [a, b, c] = tri.map(mp);
+                if vertex_triangle_parity(mp(v), a, b, c) == CcdParity::Odd {
+                    want.push((v, t as u32));
+                }
+            }
+        }
+        assert!(!want.is_empty());
+        assert_eq!(r.odd_pairs, want);
     }
 
     #[test]

@@ -45,7 +45,9 @@ fn closed_oriented(m: &TriMesh) -> bool {
             *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
         }
     }
-    directed.iter().all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
+    directed
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
 }
 
 fn setup(m: &TriMesh) -> (Edges, Vec<u32>, Intersections) {
@@ -62,7 +64,10 @@ fn inside_octahedron(p: DVec3, c: DVec3, r: f64) -> bool {
 
 #[test]
 fn resolve_cuts_and_glues_without_deleting() {
-    let m = join(&octahedron(DVec3::ZERO, 1.0), &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0));
+    let m = join(
+        &octahedron(DVec3::ZERO, 1.0),
+        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
+    );
     let (edges, ids, x) = setup(&m);
     let out = cut(&m, &m.positions, &edges, &ids, &x, None);
     assert_eq!(out.report.curves_kept, 1);
@@ -87,24 +92,40 @@ fn deleting_the_odd_parts_of_two_octahedra_gives_their_union() {
         .positions
         .iter()
         .enumerate()
-        .map(|(v, &p)| if v < 6 { inside_octahedron(p, cb, 1.0) } else { inside_octahedron(p, ca, 1.0) })
+        .map(|(v, &p)| {
+            if v < 6 {
+                inside_octahedron(p, cb, 1.0)
+            } else {
+                inside_octahedron(p, ca, 1.0)
+            }
+        })
         .collect();
     let out = cut(&m, &m.positions, &edges, &ids, &x, Some(&odd));
-    assert!(closed_oriented(&out.mesh), "the union is not closed and oriented");
+    assert!(
+        closed_oriented(&out.mesh),
+        "the union is not closed and oriented"
+    );
     // Volume of the union by sampling the two solids' indicator.
     let mut rng = holey_testkit::Rng::new(3);
     let (lo, hi) = (DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.7, 1.1, 1.05));
     let samples = 200_000;
     let hits = (0..samples)
         .filter(|_| {
-            let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
+            let p = DVec3::new(
+                rng.range(lo.x, hi.x),
+                rng.range(lo.y, hi.y),
+                rng.range(lo.z, hi.z),
+            );
             inside_octahedron(p, ca, 1.0) || inside_octahedron(p, cb, 1.0)
         })
         .count();
     let box_volume = (hi - lo).x * (hi - lo).y * (hi - lo).z;
     let sampled = box_volume * hits as f64 / samples as f64;
     let v = volume(&out.mesh);
-    assert!((v - sampled).abs() < 0.02 * sampled, "volume {v} vs sampled {sampled}");
+    assert!(
+        (v - sampled).abs() < 0.02 * sampled,
+        "volume {v} vs sampled {sampled}"
+    );
 }
 
 #[test]
