@@ -5,6 +5,7 @@ mod error;
 mod input;
 mod output;
 mod progress;
+mod tri;
 
 use clap::{Parser, Subcommand};
 
@@ -53,6 +54,14 @@ enum Command {
     Render(cmd::render::Args),
     /// Rind modeling: a crust with punched and peeled holes (thesis chapter V).
     Rind(cmd::rind::Args),
+    /// Topology change for one frame of motion (Bernstein & Wojtan 2013).
+    Topo(cmd::topo::Args),
+    /// Boolean union of two solids by moving one into the other (Theorem 5.2).
+    Union(cmd::union::Args),
+    /// Exact self-intersections: pairs, points, edges and curves.
+    Selfint(cmd::selfint::Args),
+    /// Cut and glue a surface along its self-intersections (the arrangement).
+    Resolve(cmd::resolve::Args),
 }
 
 fn main() {
@@ -68,6 +77,10 @@ fn main() {
         Command::Rind(a) => cmd::rind::run(a),
         Command::Render(a) => cmd::render::run(a),
         Command::Subdivide(a) => cmd::subdivide::run(a),
+        Command::Topo(a) => cmd::topo::run(a),
+        Command::Union(a) => cmd::union::run(a),
+        Command::Selfint(a) => cmd::selfint::run(a),
+        Command::Resolve(a) => cmd::resolve::run(a),
         Command::Primitives => {
             print!("{}", holey_shapes::primitive_help());
             Ok(())

@@ -96,7 +96,15 @@ fn info_on_primitives() {
 
 #[test]
 fn help_has_examples_for_every_command() {
-    for cmd in ["info", "convert", "primitive"] {
+    for cmd in [
+        "info",
+        "convert",
+        "primitive",
+        "topo",
+        "union",
+        "selfint",
+        "resolve",
+    ] {
         let help = ok(&[cmd, "--help"]);
         assert!(help.contains("Examples:"), "{cmd} --help has no examples");
     }
@@ -826,4 +834,119 @@ fn demo_writes_the_gallery() {
     assert_eq!(genus("sierpinski-tetrahedron"), 63);
     assert_eq!(genus("menger-3-exact"), 1409);
     assert_eq!(genus("cup"), 1);
+}
+
+/// `holey union` of two unit icospheres one unit apart along x, through
+/// the synthesized motion: one closed genus-0 solid whose volume is the
+/// two spheres' minus the overlap. The overlap of the polyhedra is bounded
+/// by the lens of the circumscribed spheres (radius 1), and the result is
+/// checked against the exact lens formula within the polyhedral gap.
+#[test]
+fn union_of_two_spheres_is_one_closed_solid() {
+    let dir = tmp();
+    let a = dir.path().join("a.obj");
+    let b = dir.path().join("b.obj");
+    let u = dir.path().join("u.ply");
+    let r = dir.path().join("r.json");
+    ok(&["primitive", "@sphere:4", s(&a)]);
+    ok(&["primitive", "@sphere:4", s(&b)]);
+    // Shift b by one unit along x by rewriting its vertex lines.
+    let text = std::fs::read_to_string(&b).unwrap();
+    let shifted: String = text
+        .lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(rest) => {
+                let c: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|t| t.parse().unwrap())
+                    .collect();
+                format!("v {} {} {}\n", c[0] + 1.0, c[1], c[2])
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    std::fs::write(&b, shifted).unwrap();
+    ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
+    let m = info(s(&u), &[]);
+    assert_eq!(m["closed"], true);
+    assert_eq!(m["manifold"], true);
+    assert_eq!(m["components"], 1);
+    assert_eq!(m["genus"], 0);
+    let one = info(s(&a), &[])["volume"].as_f64().unwrap();
+    let v = m["volume"].as_f64().unwrap();
+    let pi = std::f64::consts::PI;
+    let lens = pi * (4.0 + 1.0) * (2.0f64 - 1.0).powi(2) / 12.0;
+    let ball = 4.0 / 3.0 * pi;
+    // The icosphere's volume is a fraction of the ball's; so, roughly, is
+    // the overlap's.
+    let want = 2.0 * one - lens * one / ball;
+    assert!(
+        (v - want).abs() < 0.01 * want,
+        "union volume {v}, expected about {want}"
+    );
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert!(report["collisions"].as_u64().unwrap() > 0);
+    assert_eq!(report["intersection_curves"], 1);
+    assert!(report["seconds"]["total"].as_f64().is_some());
+    // No self-intersection is left.
+    let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&u)])).unwrap();
+    assert_eq!(si["intersecting_pairs"], 0);
+}
+
+/// `holey topo` with zero motion returns the mesh unchanged (quads come
+/// back fan-triangulated: twice the faces, same surface), and a
+/// mismatched AFTER is a clear error with status 2.
+#[test]
+fn topo_checks_its_frames() {
+    let dir = tmp();
+    let a = dir.path().join("a.obj");
+    let out = dir.path().join("out.obj");
+    let parity = dir.path().join("p.ply");
+    ok(&["primitive", "@torus", s(&a)]);
+    ok(&["topo", s(&a), s(&a), s(&out), "--parity", s(&parity)]);
+    let before = info(s(&a), &["--weld"]);
+    let after = info(s(&out), &[]);
+    for key in ["genus", "closed", "components", "vertices"] {
+        assert_eq!(before[key], after[key], "{key}");
+    }
+    assert_eq!(
+        after["faces"].as_u64(),
+        before["faces"].as_u64().map(|f| 2 * f)
+    );
+    let (v0, v1) = (
+        before["volume"].as_f64().unwrap(),
+        after["volume"].as_f64().unwrap(),
+    );
+    assert!((v0 - v1).abs() < 1e-12 * v0, "volume {v0} -> {v1}");
+    let p = info(s(&parity), &[]);
+    assert_eq!(p["vertices"], before["vertices"]);
+    let err = bad(&["topo", s(&a), "@sphere", s(&out.with_extension("x.obj"))]);
+    assert!(err.contains("same mesh"), "{err}");
+    let err = bad(&["union", "@cube", "@cube", s(&out), "--direction", "0,0,0"]);
+    assert!(err.contains("non-zero"), "{err}");
+}
+
+/// `holey selfint` counts the crossing pairs of two triangles exactly, and
+/// `holey resolve` cuts them so that nothing crosses.
+#[test]
+fn selfint_and_resolve_on_crossing_triangles() {
+    let dir = tmp();
+    let m = dir.path().join("x.obj");
+    let r = dir.path().join("r.obj");
+    std::fs::write(
+        &m,
+        "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 0.5 0.5 -1\nv 0.5 0.5 1\nv 3 3 0\nf 1 2 3\nf 4 5 6\n",
+    )
+    .unwrap();
+    let si: Value = serde_json::from_str(&ok(&["selfint", "--json", "--pairs", s(&m)])).unwrap();
+    assert_eq!(si["intersecting_pairs"], 1);
+    assert_eq!(si["intersection_curves"], 1);
+    assert_eq!(si["pairs"][0], serde_json::json!([0, 1]));
+    ok(&["resolve", s(&m), s(&r)]);
+    let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&r)])).unwrap();
+    assert_eq!(si["intersecting_pairs"], 0);
+    let out = info(s(&r), &[]);
+    assert!(out["faces"].as_u64().unwrap() > 2);
+    let err = bad(&["selfint", s(&dir.path().join("missing.obj"))]);
+    assert!(err.contains("missing.obj"), "{err}");
 }

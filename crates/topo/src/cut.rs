@@ -378,9 +378,9 @@ pub fn cut(
         for k in 0..3 {
             insert(&mut cdt, tri[k], CHART[k], &mut report, &mut alias);
         }
-        for k in 0..3 {
+        for (k, &corner) in tri.iter().enumerate() {
             let e = edges.of_triangle[t][k] as usize;
-            let forward = tri[k] == edges.ends[e][0];
+            let forward = corner == edges.ends[e][0];
             for &(g, s) in &on_edge[e] {
                 let s = if forward { s } else { 1.0 - s };
                 insert(&mut cdt, g, on_side(k, s), &mut report, &mut alias);

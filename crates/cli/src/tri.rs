@@ -1,0 +1,148 @@
+//! Triangle meshes for the topology-change commands: reading any mesh
+//! argument as triangles, writing results compactly, and the JSON report.
+
+use anyhow::Result;
+use holey_io::WriteOptions;
+use holey_mesh::PolyMesh;
+use holey_topo::{Report, TriMesh};
+use serde_json::{Value, json};
+
+use crate::error::bad_input;
+use crate::input::{Input, load};
+
+/// Reads a mesh argument as triangles: polygons are fan-triangulated; a
+/// `.dlfl` file contributes its non-hole faces.
+pub fn load_triangles(arg: &str) -> Result<TriMesh> {
+    let loaded = load(arg)?;
+    let soup = match loaded.input {
+        Input::Soup(s) => s,
+        Input::Dlfl(_) => {
+            let kernel = load(arg)?.into_kernel(false)?;
+            holey_mesh::convert::to_poly(&kernel.mesh).poly
+        }
+    };
+    let (triangles, _) = soup.fan_triangles();
+    let mesh = TriMesh {
+        positions: soup.positions,
+        triangles,
+    };
+    mesh.check().map_err(|e| bad_input(format!("{arg}: {e}")))?;
+    Ok(mesh)
+}
+
+/// The mesh without unreferenced vertices, as a polygon soup.
+pub fn compact(mesh: &TriMesh) -> PolyMesh {
+    const UNUSED: u32 = u32::MAX;
+    let mut index = vec![UNUSED; mesh.positions.len()];
+    let mut positions = Vec::new();
+    let mut face_indices = Vec::with_capacity(3 * mesh.triangles.len());
+    for t in &mesh.triangles {
+        for &v in t {
+            let slot = &mut index[v as usize];
+            if *slot == UNUSED {
+                *slot = positions.len() as u32;
+                positions.push(mesh.positions[v as usize]);
+            }
+            face_indices.push(*slot);
+        }
+    }
+    PolyMesh {
+        positions,
+        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
+        face_indices,
+    }
+}
+
+/// Writes a triangle mesh (unreferenced vertices dropped) atomically.
+pub fn write_triangles(path: &str, mesh: &TriMesh) -> Result<()> {
+    crate::output::write_soup(path, &compact(mesh), &WriteOptions::default(), true)
+}
+
+/// Writes `mesh` as a PLY with one colour per vertex.
+pub fn write_colored(path: &str, mesh: &TriMesh, colors: Vec<[u8; 3]>) -> Result<()> {
+    let poly = PolyMesh {
+        positions: mesh.positions.clone(),
+        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
+        face_indices: mesh.triangles.iter().flatten().copied().collect(),
+    };
+    let opts = WriteOptions {
+        ascii: false,
+        vertex_colors: Some(colors),
+    };
+    if !path.to_ascii_lowercase().ends_with(".ply") {
+        return Err(bad_input(format!(
+            "{path}: the parity picture must be a .ply file"
+        )));
+    }
+    crate::output::write_soup(path, &poly, &opts, true)
+}
+
+/// The engine's report as JSON.
+pub fn report_json(r: &Report) -> Value {
+    json!({
+        "collisions": r.collisions,
+        "collision_tests": r.collision_tests,
+        "raw_odd_vertices": r.raw_odd_vertices,
+        "corrected_odd_vertices": r.corrected_odd_vertices,
+        "intersecting_pairs": r.intersecting_pairs,
+        "intersection_points": r.intersection_points,
+        "triple_points": r.triple_points,
+        "intersection_edges": r.intersection_edges,
+        "intersection_curves": r.intersection_curves,
+        "curves_kept": r.cut.curves_kept,
+        "curves_dropped": r.cut.curves_dropped,
+        "false_vertices": r.cut.false_vertices,
+        "false_edges": r.cut.false_edges,
+        "triangles_split": r.cut.triangles_split,
+        "triangles_deleted": r.cut.triangles_deleted,
+        "diffused_triangles": r.cut.diffused,
+        "undecided_triangles": r.cut.undecided,
+        "conflicting_triangles": r.cut.conflicting,
+        "constraint_splits": r.cut.constraint_splits,
+        "merged_points": r.cut.merged_points,
+        "solved_components": r.solved_components,
+        "perturbation_retries": r.perturbation_retries,
+        "orientation_flips": r.orientation_flips,
+        "seconds": {
+            "collisions": r.timings.collisions,
+            "intersections": r.timings.intersections,
+            "correction": r.timings.correction,
+            "cut": r.timings.cut,
+            "total": r.timings.total,
+        },
+    })
+}
+
+/// A one-paragraph summary of a report for the terminal.
+pub fn report_text(r: &Report) -> String {
+    format!(
+        "collisions {} ({} tests); odd vertices raw {} corrected {}\n\
+         intersections: {} triangle pairs, {} points ({} triple), {} edges, {} curves ({} kept)\n\
+         triangles split {}, deleted {}; {:.3} s (collisions {:.3}, intersections {:.3}, correction {:.3}, cut {:.3})\n",
+        r.collisions,
+        r.collision_tests,
+        r.raw_odd_vertices,
+        r.corrected_odd_vertices,
+        r.intersecting_pairs,
+        r.intersection_points,
+        r.triple_points,
+        r.intersection_edges,
+        r.intersection_curves,
+        r.cut.curves_kept,
+        r.cut.triangles_split,
+        r.cut.triangles_deleted,
+        r.timings.total,
+        r.timings.collisions,
+        r.timings.intersections,
+        r.timings.correction,
+        r.timings.cut,
+    )
+}
+
+/// Writes JSON atomically.
+pub fn write_json(path: &str, value: &Value) -> Result<()> {
+    let mut text = serde_json::to_string_pretty(value)?;
+    text.push('\n');
+    holey_io::write_bytes_atomic(std::path::Path::new(path), text.as_bytes())
+        .map_err(crate::error::from_io)
+}
