@@ -6,6 +6,7 @@
 //! triangles of a soup that only touch at equal positions share no edge.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// A triangle mesh: positions and triangles as index triples.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -112,7 +113,7 @@ impl Edges {
                 sides.push((key, (t * 3 + k) as u32));
             }
         }
-        sides.sort_unstable();
+        sides.par_sort_unstable();
         let mut ends = Vec::new();
         let mut of_triangle = vec![[0u32; 3]; nt];
         let mut offsets = vec![0u32];

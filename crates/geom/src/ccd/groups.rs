@@ -45,6 +45,9 @@ pub(crate) struct Groups {
     displacement: Vec<DVec3>,
     vertex_group: Vec<u8>,
     triangle_group: Vec<u8>,
+    /// Every vertex of the group has exactly the representative
+    /// displacement: the group cannot collide with itself.
+    exact: Vec<bool>,
     scale: f64,
 }
 
@@ -64,18 +67,23 @@ impl Groups {
         let tol = GROUP_TOLERANCE * scale;
         let mut displacement: Vec<DVec3> = Vec::new();
         let mut vertex_group = Vec::with_capacity(start.len());
+        let mut exact: Vec<bool> = Vec::new();
         for (a, b) in start.iter().zip(end) {
             let d = *b - *a;
             let g = match displacement
                 .iter()
                 .position(|r| (d - *r).abs().max_element() <= tol)
             {
-                Some(g) => g,
+                Some(g) => {
+                    exact[g] &= d == displacement[g];
+                    g
+                }
                 None => {
                     if displacement.len() == MAX_GROUPS {
                         return None;
                     }
                     displacement.push(d);
+                    exact.push(true);
                     displacement.len() - 1
                 }
             };
@@ -96,6 +104,7 @@ impl Groups {
             displacement,
             vertex_group,
             triangle_group,
+            exact,
             scale,
         })
     }
@@ -125,6 +134,10 @@ impl Groups {
                 continue;
             }
             for gv in 0..k {
+                if gv == gt && self.exact[gt] {
+                    // Equal displacements: every pair would be skipped.
+                    continue;
+                }
                 let verts: Vec<u32> = (0..start.len() as u32)
                     .filter(|&v| self.vertex_group[v as usize] as usize == gv)
                     .collect();

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Union and self-intersection of two 262,088-triangle spheres: holey
+against manifold3d and trueform, measured side by side in one run.
+
+The spheres are manifold3d's Manifold.sphere(1, 724) and the same shifted by
+0.5 in x (the setting of issue 4). Peers are timed in-process (mesh already
+in memory); holey is timed both by the engine's own report (in-process, no
+file reading) and as a whole process (reading two OBJ files included), with
+its peak memory.
+
+    python3 bench/peers/topo_spheres.py [--holey target/release/holey] [--runs 3]
+"""
+import argparse, json, os, subprocess, sys, tempfile, time
+
+import numpy as np
+import manifold3d as m3d
+import trueform as tf
+
+
+def write_obj(path, v, f):
+    with open(path, "w") as fh:
+        fh.write("".join(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in v))
+        fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f))
+
+
+def best(fn, runs):
+    times = []
+    out = None
+    for _ in range(runs):
+        t = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t)
+    return min(times), out
+
+
+def run_holey(cmd, runs):
+    """Best wall time, peak RSS (KB) and stdout of a holey command."""
+    best_t, peak, stdout = None, 0, ""
+    for _ in range(runs):
+        t = time.perf_counter()
+        p = subprocess.run(["/usr/bin/time", "-f", "%M"] + cmd, capture_output=True, text=True)
+        dt = time.perf_counter() - t
+        if p.returncode != 0:
+            sys.exit(f"{' '.join(cmd)} failed: {p.stderr}")
+        peak = max(peak, int(p.stderr.strip().splitlines()[-1]))
+        best_t = dt if best_t is None else min(best_t, dt)
+        stdout = p.stdout
+    return best_t, peak, stdout
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--holey", default="target/release/holey")
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    holey = os.path.abspath(args.holey)
+
+    a = m3d.Manifold.sphere(1, 724)
+    b = a.translate([0.5, 0, 0])
+    ma, mb = a.to_mesh(), b.to_mesh()
+    va = np.asarray(ma.vert_properties, dtype=np.float64)[:, :3]
+    fa = np.asarray(ma.tri_verts, dtype=np.int64)
+    vb = np.asarray(mb.vert_properties, dtype=np.float64)[:, :3]
+    fb = np.asarray(mb.tri_verts, dtype=np.int64)
+    tris = len(fa) + len(fb)
+
+    with tempfile.TemporaryDirectory() as d:
+        pa, pb, pab = (os.path.join(d, n) for n in ("a.obj", "b.obj", "ab.obj"))
+        write_obj(pa, va, fa)
+        write_obj(pb, vb, fb)
+        write_obj(pab, np.vstack([va, vb]), np.vstack([fa, fb + len(va)]))
+        # Peers read the same rounded coordinates holey reads.
+        def read(path):
+            v, f = [], []
+            for line in open(path):
+                if line.startswith("v "):
+                    v.append([float(t) for t in line.split()[1:4]])
+                elif line.startswith("f "):
+                    f.append([int(t) - 1 for t in line.split()[1:4]])
+            return np.array(v), np.array(f, dtype=np.int64)
+        va, fa = read(pa)
+        vb, fb = read(pb)
+        vab, fab = read(pab)
+
+        def m3d_union():
+            A = m3d.Manifold(m3d.Mesh(vert_properties=va.astype(np.float32), tri_verts=fa.astype(np.uint32)))
+            B = m3d.Manifold(m3d.Mesh(vert_properties=vb.astype(np.float32), tri_verts=fb.astype(np.uint32)))
+            t = time.perf_counter()
+            u = A + B
+            n = u.num_tri()
+            return time.perf_counter() - t, n, u.volume()
+
+        m3d_runs = [m3d_union() for _ in range(args.runs)]
+        t_m3d = min(r[0] for r in m3d_runs)
+        TA, TB = tf.Mesh(fa, va), tf.Mesh(fb, vb)
+        t_tf, tf_out = best(lambda: tf.boolean_union(TA, TB), args.runs)
+        TAB = tf.Mesh(fab, vab)
+        t_tf_si, _ = best(lambda: tf.self_intersection_curves(TAB), args.runs)
+
+        out = os.path.join(d, "u.ply")
+        rep = os.path.join(d, "r.json")
+        t_hu, mem_hu, _ = run_holey([holey, "union", pa, pb, out, "--report", rep], args.runs)
+        report = json.load(open(rep))
+        info = json.loads(subprocess.run([holey, "info", "--json", out], capture_output=True, text=True).stdout)
+        t_hs, mem_hs, si = run_holey([holey, "selfint", "--json", pab], args.runs)
+        si = json.loads(si)
+
+    engine = report["seconds"]["total"]
+    print(f"two spheres, {tris} triangles; best of {args.runs}")
+    print(f"union    manifold3d {t_m3d:.3f} s  trueform {t_tf:.3f} s  holey engine {engine:.3f} s "
+          f"(collisions {report['seconds']['collisions']:.3f}, intersections {report['seconds']['intersections']:.3f}, "
+          f"correction {report['seconds']['correction']:.3f}, cut {report['seconds']['cut']:.3f})  "
+          f"holey whole process {t_hu:.3f} s, peak {mem_hu / 1024:.0f} MB = {mem_hu * 1024 / tris:.0f} B/triangle")
+    print(f"         holey/manifold3d {engine / t_m3d:.2f}x  holey/trueform {engine / t_tf:.2f}x (engine)")
+    print(f"         result: {info['faces']} triangles, closed {info['closed']}, genus {info['genus']}, "
+          f"volume {info['volume']:.9f}; manifold3d {m3d_runs[0][1]} triangles, volume {m3d_runs[0][2]:.9f}")
+    print(f"selfint  trueform {t_tf_si:.3f} s  holey engine {si['seconds']:.3f} s  holey whole process {t_hs:.3f} s, "
+          f"peak {mem_hs / 1024:.0f} MB; holey/trueform {si['seconds'] / t_tf_si:.2f}x (engine); "
+          f"{si['intersecting_pairs']} pairs, {si['intersection_curves']} curves")
+
+
+if __name__ == "__main__":
+    main()
