@@ -1,0 +1,58 @@
+//! The topology-change engine (issue: topo, performance): Theorem 5.2
+//! unions of two icospheres and their self-intersections, over sizes from
+//! 41k to 655k triangles in all, to show how the time scales.
+//!
+//! cargo bench -p holey-bench --bench topo
+
+use divan::{Bencher, black_box};
+use glam::DVec3;
+use holey_topo::{Options, TriMesh, self_intersections, topology_change};
+
+fn main() {
+    divan::main();
+}
+
+fn sphere(level: u32) -> TriMesh {
+    let soup = holey_shapes::parse_primitive(&format!("@sphere:{level}"))
+        .unwrap_or_else(|e| panic!("sphere {level}: {e}"));
+    let (triangles, _) = soup.fan_triangles();
+    TriMesh {
+        positions: soup.positions,
+        triangles,
+    }
+}
+
+/// Sphere A and sphere B = A + (0.5, 0.1, 0.05); B arrives from 4 units
+/// away along a generic direction, as `holey union` moves it.
+fn union_frame(level: u32) -> (TriMesh, Vec<DVec3>) {
+    let a = sphere(level);
+    let shift = DVec3::new(0.5, 0.1, 0.05);
+    let away = DVec3::new(1.0, 0.3127, 0.1731).normalize() * 4.0;
+    let n = a.positions.len() as u32;
+    let mut start = a.clone();
+    start.positions.extend(a.positions.iter().map(|p| *p + shift + away));
+    start.triangles.extend(a.triangles.iter().map(|t| t.map(|v| v + n)));
+    let end: Vec<DVec3> = a
+        .positions
+        .iter()
+        .copied()
+        .chain(a.positions.iter().map(|p| *p + shift))
+        .collect();
+    (start, end)
+}
+
+/// Levels 5, 6, 7: 40,960, 163,840 and 655,360 triangles in all.
+#[divan::bench(args = [5, 6, 7], sample_count = 3)]
+fn union_of_two_spheres(bencher: Bencher, level: u32) {
+    let (start, end) = union_frame(level);
+    bencher.bench_local(|| {
+        black_box(topology_change(&start, &end, &Options::default()).map(|o| o.mesh.triangles.len()))
+    });
+}
+
+#[divan::bench(args = [5, 6, 7], sample_count = 3)]
+fn self_intersections_of_two_spheres(bencher: Bencher, level: u32) {
+    let (mut both, end) = union_frame(level);
+    both.positions = end;
+    bencher.bench_local(|| black_box(self_intersections(&both).map(|x| x.pairs.len())));
+}
