@@ -115,6 +115,30 @@ fn from_bary(b: [f64; 3]) -> [f64; 2] {
     }
 }
 
+/// The chart side a chart position lies exactly on (in exact arithmetic,
+/// as the triangulation's predicates see it), with the parameter along
+/// that side from its first corner; `None` inside or at a corner.
+fn chart_side(p: [f64; 2]) -> Option<(usize, f64)> {
+    let [u, v] = p;
+    let at_corner = (u == 0.0 && (v == 0.0 || v == 1.0)) || (u == 1.0 && v == 0.0);
+    if at_corner {
+        return None;
+    }
+    if v == 0.0 {
+        return Some((0, u));
+    }
+    if u == 0.0 {
+        return Some((2, 1.0 - v));
+    }
+    // u + v = 1 exactly: the rounded sum is 1 and its rounding error is 0.
+    let sum = u + v;
+    let err = v - (sum - u);
+    if sum == 1.0 && err == 0.0 && (sum - v) == u {
+        return Some((1, v));
+    }
+    None
+}
+
 /// Union-find over global vertex ids, for points that merge.
 fn resolve(alias: &HashMap<u32, u32>, mut g: u32) -> u32 {
     while let Some(&h) = alias.get(&g) {
@@ -262,19 +286,9 @@ pub fn cut(
     // splits it, and the glued surface would crack there.
     for t in 0..nt {
         for &(g, b) in &interior[t] {
-            let zeros = (0..3).filter(|&k| b[k] <= 0.0).count();
-            if zeros != 1 {
-                continue;
-            }
-            let Some(k) = (0..3).find(|&k| b[k] <= 0.0) else {
+            let Some((side, s)) = chart_side(from_bary(b)) else {
                 continue;
             };
-            let side = (k + 1) % 3; // from corner `side` to corner `side + 1`
-            let (wa, wb) = (b[side], b[(side + 1) % 3]);
-            if wa + wb <= 0.0 {
-                continue;
-            }
-            let s = wb / (wa + wb);
             let e = edges.of_triangle[t][side] as usize;
             let forward = tris[t][side] == edges.ends[e][0];
             if !on_edge[e].iter().any(|&(h, _)| h == g) {

@@ -197,6 +197,26 @@ fn cup() -> Result<Mesh> {
     Ok(m)
 }
 
+/// The union of two primitives by Theorem 5.2 of Bernstein & Wojtan: `b`
+/// shifted by `shift` arrives from well outside, as `holey union` moves it.
+fn union_of(a: &str, b: &str, shift: DVec3) -> Result<Mesh> {
+    let tri = |spec: &str| -> Result<holey_topo::TriMesh> {
+        let soup = holey_shapes::parse_primitive(spec).map_err(|e| anyhow!("{spec}: {e}"))?;
+        let (triangles, _) = soup.fan_triangles();
+        Ok(holey_topo::TriMesh {
+            positions: soup.positions,
+            triangles,
+        })
+    };
+    let (a, mut b) = (tri(a)?, tri(b)?);
+    for p in &mut b.positions {
+        *p += shift;
+    }
+    let (start, end) = crate::cmd::union::synthesize(&a, &b, DVec3::new(1.0, 0.3127, 0.1731).normalize());
+    let out = holey_topo::topology_change(&start, &end, &holey_topo::Options::default())?;
+    Ok(to_dlfl(&crate::tri::compact(&out.mesh), ImportOptions::default())?.mesh)
+}
+
 fn models() -> Vec<Model> {
     let iso = View::Iso;
     let tetra_view = View::Direction(DVec3::new(1.0, 0.25, 0.35));
@@ -335,6 +355,24 @@ fn models() -> Vec<Model> {
             view: View::Direction(DVec3::new(0.3, -1.0, 0.6)),
             edges: false,
             smooth: true,
+        },
+        Model {
+            name: "union-two-tori",
+            title: "Two tori moved into each other",
+            recipe: "@torus:48:24 and a copy shifted by (1, 0.1, 0.03), which slides in from afar: the topology change of Bernstein & Wojtan deletes what ends inside (Theorem 5.2), leaving genus 1 + 1 + 1",
+            build: || union_of("@torus:48:24", "@torus:48:24", DVec3::new(1.0, 0.1, 0.03)),
+            view: View::Direction(DVec3::new(0.2, -0.6, 1.0)),
+            edges: false,
+            smooth: false,
+        },
+        Model {
+            name: "union-torus-sphere",
+            title: "A torus swallowing a sphere",
+            recipe: "@torus:48:24 and @sphere:4 of radius 1 centred on its tube, united by moving the sphere in (Theorem 5.2)",
+            build: || union_of("@torus:48:24", "@sphere:4", DVec3::new(1.0, 0.0, 0.3)),
+            view: View::Direction(DVec3::new(0.3, -1.0, 0.8)),
+            edges: false,
+            smooth: false,
         },
     ]
 }
