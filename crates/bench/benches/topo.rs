@@ -30,8 +30,12 @@ fn union_frame(level: u32) -> (TriMesh, Vec<DVec3>) {
     let away = DVec3::new(1.0, 0.3127, 0.1731).normalize() * 4.0;
     let n = a.positions.len() as u32;
     let mut start = a.clone();
-    start.positions.extend(a.positions.iter().map(|p| *p + shift + away));
-    start.triangles.extend(a.triangles.iter().map(|t| t.map(|v| v + n)));
+    start
+        .positions
+        .extend(a.positions.iter().map(|p| *p + shift + away));
+    start
+        .triangles
+        .extend(a.triangles.iter().map(|t| t.map(|v| v + n)));
     let end: Vec<DVec3> = a
         .positions
         .iter()
@@ -46,7 +50,9 @@ fn union_frame(level: u32) -> (TriMesh, Vec<DVec3>) {
 fn union_of_two_spheres(bencher: Bencher, level: u32) {
     let (start, end) = union_frame(level);
     bencher.bench_local(|| {
-        black_box(topology_change(&start, &end, &Options::default()).map(|o| o.mesh.triangles.len()))
+        black_box(
+            topology_change(&start, &end, &Options::default()).map(|o| o.mesh.triangles.len()),
+        )
     });
 }
 

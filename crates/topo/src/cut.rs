@@ -51,8 +51,10 @@ pub struct CutReport {
     pub triangles_deleted: usize,
     /// Sub-triangles with no original corner, decided by diffusion.
     pub diffused: usize,
-    /// Sub-triangles still undecided after 50 rounds (kept).
+    /// Sub-triangles still undecided after 50 rounds and sampling (kept).
     pub undecided: usize,
+    /// Regions without an input vertex whose parity was sampled.
+    pub sampled_regions: usize,
     /// Sub-triangles whose original corners disagreed.
     pub conflicting: usize,
     /// Vertices added where constraints crossed after rounding.
@@ -166,8 +168,19 @@ pub struct Cut {
     pub report: CutReport,
 }
 
+/// The parity of a point of the surface that no vertex decides: called
+/// with a number unique to the call, the triangle and barycentric weights
+/// of its corners; `None` when it cannot tell.
+pub type Sampler<'a> = dyn Fn(u32, u32, [f64; 3]) -> Option<bool> + 'a;
+
 /// Subdivides `mesh` (at `positions`) along the intersection curves `x`,
 /// glues, and deletes the odd part of `odd` (`None`: resolve mode).
+///
+/// A region cut off by intersection curves that holds no input vertex has
+/// no parity sample (the paper's Figure 13: a cylinder plunged through one
+/// huge triangle). With `sample`, such a region gets one: the parity of a
+/// point inside it, computed as if a vertex had been placed there (the
+/// adaptive refinement §7 proposes). Without it the region is kept.
 pub fn cut(
     mesh: &TriMesh,
     positions: &[DVec3],
@@ -175,6 +188,7 @@ pub fn cut(
     ids: &[u32],
     x: &Intersections,
     odd: Option<&[bool]>,
+    sample: Option<&Sampler<'_>>,
 ) -> Cut {
     let n = positions.len();
     let tris = &mesh.triangles;
@@ -339,6 +353,8 @@ pub fn cut(
 
     // 2. Subdivide each affected triangle in its chart.
     let mut out_tris: Vec<[u32; 3]> = Vec::with_capacity(nt);
+    // Source triangle and chart centroid of each output triangle.
+    let mut source: Vec<(u32, [f64; 2])> = Vec::with_capacity(nt);
     let mut curve_edges: Vec<(u32, u32)> = Vec::new();
     let mut alias: HashMap<u32, u32> = HashMap::new();
     for t in 0..nt {
@@ -354,6 +370,7 @@ pub fn cut(
                 && false_edges[t].is_none())
         {
             out_tris.push(tri);
+            source.push((t as u32, [1.0 / 3.0; 2]));
             continue;
         }
         report.triangles_split += 1;
@@ -454,6 +471,14 @@ pub fn cut(
         for f in cdt.inner_faces() {
             let vs = f.vertices().map(|v| global[v.fix().index()]);
             out_tris.push(vs);
+            let c = f.vertices().map(|v| v.position());
+            source.push((
+                t as u32,
+                [
+                    (c[0].x + c[1].x + c[2].x) / 3.0,
+                    (c[0].y + c[1].y + c[2].y) / 3.0,
+                ],
+            ));
         }
         for e in cdt.undirected_edges() {
             if e.is_constraint_edge() {
@@ -508,7 +533,16 @@ pub fn cut(
     let keep: Vec<bool> = match odd {
         None => vec![true; out_tris.len()],
         Some(odd) => {
-            let labels = label(&out_tris, n, &on_curve, odd, &curve_edges, &mut report);
+            let labels = label(
+                &out_tris,
+                n,
+                &on_curve,
+                odd,
+                &curve_edges,
+                &mut report,
+                &source,
+                sample,
+            );
             labels.iter().map(|&o| !o).collect()
         }
     };
@@ -528,6 +562,7 @@ pub fn cut(
 
 /// Parity of each sub-triangle: from its original corners, else by
 /// diffusion across non-curve edges; `true` = odd.
+#[allow(clippy::too_many_arguments)]
 fn label(
     tris: &[[u32; 3]],
     n_original: usize,
@@ -535,6 +570,8 @@ fn label(
     odd: &[bool],
     curve_edges: &[(u32, u32)],
     report: &mut CutReport,
+    source: &[(u32, [f64; 2])],
+    sample: Option<&Sampler<'_>>,
 ) -> Vec<bool> {
     let mut state: Vec<Option<bool>> = tris
         .iter()
@@ -610,8 +647,35 @@ fn label(
             break;
         }
     }
+    report.diffused = undecided_before - state.iter().filter(|s| s.is_none()).count();
+    // Regions no vertex reaches: one sample each (Figure 13).
+    if let Some(sample) = sample {
+        let mut region = 0u32;
+        for seed in 0..tris.len() {
+            if state[seed].is_some() {
+                continue;
+            }
+            let (t, [u, v]) = source[seed];
+            let Some(parity) = sample(region, t, [1.0 - u - v, u, v]) else {
+                continue;
+            };
+            region += 1;
+            report.sampled_regions += 1;
+            // Flood the region: undecided triangles joined across
+            // non-curve edges.
+            let mut stack = vec![seed as u32];
+            state[seed] = Some(parity);
+            while let Some(a) = stack.pop() {
+                for &b in &neighbours[a as usize] {
+                    if state[b as usize].is_none() {
+                        state[b as usize] = Some(parity);
+                        stack.push(b);
+                    }
+                }
+            }
+        }
+    }
     report.undecided = state.iter().filter(|s| s.is_none()).count();
-    report.diffused = undecided_before - report.undecided;
     state.into_iter().map(|s| s.unwrap_or(false)).collect()
 }
 

@@ -10,8 +10,11 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_geom::ccd::{CcdOptions, Identities, Narrow, vertex_parities};
+use holey_geom::ccd::{
+    CcdOptions, CcdParity, Identities, MovingPoint, Narrow, vertex_parities, vertex_triangle_parity,
+};
 use holey_geom::position_classes;
+use holey_geom::{Aabb, Bvh, SymPoint};
 
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, cut};
@@ -31,6 +34,10 @@ pub struct Options {
     /// Make triangle orientations consistent across manifold edges after
     /// the change, where the surface allows.
     pub orient: bool,
+    /// Sample the parity of regions cut off by intersection curves that
+    /// contain no vertex (Figure 13's failure; the refinement §7
+    /// proposes). Off reproduces the paper, which keeps such regions.
+    pub refine: bool,
 }
 
 impl Default for Options {
@@ -39,6 +46,7 @@ impl Default for Options {
             scheme: Scheme::Partition,
             float_ccd: false,
             orient: true,
+            refine: true,
         }
     }
 }
@@ -159,8 +167,80 @@ fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
     Ok(())
 }
 
+/// The parity of a point of triangle `t` with barycentric weights `w`,
+/// moving with the surface straight from `start` to `end`: the number of
+/// times it hits the moving surface, mod 2, by the exact test. The point
+/// is a vertex the mesh never had, placed where a region has no parity
+/// sample (Figure 13; §7's adaptive refinement, one vertex per region).
+struct PointSampler<'a> {
+    start: &'a [DVec3],
+    end: &'a [DVec3],
+    tris: &'a [[u32; 3]],
+    bvh: std::sync::OnceLock<Option<Bvh>>,
+}
+
+impl PointSampler<'_> {
+    fn parity(&self, k: u32, t: u32, w: [f64; 3]) -> Option<bool> {
+        let n = self.start.len();
+        let corners = *self.tris.get(t as usize)?;
+        let at = |p: &[DVec3]| {
+            corners
+                .iter()
+                .zip(w)
+                .map(|(&c, wi)| p[c as usize] * wi)
+                .sum::<DVec3>()
+        };
+        let (p0, p1) = (at(self.start), at(self.end));
+        let bvh = self
+            .bvh
+            .get_or_init(|| {
+                let boxes: Vec<Aabb> = self
+                    .tris
+                    .iter()
+                    .map(|tri| {
+                        Aabb::from_points(&[
+                            self.start[tri[0] as usize],
+                            self.start[tri[1] as usize],
+                            self.start[tri[2] as usize],
+                            self.end[tri[0] as usize],
+                            self.end[tri[1] as usize],
+                            self.end[tri[2] as usize],
+                        ])
+                    })
+                    .collect();
+                Bvh::build(&boxes).ok()
+            })
+            .as_ref()?;
+        // Identities after every vertex's two (frame_ids: 2v, 2v + 1).
+        let id = u32::try_from(2 * n + 2 * k as usize).ok()?;
+        let x = MovingPoint {
+            start: SymPoint::new(p0, id),
+            end: SymPoint::new(p1, id.checked_add(1)?),
+        };
+        let mp = |v: u32| MovingPoint {
+            start: SymPoint::new(self.start[v as usize], 2 * v),
+            end: SymPoint::new(self.end[v as usize], 2 * v + 1),
+        };
+        let mut odd = false;
+        bvh.for_each_overlap(&Aabb::new(p0.min(p1), p0.max(p1)), |u| {
+            if u == t {
+                return;
+            }
+            let [a, b, c] = self.tris[u as usize].map(mp);
+            if vertex_triangle_parity(x, a, b, c) == CcdParity::Odd {
+                odd = !odd;
+            }
+        });
+        Some(odd)
+    }
+}
+
+/// `start` → `end` is the straight motion sampled points follow: the frame
+/// itself, or for a drag its first and last positions.
+#[allow(clippy::too_many_arguments)]
 fn finish(
     mesh: &TriMesh,
+    start: &[DVec3],
     end: &[DVec3],
     raw: Vec<bool>,
     collisions: (usize, u64, f64),
@@ -169,10 +249,25 @@ fn finish(
 ) -> Result<Outcome, TopoError> {
     let s = static_stage(mesh, end, &raw, options.scheme)?;
     let t = Instant::now();
+    let sampler = PointSampler {
+        start,
+        end,
+        tris: &mesh.triangles,
+        bvh: std::sync::OnceLock::new(),
+    };
+    let sample = |k: u32, t: u32, w: [f64; 3]| sampler.parity(k, t, w);
     let Cut {
         mesh: mut out,
         report: cut_report,
-    } = cut(mesh, end, &s.edges, &s.ids, &s.x, Some(&s.corrected));
+    } = cut(
+        mesh,
+        end,
+        &s.edges,
+        &s.ids,
+        &s.x,
+        Some(&s.corrected),
+        if options.refine { Some(&sample) } else { None },
+    );
     let flips = if options.orient {
         orient_consistently(&mut out)
     } else {
@@ -244,7 +339,15 @@ pub fn topology_change(
         ccd.candidates,
         t.elapsed().as_secs_f64(),
     );
-    finish(mesh, end, ccd.odd, collisions, options, started)
+    finish(
+        mesh,
+        &mesh.positions,
+        end,
+        ccd.odd,
+        collisions,
+        options,
+        started,
+    )
 }
 
 /// The self-intersection curves of a mesh cut and glued, nothing deleted:
@@ -254,7 +357,7 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     let edges = Edges::new(mesh);
     let ids = position_classes(&mesh.positions)?;
     let x = intersections(mesh, &mesh.positions, &edges, &ids)?;
-    let Cut { mesh: out, report } = cut(mesh, &mesh.positions, &edges, &ids, &x, None);
+    let Cut { mesh: out, report } = cut(mesh, &mesh.positions, &edges, &ids, &x, None, None);
     Ok((out, x, report))
 }
 
@@ -348,6 +451,7 @@ impl Accumulator {
         let started = Instant::now();
         finish(
             &self.mesh,
+            &self.mesh.positions,
             &self.current,
             self.raw,
             (self.collisions, self.tests, self.seconds),

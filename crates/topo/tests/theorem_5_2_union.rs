@@ -31,7 +31,7 @@ fn check_union(a: &TriMesh, b: &TriMesh, genus_expected: i64, what: &str) {
         "{what}: the union intersects itself"
     );
     let v = volume(&u);
-    let sampled = union_volume_sampled(a, b, 400_000, 7);
+    let sampled = union_volume_sampled(a, b, 200_000, 7);
     assert!(
         (v - sampled).abs() < 0.01 * sampled,
         "{what}: volume {v} vs sampled {sampled}"

@@ -45,6 +45,11 @@ pub struct EngineArgs {
     /// consistent.
     #[arg(long)]
     pub keep_orientation: bool,
+    /// Keep regions cut off by intersection curves that contain no vertex,
+    /// as the paper does (its Figure 13 failure), instead of sampling
+    /// their parity at a new point.
+    #[arg(long)]
+    pub no_refine: bool,
     /// Write the input at its end positions coloured by parity (PLY):
     /// grey even, red odd, yellow odd only before correction, blue odd only
     /// after it.
@@ -61,6 +66,7 @@ impl EngineArgs {
             scheme: self.scheme.into(),
             float_ccd: self.float_ccd,
             orient: !self.keep_orientation,
+            refine: !self.no_refine,
         }
     }
 }
