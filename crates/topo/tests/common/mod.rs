@@ -12,18 +12,25 @@ use holey_topo::{Options, Outcome, TriMesh, self_intersections, topology_change}
 pub fn primitive(spec: &str) -> TriMesh {
     let p = holey_shapes::parse_primitive(spec).unwrap();
     let (triangles, _) = p.fan_triangles();
-    TriMesh { positions: p.positions, triangles }
+    TriMesh {
+        positions: p.positions,
+        triangles,
+    }
 }
 
 pub fn translate(m: &TriMesh, d: DVec3) -> TriMesh {
-    TriMesh { positions: m.positions.iter().map(|p| *p + d).collect(), triangles: m.triangles.clone() }
+    TriMesh {
+        positions: m.positions.iter().map(|p| *p + d).collect(),
+        triangles: m.triangles.clone(),
+    }
 }
 
 pub fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
     let mut m = a.clone();
     let n = m.positions.len() as u32;
     m.positions.extend_from_slice(&b.positions);
-    m.triangles.extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
     m
 }
 
@@ -63,7 +70,8 @@ fn directed(m: &TriMesh) -> HashMap<(u32, u32), usize> {
 /// reverse once.
 pub fn closed_oriented(m: &TriMesh) -> bool {
     let d = directed(m);
-    d.iter().all(|(&(a, b), &n)| n == 1 && d.get(&(b, a)) == Some(&1))
+    d.iter()
+        .all(|(&(a, b), &n)| n == 1 && d.get(&(b, a)) == Some(&1))
 }
 
 /// Edges with one triangle side, and the number of boundary loops
@@ -76,7 +84,11 @@ pub fn boundary(m: &TriMesh) -> (usize, usize) {
             *undirected.entry((a.min(b), a.max(b))).or_default() += 1;
         }
     }
-    let bedges: Vec<(u32, u32)> = undirected.into_iter().filter(|&(_, n)| n == 1).map(|(e, _)| e).collect();
+    let bedges: Vec<(u32, u32)> = undirected
+        .into_iter()
+        .filter(|&(_, n)| n == 1)
+        .map(|(e, _)| e)
+        .collect();
     let mut parent: HashMap<u32, u32> = HashMap::new();
     fn find(p: &mut HashMap<u32, u32>, x: u32) -> u32 {
         let mut r = x;
@@ -126,7 +138,10 @@ pub fn components(m: &TriMesh) -> usize {
             used[v as usize] = true;
         }
     }
-    let mut roots: Vec<u32> = (0..m.positions.len() as u32).filter(|&v| used[v as usize]).map(|v| find(&mut parent, v)).collect();
+    let mut roots: Vec<u32> = (0..m.positions.len() as u32)
+        .filter(|&v| used[v as usize])
+        .map(|v| find(&mut parent, v))
+        .collect();
     roots.sort_unstable();
     roots.dedup();
     roots.len()
@@ -176,14 +191,24 @@ pub fn inside(m: &TriMesh, p: DVec3) -> bool {
 
 /// Volume of the region inside `a` or inside `b` by Monte Carlo sampling.
 pub fn union_volume_sampled(a: &TriMesh, b: &TriMesh, samples: usize, seed: u64) -> f64 {
-    let bb = |m: &TriMesh| m.positions.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| (l.min(*p), h.max(*p)));
+    let bb = |m: &TriMesh| {
+        m.positions
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+                (l.min(*p), h.max(*p))
+            })
+    };
     let (la, ha) = bb(a);
     let (lb, hb) = bb(b);
     let (lo, hi) = (la.min(lb), ha.max(hb));
     let mut rng = Rng::new(seed);
     let hits = (0..samples)
         .filter(|_| {
-            let p = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
+            let p = DVec3::new(
+                rng.range(lo.x, hi.x),
+                rng.range(lo.y, hi.y),
+                rng.range(lo.z, hi.z),
+            );
             inside(a, p) || inside(b, p)
         })
         .count();
@@ -204,12 +229,269 @@ pub fn well_formed(m: &TriMesh) {
         for &v in t {
             assert!((v as usize) < m.positions.len(), "index out of range");
         }
-        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "degenerate triangle {t:?}");
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+            "degenerate triangle {t:?}"
+        );
     }
-    assert!(m.positions.iter().all(|p| p.is_finite()), "non-finite position");
+    assert!(
+        m.positions.iter().all(|p| p.is_finite()),
+        "non-finite position"
+    );
 }
 
 /// Number of intersecting triangle pairs.
 pub fn self_intersecting_pairs(m: &TriMesh) -> usize {
     self_intersections(m).unwrap().pairs.len()
+}
+
+// ---------------------------------------------------------------------
+// Helpers of the figure and robustness scenarios.
+// ---------------------------------------------------------------------
+
+/// `m` with every position mapped by `f`.
+pub fn map_positions(m: &TriMesh, f: impl Fn(DVec3) -> DVec3) -> TriMesh {
+    TriMesh {
+        positions: m.positions.iter().map(|&p| f(p)).collect(),
+        triangles: m.triangles.clone(),
+    }
+}
+
+/// `m` scaled about the origin.
+pub fn scale(m: &TriMesh, s: f64) -> TriMesh {
+    map_positions(m, |p| p * s)
+}
+
+/// A triangle soup: every triangle gets its own three vertices.
+pub fn soup(m: &TriMesh) -> TriMesh {
+    let mut positions = Vec::with_capacity(3 * m.triangles.len());
+    let mut triangles = Vec::with_capacity(m.triangles.len());
+    for t in &m.triangles {
+        let n = positions.len() as u32;
+        positions.extend(t.iter().map(|&v| m.positions[v as usize]));
+        triangles.push([n, n + 1, n + 2]);
+    }
+    TriMesh {
+        positions,
+        triangles,
+    }
+}
+
+/// Euler characteristic V − E + F over the vertices used by triangles.
+pub fn euler(m: &TriMesh) -> i64 {
+    let mut used = vec![false; m.positions.len()];
+    let mut edges = std::collections::HashSet::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            used[t[k] as usize] = true;
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.insert((a.min(b), a.max(b)));
+        }
+    }
+    used.iter().filter(|&&u| u).count() as i64 - edges.len() as i64 + m.triangles.len() as i64
+}
+
+/// The largest number of triangles on one undirected edge (2 for a
+/// manifold surface, 1 on a boundary).
+pub fn max_edge_degree(m: &TriMesh) -> usize {
+    let mut d: HashMap<(u32, u32), usize> = HashMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *d.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    d.values().copied().max().unwrap_or(0)
+}
+
+/// Triangles split into connected components (through shared vertices):
+/// one sub-mesh per component, all sharing the positions of `m`.
+pub fn split_components(m: &TriMesh) -> Vec<TriMesh> {
+    let mut parent: Vec<u32> = (0..m.positions.len() as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            p[x as usize] = p[p[x as usize] as usize];
+            x = p[x as usize];
+        }
+        x
+    }
+    for t in &m.triangles {
+        for k in 1..3 {
+            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    let mut groups: HashMap<u32, Vec<[u32; 3]>> = HashMap::new();
+    for t in &m.triangles {
+        let r = find(&mut parent, t[0]);
+        groups.entry(r).or_default().push(*t);
+    }
+    let mut keys: Vec<u32> = groups.keys().copied().collect();
+    keys.sort_unstable();
+    keys.into_iter()
+        .map(|k| TriMesh {
+            positions: m.positions.clone(),
+            triangles: groups.remove(&k).unwrap(),
+        })
+        .collect()
+}
+
+/// Bounding box of the vertices used by triangles.
+pub fn used_bounds(m: &TriMesh) -> (DVec3, DVec3) {
+    m.triangles
+        .iter()
+        .flatten()
+        .map(|&v| m.positions[v as usize])
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+            (l.min(p), h.max(p))
+        })
+}
+
+/// Triangles by the bit patterns of their corner positions, rotated to
+/// start at the smallest corner (orientation kept), sorted: compares two
+/// meshes independently of vertex numbering.
+pub fn oriented_triangle_keys(m: &TriMesh) -> Vec<[[u64; 3]; 3]> {
+    let mut keys: Vec<[[u64; 3]; 3]> = m
+        .triangles
+        .iter()
+        .map(|t| {
+            let c = t.map(|v| {
+                let p = m.positions[v as usize];
+                [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
+            });
+            let k = (0..3).min_by_key(|&k| c[k]).unwrap();
+            [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]
+        })
+        .collect();
+    keys.sort_unstable();
+    keys
+}
+
+/// As [`oriented_triangle_keys`], orientation ignored.
+pub fn unoriented_triangle_keys(m: &TriMesh) -> Vec<[[u64; 3]; 3]> {
+    let mut keys: Vec<[[u64; 3]; 3]> = oriented_triangle_keys(m)
+        .into_iter()
+        .map(|mut k| {
+            k.sort_unstable();
+            k
+        })
+        .collect();
+    keys.sort_unstable();
+    keys
+}
+
+/// A closed tube of circular cross-section (`segments` around, first
+/// vertex at angle `phase`) swept along `centre`; `up` is perpendicular to
+/// every tangent. The ends are closed by fans to the end points.
+pub fn tube(centre: &[DVec3], radius: f64, segments: u32, phase: f64, up: DVec3) -> TriMesh {
+    let n = centre.len();
+    let mut positions = Vec::new();
+    for i in 0..n {
+        let tangent = (centre[(i + 1).min(n - 1)] - centre[i.saturating_sub(1)]).normalize();
+        let side = tangent.cross(up).normalize();
+        let up = side.cross(tangent);
+        for j in 0..segments {
+            let a = phase + std::f64::consts::TAU * f64::from(j) / f64::from(segments);
+            positions.push(centre[i] + radius * (a.cos() * side + a.sin() * up));
+        }
+    }
+    let first_cap = positions.len() as u32;
+    positions.push(centre[0]);
+    positions.push(centre[n - 1]);
+    let s = segments;
+    let mut triangles = Vec::new();
+    for i in 0..n as u32 - 1 {
+        for j in 0..s {
+            let (a, b) = (i * s + j, i * s + (j + 1) % s);
+            let (c, d) = (a + s, b + s);
+            triangles.push([a, b, d]);
+            triangles.push([a, d, c]);
+        }
+    }
+    let last = (n as u32 - 1) * s;
+    for j in 0..s {
+        triangles.push([first_cap, (j + 1) % s, j]);
+        triangles.push([first_cap + 1, last + j, last + (j + 1) % s]);
+    }
+    let mut m = TriMesh {
+        positions,
+        triangles,
+    };
+    if volume(&m) < 0.0 {
+        for t in &mut m.triangles {
+            t.swap(1, 2);
+        }
+    }
+    m
+}
+
+/// Reads a mesh of the shared data folder as triangles (faces fanned).
+pub fn read_shared(dir: &std::path::Path, name: &str) -> TriMesh {
+    let Ok(holey_io::MeshFile::Poly(p)) = holey_io::read_path(&dir.join(name)) else {
+        panic!("cannot read {name}")
+    };
+    let (triangles, _) = p.fan_triangles();
+    TriMesh {
+        positions: p.positions,
+        triangles,
+    }
+}
+
+/// Why a mesh is not closed and oriented: (boundary edges, edges with more
+/// than two triangles, manifold edges traversed twice the same way).
+pub fn closedness_defects(m: &TriMesh) -> (usize, usize, usize) {
+    let mut d: HashMap<(u32, u32), (usize, usize)> = HashMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let e = d.entry((a.min(b), a.max(b))).or_default();
+            if a < b {
+                e.0 += 1;
+            } else {
+                e.1 += 1;
+            }
+        }
+    }
+    let boundary = d.values().filter(|(f, r)| f + r == 1).count();
+    let nonmanifold = d.values().filter(|(f, r)| f + r > 2).count();
+    let misoriented = d.values().filter(|(f, r)| f + r == 2 && *f != 1).count();
+    (boundary, nonmanifold, misoriented)
+}
+
+/// Area-weighted vertex normals.
+pub fn vertex_normals(m: &TriMesh) -> Vec<DVec3> {
+    let mut n = vec![DVec3::ZERO; m.positions.len()];
+    for t in &m.triangles {
+        let [a, b, c] = t.map(|v| m.positions[v as usize]);
+        let f = (b - a).cross(c - a);
+        for &v in t {
+            n[v as usize] += f;
+        }
+    }
+    n.into_iter().map(|v| v.normalize_or_zero()).collect()
+}
+
+/// Edges whose two triangles face opposite ways (normals at more than
+/// 90°): creases where a deformation folded the surface over itself
+/// locally, which no smooth immersion produces at this resolution.
+pub fn folds(m: &TriMesh) -> usize {
+    let normals: Vec<DVec3> = m
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| m.positions[v as usize]);
+            (b - a).cross(c - a).normalize_or_zero()
+        })
+        .collect();
+    let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (i, t) in m.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            by_edge.entry((a.min(b), a.max(b))).or_default().push(i);
+        }
+    }
+    by_edge
+        .values()
+        .filter(|v| v.len() == 2 && normals[v[0]].dot(normals[v[1]]) < 0.0)
+        .count()
 }

