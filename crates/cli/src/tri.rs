@@ -97,6 +97,7 @@ pub fn report_json(r: &Report) -> Value {
         "triangles_deleted": r.cut.triangles_deleted,
         "diffused_triangles": r.cut.diffused,
         "undecided_triangles": r.cut.undecided,
+        "dropped_constraints": r.cut.dropped_constraints,
         "sampled_regions": r.cut.sampled_regions,
         "conflicting_triangles": r.cut.conflicting,
         "constraint_splits": r.cut.constraint_splits,

@@ -55,6 +55,9 @@ pub struct CutReport {
     pub undecided: usize,
     /// Regions without an input vertex whose parity was sampled.
     pub sampled_regions: usize,
+    /// Curve pieces that could not be inserted into their chart (spade
+    /// failed on a rounding-induced crossing); 0 in every test case.
+    pub dropped_constraints: usize,
     /// Sub-triangles whose original corners disagreed.
     pub conflicting: usize,
     /// Vertices added where constraints crossed after rounding.
@@ -441,12 +444,41 @@ pub fn cut(
             pos: p,
             global: NONE,
         };
-        for [a, b] in segs {
-            let (Some(&ha), Some(&hb)) = (handle_of.get(&a), handle_of.get(&b)) else {
+        let pairs: Vec<_> = segs
+            .iter()
+            .filter_map(|[a, b]| Some((*handle_of.get(a)?, *handle_of.get(b)?)))
+            .filter(|(ha, hb)| ha != hb)
+            .collect();
+        // Symbolically the curve pieces of one triangle meet only at their
+        // shared points, so each goes in as a plain constraint. Only
+        // rounding in the chart can make two cross; then the crossing is
+        // split where the chart puts it. spade's splitting insertion can
+        // fail on such near-degenerate input (it panics); the chart is then
+        // rebuilt from its points and every constraint that fits is added
+        // without splitting, the others counted as dropped.
+        let points_only = cdt.clone();
+        let mut failed = false;
+        for &(ha, hb) in &pairs {
+            if cdt.can_add_constraint(ha, hb) {
+                cdt.add_constraint(ha, hb);
                 continue;
-            };
-            if ha != hb {
+            }
+            let attempt = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 cdt.add_constraint_and_split(ha, hb, split);
+            }));
+            if attempt.is_err() {
+                failed = true;
+                break;
+            }
+        }
+        if failed {
+            cdt = points_only;
+            for &(ha, hb) in &pairs {
+                if cdt.can_add_constraint(ha, hb) {
+                    cdt.add_constraint(ha, hb);
+                } else {
+                    report.dropped_constraints += 1;
+                }
             }
         }
         // Globals for split vertices; the corners' 3D frame for them.
