@@ -27,7 +27,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use holey_geom::{
-    Aabb, Bvh, SegEnd, SymPoint, edge_triangle_point, order_on_segment, triangle_triangle_segment,
+    Aabb, Bvh, SegEnd, SymPoint, edge_triangle_point, triangle_triangle_segment,
     triangle_triangle_triangle_point, triple_point,
 };
 use rayon::prelude::*;
@@ -112,6 +112,35 @@ pub enum IntersectError {
         "the intersection point of edge {edge} and triangle {tri} could not be constructed: {reason}"
     )]
     Construction { edge: u32, tri: u32, reason: String },
+}
+
+/// Orders the triple points `(point, third triangle)` on one intersection
+/// segment from end `a` to end `b`.
+///
+/// The points are collinear and their coordinates are rounded once from
+/// exact values, so one coordinate — along the axis where the segment
+/// spreads most — orders them wherever they are farther apart than
+/// rounding. Points with bit-equal keys sit at one position (up to
+/// rounding) and are glued by the cut stage anyway; they keep index
+/// order. The exact symbolic comparison of every pair, used before, is
+/// correct but its expansion ran for minutes on lattice-aligned input.
+fn order_along_segment(
+    interior: &mut [(u32, u32)],
+    a: DVec3,
+    b: DVec3,
+    position: &dyn Fn(u32) -> DVec3,
+) {
+    let d = b - a;
+    let axis = if d.x.abs() >= d.y.abs() && d.x.abs() >= d.z.abs() {
+        0
+    } else if d.y.abs() >= d.z.abs() {
+        1
+    } else {
+        2
+    };
+    let sign = if d[axis] < 0.0 { -1.0 } else { 1.0 };
+    let key = |p: u32| sign * position(p)[axis];
+    interior.sort_by(|x, y| key(x.0).total_cmp(&key(y.0)).then(x.0.cmp(&y.0)));
 }
 
 /// The symbolic points of a mesh: positions with identities.
@@ -357,12 +386,21 @@ pub fn intersections(
     let mut pieces = Vec::new();
     for (s, (t1, t2, ends)) in segs.iter().enumerate() {
         let mut interior = std::mem::take(&mut on_seg[s]);
-        interior.sort_by(|&(_, ta), &(_, tb)| {
-            order_on_segment(ends, sym.tri(tris[ta as usize]), sym.tri(tris[tb as usize]))
-        });
-        let mut chain = vec![node_of(seg_nodes[s][0], &ends[0])];
+        let first = node_of(seg_nodes[s][0], &ends[0]);
+        let last = node_of(seg_nodes[s][1], &ends[1]);
+        if interior.len() > 1 {
+            let at = |node: Node, end: &SegEnd| match (node, end) {
+                (Node::Point(p), _) => points[p as usize].position,
+                (_, SegEnd::Vertex(v)) => v.pos,
+                (_, SegEnd::Edge { p, .. }) => p.pos,
+            };
+            let (a, b) = (at(first, &ends[0]), at(last, &ends[1]));
+            let triple = |p: u32| points[p as usize].position;
+            order_along_segment(&mut interior, a, b, &triple);
+        }
+        let mut chain = vec![first];
         chain.extend(interior.iter().map(|&(p, _)| Node::Point(p)));
-        chain.push(node_of(seg_nodes[s][1], &ends[1]));
+        chain.push(last);
         for w in chain.windows(2) {
             pieces.push(Piece {
                 ends: [w[0], w[1]],

@@ -207,7 +207,6 @@ fn random_cases_never_panic() {
 /// As above, with end positions snapped to a coarse lattice: coincident
 /// vertices, coplanar and collinear everything.
 #[test]
-#[ignore = "engine bug: static intersections (SoS order_on_segment) run for minutes on lattice-snapped ends, e.g. seed 2"]
 fn lattice_snapped_cases_finish() {
     let (_, failures, hangs) = fuzz(0..200, true, Duration::from_secs(20));
     assert!(
