@@ -135,6 +135,17 @@ pub fn run_engine(
         let _p = Progress::start("changing topology");
         topology_change(mesh, end, &args.options()).map_err(|e| bad_input(e.to_string()))?
     };
+    write_outcome(mesh, end, &out, output, args)
+}
+
+/// Writes an outcome: the mesh, the report and the parity picture.
+pub fn write_outcome(
+    mesh: &TriMesh,
+    end: &[glam::DVec3],
+    out: &holey_topo::Outcome,
+    output: &str,
+    args: &EngineArgs,
+) -> Result<()> {
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &args.report {
         write_json(path, &report_json(&out.report))?;

@@ -6,8 +6,9 @@ use anyhow::Result;
 use glam::DVec3;
 use holey_topo::TriMesh;
 
-use crate::cmd::topo::{EngineArgs, run_engine};
+use crate::cmd::topo::{EngineArgs, write_outcome};
 use crate::error::bad_input;
+use crate::progress::Progress;
 use crate::tri::load_triangles;
 
 /// The default direction B arrives from: generic, so that B's vertices
@@ -26,6 +27,17 @@ clear of A's bounding box), and then moves in a straight line back to its
 given position in one frame. A vertex of either solid that ends inside the
 other hits the other's surface an odd number of times (Theorem 5.2), so
 the topology change deletes exactly the parts inside: the union.
+
+Degenerate contact (faces of A and B coplanar, vertices or edges
+coinciding: a copy of a mesh shifted by a lattice step) is resolved by a
+deterministic, scale-relative perturbation: B's final position is moved
+by 2^-30 of the scene's diagonal along a fixed generic direction (about
+1e-9 relative, far below any modelling precision). If A and B are closed
+2-manifolds and the union is not, the run is retried with the
+perturbation 16 and 256 times larger along other directions; the report
+counts the retries. --exact moves nothing and relies on symbolic
+perturbation alone, which is exact but can leave both solids whole where
+they touch exactly along shared edges.
 
 A and B should be closed, consistently oriented solids; other meshes are
 accepted and give what the same motion gives in `holey topo`. The default
@@ -46,6 +58,9 @@ pub struct Args {
     /// Direction B arrives from, as x,y,z.
     #[arg(long, value_name = "X,Y,Z")]
     pub direction: Option<String>,
+    /// Do not perturb B's final position (see below).
+    #[arg(long)]
+    pub exact: bool,
     #[command(flatten)]
     pub engine: EngineArgs,
 }
@@ -111,11 +126,88 @@ pub fn run(args: Args) -> Result<()> {
         Some(s) => parse_direction(s)?,
         None => DVec3::from_array(DEFAULT_DIRECTION).normalize(),
     };
-    let (start, end) = synthesize(&a, &b, d);
-    if start.positions.iter().any(|p| !p.is_finite()) {
-        return Err(bad_input(
-            "B's start position overflows: the coordinates are too large",
-        ));
+    let both_closed = closed_manifold(&a) && closed_manifold(&b);
+    let diagonal = {
+        let (lo, hi) = a
+            .positions
+            .iter()
+            .chain(&b.positions)
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+                (l.min(*p), h.max(*p))
+            });
+        (hi - lo).length()
+    };
+    let attempts: &[(f64, [f64; 3])] = if args.exact {
+        &[(0.0, [0.0; 3])]
+    } else {
+        &NUDGES
+    };
+    let _p = Progress::start("uniting");
+    let mut last = None;
+    for (retries, &(scale, dir)) in attempts.iter().enumerate() {
+        let mut moved = b.clone();
+        let nudge = DVec3::from_array(dir) * (scale * diagonal);
+        for p in &mut moved.positions {
+            *p += nudge;
+        }
+        let (start, end) = synthesize(&a, &moved, d);
+        if start.positions.iter().any(|p| !p.is_finite()) {
+            return Err(bad_input(
+                "B's start position overflows: the coordinates are too large",
+            ));
+        }
+        let mut out = holey_topo::topology_change(&start, &end, &args.engine.options())
+            .map_err(|e| bad_input(e.to_string()))?;
+        out.report.perturbation_retries = retries;
+        let good = !both_closed || closed_manifold(&out.mesh);
+        last = Some((start, end, out));
+        if good {
+            break;
+        }
     }
-    run_engine(&start, &end, &args.output, &args.engine)
+    let Some((start, end, out)) = last else {
+        return Err(bad_input("no attempt was made"));
+    };
+    write_outcome(&start, &end, &out, &args.output, &args.engine)
+}
+
+/// Perturbations of B's final position: (fraction of the scene diagonal,
+/// unit direction). Directions are generic: along no axis or lattice
+/// diagonal.
+const NUDGES: [(f64, [f64; 3]); 3] = [
+    (
+        1.0 / 1_073_741_824.0,
+        [0.801_783_7, 0.534_522_5, 0.267_261_2],
+    ),
+    (
+        16.0 / 1_073_741_824.0,
+        [-0.272_165_5, 0.952_579_3, 0.136_082_8],
+    ),
+    (
+        256.0 / 1_073_741_824.0,
+        [0.408_248_3, -0.408_248_3, 0.816_496_6],
+    ),
+];
+
+/// Every undirected edge used by exactly two triangles, in opposite
+/// directions, and no triangle with a repeated vertex.
+fn closed_manifold(m: &TriMesh) -> bool {
+    let mut sides: Vec<(u32, u32, bool)> = Vec::with_capacity(3 * m.triangles.len());
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if a == b {
+                return false;
+            }
+            sides.push((a.min(b), a.max(b), a < b));
+        }
+    }
+    sides.sort_unstable();
+    sides.len() % 2 == 0
+        && sides
+            .chunks(2)
+            .all(|c| c[0].0 == c[1].0 && c[0].1 == c[1].1 && c[0].2 != c[1].2)
+        && sides
+            .windows(3)
+            .all(|w| !(w[0].0 == w[2].0 && w[0].1 == w[2].1))
 }
