@@ -203,7 +203,7 @@ fn closed_manifold(m: &TriMesh) -> bool {
         }
     }
     sides.sort_unstable();
-    sides.len() % 2 == 0
+    sides.len().is_multiple_of(2)
         && sides
             .chunks(2)
             .all(|c| c[0].0 == c[1].0 && c[0].1 == c[1].1 && c[0].2 != c[1].2)
