@@ -62,6 +62,8 @@ enum Command {
     Selfint(cmd::selfint::Args),
     /// Cut and glue a surface along its self-intersections (the arrangement).
     Resolve(cmd::resolve::Args),
+    /// Replay sculpting strokes with incidental topology change (Bernstein & Wojtan 2013, §4).
+    Sculpt(cmd::sculpt::Args),
 }
 
 fn main() {
@@ -81,6 +83,7 @@ fn main() {
         Command::Union(a) => cmd::union::run(a),
         Command::Selfint(a) => cmd::selfint::run(a),
         Command::Resolve(a) => cmd::resolve::run(a),
+        Command::Sculpt(a) => cmd::sculpt::run(a),
         Command::Primitives => {
             print!("{}", holey_shapes::primitive_help());
             Ok(())

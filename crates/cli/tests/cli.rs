@@ -104,6 +104,7 @@ fn help_has_examples_for_every_command() {
         "union",
         "selfint",
         "resolve",
+        "sculpt",
     ] {
         let help = ok(&[cmd, "--help"]);
         assert!(help.contains("Examples:"), "{cmd} --help has no examples");
@@ -836,6 +837,48 @@ fn demo_writes_the_gallery() {
     assert_eq!(genus("cup"), 1);
 }
 
+/// Shifts the vertices of an OBJ file along x, in place.
+fn shift_obj_x(path: &Path, dx: f64) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let shifted: String = text
+        .lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(rest) => {
+                let c: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|t| t.parse().unwrap())
+                    .collect();
+                format!("v {} {} {}\n", c[0] + dx, c[1], c[2])
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    std::fs::write(path, shifted).unwrap();
+}
+
+/// Two cubes [-1,1]³, the second shifted by exactly 1 in x: coplanar
+/// faces and coinciding vertices and edges wherever they touch. The union
+/// is the box [-1,2]×[-1,1]², volume 12, up to the 2^-30-relative
+/// perturbation `holey union` applies by default.
+#[test]
+fn union_of_lattice_aligned_cubes() {
+    let dir = tmp();
+    let a = dir.path().join("a.obj");
+    let b = dir.path().join("b.obj");
+    let u = dir.path().join("u.obj");
+    ok(&["primitive", "@cube:4", s(&a)]);
+    ok(&["primitive", "@cube:4", s(&b)]);
+    shift_obj_x(&b, 1.0);
+    ok(&["union", s(&a), s(&b), s(&u)]);
+    let m = info(s(&u), &[]);
+    assert_eq!(m["closed"], true);
+    assert_eq!(m["manifold"], true);
+    assert_eq!(m["components"], 1);
+    assert_eq!(m["genus"], 0);
+    let v = m["volume"].as_f64().unwrap();
+    assert!((v - 12.0).abs() < 1e-6, "volume {v}");
+}
+
 /// `holey union` of two unit icospheres one unit apart along x, through
 /// the synthesized motion: one closed genus-0 solid whose volume is the
 /// two spheres' minus the overlap. The overlap of the polyhedra is bounded
@@ -850,22 +893,7 @@ fn union_of_two_spheres_is_one_closed_solid() {
     let r = dir.path().join("r.json");
     ok(&["primitive", "@sphere:4", s(&a)]);
     ok(&["primitive", "@sphere:4", s(&b)]);
-    // Shift b by one unit along x by rewriting its vertex lines.
-    let text = std::fs::read_to_string(&b).unwrap();
-    let shifted: String = text
-        .lines()
-        .map(|l| match l.strip_prefix("v ") {
-            Some(rest) => {
-                let c: Vec<f64> = rest
-                    .split_whitespace()
-                    .map(|t| t.parse().unwrap())
-                    .collect();
-                format!("v {} {} {}\n", c[0] + 1.0, c[1], c[2])
-            }
-            None => format!("{l}\n"),
-        })
-        .collect();
-    std::fs::write(&b, shifted).unwrap();
+    shift_obj_x(&b, 1.0);
     ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
     let m = info(s(&u), &[]);
     assert_eq!(m["closed"], true);

@@ -9,6 +9,7 @@ pub mod primitive;
 pub mod render;
 pub mod resolve;
 pub mod rind;
+pub mod sculpt;
 pub mod selfint;
 pub mod sierpinski;
 pub mod subdivide;

@@ -1,0 +1,128 @@
+//! `holey sculpt`: headless stroke replay with incidental topology change
+//! (Bernstein & Wojtan 2013, §4).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use holey_sculpt::{SculptError, Session, StrokeFileError, parse_strokes};
+
+use crate::cmd::render::{options as render_options, write_picture};
+use crate::error::{bad_input, from_io};
+use crate::progress::Progress;
+use crate::tri::{compact, load_triangles, write_triangles};
+
+#[derive(clap::Args)]
+#[command(after_help = "\
+Replays the strokes of a JSON file on a triangle mesh (polygons are
+fan-triangulated) and writes the result. Brushes: inflate (negative
+strength deflates), smooth, grab and move. Each path point is one frame.
+Inflate and smooth change topology every frame where the surface
+collides with itself; grab and move accumulate collisions over the drag
+and change topology once, at the end of the stroke, so a drag that comes
+back to where it began changes nothing.
+
+STROKES.json:
+  {\"remesh\": {\"min_edge\": 0.02, \"max_edge\": 0.06},
+   \"strokes\": [
+     {\"brush\": \"inflate\", \"radius\": 0.3, \"strength\": 0.02, \"path\": [[0,0,1], [0.1,0,1]]},
+     {\"brush\": \"smooth\",  \"radius\": 0.3, \"strength\": 0.5,  \"path\": [[0,0,1]]},
+     {\"brush\": \"grab\",    \"radius\": 0.4, \"path\": [[0,0,1], [0,0,0.5], [0,0,-1.5]]},
+     {\"brush\": \"move\",    \"path\": [[2,0,0], [1.5,0,0], [1,0,0]]}]}
+
+Strokes are numbered from 0 in errors. The first point of a grab must lie
+within its radius of the surface, that of a move within 10% of the
+bounding-box diagonal. \"remesh\" is accepted but dynamic remeshing is not
+implemented yet: it is ignored. On any error nothing is written to OUT
+(frames already written stay).
+
+Examples:
+  holey sculpt @sphere:3 strokes.json out.obj
+  holey sculpt body.ply strokes.json out.ply --frames frames/ -v")]
+pub struct Args {
+    /// The mesh to sculpt: a file or a primitive such as @sphere:3. It is
+    /// never modified.
+    pub input: String,
+    /// The stroke file (JSON).
+    pub strokes: String,
+    /// Output file; its extension names the format.
+    pub output: String,
+    /// Write a PNG per frame here, named strokeSSS_frameFFFF.png.
+    #[arg(long, value_name = "DIR")]
+    pub frames: Option<String>,
+    /// Picture size of the frames, WIDTHxHEIGHT.
+    #[arg(long, default_value = "640x480")]
+    pub size: String,
+    /// Viewing direction of the frames (as for `holey render`).
+    #[arg(long, default_value = "iso", allow_hyphen_values = true)]
+    pub view: String,
+    /// Print a line per stroke.
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    // Everything that can be checked before sculpting is: the output
+    // format, the stroke file and the mesh.
+    holey_io::Format::from_path(Path::new(&args.output)).map_err(from_io)?;
+    let text = std::fs::read_to_string(&args.strokes).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound || e.kind() == std::io::ErrorKind::InvalidData {
+            bad_input(format!("{}: {e}", args.strokes))
+        } else {
+            anyhow::anyhow!("{}: {e}", args.strokes)
+        }
+    })?;
+    let file = parse_strokes(&text)
+        .map_err(|e: StrokeFileError| bad_input(format!("{}: {e}", args.strokes)))?;
+    let opts = render_options(&args.size, &args.view, "z", false, false)?;
+    let mesh = load_triangles(&args.input)?;
+    let mut session = Session::new(mesh).map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
+    let frames_dir = match &args.frames {
+        Some(dir) => {
+            std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{dir}: {e}"))?;
+            Some(PathBuf::from(dir))
+        }
+        None => None,
+    };
+    let reports = {
+        let _p = Progress::start(format!("sculpting {} strokes", file.strokes.len()));
+        session
+            .replay(&file, &mut |stroke, frame| {
+                if let Some(dir) = &frames_dir {
+                    let path = dir.join(format!("stroke{stroke:03}_frame{:04}.png", frame.index));
+                    write_picture(&path.to_string_lossy(), &compact(frame.mesh), &opts)
+                        .map_err(|e| e.to_string())?;
+                }
+                Ok(())
+            })
+            .map_err(|e| {
+                // A frame that could not be written is the system's fault
+                // (status 1); anything else is the input's (status 2).
+                let system = matches!(&e, SculptError::Stroke { source, .. }
+                    if matches!(**source, SculptError::Observer { .. }));
+                if system {
+                    anyhow::anyhow!("{}: {e}", args.strokes)
+                } else {
+                    bad_input(format!("{}: {e}", args.strokes))
+                }
+            })?
+    };
+    write_triangles(&args.output, session.mesh())?;
+    if args.verbose {
+        for (i, r) in reports.iter().enumerate() {
+            let brush = r.brush.map(|b| b.name()).unwrap_or("?");
+            eprintln!(
+                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} -> {} triangles, {:.3} s",
+                r.frames,
+                r.engine_runs,
+                r.changes,
+                r.triangles_before,
+                r.triangles_after,
+                r.seconds
+            );
+        }
+        if file.remesh.is_some() {
+            eprintln!("note: \"remesh\" is not implemented yet and was ignored");
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,373 @@
+//! The four brushes of Bernstein & Wojtan 2013, §4, as pure functions of
+//! positions and triangles: each returns the positions at the end of one
+//! frame and never changes connectivity. Topology change is the session's
+//! business (see [`crate::session`]).
+//!
+//! Every function works on any triangle list (open, non-manifold,
+//! unoriented, many components), because the engine does.
+
+use glam::DVec3;
+use holey_topo::TriMesh;
+use serde::{Deserialize, Serialize};
+
+/// The brushes of §4.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Brush {
+    /// Instantaneous displacement along the surface normal (negative
+    /// strength deflates).
+    Inflate,
+    /// Instantaneous explicit Laplacian smoothing, masked by the brush.
+    Smooth,
+    /// Hold part of the surface with a distance-based falloff and drag it.
+    Grab,
+    /// Hold a whole connected component rigidly and drag it.
+    Move,
+}
+
+impl Brush {
+    /// The name used in stroke files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Brush::Inflate => "inflate",
+            Brush::Smooth => "smooth",
+            Brush::Grab => "grab",
+            Brush::Move => "move",
+        }
+    }
+
+    /// Whether the brush accumulates parity over the whole drag and changes
+    /// topology once at release (§4), rather than every frame.
+    pub fn is_drag(self) -> bool {
+        matches!(self, Brush::Grab | Brush::Move)
+    }
+}
+
+impl std::fmt::Display for Brush {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The brush falloff: `(1 - (d/r)²)²` inside the radius, 0 outside. It is
+/// 1 at the centre and has zero slope at both ends, so the displaced
+/// region blends smoothly into the rest of the surface (no crease at the
+/// rim, which would make needless self-intersections).
+pub fn falloff(distance: f64, radius: f64) -> f64 {
+    // Written so that NaN falls outside.
+    let inside = radius > 0.0 && distance < radius;
+    if !inside {
+        return 0.0;
+    }
+    let s = distance / radius;
+    let t = 1.0 - s * s;
+    t * t
+}
+
+/// Area-weighted vertex normals (unit length, or zero where the incident
+/// area cancels or vanishes). The triangles' own winding decides the side,
+/// so on an unoriented mesh the normal is whatever the incident triangles
+/// agree on; the sculptor sees that as the surface's front.
+pub fn vertex_normals(mesh: &TriMesh) -> Vec<DVec3> {
+    let mut n = vec![DVec3::ZERO; mesh.positions.len()];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+        // The cross product's length is twice the area: area weighting for free.
+        let w = (b - a).cross(c - a);
+        for &v in t {
+            n[v as usize] += w;
+        }
+    }
+    n.iter().map(|v| v.normalize_or_zero()).collect()
+}
+
+/// The edge neighbours of every vertex, sorted and without duplicates
+/// (degenerate triangles' self-edges are ignored).
+pub fn neighbours(mesh: &TriMesh) -> Vec<Vec<u32>> {
+    let mut adj = vec![Vec::new(); mesh.positions.len()];
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if a != b {
+                adj[a as usize].push(b);
+                adj[b as usize].push(a);
+            }
+        }
+    }
+    for l in &mut adj {
+        l.sort_unstable();
+        l.dedup();
+    }
+    adj
+}
+
+/// Vertices used by at least one triangle. Unreferenced vertices are not
+/// part of the surface, so brushes leave them alone.
+fn referenced(mesh: &TriMesh) -> Vec<bool> {
+    let mut used = vec![false; mesh.positions.len()];
+    for t in &mesh.triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    used
+}
+
+/// One frame of inflate (§4): every vertex within `radius` of `centre`
+/// moves along its normal by `strength × falloff`.
+pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
+    let normals = vertex_normals(mesh);
+    mesh.positions
+        .iter()
+        .zip(&normals)
+        .map(|(&p, &n)| p + n * (strength * falloff(p.distance(centre), radius)))
+        .collect()
+}
+
+/// One frame of smooth (§4): an explicit umbrella-Laplacian step, each
+/// vertex moving the fraction `strength × falloff` of the way to the mean
+/// of its edge neighbours. Jacobi-style (all from the old positions), so
+/// the result does not depend on vertex order.
+pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
+    let adj = neighbours(mesh);
+    mesh.positions
+        .iter()
+        .zip(&adj)
+        .map(|(&p, ring)| {
+            let w = strength * falloff(p.distance(centre), radius);
+            if w == 0.0 || ring.is_empty() {
+                return p;
+            }
+            let mean = ring
+                .iter()
+                .map(|&u| mesh.positions[u as usize])
+                .sum::<DVec3>()
+                / ring.len() as f64;
+            p + w * (mean - p)
+        })
+        .collect()
+}
+
+/// The closest point of a surface to `query`: `(triangle, point,
+/// distance)`, the first triangle in order on ties, or `None` without
+/// triangles. Brute force over all triangles: picking happens once per
+/// stroke.
+pub fn closest_point(mesh: &TriMesh, query: DVec3) -> Option<(usize, DVec3, f64)> {
+    let mut best: Option<(usize, DVec3, f64)> = None;
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let [a, b, c] = tri.map(|v| mesh.positions[v as usize]);
+        let p = closest_on_triangle(query, a, b, c);
+        let d = p.distance(query);
+        if best.is_none_or(|(_, _, bd)| d < bd) {
+            best = Some((t, p, d));
+        }
+    }
+    best
+}
+
+/// The point of triangle `abc` closest to `p` (Ericson, *Real-Time
+/// Collision Detection*, §5.1.5), by Voronoi regions; degenerate triangles
+/// fall into an edge or vertex region and still give a point of the
+/// triangle.
+pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let ab = b - a;
+    let ac = c - a;
+    let ap = p - a;
+    let d1 = ab.dot(ap);
+    let d2 = ac.dot(ap);
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let d3 = ab.dot(bp);
+    let d4 = ac.dot(bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return a + v * ab;
+    }
+    let cp = p - c;
+    let d5 = ab.dot(cp);
+    let d6 = ac.dot(cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return a + w * ac;
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return b + w * (c - b);
+    }
+    let denom = va + vb + vc;
+    if denom == 0.0 || !denom.is_finite() {
+        // Collinear corners that escaped the edge tests by rounding: the
+        // nearest corner is a point of the triangle and close enough.
+        return [a, b, c]
+            .into_iter()
+            .min_by(|x, y| x.distance_squared(p).total_cmp(&y.distance_squared(p)))
+            .unwrap_or(a);
+    }
+    let v = vb / denom;
+    let w = vc / denom;
+    a + ab * v + ac * w
+}
+
+/// The grab weights of §4: `falloff(|x_v − picked|)` at the stroke's
+/// start, zero for vertices no triangle uses.
+pub fn grab_weights(mesh: &TriMesh, picked: DVec3, radius: f64) -> Vec<f64> {
+    let used = referenced(mesh);
+    mesh.positions
+        .iter()
+        .zip(&used)
+        .map(|(&p, &u)| {
+            if u {
+                falloff(p.distance(picked), radius)
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// The vertices of the connected component (through shared vertex
+/// indices) that contains `triangle`: the rigid body the move brush holds.
+pub fn component_of(mesh: &TriMesh, triangle: usize) -> Vec<bool> {
+    let n = mesh.positions.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    for t in &mesh.triangles {
+        let r0 = find(&mut parent, t[0]);
+        for &v in &t[1..] {
+            let r = find(&mut parent, v);
+            if r != r0 {
+                parent[r as usize] = r0;
+            }
+        }
+    }
+    let Some(tri) = mesh.triangles.get(triangle) else {
+        return vec![false; n];
+    };
+    let root = find(&mut parent, tri[0]);
+    (0..n as u32)
+        .map(|v| find(&mut parent, v) == root)
+        .collect()
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn tetra() -> TriMesh {
+        TriMesh {
+            positions: vec![
+                DVec3::new(1.0, 1.0, 1.0),
+                DVec3::new(1.0, -1.0, -1.0),
+                DVec3::new(-1.0, 1.0, -1.0),
+                DVec3::new(-1.0, -1.0, 1.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+        }
+    }
+
+    #[test]
+    fn falloff_shape() {
+        assert_eq!(falloff(0.0, 1.0), 1.0);
+        assert_eq!(falloff(1.0, 1.0), 0.0);
+        assert_eq!(falloff(2.0, 1.0), 0.0);
+        assert!((falloff(0.5, 1.0) - 0.5625).abs() < 1e-15);
+        assert_eq!(falloff(0.0, 0.0), 0.0);
+        assert_eq!(falloff(f64::NAN, 1.0), 0.0);
+    }
+
+    #[test]
+    fn normals_point_outwards_on_a_ccw_tetrahedron() {
+        let m = tetra();
+        for (p, n) in m.positions.iter().zip(vertex_normals(&m)) {
+            assert!((n.length() - 1.0).abs() < 1e-12);
+            assert!(n.dot(*p) > 0.0, "normal {n} at {p} points inwards");
+        }
+    }
+
+    #[test]
+    fn inflate_moves_only_within_the_radius() {
+        let m = tetra();
+        let out = inflate(&m, m.positions[0], 1.0, 0.1);
+        assert!((out[0].length() - m.positions[0].length() - 0.1).abs() < 1e-12);
+        assert_eq!(&out[1..], &m.positions[1..]);
+        let deflated = inflate(&m, m.positions[0], 1.0, -0.1);
+        assert!(deflated[0].length() < m.positions[0].length());
+    }
+
+    #[test]
+    fn smooth_moves_towards_the_neighbour_mean() {
+        // A fan: the centre lifted above its planar ring.
+        let mut positions = vec![DVec3::new(0.0, 0.0, 1.0)];
+        for k in 0..6 {
+            let a = k as f64 * std::f64::consts::TAU / 6.0;
+            positions.push(DVec3::new(a.cos(), a.sin(), 0.0));
+        }
+        let triangles = (0..6).map(|k| [0, 1 + k, 1 + (k + 1) % 6]).collect();
+        let m = TriMesh {
+            positions,
+            triangles,
+        };
+        let out = smooth(&m, DVec3::new(0.0, 0.0, 1.0), 0.5, 1.0);
+        assert!(out[0].z.abs() < 1e-12, "full step reaches the mean");
+        assert_eq!(&out[1..], &m.positions[1..], "ring is outside the radius");
+        let half = smooth(&m, DVec3::new(0.0, 0.0, 1.0), 0.5, 0.5);
+        assert!((half[0].z - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn closest_point_regions() {
+        let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y);
+        let q = closest_on_triangle(DVec3::new(0.2, 0.2, 5.0), a, b, c);
+        assert!((q - DVec3::new(0.2, 0.2, 0.0)).length() < 1e-15);
+        assert_eq!(closest_on_triangle(DVec3::new(-1.0, -1.0, 0.0), a, b, c), a);
+        let e = closest_on_triangle(DVec3::new(0.5, -3.0, 1.0), a, b, c);
+        assert!((e - DVec3::new(0.5, 0.0, 0.0)).length() < 1e-15);
+        let h = closest_on_triangle(DVec3::new(1.0, 1.0, 0.0), a, b, c);
+        assert!((h - DVec3::new(0.5, 0.5, 0.0)).length() < 1e-15);
+        // Degenerate: all three corners on a line.
+        let d = closest_on_triangle(DVec3::new(0.5, 1.0, 0.0), a, b, 2.0 * b);
+        assert!((d - DVec3::new(0.5, 0.0, 0.0)).length() < 1e-15);
+        let m = tetra();
+        let (_, p, dist) = closest_point(&m, DVec3::new(3.0, 3.0, 3.0)).unwrap();
+        assert_eq!(p, m.positions[0]);
+        assert!((dist - 12f64.sqrt()).abs() < 1e-12);
+        assert!(closest_point(&TriMesh::default(), DVec3::ZERO).is_none());
+    }
+
+    #[test]
+    fn components_and_weights() {
+        let mut m = tetra();
+        let n = m.positions.len() as u32;
+        m.positions
+            .extend(tetra().positions.iter().map(|p| *p + DVec3::X * 10.0));
+        m.triangles
+            .extend(tetra().triangles.iter().map(|t| t.map(|v| v + n)));
+        m.positions.push(DVec3::ZERO); // unreferenced
+        let c = component_of(&m, 5);
+        assert_eq!(c.iter().filter(|&&x| x).count(), 4);
+        assert!(c[4..8].iter().all(|&x| x));
+        let w = grab_weights(&m, DVec3::ZERO, 100.0);
+        assert_eq!(w[8], 0.0, "unreferenced vertices are not grabbed");
+        assert!(w[0] > 0.0);
+        assert!(component_of(&m, 99).iter().all(|&x| !x));
+    }
+}
