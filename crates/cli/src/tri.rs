@@ -30,27 +30,18 @@ pub fn load_triangles(arg: &str) -> Result<TriMesh> {
     Ok(mesh)
 }
 
+/// A triangle mesh as a polygon soup, vertices as they are.
+fn to_poly(mesh: TriMesh) -> PolyMesh {
+    PolyMesh {
+        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
+        face_indices: mesh.triangles.iter().flatten().copied().collect(),
+        positions: mesh.positions,
+    }
+}
+
 /// The mesh without unreferenced vertices, as a polygon soup.
 pub fn compact(mesh: &TriMesh) -> PolyMesh {
-    const UNUSED: u32 = u32::MAX;
-    let mut index = vec![UNUSED; mesh.positions.len()];
-    let mut positions = Vec::new();
-    let mut face_indices = Vec::with_capacity(3 * mesh.triangles.len());
-    for t in &mesh.triangles {
-        for &v in t {
-            let slot = &mut index[v as usize];
-            if *slot == UNUSED {
-                *slot = positions.len() as u32;
-                positions.push(mesh.positions[v as usize]);
-            }
-            face_indices.push(*slot);
-        }
-    }
-    PolyMesh {
-        positions,
-        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
-        face_indices,
-    }
+    to_poly(mesh.clone().compacted())
 }
 
 /// Writes a triangle mesh (unreferenced vertices dropped) atomically.
@@ -60,11 +51,7 @@ pub fn write_triangles(path: &str, mesh: &TriMesh) -> Result<()> {
 
 /// Writes `mesh` as a PLY with one colour per vertex.
 pub fn write_colored(path: &str, mesh: &TriMesh, colors: Vec<[u8; 3]>) -> Result<()> {
-    let poly = PolyMesh {
-        positions: mesh.positions.clone(),
-        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
-        face_indices: mesh.triangles.iter().flatten().copied().collect(),
-    };
+    let poly = to_poly(mesh.clone());
     let opts = WriteOptions {
         ascii: false,
         vertex_colors: Some(colors),

@@ -298,7 +298,8 @@ impl Session {
                     .map_err(|source| SculptError::Topo { frame, source })?;
                 tally(report, &out);
                 diagnostics = Some(Diagnostics::of(&out));
-                mesh = compact(out.mesh);
+                // The engine's output has no unused vertices.
+                mesh = out.mesh;
             }
             observer(&Frame {
                 index: frame,
@@ -379,7 +380,7 @@ impl Session {
         })?;
         tally(report, &out);
         let diagnostics = Diagnostics::of(&out);
-        let mesh = compact(out.mesh);
+        let mesh = out.mesh;
         observer(&Frame {
             index: last,
             mesh: &mesh,
@@ -455,38 +456,6 @@ fn diagonal(mesh: &TriMesh) -> f64 {
     if lo.x <= hi.x { lo.distance(hi) } else { 0.0 }
 }
 
-/// Drops the vertices no triangle uses, keeping the others in order, so
-/// that deleted regions do not leave dead vertices behind for the rest of
-/// the session.
-pub fn compact(mesh: TriMesh) -> TriMesh {
-    let mut used = vec![false; mesh.positions.len()];
-    for t in &mesh.triangles {
-        for &v in t {
-            used[v as usize] = true;
-        }
-    }
-    if used.iter().all(|&u| u) {
-        return mesh;
-    }
-    let mut index = vec![u32::MAX; used.len()];
-    let mut positions = Vec::with_capacity(used.len());
-    for (v, (&u, &p)) in used.iter().zip(&mesh.positions).enumerate() {
-        if u {
-            index[v] = positions.len() as u32;
-            positions.push(p);
-        }
-    }
-    let triangles = mesh
-        .triangles
-        .iter()
-        .map(|t| t.map(|v| index[v as usize]))
-        .collect();
-    TriMesh {
-        positions,
-        triangles,
-    }
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -497,15 +466,6 @@ mod tests {
             positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::splat(9.0)],
             triangles: vec![[0, 1, 2]],
         }
-    }
-
-    #[test]
-    fn compact_drops_unused_vertices_in_order() {
-        let mut m = triangle_mesh();
-        m.triangles = vec![[1, 3, 2]];
-        let c = compact(m);
-        assert_eq!(c.positions, vec![DVec3::X, DVec3::Y, DVec3::splat(9.0)]);
-        assert_eq!(c.triangles, vec![[0, 2, 1]]);
     }
 
     #[test]

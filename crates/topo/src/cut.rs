@@ -587,7 +587,11 @@ pub fn cut(
         .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
         .collect();
     Cut {
-        mesh: compact(&out_positions, &kept),
+        mesh: TriMesh {
+            positions: out_positions,
+            triangles: kept,
+        }
+        .compacted(),
         report,
     }
 }
@@ -709,25 +713,6 @@ fn label(
     }
     report.undecided = state.iter().filter(|s| s.is_none()).count();
     state.into_iter().map(|s| s.unwrap_or(false)).collect()
-}
-
-/// Drops unused vertices, keeping their order.
-pub(crate) fn compact(positions: &[DVec3], tris: &[[u32; 3]]) -> TriMesh {
-    let mut map = vec![NONE; positions.len()];
-    for t in tris {
-        for &v in t {
-            map[v as usize] = 0;
-        }
-    }
-    let mut out = TriMesh::default();
-    for (v, m) in map.iter_mut().enumerate() {
-        if *m == 0 {
-            *m = out.positions.len() as u32;
-            out.positions.push(positions[v]);
-        }
-    }
-    out.triangles = tris.iter().map(|t| t.map(|v| map[v as usize])).collect();
-    out
 }
 
 #[cfg(test)]

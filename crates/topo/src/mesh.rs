@@ -39,6 +39,59 @@ pub enum MeshError {
 }
 
 impl TriMesh {
+    /// Every undirected edge used by exactly two triangles, in opposite
+    /// directions, and no triangle with a repeated vertex: a closed,
+    /// consistently oriented 2-manifold along its edges.
+    pub fn is_closed_manifold(&self) -> bool {
+        let mut sides: Vec<(u32, u32, bool)> = Vec::with_capacity(3 * self.triangles.len());
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                if a == b {
+                    return false;
+                }
+                sides.push((a.min(b), a.max(b), a < b));
+            }
+        }
+        sides.sort_unstable();
+        sides
+            .chunks(2)
+            .all(|c| c.len() == 2 && c[0].0 == c[1].0 && c[0].1 == c[1].1 && c[0].2 != c[1].2)
+            && sides
+                .windows(3)
+                .all(|w| !(w[0].0 == w[2].0 && w[0].1 == w[2].1))
+    }
+
+    /// The mesh without the vertices no triangle uses, the others kept in
+    /// order (the engine's output is always compacted this way).
+    pub fn compacted(self) -> TriMesh {
+        let mut index = vec![u32::MAX; self.positions.len()];
+        for t in &self.triangles {
+            for &v in t {
+                index[v as usize] = 0;
+            }
+        }
+        if index.iter().all(|&i| i == 0) {
+            return self;
+        }
+        let mut positions = Vec::with_capacity(self.positions.len());
+        for (i, &p) in index.iter_mut().zip(&self.positions) {
+            if *i == 0 {
+                *i = positions.len() as u32;
+                positions.push(p);
+            }
+        }
+        let triangles = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| index[v as usize]))
+            .collect();
+        TriMesh {
+            positions,
+            triangles,
+        }
+    }
+
     /// Checks indices and that every position is finite.
     pub fn check(&self) -> Result<(), MeshError> {
         check_positions("mesh", &self.positions)?;
@@ -168,6 +221,37 @@ mod tests {
             positions: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
             triangles: vec![[0, 1, 2], [0, 2, 3]],
         }
+    }
+
+    #[test]
+    fn closed_manifold_check() {
+        let tet = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        };
+        assert!(tet.is_closed_manifold());
+        let mut open = tet.clone();
+        open.triangles.pop();
+        assert!(!open.is_closed_manifold());
+        let mut flipped = tet.clone();
+        flipped.triangles[0] = [0, 1, 2];
+        assert!(!flipped.is_closed_manifold());
+        let mut doubled = tet.clone();
+        doubled
+            .triangles
+            .extend(tet.triangles.iter().map(|t| [t[0], t[2], t[1]]));
+        assert!(!doubled.is_closed_manifold());
+    }
+
+    #[test]
+    fn compacted_drops_unused_vertices_in_order() {
+        let m = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::splat(9.0)],
+            triangles: vec![[1, 3, 2]],
+        };
+        let c = m.compacted();
+        assert_eq!(c.positions, vec![DVec3::X, DVec3::Y, DVec3::splat(9.0)]);
+        assert_eq!(c.triangles, vec![[0, 2, 1]]);
     }
 
     #[test]

@@ -126,7 +126,7 @@ pub fn run(args: Args) -> Result<()> {
         Some(s) => parse_direction(s)?,
         None => DVec3::from_array(DEFAULT_DIRECTION).normalize(),
     };
-    let both_closed = closed_manifold(&a) && closed_manifold(&b);
+    let both_closed = a.is_closed_manifold() && b.is_closed_manifold();
     let diagonal = {
         let (lo, hi) = a
             .positions
@@ -159,7 +159,7 @@ pub fn run(args: Args) -> Result<()> {
         let mut out = holey_topo::topology_change(&start, &end, &args.engine.options())
             .map_err(|e| bad_input(e.to_string()))?;
         out.report.perturbation_retries = retries;
-        let good = !both_closed || closed_manifold(&out.mesh);
+        let good = !both_closed || out.mesh.is_closed_manifold();
         last = Some((start, end, out));
         if good {
             break;
@@ -188,26 +188,3 @@ const NUDGES: [(f64, [f64; 3]); 3] = [
         [0.408_248_3, -0.408_248_3, 0.816_496_6],
     ),
 ];
-
-/// Every undirected edge used by exactly two triangles, in opposite
-/// directions, and no triangle with a repeated vertex.
-fn closed_manifold(m: &TriMesh) -> bool {
-    let mut sides: Vec<(u32, u32, bool)> = Vec::with_capacity(3 * m.triangles.len());
-    for t in &m.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if a == b {
-                return false;
-            }
-            sides.push((a.min(b), a.max(b), a < b));
-        }
-    }
-    sides.sort_unstable();
-    sides.len().is_multiple_of(2)
-        && sides
-            .chunks(2)
-            .all(|c| c[0].0 == c[1].0 && c[0].1 == c[1].1 && c[0].2 != c[1].2)
-        && sides
-            .windows(3)
-            .all(|w| !(w[0].0 == w[2].0 && w[0].1 == w[2].1))
-}

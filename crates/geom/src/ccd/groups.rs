@@ -124,23 +124,27 @@ impl Groups {
                     .displacement
                     .iter()
                     .fold(0.0f64, |m, d| m.max(d.abs().max_element())));
+        // Members of each group, gathered once.
+        let mut verts_of: Vec<Vec<u32>> = vec![Vec::new(); k];
+        for (v, &g) in self.vertex_group.iter().enumerate() {
+            verts_of[g as usize].push(v as u32);
+        }
+        let mut tris_of: Vec<Vec<u32>> = vec![Vec::new(); k];
+        for (t, &g) in self.triangle_group.iter().enumerate() {
+            tris_of[g as usize].push(t as u32);
+        }
         let mut pairs = Vec::new();
-        for gt in 0..k {
+        for (gt, tri_ids) in tris_of.iter().enumerate() {
             let dt = self.displacement[gt];
-            let tri_ids: Vec<u32> = (0..tris.len() as u32)
-                .filter(|&t| self.triangle_group[t as usize] as usize == gt)
-                .collect();
             if tri_ids.is_empty() {
                 continue;
             }
-            for gv in 0..k {
+            for (gv, members) in verts_of.iter().enumerate() {
                 if gv == gt && self.exact[gt] {
                     // Equal displacements: every pair would be skipped.
                     continue;
                 }
-                let verts: Vec<u32> = (0..start.len() as u32)
-                    .filter(|&v| self.vertex_group[v as usize] as usize == gv)
-                    .collect();
+                let verts = members.clone();
                 if verts.is_empty() {
                     continue;
                 }
