@@ -118,33 +118,7 @@ pub fn boundary(m: &TriMesh) -> (usize, usize) {
 
 /// Connected components through shared vertices.
 pub fn components(m: &TriMesh) -> usize {
-    let mut parent: Vec<u32> = (0..m.positions.len() as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            p[x as usize] = p[p[x as usize] as usize];
-            x = p[x as usize];
-        }
-        x
-    }
-    for t in &m.triangles {
-        for k in 1..3 {
-            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
-            parent[a.max(b) as usize] = a.min(b);
-        }
-    }
-    let mut used = vec![false; m.positions.len()];
-    for t in &m.triangles {
-        for &v in t {
-            used[v as usize] = true;
-        }
-    }
-    let mut roots: Vec<u32> = (0..m.positions.len() as u32)
-        .filter(|&v| used[v as usize])
-        .map(|v| find(&mut parent, v))
-        .collect();
-    roots.sort_unstable();
-    roots.dedup();
-    roots.len()
+    split_components(m).len()
 }
 
 /// Genus of a closed oriented mesh (all components): Σ (2 − χᵢ)/2.
