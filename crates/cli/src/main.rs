@@ -64,6 +64,8 @@ enum Command {
     Resolve(cmd::resolve::Args),
     /// Replay sculpting strokes with incidental topology change (Bernstein & Wojtan 2013, §4).
     Sculpt(cmd::sculpt::Args),
+    /// The interactive modeler in the browser (model and sculpt workspaces).
+    Serve(cmd::serve::Args),
 }
 
 /// holey-topo catches the rare panic of spade's splitting constraint
@@ -101,6 +103,7 @@ fn main() {
         Command::Selfint(a) => cmd::selfint::run(a),
         Command::Resolve(a) => cmd::resolve::run(a),
         Command::Sculpt(a) => cmd::sculpt::run(a),
+        Command::Serve(a) => cmd::serve::run(a),
         Command::Primitives => {
             print!("{}", holey_shapes::primitive_help());
             Ok(())

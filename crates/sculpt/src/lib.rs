@@ -37,9 +37,11 @@
 //! ```
 
 pub mod brush;
+pub mod live;
 pub mod session;
 pub mod strokes;
 
 pub use brush::{Brush, falloff};
+pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke};
 pub use session::{Diagnostics, Frame, ObserverError, SculptError, Session, StrokeReport};
 pub use strokes::{Remesh, Stroke, StrokeFile, StrokeFileError, parse_strokes};

@@ -14,13 +14,12 @@
 //! session needs no seed and replaying the same strokes on the same mesh
 //! gives the same mesh bit for bit.
 
-use std::time::Instant;
-
 use glam::DVec3;
 use holey_topo::mesh::MeshError;
-use holey_topo::{Accumulator, Options, Outcome, TopoError, TriMesh, topology_change};
+use holey_topo::{Options, Outcome, TopoError, TriMesh};
 
-use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
+use crate::brush::Brush;
+use crate::live::{BrushSettings, LiveStroke};
 use crate::strokes::{Remesh, Stroke, StrokeFile};
 
 /// An error an observer of frames may return (writing a picture, say).
@@ -103,7 +102,7 @@ pub struct Diagnostics {
 }
 
 impl Diagnostics {
-    fn of(outcome: &Outcome) -> Diagnostics {
+    pub(crate) fn of(outcome: &Outcome) -> Diagnostics {
         Diagnostics {
             raw_odd: outcome.raw_odd.clone(),
             corrected_odd: outcome.corrected_odd.clone(),
@@ -221,31 +220,69 @@ impl Session {
 
     /// Applies one stroke, showing every frame to `observer`. On error the
     /// session is unchanged.
+    ///
+    /// The observer sees one frame per path point. The last frame of a
+    /// drag shows the result of the release.
     pub fn apply_stroke_observed(
         &mut self,
         stroke: &Stroke,
         observer: &mut dyn FnMut(&Frame<'_>) -> Result<(), ObserverError>,
     ) -> Result<StrokeReport, SculptError> {
-        let started = Instant::now();
-        let mut report = StrokeReport {
-            brush: Some(stroke.brush),
-            frames: stroke.path.len(),
-            triangles_before: self.mesh.triangles.len(),
-            ..StrokeReport::default()
+        let settings = BrushSettings {
+            brush: stroke.brush,
+            radius: stroke.radius,
+            strength: stroke.strength,
         };
-        let (mesh, diagnostics) = if stroke.brush.is_drag() {
-            self.drag(stroke, &mut report, observer)?
-        } else {
-            self.paint(stroke, &mut report, observer)?
-        };
-        report.triangles_after = mesh.triangles.len();
-        report.seconds = started.elapsed().as_secs_f64();
+        let first = stroke.path.first().copied().unwrap_or_default();
+        let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
+        let drag = stroke.brush.is_drag();
+        let last = stroke.path.len().saturating_sub(1);
+        for (index, &point) in stroke.path.iter().enumerate() {
+            let release = drag && index == last;
+            // The last frame of a drag is shown after the release.
+            live.set_preview(self.preview && !release);
+            let frame = live.frame(point)?;
+            if !release {
+                observer(&Frame {
+                    index,
+                    mesh: frame.mesh,
+                    corrected_odd: frame.corrected_odd.as_deref(),
+                })
+                .map_err(|source| SculptError::Observer {
+                    frame: index,
+                    source,
+                })?;
+            }
+        }
+        let done = live.finish()?;
+        if drag && !stroke.path.is_empty() {
+            observer(&Frame {
+                index: last,
+                mesh: &done.mesh,
+                corrected_odd: None,
+            })
+            .map_err(|source| SculptError::Observer {
+                frame: last,
+                source,
+            })?;
+        }
+        self.commit(done.mesh, done.diagnostics);
+        Ok(done.report)
+    }
+
+    /// Makes `mesh` the current mesh as one undo step (a stroke finished
+    /// elsewhere, by a [`LiveStroke`] the caller drove).
+    pub fn commit(&mut self, mesh: TriMesh, diagnostics: Option<Diagnostics>) {
         self.undo.push(std::mem::replace(&mut self.mesh, mesh));
         self.redo.clear();
         if let Some(d) = diagnostics {
             self.diagnostics = d;
         }
-        Ok(report)
+    }
+
+    /// The engine options strokes run with.
+    pub fn options(&self) -> Options {
+        self.options
     }
 
     /// Replays a stroke file: its remeshing range is stored and every
@@ -275,185 +312,6 @@ impl Session {
         }
         Ok(reports)
     }
-
-    /// Inflate and smooth: the engine between every pair of frames (§4).
-    fn paint(
-        &self,
-        stroke: &Stroke,
-        report: &mut StrokeReport,
-        observer: &mut dyn FnMut(&Frame<'_>) -> Result<(), ObserverError>,
-    ) -> Result<(TriMesh, Option<Diagnostics>), SculptError> {
-        let mut mesh = self.mesh.clone();
-        let mut diagnostics = None;
-        for (frame, &centre) in stroke.path.iter().enumerate() {
-            let end = match stroke.brush {
-                Brush::Smooth => smooth(&mesh, centre, stroke.radius, stroke.strength),
-                _ => inflate(&mesh, centre, stroke.radius, stroke.strength),
-            };
-            // A frame that moves nothing cannot collide; skipping it also
-            // keeps a brush that wanders off the surface from re-cutting
-            // intersections the mesh already had.
-            if end != mesh.positions {
-                let out = topology_change(&mesh, &end, &self.options)
-                    .map_err(|source| SculptError::Topo { frame, source })?;
-                tally(report, &out);
-                diagnostics = Some(Diagnostics::of(&out));
-                // The engine's output has no unused vertices.
-                mesh = out.mesh;
-            }
-            observer(&Frame {
-                index: frame,
-                mesh: &mesh,
-                corrected_odd: None,
-            })
-            .map_err(|source| SculptError::Observer { frame, source })?;
-        }
-        Ok((mesh, diagnostics))
-    }
-
-    /// Grab and move: parity accumulated over the drag, one topology
-    /// change at release (§4).
-    fn drag(
-        &self,
-        stroke: &Stroke,
-        report: &mut StrokeReport,
-        observer: &mut dyn FnMut(&Frame<'_>) -> Result<(), ObserverError>,
-    ) -> Result<(TriMesh, Option<Diagnostics>), SculptError> {
-        let start = &self.mesh;
-        let weights = self.pick(stroke)?;
-        let Some((&first, rest)) = stroke.path.split_first() else {
-            return Ok((start.clone(), None));
-        };
-        let last = rest.len();
-        let mut acc = Accumulator::new(start.clone(), self.options)
-            .map_err(|source| SculptError::Topo { frame: 0, source })?;
-        let mut view = start.clone();
-        for (frame, &point) in stroke.path.iter().enumerate() {
-            if frame > 0 {
-                let offset = point - first;
-                // Weight 0 keeps a vertex bit-exact, and a zero offset
-                // (back at the start) restores every position exactly.
-                let next: Vec<DVec3> = start
-                    .positions
-                    .iter()
-                    .zip(&weights)
-                    .map(|(&p, &w)| if w == 0.0 { p } else { p + w * offset })
-                    .collect();
-                acc.advance(&next)
-                    .map_err(|source| SculptError::Topo { frame, source })?;
-                view.positions = next;
-            }
-            if frame == last {
-                break;
-            }
-            let preview = if self.preview {
-                Some(
-                    acc.corrected_parity()
-                        .map_err(|source| SculptError::Topo { frame, source })?,
-                )
-            } else {
-                None
-            };
-            observer(&Frame {
-                index: frame,
-                mesh: &view,
-                corrected_odd: preview.as_deref(),
-            })
-            .map_err(|source| SculptError::Observer { frame, source })?;
-        }
-        if acc.frames() == 0 {
-            // A click without a drag: nothing moved, nothing to change.
-            observer(&Frame {
-                index: last,
-                mesh: start,
-                corrected_odd: None,
-            })
-            .map_err(|source| SculptError::Observer {
-                frame: last,
-                source,
-            })?;
-            return Ok((start.clone(), None));
-        }
-        let out = acc.release().map_err(|source| SculptError::Topo {
-            frame: last,
-            source,
-        })?;
-        tally(report, &out);
-        let diagnostics = Diagnostics::of(&out);
-        let mesh = out.mesh;
-        observer(&Frame {
-            index: last,
-            mesh: &mesh,
-            corrected_odd: None,
-        })
-        .map_err(|source| SculptError::Observer {
-            frame: last,
-            source,
-        })?;
-        Ok((mesh, Some(diagnostics)))
-    }
-
-    /// The per-vertex drag weights of a grab or move, after checking that
-    /// the first path point is near the surface.
-    fn pick(&self, stroke: &Stroke) -> Result<Vec<f64>, SculptError> {
-        let brush = stroke.brush;
-        let point = stroke.path.first().copied().unwrap_or_default();
-        let Some((triangle, picked, distance)) = closest_point(&self.mesh, point) else {
-            return Err(SculptError::NoSurface { brush });
-        };
-        let (limit, why) = match brush {
-            Brush::Move => (
-                MOVE_PICK_FRACTION * diagonal(&self.mesh),
-                "10% of the bounding-box diagonal",
-            ),
-            _ => (stroke.radius, "the brush radius"),
-        };
-        // Written so that a NaN distance is refused too.
-        let near = distance <= limit;
-        if !near {
-            return Err(SculptError::PickTooFar {
-                brush,
-                point,
-                distance,
-                limit,
-                why,
-            });
-        }
-        Ok(match brush {
-            Brush::Move => component_of(&self.mesh, triangle)
-                .into_iter()
-                .map(|held| if held { 1.0 } else { 0.0 })
-                .collect(),
-            _ => grab_weights(&self.mesh, picked, stroke.radius)
-                .into_iter()
-                .map(|w| w * stroke.strength)
-                .collect(),
-        })
-    }
-}
-
-fn tally(report: &mut StrokeReport, out: &Outcome) {
-    report.engine_runs += 1;
-    let r = &out.report;
-    if r.cut.triangles_split > 0 || r.cut.triangles_deleted > 0 {
-        report.changes += 1;
-    }
-    report.raw_odd_vertices += r.raw_odd_vertices;
-    report.corrected_odd_vertices += r.corrected_odd_vertices;
-}
-
-/// The bounding-box diagonal of the vertices triangles use.
-fn diagonal(mesh: &TriMesh) -> f64 {
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for t in &mesh.triangles {
-        for &v in t {
-            let p = mesh.positions[v as usize];
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-    }
-    if lo.x <= hi.x { lo.distance(hi) } else { 0.0 }
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@ pub mod resolve;
 pub mod rind;
 pub mod sculpt;
 pub mod selfint;
+pub mod serve;
 pub mod sierpinski;
 pub mod subdivide;
 pub mod topo;

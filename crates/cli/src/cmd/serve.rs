@@ -1,0 +1,119 @@
+//! `holey serve`: the interactive modeler in the browser.
+
+use std::io::Write;
+use std::net::IpAddr;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use holey_serve::{Config, Server};
+
+use crate::error::bad_input;
+
+#[derive(clap::Args)]
+#[command(after_help = "\
+Serves the modeler on http://127.0.0.1:PORT/ and prints the address. One
+session is shared by every tab; it is saved after every change in the
+state directory and restored at the next start.
+
+The browser front end is built once from the repository with
+  npm --prefix web ci && npm --prefix web run build
+and found in web/dist next to the binary's repository, or with --web.
+
+Examples:
+  holey serve
+  holey serve --port 0 --state-dir /tmp/holey-session --open")]
+pub struct Args {
+    /// Port to listen on; 0 picks a free one.
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+    /// Address to bind. Anything but loopback exposes the modeler (and
+    /// the files it can write) to the network.
+    #[arg(long, default_value = "127.0.0.1")]
+    pub host: IpAddr,
+    /// Open the modeler in the default browser.
+    #[arg(long)]
+    pub open: bool,
+    /// Where the session is saved [default: $XDG_STATE_HOME/holey or ~/.local/state/holey].
+    #[arg(long)]
+    pub state_dir: Option<PathBuf>,
+    /// The built front end [default: web/dist of the repository].
+    #[arg(long)]
+    pub web: Option<PathBuf>,
+    /// Largest upload in MiB.
+    #[arg(long, default_value_t = 256)]
+    pub max_upload: usize,
+}
+
+fn default_state_dir() -> PathBuf {
+    if let Some(d) = std::env::var_os("XDG_STATE_HOME").filter(|d| !d.is_empty()) {
+        return PathBuf::from(d).join("holey");
+    }
+    if let Some(h) = std::env::var_os("HOME").filter(|h| !h.is_empty()) {
+        return PathBuf::from(h).join(".local/state/holey");
+    }
+    PathBuf::from(".holey-session")
+}
+
+/// web/dist of the repository the binary was built in (target/*/holey),
+/// else of the working directory.
+fn default_web_dir() -> Option<PathBuf> {
+    let mut candidates = Vec::new();
+    if let Ok(exe) = std::env::current_exe() {
+        for up in exe.ancestors().skip(1).take(4) {
+            candidates.push(up.join("web/dist"));
+        }
+    }
+    candidates.push(PathBuf::from("web/dist"));
+    candidates
+        .into_iter()
+        .find(|d| d.join("index.html").is_file())
+}
+
+pub fn run(args: Args) -> Result<()> {
+    if args.max_upload == 0 {
+        return Err(bad_input("--max-upload must be at least 1 MiB"));
+    }
+    let web_dir = match args.web {
+        Some(d) if d.join("index.html").is_file() => Some(d),
+        Some(d) => {
+            return Err(bad_input(format!(
+                "{}: no index.html there (build the front end with `npm --prefix web run build`)",
+                d.display()
+            )));
+        }
+        None => default_web_dir(),
+    };
+    if !args.host.is_loopback() {
+        eprintln!(
+            "warning: binding {} makes the modeler reachable from the network; anyone who can reach it can edit the session",
+            args.host
+        );
+    }
+    if web_dir.is_none() {
+        eprintln!(
+            "note: the front end is not built; run `npm --prefix web ci && npm --prefix web run build` in the repository"
+        );
+    }
+    let config = Config {
+        host: args.host,
+        port: args.port,
+        state_dir: args.state_dir.unwrap_or_else(default_state_dir),
+        web_dir,
+        max_upload: args.max_upload.saturating_mul(1 << 20),
+        ..Config::default()
+    };
+    let (server, note) = Server::bind(config).context("holey serve")?;
+    let addr = server.local_addr()?;
+    let url = format!("http://{addr}/");
+    eprintln!("{note}");
+    println!("holey serve: listening on {url}");
+    std::io::stdout().flush()?;
+    if args.open {
+        // Best effort: a machine without a desktop keeps serving.
+        if let Err(e) = std::process::Command::new("xdg-open").arg(&url).spawn() {
+            eprintln!("note: could not open a browser ({e}); open {url} yourself");
+        }
+    }
+    server.run()?;
+    Ok(())
+}

@@ -1,0 +1,321 @@
+//! A stroke fed one frame at a time, as a pointer drives it (§4).
+//!
+//! [`Session`](crate::Session) replays whole strokes through this type, and
+//! the interactive modeler feeds it mouse events: [`LiveStroke::begin`]
+//! picks, [`LiveStroke::frame`] moves the surface by one path point and
+//! [`LiveStroke::finish`] ends the stroke (the release of a drag).
+//!
+//! - Inflate and smooth change topology between every pair of frames.
+//! - Grab and move accumulate collision parity over the drag
+//!   ([`Accumulator`]) and change topology once, at release; during the
+//!   drag the corrected parity of the dragged surface is available for the
+//!   live preview of what will vanish.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use holey_topo::{Accumulator, Options, Outcome, TriMesh, topology_change};
+
+use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
+use crate::session::{Diagnostics, MOVE_PICK_FRACTION, SculptError, StrokeReport};
+
+/// The brush settings of a stroke, without its path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BrushSettings {
+    pub brush: Brush,
+    /// World-space radius (unused by move).
+    pub radius: f64,
+    /// See [`crate::Stroke::strength`].
+    pub strength: f64,
+}
+
+/// What one frame shows.
+#[derive(Debug)]
+pub struct LiveFrame<'a> {
+    /// The frame within its stroke, from 0.
+    pub index: usize,
+    /// The surface at the end of the frame (during a drag: before the
+    /// topology change of the release).
+    pub mesh: &'a TriMesh,
+    /// Whether the triangles differ from the previous frame's (a paint
+    /// frame that changed topology); false means only positions moved.
+    pub connectivity_changed: bool,
+    /// During a drag with preview on: the corrected parity per vertex of
+    /// `mesh` (`true` = deleted at release).
+    pub corrected_odd: Option<Vec<bool>>,
+    /// Wall-clock time the frame took.
+    pub seconds: f64,
+}
+
+enum State {
+    Paint {
+        mesh: TriMesh,
+    },
+    Drag {
+        start: TriMesh,
+        /// Per-vertex share of the pointer offset (0 = held still).
+        weights: Vec<f64>,
+        first: DVec3,
+        acc: Box<Accumulator>,
+        view: TriMesh,
+    },
+}
+
+/// A stroke in progress. Dropping it abandons the stroke; the mesh it
+/// began from was only borrowed, so nothing changes.
+pub struct LiveStroke {
+    settings: BrushSettings,
+    options: Options,
+    preview: bool,
+    state: State,
+    frames: usize,
+    report: StrokeReport,
+    diagnostics: Option<Diagnostics>,
+    started: Instant,
+}
+
+impl LiveStroke {
+    /// Starts a stroke on `mesh`. A grab or move picks here: `first` must
+    /// lie within the brush radius (grab) or 10% of the bounding-box
+    /// diagonal (move) of the surface. Inflate and smooth pick nothing;
+    /// their first frame is the first call to [`LiveStroke::frame`].
+    pub fn begin(
+        mesh: &TriMesh,
+        settings: BrushSettings,
+        first: DVec3,
+        options: Options,
+    ) -> Result<LiveStroke, SculptError> {
+        let report = StrokeReport {
+            brush: Some(settings.brush),
+            triangles_before: mesh.triangles.len(),
+            ..StrokeReport::default()
+        };
+        let state = if settings.brush.is_drag() {
+            let weights = pick(mesh, settings, first)?;
+            let acc = Accumulator::new(mesh.clone(), options)
+                .map_err(|source| SculptError::Topo { frame: 0, source })?;
+            State::Drag {
+                start: mesh.clone(),
+                weights,
+                first,
+                acc: Box::new(acc),
+                view: mesh.clone(),
+            }
+        } else {
+            State::Paint { mesh: mesh.clone() }
+        };
+        Ok(LiveStroke {
+            settings,
+            options,
+            preview: false,
+            state,
+            frames: 0,
+            report,
+            diagnostics: None,
+            started: Instant::now(),
+        })
+    }
+
+    /// Whether drag frames compute the corrected parity (a static
+    /// intersection pass and a correction per frame).
+    pub fn set_preview(&mut self, on: bool) {
+        self.preview = on;
+    }
+
+    pub fn settings(&self) -> BrushSettings {
+        self.settings
+    }
+
+    /// The current surface (during a drag: the dragged one).
+    pub fn mesh(&self) -> &TriMesh {
+        match &self.state {
+            State::Paint { mesh } => mesh,
+            State::Drag { view, .. } => view,
+        }
+    }
+
+    /// Frames so far.
+    pub fn frames(&self) -> usize {
+        self.frames
+    }
+
+    /// One frame with the brush at `point` (inflate, smooth: the brush
+    /// centre; grab, move: the drag target). On error the stroke is left
+    /// as it was before the call.
+    pub fn frame(&mut self, point: DVec3) -> Result<LiveFrame<'_>, SculptError> {
+        let started = Instant::now();
+        let index = self.frames;
+        let BrushSettings {
+            brush,
+            radius,
+            strength,
+        } = self.settings;
+        let mut connectivity_changed = false;
+        let mut corrected_odd = None;
+        match &mut self.state {
+            State::Paint { mesh } => {
+                let end = match brush {
+                    Brush::Smooth => smooth(mesh, point, radius, strength),
+                    _ => inflate(mesh, point, radius, strength),
+                };
+                // A frame that moves nothing cannot collide; skipping it
+                // also keeps a brush that wanders off the surface from
+                // re-cutting intersections the mesh already had.
+                if end != mesh.positions {
+                    let out = topology_change(mesh, &end, &self.options).map_err(|source| {
+                        SculptError::Topo {
+                            frame: index,
+                            source,
+                        }
+                    })?;
+                    tally(&mut self.report, &out);
+                    self.diagnostics = Some(Diagnostics::of(&out));
+                    connectivity_changed = out.mesh.triangles != mesh.triangles;
+                    // The engine's output has no unused vertices.
+                    *mesh = out.mesh;
+                }
+            }
+            State::Drag {
+                start,
+                weights,
+                first,
+                acc,
+                view,
+            } => {
+                let offset = point - *first;
+                // Weight 0 keeps a vertex bit-exact, and a zero offset
+                // (back at the start) restores every position exactly.
+                let next: Vec<DVec3> = start
+                    .positions
+                    .iter()
+                    .zip(weights.iter())
+                    .map(|(&p, &w)| if w == 0.0 { p } else { p + w * offset })
+                    .collect();
+                if next != view.positions {
+                    acc.advance(&next).map_err(|source| SculptError::Topo {
+                        frame: index,
+                        source,
+                    })?;
+                    view.positions = next;
+                }
+                if self.preview {
+                    corrected_odd =
+                        Some(acc.corrected_parity().map_err(|source| SculptError::Topo {
+                            frame: index,
+                            source,
+                        })?);
+                }
+            }
+        }
+        self.frames += 1;
+        Ok(LiveFrame {
+            index,
+            mesh: self.mesh(),
+            connectivity_changed,
+            corrected_odd,
+            seconds: started.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Ends the stroke: the final surface, the diagnostics of its last
+    /// topology change (if any) and its report. A drag changes topology
+    /// here, once; a drag that came back to its start (or never moved)
+    /// gives back the starting surface unchanged.
+    pub fn finish(self) -> Result<FinishedStroke, SculptError> {
+        let mut report = self.report;
+        report.frames = self.frames;
+        let last = self.frames.saturating_sub(1);
+        let (mesh, diagnostics) = match self.state {
+            State::Paint { mesh } => (mesh, self.diagnostics),
+            State::Drag { start, acc, .. } => {
+                if acc.frames() == 0 {
+                    (start, None)
+                } else {
+                    let out = acc.release().map_err(|source| SculptError::Topo {
+                        frame: last,
+                        source,
+                    })?;
+                    tally(&mut report, &out);
+                    let d = Diagnostics::of(&out);
+                    (out.mesh, Some(d))
+                }
+            }
+        };
+        report.triangles_after = mesh.triangles.len();
+        report.seconds = self.started.elapsed().as_secs_f64();
+        Ok(FinishedStroke {
+            mesh,
+            diagnostics,
+            report,
+        })
+    }
+}
+
+/// The result of [`LiveStroke::finish`].
+#[derive(Debug)]
+pub struct FinishedStroke {
+    pub mesh: TriMesh,
+    pub diagnostics: Option<Diagnostics>,
+    pub report: StrokeReport,
+}
+
+/// The per-vertex drag weights of a grab or move, after checking that the
+/// pick point is near the surface.
+fn pick(mesh: &TriMesh, settings: BrushSettings, point: DVec3) -> Result<Vec<f64>, SculptError> {
+    let brush = settings.brush;
+    let Some((triangle, picked, distance)) = closest_point(mesh, point) else {
+        return Err(SculptError::NoSurface { brush });
+    };
+    let (limit, why) = match brush {
+        Brush::Move => (
+            MOVE_PICK_FRACTION * diagonal(mesh),
+            "10% of the bounding-box diagonal",
+        ),
+        _ => (settings.radius, "the brush radius"),
+    };
+    // Written so that a NaN distance is refused too.
+    let near = distance <= limit;
+    if !near {
+        return Err(SculptError::PickTooFar {
+            brush,
+            point,
+            distance,
+            limit,
+            why,
+        });
+    }
+    Ok(match brush {
+        Brush::Move => component_of(mesh, triangle)
+            .into_iter()
+            .map(|held| if held { 1.0 } else { 0.0 })
+            .collect(),
+        _ => grab_weights(mesh, picked, settings.radius)
+            .into_iter()
+            .map(|w| w * settings.strength)
+            .collect(),
+    })
+}
+
+fn tally(report: &mut StrokeReport, out: &Outcome) {
+    report.engine_runs += 1;
+    let r = &out.report;
+    if r.cut.triangles_split > 0 || r.cut.triangles_deleted > 0 {
+        report.changes += 1;
+    }
+    report.raw_odd_vertices += r.raw_odd_vertices;
+    report.corrected_odd_vertices += r.corrected_odd_vertices;
+}
+
+/// The bounding-box diagonal of the vertices triangles use.
+fn diagonal(mesh: &TriMesh) -> f64 {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for t in &mesh.triangles {
+        for &v in t {
+            let p = mesh.positions[v as usize];
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    if lo.x <= hi.x { lo.distance(hi) } else { 0.0 }
+}

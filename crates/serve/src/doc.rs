@@ -1,0 +1,372 @@
+//! The document: one mesh, its workspace, undo and redo, and the modes
+//! that hold state between requests (a rind being punched, a stroke being
+//! dragged). Every change goes through [`Document::commit`], which bumps
+//! the version, so requests made against an older picture are refused.
+
+use glam::DVec3;
+use holey_dlfl::{CornerId, Mesh};
+use holey_mesh::PolyMesh;
+use holey_mesh::analysis::{MeshInfo, analyze, dlfl_info};
+use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_model::rind::Rind;
+use holey_sculpt::LiveStroke;
+use holey_topo::TriMesh;
+use serde_json::{Value, json};
+
+use crate::frame::{Display, ModelIndex, display_model, display_triangles};
+use crate::{ConnId, ServeError};
+
+/// How many strokes and operations undo remembers. Each step keeps a
+/// whole mesh, so the history is bounded.
+pub const UNDO_LIMIT: usize = 64;
+
+/// What the document holds. Few of these exist at once (the document,
+/// its undo history), so the variants' size difference does not matter.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum Content {
+    /// The model workspace: a DLFL (the thesis's tools need a 2-manifold).
+    Model(Mesh),
+    /// The sculpt workspace: any triangle mesh.
+    Sculpt(TriMesh),
+}
+
+impl Content {
+    pub fn workspace(&self) -> &'static str {
+        match self {
+            Content::Model(_) => "model",
+            Content::Sculpt(_) => "sculpt",
+        }
+    }
+
+    /// The mesh as polygons (holes left out), for export and stats.
+    pub fn to_poly(&self) -> PolyMesh {
+        match self {
+            Content::Model(m) => to_poly(m).poly,
+            Content::Sculpt(t) => tri_to_poly(&t.clone().compacted()),
+        }
+    }
+
+    /// Converts to the model workspace. Fails on a mesh that is not an
+    /// orientable 2-manifold with boundary.
+    pub fn into_model(self) -> Result<Content, ServeError> {
+        match self {
+            Content::Model(_) => Ok(self),
+            Content::Sculpt(t) => {
+                let poly = tri_to_poly(&t.compacted());
+                let imported = to_dlfl(&poly, ImportOptions::default()).map_err(|e| {
+                    ServeError::Refused(format!(
+                        "the model tools need an orientable 2-manifold and this mesh is not one: {e}"
+                    ))
+                })?;
+                Ok(Content::Model(imported.mesh))
+            }
+        }
+    }
+
+    /// Converts to the sculpt workspace: faces are fan-triangulated.
+    pub fn into_sculpt(self) -> Result<Content, ServeError> {
+        match self {
+            Content::Sculpt(_) => Ok(self),
+            Content::Model(m) => Ok(Content::Sculpt(poly_to_tri(&to_poly(&m).poly)?)),
+        }
+    }
+}
+
+/// A polygon soup's faces fan-triangulated.
+pub fn poly_to_tri(poly: &PolyMesh) -> Result<TriMesh, ServeError> {
+    let (triangles, _) = poly.fan_triangles();
+    let mesh = TriMesh {
+        positions: poly.positions.clone(),
+        triangles,
+    };
+    mesh.check()
+        .map_err(|e| ServeError::Refused(format!("the mesh cannot be sculpted: {e}")))?;
+    Ok(mesh)
+}
+
+fn tri_to_poly(mesh: &TriMesh) -> PolyMesh {
+    PolyMesh {
+        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
+        face_indices: mesh.triangles.iter().flatten().copied().collect(),
+        positions: mesh.positions.clone(),
+    }
+}
+
+/// A rind being punched: the crust shown, and the mesh before it.
+pub struct RindMode {
+    pub rind: Rind,
+    pub thickness: f64,
+}
+
+/// A stroke being dragged by one tab.
+pub struct ActiveStroke {
+    pub owner: ConnId,
+    pub live: LiveStroke,
+    /// The connectivity the browser has (positions-only frames refer to it).
+    pub display: Display,
+}
+
+/// The document the server edits.
+pub struct Document {
+    content: Content,
+    undo: Vec<Content>,
+    redo: Vec<Content>,
+    version: u64,
+    pub rind: Option<RindMode>,
+    pub stroke: Option<ActiveStroke>,
+    /// A long operation in progress: its owner and name.
+    pub busy: Option<(ConnId, String)>,
+    /// Dynamic remeshing detail in [0, 1]; 0 is off.
+    pub remesh_detail: f64,
+    display: Display,
+    index: ModelIndex,
+    stats: Value,
+}
+
+impl Document {
+    pub fn new(content: Content, version: u64) -> Document {
+        let mut doc = Document {
+            content,
+            undo: Vec::new(),
+            redo: Vec::new(),
+            version,
+            rind: None,
+            stroke: None,
+            busy: None,
+            remesh_detail: 0.0,
+            display: Display::default(),
+            index: ModelIndex::default(),
+            stats: Value::Null,
+        };
+        doc.refresh();
+        doc
+    }
+
+    pub fn content(&self) -> &Content {
+        &self.content
+    }
+
+    pub fn version(&self) -> u64 {
+        self.version
+    }
+
+    pub fn display(&self) -> &Display {
+        &self.display
+    }
+
+    pub fn can_undo(&self) -> bool {
+        !self.undo.is_empty()
+    }
+
+    pub fn can_redo(&self) -> bool {
+        !self.redo.is_empty()
+    }
+
+    /// Recomputes the display, the handle tables and the stats of what is
+    /// shown (the rind's crust while punching).
+    fn refresh(&mut self) {
+        let (display, index) = match (&self.rind, &self.content) {
+            (Some(r), _) => display_model(r.rind.mesh()),
+            (None, Content::Model(m)) => display_model(m),
+            (None, Content::Sculpt(t)) => (display_triangles(t), ModelIndex::default()),
+        };
+        let info = match (&self.rind, &self.content) {
+            (Some(r), _) => dlfl_info(r.rind.mesh()),
+            (None, Content::Model(m)) => dlfl_info(m),
+            (None, Content::Sculpt(t)) => analyze(&tri_to_poly(&t.clone().compacted())),
+        };
+        self.stats = stats_json(&info, display.triangles.len());
+        self.display = display;
+        self.index = index;
+    }
+
+    /// Replaces the content as one undo step.
+    pub fn commit(&mut self, content: Content) {
+        let old = std::mem::replace(&mut self.content, content);
+        self.undo.push(old);
+        if self.undo.len() > UNDO_LIMIT {
+            self.undo.remove(0);
+        }
+        self.redo.clear();
+        self.version += 1;
+        self.refresh();
+    }
+
+    /// Shows the rind's current crust (after a punch) without committing.
+    pub fn touch(&mut self) {
+        self.version += 1;
+        self.refresh();
+    }
+
+    pub fn undo(&mut self) -> bool {
+        match self.undo.pop() {
+            Some(c) => {
+                self.redo.push(std::mem::replace(&mut self.content, c));
+                self.version += 1;
+                self.refresh();
+                true
+            }
+            None => false,
+        }
+    }
+
+    pub fn redo(&mut self) -> bool {
+        match self.redo.pop() {
+            Some(c) => {
+                self.undo.push(std::mem::replace(&mut self.content, c));
+                self.version += 1;
+                self.refresh();
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The state message every tab receives after a change.
+    pub fn state_json(&self) -> Value {
+        json!({
+            "type": "state",
+            "version": self.version,
+            "workspace": self.content.workspace(),
+            "mode": if self.rind.is_some() { "rind" } else { "normal" },
+            "can_undo": self.can_undo(),
+            "can_redo": self.can_redo(),
+            "stats": self.stats,
+            "busy": self.busy.as_ref().map(|(_, op)| op.clone()),
+            "remesh": {"detail": self.remesh_detail},
+            "stroke": self.stroke.is_some(),
+        })
+    }
+
+    /// Refuses a request made against another picture than the current.
+    pub fn check_version(&self, request: &Value) -> Result<(), ServeError> {
+        match request.get("version").and_then(Value::as_u64) {
+            Some(v) if v != self.version => Err(ServeError::Refused(format!(
+                "the mesh changed since that selection (version {v}, now {}); select again",
+                self.version
+            ))),
+            _ => Ok(()),
+        }
+    }
+
+    /// The model mesh (the rind's crust while punching) or an error
+    /// saying the request needs the model workspace.
+    pub fn model(&self, what: &str) -> Result<&Mesh, ServeError> {
+        match &self.content {
+            Content::Model(m) => Ok(m),
+            Content::Sculpt(_) => Err(ServeError::Refused(format!(
+                "{what} works in the model workspace; switch to it first"
+            ))),
+        }
+    }
+
+    pub fn index(&self) -> &ModelIndex {
+        &self.index
+    }
+
+    /// The corner at display face `face` and display vertex `vertex`.
+    pub fn corner(&self, mesh: &Mesh, face: usize, vertex: usize) -> Result<CornerId, ServeError> {
+        let f = *self.index.faces.get(face).ok_or_else(|| {
+            ServeError::Refused(format!(
+                "face {face} does not exist ({} faces)",
+                self.index.faces.len()
+            ))
+        })?;
+        let v = *self.index.vertices.get(vertex).ok_or_else(|| {
+            ServeError::Refused(format!(
+                "vertex {vertex} does not exist ({} vertices)",
+                self.index.vertices.len()
+            ))
+        })?;
+        mesh.corner_of(f, v)
+            .map_err(|e| ServeError::Refused(e.to_string()))?
+            .ok_or_else(|| ServeError::Refused(format!("vertex {vertex} is not on face {face}")))
+    }
+
+    /// The sculpt mesh, or an error saying the request needs it.
+    pub fn sculpt_mesh(&self, what: &str) -> Result<&TriMesh, ServeError> {
+        match &self.content {
+            Content::Sculpt(t) => Ok(t),
+            Content::Model(_) => Err(ServeError::Refused(format!(
+                "{what} works in the sculpt workspace; switch to it first"
+            ))),
+        }
+    }
+
+    /// The bounding-box diagonal of what is shown (for default radii).
+    pub fn diagonal(&self) -> f64 {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for p in &self.display.positions {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        if lo.x <= hi.x { lo.distance(hi) } else { 0.0 }
+    }
+}
+
+fn stats_json(info: &MeshInfo, triangles: usize) -> Value {
+    json!({
+        "vertices": info.vertices,
+        "edges": info.edges,
+        "faces": info.faces,
+        "triangles": triangles,
+        "components": info.components,
+        "genus": info.genus,
+        "boundary_loops": info.boundary_loops,
+        "closed": info.closed,
+        "manifold": info.manifold,
+    })
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn model(spec: &str) -> Content {
+        let soup = holey_shapes::parse_primitive(spec).unwrap();
+        Content::Model(to_dlfl(&soup, ImportOptions::default()).unwrap().mesh)
+    }
+
+    #[test]
+    fn undo_redo_and_versions() {
+        let mut d = Document::new(model("@cube"), 1);
+        assert_eq!(d.state_json()["stats"]["genus"], 0);
+        d.commit(model("@torus"));
+        assert_eq!(d.version(), 2);
+        assert_eq!(d.state_json()["stats"]["genus"], 1);
+        assert!(d.undo());
+        assert_eq!(d.state_json()["stats"]["genus"], 0);
+        assert!(d.redo());
+        assert_eq!(d.state_json()["stats"]["genus"], 1);
+        assert!(!d.redo());
+        assert!(d.check_version(&json!({"version": 1})).is_err());
+        assert!(d.check_version(&json!({"version": 4})).is_ok());
+    }
+
+    #[test]
+    fn workspaces_convert_both_ways() {
+        let sculpt = model("@torus").into_sculpt().unwrap();
+        let Content::Sculpt(t) = &sculpt else {
+            panic!("not sculpt")
+        };
+        assert!(t.is_closed_manifold());
+        let back = sculpt.into_model().unwrap();
+        let d = Document::new(back, 1);
+        assert_eq!(d.state_json()["stats"]["genus"], 1);
+        // Three sheets on one edge are no 2-manifold.
+        let fan = Content::Sculpt(TriMesh {
+            positions: vec![
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::Y,
+                DVec3::Z,
+                DVec3::new(0.5, -1.0, 0.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 1, 3], [0, 1, 4]],
+        });
+        assert!(fan.into_model().is_err());
+    }
+}

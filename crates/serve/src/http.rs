@@ -1,0 +1,322 @@
+//! A small HTTP/1.1 server: one request per connection (static files,
+//! upload, download, health) or a WebSocket upgrade. Every answer closes
+//! the connection, which keeps the reader simple and bounded.
+//!
+//! Requests that change the document (uploads, the WebSocket) must come
+//! from a page of this server: a foreign `Origin` is refused, so another
+//! web site open in the same browser cannot drive the modeler.
+
+use std::io::{self, Read, Write};
+use std::net::TcpStream;
+use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
+use std::time::Duration;
+
+use serde_json::json;
+
+use crate::ops::Shared;
+
+/// The largest request head accepted.
+const MAX_HEAD: usize = 32 << 10;
+
+/// A parsed request head.
+#[derive(Debug, Default)]
+pub struct Request {
+    pub method: String,
+    pub path: String,
+    pub query: Vec<(String, String)>,
+    pub headers: Vec<(String, String)>,
+}
+
+impl Request {
+    pub fn header(&self, name: &str) -> Option<&str> {
+        self.headers
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(name))
+            .map(|(_, v)| v.as_str())
+    }
+
+    pub fn param(&self, name: &str) -> Option<&str> {
+        self.query
+            .iter()
+            .find(|(k, _)| k == name)
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// Whether the request comes from a page this server served (or from
+    /// no page at all, like a script).
+    pub fn same_origin(&self) -> bool {
+        let Some(origin) = self.header("origin") else {
+            return true;
+        };
+        let host = self.header("host").unwrap_or("");
+        origin
+            .strip_prefix("http://")
+            .is_some_and(|rest| rest.trim_end_matches('/') == host)
+    }
+}
+
+/// Reads the head. Returns it and every byte read so far (the head and
+/// whatever of the body came with it), or `None` for a closed or
+/// malformed connection.
+pub fn read_head(stream: &mut TcpStream) -> io::Result<Option<(Request, Vec<u8>, usize)>> {
+    let mut buf = Vec::with_capacity(1024);
+    let mut chunk = [0u8; 4096];
+    let end = loop {
+        let n = stream.read(&mut chunk)?;
+        if n == 0 {
+            return Ok(None);
+        }
+        buf.extend_from_slice(&chunk[..n]);
+        if let Some(p) = find(&buf, b"\r\n\r\n") {
+            break p + 4;
+        }
+        if buf.len() > MAX_HEAD {
+            return Ok(None);
+        }
+    };
+    let head = String::from_utf8_lossy(&buf[..end]).into_owned();
+    let mut lines = head.split("\r\n");
+    let mut first = lines.next().unwrap_or("").split(' ');
+    let method = first.next().unwrap_or("").to_owned();
+    let target = first.next().unwrap_or("/");
+    let (path, query) = target.split_once('?').unwrap_or((target, ""));
+    let query = query
+        .split('&')
+        .filter(|kv| !kv.is_empty())
+        .map(|kv| {
+            let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
+            (percent_decode(k), percent_decode(v))
+        })
+        .collect();
+    let headers = lines
+        .filter_map(|l| l.split_once(':'))
+        .map(|(k, v)| (k.trim().to_owned(), v.trim().to_owned()))
+        .collect();
+    Ok(Some((
+        Request {
+            method,
+            path: percent_decode(path),
+            query,
+            headers,
+        },
+        buf,
+        end,
+    )))
+}
+
+fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
+    hay.windows(needle.len()).position(|w| w == needle)
+}
+
+fn percent_decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        if b[i] == b'%'
+            && let (Some(h), Some(l)) = (
+                b.get(i + 1).and_then(|&c| hex(c)),
+                b.get(i + 2).and_then(|&c| hex(c)),
+            )
+        {
+            out.push((h * 16 + l) as u8);
+            i += 3;
+            continue;
+        }
+        out.push(if b[i] == b'+' { b' ' } else { b[i] });
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Writes a whole response and closes.
+pub fn respond(stream: &mut TcpStream, status: u16, content_type: &str, extra: &str, body: &[u8]) {
+    let reason = match status {
+        200 => "OK",
+        400 => "Bad Request",
+        403 => "Forbidden",
+        404 => "Not Found",
+        405 => "Method Not Allowed",
+        409 => "Conflict",
+        411 => "Length Required",
+        413 => "Payload Too Large",
+        _ => "Error",
+    };
+    let head = format!(
+        "HTTP/1.1 {status} {reason}\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\n{extra}Connection: close\r\n\r\n",
+        body.len()
+    );
+    // A browser that went away is not an error worth reporting.
+    let _ = stream.write_all(head.as_bytes());
+    let _ = stream.write_all(body);
+    let _ = stream.flush();
+}
+
+fn respond_json(stream: &mut TcpStream, status: u16, value: &serde_json::Value) {
+    respond(
+        stream,
+        status,
+        "application/json",
+        "",
+        value.to_string().as_bytes(),
+    );
+}
+
+fn error(stream: &mut TcpStream, status: u16, message: &str) {
+    respond_json(stream, status, &json!({"ok": false, "error": message}));
+}
+
+/// Serves one connection.
+pub fn handle_connection(shared: &Arc<Shared>, mut stream: TcpStream) {
+    // A client that stops sending mid-head must not hold a thread forever.
+    let _ = stream.set_read_timeout(Some(Duration::from_secs(30)));
+    let Ok(Some((request, buf, head_end))) = read_head(&mut stream) else {
+        return;
+    };
+    let upgrade = request
+        .header("upgrade")
+        .is_some_and(|u| u.eq_ignore_ascii_case("websocket"));
+    match (request.method.as_str(), request.path.as_str()) {
+        ("GET", "/ws") if upgrade => {
+            if !request.same_origin() {
+                error(&mut stream, 403, "WebSocket from a foreign origin refused");
+                return;
+            }
+            crate::ws::serve_socket(shared, stream, buf);
+        }
+        ("GET", "/api/health") => respond_json(&mut stream, 200, &json!({"ok": true})),
+        ("GET", "/api/export") => export(shared, &mut stream, &request),
+        ("POST", "/api/import") => import(shared, &mut stream, &request, &buf[head_end..]),
+        ("GET" | "HEAD", _) => static_file(shared, &mut stream, &request),
+        _ => error(&mut stream, 405, "method not allowed"),
+    }
+}
+
+fn export(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) {
+    let format = request.param("format").unwrap_or("obj");
+    match shared.export(format) {
+        Ok((bytes, file)) => respond(
+            stream,
+            200,
+            "application/octet-stream",
+            &format!("Content-Disposition: attachment; filename=\"{file}\"\r\n"),
+            &bytes,
+        ),
+        Err(e) => error(stream, 400, &e.to_string()),
+    }
+}
+
+fn import(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request, started: &[u8]) {
+    if !request.same_origin() {
+        return error(stream, 403, "upload from a foreign origin refused");
+    }
+    let name = request.param("name").unwrap_or("upload.obj").to_owned();
+    let Some(length) = request
+        .header("content-length")
+        .and_then(|l| l.parse::<usize>().ok())
+    else {
+        return error(stream, 411, "the upload needs a Content-Length");
+    };
+    let limit = shared.config.max_upload;
+    if length > limit {
+        return error(
+            stream,
+            413,
+            &format!(
+                "{name} is {} MiB; the upload limit is {} MiB (holey serve --max-upload)",
+                length.div_ceil(1 << 20),
+                limit >> 20
+            ),
+        );
+    }
+    let mut body = Vec::with_capacity(length);
+    body.extend_from_slice(&started[..started.len().min(length)]);
+    let mut rest = (&mut *stream).take((length - body.len()) as u64);
+    if rest.read_to_end(&mut body).is_err() || body.len() != length {
+        return error(stream, 400, "the upload ended early");
+    }
+    match shared.import(&name, &body) {
+        Ok(message) => respond_json(stream, 200, &json!({"ok": true, "message": message})),
+        Err(e) => error(stream, 400, &e.to_string()),
+    }
+}
+
+fn content_type(path: &Path) -> &'static str {
+    match path.extension().and_then(|e| e.to_str()).unwrap_or("") {
+        "html" => "text/html; charset=utf-8",
+        "js" | "mjs" => "text/javascript",
+        "css" => "text/css",
+        "json" | "map" => "application/json",
+        "svg" => "image/svg+xml",
+        "png" => "image/png",
+        "ico" => "image/x-icon",
+        "wasm" => "application/wasm",
+        _ => "application/octet-stream",
+    }
+}
+
+/// A file of the built front end. Paths never leave the web directory.
+fn static_file(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) {
+    let Some(root) = shared.config.web_dir.as_ref() else {
+        return respond(
+            stream,
+            200,
+            "text/html; charset=utf-8",
+            "",
+            NOT_BUILT.as_bytes(),
+        );
+    };
+    let relative = request.path.trim_start_matches('/');
+    let relative = if relative.is_empty() {
+        "index.html"
+    } else {
+        relative
+    };
+    let rel = Path::new(relative);
+    if rel.components().any(|c| !matches!(c, Component::Normal(_))) {
+        return error(stream, 400, "bad path");
+    }
+    let path: PathBuf = root.join(rel);
+    match std::fs::read(&path) {
+        Ok(bytes) => {
+            let body: &[u8] = if request.method == "HEAD" {
+                &[]
+            } else {
+                &bytes
+            };
+            respond(stream, 200, content_type(&path), "", body)
+        }
+        Err(_) => error(stream, 404, &format!("{relative}: not found")),
+    }
+}
+
+const NOT_BUILT: &str = "<!doctype html><meta charset=utf-8><title>holey</title>\
+<h1>holey serve</h1><p>The server is running, but the browser front end is not built.\
+ From the repository, run:</p><pre>npm --prefix web ci\nnpm --prefix web run build</pre>\
+<p>then restart <code>holey serve</code> (or pass <code>--web DIR</code>).</p>";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decodes_percent_and_plus() {
+        assert_eq!(percent_decode("a%20b+c%2Fd"), "a b c/d");
+        assert_eq!(percent_decode("bad%2"), "bad%2");
+        assert_eq!(percent_decode("%zz"), "%zz");
+    }
+
+    #[test]
+    fn origin_check() {
+        let mut r = Request::default();
+        assert!(r.same_origin());
+        r.headers.push(("Host".into(), "127.0.0.1:9000".into()));
+        r.headers
+            .push(("Origin".into(), "http://127.0.0.1:9000".into()));
+        assert!(r.same_origin());
+        r.headers[1].1 = "http://evil.example".into();
+        assert!(!r.same_origin());
+    }
+}
