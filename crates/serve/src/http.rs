@@ -259,15 +259,6 @@ fn content_type(path: &Path) -> &'static str {
 
 /// A file of the built front end. Paths never leave the web directory.
 fn static_file(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) {
-    let Some(root) = shared.config.web_dir.as_ref() else {
-        return respond(
-            stream,
-            200,
-            "text/html; charset=utf-8",
-            "",
-            NOT_BUILT.as_bytes(),
-        );
-    };
     let relative = request.path.trim_start_matches('/');
     let relative = if relative.is_empty() {
         "index.html"
@@ -278,6 +269,22 @@ fn static_file(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) 
     if rel.components().any(|c| !matches!(c, Component::Normal(_))) {
         return error(stream, 400, "bad path");
     }
+    let Some(root) = shared.config.web_dir.as_ref() else {
+        if relative == "index.html" {
+            return respond(
+                stream,
+                200,
+                "text/html; charset=utf-8",
+                "",
+                NOT_BUILT.as_bytes(),
+            );
+        }
+        return error(
+            stream,
+            404,
+            &format!("{relative}: not found (front end not built)"),
+        );
+    };
     let path: PathBuf = root.join(rel);
     match std::fs::read(&path) {
         Ok(bytes) => {

@@ -558,6 +558,13 @@ impl Shared {
                 }
             }
         };
+        // A cancel that raced with the end still wins: the user asked for
+        // nothing to change.
+        let result = if flag.load(Ordering::SeqCst) {
+            Err(ServeError::Cancelled)
+        } else {
+            result
+        };
         *self.cancel.lock().unwrap_or_else(|p| p.into_inner()) = None;
         let mut doc = self.doc();
         doc.busy = None;
@@ -796,9 +803,12 @@ fn insert_edge(doc: &Document, mesh: &mut Mesh, req: &Value) -> Result<String, S
     if cs.len() != 2 {
         return Err(bad());
     }
-    let mut corners = Vec::with_capacity(2);
+    let mut pairs = Vec::with_capacity(2);
     for c in cs {
-        let [f, v] = pair(&json!({"c": c}), "c").map_err(|_| bad())?;
+        pairs.push(pair(&json!({"c": c}), "c").map_err(|_| bad())?);
+    }
+    let mut corners = Vec::with_capacity(2);
+    for [f, v] in pairs {
         corners.push(doc.corner(mesh, f, v)?);
     }
     let before = mesh.genus();

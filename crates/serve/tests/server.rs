@@ -1,0 +1,402 @@
+//! The server end to end over real sockets: a WebSocket client per "tab",
+//! HTTP uploads and downloads, restart from the autosave.
+
+use std::io::{Read, Write};
+use std::net::{SocketAddr, TcpStream};
+use std::time::{Duration, Instant};
+
+use holey_serve::{Config, Server};
+use serde_json::{Value, json};
+use tungstenite::{Message, WebSocket, stream::MaybeTlsStream};
+
+type Socket = WebSocket<MaybeTlsStream<TcpStream>>;
+
+fn start(dir: &std::path::Path, max_upload: usize) -> SocketAddr {
+    let config = Config {
+        port: 0,
+        state_dir: dir.to_path_buf(),
+        max_upload,
+        ..Config::default()
+    };
+    let (server, _) = Server::bind(config).expect("bind");
+    let addr = server.local_addr().expect("addr");
+    std::thread::spawn(move || server.run());
+    addr
+}
+
+/// A browser tab: it remembers the last state and counts frames.
+struct Tab {
+    socket: Socket,
+    next: u64,
+    state: Value,
+    frames: Vec<Vec<u8>>,
+}
+
+impl Tab {
+    fn open(addr: SocketAddr) -> Tab {
+        let (socket, _) = tungstenite::connect(format!("ws://{addr}/ws")).expect("connect");
+        let mut tab = Tab {
+            socket,
+            next: 0,
+            state: Value::Null,
+            frames: Vec::new(),
+        };
+        // The greeting: a state and a frame.
+        while tab.frames.is_empty() || tab.state.is_null() {
+            tab.pump_one();
+        }
+        tab
+    }
+
+    /// Reads one message; returns it if it is a reply.
+    fn pump_one(&mut self) -> Option<Value> {
+        match self.socket.read().expect("read") {
+            Message::Text(t) => {
+                let v: Value = serde_json::from_str(t.as_str()).expect("json");
+                match v["type"].as_str() {
+                    Some("state") => {
+                        self.state = v;
+                        None
+                    }
+                    Some("ok" | "error") => Some(v),
+                    _ => None,
+                }
+            }
+            Message::Binary(b) => {
+                self.frames.push(b.to_vec());
+                None
+            }
+            _ => None,
+        }
+    }
+
+    /// Sends a request and waits for its reply.
+    fn call(&mut self, mut req: Value) -> Value {
+        self.next += 1;
+        req["id"] = json!(self.next);
+        self.socket
+            .send(Message::text(req.to_string()))
+            .expect("send");
+        let deadline = Instant::now() + Duration::from_secs(120);
+        loop {
+            assert!(Instant::now() < deadline, "no reply to {req}");
+            if let Some(v) = self.pump_one()
+                && v["id"] == json!(self.next)
+            {
+                return v;
+            }
+        }
+    }
+
+    fn ok(&mut self, req: Value) -> Value {
+        let r = self.call(req.clone());
+        assert_eq!(r["type"], "ok", "{req} -> {r}");
+        r
+    }
+
+    fn genus(&self) -> Value {
+        self.state["stats"]["genus"].clone()
+    }
+}
+
+fn http(addr: SocketAddr, head: &str, body: &[u8]) -> (u16, Vec<u8>) {
+    let mut s = TcpStream::connect(addr).expect("connect");
+    s.write_all(head.as_bytes()).expect("write");
+    let _ = s.write_all(body);
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    let text = String::from_utf8_lossy(&out);
+    let status = text
+        .split(' ')
+        .nth(1)
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(0);
+    let body_at = out
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .map_or(out.len(), |p| p + 4);
+    (status, out[body_at..].to_vec())
+}
+
+fn upload(addr: SocketAddr, name: &str, body: &[u8]) -> (u16, Value) {
+    let head = format!(
+        "POST /api/import?name={name} HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n\r\n",
+        body.len()
+    );
+    let (status, body) = http(addr, &head, body);
+    (status, serde_json::from_slice(&body).unwrap_or(Value::Null))
+}
+
+#[test]
+fn modeling_sculpting_undo_and_two_tabs() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    let mut b = Tab::open(addr);
+    assert_eq!(a.genus(), 0, "a new session is a cube");
+
+    a.ok(json!({"op": "primitive", "spec": "@torus"}));
+    assert_eq!(a.genus(), 1);
+    // The other tab hears about it.
+    while b.state["stats"]["genus"] != 1 {
+        b.pump_one();
+    }
+
+    a.ok(json!({"op": "primitive", "spec": "@tetrahedron"}));
+    a.ok(json!({"op": "sierpinski", "level": 1}));
+    assert_eq!(a.genus(), 3, "Sierpinski level 1 of a tetrahedron");
+
+    // A selection made on an older picture is refused, not misapplied.
+    let stale = a.state["version"].as_u64().expect("version") - 1;
+    let r = a.call(json!({"op": "delete_edge", "version": stale, "edge": 0}));
+    assert_eq!(r["type"], "error");
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("changed"),
+        "{r}"
+    );
+
+    // Handle between two faces of a cube: genus 1, preview first.
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let v = a.state["version"].clone();
+    let frames = a.frames.len();
+    let p = a.ok(
+        json!({"op": "handle", "version": v, "faces": [0, 5], "segments": 3,
+                        "w1": -1, "w2": -1, "preview": true}),
+    );
+    assert_eq!(p["preview"], true);
+    assert_eq!(a.genus(), 0, "a preview does not commit");
+    assert!(a.frames.len() > frames, "the preview frame was sent");
+    a.ok(
+        json!({"op": "handle", "version": v, "faces": [0, 5], "segments": 3,
+                "w1": -1, "w2": -1}),
+    );
+    assert_eq!(a.genus(), 1);
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(a.genus(), 0);
+    a.ok(json!({"op": "redo"}));
+    assert_eq!(a.genus(), 1);
+
+    // Rind: a crust of a cube with two punched faces has genus 1.
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    a.ok(json!({"op": "rind_begin", "thickness": 0.2}));
+    assert_eq!(a.state["mode"], "rind");
+    for face in [0, 1] {
+        let v = a.state["version"].clone();
+        a.ok(json!({"op": "rind_punch", "version": v, "face": face}));
+    }
+    a.ok(json!({"op": "rind_end", "commit": true}));
+    assert_eq!(a.genus(), 1, "{}", a.state);
+
+    // Sculpt: grab the top of a sphere down through the bottom.
+    a.ok(json!({"op": "primitive", "spec": "@sphere"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "grab", "radius": 0.5, "strength": 1,
+                "point": [0, 0, 1]}),
+    );
+    // While a tab drags, the other cannot edit.
+    let r = b.call(json!({"op": "undo"}));
+    assert!(r["message"].as_str().unwrap_or("").contains("busy"), "{r}");
+    for z in [0.5, -0.5, -1.6] {
+        let r = a.ok(json!({"op": "stroke_frame", "point": [0, 0, z]}));
+        assert!(r["ms"].as_f64().is_some());
+    }
+    a.ok(json!({"op": "stroke_end"}));
+    assert_eq!(a.genus(), 1, "poke-through makes a tunnel: {}", a.state);
+    assert_eq!(a.state["stats"]["closed"], true);
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(a.genus(), 0);
+}
+
+#[test]
+fn bad_requests_get_clear_errors() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    for (req, says) in [
+        (json!({"op": "nope"}), "unknown op"),
+        (json!({}), "no \"op\""),
+        (json!({"op": "primitive", "spec": "@nosuch"}), "@nosuch"),
+        (json!({"op": "primitive"}), "\"spec\""),
+        (
+            json!({"op": "delete_edge", "edge": 99999}),
+            "does not exist",
+        ),
+        (
+            json!({"op": "insert_edge", "corners": [[0, 7], [0]]}),
+            "corners",
+        ),
+        (
+            json!({"op": "stroke_begin", "brush": "grab", "radius": 1, "strength": 1,
+                "point": [0, 0, 0]}),
+            "sculpt workspace",
+        ),
+        (json!({"op": "sierpinski", "level": 99}), "allows"),
+        (
+            json!({"op": "workspace", "workspace": "paint"}),
+            "unknown workspace",
+        ),
+        (json!({"op": "cancel"}), "nothing to cancel"),
+        (json!({"op": "undo"}), "nothing to undo"),
+        (json!({"op": "rind_begin", "thickness": -1}), "rind"),
+    ] {
+        let r = a.call(req.clone());
+        assert_eq!(r["type"], "error", "{req} -> {r}");
+        let m = r["message"].as_str().unwrap_or("");
+        assert!(m.contains(says), "{req}: {m:?} does not say {says:?}");
+    }
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    let r = a.call(json!({"op": "stroke_begin", "brush": "grab", "radius": 0.1,
+                          "strength": 1, "point": [9, 9, 9]}));
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("from the surface"),
+        "{r}"
+    );
+    let r = a.call(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.1,
+                          "strength": 1, "point": [0, "x", 0]}),
+    );
+    assert!(r["message"].as_str().unwrap_or("").contains("point"), "{r}");
+    // Malformed JSON is answered, and the connection stays usable.
+    a.socket.send(Message::text("{not json")).expect("send");
+    let mut got = None;
+    while got.is_none() {
+        got = a.pump_one();
+    }
+    assert_eq!(got.expect("reply")["type"], "error");
+    a.ok(json!({"op": "primitives"}));
+}
+
+#[test]
+fn uploads_downloads_limits_and_restart() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+
+    // A torus exported as OBJ comes back with the same counts and genus.
+    a.ok(json!({"op": "primitive", "spec": "@torus"}));
+    let stats = a.state["stats"].clone();
+    let (status, obj) = http(
+        addr,
+        &format!("GET /api/export?format=obj HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &[],
+    );
+    assert_eq!(status, 200);
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let (status, r) = upload(addr, "back.obj", &obj);
+    assert_eq!(status, 200, "{r}");
+    while a.state["stats"] != stats {
+        a.pump_one();
+    }
+    // The same through the DLFL format.
+    let (status, dlfl) = http(
+        addr,
+        &format!("GET /api/export?format=dlfl HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &[],
+    );
+    assert_eq!(status, 200);
+    let (status, _) = upload(addr, "back.dlfl", &dlfl);
+    assert_eq!(status, 200);
+
+    // Too big, unknown format, malformed, foreign origin.
+    let (status, r) = upload(addr, "big.obj", &vec![b' '; (1 << 20) + 1]);
+    assert_eq!(status, 413);
+    assert!(r["error"].as_str().unwrap_or("").contains("limit"), "{r}");
+    let (status, r) = upload(addr, "mesh.xyz", b"v 0 0 0");
+    assert_eq!(status, 400);
+    assert!(
+        r["error"].as_str().unwrap_or("").contains("unknown format"),
+        "{r}"
+    );
+    let (status, r) = upload(addr, "bad.obj", b"v 0 0 nan\nf 1 2 3\n");
+    assert_eq!(status, 400, "{r}");
+    let (status, _) = http(
+        addr,
+        &format!(
+            "POST /api/import?name=x.obj HTTP/1.1\r\nHost: {addr}\r\nOrigin: http://evil.example\r\nContent-Length: 0\r\n\r\n"
+        ),
+        &[],
+    );
+    assert_eq!(status, 403);
+    let (status, _) = http(
+        addr,
+        &format!("GET /../../etc/passwd HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &[],
+    );
+    assert_ne!(status, 200);
+    // A non-manifold soup opens in the sculpt workspace.
+    let fan = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0.5\nf 1 2 3\nf 1 2 4\nf 1 2 5\n";
+    let (status, r) = upload(addr, "fan.obj", fan);
+    assert_eq!(status, 200, "{r}");
+    while a.state["workspace"] != "sculpt" {
+        a.pump_one();
+    }
+    assert_eq!(a.state["stats"]["faces"], 3);
+
+    // Restart: the autosave restores the last document.
+    let r = a.call(json!({"op": "workspace", "workspace": "model"}));
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("2-manifold"),
+        "{r}"
+    );
+    drop(a);
+    let deadline = Instant::now() + Duration::from_secs(20);
+    let meta = dir.path().join("session.json");
+    loop {
+        let saved = std::fs::read_to_string(&meta).unwrap_or_default();
+        if saved.contains("sculpt") {
+            break;
+        }
+        assert!(Instant::now() < deadline, "no autosave: {saved}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let again = start(dir.path(), 1 << 20);
+    let b = Tab::open(again);
+    assert_eq!(b.state["workspace"], "sculpt");
+    assert_eq!(b.state["stats"]["faces"], 3);
+}
+
+#[test]
+fn long_operations_report_progress_and_cancel() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    a.next += 1;
+    let id = a.next;
+    a.socket
+        .send(Message::text(
+            json!({"id": id, "op": "subdivide", "scheme": "catmull-clark", "levels": 8})
+                .to_string(),
+        ))
+        .expect("send");
+    a.next += 1;
+    a.socket
+        .send(Message::text(
+            json!({"id": a.next, "op": "cancel"}).to_string(),
+        ))
+        .expect("send");
+    let mut cancelled = false;
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while Instant::now() < deadline && !cancelled {
+        if let Some(v) = a.pump_one()
+            && v["id"] == json!(id)
+        {
+            assert_eq!(v["type"], "error", "{v}");
+            assert_eq!(v["cancelled"], true, "{v}");
+            cancelled = true;
+        }
+    }
+    assert!(cancelled);
+    assert_eq!(
+        a.state["stats"]["faces"], 6,
+        "a cancelled operation changes nothing"
+    );
+    // The server is usable again at once.
+    let r = a.ok(json!({"op": "subdivide", "scheme": "doo-sabin", "levels": 1}));
+    assert!(r["message"].as_str().unwrap_or("").contains("faces"));
+    assert_eq!(a.genus(), 0);
+}
