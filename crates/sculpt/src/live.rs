@@ -14,7 +14,7 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_topo::{Accumulator, Options, Outcome, TriMesh, topology_change};
+use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_local};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
 use crate::session::{Diagnostics, MOVE_PICK_FRACTION, SculptError, StrokeReport};
@@ -162,16 +162,21 @@ impl LiveStroke {
                 // also keeps a brush that wanders off the surface from
                 // re-cutting intersections the mesh already had.
                 if end != mesh.positions {
-                    let out = topology_change(mesh, &end, &self.options).map_err(|source| {
-                        SculptError::Topo {
-                            frame: index,
-                            source,
-                        }
-                    })?;
-                    tally(&mut self.report, &out);
-                    self.diagnostics = Some(Diagnostics::of(&out));
-                    connectivity_changed = out.mesh.triangles != mesh.triangles;
-                    // The engine's output has no unused vertices.
+                    // Only the region the brush reaches is recomputed.
+                    let out =
+                        topology_change_local(mesh, &end, &self.options).map_err(|source| {
+                            SculptError::Topo {
+                                frame: index,
+                                source,
+                            }
+                        })?;
+                    tally(&mut self.report, &out.report);
+                    self.diagnostics = Some(Diagnostics {
+                        raw_odd: out.raw_odd,
+                        corrected_odd: out.corrected_odd,
+                        intersection_curves: out.intersection_curves,
+                    });
+                    connectivity_changed = !out.positions_only;
                     *mesh = out.mesh;
                 }
             }
@@ -231,12 +236,16 @@ impl LiveStroke {
                 if acc.frames() == 0 {
                     (start, None)
                 } else {
-                    let out = acc.release().map_err(|source| SculptError::Topo {
+                    let out = acc.release_local().map_err(|source| SculptError::Topo {
                         frame: last,
                         source,
                     })?;
-                    tally(&mut report, &out);
-                    let d = Diagnostics::of(&out);
+                    tally(&mut report, &out.report);
+                    let d = Diagnostics {
+                        raw_odd: out.raw_odd,
+                        corrected_odd: out.corrected_odd,
+                        intersection_curves: out.intersection_curves,
+                    };
                     (out.mesh, Some(d))
                 }
             }
@@ -296,9 +305,8 @@ fn pick(mesh: &TriMesh, settings: BrushSettings, point: DVec3) -> Result<Vec<f64
     })
 }
 
-fn tally(report: &mut StrokeReport, out: &Outcome) {
+fn tally(report: &mut StrokeReport, r: &Report) {
     report.engine_runs += 1;
-    let r = &out.report;
     if r.cut.triangles_split > 0 || r.cut.triangles_deleted > 0 {
         report.changes += 1;
     }

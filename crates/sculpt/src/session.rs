@@ -16,7 +16,7 @@
 
 use glam::DVec3;
 use holey_topo::mesh::MeshError;
-use holey_topo::{Options, Outcome, TopoError, TriMesh};
+use holey_topo::{Options, TopoError, TriMesh};
 
 use crate::brush::Brush;
 use crate::live::{BrushSettings, LiveStroke};
@@ -99,16 +99,6 @@ pub struct Diagnostics {
     pub corrected_odd: Vec<bool>,
     /// Intersection curves at the end positions of that change.
     pub intersection_curves: usize,
-}
-
-impl Diagnostics {
-    pub(crate) fn of(outcome: &Outcome) -> Diagnostics {
-        Diagnostics {
-            raw_odd: outcome.raw_odd.clone(),
-            corrected_odd: outcome.corrected_odd.clone(),
-            intersection_curves: outcome.intersections.curve_count,
-        }
-    }
 }
 
 /// A sculpting session: the mesh, the undo and redo stacks of whole

@@ -169,6 +169,9 @@ fn merge(alias: &mut HashMap<u32, u32>, a: u32, b: u32) -> bool {
 pub struct Cut {
     pub mesh: TriMesh,
     pub report: CutReport,
+    /// Per output vertex: the input vertex it is, or `u32::MAX` for a new
+    /// point (an intersection point or a split's vertex).
+    pub origin: Vec<u32>,
 }
 
 /// The parity of a point of the surface that no vertex decides: called
@@ -586,13 +589,20 @@ pub fn cut(
         .map(|(t, _)| *t)
         .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
         .collect();
+    let (mesh, origin) = TriMesh {
+        positions: out_positions,
+        triangles: kept,
+    }
+    .compacted_with_origin();
+    // The first n positions are the input's vertices, in order.
+    let origin = origin
+        .into_iter()
+        .map(|o| if (o as usize) < n { o } else { u32::MAX })
+        .collect();
     Cut {
-        mesh: TriMesh {
-            positions: out_positions,
-            triangles: kept,
-        }
-        .compacted(),
+        mesh,
         report,
+        origin,
     }
 }
 

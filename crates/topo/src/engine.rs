@@ -19,6 +19,7 @@ use holey_geom::{Aabb, Bvh, SymPoint};
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, cut};
 use crate::intersect::{Intersections, intersections};
+use crate::local::{Bounds, LocalOutcome, Region, from_whole, swept_box, union, with_margin};
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
 use crate::weights::Weights;
@@ -107,6 +108,9 @@ pub struct Outcome {
     pub corrected_odd: Vec<bool>,
     /// The self-intersections of the input at its end positions.
     pub intersections: Intersections,
+    /// Per output vertex: the input vertex it is, or `u32::MAX` for a
+    /// point the cut made.
+    pub vertex_origin: Vec<u32>,
 }
 
 /// The static half of the pipeline at given end positions, shared by the
@@ -154,7 +158,7 @@ fn static_stage(
     })
 }
 
-fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
+pub(crate) fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
     mesh.check()?;
     if end.len() != mesh.positions.len() {
         return Err(MeshError::VertexCountMismatch {
@@ -259,6 +263,7 @@ fn finish(
     let Cut {
         mesh: mut out,
         report: cut_report,
+        origin,
     } = cut(
         mesh,
         end,
@@ -302,6 +307,7 @@ fn finish(
         raw_odd: raw,
         corrected_odd: s.corrected,
         intersections: s.x,
+        vertex_origin: origin,
     })
 }
 
@@ -357,7 +363,9 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     let edges = Edges::new(mesh);
     let ids = position_classes(&mesh.positions)?;
     let x = intersections(mesh, &mesh.positions, &edges, &ids)?;
-    let Cut { mesh: out, report } = cut(mesh, &mesh.positions, &edges, &ids, &x, None, None);
+    let Cut {
+        mesh: out, report, ..
+    } = cut(mesh, &mesh.positions, &edges, &ids, &x, None, None);
     Ok((out, x, report))
 }
 
@@ -385,6 +393,9 @@ pub struct Accumulator {
     tests: u64,
     seconds: f64,
     options: Options,
+    /// The box of everything that moved so far: collisions, and so odd
+    /// vertices and new intersections, lie inside it.
+    swept: Option<Bounds>,
 }
 
 impl Accumulator {
@@ -401,25 +412,46 @@ impl Accumulator {
             tests: 0,
             seconds: 0.0,
             options,
+            swept: None,
         })
     }
 
     /// Moves every vertex linearly from its current position to `next`,
-    /// accumulating collision parity.
+    /// accumulating collision parity. Only the triangles the motion can
+    /// reach are tested (see [`crate::local`]), so a frame costs what
+    /// moves, plus a linear scan.
     pub fn advance(&mut self, next: &[DVec3]) -> Result<(), TopoError> {
         check(&self.mesh, next)?;
         let t = Instant::now();
-        let ccd = vertex_parities(
-            &self.current,
-            next,
-            &self.mesh.triangles,
-            &ccd_options(&self.options, self.frame),
-        )?;
-        for (r, o) in self.raw.iter_mut().zip(&ccd.odd) {
-            *r ^= o;
+        let tris = &self.mesh.triangles;
+        let moved = swept_box(tris, &self.current, next);
+        if let Some(bx) = moved {
+            let region = Region::select(tris, &self.current, next, bx);
+            let opts = ccd_options(&self.options, self.frame);
+            let (odd, pairs, tests) = if region.worth_it() {
+                let ccd = vertex_parities(
+                    &region.gather(&self.current),
+                    &region.gather(next),
+                    &region.triangles,
+                    &opts,
+                )?;
+                let n = self.raw.len();
+                (
+                    region.scatter(&ccd.odd, n, false),
+                    ccd.odd_pairs.len(),
+                    ccd.candidates,
+                )
+            } else {
+                let ccd = vertex_parities(&self.current, next, tris, &opts)?;
+                (ccd.odd, ccd.odd_pairs.len(), ccd.candidates)
+            };
+            for (r, o) in self.raw.iter_mut().zip(&odd) {
+                *r ^= o;
+            }
+            self.collisions += pairs;
+            self.tests += tests;
+            self.swept = union(self.swept, moved);
         }
-        self.collisions += ccd.odd_pairs.len();
-        self.tests += ccd.candidates;
         self.seconds += t.elapsed().as_secs_f64();
         self.current = next.to_vec();
         self.frame += 1;
@@ -442,8 +474,94 @@ impl Accumulator {
     }
 
     /// The corrected parity at the current positions, for live preview.
+    /// Computed on the region everything moved through, with a margin.
     pub fn corrected_parity(&self) -> Result<Vec<bool>, TopoError> {
-        Ok(static_stage(&self.mesh, &self.current, &self.raw, self.options.scheme)?.corrected)
+        let n = self.raw.len();
+        let Some(bx) = self.swept else {
+            return Ok(vec![false; n]);
+        };
+        let region = Region::select(
+            &self.mesh.triangles,
+            &self.mesh.positions,
+            &self.current,
+            with_margin(bx),
+        );
+        if !region.worth_it() {
+            return Ok(
+                static_stage(&self.mesh, &self.current, &self.raw, self.options.scheme)?.corrected,
+            );
+        }
+        let sub = region.submesh(&self.mesh.positions);
+        let s = static_stage(
+            &sub,
+            &region.gather(&self.current),
+            &region.gather(&self.raw),
+            self.options.scheme,
+        )?;
+        Ok(region.scatter(&s.corrected, n, false))
+    }
+
+    /// [`Accumulator::release`] run on the region everything moved
+    /// through (with a margin) and spliced into the rest of the mesh; the
+    /// whole mesh when the region is large or the splice would not be
+    /// exact (see [`crate::local`]).
+    pub fn release_local(self) -> Result<LocalOutcome, TopoError> {
+        let started = Instant::now();
+        let n = self.raw.len();
+        let Some(bx) = self.swept else {
+            return Ok(LocalOutcome {
+                mesh: TriMesh {
+                    positions: self.current.clone(),
+                    triangles: self.mesh.triangles.clone(),
+                },
+                raw_odd: vec![false; n],
+                corrected_odd: vec![false; n],
+                positions_only: true,
+                ..LocalOutcome::default()
+            });
+        };
+        let region = Region::select(
+            &self.mesh.triangles,
+            &self.mesh.positions,
+            &self.current,
+            with_margin(bx),
+        );
+        if region.worth_it() {
+            let sub = region.submesh(&self.mesh.positions);
+            let end = region.gather(&self.current);
+            let out = finish(
+                &sub,
+                &sub.positions,
+                &end,
+                region.gather(&self.raw),
+                (self.collisions, self.tests, self.seconds),
+                &self.options,
+                started,
+            )?;
+            let mut result = LocalOutcome {
+                report: out.report.clone(),
+                raw_odd: region.scatter(&out.raw_odd, n, false),
+                corrected_odd: region.scatter(&out.corrected_odd, n, false),
+                intersection_curves: out.intersections.curve_count,
+                region_triangles: region.count,
+                ..LocalOutcome::default()
+            };
+            if region.unchanged(&out.mesh, &out.vertex_origin) {
+                result.mesh = TriMesh {
+                    positions: self.current.clone(),
+                    triangles: self.mesh.triangles.clone(),
+                };
+                result.positions_only = true;
+                return Ok(result);
+            }
+            if let Some(m) = region.splice(&self.mesh, &self.current, &out.mesh, &out.vertex_origin)
+            {
+                result.mesh = m;
+                return Ok(result);
+            }
+        }
+        let mesh = self.mesh.clone();
+        Ok(from_whole(&mesh, self.release()?))
     }
 
     /// Applies the topology change with the accumulated parity.

@@ -7,6 +7,7 @@ pub mod correct;
 pub mod cut;
 pub mod engine;
 pub mod intersect;
+pub mod local;
 pub mod mesh;
 pub mod orient;
 pub mod weights;
@@ -15,4 +16,5 @@ pub use correct::Scheme;
 pub use engine::{
     Accumulator, Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
 };
+pub use local::{LocalOutcome, topology_change_local};
 pub use mesh::TriMesh;

@@ -65,6 +65,12 @@ impl TriMesh {
     /// The mesh without the vertices no triangle uses, the others kept in
     /// order (the engine's output is always compacted this way).
     pub fn compacted(self) -> TriMesh {
+        self.compacted_with_origin().0
+    }
+
+    /// [`TriMesh::compacted`], also giving for every kept vertex its index
+    /// before compaction (increasing: the order is kept).
+    pub fn compacted_with_origin(self) -> (TriMesh, Vec<u32>) {
         let mut index = vec![u32::MAX; self.positions.len()];
         for t in &self.triangles {
             for &v in t {
@@ -72,13 +78,16 @@ impl TriMesh {
             }
         }
         if index.iter().all(|&i| i == 0) {
-            return self;
+            let origin = (0..self.positions.len() as u32).collect();
+            return (self, origin);
         }
         let mut positions = Vec::with_capacity(self.positions.len());
-        for (i, &p) in index.iter_mut().zip(&self.positions) {
+        let mut origin = Vec::with_capacity(self.positions.len());
+        for (k, (i, &p)) in index.iter_mut().zip(&self.positions).enumerate() {
             if *i == 0 {
                 *i = positions.len() as u32;
                 positions.push(p);
+                origin.push(k as u32);
             }
         }
         let triangles = self
@@ -86,10 +95,13 @@ impl TriMesh {
             .iter()
             .map(|t| t.map(|v| index[v as usize]))
             .collect();
-        TriMesh {
-            positions,
-            triangles,
-        }
+        (
+            TriMesh {
+                positions,
+                triangles,
+            },
+            origin,
+        )
     }
 
     /// Checks indices and that every position is finite.

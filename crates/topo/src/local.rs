@@ -1,0 +1,516 @@
+//! Topology change restricted to the region a motion can reach, so that a
+//! sculpting frame costs what the brush touches, not what the mesh holds
+//! (the locality §4's interactive rates need).
+//!
+//! **Why a region suffices.** Every collision of a frame involves a moving
+//! vertex or a moving triangle, and every new intersection involves a
+//! moving triangle. Let B be the bounding box of the swept volumes of the
+//! moving triangles. A triangle that can collide with or cross a moving
+//! triangle overlaps B, and so does every triangle containing a point of
+//! such a contact. The engine run on the triangles overlapping B (grown
+//! by a margin, which gives the error correction of §3.4 context around
+//! the odd region) therefore sees every collision and every intersection
+//! curve the frame makes, and the result is spliced back into the rest of
+//! the mesh, which is left exactly as it was.
+//!
+//! **The guard.** The splice is exact only if the region's interface with
+//! the rest (its edges shared with outside triangles, with their
+//! directions) comes back unchanged: no cut crossing it, nothing deleted
+//! or reoriented along it. That holds for a surface free of intersections
+//! away from the brush, which is what sculpting keeps; when it fails (an
+//! intersection the input already had that touches the interface, say),
+//! the frame is recomputed on the whole mesh. Correctness never depends
+//! on the region; only speed does.
+
+use std::collections::HashSet;
+
+use glam::DVec3;
+
+use crate::engine::{Options, Report, TopoError, check, topology_change};
+use crate::mesh::TriMesh;
+
+/// The result of [`topology_change_local`] and
+/// [`Accumulator::release_local`](crate::Accumulator::release_local).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LocalOutcome {
+    pub mesh: TriMesh,
+    pub report: Report,
+    /// Raw and corrected parity per input vertex (`true` = odd); vertices
+    /// outside the region are even.
+    pub raw_odd: Vec<bool>,
+    pub corrected_odd: Vec<bool>,
+    /// Intersection curves the frame found.
+    pub intersection_curves: usize,
+    /// Triangles the engine ran on (the whole mesh after a fallback).
+    pub region_triangles: usize,
+    /// Whether the frame was recomputed on the whole mesh.
+    pub whole_mesh: bool,
+    /// Whether only positions changed (same triangles, same vertices).
+    pub positions_only: bool,
+}
+
+/// The share of the mesh above which the region is not worth extracting.
+const WHOLE_MESH_SHARE: f64 = 0.5;
+
+/// An axis-aligned box, closed.
+pub(crate) type Bounds = (DVec3, DVec3);
+
+pub(crate) fn union(a: Option<Bounds>, b: Option<Bounds>) -> Option<Bounds> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// The box of the triangles that move from `start` to `end` (those with a
+/// vertex whose position changes), over both positions; `None` when no
+/// triangle moves.
+pub(crate) fn swept_box(tris: &[[u32; 3]], start: &[DVec3], end: &[DVec3]) -> Option<Bounds> {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    let mut any = false;
+    for t in tris {
+        if t.iter().any(|&v| start[v as usize] != end[v as usize]) {
+            any = true;
+            for &v in t {
+                for p in [start[v as usize], end[v as usize]] {
+                    lo = lo.min(p);
+                    hi = hi.max(p);
+                }
+            }
+        }
+    }
+    any.then_some((lo, hi))
+}
+
+/// `b` grown by half its largest side on every side: context for the
+/// error correction around what moved.
+pub(crate) fn with_margin(b: Bounds) -> Bounds {
+    let m = DVec3::splat(0.5 * (b.1 - b.0).max_element());
+    (b.0 - m, b.1 + m)
+}
+
+/// Triangles of a mesh and their vertices, renumbered in increasing
+/// global order. Keeping the order keeps every tie the exact predicates
+/// break by vertex identity (simulation of simplicity) broken the same way
+/// as on the whole mesh.
+pub(crate) struct Region {
+    /// Per triangle of the mesh: inside.
+    pub mask: Vec<bool>,
+    pub count: usize,
+    /// Local vertex → global vertex, increasing.
+    pub global: Vec<u32>,
+    /// Global vertex → local vertex, or `u32::MAX`.
+    pub local: Vec<u32>,
+    /// The region's triangles in local numbers.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Region {
+    /// The triangles whose box over `a` and `b` meets `bx`.
+    pub fn select(tris: &[[u32; 3]], a: &[DVec3], b: &[DVec3], bx: Bounds) -> Region {
+        let (lo, hi) = bx;
+        let mask: Vec<bool> = tris
+            .iter()
+            .map(|t| {
+                let mut l = DVec3::splat(f64::INFINITY);
+                let mut h = DVec3::splat(f64::NEG_INFINITY);
+                for &v in t {
+                    for p in [a[v as usize], b[v as usize]] {
+                        l = l.min(p);
+                        h = h.max(p);
+                    }
+                }
+                l.cmple(hi).all() && h.cmpge(lo).all()
+            })
+            .collect();
+        let n = a.len();
+        let mut local = vec![u32::MAX; n];
+        for (t, _) in tris.iter().zip(&mask).filter(|(_, m)| **m) {
+            for &v in t {
+                local[v as usize] = 0;
+            }
+        }
+        let mut global = Vec::new();
+        for (v, l) in local.iter_mut().enumerate() {
+            if *l == 0 {
+                *l = global.len() as u32;
+                global.push(v as u32);
+            }
+        }
+        let triangles: Vec<[u32; 3]> = tris
+            .iter()
+            .zip(&mask)
+            .filter(|(_, m)| **m)
+            .map(|(t, _)| t.map(|v| local[v as usize]))
+            .collect();
+        Region {
+            count: triangles.len(),
+            mask,
+            global,
+            local,
+            triangles,
+        }
+    }
+
+    /// Whether the region is small enough to be worth it.
+    pub fn worth_it(&self) -> bool {
+        (self.count as f64) <= WHOLE_MESH_SHARE * self.mask.len() as f64
+    }
+
+    /// Per-vertex values of the region's vertices.
+    pub fn gather<T: Copy>(&self, values: &[T]) -> Vec<T> {
+        self.global.iter().map(|&v| values[v as usize]).collect()
+    }
+
+    /// Per-vertex values of the whole mesh: the region's, `outside` elsewhere.
+    pub fn scatter<T: Copy>(&self, values: &[T], n: usize, outside: T) -> Vec<T> {
+        let mut all = vec![outside; n];
+        for (&g, &v) in self.global.iter().zip(values) {
+            all[g as usize] = v;
+        }
+        all
+    }
+
+    /// The region's submesh at `positions` (global).
+    pub fn submesh(&self, positions: &[DVec3]) -> TriMesh {
+        TriMesh {
+            positions: self.gather(positions),
+            triangles: self.triangles.clone(),
+        }
+    }
+
+    /// Whether the engine's output for the region is its input, moved.
+    pub fn unchanged(&self, out: &TriMesh, origin: &[u32]) -> bool {
+        out.triangles == self.triangles
+            && origin.len() == self.global.len()
+            && origin.iter().enumerate().all(|(i, &o)| o == i as u32)
+    }
+
+    /// The mesh with the region replaced by the engine's output `out`
+    /// (`origin`: per output vertex, the region vertex it is, or
+    /// `u32::MAX`), at `end` outside. `None` when the output does not keep
+    /// the region's interface with the rest of the mesh (see the module
+    /// documentation): the caller must then run on the whole mesh.
+    pub fn splice(
+        &self,
+        mesh: &TriMesh,
+        end: &[DVec3],
+        out: &TriMesh,
+        origin: &[u32],
+    ) -> Option<TriMesh> {
+        let mut interface: HashSet<(u32, u32)> = HashSet::new();
+        for (t, _) in mesh.triangles.iter().zip(&self.mask).filter(|(_, r)| !**r) {
+            for k in 0..3 {
+                let (a, b) = (
+                    self.local[t[k] as usize],
+                    self.local[t[(k + 1) % 3] as usize],
+                );
+                if a != u32::MAX && b != u32::MAX {
+                    interface.insert((a.min(b), a.max(b)));
+                }
+            }
+        }
+        let mut produced: HashSet<(u32, u32)> = HashSet::new();
+        for t in &out.triangles {
+            for k in 0..3 {
+                let (a, b) = (origin[t[k] as usize], origin[t[(k + 1) % 3] as usize]);
+                if a != u32::MAX && b != u32::MAX {
+                    produced.insert((a, b));
+                }
+            }
+        }
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                if interface.contains(&(a.min(b), a.max(b))) && !produced.contains(&(a, b)) {
+                    return None;
+                }
+            }
+        }
+        let mut positions = end.to_vec();
+        let map: Vec<u32> = origin
+            .iter()
+            .zip(&out.positions)
+            .map(|(&o, &p)| {
+                if o == u32::MAX {
+                    positions.push(p);
+                    (positions.len() - 1) as u32
+                } else {
+                    self.global[o as usize]
+                }
+            })
+            .collect();
+        let mut triangles: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .zip(&self.mask)
+            .filter(|(_, r)| !**r)
+            .map(|(t, _)| *t)
+            .collect();
+        triangles.extend(out.triangles.iter().map(|t| t.map(|v| map[v as usize])));
+        Some(
+            TriMesh {
+                positions,
+                triangles,
+            }
+            .compacted(),
+        )
+    }
+}
+
+/// [`topology_change`](crate::topology_change) of `mesh` moving to `end`,
+/// run only on the triangles the motion can reach. Same contract; see the
+/// module documentation for why the result matches.
+pub fn topology_change_local(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+) -> Result<LocalOutcome, TopoError> {
+    check(mesh, end)?;
+    let n = mesh.positions.len();
+    let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
+        // Nothing a triangle uses moves: no collision, no new crossing.
+        return Ok(LocalOutcome {
+            mesh: TriMesh {
+                positions: end.to_vec(),
+                triangles: mesh.triangles.clone(),
+            },
+            raw_odd: vec![false; n],
+            corrected_odd: vec![false; n],
+            positions_only: true,
+            ..LocalOutcome::default()
+        });
+    };
+    let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
+    if !region.worth_it() {
+        return whole(mesh, end, options);
+    }
+    let sub = region.submesh(&mesh.positions);
+    let out = topology_change(&sub, &region.gather(end), options)?;
+    let mut result = LocalOutcome {
+        report: out.report.clone(),
+        raw_odd: region.scatter(&out.raw_odd, n, false),
+        corrected_odd: region.scatter(&out.corrected_odd, n, false),
+        intersection_curves: out.intersections.curve_count,
+        region_triangles: region.count,
+        ..LocalOutcome::default()
+    };
+    if region.unchanged(&out.mesh, &out.vertex_origin) {
+        result.mesh = TriMesh {
+            positions: end.to_vec(),
+            triangles: mesh.triangles.clone(),
+        };
+        result.positions_only = true;
+        return Ok(result);
+    }
+    match region.splice(mesh, end, &out.mesh, &out.vertex_origin) {
+        Some(m) => {
+            result.mesh = m;
+            Ok(result)
+        }
+        None => whole(mesh, end, options),
+    }
+}
+
+fn whole(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<LocalOutcome, TopoError> {
+    let out = topology_change(mesh, end, options)?;
+    Ok(from_whole(mesh, out))
+}
+
+/// A whole-mesh outcome as a [`LocalOutcome`].
+pub(crate) fn from_whole(mesh: &TriMesh, out: crate::Outcome) -> LocalOutcome {
+    let positions_only = out.mesh.triangles == mesh.triangles
+        && out.vertex_origin.len() == mesh.positions.len()
+        && out
+            .vertex_origin
+            .iter()
+            .enumerate()
+            .all(|(i, &o)| o == i as u32);
+    LocalOutcome {
+        intersection_curves: out.intersections.curve_count,
+        region_triangles: mesh.triangles.len(),
+        whole_mesh: true,
+        positions_only,
+        report: out.report,
+        raw_odd: out.raw_odd,
+        corrected_odd: out.corrected_odd,
+        mesh: out.mesh,
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    /// Two unit-ish icosphere-like closed meshes: a coarse UV sphere.
+    fn sphere(centre: DVec3, r: f64, rings: u32, segs: u32) -> TriMesh {
+        let mut positions = vec![centre + DVec3::Z * r, centre - DVec3::Z * r];
+        for i in 1..rings {
+            let th = std::f64::consts::PI * i as f64 / rings as f64;
+            for j in 0..segs {
+                let ph = std::f64::consts::TAU * j as f64 / segs as f64;
+                positions.push(
+                    centre + r * DVec3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()),
+                );
+            }
+        }
+        let at = |i: u32, j: u32| 2 + (i - 1) * segs + (j % segs);
+        let mut triangles = Vec::new();
+        for j in 0..segs {
+            triangles.push([0, at(1, j), at(1, j + 1)]);
+            triangles.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);
+        }
+        for i in 1..rings - 1 {
+            for j in 0..segs {
+                let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j), at(i + 1, j + 1));
+                triangles.push([a, c, b]);
+                triangles.push([b, c, d]);
+            }
+        }
+        TriMesh {
+            positions,
+            triangles,
+        }
+    }
+
+    fn components(m: &TriMesh) -> usize {
+        let mut parent: Vec<usize> = (0..m.positions.len()).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for t in &m.triangles {
+            let a = find(&mut parent, t[0] as usize);
+            for &v in &t[1..] {
+                let b = find(&mut parent, v as usize);
+                parent[b] = a;
+            }
+        }
+        (0..m.positions.len())
+            .filter(|&v| find(&mut parent, v) == v)
+            .count()
+    }
+
+    /// A far-away second sphere keeps the region small.
+    fn scene() -> TriMesh {
+        let mut a = sphere(DVec3::ZERO, 1.0, 16, 24);
+        let b = sphere(DVec3::new(2.5, 0.0, 0.0), 1.0, 16, 24);
+        let off = a.positions.len() as u32;
+        a.positions.extend(b.positions);
+        a.triangles
+            .extend(b.triangles.iter().map(|t| t.map(|v| v + off)));
+        // A third, far away, that only adds work for a global run.
+        let c = sphere(DVec3::new(0.0, 40.0, 0.0), 1.0, 40, 60);
+        let off = a.positions.len() as u32;
+        a.positions.extend(c.positions);
+        a.triangles
+            .extend(c.triangles.iter().map(|t| t.map(|v| v + off)));
+        a
+    }
+
+    #[test]
+    fn a_motion_without_contact_moves_positions_only() {
+        let m = scene();
+        let mut end = m.positions.clone();
+        end[0] += DVec3::Z * 0.05;
+        let out = topology_change_local(&m, &end, &Options::default()).unwrap();
+        assert!(out.positions_only && !out.whole_mesh);
+        assert!(out.region_triangles < m.triangles.len() / 4);
+        assert_eq!(out.mesh.positions, end);
+        assert_eq!(out.mesh.triangles, m.triangles);
+    }
+
+    #[test]
+    fn matches_the_whole_mesh_engine_on_a_union() {
+        let m = scene();
+        // Push the first sphere's +x cap into the second sphere.
+        let end: Vec<DVec3> = m
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| {
+                if i < 2 + 15 * 24 && p.x > 0.6 {
+                    p + DVec3::X * 1.2
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let local = topology_change_local(&m, &end, &Options::default()).unwrap();
+        let global = topology_change(&m, &end, &Options::default()).unwrap();
+        assert!(!local.whole_mesh);
+        assert!(!local.positions_only);
+        assert!(local.report.cut.triangles_deleted > 0);
+        local.mesh.check().unwrap();
+        assert_eq!(local.mesh.triangles.len(), global.mesh.triangles.len());
+        assert_eq!(local.mesh.positions.len(), global.mesh.positions.len());
+        assert_eq!(components(&local.mesh), 2, "the two spheres joined");
+        assert_eq!(components(&global.mesh), 2);
+        assert!(local.mesh.is_closed_manifold());
+        // Same surface: the same multiset of rounded triangle centroids.
+        let key = |m: &TriMesh| {
+            let mut c: Vec<[i64; 3]> = m
+                .triangles
+                .iter()
+                .map(|t| {
+                    let p = t.iter().map(|&v| m.positions[v as usize]).sum::<DVec3>() / 3.0;
+                    [p.x, p.y, p.z].map(|x| (x * 1e9).round() as i64)
+                })
+                .collect();
+            c.sort_unstable();
+            c
+        };
+        assert_eq!(key(&local.mesh), key(&global.mesh));
+    }
+
+    #[test]
+    fn a_local_drag_matches_the_whole_mesh_release() {
+        let m = scene();
+        let cap = |t: f64| -> Vec<DVec3> {
+            m.positions
+                .iter()
+                .enumerate()
+                .map(|(i, &p)| {
+                    if i < 2 + 15 * 24 && p.x > 0.6 {
+                        p + DVec3::X * t
+                    } else {
+                        p
+                    }
+                })
+                .collect()
+        };
+        let mut acc = crate::Accumulator::new(m.clone(), Options::default()).unwrap();
+        for t in [0.4, 0.8, 1.2] {
+            acc.advance(&cap(t)).unwrap();
+        }
+        let preview = acc.corrected_parity().unwrap();
+        assert!(preview.iter().any(|&o| o), "the preview shows what vanishes");
+        let global = acc.clone().release().unwrap();
+        assert_eq!(preview, global.corrected_odd);
+        let local = acc.release_local().unwrap();
+        assert!(!local.whole_mesh);
+        assert!(local.region_triangles < m.triangles.len() / 2);
+        assert_eq!(local.raw_odd, global.raw_odd);
+        assert_eq!(local.mesh.triangles.len(), global.mesh.triangles.len());
+        assert!(local.mesh.is_closed_manifold());
+        assert_eq!(components(&local.mesh), 2);
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let m = scene();
+        assert!(topology_change_local(&m, &m.positions[1..], &Options::default()).is_err());
+        let mut end = m.positions.clone();
+        end[3] = DVec3::NAN;
+        assert!(topology_change_local(&m, &end, &Options::default()).is_err());
+        let mut bad = m.clone();
+        bad.triangles.push([0, 1, u32::MAX]);
+        assert!(topology_change_local(&bad, &m.positions, &Options::default()).is_err());
+    }
+}
