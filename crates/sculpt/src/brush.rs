@@ -113,39 +113,101 @@ fn referenced(mesh: &TriMesh) -> Vec<bool> {
     used
 }
 
-/// One frame of inflate (§4): every vertex within `radius` of `centre`
-/// moves along its normal by `strength × falloff`.
-pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
-    let normals = vertex_normals(mesh);
-    mesh.positions
+/// The vertices within `radius` of `centre` that a triangle uses, in
+/// increasing order: all a brush frame touches.
+fn touched(mesh: &TriMesh, centre: DVec3, radius: f64) -> Vec<u32> {
+    let inside: Vec<bool> = mesh
+        .positions
         .iter()
-        .zip(&normals)
-        .map(|(&p, &n)| p + n * (strength * falloff(p.distance(centre), radius)))
+        .map(|p| falloff(p.distance(centre), radius) > 0.0)
+        .collect();
+    let mut used = vec![false; mesh.positions.len()];
+    for t in &mesh.triangles {
+        for &v in t {
+            used[v as usize] = inside[v as usize];
+        }
+    }
+    (0..mesh.positions.len() as u32)
+        .filter(|&v| used[v as usize])
         .collect()
+}
+
+/// One frame of inflate (§4): every vertex within `radius` of `centre`
+/// moves along its (area-weighted) normal by `strength × falloff`.
+/// Normals are computed only for the vertices the brush touches, so the
+/// cost beyond two linear scans is the brush's.
+pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
+    let hit = touched(mesh, centre, radius);
+    let mut slot = vec![u32::MAX; mesh.positions.len()];
+    for (i, &v) in hit.iter().enumerate() {
+        slot[v as usize] = i as u32;
+    }
+    let mut normals = vec![DVec3::ZERO; hit.len()];
+    for t in &mesh.triangles {
+        if t.iter().all(|&v| slot[v as usize] == u32::MAX) {
+            continue;
+        }
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+        // The cross product's length is twice the area: area weighting for free.
+        let w = (b - a).cross(c - a);
+        for &v in t {
+            if let Some(n) = normals.get_mut(slot[v as usize] as usize) {
+                *n += w;
+            }
+        }
+    }
+    let mut out = mesh.positions.clone();
+    for (&v, n) in hit.iter().zip(&normals) {
+        let p = out[v as usize];
+        out[v as usize] =
+            p + n.normalize_or_zero() * (strength * falloff(p.distance(centre), radius));
+    }
+    out
 }
 
 /// One frame of smooth (§4): an explicit umbrella-Laplacian step, each
 /// vertex moving the fraction `strength × falloff` of the way to the mean
 /// of its edge neighbours. Jacobi-style (all from the old positions), so
-/// the result does not depend on vertex order.
+/// the result does not depend on vertex order. Only the touched vertices'
+/// rings are gathered.
 pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
-    let adj = neighbours(mesh);
-    mesh.positions
-        .iter()
-        .zip(&adj)
-        .map(|(&p, ring)| {
-            let w = strength * falloff(p.distance(centre), radius);
-            if w == 0.0 || ring.is_empty() {
-                return p;
+    let hit = touched(mesh, centre, radius);
+    let mut slot = vec![u32::MAX; mesh.positions.len()];
+    for (i, &v) in hit.iter().enumerate() {
+        slot[v as usize] = i as u32;
+    }
+    let mut rings: Vec<Vec<u32>> = vec![Vec::new(); hit.len()];
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if a == b {
+                continue;
             }
-            let mean = ring
-                .iter()
-                .map(|&u| mesh.positions[u as usize])
-                .sum::<DVec3>()
-                / ring.len() as f64;
-            p + w * (mean - p)
-        })
-        .collect()
+            if let Some(r) = rings.get_mut(slot[a as usize] as usize) {
+                r.push(b);
+            }
+            if let Some(r) = rings.get_mut(slot[b as usize] as usize) {
+                r.push(a);
+            }
+        }
+    }
+    let mut out = mesh.positions.clone();
+    for (&v, ring) in hit.iter().zip(&mut rings) {
+        ring.sort_unstable();
+        ring.dedup();
+        let p = mesh.positions[v as usize];
+        let w = strength * falloff(p.distance(centre), radius);
+        if w == 0.0 || ring.is_empty() {
+            continue;
+        }
+        let mean = ring
+            .iter()
+            .map(|&u| mesh.positions[u as usize])
+            .sum::<DVec3>()
+            / ring.len() as f64;
+        out[v as usize] = p + w * (mean - p);
+    }
+    out
 }
 
 /// The closest point of a surface to `query`: `(triangle, point,

@@ -177,7 +177,6 @@ impl LiveStroke {
                         intersection_curves: out.intersection_curves,
                     });
                     connectivity_changed = !out.positions_only;
-                    *mesh = out.mesh;
                 }
             }
             State::Drag {
@@ -236,7 +235,7 @@ impl LiveStroke {
                 if acc.frames() == 0 {
                     (start, None)
                 } else {
-                    let out = acc.release_local().map_err(|source| SculptError::Topo {
+                    let (mesh, out) = acc.release_local().map_err(|source| SculptError::Topo {
                         frame: last,
                         source,
                     })?;
@@ -246,7 +245,7 @@ impl LiveStroke {
                         corrected_odd: out.corrected_odd,
                         intersection_curves: out.intersection_curves,
                     };
-                    (out.mesh, Some(d))
+                    (mesh, Some(d))
                 }
             }
         };

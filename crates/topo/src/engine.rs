@@ -19,7 +19,7 @@ use holey_geom::{Aabb, Bvh, SymPoint};
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, cut};
 use crate::intersect::{Intersections, intersections};
-use crate::local::{Bounds, LocalOutcome, Region, from_whole, swept_box, union, with_margin};
+use crate::local::{Bounds, LocalReport, Region, from_whole, swept_box, union, with_margin};
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
 use crate::weights::Weights;
@@ -505,20 +505,21 @@ impl Accumulator {
     /// through (with a margin) and spliced into the rest of the mesh; the
     /// whole mesh when the region is large or the splice would not be
     /// exact (see [`crate::local`]).
-    pub fn release_local(self) -> Result<LocalOutcome, TopoError> {
+    pub fn release_local(self) -> Result<(TriMesh, LocalReport), TopoError> {
         let started = Instant::now();
         let n = self.raw.len();
         let Some(bx) = self.swept else {
-            return Ok(LocalOutcome {
-                mesh: TriMesh {
-                    positions: self.current.clone(),
-                    triangles: self.mesh.triangles.clone(),
-                },
+            let report = LocalReport {
                 raw_odd: vec![false; n],
                 corrected_odd: vec![false; n],
                 positions_only: true,
-                ..LocalOutcome::default()
-            });
+                ..LocalReport::default()
+            };
+            let mesh = TriMesh {
+                positions: self.current,
+                triangles: self.mesh.triangles,
+            };
+            return Ok((mesh, report));
         };
         let region = Region::select(
             &self.mesh.triangles,
@@ -538,26 +539,25 @@ impl Accumulator {
                 &self.options,
                 started,
             )?;
-            let mut result = LocalOutcome {
+            let mut result = LocalReport {
                 report: out.report.clone(),
                 raw_odd: region.scatter(&out.raw_odd, n, false),
                 corrected_odd: region.scatter(&out.corrected_odd, n, false),
                 intersection_curves: out.intersections.curve_count,
                 region_triangles: region.count,
-                ..LocalOutcome::default()
+                ..LocalReport::default()
             };
             if region.unchanged(&out.mesh, &out.vertex_origin) {
-                result.mesh = TriMesh {
-                    positions: self.current.clone(),
-                    triangles: self.mesh.triangles.clone(),
-                };
                 result.positions_only = true;
-                return Ok(result);
+                let mesh = TriMesh {
+                    positions: self.current,
+                    triangles: self.mesh.triangles,
+                };
+                return Ok((mesh, result));
             }
             if let Some(m) = region.splice(&self.mesh, &self.current, &out.mesh, &out.vertex_origin)
             {
-                result.mesh = m;
-                return Ok(result);
+                return Ok((m, result));
             }
         }
         let mesh = self.mesh.clone();

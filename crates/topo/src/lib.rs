@@ -16,5 +16,5 @@ pub use correct::Scheme;
 pub use engine::{
     Accumulator, Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
 };
-pub use local::{LocalOutcome, topology_change_local};
+pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;

@@ -29,11 +29,10 @@ use glam::DVec3;
 use crate::engine::{Options, Report, TopoError, check, topology_change};
 use crate::mesh::TriMesh;
 
-/// The result of [`topology_change_local`] and
-/// [`Accumulator::release_local`](crate::Accumulator::release_local).
+/// What [`topology_change_local`] and
+/// [`Accumulator::release_local`](crate::Accumulator::release_local) did.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct LocalOutcome {
-    pub mesh: TriMesh,
+pub struct LocalReport {
     pub report: Report,
     /// Raw and corrected parity per input vertex (`true` = odd); vertices
     /// outside the region are even.
@@ -67,11 +66,17 @@ pub(crate) fn union(a: Option<Bounds>, b: Option<Bounds>) -> Option<Bounds> {
 /// vertex whose position changes), over both positions; `None` when no
 /// triangle moves.
 pub(crate) fn swept_box(tris: &[[u32; 3]], start: &[DVec3], end: &[DVec3]) -> Option<Bounds> {
+    // Flags first, in one sequential pass: the triangle scan then reads a
+    // byte per corner, and positions only around what moved.
+    let moved: Vec<bool> = start.iter().zip(end).map(|(p, q)| p != q).collect();
+    if !moved.contains(&true) {
+        return None;
+    }
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     let mut any = false;
     for t in tris {
-        if t.iter().any(|&v| start[v as usize] != end[v as usize]) {
+        if t.iter().any(|&v| moved[v as usize]) {
             any = true;
             for &v in t {
                 for p in [start[v as usize], end[v as usize]] {
@@ -109,21 +114,30 @@ pub(crate) struct Region {
 
 impl Region {
     /// The triangles whose box over `a` and `b` meets `bx`.
+    ///
+    /// A box misses `bx` exactly when all its points lie beyond one face
+    /// of `bx`; with a 6-bit outcode per point (below/above on each axis)
+    /// that is a nonzero AND of the codes of the triangle's six points.
+    /// The codes are computed per vertex in one sequential pass, so the
+    /// triangle scan reads a byte per corner.
     pub fn select(tris: &[[u32; 3]], a: &[DVec3], b: &[DVec3], bx: Bounds) -> Region {
         let (lo, hi) = bx;
+        let outcode = |p: DVec3| -> u8 {
+            u8::from(p.x < lo.x)
+                | u8::from(p.x > hi.x) << 1
+                | u8::from(p.y < lo.y) << 2
+                | u8::from(p.y > hi.y) << 3
+                | u8::from(p.z < lo.z) << 4
+                | u8::from(p.z > hi.z) << 5
+        };
+        let code: Vec<u8> = a
+            .iter()
+            .zip(b)
+            .map(|(&p, &q)| outcode(p) & outcode(q))
+            .collect();
         let mask: Vec<bool> = tris
             .iter()
-            .map(|t| {
-                let mut l = DVec3::splat(f64::INFINITY);
-                let mut h = DVec3::splat(f64::NEG_INFINITY);
-                for &v in t {
-                    for p in [a[v as usize], b[v as usize]] {
-                        l = l.min(p);
-                        h = h.max(p);
-                    }
-                }
-                l.cmple(hi).all() && h.cmpge(lo).all()
-            })
+            .map(|t| code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] == 0)
             .collect();
         let n = a.len();
         let mut local = vec![u32::MAX; n];
@@ -261,26 +275,24 @@ impl Region {
 }
 
 /// [`topology_change`](crate::topology_change) of `mesh` moving to `end`,
-/// run only on the triangles the motion can reach. Same contract; see the
-/// module documentation for why the result matches.
+/// run only on the triangles the motion can reach, written into `mesh`
+/// (left as it was on error). Same contract; see the module documentation
+/// for why the result matches.
 pub fn topology_change_local(
-    mesh: &TriMesh,
+    mesh: &mut TriMesh,
     end: &[DVec3],
     options: &Options,
-) -> Result<LocalOutcome, TopoError> {
+) -> Result<LocalReport, TopoError> {
     check(mesh, end)?;
     let n = mesh.positions.len();
     let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
         // Nothing a triangle uses moves: no collision, no new crossing.
-        return Ok(LocalOutcome {
-            mesh: TriMesh {
-                positions: end.to_vec(),
-                triangles: mesh.triangles.clone(),
-            },
+        mesh.positions.copy_from_slice(end);
+        return Ok(LocalReport {
             raw_odd: vec![false; n],
             corrected_odd: vec![false; n],
             positions_only: true,
-            ..LocalOutcome::default()
+            ..LocalReport::default()
         });
     };
     let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
@@ -289,38 +301,37 @@ pub fn topology_change_local(
     }
     let sub = region.submesh(&mesh.positions);
     let out = topology_change(&sub, &region.gather(end), options)?;
-    let mut result = LocalOutcome {
+    let mut result = LocalReport {
         report: out.report.clone(),
         raw_odd: region.scatter(&out.raw_odd, n, false),
         corrected_odd: region.scatter(&out.corrected_odd, n, false),
         intersection_curves: out.intersections.curve_count,
         region_triangles: region.count,
-        ..LocalOutcome::default()
+        ..LocalReport::default()
     };
     if region.unchanged(&out.mesh, &out.vertex_origin) {
-        result.mesh = TriMesh {
-            positions: end.to_vec(),
-            triangles: mesh.triangles.clone(),
-        };
+        mesh.positions.copy_from_slice(end);
         result.positions_only = true;
         return Ok(result);
     }
     match region.splice(mesh, end, &out.mesh, &out.vertex_origin) {
         Some(m) => {
-            result.mesh = m;
+            *mesh = m;
             Ok(result)
         }
         None => whole(mesh, end, options),
     }
 }
 
-fn whole(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<LocalOutcome, TopoError> {
+fn whole(mesh: &mut TriMesh, end: &[DVec3], options: &Options) -> Result<LocalReport, TopoError> {
     let out = topology_change(mesh, end, options)?;
-    Ok(from_whole(mesh, out))
+    let (m, report) = from_whole(mesh, out);
+    *mesh = m;
+    Ok(report)
 }
 
-/// A whole-mesh outcome as a [`LocalOutcome`].
-pub(crate) fn from_whole(mesh: &TriMesh, out: crate::Outcome) -> LocalOutcome {
+/// A whole-mesh outcome as a mesh and a [`LocalReport`].
+pub(crate) fn from_whole(mesh: &TriMesh, out: crate::Outcome) -> (TriMesh, LocalReport) {
     let positions_only = out.mesh.triangles == mesh.triangles
         && out.vertex_origin.len() == mesh.positions.len()
         && out
@@ -328,7 +339,7 @@ pub(crate) fn from_whole(mesh: &TriMesh, out: crate::Outcome) -> LocalOutcome {
             .iter()
             .enumerate()
             .all(|(i, &o)| o == i as u32);
-    LocalOutcome {
+    let report = LocalReport {
         intersection_curves: out.intersections.curve_count,
         region_triangles: mesh.triangles.len(),
         whole_mesh: true,
@@ -336,8 +347,8 @@ pub(crate) fn from_whole(mesh: &TriMesh, out: crate::Outcome) -> LocalOutcome {
         report: out.report,
         raw_odd: out.raw_odd,
         corrected_odd: out.corrected_odd,
-        mesh: out.mesh,
-    }
+    };
+    (out.mesh, report)
 }
 
 #[cfg(test)]
@@ -419,11 +430,12 @@ mod tests {
         let m = scene();
         let mut end = m.positions.clone();
         end[0] += DVec3::Z * 0.05;
-        let out = topology_change_local(&m, &end, &Options::default()).unwrap();
+        let mut moved = m.clone();
+        let out = topology_change_local(&mut moved, &end, &Options::default()).unwrap();
         assert!(out.positions_only && !out.whole_mesh);
         assert!(out.region_triangles < m.triangles.len() / 4);
-        assert_eq!(out.mesh.positions, end);
-        assert_eq!(out.mesh.triangles, m.triangles);
+        assert_eq!(moved.positions, end);
+        assert_eq!(moved.triangles, m.triangles);
     }
 
     #[test]
@@ -442,17 +454,18 @@ mod tests {
                 }
             })
             .collect();
-        let local = topology_change_local(&m, &end, &Options::default()).unwrap();
+        let mut local_mesh = m.clone();
+        let local = topology_change_local(&mut local_mesh, &end, &Options::default()).unwrap();
         let global = topology_change(&m, &end, &Options::default()).unwrap();
         assert!(!local.whole_mesh);
         assert!(!local.positions_only);
         assert!(local.report.cut.triangles_deleted > 0);
-        local.mesh.check().unwrap();
-        assert_eq!(local.mesh.triangles.len(), global.mesh.triangles.len());
-        assert_eq!(local.mesh.positions.len(), global.mesh.positions.len());
-        assert_eq!(components(&local.mesh), 2, "the two spheres joined");
+        local_mesh.check().unwrap();
+        assert_eq!(local_mesh.triangles.len(), global.mesh.triangles.len());
+        assert_eq!(local_mesh.positions.len(), global.mesh.positions.len());
+        assert_eq!(components(&local_mesh), 2, "the two spheres joined");
         assert_eq!(components(&global.mesh), 2);
-        assert!(local.mesh.is_closed_manifold());
+        assert!(local_mesh.is_closed_manifold());
         // Same surface: the same multiset of rounded triangle centroids.
         let key = |m: &TriMesh| {
             let mut c: Vec<[i64; 3]> = m
@@ -466,7 +479,7 @@ mod tests {
             c.sort_unstable();
             c
         };
-        assert_eq!(key(&local.mesh), key(&global.mesh));
+        assert_eq!(key(&local_mesh), key(&global.mesh));
     }
 
     #[test]
@@ -490,27 +503,33 @@ mod tests {
             acc.advance(&cap(t)).unwrap();
         }
         let preview = acc.corrected_parity().unwrap();
-        assert!(preview.iter().any(|&o| o), "the preview shows what vanishes");
+        assert!(
+            preview.iter().any(|&o| o),
+            "the preview shows what vanishes"
+        );
         let global = acc.clone().release().unwrap();
         assert_eq!(preview, global.corrected_odd);
-        let local = acc.release_local().unwrap();
+        let (local_mesh, local) = acc.release_local().unwrap();
         assert!(!local.whole_mesh);
         assert!(local.region_triangles < m.triangles.len() / 2);
         assert_eq!(local.raw_odd, global.raw_odd);
-        assert_eq!(local.mesh.triangles.len(), global.mesh.triangles.len());
-        assert!(local.mesh.is_closed_manifold());
-        assert_eq!(components(&local.mesh), 2);
+        assert_eq!(local_mesh.triangles.len(), global.mesh.triangles.len());
+        assert!(local_mesh.is_closed_manifold());
+        assert_eq!(components(&local_mesh), 2);
     }
 
     #[test]
     fn bad_input_is_an_error() {
         let m = scene();
-        assert!(topology_change_local(&m, &m.positions[1..], &Options::default()).is_err());
+        let mut same = m.clone();
+        let short = m.positions[1..].to_vec();
+        assert!(topology_change_local(&mut same, &short, &Options::default()).is_err());
         let mut end = m.positions.clone();
         end[3] = DVec3::NAN;
-        assert!(topology_change_local(&m, &end, &Options::default()).is_err());
+        assert!(topology_change_local(&mut same, &end, &Options::default()).is_err());
+        assert_eq!(same, m, "an error leaves the mesh as it was");
         let mut bad = m.clone();
         bad.triangles.push([0, 1, u32::MAX]);
-        assert!(topology_change_local(&bad, &m.positions, &Options::default()).is_err());
+        assert!(topology_change_local(&mut bad, &m.positions, &Options::default()).is_err());
     }
 }
