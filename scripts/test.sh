@@ -22,4 +22,13 @@ echo "== cargo test (release: the geometry tests are heavy)"
 # --show-output makes the SKIP lines of tests that skip visible.
 cargo test --workspace --release --locked -- --show-output
 
+echo "== browser tests (web/: npm ci, vite build, Chromium via playwright-core)"
+# The front end is built from npm packages (three, vite, playwright-core)
+# and tested in Debian's Chromium against the holey binary just built.
+# Screenshots and timings land in web/e2e/artifacts/.
+npm --prefix web ci --no-audit --no-fund
+npm --prefix web run build
+cargo build --release --locked -p holey-cli
+HOLEY_BIN="$(pwd)/target/release/holey" node web/e2e/run.mjs
+
 echo "== all tests passed"

@@ -489,7 +489,15 @@ impl Shared {
                 }
                 "menger" => {
                     let n = level("level", 5)?;
-                    (Job::Menger(n), format!("Menger level {n}"))
+                    // The thesis's generalized sponge by default; `exact`
+                    // builds the true Menger sponge of a box.
+                    let exact = req.get("exact").and_then(Value::as_bool) == Some(true);
+                    let what = if exact {
+                        format!("true Menger sponge level {n}")
+                    } else {
+                        format!("Menger level {n}")
+                    };
+                    (Job::Menger(n, exact), what)
                 }
                 _ => {
                     let n = level("levels", 8)?;
@@ -604,6 +612,15 @@ impl Shared {
             })?;
         let file =
             holey_io::parse(format, bytes, name).map_err(|e| ServeError::Refused(e.to_string()))?;
+        let faces = match &file {
+            MeshFile::Dlfl(raw) => raw.face_count(),
+            MeshFile::Poly(poly) => poly.face_count(),
+        };
+        if faces == 0 {
+            return Err(ServeError::Refused(format!(
+                "{name} has no faces: nothing to model"
+            )));
+        }
         let (content, note) = match file {
             MeshFile::Dlfl(mut raw) => {
                 if raw.edges.is_empty() && raw.face_vertices.len() > raw.face_count() {
@@ -686,7 +703,7 @@ enum Step {
 /// A long operation.
 enum Job {
     Sierpinski(usize),
-    Menger(usize),
+    Menger(usize, bool),
     Subdivide(Scheme, usize),
 }
 
@@ -704,10 +721,11 @@ impl Job {
                 sierpinski_capped(&mut mesh, n, max_faces).map_err(|e| refused(e.to_string()))?;
                 Ok(mesh)
             }
-            Job::Menger(n) => {
+            Job::Menger(n, exact) => {
                 progress(None, format!("Menger level {n}"));
                 let params = MengerParams {
                     iterations: n,
+                    exact,
                     ..MengerParams::default()
                 };
                 menger_capped(&mut mesh, &params, max_faces).map_err(|e| refused(e.to_string()))?;

@@ -146,6 +146,17 @@ fn modeling_sculpting_undo_and_two_tabs() {
     a.ok(json!({"op": "sierpinski", "level": 1}));
     assert_eq!(a.genus(), 3, "Sierpinski level 1 of a tetrahedron");
 
+    // The true Menger sponge of level 2 has genus 81 (level 3: 1409, as
+    // the shared data's sponge); the closed form is the oracle.
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    a.ok(json!({"op": "menger", "level": 2, "exact": true}));
+    let (v, e, f, g) = holey_model::menger::exact_counts(2).expect("counts");
+    assert_eq!(g, 81);
+    assert_eq!(a.genus(), json!(g));
+    assert_eq!(a.state["stats"]["vertices"], json!(v));
+    assert_eq!(a.state["stats"]["edges"], json!(e));
+    assert_eq!(a.state["stats"]["faces"], json!(f));
+
     // A selection made on an older picture is refused, not misapplied.
     let stale = a.state["version"].as_u64().expect("version") - 1;
     let r = a.call(json!({"op": "delete_edge", "version": stale, "edge": 0}));
@@ -312,6 +323,8 @@ fn uploads_downloads_limits_and_restart() {
         "{r}"
     );
     let (status, r) = upload(addr, "bad.obj", b"v 0 0 nan\nf 1 2 3\n");
+    assert_eq!(status, 400, "{r}");
+    let (status, r) = upload(addr, "empty.obj", b"garbage\n");
     assert_eq!(status, 400, "{r}");
     let (status, _) = http(
         addr,

@@ -1,0 +1,397 @@
+// End-to-end tests of the modeler against the real `holey serve`.
+//
+//   cd web && npm run build && npm run test:e2e
+//
+// Env: HOLEY_BIN (default <repo>/target/release/holey), CHROMIUM (default
+// /usr/bin/chromium), HOLEY_MESHES (default <repo>/../shared/data/meshes).
+// `--mock` runs against e2e/mock-server.mjs instead (front-end development
+// only; several scenarios need the real server). `--only N,M` picks scenarios.
+//
+// Screenshots and perf.json go to web/e2e/artifacts/ (CI's artifact folder).
+// Every scenario prints PASS/FAIL/SKIP; the exit code is non-zero on any FAIL.
+
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import readline from 'node:readline';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const webDir = path.resolve(here, '..');
+const repo = path.resolve(webDir, '..');
+const dist = path.join(webDir, 'dist');
+const artifacts = path.join(here, 'artifacts');
+const meshesDir = process.env.HOLEY_MESHES || path.resolve(repo, '../shared/data/meshes');
+const useMock = process.argv.includes('--mock');
+const onlyArg = process.argv.indexOf('--only');
+const only = onlyArg >= 0 ? new Set(process.argv[onlyArg + 1].split(',').map(Number)) : null;
+
+fs.mkdirSync(artifacts, { recursive: true });
+if (!fs.existsSync(path.join(dist, 'index.html'))) {
+  console.error(`FAIL: ${dist}/index.html is missing; run \`npm run build\` in web/ first`);
+  process.exit(1);
+}
+
+// ---- server ---------------------------------------------------------------
+
+function startServer() {
+  const stateDir = fs.mkdtempSync(path.join(os.tmpdir(), 'holey-e2e-'));
+  let cmd, args;
+  if (useMock) {
+    cmd = process.execPath;
+    args = [path.join(here, 'mock-server.mjs'), '--port', '0', '--web', dist];
+  } else {
+    cmd = process.env.HOLEY_BIN || path.join(repo, 'target/release/holey');
+    if (!fs.existsSync(cmd)) throw new Error(`${cmd} not found: build it with \`cargo build --release\` (or set HOLEY_BIN)`);
+    args = ['serve', '--port', '0', '--state-dir', stateDir, '--web', dist];
+  }
+  const child = spawn(cmd, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  let log = '';
+  child.stderr.on('data', (d) => { log += d; });
+  const url = new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`server printed no URL within 30 s\n${log}`)), 30000);
+    readline.createInterface({ input: child.stdout }).on('line', (line) => {
+      log += line + '\n';
+      const m = /holey serve: listening on (http:\/\/\S+)/.exec(line);
+      if (m) {
+        clearTimeout(timer);
+        resolve(m[1]);
+      }
+    });
+    child.on('exit', (code) => {
+      clearTimeout(timer);
+      reject(new Error(`server exited with ${code} before listening\n${log}`));
+    });
+  });
+  return { child, url, stateDir, log: () => log };
+}
+
+// ---- helpers ------------------------------------------------------------------
+
+const tid = (id) => `[data-testid="${id}"]`;
+
+/** page.waitForFunction with a failure message that says what was awaited. */
+async function waitFor(page, what, fn, arg, timeout = 30000) {
+  try {
+    await page.waitForFunction(fn, arg, { timeout, polling: 50 });
+  } catch (e) {
+    const h = await page.evaluate(() => ({
+      version: window.__holey?.version, frameVersion: window.__holey?.frameVersion,
+      workspace: window.__holey?.state?.workspace, busy: window.__holey?.state?.busy,
+      stroking: window.__holey?.strokeInfo, pending: window.__holey?.pending, errors: window.__holey?.errors,
+    })).catch(() => ({}));
+    throw new Error(`timed out (${timeout / 1000} s) waiting for ${what}; page: ${JSON.stringify(h)}${await lastToast(page)}`);
+  }
+}
+const genusRe = (g) => new RegExp(`genus ${g}(?!\\d)`);
+
+async function statsText(page) {
+  return page.textContent(tid('stats'));
+}
+
+async function waitStats(page, re, timeout = 30000) {
+  try {
+    await page.waitForFunction(
+      ([src, flags]) => new RegExp(src, flags).test(document.querySelector('[data-testid="stats"]').textContent),
+      [re.source, re.flags],
+      { timeout, polling: 100 },
+    );
+  } catch {
+    throw new Error(`stats never matched ${re}; they show "${await statsText(page)}"${await lastToast(page)}`);
+  }
+}
+
+async function lastToast(page) {
+  const errs = await page.$$eval(tid('toast-error'), (els) => els.map((e) => e.textContent));
+  return errs.length ? `; error toasts: ${errs.join(' | ')}` : '';
+}
+
+/** Wait until the page has a frame/state newer than `v` (and no stroke running). */
+async function waitVersionAbove(page, v, timeout = 30000) {
+  await waitFor(page, `a document version above ${v}`,
+    (old) => window.__holey.version > old && window.__holey.frameVersion === window.__holey.version, v, timeout);
+}
+
+const version = (page) => page.evaluate(() => window.__holey.version);
+
+async function setWorkspace(page, ws) {
+  await page.click(tid(`workspace-${ws}`));
+  await waitFor(page, `the ${ws} workspace`, (w) => window.__holey.state?.workspace === w, ws);
+  await waitFor(page, 'the frame of the current version', () => window.__holey.frameVersion === window.__holey.version);
+}
+
+async function createPrimitive(page, spec) {
+  const v = await version(page);
+  const options = await page.$$eval(`${tid('primitive-select')} option`, (os) => os.map((o) => o.value));
+  if (!options.includes(spec)) throw new Error(`primitive ${spec} is not offered (offered: ${options.join(' ')})`);
+  await page.selectOption(tid('primitive-select'), spec);
+  await page.click(tid('primitive-create'));
+  await waitVersionAbove(page, v);
+}
+
+async function setRange(page, id, value) {
+  await page.$eval(tid(id), (el, val) => {
+    el.value = String(val);
+    el.dispatchEvent(new Event('input', { bubbles: true }));
+    el.dispatchEvent(new Event('change', { bubbles: true }));
+  }, value);
+}
+
+/** Parse "V 8 · E 12 · F 6 · … genus 0 …" into numbers. */
+function parseStats(text) {
+  const get = (re) => Number(re.exec(text)?.[1]);
+  return { V: get(/\bV (\d+)/), E: get(/\bE (\d+)/), F: get(/\bF (\d+)/), genus: get(/genus (-?\d+)/) };
+}
+
+const median = (xs) => (xs.length ? [...xs].sort((a, b) => a - b)[xs.length >> 1] : null);
+const pct = (xs, p) => (xs.length ? [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor(xs.length * p))] : null);
+const round = (x, d = 1) => (x == null ? null : Math.round(x * 10 ** d) / 10 ** d);
+
+// ---- scenarios ------------------------------------------------------------------
+
+const consoleErrors = [];
+const perf = {};
+
+const scenarios = [
+  ['page loads with no console errors', async (page, url) => {
+    await page.goto(url);
+    await page.waitForFunction(() => window.__holey?.frames > 0 && window.__holey.stats, null, { timeout: 30000 });
+    await page.waitForFunction(() => document.querySelectorAll('[data-testid="primitive-select"] option').length > 0, null, { timeout: 10000 });
+    await page.waitForTimeout(300);
+    if (consoleErrors.length) throw new Error(`console errors: ${consoleErrors.join(' | ')}`);
+    const text = await statsText(page);
+    if (!/genus \d+/.test(text)) throw new Error(`stats do not show a genus: "${text}"`);
+  }],
+
+  ['@torus shows genus 1', async (page) => {
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@torus');
+    await waitStats(page, genusRe(1));
+  }],
+
+  ['Sierpinski level 1 of a tetrahedron shows genus 3', async (page) => {
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@tetrahedron');
+    await waitStats(page, genusRe(0));
+    await page.fill(tid('sierpinski-level'), '1');
+    const v = await version(page);
+    await page.click(tid('op-sierpinski'));
+    await waitVersionAbove(page, v);
+    await waitStats(page, genusRe(3));
+  }],
+
+  ['grab stroke pokes the top of @sphere through the bottom: genus 1', async (page) => {
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@sphere');
+    await setWorkspace(page, 'sculpt');
+    await waitStats(page, genusRe(0));
+    await page.click(tid('tool-grab'));
+    const box = await page.evaluate(() => window.__holey.bbox);
+    const r = (box.max[1] - box.min[1]) / 2;
+    const c = box.center;
+    // Brush radius 0.4 sphere radii, given to the slider in % of the diagonal.
+    await setRange(page, 'radius', Math.round(((0.4 * r) / box.diag) * 1000) / 10);
+    await setRange(page, 'strength', 1);
+    await page.evaluate(() => window.__holey.setView([0, 0, 1]));
+    await page.waitForTimeout(100);
+    // Press just below the top of the sphere as seen from the front, then
+    // drag (in the camera plane through that point) well past the bottom.
+    const y0 = 0.92, z0 = Math.sqrt(1 - y0 * y0);
+    const start = await page.evaluate((p) => window.__holey.project(p), [c[0], c[1] + y0 * r, c[2] + z0 * r]);
+    const end = await page.evaluate((p) => window.__holey.project(p), [c[0], c[1] - 1.6 * r, c[2] + z0 * r]);
+    const v = await version(page);
+    await page.mouse.move(start[0], start[1]);
+    await page.mouse.down();
+    const steps = 40;
+    for (let i = 1; i <= steps; i++) {
+      await page.mouse.move(start[0] + ((end[0] - start[0]) * i) / steps, start[1] + ((end[1] - start[1]) * i) / steps);
+      await page.waitForTimeout(25);
+    }
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: path.join(artifacts, '4-grab-preview.png') });
+    await page.mouse.up();
+    await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+    await waitVersionAbove(page, v);
+    await waitStats(page, genusRe(1));
+  }],
+
+  ['undo brings genus 0 back', async (page) => {
+    const v = await version(page);
+    await page.click(tid('undo'));
+    await waitVersionAbove(page, v);
+    await waitStats(page, genusRe(0));
+    // Keyboard redo/undo too.
+    await page.locator(tid('canvas')).focus();
+    const v2 = await version(page);
+    await page.keyboard.press('Control+Shift+Z');
+    await waitVersionAbove(page, v2);
+    await waitStats(page, genusRe(1));
+    const v3 = await version(page);
+    await page.keyboard.press('Control+Z');
+    await waitVersionAbove(page, v3);
+    await waitStats(page, genusRe(0));
+  }],
+
+  ['import a shared mesh through the file picker', async (page) => {
+    const file = path.join(meshesDir, 'fertility_poly.obj');
+    if (!fs.existsSync(file)) return 'SKIP';
+    await setWorkspace(page, 'model');
+    const v = await version(page);
+    await page.setInputFiles(tid('import-input'), file);
+    await waitVersionAbove(page, v);
+    // shared/data/meshes/README.md: V 3730, F 2048 polygons, closed, genus 4.
+    await waitStats(page, /V 3730\b.*F 2048\b.*genus 4(?!\d)/);
+  }],
+
+  ['export OBJ and import it again: same V, F and genus', async (page) => {
+    const before = parseStats(await statsText(page));
+    await page.selectOption(tid('export-format'), 'obj');
+    const [download] = await Promise.all([page.waitForEvent('download', { timeout: 30000 }), page.click(tid('export'))]);
+    const saved = path.join(artifacts, 'export-roundtrip.obj');
+    await download.saveAs(saved);
+    if (fs.statSync(saved).size === 0) throw new Error('the exported file is empty');
+    const v = await version(page);
+    await page.setInputFiles(tid('import-input'), saved);
+    await waitVersionAbove(page, v);
+    await page.waitForTimeout(200);
+    const after = parseStats(await statsText(page));
+    if (JSON.stringify([before.V, before.F, before.genus]) !== JSON.stringify([after.V, after.F, after.genus])) {
+      throw new Error(`before ${JSON.stringify(before)} after ${JSON.stringify(after)}`);
+    }
+  }],
+
+  ['performance: orbit fps at ~1M triangles, sculpt latency at ~100k', async (page) => {
+    // @sphere:L has 20·4^L triangles: L=8 → 1.31M, L=6 → 82k.
+    await setWorkspace(page, 'model');
+    let v = await version(page);
+    await page.evaluate(() => window.__holey.request('primitive', { spec: '@sphere:8' }));
+    await waitVersionAbove(page, v, 120000);
+    const big = await page.evaluate(() => window.__holey.triangles);
+    await page.evaluate(() => window.__holey.setView());
+    const orbit = await page.evaluate(() => window.__holey.benchOrbit(90));
+    perf.orbit = { triangles: big, fps: round(orbit.fps), medianRenderMs: round(orbit.medianRenderMs) };
+    // A real mouse orbit, counting rendered pictures.
+    const vp = page.viewportSize();
+    const r0 = await page.evaluate(() => window.__holey.renders);
+    const t0 = Date.now();
+    await page.mouse.move(vp.width - 40, 80);
+    await page.mouse.down({ button: 'right' });
+    for (let i = 0; i < 40; i++) await page.mouse.move(vp.width - 40 - i * 6, 80 + i);
+    await page.mouse.up({ button: 'right' });
+    const mouseMs = Date.now() - t0;
+    perf.orbit.mouseDragPictures = (await page.evaluate(() => window.__holey.renders)) - r0;
+    perf.orbit.mouseDragFps = round((perf.orbit.mouseDragPictures * 1000) / mouseMs);
+    await page.screenshot({ path: path.join(artifacts, '8-perf-1M.png') });
+
+    v = await version(page);
+    await page.evaluate(() => window.__holey.request('primitive', { spec: '@sphere:6' }));
+    await waitVersionAbove(page, v, 60000);
+    await setWorkspace(page, 'sculpt');
+    const mid = await page.evaluate(() => window.__holey.triangles);
+    // Smooth keeps the sphere's shape, so every frame costs about the same.
+    // (Inflate passes over one spot made the server spin without answering:
+    // reported with a reproducer; HOLEY_E2E_BRUSH=inflate runs it.)
+    await page.click(tid(`tool-${process.env.HOLEY_E2E_BRUSH || 'smooth'}`));
+    await setRange(page, 'radius', 8);
+    await setRange(page, 'strength', 0.5);
+    await page.evaluate(() => window.__holey.setView([0, 0, 1]));
+    await page.waitForTimeout(100);
+    const box = await page.evaluate(() => window.__holey.bbox);
+    const c = await page.evaluate((p) => window.__holey.project(p), box.center);
+    const rpx = (await page.evaluate((p) => window.__holey.project(p), [box.center[0] + (box.max[0] - box.center[0]), box.center[1], box.center[2]]))[0] - c[0];
+    await page.evaluate(() => {
+      const h = window.__holey;
+      h.strokeLatencies.length = h.serverMs.length = h.clientMs.length = 0;
+      h.positionsOnlyFrames = 0;
+    });
+    await page.mouse.move(c[0] - 0.7 * rpx, c[1] - 0.2 * rpx);
+    await page.mouse.down();
+    for (let i = 0; i <= 60; i++) {
+      await page.mouse.move(c[0] + (-0.7 + (1.4 * i) / 60) * rpx, c[1] - 0.2 * rpx + 0.4 * rpx * Math.sin((i / 60) * Math.PI));
+      await page.waitForTimeout(16);
+    }
+    await page.mouse.up();
+    await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+    const lat = await page.evaluate(() => [...window.__holey.strokeLatencies]);
+    const srv = await page.evaluate(() => [...window.__holey.serverMs]);
+    const cli = await page.evaluate(() => [...window.__holey.clientMs]);
+    perf.sculpt = {
+      triangles: mid, frames: lat.length,
+      positionsOnlyFrames: await page.evaluate(() => window.__holey.positionsOnlyFrames),
+      // pointer event → picture drawn; of which the server's own time, and
+      // the page's parse + normals + draw time.
+      latencyMsMedian: round(median(lat)), latencyMsP95: round(pct(lat, 0.95)),
+      serverMsMedian: round(median(srv)), clientMsMedian: round(median(cli)),
+    };
+    perf.renderer = await page.evaluate(() => {
+      const gl = document.querySelector('canvas').getContext('webgl2');
+      const info = gl.getExtension('WEBGL_debug_renderer_info');
+      return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+    });
+    console.log(`  orbit: ${JSON.stringify(perf.orbit)}`);
+    console.log(`  sculpt: ${JSON.stringify(perf.sculpt)}`);
+    fs.writeFileSync(path.join(artifacts, 'perf.json'), JSON.stringify({ when: new Date().toISOString(), ...perf }, null, 2) + '\n');
+    if (!lat.length) throw new Error('no stroke frame was measured');
+  }],
+];
+
+// ---- run --------------------------------------------------------------------------
+
+const server = startServer();
+let browser;
+let failed = 0, passed = 0, skipped = 0;
+try {
+  const url = await server.url;
+  console.log(`server: ${url}${useMock ? ' (mock)' : ''}`);
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
+      // Chromium ≥ 137 only offers software WebGL (SwiftShader) when asked.
+      '--enable-unsafe-swiftshader'],
+  });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 }, acceptDownloads: true });
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(`pageerror: ${e.message}`));
+  // The text side of the WebSocket conversation, for debugging failures.
+  const wsLog = fs.createWriteStream(path.join(artifacts, 'ws.log'));
+  page.on('websocket', (ws) => {
+    const t = () => (performance.now() / 1000).toFixed(3);
+    ws.on('framesent', (f) => wsLog.write(`${t()} > ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`));
+    ws.on('framereceived', (f) => wsLog.write(`${t()} < ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`));
+    ws.on('close', () => wsLog.write(`${t()} closed\n`));
+  });
+  if (only && !only.has(1)) {
+    await page.goto(url);
+    await page.waitForFunction(() => window.__holey?.frames > 0, null, { timeout: 30000 });
+  }
+
+  for (const [i, [name, fn]] of scenarios.entries()) {
+    const n = i + 1;
+    if (only && !only.has(n)) continue;
+    const t0 = Date.now();
+    let outcome;
+    try {
+      outcome = (await fn(page, url)) === 'SKIP' ? 'SKIP' : 'PASS';
+    } catch (e) {
+      outcome = 'FAIL';
+      console.log(`  ${String(e.message || e).split('\n').join('\n  ')}`);
+    }
+    if (outcome === 'PASS') passed++;
+    else if (outcome === 'FAIL') failed++;
+    else skipped++;
+    console.log(`${outcome} ${n}. ${name} (${((Date.now() - t0) / 1000).toFixed(1)} s)`);
+    await page.screenshot({ path: path.join(artifacts, `scenario-${n}.png`) }).catch(() => {});
+  }
+  if (consoleErrors.length) console.log(`console errors during the run: ${consoleErrors.join(' | ')}`);
+} catch (e) {
+  failed++;
+  console.log(`FAIL setup: ${e.message}`);
+} finally {
+  await browser?.close().catch(() => {});
+  server.child.kill();
+  fs.rmSync(server.stateDir, { recursive: true, force: true });
+}
+console.log(`${passed} passed, ${failed} failed${skipped ? `, ${skipped} skipped` : ''}`);
+process.exit(failed ? 1 : 0);

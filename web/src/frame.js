@@ -1,0 +1,84 @@
+// Binary mesh frames, exactly as laid out in PROTOCOL.md.
+//
+// The typed arrays returned are views into the received ArrayBuffer (no
+// copies): a WebSocket with binaryType 'arraybuffer' hands us a fresh buffer
+// starting at offset 0, and every section of the frame is 4-byte aligned.
+
+export const FLAG_PREVIEW = 1;
+export const FLAG_MASK = 2;
+export const FLAG_POSITIONS_ONLY = 4;
+const MAGIC = 0x48534d48; // 'HMSH' read as a little-endian u32
+
+const pad4 = (n) => (n + 3) & ~3;
+
+export class FrameError extends Error {}
+
+/**
+ * Parse one frame. `prev` is the last parsed full-or-positions frame; a
+ * positions-only frame borrows its connectivity arrays (tris, triFace, edges).
+ */
+export function parseFrame(buf, prev) {
+  if (buf.byteLength < 32) throw new FrameError(`mesh frame too short (${buf.byteLength} bytes)`);
+  const dv = new DataView(buf);
+  if (dv.getUint32(0, true) !== MAGIC) throw new FrameError('mesh frame: bad magic');
+  const format = dv.getUint32(4, true);
+  if (format !== 1) throw new FrameError(`mesh frame: unsupported format version ${format}`);
+  const flags = dv.getUint32(8, true);
+  const version = dv.getUint32(12, true);
+  const nv = dv.getUint32(16, true);
+  const nt = dv.getUint32(20, true);
+  const ne = dv.getUint32(24, true);
+  const nf = dv.getUint32(28, true);
+  const positionsOnly = (flags & FLAG_POSITIONS_ONLY) !== 0;
+
+  let off = 32;
+  const take = (bytes) => {
+    if (off + bytes > buf.byteLength) throw new FrameError('mesh frame truncated');
+    const at = off;
+    off += pad4(bytes);
+    return at;
+  };
+  const positions = new Float32Array(buf, take(12 * nv), 3 * nv);
+
+  let tris, triFace, edges;
+  if (positionsOnly) {
+    if (!prev) throw new FrameError('positions-only mesh frame before any full frame');
+    if (prev.nt !== nt || prev.ne !== ne) throw new FrameError('positions-only frame does not match the previous connectivity');
+    ({ tris, triFace, edges } = prev);
+  } else {
+    tris = new Uint32Array(buf, take(12 * nt), 3 * nt);
+    triFace = new Uint32Array(buf, take(4 * nt), nt);
+    edges = new Uint32Array(buf, take(8 * ne), 2 * ne);
+  }
+  const mask = flags & FLAG_MASK ? new Uint8Array(buf, take(nv), nv) : null;
+
+  return {
+    flags, version, nv, nt, ne, nf, positions, tris, triFace, edges, mask,
+    preview: (flags & FLAG_PREVIEW) !== 0,
+    positionsOnly,
+  };
+}
+
+/** Build a frame (used by the mock server and unit checks). */
+export function encodeFrame({ flags = 0, version, positions, tris, triFace, edges, nf, mask }) {
+  const nv = positions.length / 3;
+  const positionsOnly = (flags & FLAG_POSITIONS_ONLY) !== 0;
+  const nt = tris.length / 3;
+  const ne = edges.length / 2;
+  if (mask) flags |= FLAG_MASK;
+  let size = 32 + 12 * nv;
+  if (!positionsOnly) size += 12 * nt + 4 * nt + 8 * ne;
+  if (mask) size += pad4(nv);
+  const buf = new ArrayBuffer(size);
+  const dv = new DataView(buf);
+  [MAGIC, 1, flags, version, nv, nt, ne, nf].forEach((v, i) => dv.setUint32(4 * i, v, true));
+  let off = 32;
+  new Float32Array(buf, off, 3 * nv).set(positions); off += 12 * nv;
+  if (!positionsOnly) {
+    new Uint32Array(buf, off, 3 * nt).set(tris); off += 12 * nt;
+    new Uint32Array(buf, off, nt).set(triFace); off += 4 * nt;
+    new Uint32Array(buf, off, 2 * ne).set(edges); off += 8 * ne;
+  }
+  if (mask) new Uint8Array(buf, off, nv).set(mask);
+  return buf;
+}

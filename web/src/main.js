@@ -1,0 +1,681 @@
+// The modeler page: wires the DOM controls, the 3D view and the server
+// connection together. The server owns the document; this page only shows
+// the frames it is sent and turns gestures into requests (PROTOCOL.md).
+
+import { Viewer } from './viewer.js';
+import { Connection } from './connection.js';
+import { parseFrame } from './frame.js';
+
+const $ = (id) => document.querySelector(`[data-testid="${id}"]`);
+const num = (id) => Number($(id).value);
+
+// ---- messages to the user ---------------------------------------------------
+
+function toast(text, kind = 'info', ms = kind === 'error' ? 9000 : 3500) {
+  const el = document.createElement('div');
+  el.className = `toast ${kind}`;
+  el.dataset.testid = kind === 'error' ? 'toast-error' : 'toast';
+  el.textContent = text;
+  el.title = 'Click to dismiss';
+  el.onclick = () => el.remove();
+  $('toasts').append(el);
+  while ($('toasts').children.length > 5) $('toasts').firstChild.remove();
+  setTimeout(() => el.remove(), ms);
+}
+// Anything unexpected still reaches the user as a message, never a dead page.
+window.addEventListener('error', (e) => toast(`Unexpected error: ${e.message}`, 'error'));
+window.addEventListener('unhandledrejection', (e) => toast(`Unexpected error: ${e.reason?.message || e.reason}`, 'error'));
+
+// ---- state ------------------------------------------------------------------
+
+const app = {
+  state: null, // latest `state` message
+  frame: null, // latest parsed frame (what is on screen)
+  sel: { version: -1, faces: [], corners: [], edge: null },
+  tool: 'inflate',
+  stroke: null,
+  fitNext: true, // frame the camera on the next mesh frame
+  workspace: null,
+  lostConnection: false,
+};
+
+const hook = {
+  get state() { return app.state; },
+  get stats() { return app.state?.stats ?? null; },
+  get version() { return app.state?.version ?? null; },
+  get frameVersion() { return app.frame?.version ?? null; },
+  get triangles() { return app.frame?.nt ?? 0; },
+  get renders() { return viewer?.renders ?? 0; },
+  get bbox() { return viewer?.bbox; },
+  get stroking() { return !!app.stroke; },
+  get strokeInfo() {
+    const s = app.stroke;
+    return s && { brush: s.brush, ending: s.ending, inflight: !!s.inflight, queued: !!s.queued };
+  },
+  get pending() { return [...conn.pending.values()].map((p) => p.op); },
+  frames: 0,
+  positionsOnlyFrames: 0,
+  previewFrames: 0,
+  clientMs: [], // parse + upload + draw of each stroke frame
+  lastFrameMs: null, // pointer event -> stroke frame rendered, last stroke frame
+  strokeLatencies: [],
+  serverMs: [],
+  lastParseRenderMs: null,
+  errors: [],
+  setView: (dir) => viewer?.setView(dir),
+  project: (p) => viewer?.project(p),
+  request: (op, fields) => conn.request(op, fields),
+  benchOrbit,
+};
+window.__holey = hook;
+
+// ---- 3D view ----------------------------------------------------------------
+
+let viewer = null;
+const canvas = $('canvas');
+try {
+  viewer = new Viewer(canvas);
+} catch (e) {
+  const box = document.createElement('div');
+  box.className = 'fatal';
+  box.textContent = `The 3D view could not start (${e.message}). This browser or its graphics driver does not provide WebGL 2; the rest of the page still works.`;
+  $('view').append(box);
+}
+
+// ---- connection -------------------------------------------------------------
+
+const wsUrl = new URL('ws', location.href);
+wsUrl.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
+const conn = new Connection(wsUrl.href, {
+  open() {
+    $('connection').textContent = 'connected';
+    $('connection').classList.remove('bad');
+    if (app.lostConnection) toast('Reconnected to the server.');
+    app.lostConnection = false;
+    call('hello');
+    loadPrimitives();
+  },
+  close(delay) {
+    const el = $('connection');
+    el.textContent = `disconnected — retrying in ${Math.round(delay / 100) / 10} s`;
+    el.classList.add('bad');
+    if (!app.lostConnection) {
+      toast(conn.everOpened ? 'Lost the connection to holey serve; trying to reconnect…' : 'Cannot reach holey serve; retrying…', 'error');
+    }
+    app.lostConnection = true;
+    if (app.stroke) endStrokeLocally();
+    hideProgress();
+  },
+  state: onState,
+  frame: onFrame,
+  progress: onProgress,
+  notice: (t) => toast(t, 'error'),
+});
+
+/** Send a request; failures become a toast and resolve to null. */
+async function call(op, fields = {}) {
+  try {
+    return await conn.request(op, fields);
+  } catch (e) {
+    if (e.cancelled) toast('Cancelled.');
+    else toast(e.message, 'error');
+    hook.errors.push({ op, message: e.message });
+    return null;
+  }
+}
+
+async function loadPrimitives() {
+  const ok = await call('primitives');
+  if (!ok?.primitives) return;
+  const sel = $('primitive-select');
+  const keep = sel.value;
+  sel.replaceChildren(...ok.primitives.map((p) => {
+    const o = document.createElement('option');
+    o.value = p.spec;
+    o.textContent = p.name;
+    o.title = p.about || '';
+    return o;
+  }));
+  if (keep && ok.primitives.some((p) => p.spec === keep)) sel.value = keep;
+}
+
+function statsText(s) {
+  const genus = s.genus == null ? 'genus – (not a closed manifold)' : `genus ${s.genus}`;
+  let t = `V ${s.vertices} · E ${s.edges} · F ${s.faces} · components ${s.components} · ${genus} · boundary loops ${s.boundary_loops}`;
+  if (s.triangles != null) t += ` · ${s.triangles} triangles`;
+  if (s.manifold === false) t += ' · non-manifold';
+  return t;
+}
+
+function onState(s) {
+  app.state = s;
+  const body = document.body;
+  body.classList.toggle('ws-model', s.workspace === 'model');
+  body.classList.toggle('ws-sculpt', s.workspace === 'sculpt');
+  body.classList.toggle('mode-rind', s.mode === 'rind');
+  for (const b of document.querySelectorAll('[data-ws]')) b.classList.toggle('active', b.dataset.ws === s.workspace);
+  $('undo').disabled = !s.can_undo;
+  $('redo').disabled = !s.can_redo;
+  if (s.stats) $('stats').textContent = statsText(s.stats);
+  $('busy').textContent = s.busy ? `working: ${s.busy}…` : '';
+  if (s.remesh && document.activeElement !== $('remesh-detail')) {
+    $('remesh-detail').value = s.remesh.detail;
+    $('remesh-value').textContent = s.remesh.detail > 0 ? s.remesh.detail : 'off';
+  }
+  if (s.workspace !== app.workspace) {
+    // Polygons read best flat with their edges; sculpts smooth without.
+    app.workspace = s.workspace;
+    setShading(s.workspace === 'model', s.workspace === 'model' && (app.frame?.nt ?? 0) < 300000);
+    if (s.workspace !== 'sculpt') viewer?.hideBrush();
+    clearSelection();
+  }
+  updateBadge();
+}
+
+function onFrame(buf) {
+  const t0 = performance.now();
+  let f;
+  try {
+    f = parseFrame(buf, app.frame);
+  } catch (e) {
+    toast(`Could not read a mesh frame: ${e.message}`, 'error');
+    return;
+  }
+  app.frame = f;
+  hook.frames++;
+  if (f.positionsOnly) hook.positionsOnlyFrames++;
+  if (f.preview) hook.previewFrames++;
+  if (!viewer) return;
+  const newTopology = viewer.setFrame(f);
+  if (newTopology) {
+    // Huge meshes: the wireframe would cost more than the surface itself.
+    if (f.nt > 300000 && $('wireframe').checked) setShading(viewer.flat, false);
+    if (f.preview || f.version === app.sel.version) applySelection();
+    else clearSelection();
+    showSliderValues(); // the brush radius is relative to the mesh size
+  }
+  if (app.fitNext) {
+    app.fitNext = false;
+    viewer.setView();
+  }
+  viewer.renderNow();
+  const now = performance.now();
+  hook.lastParseRenderMs = now - t0;
+  const inflight = app.stroke?.inflight;
+  if (inflight && !inflight.measured) {
+    inflight.measured = true;
+    hook.lastFrameMs = now - inflight.t;
+    hook.strokeLatencies.push(hook.lastFrameMs);
+    hook.clientMs.push(hook.lastParseRenderMs);
+    if (hook.strokeLatencies.length > 2000) hook.strokeLatencies.shift();
+    if (hook.clientMs.length > 2000) hook.clientMs.shift();
+  }
+  updateBadge();
+}
+
+function updateBadge() {
+  const b = $('mode-badge');
+  let text = '';
+  if (app.state?.mode === 'rind') text = 'Rind: click a face to punch a hole, Shift-click to peel; Done keeps it';
+  // Sculpt drag previews explain themselves (red = vanishes at release).
+  else if (app.frame?.preview && app.state?.workspace === 'model') text = 'Preview — “Create handle” keeps it, “Discard” drops it';
+  b.textContent = text;
+  b.hidden = !text;
+}
+
+// ---- progress of long operations ------------------------------------------
+
+function showProgress(stage, fraction) {
+  const p = $('progress');
+  p.hidden = false;
+  $('progress-stage').textContent = stage || 'working…';
+  p.classList.toggle('indeterminate', fraction == null);
+  p.querySelector('.fill').style.width = fraction == null ? '' : `${Math.round(fraction * 100)}%`;
+}
+function hideProgress() {
+  $('progress').hidden = true;
+}
+function onProgress(m) {
+  showProgress(m.stage, m.fraction);
+}
+$('progress-cancel').onclick = () => call('cancel');
+
+async function long(op, fields, label) {
+  showProgress(label, null);
+  try {
+    return await call(op, fields);
+  } finally {
+    hideProgress();
+  }
+}
+
+// ---- toolbar ----------------------------------------------------------------
+
+for (const b of document.querySelectorAll('[data-ws]')) b.onclick = () => call('workspace', { workspace: b.dataset.ws });
+$('undo').onclick = () => call('undo');
+$('redo').onclick = () => call('redo');
+$('view-reset').onclick = () => viewer?.setView();
+$('wireframe').onchange = () => setShading(viewer?.flat, $('wireframe').checked);
+$('flat').onchange = () => setShading($('flat').checked, $('wireframe').checked);
+
+function setShading(flat, wire) {
+  $('flat').checked = !!flat;
+  $('wireframe').checked = !!wire;
+  viewer?.setFlat(!!flat);
+  viewer?.setWireframe(!!wire);
+}
+
+$('primitive-create').onclick = async () => {
+  const spec = $('primitive-select').value;
+  if (!spec) return;
+  app.fitNext = true;
+  if (!(await long('primitive', { spec }, `creating ${spec}`))) app.fitNext = false;
+};
+
+// Import: file picker or a file dropped anywhere on the page.
+$('import').onclick = () => $('import-input').click();
+$('import-input').onchange = () => {
+  const file = $('import-input').files[0];
+  $('import-input').value = ''; // picking the same file again must fire again
+  if (file) importFile(file);
+};
+
+async function importFile(file) {
+  showProgress(`opening ${file.name}`, null);
+  app.fitNext = true;
+  try {
+    const res = await fetch(`api/import?name=${encodeURIComponent(file.name)}`, { method: 'POST', body: file });
+    let body = null;
+    try {
+      body = await res.json();
+    } catch {
+      /* not JSON: reported below from the status */
+    }
+    if (!res.ok || !body?.ok) {
+      app.fitNext = false;
+      toast(`Could not open ${file.name}: ${body?.error || `${res.status} ${res.statusText}`}`, 'error');
+    } else {
+      toast(`Opened ${file.name}`);
+    }
+  } catch (e) {
+    app.fitNext = false;
+    toast(`Could not upload ${file.name}: ${e.message}`, 'error');
+  } finally {
+    hideProgress();
+  }
+}
+
+let dragDepth = 0;
+const dropHint = document.querySelector('.drop');
+const hasFiles = (e) => [...(e.dataTransfer?.types || [])].includes('Files');
+window.addEventListener('dragenter', (e) => {
+  if (!hasFiles(e)) return;
+  dragDepth++;
+  dropHint.hidden = false;
+});
+window.addEventListener('dragleave', () => {
+  if (--dragDepth <= 0) { dragDepth = 0; dropHint.hidden = true; }
+});
+window.addEventListener('dragover', (e) => {
+  if (hasFiles(e)) e.preventDefault();
+});
+window.addEventListener('drop', (e) => {
+  e.preventDefault();
+  dragDepth = 0;
+  dropHint.hidden = true;
+  const file = e.dataTransfer?.files?.[0];
+  if (file) importFile(file);
+});
+
+$('export').onclick = async () => {
+  const format = $('export-format').value;
+  try {
+    const res = await fetch(`api/export?format=${format}`);
+    if (!res.ok) {
+      let msg = `${res.status} ${res.statusText}`;
+      try { msg = (await res.json()).error || msg; } catch { /* keep status */ }
+      throw new Error(msg);
+    }
+    const name = /filename="([^"]+)"/.exec(res.headers.get('Content-Disposition') || '')?.[1] || `holey.${format}`;
+    const url = URL.createObjectURL(await res.blob());
+    const a = document.createElement('a');
+    a.href = url;
+    a.download = name;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 60000);
+  } catch (e) {
+    toast(`Export failed: ${e.message}`, 'error');
+  }
+};
+
+window.addEventListener('keydown', (e) => {
+  const t = e.target;
+  if (t instanceof HTMLInputElement && t.type !== 'range' && t.type !== 'checkbox' && t.type !== 'radio') return;
+  if (t instanceof HTMLSelectElement) return;
+  const mod = e.ctrlKey || e.metaKey;
+  const k = e.key.toLowerCase();
+  if (mod && k === 'z') {
+    e.preventDefault();
+    if (!app.stroke) call(e.shiftKey ? 'redo' : 'undo');
+  } else if (mod && k === 'y') {
+    e.preventDefault();
+    if (!app.stroke) call('redo');
+  } else if (!mod && k === 'f') {
+    viewer?.setView();
+  } else if (!mod && k === 'escape') {
+    clearSelection();
+  } else if (!mod && app.state?.workspace === 'sculpt' && '1234'.includes(k) && k) {
+    setTool(['inflate', 'smooth', 'grab', 'move'][Number(k) - 1]);
+  }
+});
+
+// ---- model workspace: selection and operations ------------------------------
+
+function clearSelection() {
+  app.sel = { version: app.frame?.version ?? -1, faces: [], corners: [], edge: null };
+  applySelection();
+}
+
+function applySelection() {
+  const s = app.sel;
+  // Highlights are drawn on the committed mesh only, not on a preview.
+  viewer?.setSelection(app.frame?.preview ? {} : s);
+  const parts = [];
+  if (s.faces.length) parts.push(`faces ${s.faces.join(', ')}`);
+  if (s.corners.length) parts.push(`corners ${s.corners.map(([f, v]) => `${v}@${f}`).join(', ')}`);
+  if (s.edge != null) parts.push(`edge ${s.edge}`);
+  $('selection').textContent = parts.length ? parts.join(' · ') : 'nothing selected';
+}
+
+function pickMode(e) {
+  if (e.shiftKey || e.altKey) return 'corner';
+  return document.querySelector('[name=pick]:checked').value;
+}
+
+async function modelClick(e) {
+  if (!viewer || !app.frame) return;
+  const hit = viewer.pick(e.clientX, e.clientY);
+  if (app.state?.mode === 'rind') {
+    if (hit) await call('rind_punch', { version: app.frame.version, face: hit.face, peel: e.shiftKey });
+    return;
+  }
+  if (app.frame.preview) return; // indices of a preview are not the document's
+  if (app.sel.version !== app.frame.version) clearSelection();
+  const s = app.sel;
+  if (!hit) {
+    clearSelection();
+    return;
+  }
+  const mode = pickMode(e);
+  if (mode === 'face') {
+    const i = s.faces.indexOf(hit.face);
+    if (i >= 0) s.faces.splice(i, 1);
+    else s.faces.push(hit.face);
+  } else if (mode === 'corner') {
+    const v = viewer.nearestVertex(viewer.faceVertices(hit.face), hit.point);
+    const i = s.corners.findIndex(([f, w]) => f === hit.face && w === v);
+    if (i >= 0) s.corners.splice(i, 1);
+    else s.corners.push([hit.face, v]);
+  } else {
+    const ed = viewer.nearestEdge(hit.face, hit.point);
+    s.edge = ed === s.edge || ed < 0 ? null : ed;
+  }
+  applySelection();
+}
+
+$('op-insert-edge').onclick = () => {
+  const c = app.sel.corners;
+  if (c.length < 2) return toast('Select two corners of one face first (Corners mode, or Shift-click near a vertex).', 'error');
+  const [a, b] = c.slice(-2);
+  if (a[0] !== b[0]) return toast('The two corners must belong to the same face.', 'error');
+  call('insert_edge', { version: app.frame.version, corners: [a, b] });
+};
+$('op-delete-edge').onclick = () => {
+  if (app.sel.edge == null) return toast('Select an edge first (Edges mode, click next to it).', 'error');
+  call('delete_edge', { version: app.frame.version, edge: app.sel.edge });
+};
+
+function handleFields(preview) {
+  const f = app.sel.faces;
+  if (f.length !== 2) {
+    toast('Select exactly two faces for the handle.', 'error');
+    return null;
+  }
+  const fields = {
+    version: app.sel.version, faces: f, segments: num('handle-segments'),
+    w1: num('handle-w1'), w2: num('handle-w2'), preview,
+  };
+  // A corner picked on each face fixes the twist of the handle.
+  const ca = app.sel.corners.find(([face]) => face === f[0]);
+  const cb = app.sel.corners.find(([face]) => face === f[1]);
+  if (ca && cb) fields.corners = [ca[1], cb[1]];
+  return fields;
+}
+$('op-handle').onclick = () => {
+  const f = handleFields(true);
+  if (f) long('handle', f, 'previewing handle');
+};
+$('handle-commit').onclick = () => {
+  const f = handleFields(false);
+  if (f) long('handle', f, 'making handle');
+};
+$('handle-discard').onclick = () => call('hello'); // re-sends the committed mesh
+
+$('op-rind').onclick = () => long('rind_begin', { thickness: num('rind-thickness') }, 'making the rind');
+$('rind-done').onclick = () => call('rind_end', { commit: true });
+$('rind-cancel').onclick = () => call('rind_end', { commit: false });
+$('op-sierpinski').onclick = () => long('sierpinski', { level: num('sierpinski-level') }, 'Sierpinski');
+$('op-menger').onclick = () =>
+  long('menger', { level: num('menger-level'), exact: $('menger-exact').checked }, 'Menger');
+$('op-subdivide').onclick = () =>
+  long('subdivide', { scheme: $('subdivide-scheme').value, levels: num('subdivide-levels') }, 'subdividing');
+
+// ---- sculpt workspace ---------------------------------------------------------
+
+function setTool(tool) {
+  app.tool = tool;
+  for (const b of document.querySelectorAll('[data-tool]')) b.classList.toggle('active', b.dataset.tool === tool);
+}
+for (const b of document.querySelectorAll('[data-tool]')) b.onclick = () => setTool(b.dataset.tool);
+setTool('inflate');
+
+const brushRadius = () => (num('radius') / 100) * (viewer?.bbox.diag ?? 1);
+function showSliderValues() {
+  $('radius-value').textContent = `${num('radius')}% (${brushRadius().toPrecision(3)})`;
+  $('strength-value').textContent = num('strength').toFixed(2);
+}
+$('radius').oninput = showSliderValues;
+$('strength').oninput = showSliderValues;
+showSliderValues();
+$('remesh-detail').oninput = () => {
+  $('remesh-value').textContent = num('remesh-detail') > 0 ? num('remesh-detail') : 'off';
+};
+$('remesh-detail').onchange = () => call('set_remesh', { detail: num('remesh-detail') });
+
+/** Stroke protocol: stroke_begin, then stroke_frame with at most one request
+ * in flight (the newest pointer position waits in `queued`), then stroke_end
+ * once everything sent has been answered. */
+/** Inflate displacement per frame at full strength, as a share of the radius. */
+const INFLATE_PER_FRAME = 0.05;
+
+function beginStroke(hit, e) {
+  const sign = $('deflate').checked !== e.ctrlKey ? -1 : 1;
+  const stroke = {
+    brush: app.tool,
+    anchor: hit.point,
+    normal: hit.normal,
+    radius: brushRadius(),
+    inflight: { t: e.timeStamp, measured: true },
+    queued: null,
+    ending: false,
+    pointerId: e.pointerId,
+  };
+  app.stroke = stroke;
+  viewer.showBrush(hit.point, hit.normal, stroke.radius);
+  // The server's strength is in world units for inflate (displacement per
+  // frame) and a step fraction for smooth; grab and move follow the pointer.
+  // Inflate is scaled to the brush so that one frame moves the surface by a
+  // few percent of the radius: a frame that pushes farther than the edges
+  // are long folds the surface over itself many times at once.
+  const s = num('strength');
+  const strength = stroke.brush === 'inflate' ? s * INFLATE_PER_FRAME * stroke.radius * sign
+    : stroke.brush === 'smooth' ? s : 1;
+  conn.request('stroke_begin', {
+    brush: stroke.brush, radius: stroke.radius, strength, point: hit.point,
+  }).then(
+    () => strokeAnswered(stroke),
+    (err) => {
+      toast(err.message, 'error');
+      if (app.stroke === stroke) endStrokeLocally();
+    },
+  );
+}
+
+function strokeAnswered(stroke) {
+  stroke.inflight = null;
+  if (app.stroke !== stroke) return;
+  if (stroke.queued) {
+    const q = stroke.queued;
+    stroke.queued = null;
+    stroke.inflight = q;
+    conn.request('stroke_frame', { point: q.point }).then(
+      (ok) => {
+        if (ok.ms != null) {
+          hook.serverMs.push(ok.ms);
+          if (hook.serverMs.length > 2000) hook.serverMs.shift();
+        }
+        strokeAnswered(stroke);
+      },
+      (err) => {
+        toast(err.message, 'error');
+        strokeAnswered(stroke);
+      },
+    );
+  } else if (stroke.ending) {
+    app.stroke = null;
+    viewer.hideBrush(); // back on the surface with the next hover
+    call('stroke_end');
+  }
+}
+
+function strokeMove(e) {
+  const s = app.stroke;
+  let point, normal = s.normal;
+  if (s.brush === 'grab' || s.brush === 'move') {
+    point = viewer.planePoint(e.clientX, e.clientY, s.anchor);
+  } else {
+    const hit = viewer.pick(e.clientX, e.clientY);
+    if (hit) ({ point, normal } = hit);
+  }
+  if (!point) return;
+  viewer.showBrush(point, normal, s.radius);
+  s.queued = { point, t: e.timeStamp };
+  if (!s.inflight) strokeAnswered(s);
+}
+
+function strokeUp() {
+  const s = app.stroke;
+  if (!s || s.ending) return;
+  s.ending = true;
+  if (viewer.controls) viewer.controls.enabled = true;
+  if (!s.inflight) strokeAnswered(s);
+}
+
+/** The connection dropped or the server refused: forget the stroke here. */
+function endStrokeLocally() {
+  app.stroke = null;
+  if (viewer?.controls) viewer.controls.enabled = true;
+}
+
+// ---- pointer input on the canvas ----------------------------------------------
+// Registered before OrbitControls so a stroke can switch them off before
+// they start orbiting on the same pointerdown.
+
+let down = null;
+let hoverQueued = null;
+
+canvas.addEventListener('pointerdown', (e) => {
+  down = { x: e.clientX, y: e.clientY, t: e.timeStamp, button: e.button };
+  if (!viewer || !app.frame || app.stroke) return;
+  if (app.state?.workspace !== 'sculpt' || e.button !== 0 || e.shiftKey) return;
+  const hit = viewer.pick(e.clientX, e.clientY);
+  if (!hit) return; // empty space: orbit
+  viewer.controls.enabled = false;
+  canvas.setPointerCapture(e.pointerId);
+  beginStroke(hit, e);
+});
+
+canvas.addEventListener('pointermove', (e) => {
+  if (app.stroke && e.pointerId === app.stroke.pointerId && !app.stroke.ending) {
+    strokeMove(e);
+    return;
+  }
+  if (app.state?.workspace !== 'sculpt' || !viewer || e.buttons) return;
+  // Brush cursor: at most one pick per displayed frame.
+  const first = !hoverQueued;
+  hoverQueued = { x: e.clientX, y: e.clientY };
+  if (first) {
+    requestAnimationFrame(() => {
+      const q = hoverQueued;
+      hoverQueued = null;
+      if (app.stroke || app.state?.workspace !== 'sculpt') return;
+      const hit = viewer.pick(q.x, q.y);
+      if (hit) viewer.showBrush(hit.point, hit.normal, brushRadius());
+      else viewer.hideBrush();
+    });
+  }
+});
+
+const pointerEnd = (e) => {
+  if (app.stroke && e.pointerId === app.stroke.pointerId) {
+    strokeUp();
+    return;
+  }
+  if (e.type !== 'pointerup' || !down) return;
+  const click = e.button === 0 && Math.hypot(e.clientX - down.x, e.clientY - down.y) < 5 && e.timeStamp - down.t < 600;
+  down = null;
+  if (click && app.state?.workspace === 'model') modelClick(e);
+};
+canvas.addEventListener('pointerup', pointerEnd);
+canvas.addEventListener('pointercancel', pointerEnd);
+canvas.addEventListener('lostpointercapture', pointerEnd);
+canvas.addEventListener('pointerleave', () => {
+  if (!app.stroke) viewer?.hideBrush();
+});
+canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+viewer?.attachControls();
+
+// ---- measurements for the end-to-end tests -----------------------------------
+
+/** Orbit the camera a full turn in `n` animation frames; returns frames per second. */
+function benchOrbit(n = 120) {
+  return new Promise((resolve) => {
+    const c = viewer.controls;
+    const target = c.target.clone();
+    const offset = viewer.camera.position.clone().sub(target);
+    const r = Math.hypot(offset.x, offset.z), y = offset.y;
+    let i = 0, start = 0;
+    const renderMs = [];
+    const step = (now) => {
+      if (i === 0) start = now;
+      const a = Math.atan2(offset.x, offset.z) + (2 * Math.PI * i) / n;
+      viewer.camera.position.set(target.x + r * Math.sin(a), target.y + y, target.z + r * Math.cos(a));
+      viewer.camera.lookAt(target);
+      const t0 = performance.now();
+      viewer.renderNow();
+      // readPixels waits for the GPU, so renderMs is real drawing time.
+      const gl = viewer.renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+      renderMs.push(performance.now() - t0);
+      if (++i <= n) requestAnimationFrame(step);
+      else {
+        c.update();
+        renderMs.sort((a2, b2) => a2 - b2);
+        resolve({ fps: (n * 1000) / (now - start), frames: n, medianRenderMs: renderMs[renderMs.length >> 1] });
+      }
+    };
+    requestAnimationFrame(step);
+  });
+}

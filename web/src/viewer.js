@@ -1,0 +1,466 @@
+// The 3D view: one shaded mesh plus overlays that share its position
+// attribute (wireframe, selected faces, vanish mask), so a positions-only
+// frame updates every layer with a single upload. Rendering happens only
+// when something changed (frames, camera moves, overlays).
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+
+const BASE_COLOR = 0xb9c3d3;
+
+/** Is WebGL drawn by the CPU (SwiftShader, llvmpipe)? Asked on a throwaway
+ * context because antialiasing cannot be changed after creation. */
+function isSoftwareGL() {
+  try {
+    const gl = document.createElement('canvas').getContext('webgl2');
+    if (!gl) return false;
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    const name = info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+    gl.getExtension('WEBGL_lose_context')?.loseContext();
+    return /swiftshader|llvmpipe|softpipe|software/i.test(String(name));
+  } catch {
+    return false;
+  }
+}
+
+export class Viewer {
+  constructor(canvas) {
+    this.canvas = canvas;
+    this.software = isSoftwareGL();
+    // Throws if WebGL is unavailable; main.js turns that into a message.
+    // A software rasterizer spends ~2.5× longer per picture with MSAA, so
+    // there we trade smooth edges for a usable frame rate.
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software, powerPreference: 'high-performance' });
+    this.renderer.setPixelRatio(this.software ? 1 : Math.min(window.devicePixelRatio || 1, 2));
+    this.renderer.setClearColor(0x1d2230);
+
+    this.scene = new THREE.Scene();
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    this.camera.position.set(0, 0, 5);
+    this.scene.add(this.camera);
+    // Light rides with the camera: whatever side the artist orbits to is lit.
+    const key = new THREE.DirectionalLight(0xffffff, 2.2);
+    key.position.set(0.4, 0.8, 1);
+    this.camera.add(key);
+    this.scene.add(new THREE.HemisphereLight(0xdde6ff, 0x303040, 1.1));
+
+    this.material = new THREE.MeshPhongMaterial({
+      color: BASE_COLOR, specular: 0x222222, shininess: 30, side: THREE.DoubleSide,
+      // Push the surface back so wireframe and overlays draw on top of it.
+      polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+    });
+    this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x1a1f2b, transparent: true, opacity: 0.55 });
+    this.selMaterial = new THREE.MeshBasicMaterial({
+      color: 0xff9a2e, transparent: true, opacity: 0.6, side: THREE.DoubleSide, depthWrite: false,
+    });
+    this.maskMaterial = new THREE.MeshBasicMaterial({
+      color: 0xff2a2a, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthTest: false, depthWrite: false,
+    });
+
+    this.mesh = null; // THREE.Mesh of the current frame
+    this.wire = null;
+    this.selMesh = null;
+    this.maskMesh = null;
+    this.frame = null;
+    this.flat = false;
+    this.showWire = true;
+    this.bbox = { min: [0, 0, 0], max: [0, 0, 0], center: [0, 0, 0], diag: 1 };
+
+    this.cornerPoints = new THREE.Points(
+      new THREE.BufferGeometry(),
+      new THREE.PointsMaterial({ color: 0x3dffb0, size: 11, sizeAttenuation: false, depthTest: false }),
+    );
+    this.cornerPoints.renderOrder = 10;
+    this.cornerPoints.frustumCulled = false;
+    this.edgeLine = new THREE.LineSegments(
+      new THREE.BufferGeometry(),
+      new THREE.LineBasicMaterial({ color: 0x3dffb0, depthTest: false }),
+    );
+    this.edgeLine.renderOrder = 10;
+    this.edgeLine.frustumCulled = false;
+    this.scene.add(this.cornerPoints, this.edgeLine);
+
+    const ring = new Float32Array(64 * 3);
+    for (let i = 0; i < 64; i++) {
+      const a = (i / 64) * Math.PI * 2;
+      ring[3 * i] = Math.cos(a);
+      ring[3 * i + 1] = Math.sin(a);
+    }
+    const ringGeo = new THREE.BufferGeometry();
+    ringGeo.setAttribute('position', new THREE.BufferAttribute(ring, 3));
+    this.brush = new THREE.LineLoop(ringGeo, new THREE.LineBasicMaterial({ color: 0xffe066, depthTest: false }));
+    this.brush.renderOrder = 11;
+    this.brush.visible = false;
+    this.scene.add(this.brush);
+
+    this.controls = null; // created by attachControls() after the app's own pointer handlers
+    this.renders = 0;
+    this.lastRenderAt = 0;
+    this.pendingRender = 0;
+    this._ray = new THREE.Raycaster();
+    this._v = new THREE.Vector3();
+    this._v2 = new THREE.Vector2();
+
+    new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
+    this.resize();
+  }
+
+  /** OrbitControls listen on the canvas; attach them after our own pointerdown
+   * handler so that a sculpt stroke can disable them before they react. */
+  attachControls() {
+    const c = new OrbitControls(this.camera, this.canvas);
+    c.enableDamping = false; // damping would need a render loop running all the time
+    c.zoomToCursor = true;
+    // Every button orbits (shift/ctrl + drag pans, wheel zooms): an artist's
+    // right or middle drag never starts an edit by accident.
+    c.mouseButtons = { LEFT: THREE.MOUSE.ROTATE, MIDDLE: THREE.MOUSE.ROTATE, RIGHT: THREE.MOUSE.ROTATE };
+    c.addEventListener('change', () => this.requestRender());
+    this.controls = c;
+  }
+
+  resize() {
+    const el = this.canvas.parentElement;
+    const w = Math.max(1, el.clientWidth), h = Math.max(1, el.clientHeight);
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.renderNow();
+  }
+
+  requestRender() {
+    if (this.pendingRender) return;
+    this.pendingRender = requestAnimationFrame(() => {
+      this.pendingRender = 0;
+      this.renderNow();
+    });
+  }
+
+  renderNow() {
+    if (this.pendingRender) {
+      cancelAnimationFrame(this.pendingRender);
+      this.pendingRender = 0;
+    }
+    this.renderer.render(this.scene, this.camera);
+    this.renders++;
+    this.lastRenderAt = performance.now();
+  }
+
+  // ---- frames -------------------------------------------------------------
+
+  /** Show a parsed frame. Returns true when connectivity changed. */
+  setFrame(f) {
+    const prev = this.frame;
+    this.frame = f;
+    if (f.positionsOnly && this.mesh && prev && prev.nv === f.nv) {
+      const attr = this.mesh.geometry.attributes.position;
+      attr.array.set(f.positions);
+      attr.needsUpdate = true;
+      // Keep the frame pointing at the live arrays so picking sees them.
+      f.positions = attr.array;
+      if (!this.flat) this.updateNormals();
+      this.updateMask();
+      return false;
+    }
+    this.disposeMesh();
+    const pos = new THREE.BufferAttribute(f.positions, 3);
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', pos);
+    geo.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(3 * f.nv), 3));
+    geo.setIndex(new THREE.BufferAttribute(f.tris, 1));
+    this.mesh = new THREE.Mesh(geo, this.material);
+    // Bounds are tracked by hand (computeBoundingSphere would allocate); the
+    // whole mesh is always on screen anyway.
+    this.mesh.frustumCulled = false;
+    if (!this.flat) this.updateNormals();
+
+    const wgeo = new THREE.BufferGeometry();
+    wgeo.setAttribute('position', pos);
+    wgeo.setIndex(new THREE.BufferAttribute(f.edges, 1));
+    this.wire = new THREE.LineSegments(wgeo, this.wireMaterial);
+    this.wire.frustumCulled = false;
+    this.wire.visible = this.showWire;
+
+    const sgeo = new THREE.BufferGeometry();
+    sgeo.setAttribute('position', pos);
+    this.selMesh = new THREE.Mesh(sgeo, this.selMaterial);
+    this.selMesh.frustumCulled = false;
+    this.selMesh.visible = false;
+    this.selMesh.renderOrder = 2;
+
+    const mgeo = new THREE.BufferGeometry();
+    mgeo.setAttribute('position', pos);
+    mgeo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * f.nt)), 1));
+    this.maskMesh = new THREE.Mesh(mgeo, this.maskMaterial);
+    this.maskMesh.frustumCulled = false;
+    this.maskMesh.visible = false;
+    this.maskMesh.renderOrder = 3;
+
+    this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh);
+    this.computeBounds();
+    this.updateMask();
+    return true;
+  }
+
+  disposeMesh() {
+    for (const m of [this.mesh, this.wire, this.selMesh, this.maskMesh]) {
+      if (!m) continue;
+      this.scene.remove(m);
+      m.geometry.dispose();
+    }
+    this.mesh = this.wire = this.selMesh = this.maskMesh = null;
+  }
+
+  computeBounds() {
+    const p = this.frame.positions;
+    let x0 = Infinity, y0 = Infinity, z0 = Infinity, x1 = -Infinity, y1 = -Infinity, z1 = -Infinity;
+    for (let i = 0; i < p.length; i += 3) {
+      const x = p[i], y = p[i + 1], z = p[i + 2];
+      if (x < x0) x0 = x; if (x > x1) x1 = x;
+      if (y < y0) y0 = y; if (y > y1) y1 = y;
+      if (z < z0) z0 = z; if (z > z1) z1 = z;
+    }
+    if (!(x0 <= x1)) x0 = y0 = z0 = x1 = y1 = z1 = 0;
+    const diag = Math.hypot(x1 - x0, y1 - y0, z1 - z0) || 1;
+    this.bbox = { min: [x0, y0, z0], max: [x1, y1, z1], center: [(x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2], diag };
+  }
+
+  /** Area-weighted vertex normals straight on the typed arrays (three's
+   * computeVertexNormals goes through Vector3 objects and is far slower). */
+  updateNormals() {
+    const f = this.frame;
+    const attr = this.mesh.geometry.attributes.normal;
+    const n = attr.array, p = f.positions, t = f.tris;
+    n.fill(0);
+    for (let i = 0; i < t.length; i += 3) {
+      const a = 3 * t[i], b = 3 * t[i + 1], c = 3 * t[i + 2];
+      const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+      const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+      const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+      n[a] += nx; n[a + 1] += ny; n[a + 2] += nz;
+      n[b] += nx; n[b + 1] += ny; n[b + 2] += nz;
+      n[c] += nx; n[c + 1] += ny; n[c + 2] += nz;
+    }
+    for (let i = 0; i < n.length; i += 3) {
+      const l = Math.hypot(n[i], n[i + 1], n[i + 2]) || 1;
+      n[i] /= l; n[i + 1] /= l; n[i + 2] /= l;
+    }
+    attr.needsUpdate = true;
+  }
+
+  setFlat(flat) {
+    this.flat = flat;
+    this.material.flatShading = flat;
+    this.material.needsUpdate = true;
+    if (!flat && this.mesh) this.updateNormals();
+    this.requestRender();
+  }
+
+  setWireframe(on) {
+    this.showWire = on;
+    if (this.wire) this.wire.visible = on;
+    this.requestRender();
+  }
+
+  /** Triangles touching a vanishing vertex are drawn red and see-through. */
+  updateMask() {
+    const f = this.frame, m = this.maskMesh;
+    if (!m) return;
+    if (!f.mask) {
+      m.visible = false;
+      return;
+    }
+    const idx = m.geometry.index, out = idx.array, t = f.tris, mask = f.mask;
+    let k = 0;
+    for (let i = 0; i < t.length; i += 3) {
+      const a = t[i], b = t[i + 1], c = t[i + 2];
+      if (mask[a] | mask[b] | mask[c]) {
+        out[k++] = a; out[k++] = b; out[k++] = c;
+      }
+    }
+    m.geometry.setDrawRange(0, k);
+    idx.needsUpdate = true;
+    m.visible = k > 0;
+  }
+
+  // ---- selection overlays -----------------------------------------------
+
+  setSelection({ faces = [], corners = [], edge = null } = {}) {
+    const f = this.frame;
+    if (!f || !this.selMesh) return;
+    const want = new Set(faces);
+    let idx = [];
+    if (want.size) {
+      const t = f.tris, tf = f.triFace;
+      for (let i = 0; i < tf.length; i++) if (want.has(tf[i])) idx.push(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+    }
+    this.selMesh.geometry.setIndex(idx.length ? new THREE.BufferAttribute(new Uint32Array(idx), 1) : null);
+    this.selMesh.visible = idx.length > 0;
+
+    const cp = new Float32Array(3 * corners.length);
+    corners.forEach(([, v], i) => cp.set(f.positions.subarray(3 * v, 3 * v + 3), 3 * i));
+    this.cornerPoints.geometry.dispose();
+    this.cornerPoints.geometry = new THREE.BufferGeometry();
+    this.cornerPoints.geometry.setAttribute('position', new THREE.BufferAttribute(cp, 3));
+
+    const ep = new Float32Array(edge == null ? 0 : 6);
+    if (edge != null) {
+      const a = f.edges[2 * edge], b = f.edges[2 * edge + 1];
+      ep.set(f.positions.subarray(3 * a, 3 * a + 3), 0);
+      ep.set(f.positions.subarray(3 * b, 3 * b + 3), 3);
+    }
+    this.edgeLine.geometry.dispose();
+    this.edgeLine.geometry = new THREE.BufferGeometry();
+    this.edgeLine.geometry.setAttribute('position', new THREE.BufferAttribute(ep, 3));
+    this.requestRender();
+  }
+
+  // ---- brush cursor -------------------------------------------------------
+
+  showBrush(point, normal, radius) {
+    const b = this.brush;
+    b.position.set(point[0], point[1], point[2]);
+    this._v.set(normal[0], normal[1], normal[2]);
+    b.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), this._v.normalize());
+    b.scale.setScalar(radius);
+    b.visible = true;
+    this._brushRadius = radius;
+    this.requestRender();
+  }
+
+  hideBrush() {
+    if (!this.brush.visible) return;
+    this.brush.visible = false;
+    this.requestRender();
+  }
+
+  // ---- camera ---------------------------------------------------------------
+
+  /** Frame the mesh. `dir` is the direction from the target to the camera. */
+  setView(dir = [0.35, 0.35, 1]) {
+    const { center, diag } = this.bbox;
+    const cam = this.camera;
+    const r = diag / 2;
+    const dist = r / Math.sin(THREE.MathUtils.degToRad(cam.fov / 2)) * 1.05;
+    const d = new THREE.Vector3(...dir).normalize();
+    cam.position.set(center[0] + d.x * dist, center[1] + d.y * dist, center[2] + d.z * dist);
+    cam.up.set(0, 1, 0);
+    cam.near = diag / 500;
+    cam.far = diag * 100;
+    cam.updateProjectionMatrix();
+    if (this.controls) {
+      this.controls.target.set(...center);
+      this.controls.update();
+    } else {
+      cam.lookAt(...center);
+    }
+    this.requestRender();
+  }
+
+  // ---- picking --------------------------------------------------------------
+
+  /** World-space ray through a client (CSS pixel) position. */
+  rayAt(clientX, clientY) {
+    const r = this.canvas.getBoundingClientRect();
+    this._v2.set(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
+    this._ray.setFromCamera(this._v2, this.camera);
+    const { origin, direction } = this._ray.ray;
+    return { o: [origin.x, origin.y, origin.z], d: [direction.x, direction.y, direction.z] };
+  }
+
+  /** Nearest triangle hit (both sides), brute force over the typed arrays:
+   * Möller–Trumbore with no allocation per triangle, ~10 ms per million. */
+  pick(clientX, clientY) {
+    const f = this.frame;
+    if (!f || !f.nt) return null;
+    const { o, d } = this.rayAt(clientX, clientY);
+    const p = f.positions, t = f.tris;
+    const [ox, oy, oz] = o, [dx, dy, dz] = d;
+    let best = Infinity, bestTri = -1;
+    for (let i = 0, n = t.length; i < n; i += 3) {
+      const a = 3 * t[i], b = 3 * t[i + 1], c = 3 * t[i + 2];
+      const ax = p[a], ay = p[a + 1], az = p[a + 2];
+      const e1x = p[b] - ax, e1y = p[b + 1] - ay, e1z = p[b + 2] - az;
+      const e2x = p[c] - ax, e2y = p[c + 1] - ay, e2z = p[c + 2] - az;
+      const px = dy * e2z - dz * e2y, py = dz * e2x - dx * e2z, pz = dx * e2y - dy * e2x;
+      const det = e1x * px + e1y * py + e1z * pz;
+      if (det > -1e-12 && det < 1e-12) continue;
+      const inv = 1 / det;
+      const sx = ox - ax, sy = oy - ay, sz = oz - az;
+      const u = (sx * px + sy * py + sz * pz) * inv;
+      if (u < 0 || u > 1) continue;
+      const qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+      const v = (dx * qx + dy * qy + dz * qz) * inv;
+      if (v < 0 || u + v > 1) continue;
+      const dist = (e2x * qx + e2y * qy + e2z * qz) * inv;
+      if (dist > 0 && dist < best) {
+        best = dist;
+        bestTri = i / 3;
+      }
+    }
+    if (bestTri < 0) return null;
+    const point = [ox + dx * best, oy + dy * best, oz + dz * best];
+    const a = 3 * t[3 * bestTri], b = 3 * t[3 * bestTri + 1], c = 3 * t[3 * bestTri + 2];
+    const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+    const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+    let normal = [uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx];
+    // Face the viewer, so the brush ring sits on the side being looked at.
+    if (normal[0] * dx + normal[1] * dy + normal[2] * dz > 0) normal = normal.map((x) => -x);
+    return { point, tri: bestTri, face: f.triFace[bestTri], normal, dist: best, ray: { o, d } };
+  }
+
+  /** The distinct vertices of one polygon (from its display triangles). */
+  faceVertices(face) {
+    const f = this.frame, out = new Set();
+    for (let i = 0; i < f.triFace.length; i++) {
+      if (f.triFace[i] === face) out.add(f.tris[3 * i]).add(f.tris[3 * i + 1]).add(f.tris[3 * i + 2]);
+    }
+    return [...out];
+  }
+
+  nearestVertex(verts, q) {
+    const p = this.frame.positions;
+    let best = -1, bd = Infinity;
+    for (const v of verts) {
+      const d = (p[3 * v] - q[0]) ** 2 + (p[3 * v + 1] - q[1]) ** 2 + (p[3 * v + 2] - q[2]) ** 2;
+      if (d < bd) { bd = d; best = v; }
+    }
+    return best;
+  }
+
+  /** Index of the polygon edge of `face` nearest to point q. */
+  nearestEdge(face, q) {
+    const f = this.frame, p = f.positions, e = f.edges;
+    const verts = new Set(this.faceVertices(face));
+    let best = -1, bd = Infinity;
+    for (let i = 0; i < f.ne; i++) {
+      const a = e[2 * i], b = e[2 * i + 1];
+      if (!verts.has(a) || !verts.has(b)) continue;
+      const ax = p[3 * a], ay = p[3 * a + 1], az = p[3 * a + 2];
+      const bx = p[3 * b] - ax, by = p[3 * b + 1] - ay, bz = p[3 * b + 2] - az;
+      const qx = q[0] - ax, qy = q[1] - ay, qz = q[2] - az;
+      const l2 = bx * bx + by * by + bz * bz || 1;
+      const s = Math.max(0, Math.min(1, (qx * bx + qy * by + qz * bz) / l2));
+      const d = (qx - s * bx) ** 2 + (qy - s * by) ** 2 + (qz - s * bz) ** 2;
+      if (d < bd) { bd = d; best = i; }
+    }
+    return best;
+  }
+
+  /** Client (CSS pixel) position of a world point. */
+  project(point) {
+    const r = this.canvas.getBoundingClientRect();
+    this._v.set(point[0], point[1], point[2]).project(this.camera);
+    return [r.left + ((this._v.x + 1) / 2) * r.width, r.top + ((1 - this._v.y) / 2) * r.height];
+  }
+
+  /** Point where the ray through a client position meets the plane through
+   * `anchor` facing the camera (grab/move drags into empty space). */
+  planePoint(clientX, clientY, anchor) {
+    const { o, d } = this.rayAt(clientX, clientY);
+    const n = this.camera.getWorldDirection(this._v);
+    const denom = n.x * d[0] + n.y * d[1] + n.z * d[2];
+    if (Math.abs(denom) < 1e-9) return null;
+    const s = (n.x * (anchor[0] - o[0]) + n.y * (anchor[1] - o[1]) + n.z * (anchor[2] - o[2])) / denom;
+    return [o[0] + d[0] * s, o[1] + d[1] * s, o[2] + d[2] * s];
+  }
+}
