@@ -105,6 +105,8 @@ pub struct ActiveStroke {
     pub live: LiveStroke,
     /// The connectivity the browser has (positions-only frames refer to it).
     pub display: Display,
+    /// The positions the browser has (sparse frames are relative to them).
+    pub sent: Vec<glam::DVec3>,
 }
 
 /// The document the server edits.

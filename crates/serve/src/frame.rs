@@ -15,6 +15,9 @@ pub const FLAG_PREVIEW: u32 = 1;
 pub const FLAG_VANISH: u32 = 2;
 /// Frame flag: positions only; connectivity as in the previous frame.
 pub const FLAG_POSITIONS_ONLY: u32 = 4;
+/// Frame flag (with [`FLAG_POSITIONS_ONLY`]): only the vertices that moved
+/// since the previous frame, as a count, their indices and positions.
+pub const FLAG_SPARSE: u32 = 8;
 
 const MAGIC: &[u8; 4] = b"HMSH";
 const FORMAT_VERSION: u32 = 1;
@@ -213,6 +216,51 @@ pub fn encode_positions(
     out
 }
 
+/// A positions-only frame carrying only the vertices whose position
+/// differs from `sent` (what the browser has), or `None` when so many
+/// moved that the dense frame is smaller.
+pub fn encode_sparse(
+    display: &Display,
+    sent: &[DVec3],
+    moved: &[DVec3],
+    flags: u32,
+    version: u64,
+    vanish: Option<&[bool]>,
+) -> Option<Vec<u8>> {
+    if sent.len() != moved.len() {
+        return None;
+    }
+    let changed: Vec<u32> = (0..moved.len() as u32)
+        .filter(|&i| sent[i as usize] != moved[i as usize])
+        .collect();
+    // 16 bytes per sparse vertex against 12 per dense one.
+    if 16 * changed.len() >= 12 * moved.len() {
+        return None;
+    }
+    let nv = moved.len();
+    let mut out = Vec::with_capacity(36 + 16 * changed.len() + nv + 4);
+    header(
+        &mut out,
+        flags | FLAG_POSITIONS_ONLY | FLAG_SPARSE,
+        version,
+        [
+            nv,
+            display.triangles.len(),
+            display.edges.len(),
+            display.faces,
+        ],
+        vanish,
+    );
+    put(&mut out, changed.len() as u32);
+    for &i in &changed {
+        put(&mut out, i);
+    }
+    let ps: Vec<DVec3> = changed.iter().map(|&i| moved[i as usize]).collect();
+    positions(&mut out, &ps);
+    vanish_mask(&mut out, vanish, nv);
+    Some(out)
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -254,6 +302,31 @@ mod tests {
         assert_eq!(word(&with_mask, 2), FLAG_POSITIONS_ONLY | FLAG_VANISH);
         assert_eq!(with_mask.len(), 32 + 12 * 8 + 8);
         assert_eq!(with_mask[32 + 96], 1);
+    }
+
+    #[test]
+    fn sparse_frames_carry_only_what_moved() {
+        let soup = holey_shapes::parse_primitive("@sphere:2").unwrap();
+        let (triangles, _) = soup.fan_triangles();
+        let m = TriMesh {
+            positions: soup.positions,
+            triangles,
+        };
+        let d = display_triangles(&m);
+        let mut moved = m.positions.clone();
+        moved[5].x += 0.25;
+        moved[9].z -= 0.5;
+        let b = encode_sparse(&d, &m.positions, &moved, 0, 3, None).unwrap();
+        assert_eq!(word(&b, 2), FLAG_POSITIONS_ONLY | FLAG_SPARSE);
+        assert_eq!(word(&b, 4) as usize, m.positions.len());
+        assert_eq!(word(&b, 8), 2);
+        assert_eq!([word(&b, 9), word(&b, 10)], [5, 9]);
+        let x = f32::from_le_bytes(b[44..48].try_into().unwrap());
+        assert_eq!(x, moved[5].x as f32);
+        assert_eq!(b.len(), 36 + 2 * 16);
+        // Everything moved: the dense frame is smaller.
+        let all: Vec<DVec3> = m.positions.iter().map(|p| *p * 2.0).collect();
+        assert!(encode_sparse(&d, &m.positions, &all, 0, 3, None).is_none());
     }
 
     #[test]

@@ -25,7 +25,9 @@ use holey_topo::Options;
 use serde_json::{Value, json};
 
 use crate::doc::{ActiveStroke, Content, Document, RindMode, poly_to_tri};
-use crate::frame::{FLAG_PREVIEW, display_model, display_triangles, encode, encode_positions};
+use crate::frame::{
+    FLAG_PREVIEW, display_model, display_triangles, encode, encode_positions, encode_sparse,
+};
 use crate::persist::Saver;
 use crate::{Config, ConnId, ServeError};
 
@@ -409,10 +411,12 @@ impl Shared {
         let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
         live.set_preview(brush.is_drag());
         let display = doc.display().clone();
+        let sent = display.positions.clone();
         doc.stroke = Some(ActiveStroke {
             owner: conn,
             live,
             display,
+            sent,
         });
         self.stroke_frame(doc, req)
     }
@@ -426,20 +430,27 @@ impl Shared {
         let frame = stroke.live.frame(point)?;
         let ms = frame.seconds * 1e3;
         let vanish = frame.corrected_odd.as_deref();
+        let moved = &frame.mesh.positions;
         let bytes = if frame.connectivity_changed {
             let display = display_triangles(frame.mesh);
             let bytes = encode(&display, FLAG_PREVIEW, version, vanish);
             stroke.display = display;
             bytes
         } else {
-            encode_positions(
+            // A brush moves few vertices: send those only.
+            encode_sparse(
                 &stroke.display,
-                &frame.mesh.positions,
+                &stroke.sent,
+                moved,
                 FLAG_PREVIEW,
                 version,
                 vanish,
             )
+            .unwrap_or_else(|| {
+                encode_positions(&stroke.display, moved, FLAG_PREVIEW, version, vanish)
+            })
         };
+        stroke.sent.clone_from(moved);
         let vanishing = vanish.map_or(0, |m| m.iter().filter(|&&b| b).count());
         self.hub.broadcast(&Out::Binary(bytes));
         Ok(json!({"ms": ms, "vanishing": vanishing}))
