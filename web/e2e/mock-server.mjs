@@ -89,14 +89,14 @@ function triangulate(m) {
   return { p: m.p, f: m.f.flatMap((f) => f.slice(1, -1).map((_, k) => [f[0], f[k + 1], f[k + 2]])) };
 }
 
-function frameOf(m, version, flags = 0) {
+function frameOf(m, version, flags = 0, sparse = null) {
   const tris = [], triFace = [], edges = new Map();
   m.f.forEach((f, fi) => {
     for (let k = 1; k + 1 < f.length; k++) { tris.push(f[0], f[k], f[k + 1]); triFace.push(fi); }
     f.forEach((a, i) => { const b = f[(i + 1) % f.length]; edges.set(a < b ? `${a},${b}` : `${b},${a}`, [a, b]); });
   });
   return encodeFrame({
-    flags, version, positions: m.p.flat(), tris, triFace, edges: [...edges.values()].flat(), nf: m.f.length,
+    flags, version, positions: m.p.flat(), tris, triFace, edges: [...edges.values()].flat(), nf: m.f.length, sparse,
   });
 }
 
@@ -183,14 +183,18 @@ function handle(ws, msg) {
       if (!stroke) return err('no stroke');
       const t0 = performance.now();
       const [x, y, z] = msg.point, r = stroke.radius;
-      for (const v of stroke.mesh.p) {
+      const moved = [];
+      for (const [i, v] of stroke.mesh.p.entries()) {
         const d = Math.hypot(v[0] - x, v[1] - y, v[2] - z);
         if (d >= r) continue;
+        moved.push(i);
         const l = Math.hypot(...v) || 1, w = (1 - d / r) ** 2 * stroke.strength * 0.05 * r;
         v[0] += (v[0] / l) * w; v[1] += (v[1] / l) * w; v[2] += (v[2] / l) * w;
       }
       doc.mesh = stroke.mesh;
-      ws.send(frameOf(doc.mesh, doc.version, FLAG_POSITIONS_ONLY));
+      // Like the real server: only the moved vertices when few of them moved.
+      const sparse = moved.length < 0.75 * stroke.mesh.p.length;
+      ws.send(frameOf(doc.mesh, doc.version, FLAG_POSITIONS_ONLY, sparse ? moved : null));
       return ok({ ms: performance.now() - t0 });
     }
     case 'stroke_end': {

@@ -270,30 +270,50 @@ const scenarios = [
     await waitVersionAbove(page, v, 120000);
     const big = await page.evaluate(() => window.__holey.triangles);
     await page.evaluate(() => window.__holey.setView());
-    const orbit = await page.evaluate(() => window.__holey.benchOrbit(90));
-    perf.orbit = { triangles: big, fps: round(orbit.fps), medianRenderMs: round(orbit.medianRenderMs) };
-    // A real mouse orbit, counting rendered pictures.
+    await page.waitForTimeout(300);
+    // At rest: the full mesh at full resolution (GPU waited for each picture).
+    const rest = await page.evaluate(() => window.__holey.benchRender(5));
+    // Orbit drawing the full mesh every frame (what the page did before the
+    // proxy), then as a real orbit draws: motion resolution + proxy.
+    const full = await page.evaluate(() => window.__holey.benchOrbit(8, { proxy: false }));
+    const orbit = await page.evaluate(() => window.__holey.benchOrbit(90, { proxy: true }));
+    const proxy = await page.evaluate(() => window.__holey.proxy);
+    perf.orbit = {
+      triangles: big,
+      fullRenderMs: round(rest.medianMs), fullPixelRatio: rest.pixelRatio,
+      orbitFpsFull: round(full.fps), orbitFullRenderMs: round(full.medianRenderMs),
+      orbitFpsProxy: round(orbit.fps), orbitProxyRenderMs: round(orbit.medianRenderMs),
+      proxyShown: orbit.proxyShown, proxyTriangles: orbit.proxyTriangles, proxyBuildMs: round(proxy.buildMs),
+      motionPixelRatio: orbit.pixelRatio,
+    };
+    // A real mouse orbit through OrbitControls, counting rendered pictures,
+    // with a screenshot while the button is held (proxy) and one at rest.
     const vp = page.viewportSize();
     const r0 = await page.evaluate(() => window.__holey.renders);
     const t0 = Date.now();
     await page.mouse.move(vp.width - 40, 80);
     await page.mouse.down({ button: 'right' });
     for (let i = 0; i < 40; i++) await page.mouse.move(vp.width - 40 - i * 6, 80 + i);
-    await page.mouse.up({ button: 'right' });
     const mouseMs = Date.now() - t0;
     perf.orbit.mouseDragPictures = (await page.evaluate(() => window.__holey.renders)) - r0;
     perf.orbit.mouseDragFps = round((perf.orbit.mouseDragPictures * 1000) / mouseMs);
-    await page.screenshot({ path: path.join(artifacts, '8-perf-1M.png') });
+    perf.orbit.mouseDragProxyShown = (await page.evaluate(() => window.__holey.proxy)).shown;
+    await page.screenshot({ path: path.join(artifacts, '8-orbit-proxy.png') });
+    await page.mouse.up({ button: 'right' });
+    await waitFor(page, 'the full mesh after the orbit', () => !window.__holey.proxy.shown && !window.__holey.proxy.motion.length);
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(artifacts, '8-rest-full.png') });
+    if (!perf.orbit.proxyShown || !perf.orbit.mouseDragProxyShown) throw new Error(`the proxy was not drawn during the orbit: ${JSON.stringify(perf.orbit)}`);
 
     v = await version(page);
     await page.evaluate(() => window.__holey.request('primitive', { spec: '@sphere:6' }));
     await waitVersionAbove(page, v, 60000);
     await setWorkspace(page, 'sculpt');
     const mid = await page.evaluate(() => window.__holey.triangles);
-    // Smooth keeps the sphere's shape, so every frame costs about the same.
-    // (Inflate passes over one spot made the server spin without answering:
-    // reported with a reproducer; HOLEY_E2E_BRUSH=inflate runs it.)
-    await page.click(tid(`tool-${process.env.HOLEY_E2E_BRUSH || 'smooth'}`));
+    // Inflate by default (the UI scales its strength to the brush radius);
+    // HOLEY_E2E_BRUSH=smooth|grab|move picks another brush.
+    const brush = process.env.HOLEY_E2E_BRUSH || 'inflate';
+    await page.click(tid(`tool-${brush}`));
     await setRange(page, 'radius', 8);
     await setRange(page, 'strength', 0.5);
     await page.evaluate(() => window.__holey.setView([0, 0, 1]));
@@ -301,29 +321,52 @@ const scenarios = [
     const box = await page.evaluate(() => window.__holey.bbox);
     const c = await page.evaluate((p) => window.__holey.project(p), box.center);
     const rpx = (await page.evaluate((p) => window.__holey.project(p), [box.center[0] + (box.max[0] - box.center[0]), box.center[1], box.center[2]]))[0] - c[0];
-    await page.evaluate(() => {
-      const h = window.__holey;
-      h.strokeLatencies.length = h.serverMs.length = h.clientMs.length = 0;
-      h.positionsOnlyFrames = 0;
-    });
-    await page.mouse.move(c[0] - 0.7 * rpx, c[1] - 0.2 * rpx);
-    await page.mouse.down();
-    for (let i = 0; i <= 60; i++) {
-      await page.mouse.move(c[0] + (-0.7 + (1.4 * i) / 60) * rpx, c[1] - 0.2 * rpx + 0.4 * rpx * Math.sin((i / 60) * Math.PI));
-      await page.waitForTimeout(16);
-    }
-    await page.mouse.up();
-    await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
-    const lat = await page.evaluate(() => [...window.__holey.strokeLatencies]);
-    const srv = await page.evaluate(() => [...window.__holey.serverMs]);
-    const cli = await page.evaluate(() => [...window.__holey.clientMs]);
+    const KEYS = ['strokeLatencies', 'waitMs', 'roundTripMs', 'serverMs', 'clientMs', 'toRenderMs', 'renderMs'];
+    const stroke = async (yOff, measureGpu) => {
+      await page.evaluate(([keys, gpu]) => {
+        const h = window.__holey;
+        for (const k of keys) h[k].length = 0;
+        h.positionsOnlyFrames = h.sparseFrames = 0;
+        h.measureGpu = gpu;
+      }, [KEYS, measureGpu]);
+      const y = c[1] + yOff * rpx;
+      await page.mouse.move(c[0] - 0.7 * rpx, y);
+      await page.mouse.down();
+      for (let i = 0; i <= 60; i++) {
+        await page.mouse.move(c[0] + (-0.7 + (1.4 * i) / 60) * rpx, y + 0.4 * rpx * Math.sin((i / 60) * Math.PI));
+        await page.waitForTimeout(16);
+      }
+      await page.mouse.up();
+      await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+      const h = await page.evaluate((keys) => {
+        const o = Object.fromEntries(keys.map((k) => [k, [...window.__holey[k]]]));
+        o.positionsOnlyFrames = window.__holey.positionsOnlyFrames;
+        o.sparseFrames = window.__holey.sparseFrames;
+        window.__holey.measureGpu = false;
+        return o;
+      }, KEYS);
+      return h;
+    };
+    // Measured: the page waits for the GPU (gl.finish) after each stroke
+    // picture, so latency ends when the picture is really drawn.
+    const m = await stroke(-0.2, true);
+    // Not measured that way: latency ends when the draw calls were issued.
+    const q = await stroke(0.3, false);
+    const lat = m.strokeLatencies;
     perf.sculpt = {
-      triangles: mid, frames: lat.length,
-      positionsOnlyFrames: await page.evaluate(() => window.__holey.positionsOnlyFrames),
-      // pointer event → picture drawn; of which the server's own time, and
-      // the page's parse + normals + draw time.
+      triangles: mid, brush, frames: lat.length,
+      positionsOnlyFrames: m.positionsOnlyFrames, sparseFrames: m.sparseFrames,
+      // pointer event → picture drawn (GPU finished).
       latencyMsMedian: round(median(lat)), latencyMsP95: round(pct(lat, 0.95)),
-      serverMsMedian: round(median(srv)), clientMsMedian: round(median(cli)),
+      // Its parts (medians): waiting for the previous frame's answer, request
+      // → frame received (of which the server's own `ms`), parse + apply +
+      // normals, waiting for the animation frame, drawing (GPU finished).
+      waitMsMedian: round(median(m.waitMs)), roundTripMsMedian: round(median(m.roundTripMs)),
+      serverMsMedian: round(median(m.serverMs)), clientMsMedian: round(median(m.clientMs), 2),
+      toRenderMsMedian: round(median(m.toRenderMs)), renderMsMedian: round(median(m.renderMs)),
+      // Second stroke without waiting for the GPU (latency to draw calls issued).
+      issuedLatencyMsMedian: round(median(q.strokeLatencies)), issuedLatencyMsP95: round(pct(q.strokeLatencies, 0.95)),
+      issuedFrames: q.strokeLatencies.length,
     };
     perf.renderer = await page.evaluate(() => {
       const gl = document.querySelector('canvas').getContext('webgl2');

@@ -7,6 +7,7 @@
 export const FLAG_PREVIEW = 1;
 export const FLAG_MASK = 2;
 export const FLAG_POSITIONS_ONLY = 4;
+export const FLAG_SPARSE = 8;
 const MAGIC = 0x48534d48; // 'HMSH' read as a little-endian u32
 
 const pad4 = (n) => (n + 3) & ~3;
@@ -16,6 +17,11 @@ export class FrameError extends Error {}
 /**
  * Parse one frame. `prev` is the last parsed full-or-positions frame; a
  * positions-only frame borrows its connectivity arrays (tris, triFace, edges).
+ *
+ * A sparse frame (bits 2 and 3) carries only the vertices that moved:
+ * `sparseIdx` (u32 × k) and `sparsePos` (f32 × 3k). Its `positions` is the
+ * previous frame's array, NOT yet updated: the caller applies the change
+ * (the viewer does it in place, see applySparse) before using the frame.
  */
 export function parseFrame(buf, prev) {
   if (buf.byteLength < 32) throw new FrameError(`mesh frame too short (${buf.byteLength} bytes)`);
@@ -38,7 +44,20 @@ export function parseFrame(buf, prev) {
     off += pad4(bytes);
     return at;
   };
-  const positions = new Float32Array(buf, take(12 * nv), 3 * nv);
+  const sparse = positionsOnly && (flags & FLAG_SPARSE) !== 0;
+  let positions, sparseIdx = null, sparsePos = null;
+  if (sparse) {
+    if (!prev) throw new FrameError('sparse mesh frame before any full frame');
+    if (prev.nv !== nv) throw new FrameError('sparse frame does not match the previous vertex count');
+    const k = dv.getUint32(take(4), true);
+    if (k > nv) throw new FrameError(`sparse frame moves ${k} of ${nv} vertices`);
+    sparseIdx = new Uint32Array(buf, take(4 * k), k);
+    sparsePos = new Float32Array(buf, take(12 * k), 3 * k);
+    for (let i = 0; i < k; i++) if (sparseIdx[i] >= nv) throw new FrameError('sparse frame: vertex index out of range');
+    positions = prev.positions;
+  } else {
+    positions = new Float32Array(buf, take(12 * nv), 3 * nv);
+  }
 
   let tris, triFace, edges;
   if (positionsOnly) {
@@ -55,25 +74,47 @@ export function parseFrame(buf, prev) {
   return {
     flags, version, nv, nt, ne, nf, positions, tris, triFace, edges, mask,
     preview: (flags & FLAG_PREVIEW) !== 0,
-    positionsOnly,
+    positionsOnly, sparse, sparseIdx, sparsePos,
   };
 }
 
+/** Write a sparse frame's moved vertices into a full position array. */
+export function applySparse(positions, idx, pos) {
+  for (let i = 0, k = idx.length; i < k; i++) {
+    const o = 3 * idx[i], s = 3 * i;
+    positions[o] = pos[s];
+    positions[o + 1] = pos[s + 1];
+    positions[o + 2] = pos[s + 2];
+  }
+}
+
 /** Build a frame (used by the mock server and unit checks). */
-export function encodeFrame({ flags = 0, version, positions, tris, triFace, edges, nf, mask }) {
+export function encodeFrame({ flags = 0, version, positions, tris, triFace, edges, nf, mask, sparse }) {
+  // `sparse` (optional): the indices of the vertices that moved; the frame
+  // then carries only those (flags get bits 2 and 3).
   const nv = positions.length / 3;
+  if (sparse) flags |= FLAG_POSITIONS_ONLY | FLAG_SPARSE;
   const positionsOnly = (flags & FLAG_POSITIONS_ONLY) !== 0;
   const nt = tris.length / 3;
   const ne = edges.length / 2;
   if (mask) flags |= FLAG_MASK;
-  let size = 32 + 12 * nv;
+  let size = 32 + (sparse ? 4 + 16 * sparse.length : 12 * nv);
   if (!positionsOnly) size += 12 * nt + 4 * nt + 8 * ne;
   if (mask) size += pad4(nv);
   const buf = new ArrayBuffer(size);
   const dv = new DataView(buf);
   [MAGIC, 1, flags, version, nv, nt, ne, nf].forEach((v, i) => dv.setUint32(4 * i, v, true));
   let off = 32;
-  new Float32Array(buf, off, 3 * nv).set(positions); off += 12 * nv;
+  if (sparse) {
+    const k = sparse.length;
+    dv.setUint32(off, k, true); off += 4;
+    new Uint32Array(buf, off, k).set(sparse); off += 4 * k;
+    const sp = new Float32Array(buf, off, 3 * k);
+    for (let i = 0; i < k; i++) for (let c = 0; c < 3; c++) sp[3 * i + c] = positions[3 * sparse[i] + c];
+    off += 12 * k;
+  } else {
+    new Float32Array(buf, off, 3 * nv).set(positions); off += 12 * nv;
+  }
   if (!positionsOnly) {
     new Uint32Array(buf, off, 3 * nt).set(tris); off += 12 * nt;
     new Uint32Array(buf, off, nt).set(triFace); off += 4 * nt;

@@ -4,7 +4,7 @@
 
 import { Viewer } from './viewer.js';
 import { Connection } from './connection.js';
-import { parseFrame } from './frame.js';
+import { parseFrame, applySparse } from './frame.js';
 
 const $ = (id) => document.querySelector(`[data-testid="${id}"]`);
 const num = (id) => Number($(id).value);
@@ -55,17 +55,42 @@ const hook = {
   get pending() { return [...conn.pending.values()].map((p) => p.op); },
   frames: 0,
   positionsOnlyFrames: 0,
+  sparseFrames: 0,
   previewFrames: 0,
-  clientMs: [], // parse + upload + draw of each stroke frame
-  lastFrameMs: null, // pointer event -> stroke frame rendered, last stroke frame
+  // Per stroke frame, in ms: pointer event → picture (strokeLatencies), and
+  // its parts: waiting for the previous frame's answer (waitMs), request
+  // sent → frame received (roundTripMs, includes the server's `ms`),
+  // parse + apply + normals (clientMs), until the animation frame draws it
+  // (toRenderMs) and the drawing itself (renderMs; real only with
+  // `measureGpu`, which waits for the GPU with gl.finish after each stroke picture).
   strokeLatencies: [],
+  waitMs: [],
+  roundTripMs: [],
+  clientMs: [],
+  toRenderMs: [],
+  renderMs: [],
   serverMs: [],
+  measureGpu: false,
+  lastFrameMs: null, // pointer event -> stroke frame rendered, last stroke frame
   lastParseRenderMs: null,
   errors: [],
   setView: (dir) => viewer?.setView(dir),
   project: (p) => viewer?.project(p),
   request: (op, fields) => conn.request(op, fields),
+  get proxy() {
+    return viewer && { triangles: viewer.proxy ? viewer.proxyTriangles : null, shown: !!viewer.proxyShown, buildMs: viewer.proxyMs, motion: [...viewer.motion], pixelRatio: viewer.renderer.getPixelRatio() };
+  },
+  setProxyEnabled(on) {
+    viewer.useProxy = on;
+    if (!on) viewer.disposeProxy();
+  },
   benchOrbit,
+  benchRender,
+  get viewer() { return viewer; }, // for experiments from the console
+};
+const pushCapped = (xs, x) => {
+  xs.push(x);
+  if (xs.length > 2000) xs.shift();
 };
 window.__holey = hook;
 
@@ -184,9 +209,20 @@ function onFrame(buf) {
   app.frame = f;
   hook.frames++;
   if (f.positionsOnly) hook.positionsOnlyFrames++;
+  if (f.sparse) hook.sparseFrames++;
   if (f.preview) hook.previewFrames++;
-  if (!viewer) return;
-  const newTopology = viewer.setFrame(f);
+  if (!viewer) {
+    if (f.sparse) applySparse(f.positions, f.sparseIdx, f.sparsePos);
+    return;
+  }
+  let newTopology;
+  try {
+    newTopology = viewer.setFrame(f);
+  } catch (e) {
+    toast(`Could not show a mesh frame: ${e.message}`, 'error');
+    call('hello'); // ask for a full frame again
+    return;
+  }
   if (newTopology) {
     // Huge meshes: the wireframe would cost more than the surface itself.
     if (f.nt > 300000 && $('wireframe').checked) setShading(viewer.flat, false);
@@ -198,19 +234,39 @@ function onFrame(buf) {
     app.fitNext = false;
     viewer.setView();
   }
-  viewer.renderNow();
-  const now = performance.now();
-  hook.lastParseRenderMs = now - t0;
+  // Drawn at the next animation frame, together with whatever else changed
+  // (the brush ring, a second frame): at most one picture per display frame.
+  viewer.requestRender();
+  const applied = performance.now();
+  hook.lastParseRenderMs = applied - t0;
   const inflight = app.stroke?.inflight;
   if (inflight && !inflight.measured) {
     inflight.measured = true;
-    hook.lastFrameMs = now - inflight.t;
-    hook.strokeLatencies.push(hook.lastFrameMs);
-    hook.clientMs.push(hook.lastParseRenderMs);
-    if (hook.strokeLatencies.length > 2000) hook.strokeLatencies.shift();
-    if (hook.clientMs.length > 2000) hook.clientMs.shift();
+    pendingMeasures.push({ ev: inflight.t, sent: inflight.sent ?? inflight.t, recv: t0, applied });
   }
   updateBadge();
+}
+
+// Stroke frames waiting for their picture (see hook.strokeLatencies).
+const pendingMeasures = [];
+if (viewer) {
+  viewer.afterRender = (start, end) => {
+    if (!pendingMeasures.length) return;
+    if (hook.measureGpu) {
+      waitForGpu();
+      end = performance.now();
+    }
+    for (const m of pendingMeasures) {
+      hook.lastFrameMs = end - m.ev;
+      pushCapped(hook.strokeLatencies, hook.lastFrameMs);
+      pushCapped(hook.waitMs, m.sent - m.ev);
+      pushCapped(hook.roundTripMs, m.recv - m.sent);
+      pushCapped(hook.clientMs, m.applied - m.recv);
+      pushCapped(hook.toRenderMs, start - m.applied);
+      pushCapped(hook.renderMs, end - start);
+    }
+    pendingMeasures.length = 0;
+  };
 }
 
 function updateBadge() {
@@ -513,6 +569,7 @@ function beginStroke(hit, e) {
     pointerId: e.pointerId,
   };
   app.stroke = stroke;
+  viewer.beginMotion('stroke'); // cheaper pictures until the stroke ends
   viewer.showBrush(hit.point, hit.normal, stroke.radius);
   // The server's strength is in world units for inflate (displacement per
   // frame) and a step fraction for smooth; grab and move follow the pointer.
@@ -540,12 +597,10 @@ function strokeAnswered(stroke) {
     const q = stroke.queued;
     stroke.queued = null;
     stroke.inflight = q;
+    q.sent = performance.now();
     conn.request('stroke_frame', { point: q.point }).then(
       (ok) => {
-        if (ok.ms != null) {
-          hook.serverMs.push(ok.ms);
-          if (hook.serverMs.length > 2000) hook.serverMs.shift();
-        }
+        if (ok.ms != null) pushCapped(hook.serverMs, ok.ms);
         strokeAnswered(stroke);
       },
       (err) => {
@@ -555,6 +610,7 @@ function strokeAnswered(stroke) {
     );
   } else if (stroke.ending) {
     app.stroke = null;
+    viewer.endMotion('stroke'); // full resolution again
     viewer.hideBrush(); // back on the surface with the next hover
     call('stroke_end');
   }
@@ -586,6 +642,7 @@ function strokeUp() {
 /** The connection dropped or the server refused: forget the stroke here. */
 function endStrokeLocally() {
   app.stroke = null;
+  viewer?.endMotion('stroke');
   if (viewer?.controls) viewer.controls.enabled = true;
 }
 
@@ -649,8 +706,12 @@ viewer?.attachControls();
 
 // ---- measurements for the end-to-end tests -----------------------------------
 
-/** Orbit the camera a full turn in `n` animation frames; returns frames per second. */
-function benchOrbit(n = 120) {
+/** Orbit the camera a full turn in `n` animation frames; returns frames per
+ * second. `proxy: true` draws as during a real orbit (motion state: lower
+ * resolution, the navigation proxy above PROXY_ABOVE triangles); false draws
+ * the full mesh at full resolution every frame. */
+function benchOrbit(n = 120, { proxy = true } = {}) {
+  if (proxy) viewer.beginMotion('bench');
   return new Promise((resolve) => {
     const c = viewer.controls;
     const target = c.target.clone();
@@ -665,17 +726,46 @@ function benchOrbit(n = 120) {
       viewer.camera.lookAt(target);
       const t0 = performance.now();
       viewer.renderNow();
-      // readPixels waits for the GPU, so renderMs is real drawing time.
-      const gl = viewer.renderer.getContext();
-      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+      waitForGpu(); // so renderMs is real drawing time
       renderMs.push(performance.now() - t0);
       if (++i <= n) requestAnimationFrame(step);
       else {
+        viewer.quietChange = true;
         c.update();
+        viewer.quietChange = false;
         renderMs.sort((a2, b2) => a2 - b2);
-        resolve({ fps: (n * 1000) / (now - start), frames: n, medianRenderMs: renderMs[renderMs.length >> 1] });
+        const out = {
+          fps: (n * 1000) / (now - start), frames: n, medianRenderMs: renderMs[renderMs.length >> 1],
+          proxyShown: !!viewer.proxyShown, proxyTriangles: viewer.proxyShown ? viewer.proxyTriangles : null,
+          pixelRatio: viewer.renderer.getPixelRatio(),
+        };
+        if (proxy) viewer.endMotion('bench');
+        resolve(out);
       }
     };
     requestAnimationFrame(step);
   });
+}
+/** Block until the GPU has drawn everything submitted. Chromium answers
+ * gl.finish() without waiting for a software rasterizer; reading a pixel
+ * back has to wait for the picture. Measurements only. */
+const pixel = new Uint8Array(4);
+function waitForGpu() {
+  const gl = viewer.renderer.getContext();
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+}
+
+/** Median time of `n` full pictures at rest (the GPU waited for each). */
+function benchRender(n = 5) {
+  const ms = [];
+  viewer.renderNow();
+  waitForGpu();
+  for (let i = 0; i < n; i++) {
+    const t0 = performance.now();
+    viewer.renderNow();
+    waitForGpu();
+    ms.push(performance.now() - t0);
+  }
+  ms.sort((a, b) => a - b);
+  return { medianMs: ms[n >> 1], pixelRatio: viewer.renderer.getPixelRatio(), proxyShown: !!viewer.proxyShown, motion: [...viewer.motion] };
 }

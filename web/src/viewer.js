@@ -5,6 +5,22 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { applySparse } from './frame.js';
+import { vertexTriangles, indexRuns, clusterDecimate } from './proxy.js';
+
+/** Meshes above this many triangles are drawn as a decimated proxy while the
+ * camera moves (and the full mesh again when it stops). */
+export const PROXY_ABOVE = 300000;
+/** Proxy size. A software rasterizer (SwiftShader, llvmpipe) pays so much
+ * per triangle and pixel that 120k triangles make ~20 fps at best there;
+ * 60k at 0.35 resolution make ~30 fps (see web/e2e perf.json). */
+const PROXY_TARGET = 120000;
+const PROXY_TARGET_SOFTWARE = 60000;
+/** Pixel ratio while the camera moves or a stroke runs, as a share of the
+ * resting one (software rasterizers pay per pixel). */
+const MOTION_SCALE_SOFTWARE = 0.35;
+/** How long the camera must be still before the full picture comes back. */
+const SETTLE_MS = 180;
 
 const BASE_COLOR = 0xb9c3d3;
 
@@ -31,7 +47,9 @@ export class Viewer {
     // A software rasterizer spends ~2.5× longer per picture with MSAA, so
     // there we trade smooth edges for a usable frame rate.
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software, powerPreference: 'high-performance' });
-    this.renderer.setPixelRatio(this.software ? 1 : Math.min(window.devicePixelRatio || 1, 2));
+    this.restPixelRatio = this.software ? 1 : Math.min(window.devicePixelRatio || 1, 2);
+    this.motionPixelRatio = this.software ? this.restPixelRatio * MOTION_SCALE_SOFTWARE : Math.min(this.restPixelRatio, 1);
+    this.renderer.setPixelRatio(this.restPixelRatio);
     this.renderer.setClearColor(0x1d2230);
 
     this.scene = new THREE.Scene();
@@ -97,6 +115,21 @@ export class Viewer {
     this.renders = 0;
     this.lastRenderAt = 0;
     this.pendingRender = 0;
+    this.afterRender = null; // optional callback(renderStart, renderEnd), for measurements
+    // Motion (orbit, zoom, stroke): lower resolution, proxy for huge meshes.
+    this.motion = new Set(); // reasons the view is in motion: 'orbit', 'stroke', 'bench'
+    this.settleTimer = 0;
+    this.proxy = null; // THREE.Mesh of the decimated mesh, or null
+    this.proxyFor = null; // the frame the proxy was built from
+    this.proxyIdle = 0;
+    this.proxyMs = null;
+    this.useProxy = true;
+    this.proxyTarget = this.software ? PROXY_TARGET_SOFTWARE : PROXY_TARGET;
+    // Local normal updates: vertex → triangle adjacency and scratch arrays.
+    this.adj = null;
+    this.stamp = null;
+    this.epoch = 0;
+    this.touched = null;
     this._ray = new THREE.Raycaster();
     this._v = new THREE.Vector3();
     this._v2 = new THREE.Vector2();
@@ -114,7 +147,25 @@ export class Viewer {
     // Every button orbits (shift/ctrl + drag pans, wheel zooms): an artist's
     // right or middle drag never starts an edit by accident.
     c.mouseButtons = { LEFT: THREE.MOUSE.ROTATE, MIDDLE: THREE.MOUSE.ROTATE, RIGHT: THREE.MOUSE.ROTATE };
-    c.addEventListener('change', () => this.requestRender());
+    // Motion starts with the drag (or wheel); the full picture returns once
+    // the camera has been still for SETTLE_MS (a wheel tick is start, change
+    // and end at once, so 'end' alone cannot say the zooming is over).
+    c.addEventListener('start', () => {
+      clearTimeout(this.settleTimer);
+      this.dragging = true;
+      this.beginMotion('orbit');
+    });
+    c.addEventListener('change', () => {
+      if (!this.dragging && !this.quietChange) {
+        this.beginMotion('orbit');
+        this.settleLater();
+      }
+      this.requestRender();
+    });
+    c.addEventListener('end', () => {
+      this.dragging = false;
+      this.settleLater();
+    });
     this.controls = c;
   }
 
@@ -125,6 +176,87 @@ export class Viewer {
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.renderNow();
+  }
+
+  settleLater() {
+    clearTimeout(this.settleTimer);
+    this.settleTimer = setTimeout(() => {
+      if (!this.dragging) this.endMotion('orbit');
+    }, SETTLE_MS);
+  }
+
+  /** Enter a motion state: lower resolution and, for a huge mesh, the proxy. */
+  beginMotion(reason) {
+    if (this.motion.has(reason)) return;
+    this.motion.add(reason);
+    this.applyMotion();
+  }
+
+  endMotion(reason) {
+    if (!this.motion.delete(reason)) return;
+    this.applyMotion();
+    if (!this.motion.size && !this.proxy) this.scheduleProxy();
+  }
+
+  applyMotion() {
+    const moving = this.motion.size > 0;
+    const ratio = moving ? this.motionPixelRatio : this.restPixelRatio;
+    if (this.renderer.getPixelRatio() !== ratio) this.renderer.setPixelRatio(ratio);
+    // Only camera motion swaps in the proxy: a stroke must show the real surface.
+    const cameraMoving = this.motion.has('orbit') || this.motion.has('bench');
+    this.setProxyVisible(cameraMoving && this.useProxy && this.frame && this.frame.nt > PROXY_ABOVE);
+    this.requestRender();
+  }
+
+  setProxyVisible(on) {
+    if (on) on = this.ensureProxy();
+    if (this.proxy) this.proxy.visible = on;
+    if (this.mesh) this.mesh.visible = !on;
+    if (this.wire) this.wire.visible = this.showWire && !on;
+    this.proxyShown = on;
+  }
+
+  /** Build (or reuse) the decimated stand-in of the current mesh. */
+  ensureProxy() {
+    const f = this.frame;
+    if (!f || !this.mesh) return false;
+    if (this.proxy && this.proxyFor === f) return true;
+    this.disposeProxy();
+    const t0 = performance.now();
+    const d = clusterDecimate(f.positions, f.tris, this.bbox, this.proxyTarget);
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
+    geo.setAttribute('normal', new THREE.BufferAttribute(d.normals, 3));
+    geo.setIndex(new THREE.BufferAttribute(d.index, 1));
+    this.proxy = new THREE.Mesh(geo, this.material);
+    this.proxy.frustumCulled = false;
+    this.proxy.visible = false;
+    this.proxyFor = f;
+    this.proxyTriangles = d.nt;
+    this.proxyMs = performance.now() - t0;
+    this.scene.add(this.proxy);
+    return true;
+  }
+
+  disposeProxy() {
+    cancelIdle(this.proxyIdle);
+    this.proxyIdle = 0;
+    if (!this.proxy) return;
+    this.scene.remove(this.proxy);
+    this.proxy.geometry.dispose();
+    this.proxy = this.proxyFor = null;
+    this.proxyShown = false;
+  }
+
+  /** A huge mesh arrived: build its proxy when the page is idle, so the
+   * first orbit does not wait for it. */
+  scheduleProxy() {
+    if (!this.frame || this.frame.nt <= PROXY_ABOVE || !this.useProxy) return;
+    cancelIdle(this.proxyIdle);
+    this.proxyIdle = onIdle(() => {
+      this.proxyIdle = 0;
+      if (this.motion.size === 0) this.ensureProxy();
+    });
   }
 
   requestRender() {
@@ -140,9 +272,11 @@ export class Viewer {
       cancelAnimationFrame(this.pendingRender);
       this.pendingRender = 0;
     }
+    const t0 = performance.now();
     this.renderer.render(this.scene, this.camera);
     this.renders++;
     this.lastRenderAt = performance.now();
+    this.afterRender?.(t0, this.lastRenderAt);
   }
 
   // ---- frames -------------------------------------------------------------
@@ -152,20 +286,32 @@ export class Viewer {
     const prev = this.frame;
     this.frame = f;
     if (f.positionsOnly && this.mesh && prev && prev.nv === f.nv) {
+      if (this.proxy) this.disposeProxy(); // the surface moved
       const attr = this.mesh.geometry.attributes.position;
-      attr.array.set(f.positions);
-      attr.needsUpdate = true;
-      // Keep the frame pointing at the live arrays so picking sees them.
-      f.positions = attr.array;
-      if (!this.flat) this.updateNormals();
+      if (f.sparse) {
+        applySparse(attr.array, f.sparseIdx, f.sparsePos);
+        f.positions = attr.array;
+        const moved = this.touchedVertices(f.sparseIdx, false);
+        markRanges(attr, moved.list, moved.n, 3);
+        if (!this.flat) this.updateNormalsAround(f.sparseIdx);
+      } else {
+        attr.array.set(f.positions);
+        markWhole(attr);
+        // Keep the frame pointing at the live arrays so picking sees them.
+        f.positions = attr.array;
+        if (!this.flat) this.updateNormals();
+      }
       this.updateMask();
       return false;
     }
+    if (f.sparse) throw new Error('a sparse frame needs the previous mesh on screen');
     this.disposeMesh();
-    const pos = new THREE.BufferAttribute(f.positions, 3);
+    this.disposeProxy();
+    this.adj = null;
+    const pos = liveAttribute(f.positions, 3);
     const geo = new THREE.BufferGeometry();
     geo.setAttribute('position', pos);
-    geo.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(3 * f.nv), 3));
+    geo.setAttribute('normal', liveAttribute(new Float32Array(3 * f.nv), 3));
     geo.setIndex(new THREE.BufferAttribute(f.tris, 1));
     this.mesh = new THREE.Mesh(geo, this.material);
     // Bounds are tracked by hand (computeBoundingSphere would allocate); the
@@ -198,6 +344,8 @@ export class Viewer {
     this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh);
     this.computeBounds();
     this.updateMask();
+    if (this.motion.size) this.applyMotion();
+    this.scheduleProxy();
     return true;
   }
 
@@ -244,7 +392,73 @@ export class Viewer {
       const l = Math.hypot(n[i], n[i + 1], n[i + 2]) || 1;
       n[i] /= l; n[i + 1] /= l; n[i + 2] /= l;
     }
-    attr.needsUpdate = true;
+    markWhole(attr);
+  }
+
+  /** Collect distinct vertices into the scratch list: the given ones, and
+   * with `ring` every vertex of a triangle around them. Sorted. */
+  touchedVertices(idx, ring) {
+    const f = this.frame, nv = f.nv;
+    if (!this.stamp || this.stamp.length !== nv) {
+      this.stamp = new Uint32Array(nv);
+      this.touched = new Uint32Array(nv);
+      this.epoch = 0;
+    }
+    if (++this.epoch === 0xffffffff) {
+      this.stamp.fill(0);
+      this.epoch = 1;
+    }
+    const stamp = this.stamp, out = this.touched, e = this.epoch;
+    let n = 0;
+    if (!ring) {
+      for (let i = 0; i < idx.length; i++) {
+        const v = idx[i];
+        if (stamp[v] !== e) { stamp[v] = e; out[n++] = v; }
+      }
+    } else {
+      if (!this.adj) this.adj = vertexTriangles(nv, f.tris);
+      const { start, tri } = this.adj, t = f.tris;
+      for (let i = 0; i < idx.length; i++) {
+        const v = idx[i];
+        for (let j = start[v], end = start[v + 1]; j < end; j++) {
+          const o = 3 * tri[j];
+          for (let c = 0; c < 3; c++) {
+            const w = t[o + c];
+            if (stamp[w] !== e) { stamp[w] = e; out[n++] = w; }
+          }
+        }
+      }
+    }
+    const list = out.subarray(0, n);
+    list.sort();
+    return { list, n };
+  }
+
+  /** Normals of the vertices whose triangles touch a moved vertex (the moved
+   * ones and their ring), from the CSR adjacency: same area weighting as
+   * updateNormals, at a cost proportional to the stroke, not the mesh. */
+  updateNormalsAround(moved) {
+    const f = this.frame, attr = this.mesh.geometry.attributes.normal;
+    if (moved.length > f.nv / 4) {
+      this.updateNormals();
+      return;
+    }
+    const { list, n: count } = this.touchedVertices(moved, true);
+    const { start, tri } = this.adj, t = f.tris, p = f.positions, n = attr.array;
+    for (let i = 0; i < count; i++) {
+      const v = list[i];
+      let sx = 0, sy = 0, sz = 0;
+      for (let j = start[v], end = start[v + 1]; j < end; j++) {
+        const o = 3 * tri[j];
+        const a = 3 * t[o], b = 3 * t[o + 1], c = 3 * t[o + 2];
+        const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
+        const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
+        sx += uy * vz - uz * vy; sy += uz * vx - ux * vz; sz += ux * vy - uy * vx;
+      }
+      const l = Math.hypot(sx, sy, sz) || 1;
+      n[3 * v] = sx / l; n[3 * v + 1] = sy / l; n[3 * v + 2] = sz / l;
+    }
+    markRanges(attr, list, count, 3);
   }
 
   setFlat(flat) {
@@ -257,7 +471,7 @@ export class Viewer {
 
   setWireframe(on) {
     this.showWire = on;
-    if (this.wire) this.wire.visible = on;
+    if (this.wire) this.wire.visible = on && !this.proxyShown;
     this.requestRender();
   }
 
@@ -349,7 +563,9 @@ export class Viewer {
     cam.updateProjectionMatrix();
     if (this.controls) {
       this.controls.target.set(...center);
+      this.quietChange = true; // a jump, not a motion
       this.controls.update();
+      this.quietChange = false;
     } else {
       cam.lookAt(...center);
     }
@@ -464,3 +680,36 @@ export class Viewer {
     return [o[0] + d[0] * s, o[1] + d[1] * s, o[2] + d[2] * s];
   }
 }
+
+/** Mark the parts of an attribute holding the given sorted items for upload:
+ * a few ranges when they cluster, the whole buffer otherwise. Ranges of
+ * several frames add up until the next render uploads them. */
+function markRanges(attr, sorted, n, itemSize) {
+  if (!n || attr.wholePending) return;
+  const runs = n > attr.count / 4 ? null : indexRuns(sorted, n);
+  if (!runs || attr.updateRanges.length + runs.length / 2 > 96) {
+    markWhole(attr);
+    return;
+  }
+  for (let i = 0; i < runs.length; i += 2) attr.addUpdateRange(runs[i] * itemSize, runs[i + 1] * itemSize);
+  attr.needsUpdate = true;
+}
+
+/** Upload the whole attribute at the next render (whatever ranges came before). */
+function markWhole(attr) {
+  attr.clearUpdateRanges();
+  attr.wholePending = true;
+  attr.needsUpdate = true;
+}
+
+/** A BufferAttribute whose `wholePending` says a full upload is due. */
+function liveAttribute(array, itemSize) {
+  const a = new THREE.BufferAttribute(array, itemSize);
+  a.wholePending = false;
+  a.onUpload(() => { a.wholePending = false; });
+  return a;
+}
+
+const onIdle = (fn) => (window.requestIdleCallback ? requestIdleCallback(fn, { timeout: 1500 }) : setTimeout(fn, 300));
+const cancelIdle = (id) => (window.cancelIdleCallback ? cancelIdleCallback(id) : clearTimeout(id));
+
