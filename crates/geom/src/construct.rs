@@ -30,6 +30,7 @@
 //! Inputs are scaled by a power of two first (as in [`crate::sos`]) and the
 //! result scaled back, both exact, so any input magnitude works.
 
+use crate::dd::{Dd, certified_div};
 use crate::error::GeomError;
 use crate::expansion::{Expansion, pow2};
 use crate::ring::{Ring, V3, cross, dot, normal, orient3, scale3, sub3};
@@ -240,8 +241,16 @@ pub fn edge_triangle_point(
 ) -> Result<EdgeTrianglePoint, GeomError> {
     let pts = [p, q, a, b, c];
     check_finite(&pts)?;
-    // Fast path: every polynomial evaluated once, exactly.
-    let (ex, k) = scaled_expansions(&pts);
+    if let Some(point) = edge_triangle_point_dd(&pts) {
+        return Ok(point);
+    }
+    edge_triangle_point_exact(&pts)
+}
+
+/// [`edge_triangle_point`] by exact expansions only.
+fn edge_triangle_point_exact(pts: &[SymPoint; 5]) -> Result<EdgeTrianglePoint, GeomError> {
+    // Every polynomial evaluated once, exactly.
+    let (ex, k) = scaled_expansions(pts);
     let o = |i: usize, j: usize, l: usize, m: usize| orient3(&ex[i], &ex[j], &ex[l], &ex[m]);
     let (hp, hq) = (o(2, 3, 4, 0), o(2, 3, 4, 1));
     let den = hp.sub(&hq);
@@ -259,16 +268,16 @@ pub fn edge_triangle_point(
         });
     }
     // The point exists only as a perturbed limit.
-    let t = ratio(&EtT, &EtDen, &pts, 0)?;
+    let t = ratio(&EtT, &EtDen, pts, 0)?;
     let pos = DVec3::new(
-        ratio(&EtPos(0), &EtDen, &pts, 1)?,
-        ratio(&EtPos(1), &EtDen, &pts, 1)?,
-        ratio(&EtPos(2), &EtDen, &pts, 1)?,
+        ratio(&EtPos(0), &EtDen, pts, 1)?,
+        ratio(&EtPos(1), &EtDen, pts, 1)?,
+        ratio(&EtPos(2), &EtDen, pts, 1)?,
     );
     let bary = [
-        ratio(&EtBary(0), &EtBaryDen, &pts, 0)?,
-        ratio(&EtBary(1), &EtBaryDen, &pts, 0)?,
-        ratio(&EtBary(2), &EtBaryDen, &pts, 0)?,
+        ratio(&EtBary(0), &EtBaryDen, pts, 0)?,
+        ratio(&EtBary(1), &EtBaryDen, pts, 0)?,
+        ratio(&EtBary(2), &EtBaryDen, pts, 0)?,
     ];
     Ok(EdgeTrianglePoint { t, pos, bary })
 }
@@ -359,8 +368,16 @@ pub fn triple_point(
         t1[0], t1[1], t1[2], t2[0], t2[1], t2[2], t3[0], t3[1], t3[2],
     ];
     check_finite(&pts)?;
-    // Fast path: every polynomial evaluated once, exactly.
-    let (ex, k) = scaled_expansions(&pts);
+    if let Some(point) = triple_point_dd(&pts) {
+        return Ok(point);
+    }
+    triple_point_exact(&pts)
+}
+
+/// [`triple_point`] by exact expansions only.
+fn triple_point_exact(pts: &[SymPoint; 9]) -> Result<TriplePoint, GeomError> {
+    // Every polynomial evaluated once, exactly.
+    let (ex, k) = scaled_expansions(pts);
     let (xh, w) = triple_h(&ex);
     if !w.is_zero() {
         let back = pow2(k);
@@ -390,17 +407,87 @@ pub fn triple_point(
     }
     // The point exists only as a perturbed limit (or not at all).
     let pos = DVec3::new(
-        ratio(&TpPos(0), &TpW, &pts, 1)?,
-        ratio(&TpPos(1), &TpW, &pts, 1)?,
-        ratio(&TpPos(2), &TpW, &pts, 1)?,
+        ratio(&TpPos(0), &TpW, pts, 1)?,
+        ratio(&TpPos(1), &TpW, pts, 1)?,
+        ratio(&TpPos(2), &TpW, pts, 1)?,
     );
     let mut bary = [[0.0; 3]; 3];
     for (tri, b) in bary.iter_mut().enumerate() {
         for (corner, x) in b.iter_mut().enumerate() {
-            *x = ratio(&TpBary { tri, corner }, &TpBaryDen(tri), &pts, 0)?;
+            *x = ratio(&TpBary { tri, corner }, &TpBaryDen(tri), pts, 0)?;
         }
     }
     Ok(TriplePoint { pos, bary })
+}
+
+/// The points scaled as [`scaled_expansions`] scales them, as
+/// double-doubles.
+fn scaled_dd(pts: &[SymPoint]) -> (Vec<V3<Dd>>, i32) {
+    let k = scale_exponent(pts.iter().map(|p| &p.pos));
+    let s = pow2(-k);
+    let v = pts
+        .iter()
+        .map(|p| {
+            let q = p.pos * s;
+            [Dd::cst(q.x), Dd::cst(q.y), Dd::cst(q.z)]
+        })
+        .collect();
+    (v, k)
+}
+
+/// [`edge_triangle_point`] in double-double arithmetic, when every
+/// quotient is certified (see [`crate::dd`]): then bit-identical to the
+/// exact path.
+fn edge_triangle_point_dd(pts: &[SymPoint; 5]) -> Option<EdgeTrianglePoint> {
+    let (ex, k) = scaled_dd(pts);
+    let o = |i: usize, j: usize, l: usize, m: usize| orient3(&ex[i], &ex[j], &ex[l], &ex[m]);
+    let (hp, hq) = (o(2, 3, 4, 0), o(2, 3, 4, 1));
+    let den = hp.sub(&hq);
+    let vb = [o(0, 1, 3, 4), o(0, 1, 4, 2), o(0, 1, 2, 3)];
+    let sum = vb[0].add(&vb[1]).add(&vb[2]);
+    let back = pow2(k);
+    let mut pos = [0.0; 3];
+    for (j, x) in pos.iter_mut().enumerate() {
+        *x = certified_div(&hp.mul(&ex[1][j]).sub(&hq.mul(&ex[0][j])), &den)? * back;
+    }
+    let mut bary = [0.0; 3];
+    for (i, x) in bary.iter_mut().enumerate() {
+        *x = certified_div(&vb[i], &sum)?;
+    }
+    Some(EdgeTrianglePoint {
+        t: certified_div(&hp, &den)?,
+        pos: DVec3::from_array(pos),
+        bary,
+    })
+}
+
+/// [`triple_point`] in double-double arithmetic, when every quotient is
+/// certified (see [`crate::dd`]): then bit-identical to the exact path.
+/// Many overlapping layers make many triple points; this keeps each one
+/// a few hundred flops instead of products of long expansions.
+fn triple_point_dd(pts: &[SymPoint; 9]) -> Option<TriplePoint> {
+    let (ex, k) = scaled_dd(pts);
+    let (xh, w) = triple_h(&ex);
+    let back = pow2(k);
+    let mut bary = [[0.0; 3]; 3];
+    for (tri, b) in bary.iter_mut().enumerate() {
+        let t = &ex[3 * tri..3 * tri + 3];
+        let n = normal(&t[0], &t[1], &t[2]);
+        let den = w.mul(&dot(&n, &n));
+        for (corner, x) in b.iter_mut().enumerate() {
+            let u = &t[(corner + 1) % 3];
+            let v = &t[(corner + 2) % 3];
+            *x = certified_div(&edge_side(u, v, &n, &xh, &w), &den)?;
+        }
+    }
+    let mut pos = [0.0; 3];
+    for (j, x) in pos.iter_mut().enumerate() {
+        *x = certified_div(&xh[j], &w)? * back;
+    }
+    Some(TriplePoint {
+        pos: DVec3::from_array(pos),
+        bary,
+    })
 }
 
 fn check_finite(pts: &[SymPoint]) -> Result<(), GeomError> {
@@ -419,6 +506,64 @@ mod tests {
 
     fn sp(x: f64, y: f64, z: f64, id: u32) -> SymPoint {
         SymPoint::new(DVec3::new(x, y, z), id)
+    }
+
+    /// A random point: generic, snapped to a coarse lattice (many exact
+    /// coincidences and representable answers), or scaled far up or down.
+    fn random_point(rng: &mut Rng, kind: usize, id: u32) -> SymPoint {
+        let mut p = DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
+        match kind % 4 {
+            1 => p = (p * 8.0).round() / 8.0,
+            2 => p = p * 1e9 + DVec3::splat(4096.0),
+            3 => p *= 1e-12,
+            _ => {}
+        }
+        SymPoint::new(p, id)
+    }
+
+    /// The double-double path, whenever it answers, gives exactly the
+    /// doubles the exact expansions give; and it answers almost always
+    /// on generic input.
+    #[test]
+    fn double_double_constructions_match_the_exact_ones() {
+        let mut rng = Rng::new(77);
+        let (mut et_fast, mut et_all, mut tp_fast, mut tp_all) = (0, 0, 0, 0);
+        for trial in 0..4000 {
+            let kind = trial;
+            let pts: [SymPoint; 9] =
+                std::array::from_fn(|i| random_point(&mut rng, kind, i as u32));
+            let et: [SymPoint; 5] = std::array::from_fn(|i| pts[i]);
+            if let Ok(exact) = edge_triangle_point_exact(&et) {
+                et_all += 1;
+                if let Some(fast) = edge_triangle_point_dd(&et) {
+                    et_fast += 1;
+                    assert_eq!(fast.t.to_bits(), exact.t.to_bits(), "trial {trial}");
+                    assert_eq!(fast.pos, exact.pos, "trial {trial}");
+                    for (a, b) in fast.bary.iter().zip(&exact.bary) {
+                        assert_eq!(a.to_bits(), b.to_bits(), "trial {trial}");
+                    }
+                }
+            }
+            if let Ok(exact) = triple_point_exact(&pts) {
+                tp_all += 1;
+                if let Some(fast) = triple_point_dd(&pts) {
+                    tp_fast += 1;
+                    assert_eq!(fast.pos, exact.pos, "trial {trial}");
+                    for (a, b) in fast.bary.iter().flatten().zip(exact.bary.iter().flatten()) {
+                        assert_eq!(a.to_bits(), b.to_bits(), "trial {trial}");
+                    }
+                }
+            }
+        }
+        eprintln!("edge x triangle: {et_fast} of {et_all} certified; triple: {tp_fast} of {tp_all}");
+        // Lattice inputs give exact ties and zeros, which go to the exact
+        // path; the rest should almost all be certified.
+        assert!(et_fast * 10 > et_all * 9, "{et_fast} of {et_all}");
+        assert!(tp_fast * 10 > tp_all * 9, "{tp_fast} of {tp_all}");
     }
 
     /// Correct rounding checked against big integers: `q` is correctly

@@ -15,6 +15,7 @@
 //! | [`identity`] | identities by exact position class (welded in the perturbed world) or by index |
 //! | [`intersect`] | segment × triangle, triangle × triangle segment, triple points, order of crossings along a segment |
 //! | [`construct`] | coordinates and barycentric coordinates of edge × triangle and triple points, correctly rounded from exact values |
+//! | [`dd`] | double-double values with error bounds: the certified fast path of the constructions (bit-identical results, exact fallback) |
 //! | [`bvh`] | median-split BVH: box queries, streamed batches, self-overlap, refit |
 //! | [`ccd`] | vertex–triangle continuous collision: the paper's float cubic, the exact root parity, the parallel broad phase |
 //! | [`sos`], [`ring`], [`expansion`] | the machinery: generic predicate polynomials evaluated in intervals, exact expansions and perturbation polynomials |
@@ -39,6 +40,7 @@
 pub mod bvh;
 pub mod ccd;
 pub mod construct;
+pub mod dd;
 pub mod error;
 pub mod expansion;
 pub mod identity;
