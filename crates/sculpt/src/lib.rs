@@ -10,11 +10,15 @@
 //!   topology change (every frame for inflate and smooth, once at release
 //!   for grab and move), undo and redo of whole strokes, diagnostics.
 //! - [`strokes`]: the JSON stroke files `holey sculpt` replays.
+//! - [`remesh`]: dynamic remeshing (split, collapse, flip) of the region
+//!   around given vertices, never changing topology.
 //!
-//! Not implemented yet (issue 5): dynamic remeshing between frames (the
-//! `remesh` range of a stroke file is parsed and stored, never applied),
-//! and locality (every frame runs the engine on the whole mesh, so the
-//! per-frame cost grows with the mesh, not with the brushed region).
+//! Not implemented yet (issue 5): remeshing between the frames of a
+//! session (the `remesh` range of a stroke file is parsed and stored, and
+//! [`remesh()`] exists, but the session does not call it yet), and
+//! locality of the topology change (every frame runs the engine on the
+//! whole mesh, so the per-frame cost grows with the mesh, not with the
+//! brushed region).
 //!
 //! ```
 //! use holey_sculpt::{Session, parse_strokes};
@@ -38,10 +42,12 @@
 
 pub mod brush;
 pub mod live;
+pub mod remesh;
 pub mod session;
 pub mod strokes;
 
 pub use brush::{Brush, falloff};
 pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke};
+pub use remesh::{RemeshError, RemeshOptions, RemeshReport, remesh, remesh_in_place, remesh_with};
 pub use session::{Diagnostics, Frame, ObserverError, SculptError, Session, StrokeReport};
 pub use strokes::{Remesh, Stroke, StrokeFile, StrokeFileError, parse_strokes};
