@@ -559,7 +559,9 @@ mod tests {
                 }
             }
         }
-        eprintln!("edge x triangle: {et_fast} of {et_all} certified; triple: {tp_fast} of {tp_all}");
+        eprintln!(
+            "edge x triangle: {et_fast} of {et_all} certified; triple: {tp_fast} of {tp_all}"
+        );
         // Lattice inputs give exact ties and zeros, which go to the exact
         // path; the rest should almost all be certified.
         assert!(et_fast * 10 > et_all * 9, "{et_fast} of {et_all}");

@@ -136,7 +136,9 @@ pub fn certified_div(n: &Dd, d: &Dd) -> Option<f64> {
     }
     // Relative error of the operands, then of the double-double quotient.
     let r = n.err / n.magnitude() + d.err / d.magnitude();
-    if !(r < 1e-20) {
+    // Written so that a NaN bound is refused too.
+    let small = r < 1e-20;
+    if !small {
         return None;
     }
     let q1 = n.hi / d.hi;

@@ -11,14 +11,16 @@
 //!   for grab and move), undo and redo of whole strokes, diagnostics.
 //! - [`strokes`]: the JSON stroke files `holey sculpt` replays.
 //! - [`remesh`]: dynamic remeshing (split, collapse, flip) of the region
-//!   around given vertices, never changing topology.
+//!   around given vertices, never changing topology; strokes run it after
+//!   every inflate/smooth frame and after a grab's release, in a range
+//!   given by the stroke file or derived from the mean edge length.
+//! - [`live`]: [`LiveStroke`], a stroke fed one frame at a time (the
+//!   interactive modeler drives it from mouse events).
 //!
-//! Not implemented yet (issue 5): remeshing between the frames of a
-//! session (the `remesh` range of a stroke file is parsed and stored, and
-//! [`remesh()`] exists, but the session does not call it yet), and
-//! locality of the topology change (every frame runs the engine on the
-//! whole mesh, so the per-frame cost grows with the mesh, not with the
-//! brushed region).
+//! Every frame is local: the topology change runs on the region the
+//! motion can reach ([`holey_topo::topology_change_local`]), the brushes
+//! and remeshing touch only the brushed vertices, so beyond a few linear
+//! scans a frame costs what the brush touches.
 //!
 //! ```
 //! use holey_sculpt::{Session, parse_strokes};
@@ -48,6 +50,8 @@ pub mod strokes;
 
 pub use brush::{Brush, falloff};
 pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke};
-pub use remesh::{RemeshError, RemeshOptions, RemeshReport, remesh, remesh_in_place, remesh_with};
+pub use remesh::{
+    RemeshError, RemeshOptions, RemeshReport, default_range, remesh, remesh_in_place, remesh_with,
+};
 pub use session::{Diagnostics, Frame, ObserverError, SculptError, Session, StrokeReport};
 pub use strokes::{Remesh, Stroke, StrokeFile, StrokeFileError, parse_strokes};

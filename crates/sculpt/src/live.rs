@@ -17,6 +17,7 @@ use glam::DVec3;
 use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_local};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
+use crate::remesh::{RemeshOptions, RemeshReport, remesh_in_place};
 use crate::session::{Diagnostics, MOVE_PICK_FRACTION, SculptError, StrokeReport};
 
 /// The brush settings of a stroke, without its path.
@@ -56,6 +57,8 @@ enum State {
         /// Per-vertex share of the pointer offset (0 = held still).
         weights: Vec<f64>,
         first: DVec3,
+        /// The surface point a grab holds.
+        picked: DVec3,
         acc: Box<Accumulator>,
         view: TriMesh,
     },
@@ -67,11 +70,15 @@ pub struct LiveStroke {
     settings: BrushSettings,
     options: Options,
     preview: bool,
+    remesh: Option<RemeshOptions>,
+    remeshed: RemeshTally,
     state: State,
     frames: usize,
     report: StrokeReport,
     diagnostics: Option<Diagnostics>,
     started: Instant,
+    /// For a grab: the picked point and where it was dragged to.
+    grab_tube: Option<(DVec3, DVec3)>,
 }
 
 impl LiveStroke {
@@ -91,13 +98,14 @@ impl LiveStroke {
             ..StrokeReport::default()
         };
         let state = if settings.brush.is_drag() {
-            let weights = pick(mesh, settings, first)?;
+            let (weights, picked) = pick(mesh, settings, first)?;
             let acc = Accumulator::new(mesh.clone(), options)
                 .map_err(|source| SculptError::Topo { frame: 0, source })?;
             State::Drag {
                 start: mesh.clone(),
                 weights,
                 first,
+                picked,
                 acc: Box::new(acc),
                 view: mesh.clone(),
             }
@@ -108,11 +116,14 @@ impl LiveStroke {
             settings,
             options,
             preview: false,
+            remesh: None,
+            remeshed: RemeshTally::default(),
             state,
             frames: 0,
             report,
             diagnostics: None,
             started: Instant::now(),
+            grab_tube: None,
         })
     }
 
@@ -120,6 +131,18 @@ impl LiveStroke {
     /// intersection pass and a correction per frame).
     pub fn set_preview(&mut self, on: bool) {
         self.preview = on;
+    }
+
+    /// Dynamic remeshing (§4) after every inflate or smooth frame and
+    /// after the release of a grab, around what the brush touched; `None`
+    /// turns it off.
+    pub fn set_remesh(&mut self, remesh: Option<RemeshOptions>) {
+        self.remesh = remesh;
+    }
+
+    /// Remeshing operations so far.
+    pub fn remeshed(&self) -> RemeshTally {
+        self.remeshed
     }
 
     pub fn settings(&self) -> BrushSettings {
@@ -178,15 +201,39 @@ impl LiveStroke {
                     });
                     connectivity_changed = !out.positions_only;
                 }
+                if let Some(opts) = &self.remesh {
+                    // After the topology change (§4): the vertices the
+                    // brush reaches, at their new positions.
+                    let active: Vec<bool> = mesh
+                        .positions
+                        .iter()
+                        .map(|p| p.distance(point) < radius)
+                        .collect();
+                    if active.contains(&true) {
+                        let r = remesh_in_place(mesh, &active, opts).map_err(|source| {
+                            SculptError::Remesh {
+                                frame: index,
+                                source,
+                            }
+                        })?;
+                        if self.remeshed.add(&r) {
+                            connectivity_changed = true;
+                        }
+                    }
+                }
             }
             State::Drag {
                 start,
                 weights,
                 first,
+                picked,
                 acc,
                 view,
             } => {
                 let offset = point - *first;
+                if brush == Brush::Grab {
+                    self.grab_tube = Some((*picked, *picked + offset * strength));
+                }
                 // Weight 0 keeps a vertex bit-exact, and a zero offset
                 // (back at the start) restores every position exactly.
                 let next: Vec<DVec3> = start
@@ -225,7 +272,7 @@ impl LiveStroke {
     /// topology change (if any) and its report. A drag changes topology
     /// here, once; a drag that came back to its start (or never moved)
     /// gives back the starting surface unchanged.
-    pub fn finish(self) -> Result<FinishedStroke, SculptError> {
+    pub fn finish(mut self) -> Result<FinishedStroke, SculptError> {
         let mut report = self.report;
         report.frames = self.frames;
         let last = self.frames.saturating_sub(1);
@@ -249,6 +296,26 @@ impl LiveStroke {
                 }
             }
         };
+        let mut mesh = mesh;
+        if let (Some(opts), Some(tube)) = (&self.remesh, self.grab_tube) {
+            // The stretched region of a grab: within the radius of the
+            // segment from the picked point to where it was dragged.
+            let active: Vec<bool> = mesh
+                .positions
+                .iter()
+                .map(|&p| distance_to_segment(p, tube.0, tube.1) < self.settings.radius)
+                .collect();
+            if active.contains(&true) {
+                let r = remesh_in_place(&mut mesh, &active, opts).map_err(|source| {
+                    SculptError::Remesh {
+                        frame: last,
+                        source,
+                    }
+                })?;
+                self.remeshed.add(&r);
+            }
+        }
+        report.remesh_operations = self.remeshed.operations();
         report.triangles_after = mesh.triangles.len();
         report.seconds = self.started.elapsed().as_secs_f64();
         Ok(FinishedStroke {
@@ -269,7 +336,11 @@ pub struct FinishedStroke {
 
 /// The per-vertex drag weights of a grab or move, after checking that the
 /// pick point is near the surface.
-fn pick(mesh: &TriMesh, settings: BrushSettings, point: DVec3) -> Result<Vec<f64>, SculptError> {
+fn pick(
+    mesh: &TriMesh,
+    settings: BrushSettings,
+    point: DVec3,
+) -> Result<(Vec<f64>, DVec3), SculptError> {
     let brush = settings.brush;
     let Some((triangle, picked, distance)) = closest_point(mesh, point) else {
         return Err(SculptError::NoSurface { brush });
@@ -292,7 +363,7 @@ fn pick(mesh: &TriMesh, settings: BrushSettings, point: DVec3) -> Result<Vec<f64
             why,
         });
     }
-    Ok(match brush {
+    let weights = match brush {
         Brush::Move => component_of(mesh, triangle)
             .into_iter()
             .map(|held| if held { 1.0 } else { 0.0 })
@@ -301,7 +372,41 @@ fn pick(mesh: &TriMesh, settings: BrushSettings, point: DVec3) -> Result<Vec<f64
             .into_iter()
             .map(|w| w * settings.strength)
             .collect(),
-    })
+    };
+    Ok((weights, picked))
+}
+
+fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
+/// Remeshing operations counted over a stroke.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RemeshTally {
+    pub splits: usize,
+    pub collapses: usize,
+    pub flips: usize,
+}
+
+impl RemeshTally {
+    /// Adds a report; true when it changed the mesh.
+    fn add(&mut self, r: &RemeshReport) -> bool {
+        self.splits += r.splits;
+        self.collapses += r.collapses;
+        self.flips += r.flips;
+        r.splits + r.collapses + r.flips > 0
+    }
+
+    pub fn operations(&self) -> usize {
+        self.splits + self.collapses + self.flips
+    }
 }
 
 fn tally(report: &mut StrokeReport, r: &Report) {

@@ -140,6 +140,28 @@ impl RemeshReport {
     }
 }
 
+/// The range used when none is given (§4: the authors' lengths were
+/// 0.3–1.0 relative units): half to one and a half times the mesh's mean
+/// edge length, so a fresh mesh starts inside it and only what a brush
+/// stretches or squeezes is remeshed. `None` without a measurable edge.
+pub fn default_range(mesh: &TriMesh) -> Option<Remesh> {
+    let (mut sum, mut count) = (0.0, 0usize);
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            if let (Some(p), Some(q)) = (mesh.positions.get(a), mesh.positions.get(b)) {
+                sum += p.distance(*q);
+                count += 1;
+            }
+        }
+    }
+    let mean = sum / count.max(1) as f64;
+    (mean.is_finite() && mean > 0.0).then_some(Remesh {
+        min_edge: 0.5 * mean,
+        max_edge: 1.5 * mean,
+    })
+}
+
 /// Why a remeshing was refused. The mesh is unchanged.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RemeshError {

@@ -20,6 +20,7 @@ use holey_topo::{Options, TopoError, TriMesh};
 
 use crate::brush::Brush;
 use crate::live::{BrushSettings, LiveStroke};
+use crate::remesh::{RemeshOptions, default_range};
 use crate::strokes::{Remesh, Stroke, StrokeFile};
 
 /// An error an observer of frames may return (writing a picture, say).
@@ -46,6 +47,11 @@ pub enum SculptError {
     Topo { frame: usize, source: TopoError },
     #[error("frame {frame}: {source}")]
     Observer { frame: usize, source: ObserverError },
+    #[error("frame {frame}: {source}")]
+    Remesh {
+        frame: usize,
+        source: crate::remesh::RemeshError,
+    },
     /// An error of a stroke of a replayed file; `index` counts from 0.
     #[error("stroke {index} ({brush}): {source}")]
     Stroke {
@@ -87,6 +93,8 @@ pub struct StrokeReport {
     pub corrected_odd_vertices: usize,
     pub triangles_before: usize,
     pub triangles_after: usize,
+    /// Splits, collapses and flips of dynamic remeshing.
+    pub remesh_operations: usize,
     pub seconds: f64,
 }
 
@@ -108,7 +116,11 @@ pub struct Session {
     mesh: TriMesh,
     options: Options,
     preview: bool,
+    /// The range of a stroke file; `None` uses `derived`.
     remesh: Option<Remesh>,
+    /// The range derived from the starting mesh's mean edge length.
+    derived: Option<Remesh>,
+    remeshing: bool,
     undo: Vec<TriMesh>,
     redo: Vec<TriMesh>,
     diagnostics: Diagnostics,
@@ -129,10 +141,12 @@ impl Session {
     pub fn with_options(mesh: TriMesh, options: Options) -> Result<Session, SculptError> {
         mesh.check().map_err(SculptError::Mesh)?;
         Ok(Session {
+            derived: default_range(&mesh),
             mesh,
             options,
             preview: false,
             remesh: None,
+            remeshing: true,
             undo: Vec::new(),
             redo: Vec::new(),
             diagnostics: Diagnostics::default(),
@@ -161,15 +175,26 @@ impl Session {
         self.preview = on;
     }
 
-    /// Stores the remeshing range of a stroke file. Dynamic remeshing is
-    /// not implemented yet, so this has no effect on strokes.
+    /// Sets the target edge-length range of dynamic remeshing (a stroke
+    /// file's `remesh`); `None` uses the range derived from the starting
+    /// mesh's mean edge length ([`default_range`]).
     pub fn set_remesh(&mut self, remesh: Option<Remesh>) {
         self.remesh = remesh;
     }
 
-    /// The stored remeshing range (not applied; see [`Session::set_remesh`]).
+    /// Turns dynamic remeshing on (the default) or off.
+    pub fn set_remeshing(&mut self, on: bool) {
+        self.remeshing = on;
+    }
+
+    /// The edge-length range strokes remesh to, or `None` when remeshing
+    /// is off (or the mesh has no edge to measure).
     pub fn remesh(&self) -> Option<Remesh> {
-        self.remesh
+        if self.remeshing {
+            self.remesh.or(self.derived)
+        } else {
+            None
+        }
     }
 
     pub fn can_undo(&self) -> bool {
@@ -225,6 +250,7 @@ impl Session {
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
+        live.set_remesh(self.remesh().map(RemeshOptions::new));
         let drag = stroke.brush.is_drag();
         let last = stroke.path.len().saturating_sub(1);
         for (index, &point) in stroke.path.iter().enumerate() {

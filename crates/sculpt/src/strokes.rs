@@ -18,8 +18,9 @@
 //! `grab` takes an optional `strength` (default 1) that scales the drag;
 //! `move` takes only a path.
 //!
-//! `remesh` is accepted, checked and kept, but dynamic remeshing is not
-//! implemented yet: the session ignores it.
+//! `remesh` is the target edge-length range of dynamic remeshing; without
+//! it the session derives one from the mesh's mean edge length
+//! ([`crate::remesh::default_range`]).
 
 use glam::DVec3;
 use serde::Deserialize;
@@ -39,8 +40,7 @@ pub struct Stroke {
     pub path: Vec<DVec3>,
 }
 
-/// The optional target edge-length range of dynamic remeshing. Stored
-/// only: remeshing is not implemented in this version.
+/// The optional target edge-length range of dynamic remeshing.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Remesh {

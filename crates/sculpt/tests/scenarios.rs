@@ -322,7 +322,11 @@ fn bad_stroke_files_name_the_stroke() {
     assert!(e.to_string().starts_with("stroke 1 (grab):"), "{e}");
     assert_eq!(s.mesh(), &start);
     assert!(!s.can_undo());
-    assert!(s.remesh().is_none());
+    assert_eq!(
+        s.remesh(),
+        holey_sculpt::default_range(&start),
+        "the file's range was not kept"
+    );
 
     let far_move =
         parse_strokes(r#"{"strokes": [{"brush": "move", "path": [[0,0,1.5], [0,0,2]]}]}"#).unwrap();
@@ -335,11 +339,15 @@ fn bad_stroke_files_name_the_stroke() {
 /// each other, the hole closes, and the result is a closed surface of
 /// genus 0.
 ///
-/// Ignored: on this coarse torus (576 triangles, no remeshing between
-/// frames yet) the first collision frames give a mesh that is not closed,
-/// and the frames after it grow to thousands of triangles and run for
-/// minutes (many overlapping layers). Run with `-- --ignored` once the
-/// session remeshes between frames.
+/// Ignored: it fails. With the default remeshing the walls first meet
+/// edge against edge, which no vertex–triangle collision sees (the
+/// paper's known blind spot, §7), so one frame keeps a self-intersection
+/// curve (dropped as touching only even regions) and the next frame's
+/// correction cuts along it with wrong labels: a mesh with a boundary.
+/// Without remeshing a frame runs for minutes (many layers at once);
+/// with a fine remeshing range the brush region holds tens of thousands
+/// of triangles and frames take seconds. Needs edge–edge collision
+/// parity or a finer sampling of regions (issue 4).
 #[test]
 #[ignore]
 fn pinch_closing_fills_the_hole_of_a_torus() {
@@ -357,11 +365,33 @@ fn pinch_closing_fills_the_hole_of_a_torus() {
     };
     assert_eq!(genus(&torus), 1);
     let mut s = Session::new(torus).unwrap();
+    if let Ok(r) = std::env::var("PINCH_REMESH") {
+        let v: Vec<f64> = r.split(',').map(|x| x.parse().unwrap()).collect();
+        s.set_remesh(Some(holey_sculpt::Remesh {
+            min_edge: v[0],
+            max_edge: v[1],
+        }));
+    }
     let centre = [0.011, 0.004, 0.003];
-    let inflate = stroke(Brush::Inflate, 0.5, 0.02, &[centre; 14]);
+    let strength: f64 = std::env::var("PINCH_S")
+        .ok()
+        .map_or(0.02, |v| v.parse().unwrap());
+    let frames: usize = std::env::var("PINCH_F")
+        .ok()
+        .map_or(14, |v| v.parse().unwrap());
+    let inflate = stroke(Brush::Inflate, 0.5, strength, &vec![centre; frames]);
     let mut frames_valid = true;
     let r = s
         .apply_stroke_observed(&inflate, &mut |f| {
+            eprintln!(
+                "frame {} tris {} valid {} closed {} comps {} genus {}",
+                f.index,
+                f.mesh.triangles.len(),
+                valid(f.mesh),
+                closed(f.mesh),
+                components(f.mesh),
+                genus(f.mesh)
+            );
             frames_valid &= valid(f.mesh) && closed(f.mesh);
             Ok(())
         })
@@ -733,4 +763,67 @@ fn fuzz_slow_seeds() {
     let mut tally = FuzzTally::default();
     fuzz_seed(76, true, &mut tally);
     fuzz_seed(158, false, &mut tally);
+}
+
+/// §4's dynamic remeshing inside a session: inflating a bump with a
+/// given range keeps every edge the brush reached within it (splits bring
+/// stretched edges under `max_edge`; collapses may leave a few short
+/// edges where the angle bounds forbid them), inverts no triangle, and
+/// changes no topology; the triangles the brush never reached are the
+/// same as before.
+#[test]
+fn remeshing_keeps_edges_in_range_during_strokes() {
+    let start = sphere(DVec3::ZERO);
+    let mut s = Session::new(start.clone()).unwrap();
+    let range = holey_sculpt::Remesh {
+        min_edge: 0.04,
+        max_edge: 0.12,
+    };
+    s.set_remesh(Some(range));
+    let centre = [0.0, 0.0, 1.0];
+    let r = s
+        .apply_stroke(&stroke(Brush::Inflate, 0.5, 0.03, &[centre; 12]))
+        .unwrap();
+    assert!(r.remesh_operations > 0, "the bump was remeshed");
+    let m = s.mesh();
+    assert!(valid(m) && closed(m));
+    assert_eq!(genus(m), 0);
+    assert_eq!(components(m), 1);
+    assert!(no_self_intersections(m));
+    let c = DVec3::from_array(centre);
+    let (mut near, mut long, mut short) = (0, 0, 0);
+    for t in &m.triangles {
+        let [a, b, cc] = t.map(|v| m.positions[v as usize]);
+        // The bump stays star-shaped about the origin: no triangle turns
+        // its back to it.
+        assert!(
+            (b - a).cross(cc - a).dot(a + b + cc) > 0.0,
+            "inverted triangle"
+        );
+        if [a, b, cc].iter().all(|p| p.distance(c) < 0.4) {
+            for (p, q) in [(a, b), (b, cc), (cc, a)] {
+                near += 1;
+                let l = p.distance(q);
+                long += usize::from(l > range.max_edge * 1.0001);
+                short += usize::from(l < range.min_edge);
+            }
+        }
+    }
+    assert!(near > 100, "{near} edges near the brush");
+    assert_eq!(long, 0, "edges longer than max_edge near the brush");
+    assert!(
+        short * 20 < near,
+        "{short} of {near} edges shorter than min_edge"
+    );
+    // Far from the brush nothing moved.
+    let far: Vec<[u32; 3]> = start
+        .triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| start.positions[v as usize].z < -0.2))
+        .copied()
+        .collect();
+    let key =
+        |m: &TriMesh, t: &[u32; 3]| t.map(|v| m.positions[v as usize].to_array().map(f64::to_bits));
+    let now: std::collections::HashSet<_> = m.triangles.iter().map(|t| key(m, t)).collect();
+    assert!(far.iter().all(|t| now.contains(&key(&start, t))));
 }

@@ -19,7 +19,7 @@ use holey_model::handle::{HandleParams, create_handle};
 use holey_model::menger::{MengerParams, menger_capped};
 use holey_model::rind::{PunchOutcome, Rind};
 use holey_model::sierpinski::sierpinski_capped;
-use holey_sculpt::{Brush, BrushSettings, LiveStroke};
+use holey_sculpt::{Brush, BrushSettings, LiveStroke, Remesh, RemeshOptions, default_range};
 use holey_subdiv::{Scheme, subdivide_capped};
 use holey_topo::Options;
 use serde_json::{Value, json};
@@ -410,6 +410,7 @@ impl Shared {
         };
         let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
         live.set_preview(brush.is_drag());
+        live.set_remesh(remesh_options(mesh, doc.remesh_detail));
         let display = doc.display().clone();
         let sent = display.positions.clone();
         doc.stroke = Some(ActiveStroke {
@@ -759,6 +760,22 @@ impl Job {
             }
         }
     }
+}
+
+/// The remeshing of the detail slider: off at 0; otherwise edges around
+/// `ℓ = L · 4^(1/2 − detail)` (L the mesh's mean edge length: the mesh as
+/// it is at 1/2, twice as fine at 1, twice as coarse near 0), kept within
+/// half to one and a half times ℓ.
+fn remesh_options(mesh: &holey_topo::TriMesh, detail: f64) -> Option<RemeshOptions> {
+    if detail <= 0.0 {
+        return None;
+    }
+    let base = default_range(mesh)?;
+    let scale = 4f64.powf(0.5 - detail.min(1.0));
+    Some(RemeshOptions::new(Remesh {
+        min_edge: base.min_edge * scale,
+        max_edge: base.max_edge * scale,
+    }))
 }
 
 /// A model made while the sculpt workspace is open is sculpted too.

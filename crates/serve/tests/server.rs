@@ -217,6 +217,19 @@ fn modeling_sculpting_undo_and_two_tabs() {
     assert_eq!(a.state["stats"]["closed"], true);
     a.ok(json!({"op": "undo"}));
     assert_eq!(a.genus(), 0);
+
+    // The detail slider remeshes where the brush goes: finer at 1.
+    let before = a.state["stats"]["triangles"].as_u64().expect("triangles");
+    a.ok(json!({"op": "set_remesh", "detail": 1.0}));
+    assert_eq!(a.state["remesh"]["detail"], 1.0);
+    a.ok(json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.4, "strength": 0.01,
+                "point": [0, 0, 1]}));
+    a.ok(json!({"op": "stroke_frame", "point": [0, 0, 1]}));
+    a.ok(json!({"op": "stroke_end"}));
+    let after = a.state["stats"]["triangles"].as_u64().expect("triangles");
+    assert!(after > before, "remeshed finer: {before} -> {after}");
+    assert_eq!(a.genus(), 0);
+    assert_eq!(a.state["stats"]["closed"], true);
 }
 
 #[test]

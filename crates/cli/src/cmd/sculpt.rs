@@ -31,9 +31,12 @@ STROKES.json:
 
 Strokes are numbered from 0 in errors. The first point of a grab must lie
 within its radius of the surface, that of a move within 10% of the
-bounding-box diagonal. \"remesh\" is accepted but dynamic remeshing is not
-implemented yet: it is ignored. On any error nothing is written to OUT
-(frames already written stay).
+bounding-box diagonal. After every inflate/smooth frame and every grab,
+the brushed region is remeshed (splits, collapses, flips; never a
+topology change) to edge lengths in \"remesh\", or without it to half to
+one and a half times the input's mean edge length; --no-remesh turns
+this off. On any error nothing is written to OUT (frames already written
+stay).
 
 Examples:
   holey sculpt @sphere:3 strokes.json out.obj
@@ -58,6 +61,9 @@ pub struct Args {
     /// Print a line per stroke.
     #[arg(short, long)]
     pub verbose: bool,
+    /// Do not remesh the brushed region between frames.
+    #[arg(long)]
+    pub no_remesh: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -76,6 +82,7 @@ pub fn run(args: Args) -> Result<()> {
     let opts = render_options(&args.size, &args.view, "z", false, false)?;
     let mesh = load_triangles(&args.input)?;
     let mut session = Session::new(mesh).map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
+    session.set_remeshing(!args.no_remesh);
     let frames_dir = match &args.frames {
         Some(dir) => {
             std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{dir}: {e}"))?;
@@ -111,17 +118,15 @@ pub fn run(args: Args) -> Result<()> {
         for (i, r) in reports.iter().enumerate() {
             let brush = r.brush.map(|b| b.name()).unwrap_or("?");
             eprintln!(
-                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} -> {} triangles, {:.3} s",
+                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} remeshing operation(s), {} -> {} triangles, {:.3} s",
                 r.frames,
                 r.engine_runs,
                 r.changes,
+                r.remesh_operations,
                 r.triangles_before,
                 r.triangles_after,
                 r.seconds
             );
-        }
-        if file.remesh.is_some() {
-            eprintln!("note: \"remesh\" is not implemented yet and was ignored");
         }
     }
     Ok(())
