@@ -222,8 +222,10 @@ fn modeling_sculpting_undo_and_two_tabs() {
     let before = a.state["stats"]["triangles"].as_u64().expect("triangles");
     a.ok(json!({"op": "set_remesh", "detail": 1.0}));
     assert_eq!(a.state["remesh"]["detail"], 1.0);
-    a.ok(json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.4, "strength": 0.01,
-                "point": [0, 0, 1]}));
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.4, "strength": 0.01,
+                "point": [0, 0, 1]}),
+    );
     a.ok(json!({"op": "stroke_frame", "point": [0, 0, 1]}));
     a.ok(json!({"op": "stroke_end"}));
     let after = a.state["stats"]["triangles"].as_u64().expect("triangles");
