@@ -321,7 +321,7 @@ const scenarios = [
     const box = await page.evaluate(() => window.__holey.bbox);
     const c = await page.evaluate((p) => window.__holey.project(p), box.center);
     const rpx = (await page.evaluate((p) => window.__holey.project(p), [box.center[0] + (box.max[0] - box.center[0]), box.center[1], box.center[2]]))[0] - c[0];
-    const KEYS = ['strokeLatencies', 'waitMs', 'roundTripMs', 'serverMs', 'clientMs', 'toRenderMs', 'renderMs'];
+    const KEYS = ['strokeLatencies', 'waitMs', 'roundTripMs', 'serverMs', 'clientMs', 'toRenderMs', 'renderMs', 'drawnTriangles'];
     const stroke = async (yOff, measureGpu) => {
       await page.evaluate(([keys, gpu]) => {
         const h = window.__holey;
@@ -353,6 +353,40 @@ const scenarios = [
     // Not measured that way: latency ends when the draw calls were issued.
     const q = await stroke(0.3, false);
     const lat = m.strokeLatencies;
+    // Partial redraws: during a stroke only the rectangle the brush changed
+    // is drawn again. Mid-stroke, the picture built that way must equal a
+    // full redraw of the same state.
+    const p0 = await page.evaluate(() => window.__holey.partial);
+    {
+      const y = c[1] + 0.05 * rpx;
+      await page.mouse.move(c[0] - 0.5 * rpx, y);
+      await page.mouse.down();
+      for (let i = 0; i <= 30; i++) {
+        await page.mouse.move(c[0] + (-0.5 + i / 30) * rpx, y - 0.3 * rpx * Math.sin((i / 30) * Math.PI));
+        await page.waitForTimeout(16);
+      }
+      await waitFor(page, 'the stroke frames to be answered', () => {
+        const s = window.__holey.strokeInfo;
+        return s && !s.inflight && !s.queued;
+      });
+      await page.waitForTimeout(100);
+      perf.partial = await page.evaluate(() => window.__holey.comparePartialToFull());
+      perf.partial.partialRendersInStroke = perf.partial.partialRenders - p0.renders;
+      perf.partial.lastPartialTriangles = (await page.evaluate(() => window.__holey.partial)).triangles;
+      await page.screenshot({ path: path.join(artifacts, '8-partial-check.png') });
+      await page.mouse.up();
+      await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+    }
+    console.log(`  partial redraw check: ${JSON.stringify(perf.partial)}`);
+    if (p0.enabled) {
+      // Grab/move previews carry a vanish mask and are always drawn whole.
+      const partialBrush = brush === 'inflate' || brush === 'smooth';
+      if (partialBrush && !(perf.partial.partialRendersInStroke > 0)) throw new Error('no partial redraw happened during the check stroke');
+      // Identical up to rasterizer noise: at most 0.05% of the pixels differ.
+      if (perf.partial.differ > 0.0005 * perf.partial.pixels) {
+        throw new Error(`the partially redrawn picture differs from a full redraw in ${perf.partial.differ} of ${perf.partial.pixels} pixels (max ${perf.partial.maxDiff})`);
+      }
+    }
     perf.sculpt = {
       triangles: mid, brush, frames: lat.length,
       positionsOnlyFrames: m.positionsOnlyFrames, sparseFrames: m.sparseFrames,
@@ -367,6 +401,9 @@ const scenarios = [
       // Second stroke without waiting for the GPU (latency to draw calls issued).
       issuedLatencyMsMedian: round(median(q.strokeLatencies)), issuedLatencyMsP95: round(pct(q.strokeLatencies, 0.95)),
       issuedFrames: q.strokeLatencies.length,
+      // Triangles drawn per stroke picture (partial redraws draw only those
+      // meeting the changed rectangle).
+      drawnTrianglesMedian: median(m.drawnTriangles),
     };
     perf.renderer = await page.evaluate(() => {
       const gl = document.querySelector('canvas').getContext('webgl2');

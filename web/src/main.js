@@ -69,6 +69,7 @@ const hook = {
   clientMs: [],
   toRenderMs: [],
   renderMs: [],
+  drawnTriangles: [], // triangles drawn for each stroke picture (fewer when partial)
   serverMs: [],
   measureGpu: false,
   lastFrameMs: null, // pointer event -> stroke frame rendered, last stroke frame
@@ -86,6 +87,10 @@ const hook = {
   },
   benchOrbit,
   benchRender,
+  comparePartialToFull,
+  get partial() {
+    return viewer && { enabled: viewer.partialEnabled, renders: viewer.partialRenders, triangles: viewer.partialTriangles, rect: viewer.lastPartialRect ?? null };
+  },
   get viewer() { return viewer; }, // for experiments from the console
 };
 const pushCapped = (xs, x) => {
@@ -234,9 +239,9 @@ function onFrame(buf) {
     app.fitNext = false;
     viewer.setView();
   }
-  // Drawn at the next animation frame, together with whatever else changed
-  // (the brush ring, a second frame): at most one picture per display frame.
-  viewer.requestRender();
+  // setFrame asked for a picture at the next animation frame (only the part
+  // of it that changed, during a stroke), together with whatever else
+  // changed (the brush ring, a second frame): at most one per display frame.
   const applied = performance.now();
   hook.lastParseRenderMs = applied - t0;
   const inflight = app.stroke?.inflight;
@@ -264,6 +269,7 @@ if (viewer) {
       pushCapped(hook.clientMs, m.applied - m.recv);
       pushCapped(hook.toRenderMs, start - m.applied);
       pushCapped(hook.renderMs, end - start);
+      pushCapped(hook.drawnTriangles, viewer.lastRenderPartial ? viewer.partialTriangles : (app.frame?.nt ?? 0));
     }
     pendingMeasures.length = 0;
   };
@@ -753,6 +759,27 @@ const pixel = new Uint8Array(4);
 function waitForGpu() {
   const gl = viewer.renderer.getContext();
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+}
+
+/** The picture on screen (drawn with partial redraws during a stroke)
+ * against a full redraw of the same state: how many pixels differ, and by
+ * how much at most (0..255 per channel). */
+function comparePartialToFull() {
+  const gl = viewer.renderer.getContext();
+  if (viewer.pendingRender) viewer.renderNow(); // the pending (partial) picture
+  const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+  const a = new Uint8Array(4 * w * h), b = new Uint8Array(4 * w * h);
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, a);
+  viewer.damage = 'full';
+  viewer.renderNow();
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, b);
+  let differ = 0, maxDiff = 0;
+  for (let i = 0; i < a.length; i += 4) {
+    const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]));
+    if (d > 0) differ++;
+    if (d > maxDiff) maxDiff = d;
+  }
+  return { width: w, height: h, pixels: w * h, differ, maxDiff, partialRenders: viewer.partialRenders };
 }
 
 /** Median time of `n` full pictures at rest (the GPU waited for each). */

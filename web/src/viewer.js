@@ -1,7 +1,9 @@
 // The 3D view: one shaded mesh plus overlays that share its position
 // attribute (wireframe, selected faces, vanish mask), so a positions-only
 // frame updates every layer with a single upload. Rendering happens only
-// when something changed (frames, camera moves, overlays).
+// when something changed (frames, camera moves, overlays); on a software
+// rasterizer a stroke frame redraws only the rectangle it changed (see
+// renderPartial and README.md).
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
@@ -23,6 +25,12 @@ const MOTION_SCALE_SOFTWARE = 0.35;
 const SETTLE_MS = 180;
 
 const BASE_COLOR = 0xb9c3d3;
+/** A partial redraw whose rectangle covers more than this share of the
+ * picture is done as a full one. */
+const PARTIAL_MAX_AREA = 0.6;
+/** Margin (drawing-buffer pixels) around a damaged rectangle: rounding of the
+ * CPU projection versus the rasterizer, and 1-pixel lines. */
+const DAMAGE_MARGIN = 3;
 
 /** Is WebGL drawn by the CPU (SwiftShader, llvmpipe)? Asked on a throwaway
  * context because antialiasing cannot be changed after creation. */
@@ -46,7 +54,15 @@ export class Viewer {
     // Throws if WebGL is unavailable; main.js turns that into a message.
     // A software rasterizer spends ~2.5× longer per picture with MSAA, so
     // there we trade smooth edges for a usable frame rate.
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software, powerPreference: 'high-performance' });
+    // Partial redraws (during a stroke only the screen rectangle the brush
+    // changed is drawn again, over the previous picture) need the drawing
+    // buffer kept between pictures. Only where drawing is expensive per
+    // triangle: a software rasterizer.
+    this.partialEnabled = this.software;
+    this.renderer = new THREE.WebGLRenderer({
+      canvas, antialias: !this.software, powerPreference: 'high-performance',
+      preserveDrawingBuffer: this.partialEnabled,
+    });
     this.restPixelRatio = this.software ? 1 : Math.min(window.devicePixelRatio || 1, 2);
     this.motionPixelRatio = this.software ? this.restPixelRatio * MOTION_SCALE_SOFTWARE : Math.min(this.restPixelRatio, 1);
     this.renderer.setPixelRatio(this.restPixelRatio);
@@ -116,6 +132,21 @@ export class Viewer {
     this.lastRenderAt = 0;
     this.pendingRender = 0;
     this.afterRender = null; // optional callback(renderStart, renderEnd), for measurements
+    // Damage since the last picture: null (nothing), 'full', or a rectangle
+    // in drawing-buffer pixels (GL convention, y up) {x0, y0, x1, y1}.
+    this.damage = null;
+    this.lastViewSig = ''; // camera + drawing buffer of the last picture
+    this.partialRenders = 0;
+    this.partialTriangles = 0; // triangles drawn by the last partial redraw
+    this.forceFull = false; // tests: draw every picture in full
+    // Screen positions (drawing-buffer pixels) of every vertex for the view
+    // `screenSig`, kept current for moved vertices during a stroke.
+    this.screen = null;
+    this.screenSig = '';
+    this.screenFor = null; // the position array they were projected from
+    this.partMesh = null; // draws the triangles of a partial redraw
+    this._m = new THREE.Matrix4();
+    this._size = new THREE.Vector2();
     // Motion (orbit, zoom, stroke): lower resolution, proxy for huge meshes.
     this.motion = new Set(); // reasons the view is in motion: 'orbit', 'stroke', 'bench'
     this.settleTimer = 0;
@@ -259,7 +290,11 @@ export class Viewer {
     });
   }
 
-  requestRender() {
+  /** Draw at the next animation frame. `rect` (drawing-buffer pixels) says
+   * only that part of the picture changed; without it, everything. */
+  requestRender(rect) {
+    if (rect === undefined || rect === null) this.damage = 'full';
+    else if (this.damage !== 'full') this.damage = unionRect(this.damage, rect);
     if (this.pendingRender) return;
     this.pendingRender = requestAnimationFrame(() => {
       this.pendingRender = 0;
@@ -273,10 +308,208 @@ export class Viewer {
       this.pendingRender = 0;
     }
     const t0 = performance.now();
-    this.renderer.render(this.scene, this.camera);
+    const damage = this.damage;
+    this.damage = null;
+    this.camera.updateMatrixWorld();
+    const sig = this.viewSig();
+    let drawn = false;
+    if (damage && damage !== 'full' && sig === this.lastViewSig && this.partialPossible(sig)) {
+      drawn = this.renderPartial(damage);
+    }
+    if (!drawn) this.renderer.render(this.scene, this.camera);
+    this.lastRenderPartial = drawn;
+    this.lastViewSig = sig;
     this.renders++;
     this.lastRenderAt = performance.now();
     this.afterRender?.(t0, this.lastRenderAt);
+  }
+
+  // ---- partial redraws -----------------------------------------------------
+
+  /** Camera and drawing buffer: a picture can be patched only over one drawn
+   * with the same. */
+  viewSig() {
+    const c = this.camera;
+    this.renderer.getDrawingBufferSize(this._size);
+    return `${this._size.x}x${this._size.y}|${c.matrixWorld.elements.join(',')}|${c.projectionMatrix.elements.join(',')}`;
+  }
+
+  partialPossible(sig) {
+    return this.partialEnabled && !this.forceFull && this.mesh && this.mesh.visible && !this.proxyShown
+      && this.screen && this.screenSig === sig
+      && this.screenFor === this.frame?.positions;
+  }
+
+  /** World → drawing-buffer pixels for the current camera (y up). */
+  viewProjection() {
+    const c = this.camera;
+    c.updateMatrixWorld();
+    return this._m.multiplyMatrices(c.projectionMatrix, c.matrixWorldInverse).elements;
+  }
+
+  /** Project every vertex (O(nv)); false if one is behind the camera. */
+  projectAll() {
+    const f = this.frame, p = f.positions, nv = f.nv;
+    if (!this.screen || this.screen.length !== 2 * nv) this.screen = new Float32Array(2 * nv);
+    const e = this.viewProjection(), s = this.screen;
+    this.renderer.getDrawingBufferSize(this._size);
+    const W = this._size.x / 2, H = this._size.y / 2;
+    let ok = true;
+    for (let v = 0; v < nv; v++) {
+      const x = p[3 * v], y = p[3 * v + 1], z = p[3 * v + 2];
+      const w = e[3] * x + e[7] * y + e[11] * z + e[15];
+      if (!(w > 0)) { ok = false; break; }
+      s[2 * v] = ((e[0] * x + e[4] * y + e[8] * z + e[12]) / w + 1) * W;
+      s[2 * v + 1] = ((e[1] * x + e[5] * y + e[9] * z + e[13]) / w + 1) * H;
+    }
+    this.screenSig = ok ? this.viewSig() : '';
+    this.screenFor = ok ? p : null;
+    return ok;
+  }
+
+  /** Re-project the given vertices; false if one is behind the camera. */
+  projectSome(idx) {
+    const p = this.frame.positions, s = this.screen, e = this.viewProjection();
+    this.renderer.getDrawingBufferSize(this._size);
+    const W = this._size.x / 2, H = this._size.y / 2;
+    for (let i = 0; i < idx.length; i++) {
+      const v = idx[i];
+      const x = p[3 * v], y = p[3 * v + 1], z = p[3 * v + 2];
+      const w = e[3] * x + e[7] * y + e[11] * z + e[15];
+      if (!(w > 0)) return false;
+      s[2 * v] = ((e[0] * x + e[4] * y + e[8] * z + e[12]) / w + 1) * W;
+      s[2 * v + 1] = ((e[1] * x + e[5] * y + e[9] * z + e[13]) / w + 1) * H;
+    }
+    return true;
+  }
+
+  /** Screen bounds of the given vertices (from `screen`). */
+  screenBounds(list, n, r = null) {
+    const s = this.screen;
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    if (r) ({ x0, y0, x1, y1 } = r);
+    for (let i = 0; i < n; i++) {
+      const v = list[i], x = s[2 * v], y = s[2 * v + 1];
+      if (x < x0) x0 = x; if (x > x1) x1 = x;
+      if (y < y0) y0 = y; if (y > y1) y1 = y;
+    }
+    return { x0, y0, x1, y1 };
+  }
+
+  /** Screen bounds of every triangle around the given vertices. */
+  ringBounds(list, n, r) {
+    const s = this.screen, { start, tri } = this.adj, t = this.frame.tris;
+    let { x0, y0, x1, y1 } = r;
+    for (let i = 0; i < n; i++) {
+      const v = list[i];
+      for (let j = start[v], end = start[v + 1]; j < end; j++) {
+        const o = 3 * tri[j];
+        for (let c = 0; c < 3; c++) {
+          const w = 2 * t[o + c], x = s[w], y = s[w + 1];
+          if (x < x0) x0 = x; if (x > x1) x1 = x;
+          if (y < y0) y0 = y; if (y > y1) y1 = y;
+        }
+      }
+    }
+    return { x0, y0, x1, y1 };
+  }
+
+  /** Screen bounds of the brush ring where it is now (null: behind the camera). */
+  brushBounds() {
+    const b = this.brush;
+    if (!b.visible) return { x0: Infinity, y0: Infinity, x1: -Infinity, y1: -Infinity };
+    b.updateMatrixWorld();
+    this.camera.updateMatrixWorld();
+    const m = this._m.multiplyMatrices(this.camera.projectionMatrix, this.camera.matrixWorldInverse)
+      .multiply(b.matrixWorld).elements;
+    this.renderer.getDrawingBufferSize(this._size);
+    const W = this._size.x / 2, H = this._size.y / 2;
+    const ring = b.geometry.attributes.position.array;
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (let i = 0; i < ring.length; i += 3) {
+      const x = ring[i], y = ring[i + 1];
+      const w = m[3] * x + m[7] * y + m[15];
+      if (!(w > 0)) return null;
+      const sx = ((m[0] * x + m[4] * y + m[12]) / w + 1) * W, sy = ((m[1] * x + m[5] * y + m[13]) / w + 1) * H;
+      if (sx < x0) x0 = sx; if (sx > x1) x1 = sx;
+      if (sy < y0) y0 = sy; if (sy > y1) y1 = sy;
+    }
+    return { x0, y0, x1, y1 };
+  }
+
+  /** Draw the damaged rectangle again over the kept picture: scissor, clear,
+   * and the triangles whose screen bounds meet it (in their original order,
+   * so depth ties resolve as in a full picture); overlays are drawn whole
+   * under the scissor. False when a full picture is the better deal. */
+  renderPartial(r) {
+    this.renderer.getDrawingBufferSize(this._size);
+    const bw = this._size.x, bh = this._size.y;
+    const x0 = Math.max(0, Math.floor(r.x0) - DAMAGE_MARGIN), y0 = Math.max(0, Math.floor(r.y0) - DAMAGE_MARGIN);
+    const x1 = Math.min(bw, Math.ceil(r.x1) + DAMAGE_MARGIN), y1 = Math.min(bh, Math.ceil(r.y1) + DAMAGE_MARGIN);
+    if (!(x1 > x0 && y1 > y0)) return true; // nothing on screen changed
+    if ((x1 - x0) * (y1 - y0) > PARTIAL_MAX_AREA * bw * bh) return false;
+    const f = this.frame, t = f.tris, s = this.screen, nt = f.nt;
+    if (!this.partMesh || this.partMesh.userData.for !== this.mesh) this.makePartMesh();
+    const idxAttr = this.partMesh.geometry.index, out = idxAttr.array;
+    let k = 0;
+    for (let i = 0; i < 3 * nt; i += 3) {
+      const a = 2 * t[i], b = 2 * t[i + 1], c = 2 * t[i + 2];
+      const ax = s[a], bx = s[b], cx = s[c];
+      if ((ax < x0 && bx < x0 && cx < x0) || (ax > x1 && bx > x1 && cx > x1)) continue;
+      const ay = s[a + 1], by = s[b + 1], cy = s[c + 1];
+      if ((ay < y0 && by < y0 && cy < y0) || (ay > y1 && by > y1 && cy > y1)) continue;
+      out[k++] = t[i]; out[k++] = t[i + 1]; out[k++] = t[i + 2];
+    }
+    if (k > 0) {
+      idxAttr.clearUpdateRanges();
+      idxAttr.addUpdateRange(0, k);
+      idxAttr.needsUpdate = true;
+    }
+    this.partMesh.geometry.setDrawRange(0, k);
+    const pr = this.renderer.getPixelRatio();
+    this.renderer.setScissor(x0 / pr, y0 / pr, (x1 - x0) / pr, (y1 - y0) / pr);
+    this.renderer.setScissorTest(true);
+    this.mesh.visible = false;
+    this.partMesh.visible = true;
+    try {
+      this.renderer.render(this.scene, this.camera);
+    } finally {
+      this.mesh.visible = true;
+      this.partMesh.visible = false;
+      this.renderer.setScissorTest(false);
+    }
+    this.partialRenders++;
+    this.partialTriangles = k / 3;
+    this.lastPartialRect = [x0, y0, x1, y1];
+    return true;
+  }
+
+  /** A mesh sharing the shown mesh's attributes, with its own index. */
+  makePartMesh() {
+    this.disposePartMesh();
+    const g = this.mesh.geometry;
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', g.attributes.position);
+    geo.setAttribute('normal', g.attributes.normal);
+    geo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * this.frame.nt)), 1));
+    geo.setDrawRange(0, 0);
+    this.partMesh = new THREE.Mesh(geo, this.material);
+    this.partMesh.frustumCulled = false;
+    this.partMesh.visible = false;
+    this.partMesh.userData.for = this.mesh;
+    this.scene.add(this.partMesh);
+  }
+
+  disposePartMesh() {
+    if (!this.partMesh) return;
+    this.scene.remove(this.partMesh);
+    // Only the index is its own; position and normal belong to the mesh
+    // (disposing a geometry frees the GL buffers of all its attributes).
+    const g = this.partMesh.geometry;
+    g.deleteAttribute('position');
+    g.deleteAttribute('normal');
+    g.dispose();
+    this.partMesh = null;
   }
 
   // ---- frames -------------------------------------------------------------
@@ -289,22 +522,48 @@ export class Viewer {
       if (this.proxy) this.disposeProxy(); // the surface moved
       const attr = this.mesh.geometry.attributes.position;
       if (f.sparse) {
+        // The frame still points at the array on screen (see parseFrame).
+        // A frame moving a large part of the mesh is drawn whole.
+        let damage = this.partialEnabled && !this.forceFull && f.sparseIdx.length <= f.nv / 4
+          ? this.oldDamage(f.sparseIdx) : null;
         applySparse(attr.array, f.sparseIdx, f.sparsePos);
         f.positions = attr.array;
         const moved = this.touchedVertices(f.sparseIdx, false);
         markRanges(attr, moved.list, moved.n, 3);
-        if (!this.flat) this.updateNormalsAround(f.sparseIdx);
+        let ring = null;
+        if (!this.flat) ring = this.updateNormalsAround(f.sparseIdx);
+        if (damage) {
+          if (!this.projectSome(f.sparseIdx)) damage = null;
+          else {
+            if (!ring) ring = this.touchedVertices(f.sparseIdx, true);
+            damage = this.ringBounds(ring.list, ring.n, damage);
+            // Triangles entering or leaving the vanish mask (grab/move).
+            const ch = this.maskChanges(f.mask);
+            if (ch) damage = this.ringBounds(ch.list, ch.n, damage);
+            else damage = null;
+          }
+        }
+        this.keepMask(f.mask);
+        if (!damage) this.screenFor = null; // projected positions are stale
+        this.updateMask();
+        this.requestRender(damage);
       } else {
         attr.array.set(f.positions);
         markWhole(attr);
         // Keep the frame pointing at the live arrays so picking sees them.
         f.positions = attr.array;
         if (!this.flat) this.updateNormals();
+        this.screenFor = null;
+        this.keepMask(f.mask);
+        this.updateMask();
+        this.requestRender();
       }
-      this.updateMask();
       return false;
     }
     if (f.sparse) throw new Error('a sparse frame needs the previous mesh on screen');
+    this.screenFor = null;
+    this.keepMask(f.mask);
+    this.requestRender();
     this.disposeMesh();
     this.disposeProxy();
     this.adj = null;
@@ -349,7 +608,46 @@ export class Viewer {
     return true;
   }
 
+  /** Screen bounds, before a sparse frame moves them, of the moved vertices
+   * (projecting the whole mesh first when the view changed). Null: unknown. */
+  oldDamage(idx) {
+    const f = this.frame;
+    if (!this.adj) this.adj = vertexTriangles(f.nv, f.tris);
+    this.camera.updateMatrixWorld();
+    if (!this.screen || this.screenFor !== f.positions || this.screenSig !== this.viewSig()) {
+      if (!this.projectAll()) return null;
+    }
+    return this.screenBounds(idx, idx.length);
+  }
+
+  /** Vertices whose vanish-mask bit differs from the mask on screen
+   * (`keepMask`); null when unknown. */
+  maskChanges(mask) {
+    const old = this.maskShown, nv = this.frame.nv;
+    if (!mask && !old) return { list: null, n: 0 };
+    if ((mask && mask.length !== nv) || (old && old.length !== nv)) return null;
+    if (!this.maskDiff || this.maskDiff.length !== nv) this.maskDiff = new Uint32Array(nv);
+    const out = this.maskDiff;
+    let n = 0;
+    for (let v = 0; v < nv; v++) {
+      if ((mask ? mask[v] : 0) !== (old ? old[v] : 0)) out[n++] = v;
+    }
+    return { list: out, n };
+  }
+
+  /** Remember the vanish mask now shown (frames' arrays are not ours to keep). */
+  keepMask(mask) {
+    if (!mask) {
+      this.maskShown = null;
+      return;
+    }
+    if (!this.maskBuf || this.maskBuf.length !== mask.length) this.maskBuf = new Uint8Array(mask.length);
+    this.maskBuf.set(mask);
+    this.maskShown = this.maskBuf;
+  }
+
   disposeMesh() {
+    this.disposePartMesh();
     for (const m of [this.mesh, this.wire, this.selMesh, this.maskMesh]) {
       if (!m) continue;
       this.scene.remove(m);
@@ -441,7 +739,7 @@ export class Viewer {
     const f = this.frame, attr = this.mesh.geometry.attributes.normal;
     if (moved.length > f.nv / 4) {
       this.updateNormals();
-      return;
+      return null;
     }
     const { list, n: count } = this.touchedVertices(moved, true);
     const { start, tri } = this.adj, t = f.tris, p = f.positions, n = attr.array;
@@ -459,6 +757,7 @@ export class Viewer {
       n[3 * v] = sx / l; n[3 * v + 1] = sy / l; n[3 * v + 2] = sz / l;
     }
     markRanges(attr, list, count, 3);
+    return { list, n: count };
   }
 
   setFlat(flat) {
@@ -532,19 +831,22 @@ export class Viewer {
 
   showBrush(point, normal, radius) {
     const b = this.brush;
+    const before = this.brushBounds();
     b.position.set(point[0], point[1], point[2]);
     this._v.set(normal[0], normal[1], normal[2]);
     b.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), this._v.normalize());
     b.scale.setScalar(radius);
     b.visible = true;
     this._brushRadius = radius;
-    this.requestRender();
+    const after = this.brushBounds();
+    this.requestRender(before && after ? unionRect(before, after) : undefined);
   }
 
   hideBrush() {
     if (!this.brush.visible) return;
+    const before = this.brushBounds();
     this.brush.visible = false;
-    this.requestRender();
+    this.requestRender(before ?? undefined);
   }
 
   // ---- camera ---------------------------------------------------------------
@@ -679,6 +981,12 @@ export class Viewer {
     const s = (n.x * (anchor[0] - o[0]) + n.y * (anchor[1] - o[1]) + n.z * (anchor[2] - o[2])) / denom;
     return [o[0] + d[0] * s, o[1] + d[1] * s, o[2] + d[2] * s];
   }
+}
+
+/** Smallest rectangle holding both (either may be empty: x0 > x1). */
+function unionRect(a, b) {
+  if (!a) return b;
+  return { x0: Math.min(a.x0, b.x0), y0: Math.min(a.y0, b.y0), x1: Math.max(a.x1, b.x1), y1: Math.max(a.y1, b.y1) };
 }
 
 /** Mark the parts of an attribute holding the given sorted items for upload:
