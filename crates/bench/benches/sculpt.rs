@@ -2,14 +2,15 @@
 //! on icospheres of 82k and 1.3M triangles, the brush touching about 2,000
 //! triangles, to show that the per-frame cost follows the brush, not the
 //! mesh. The stroke is begun outside the timed part; each sample is one
-//! frame: the brush, the local topology change and, for grab, the live
-//! preview of what would vanish.
+//! frame: the brush, the local topology change, the remeshing of the
+//! brushed region (inflate, smooth) and, for grab, the live preview of
+//! what would vanish.
 //!
 //! cargo bench -p holey-bench --bench sculpt
 
 use divan::{Bencher, black_box};
 use glam::DVec3;
-use holey_sculpt::{Brush, BrushSettings, LiveStroke};
+use holey_sculpt::{Brush, BrushSettings, LiveStroke, RemeshOptions, default_range};
 use holey_topo::{Options, TriMesh};
 
 fn main() {
@@ -47,6 +48,8 @@ fn frame(bencher: Bencher, level: u32, brush: Brush, strength: f64, to: DVec3) {
             let mut live = LiveStroke::begin(&mesh, settings, top, Options::default())
                 .unwrap_or_else(|e| panic!("{e}"));
             live.set_preview(brush.is_drag());
+            // Remeshing as `holey sculpt` does by default.
+            live.set_remesh(default_range(&mesh).map(RemeshOptions::new));
             live
         })
         .bench_local_values(|mut live| {
