@@ -19,6 +19,14 @@ use glam::{DVec2, DVec3};
 
 use crate::{RenderError, unit};
 
+/// A vertex in sample coordinates (x right, y down) with w = 1/z: what
+/// a projection gives the rasterizer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SVert {
+    pub x: f64,
+    pub y: f64,
+    pub w: f64,
+}
 /// How much of the shorter picture side the model fills.
 pub const FILL: f64 = 0.85;
 
@@ -407,9 +415,9 @@ impl Projector {
     /// View space (z ≥ near) → sample coordinates (x right, y down) and
     /// w = 1/z.
     #[inline]
-    pub fn project(&self, v: ViewPoint) -> crate::raster::SVert {
+    pub fn project(&self, v: ViewPoint) -> SVert {
         let w = 1.0 / v.z;
-        crate::raster::SVert {
+        SVert {
             x: self.cx + self.scale * v.x * w,
             y: self.cy - self.scale * v.y * w,
             w,

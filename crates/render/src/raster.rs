@@ -42,19 +42,11 @@
 use glam::{DVec3, Vec3};
 use holey_mesh::PolyMesh;
 
-use crate::camera::{Projector, ViewPoint};
+use crate::camera::{Projector, SVert, ViewPoint};
 use crate::image::Image;
 use crate::prep::Prepared;
 use crate::shade::{Shader, pack, pack_linear, rgb_linear};
 use crate::{Background, Colors, RenderError, RenderOptions};
-
-/// A vertex in sample coordinates (x right, y down) with w = 1/z.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct SVert {
-    pub x: f64,
-    pub y: f64,
-    pub w: f64,
-}
 
 /// Per-vertex attributes: eye-space normal (3) and linear albedo (3).
 type Attr = [f32; 6];

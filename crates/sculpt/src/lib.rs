@@ -45,6 +45,7 @@
 pub mod brush;
 pub mod live;
 pub mod remesh;
+pub mod report;
 pub mod session;
 pub mod strokes;
 

@@ -18,7 +18,12 @@ use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_local};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
 use crate::remesh::{RemeshOptions, RemeshReport, remesh_in_place};
-use crate::session::{Diagnostics, MOVE_PICK_FRACTION, SculptError, StrokeReport};
+use crate::report::{Diagnostics, SculptError, StrokeReport};
+
+/// The share of the bounding-box diagonal within which a move's first
+/// point must lie from the surface: a move picks a whole component, so it
+/// tolerates more slack than a brush radius, but not a click in the void.
+pub const MOVE_PICK_FRACTION: f64 = 0.1;
 
 /// The brush settings of a stroke, without its path.
 #[derive(Clone, Copy, Debug, PartialEq)]

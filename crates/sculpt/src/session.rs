@@ -14,52 +14,12 @@
 //! session needs no seed and replaying the same strokes on the same mesh
 //! gives the same mesh bit for bit.
 
-use glam::DVec3;
-use holey_topo::mesh::MeshError;
-use holey_topo::{Options, TopoError, TriMesh};
+use holey_topo::{Options, TriMesh};
 
-use crate::brush::Brush;
 use crate::live::{BrushSettings, LiveStroke};
 use crate::remesh::{RemeshOptions, default_range};
+pub use crate::report::{Diagnostics, ObserverError, SculptError, StrokeReport};
 use crate::strokes::{Remesh, Stroke, StrokeFile};
-
-/// An error an observer of frames may return (writing a picture, say).
-pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
-
-/// Why a stroke was refused. The session is left as it was.
-#[derive(Debug, thiserror::Error)]
-pub enum SculptError {
-    #[error("the mesh: {0}")]
-    Mesh(MeshError),
-    #[error("{brush}: nothing to pick, the mesh has no triangles")]
-    NoSurface { brush: Brush },
-    #[error(
-        "{brush}: the first path point {point} is {distance:.6} from the surface, farther than {limit:.6} ({why})"
-    )]
-    PickTooFar {
-        brush: Brush,
-        point: DVec3,
-        distance: f64,
-        limit: f64,
-        why: &'static str,
-    },
-    #[error("frame {frame}: topology change failed: {source}")]
-    Topo { frame: usize, source: TopoError },
-    #[error("frame {frame}: {source}")]
-    Observer { frame: usize, source: ObserverError },
-    #[error("frame {frame}: {source}")]
-    Remesh {
-        frame: usize,
-        source: crate::remesh::RemeshError,
-    },
-    /// An error of a stroke of a replayed file; `index` counts from 0.
-    #[error("stroke {index} ({brush}): {source}")]
-    Stroke {
-        index: usize,
-        brush: Brush,
-        source: Box<SculptError>,
-    },
-}
 
 /// The state after one frame, for pictures and live preview.
 #[derive(Debug)]
@@ -74,39 +34,6 @@ pub struct Frame<'a> {
     /// corrected parity of `mesh`'s vertices (`true` = would be deleted at
     /// release), the immediate feedback of §4.
     pub corrected_odd: Option<&'a [bool]>,
-}
-
-/// What one stroke did.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct StrokeReport {
-    pub brush: Option<Brush>,
-    /// Path points replayed.
-    pub frames: usize,
-    /// Runs of the topology-change engine (frames that moved something,
-    /// or the release of a drag).
-    pub engine_runs: usize,
-    /// Engine runs that cut the surface (some intersection curve was
-    /// inserted or some triangle deleted).
-    pub changes: usize,
-    /// Odd vertices over all engine runs, before and after correction.
-    pub raw_odd_vertices: usize,
-    pub corrected_odd_vertices: usize,
-    pub triangles_before: usize,
-    pub triangles_after: usize,
-    /// Splits, collapses and flips of dynamic remeshing.
-    pub remesh_operations: usize,
-    pub seconds: f64,
-}
-
-/// The diagnostics of the last topology change (§4's parity display).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Diagnostics {
-    /// Raw parity per vertex of the mesh the change started from.
-    pub raw_odd: Vec<bool>,
-    /// Corrected parity per vertex of the same mesh.
-    pub corrected_odd: Vec<bool>,
-    /// Intersection curves at the end positions of that change.
-    pub intersection_curves: usize,
 }
 
 /// A sculpting session: the mesh, the undo and redo stacks of whole
@@ -125,11 +52,6 @@ pub struct Session {
     redo: Vec<TriMesh>,
     diagnostics: Diagnostics,
 }
-
-/// The share of the bounding-box diagonal within which a move's first
-/// point must lie from the surface: a move picks a whole component, so it
-/// tolerates more slack than a brush radius, but not a click in the void.
-pub const MOVE_PICK_FRACTION: f64 = 0.1;
 
 impl Session {
     /// Starts a session on `mesh` with the engine's default options.
@@ -334,6 +256,8 @@ impl Session {
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
+    use crate::brush::Brush;
+    use glam::DVec3;
 
     fn triangle_mesh() -> TriMesh {
         TriMesh {

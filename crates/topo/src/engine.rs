@@ -3,7 +3,7 @@
 //!
 //! [`topology_change`] runs one frame: a triangle mesh at its start
 //! positions and the positions at the end of the frame (linear motion per
-//! vertex). [`Accumulator`] runs the drag of §4: raw parity accumulated
+//! vertex). [`Accumulator`](crate::Accumulator) runs the drag of §4: raw parity accumulated
 //! over many frames, the corrected field available on demand for live
 //! preview, and the topology change applied once at release.
 
@@ -19,7 +19,6 @@ use holey_geom::{Aabb, Bvh, SymPoint};
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, cut};
 use crate::intersect::{Intersections, intersections};
-use crate::local::{Bounds, LocalReport, Region, from_whole, swept_box, union, with_margin};
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
 use crate::weights::Weights;
@@ -115,17 +114,17 @@ pub struct Outcome {
 
 /// The static half of the pipeline at given end positions, shared by the
 /// one-frame run, the accumulator's preview and its release.
-struct Static {
+pub(crate) struct Static {
     edges: Edges,
     ids: Vec<u32>,
     x: Intersections,
-    corrected: Vec<bool>,
+    pub(crate) corrected: Vec<bool>,
     solved: usize,
     t_intersect: f64,
     t_correct: f64,
 }
 
-fn static_stage(
+pub(crate) fn static_stage(
     mesh: &TriMesh,
     end: &[DVec3],
     raw: &[bool],
@@ -242,7 +241,7 @@ impl PointSampler<'_> {
 /// `start` → `end` is the straight motion sampled points follow: the frame
 /// itself, or for a drag its first and last positions.
 #[allow(clippy::too_many_arguments)]
-fn finish(
+pub(crate) fn finish(
     mesh: &TriMesh,
     start: &[DVec3],
     end: &[DVec3],
@@ -311,7 +310,7 @@ fn finish(
     })
 }
 
-fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
+pub(crate) fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
     CcdOptions {
         narrow: if options.float_ccd {
             Narrow::Float
@@ -375,206 +374,4 @@ pub fn self_intersections(mesh: &TriMesh) -> Result<Intersections, TopoError> {
     let edges = Edges::new(mesh);
     let ids = position_classes(&mesh.positions)?;
     Ok(intersections(mesh, &mesh.positions, &edges, &ids)?)
-}
-
-/// Accumulates raw collision parity over the frames of a drag (§4): while
-/// the mouse is held, each frame runs collision detection only; the
-/// corrected parity can be computed every frame for preview; the topology
-/// change runs once, at release, with the accumulated parity. Dragging
-/// back to where the drag began accumulates an even number of collisions
-/// everywhere, which cancels the change.
-#[derive(Clone, Debug)]
-pub struct Accumulator {
-    mesh: TriMesh,
-    current: Vec<DVec3>,
-    raw: Vec<bool>,
-    frame: u64,
-    collisions: usize,
-    tests: u64,
-    seconds: f64,
-    options: Options,
-    /// The box of everything that moved so far: collisions, and so odd
-    /// vertices and new intersections, lie inside it.
-    swept: Option<Bounds>,
-}
-
-impl Accumulator {
-    /// Starts a drag of `mesh` at its positions.
-    pub fn new(mesh: TriMesh, options: Options) -> Result<Accumulator, TopoError> {
-        mesh.check()?;
-        let n = mesh.positions.len();
-        Ok(Accumulator {
-            current: mesh.positions.clone(),
-            mesh,
-            raw: vec![false; n],
-            frame: 0,
-            collisions: 0,
-            tests: 0,
-            seconds: 0.0,
-            options,
-            swept: None,
-        })
-    }
-
-    /// Moves every vertex linearly from its current position to `next`,
-    /// accumulating collision parity. Only the triangles the motion can
-    /// reach are tested (see [`crate::local`]), so a frame costs what
-    /// moves, plus a linear scan.
-    pub fn advance(&mut self, next: &[DVec3]) -> Result<(), TopoError> {
-        check(&self.mesh, next)?;
-        let t = Instant::now();
-        let tris = &self.mesh.triangles;
-        let moved = swept_box(tris, &self.current, next);
-        if let Some(bx) = moved {
-            let region = Region::select(tris, &self.current, next, bx);
-            let opts = ccd_options(&self.options, self.frame);
-            let (odd, pairs, tests) = if region.worth_it() {
-                let ccd = vertex_parities(
-                    &region.gather(&self.current),
-                    &region.gather(next),
-                    &region.triangles,
-                    &opts,
-                )?;
-                let n = self.raw.len();
-                (
-                    region.scatter(&ccd.odd, n, false),
-                    ccd.odd_pairs.len(),
-                    ccd.candidates,
-                )
-            } else {
-                let ccd = vertex_parities(&self.current, next, tris, &opts)?;
-                (ccd.odd, ccd.odd_pairs.len(), ccd.candidates)
-            };
-            for (r, o) in self.raw.iter_mut().zip(&odd) {
-                *r ^= o;
-            }
-            self.collisions += pairs;
-            self.tests += tests;
-            self.swept = union(self.swept, moved);
-        }
-        self.seconds += t.elapsed().as_secs_f64();
-        self.current = next.to_vec();
-        self.frame += 1;
-        Ok(())
-    }
-
-    /// Frames accumulated so far.
-    pub fn frames(&self) -> u64 {
-        self.frame
-    }
-
-    /// The accumulated raw parity (`true` = odd).
-    pub fn raw_parity(&self) -> &[bool] {
-        &self.raw
-    }
-
-    /// The current positions.
-    pub fn positions(&self) -> &[DVec3] {
-        &self.current
-    }
-
-    /// The corrected parity at the current positions, for live preview.
-    /// Computed on the region everything moved through, with a margin.
-    pub fn corrected_parity(&self) -> Result<Vec<bool>, TopoError> {
-        let n = self.raw.len();
-        let Some(bx) = self.swept else {
-            return Ok(vec![false; n]);
-        };
-        let region = Region::select(
-            &self.mesh.triangles,
-            &self.mesh.positions,
-            &self.current,
-            with_margin(bx),
-        );
-        if !region.worth_it() {
-            return Ok(
-                static_stage(&self.mesh, &self.current, &self.raw, self.options.scheme)?.corrected,
-            );
-        }
-        let sub = region.submesh(&self.mesh.positions);
-        let s = static_stage(
-            &sub,
-            &region.gather(&self.current),
-            &region.gather(&self.raw),
-            self.options.scheme,
-        )?;
-        Ok(region.scatter(&s.corrected, n, false))
-    }
-
-    /// [`Accumulator::release`] run on the region everything moved
-    /// through (with a margin) and spliced into the rest of the mesh; the
-    /// whole mesh when the region is large or the splice would not be
-    /// exact (see [`crate::local`]).
-    pub fn release_local(self) -> Result<(TriMesh, LocalReport), TopoError> {
-        let started = Instant::now();
-        let n = self.raw.len();
-        let Some(bx) = self.swept else {
-            let report = LocalReport {
-                raw_odd: vec![false; n],
-                corrected_odd: vec![false; n],
-                positions_only: true,
-                ..LocalReport::default()
-            };
-            let mesh = TriMesh {
-                positions: self.current,
-                triangles: self.mesh.triangles,
-            };
-            return Ok((mesh, report));
-        };
-        let region = Region::select(
-            &self.mesh.triangles,
-            &self.mesh.positions,
-            &self.current,
-            with_margin(bx),
-        );
-        if region.worth_it() {
-            let sub = region.submesh(&self.mesh.positions);
-            let end = region.gather(&self.current);
-            let out = finish(
-                &sub,
-                &sub.positions,
-                &end,
-                region.gather(&self.raw),
-                (self.collisions, self.tests, self.seconds),
-                &self.options,
-                started,
-            )?;
-            let mut result = LocalReport {
-                report: out.report.clone(),
-                raw_odd: region.scatter(&out.raw_odd, n, false),
-                corrected_odd: region.scatter(&out.corrected_odd, n, false),
-                intersection_curves: out.intersections.curve_count,
-                region_triangles: region.count,
-                ..LocalReport::default()
-            };
-            if region.unchanged(&out.mesh, &out.vertex_origin) {
-                result.positions_only = true;
-                let mesh = TriMesh {
-                    positions: self.current,
-                    triangles: self.mesh.triangles,
-                };
-                return Ok((mesh, result));
-            }
-            if let Some(m) = region.splice(&self.mesh, &self.current, &out.mesh, &out.vertex_origin)
-            {
-                return Ok((m, result));
-            }
-        }
-        let mesh = self.mesh.clone();
-        Ok(from_whole(&mesh, self.release()?))
-    }
-
-    /// Applies the topology change with the accumulated parity.
-    pub fn release(self) -> Result<Outcome, TopoError> {
-        let started = Instant::now();
-        finish(
-            &self.mesh,
-            &self.mesh.positions,
-            &self.current,
-            self.raw,
-            (self.collisions, self.tests, self.seconds),
-            &self.options,
-            started,
-        )
-    }
 }

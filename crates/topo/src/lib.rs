@@ -3,6 +3,7 @@
 //! Bernstein & Wojtan, *Putting Holes in Holey Geometry* (SIGGRAPH 2013),
 //! section 3 and appendices A–C.
 
+pub mod accumulate;
 pub mod correct;
 pub mod cut;
 pub mod engine;
@@ -12,9 +13,10 @@ pub mod mesh;
 pub mod orient;
 pub mod weights;
 
+pub use accumulate::Accumulator;
 pub use correct::Scheme;
 pub use engine::{
-    Accumulator, Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
+    Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
 };
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;

@@ -1,0 +1,215 @@
+//! The drag of §4: raw collision parity accumulated over the frames of a
+//! stroke, the corrected parity on demand for the live preview, and one
+//! topology change at release, each on the region the motion reached
+//! (see [`crate::local`]).
+
+use std::time::Instant;
+
+use glam::DVec3;
+use holey_geom::ccd::vertex_parities;
+
+use crate::engine::{Options, Outcome, TopoError, ccd_options, check, finish, static_stage};
+use crate::local::{Bounds, LocalReport, Region, from_whole, swept_box, union, with_margin};
+use crate::mesh::TriMesh;
+
+/// Accumulates raw collision parity over the frames of a drag (§4): while
+/// the mouse is held, each frame runs collision detection only; the
+/// corrected parity can be computed every frame for preview; the topology
+/// change runs once, at release, with the accumulated parity. Dragging
+/// back to where the drag began accumulates an even number of collisions
+/// everywhere, which cancels the change.
+#[derive(Clone, Debug)]
+pub struct Accumulator {
+    mesh: TriMesh,
+    current: Vec<DVec3>,
+    raw: Vec<bool>,
+    frame: u64,
+    collisions: usize,
+    tests: u64,
+    seconds: f64,
+    options: Options,
+    /// The box of everything that moved so far: collisions, and so odd
+    /// vertices and new intersections, lie inside it.
+    swept: Option<Bounds>,
+}
+
+impl Accumulator {
+    /// Starts a drag of `mesh` at its positions.
+    pub fn new(mesh: TriMesh, options: Options) -> Result<Accumulator, TopoError> {
+        mesh.check()?;
+        let n = mesh.positions.len();
+        Ok(Accumulator {
+            current: mesh.positions.clone(),
+            mesh,
+            raw: vec![false; n],
+            frame: 0,
+            collisions: 0,
+            tests: 0,
+            seconds: 0.0,
+            options,
+            swept: None,
+        })
+    }
+
+    /// Moves every vertex linearly from its current position to `next`,
+    /// accumulating collision parity. Only the triangles the motion can
+    /// reach are tested (see [`crate::local`]), so a frame costs what
+    /// moves, plus a linear scan.
+    pub fn advance(&mut self, next: &[DVec3]) -> Result<(), TopoError> {
+        check(&self.mesh, next)?;
+        let t = Instant::now();
+        let tris = &self.mesh.triangles;
+        let moved = swept_box(tris, &self.current, next);
+        if let Some(bx) = moved {
+            let region = Region::select(tris, &self.current, next, bx);
+            let opts = ccd_options(&self.options, self.frame);
+            let (odd, pairs, tests) = if region.worth_it() {
+                let ccd = vertex_parities(
+                    &region.gather(&self.current),
+                    &region.gather(next),
+                    &region.triangles,
+                    &opts,
+                )?;
+                let n = self.raw.len();
+                (
+                    region.scatter(&ccd.odd, n, false),
+                    ccd.odd_pairs.len(),
+                    ccd.candidates,
+                )
+            } else {
+                let ccd = vertex_parities(&self.current, next, tris, &opts)?;
+                (ccd.odd, ccd.odd_pairs.len(), ccd.candidates)
+            };
+            for (r, o) in self.raw.iter_mut().zip(&odd) {
+                *r ^= o;
+            }
+            self.collisions += pairs;
+            self.tests += tests;
+            self.swept = union(self.swept, moved);
+        }
+        self.seconds += t.elapsed().as_secs_f64();
+        self.current = next.to_vec();
+        self.frame += 1;
+        Ok(())
+    }
+
+    /// Frames accumulated so far.
+    pub fn frames(&self) -> u64 {
+        self.frame
+    }
+
+    /// The accumulated raw parity (`true` = odd).
+    pub fn raw_parity(&self) -> &[bool] {
+        &self.raw
+    }
+
+    /// The current positions.
+    pub fn positions(&self) -> &[DVec3] {
+        &self.current
+    }
+
+    /// The corrected parity at the current positions, for live preview.
+    /// Computed on the region everything moved through, with a margin.
+    pub fn corrected_parity(&self) -> Result<Vec<bool>, TopoError> {
+        let n = self.raw.len();
+        let Some(bx) = self.swept else {
+            return Ok(vec![false; n]);
+        };
+        let region = Region::select(
+            &self.mesh.triangles,
+            &self.mesh.positions,
+            &self.current,
+            with_margin(bx),
+        );
+        if !region.worth_it() {
+            return Ok(
+                static_stage(&self.mesh, &self.current, &self.raw, self.options.scheme)?.corrected,
+            );
+        }
+        let sub = region.submesh(&self.mesh.positions);
+        let s = static_stage(
+            &sub,
+            &region.gather(&self.current),
+            &region.gather(&self.raw),
+            self.options.scheme,
+        )?;
+        Ok(region.scatter(&s.corrected, n, false))
+    }
+
+    /// [`Accumulator::release`] run on the region everything moved
+    /// through (with a margin) and spliced into the rest of the mesh; the
+    /// whole mesh when the region is large or the splice would not be
+    /// exact (see [`crate::local`]).
+    pub fn release_local(self) -> Result<(TriMesh, LocalReport), TopoError> {
+        let started = Instant::now();
+        let n = self.raw.len();
+        let Some(bx) = self.swept else {
+            let report = LocalReport {
+                raw_odd: vec![false; n],
+                corrected_odd: vec![false; n],
+                positions_only: true,
+                ..LocalReport::default()
+            };
+            let mesh = TriMesh {
+                positions: self.current,
+                triangles: self.mesh.triangles,
+            };
+            return Ok((mesh, report));
+        };
+        let region = Region::select(
+            &self.mesh.triangles,
+            &self.mesh.positions,
+            &self.current,
+            with_margin(bx),
+        );
+        if region.worth_it() {
+            let sub = region.submesh(&self.mesh.positions);
+            let end = region.gather(&self.current);
+            let out = finish(
+                &sub,
+                &sub.positions,
+                &end,
+                region.gather(&self.raw),
+                (self.collisions, self.tests, self.seconds),
+                &self.options,
+                started,
+            )?;
+            let mut result = LocalReport {
+                report: out.report.clone(),
+                raw_odd: region.scatter(&out.raw_odd, n, false),
+                corrected_odd: region.scatter(&out.corrected_odd, n, false),
+                intersection_curves: out.intersections.curve_count,
+                region_triangles: region.count,
+                ..LocalReport::default()
+            };
+            if region.unchanged(&out.mesh, &out.vertex_origin) {
+                result.positions_only = true;
+                let mesh = TriMesh {
+                    positions: self.current,
+                    triangles: self.mesh.triangles,
+                };
+                return Ok((mesh, result));
+            }
+            if let Some(m) = region.splice(&self.mesh, &self.current, &out.mesh, &out.vertex_origin)
+            {
+                return Ok((m, result));
+            }
+        }
+        let mesh = self.mesh.clone();
+        Ok(from_whole(&mesh, self.release()?))
+    }
+
+    /// Applies the topology change with the accumulated parity.
+    pub fn release(self) -> Result<Outcome, TopoError> {
+        let started = Instant::now();
+        finish(
+            &self.mesh,
+            &self.mesh.positions,
+            &self.current,
+            self.raw,
+            (self.collisions, self.tests, self.seconds),
+            &self.options,
+            started,
+        )
+    }
+}
