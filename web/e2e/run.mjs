@@ -415,6 +415,30 @@ const scenarios = [
     fs.writeFileSync(path.join(artifacts, 'perf.json'), JSON.stringify({ when: new Date().toISOString(), ...perf }, null, 2) + '\n');
     if (!lat.length) throw new Error('no stroke frame was measured');
   }],
+
+  ['a second tab shares the session: each sees the other\'s changes', async (page, url) => {
+    const other = await page.context().browser().newPage({ viewport: { width: 1280, height: 800 } });
+    try {
+      other.on('pageerror', (e) => consoleErrors.push(`second tab: ${e.message}`));
+      await other.goto(url);
+      await other.waitForFunction(() => window.__holey?.frames > 0, null, { timeout: 30000 });
+      await other.waitForFunction(() => document.querySelectorAll('[data-testid="primitive-select"] option').length > 0, null, { timeout: 10000 });
+      await setWorkspace(page, 'model');
+      await createPrimitive(page, '@torus');
+      await waitStats(page, genusRe(1));
+      await waitStats(other, genusRe(1));
+      await createPrimitive(other, '@cube');
+      await waitStats(other, genusRe(0));
+      await waitStats(page, genusRe(0));
+      // Undo in the first tab undoes the second tab's change for both.
+      await page.click(tid('undo'));
+      await waitStats(page, genusRe(1));
+      await waitStats(other, genusRe(1));
+      await other.screenshot({ path: path.join(artifacts, '9-second-tab.png') });
+    } finally {
+      await other.close();
+    }
+  }],
 ];
 
 // ---- run --------------------------------------------------------------------------
