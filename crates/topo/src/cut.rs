@@ -641,44 +641,68 @@ fn label(
     curve.sort_unstable();
     curve.dedup();
     let is_curve = |a: u32, b: u32| curve.binary_search(&(a.min(b), a.max(b))).is_ok();
-    // Adjacency across non-curve edges.
-    let mut sides: Vec<(u32, u32, u32)> = Vec::with_capacity(tris.len() * 3);
+    // Only the undecided triangles (sub-triangles with no original corner)
+    // need neighbours: their adjacency across non-curve edges is gathered
+    // by one scan of the sides whose two ends both belong to one of them,
+    // so the cost follows the cut, not the mesh.
+    let undecided: Vec<u32> = (0..tris.len() as u32)
+        .filter(|&t| state[t as usize].is_none())
+        .collect();
+    let mut slot = vec![u32::MAX; tris.len()];
+    let mut touched = vec![false; on_curve.len().max(n_original)];
+    let mut keys: Vec<(u32, u32, u32)> = Vec::with_capacity(undecided.len() * 3);
+    for (k, &u) in undecided.iter().enumerate() {
+        slot[u as usize] = k as u32;
+        let t = tris[u as usize];
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            for v in [a, b] {
+                if let Some(f) = touched.get_mut(v as usize) {
+                    *f = true;
+                } else {
+                    touched.resize(v as usize + 1, false);
+                    touched[v as usize] = true;
+                }
+            }
+            if !is_curve(a, b) {
+                keys.push((a.min(b), a.max(b), k as u32));
+            }
+        }
+    }
+    keys.sort_unstable();
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); undecided.len()];
+    let flagged = |v: u32| touched.get(v as usize).copied().unwrap_or(false);
     for (i, t) in tris.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
-            if !is_curve(a, b) {
-                sides.push((a.min(b), a.max(b), i as u32));
+            if !(flagged(a) && flagged(b)) || is_curve(a, b) {
+                continue;
             }
-        }
-    }
-    sides.sort_unstable();
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); tris.len()];
-    let mut i = 0;
-    while i < sides.len() {
-        let mut j = i;
-        while j < sides.len() && (sides[j].0, sides[j].1) == (sides[i].0, sides[i].1) {
-            j += 1;
-        }
-        for a in i..j {
-            for b in i..j {
-                if a != b {
-                    neighbours[sides[a].2 as usize].push(sides[b].2);
+            let key = (a.min(b), a.max(b));
+            let first = keys.partition_point(|e| (e.0, e.1) < key);
+            for e in keys[first..].iter().take_while(|e| (e.0, e.1) == key) {
+                if e.2 != slot[i] {
+                    neighbours[e.2 as usize].push(i as u32);
                 }
             }
         }
-        i = j;
     }
-    let undecided_before = state.iter().filter(|s| s.is_none()).count();
+    let undecided_before = undecided.len();
     for _ in 0..50 {
         let mut changed = false;
-        let snapshot = state.clone();
-        for (t, s) in state.iter_mut().enumerate() {
+        let snapshot: Vec<Option<bool>> = undecided.iter().map(|&u| state[u as usize]).collect();
+        let at = |t: u32| match slot[t as usize] {
+            u32::MAX => state[t as usize],
+            k => snapshot[k as usize],
+        };
+        let mut next = snapshot.clone();
+        for (k, s) in next.iter_mut().enumerate() {
             if s.is_some() {
                 continue;
             }
             let (mut o, mut e) = (0, 0);
-            for &u in &neighbours[t] {
-                match snapshot[u as usize] {
+            for &u in &neighbours[k] {
+                match at(u) {
                     Some(true) => o += 1,
                     Some(false) => e += 1,
                     None => {}
@@ -689,6 +713,9 @@ fn label(
                 changed = true;
             }
         }
+        for (&u, s) in undecided.iter().zip(next) {
+            state[u as usize] = s;
+        }
         if !changed {
             break;
         }
@@ -697,11 +724,11 @@ fn label(
     // Regions no vertex reaches: one sample each (Figure 13).
     if let Some(sample) = sample {
         let mut region = 0u32;
-        for seed in 0..tris.len() {
-            if state[seed].is_some() {
+        for (k, &seed) in undecided.iter().enumerate() {
+            if state[seed as usize].is_some() {
                 continue;
             }
-            let (t, [u, v]) = source[seed];
+            let (t, [u, v]) = source[seed as usize];
             let Some(parity) = sample(region, t, [1.0 - u - v, u, v]) else {
                 continue;
             };
@@ -709,13 +736,13 @@ fn label(
             report.sampled_regions += 1;
             // Flood the region: undecided triangles joined across
             // non-curve edges.
-            let mut stack = vec![seed as u32];
-            state[seed] = Some(parity);
+            let mut stack = vec![k as u32];
+            state[seed as usize] = Some(parity);
             while let Some(a) = stack.pop() {
                 for &b in &neighbours[a as usize] {
                     if state[b as usize].is_none() {
                         state[b as usize] = Some(parity);
-                        stack.push(b);
+                        stack.push(slot[b as usize]);
                     }
                 }
             }
