@@ -9,6 +9,8 @@
 //! triangles (by area) as they were is chosen, so a correctly oriented
 //! input is never turned inside out.
 
+use rayon::slice::ParallelSliceMut;
+
 use crate::mesh::TriMesh;
 
 /// Flips triangles so that orientations agree across manifold edges where
@@ -25,7 +27,21 @@ pub fn orient_consistently(mesh: &mut TriMesh) -> usize {
             }
         }
     }
-    sides.sort_unstable();
+    sides.par_sort_unstable();
+    // Already consistent (the usual case: a cut keeps each piece's
+    // orientation): every component's walk would keep every triangle.
+    let disagree = sides.windows(2).enumerate().any(|(i, w)| {
+        let (a, b) = (w[0], w[1]);
+        (a.0, a.1) == (b.0, b.1)
+            && a.3 == b.3
+            && a.2 != b.2
+            // Exactly two sides on this edge (a manifold edge).
+            && (i == 0 || (sides[i - 1].0, sides[i - 1].1) != (a.0, a.1))
+            && sides.get(i + 2).is_none_or(|c| (c.0, c.1) != (a.0, a.1))
+    });
+    if !disagree {
+        return 0;
+    }
     // Neighbours across manifold edges: (other triangle, same direction?).
     let mut adj: Vec<Vec<(u32, bool)>> = vec![Vec::new(); nt];
     let mut i = 0;
