@@ -403,6 +403,14 @@ impl Shared {
             return Err(ServeError::BadRequest("the radius must be positive".into()));
         }
         let point = point_field(req)?;
+        // A frame that pushes the surface farther than a fraction of the
+        // brush folds it over itself many times at once; every tab would
+        // wait for that frame. The modeler's slider stays far below.
+        if brush == Brush::Inflate && strength.abs() > MAX_INFLATE_PER_RADIUS * radius {
+            return Err(ServeError::Refused(format!(
+                "inflate strength {strength} is more than {MAX_INFLATE_PER_RADIUS} of the radius {radius} per frame"
+            )));
+        }
         let settings = BrushSettings {
             brush,
             radius,
@@ -777,6 +785,10 @@ fn remesh_options(mesh: &holey_topo::TriMesh, detail: f64) -> Option<RemeshOptio
         max_edge: base.max_edge * scale,
     }))
 }
+
+/// The largest inflate displacement per frame the server accepts, as a
+/// share of the brush radius.
+pub const MAX_INFLATE_PER_RADIUS: f64 = 0.25;
 
 /// A model made while the sculpt workspace is open is sculpted too.
 fn keep_workspace(doc: &Document, content: Content) -> Result<Content, ServeError> {

@@ -282,6 +282,17 @@ fn bad_requests_get_clear_errors() {
         "{r}"
     );
     let r = a.call(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.28,
+                          "strength": 0.3, "point": [0, 0, 1]}),
+    );
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("of the radius"),
+        "{r}"
+    );
+    let r = a.call(
         json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.1,
                           "strength": 1, "point": [0, "x", 0]}),
     );
