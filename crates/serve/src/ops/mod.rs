@@ -1,0 +1,416 @@
+//! What each request does. See `web/PROTOCOL.md` for the messages.
+//!
+//! Short requests run on the connection's thread under the document's
+//! lock. Long ones (Sierpinski, Menger, subdivision) run on a worker
+//! thread from a copy of the mesh, report progress, and can be cancelled:
+//! the document stays usable for viewing meanwhile, refuses other edits
+//! ("busy"), and a cancelled result is dropped when the worker ends.
+//!
+//! This file holds the connections (`Hub`), the shared state and the
+//! dispatch; one file per kind of request: `model` (the thesis's edits),
+//! `sculpt` (strokes), `long` (long operations), `files` (uploads and
+//! downloads), and `fields` (reading a request).
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use holey_mesh::convert::{ImportOptions, to_dlfl};
+use holey_model::rind::{PunchOutcome, Rind};
+use serde_json::{Value, json};
+
+use crate::doc::{Content, Document, RindMode};
+use crate::frame::{FLAG_PREVIEW, display_model, encode};
+use crate::persist::Saver;
+use crate::{Config, ConnId, ServeError};
+
+mod fields;
+mod files;
+mod long;
+mod model;
+mod sculpt;
+
+use fields::{index_field, num_field, str_field};
+use model::{delete_edge, handle, insert_edge};
+
+/// A message queued for one connection.
+#[derive(Clone, Debug)]
+pub enum Out {
+    Text(String),
+    Binary(Vec<u8>),
+}
+
+/// The connected tabs.
+#[derive(Default)]
+pub struct Hub {
+    next: AtomicU64,
+    clients: Mutex<Vec<(ConnId, Sender<Out>)>>,
+}
+
+impl Hub {
+    fn clients(&self) -> MutexGuard<'_, Vec<(ConnId, Sender<Out>)>> {
+        // A thread that panicked while holding the list left it intact:
+        // pushes and retains are the only mutations.
+        self.clients.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    pub fn join(&self) -> (ConnId, Receiver<Out>) {
+        let id = self.next.fetch_add(1, Ordering::Relaxed) + 1;
+        let (tx, rx) = mpsc::channel();
+        self.clients().push((id, tx));
+        (id, rx)
+    }
+
+    pub fn leave(&self, id: ConnId) {
+        self.clients().retain(|(c, _)| *c != id);
+    }
+
+    pub fn send(&self, to: ConnId, out: Out) {
+        if let Some((_, tx)) = self.clients().iter().find(|(c, _)| *c == to) {
+            let _ = tx.send(out);
+        }
+    }
+
+    pub fn broadcast(&self, out: &Out) {
+        for (_, tx) in self.clients().iter() {
+            let _ = tx.send(out.clone());
+        }
+    }
+
+    pub fn count(&self) -> usize {
+        self.clients().len()
+    }
+}
+
+/// What every connection thread shares.
+pub struct Shared {
+    pub config: Config,
+    pub hub: Hub,
+    doc: Mutex<Document>,
+    saver: Saver,
+    cancel: Mutex<Option<Arc<AtomicBool>>>,
+}
+
+type Reply = Result<Value, ServeError>;
+
+impl Shared {
+    pub fn new(config: Config, doc: Document) -> Arc<Shared> {
+        let saver = Saver::start(config.state_dir.clone());
+        Arc::new(Shared {
+            config,
+            hub: Hub::default(),
+            doc: Mutex::new(doc),
+            saver,
+            cancel: Mutex::new(None),
+        })
+    }
+
+    fn doc(&self) -> MutexGuard<'_, Document> {
+        // Operations build new content before committing it, so a panic
+        // inside one leaves the document as it was.
+        self.doc.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// A new tab: the state and the whole mesh.
+    pub fn hello(&self, conn: ConnId) {
+        let doc = self.doc();
+        self.hub.send(conn, Out::Text(doc.state_json().to_string()));
+        self.hub.send(
+            conn,
+            Out::Binary(encode(doc.display(), 0, doc.version(), None)),
+        );
+    }
+
+    /// A tab went away: a stroke it was dragging is abandoned.
+    pub fn disconnected(&self, conn: ConnId) {
+        let mut doc = self.doc();
+        if doc.stroke.as_ref().is_some_and(|s| s.owner == conn) {
+            doc.stroke = None;
+            self.publish(&doc);
+        }
+    }
+
+    pub fn reply_error(&self, conn: ConnId, id: Option<&Value>, message: &str) {
+        let msg = json!({"type": "error", "id": id, "message": message});
+        self.hub.send(conn, Out::Text(msg.to_string()));
+    }
+
+    fn reply(&self, conn: ConnId, id: Option<&Value>, result: Reply) {
+        let msg = match result {
+            Ok(mut v) => {
+                v["type"] = json!("ok");
+                v["id"] = json!(id);
+                v
+            }
+            Err(e) => json!({
+                "type": "error",
+                "id": id,
+                "message": e.to_string(),
+                "cancelled": matches!(e, ServeError::Cancelled),
+            }),
+        };
+        self.hub.send(conn, Out::Text(msg.to_string()));
+    }
+
+    /// Sends every tab the state and the whole mesh, and saves.
+    fn publish(&self, doc: &Document) {
+        self.hub.broadcast(&Out::Text(doc.state_json().to_string()));
+        self.hub
+            .broadcast(&Out::Binary(encode(doc.display(), 0, doc.version(), None)));
+        if doc.rind.is_none() {
+            self.saver.save(doc.version(), doc.content().clone());
+        }
+    }
+
+    /// Sends every tab the state only (busy flags, settings).
+    fn publish_state(&self, doc: &Document) {
+        self.hub.broadcast(&Out::Text(doc.state_json().to_string()));
+    }
+
+    /// Handles one request message.
+    pub fn request(self: &Arc<Self>, conn: ConnId, text: &str) {
+        let req: Value = match serde_json::from_str(text) {
+            Ok(v) => v,
+            Err(e) => return self.reply_error(conn, None, &format!("bad request: {e}")),
+        };
+        let id = req.get("id").cloned();
+        let op = req.get("op").and_then(Value::as_str).unwrap_or("");
+        let result = match op {
+            "sierpinski" | "menger" | "subdivide" => {
+                return self.start_long(conn, id, op, &req);
+            }
+            "cancel" => self.cancel(),
+            "hello" => {
+                self.hello(conn);
+                Ok(json!({}))
+            }
+            "primitives" => Ok(primitives()),
+            _ => self.edit(conn, op, &req),
+        };
+        self.reply(conn, id.as_ref(), result);
+    }
+
+    /// The requests that read or change the document under its lock.
+    fn edit(&self, conn: ConnId, op: &str, req: &Value) -> Reply {
+        let mut doc = self.doc();
+        let stroking = matches!(op, "stroke_frame" | "stroke_end");
+        if let Some((owner, what)) = &doc.busy
+            && !matches!(op, "set_remesh")
+        {
+            let who = if *owner == conn {
+                "this tab"
+            } else {
+                "another tab"
+            };
+            return Err(ServeError::Refused(format!(
+                "busy: {what} is running in {who}; wait or cancel it"
+            )));
+        }
+        if let Some(s) = &doc.stroke
+            && (s.owner != conn || !stroking)
+        {
+            return Err(ServeError::Refused(
+                "busy: a stroke is in progress; release the mouse first".into(),
+            ));
+        }
+        match op {
+            "primitive" => {
+                let spec = str_field(req, "spec")?;
+                let soup = holey_shapes::parse_primitive(spec)
+                    .map_err(|e| ServeError::Refused(format!("{spec}: {e}")))?;
+                if soup.face_count() > self.config.max_faces {
+                    return Err(ServeError::Refused(format!(
+                        "{spec} has {} faces; the modeler's limit is {}",
+                        soup.face_count(),
+                        self.config.max_faces
+                    )));
+                }
+                let mesh = to_dlfl(&soup, ImportOptions::default())
+                    .map_err(|e| ServeError::Refused(format!("{spec}: {e}")))?
+                    .mesh;
+                let content = keep_workspace(&doc, Content::Model(mesh))?;
+                self.leave_rind(&mut doc);
+                doc.commit(content);
+                self.publish(&doc);
+                Ok(json!({"message": format!("created {spec}")}))
+            }
+            "workspace" => {
+                let to = str_field(req, "workspace")?;
+                if doc.content().workspace() == to {
+                    return Ok(json!({}));
+                }
+                self.leave_rind(&mut doc);
+                let content = doc.content().clone();
+                let next = match to {
+                    "model" => content.into_model()?,
+                    "sculpt" => content.into_sculpt()?,
+                    _ => {
+                        return Err(ServeError::BadRequest(format!(
+                            "unknown workspace {to:?} (model or sculpt)"
+                        )));
+                    }
+                };
+                doc.commit(next);
+                self.publish(&doc);
+                Ok(json!({}))
+            }
+            "undo" | "redo" => {
+                if doc.rind.is_some() {
+                    return Err(ServeError::Refused(
+                        "finish or cancel the rind first".into(),
+                    ));
+                }
+                let done = if op == "undo" { doc.undo() } else { doc.redo() };
+                if !done {
+                    return Err(ServeError::Refused(format!("nothing to {op}")));
+                }
+                self.publish(&doc);
+                Ok(json!({}))
+            }
+            "insert_edge" | "delete_edge" | "handle" => {
+                doc.check_version(req)?;
+                if doc.rind.is_some() {
+                    return Err(ServeError::Refused(
+                        "finish or cancel the rind first".into(),
+                    ));
+                }
+                let mut mesh = doc.model(op)?.clone();
+                let preview =
+                    op == "handle" && req.get("preview").and_then(Value::as_bool) == Some(true);
+                let message = match op {
+                    "insert_edge" => insert_edge(&doc, &mut mesh, req)?,
+                    "delete_edge" => delete_edge(&doc, &mut mesh, req)?,
+                    _ => handle(&doc, &mut mesh, req)?,
+                };
+                if preview {
+                    let (display, _) = display_model(&mesh);
+                    self.hub.send(
+                        conn,
+                        Out::Binary(encode(&display, FLAG_PREVIEW, doc.version(), None)),
+                    );
+                    return Ok(json!({"message": message, "preview": true}));
+                }
+                doc.commit(Content::Model(mesh));
+                self.publish(&doc);
+                Ok(json!({"message": message}))
+            }
+            "rind_begin" => {
+                let thickness = num_field(req, "thickness")?;
+                if doc.rind.is_some() {
+                    return Err(ServeError::Refused("already in rind mode".into()));
+                }
+                let rind = Rind::from_mesh(doc.model("rind")?, thickness)
+                    .map_err(|e| ServeError::Refused(format!("rind: {e}")))?;
+                doc.rind = Some(RindMode { rind, thickness });
+                doc.touch();
+                self.publish(&doc);
+                Ok(json!({"message": "click faces to punch (shift: peel)"}))
+            }
+            "rind_punch" => {
+                doc.check_version(req)?;
+                let face = index_field(req, "face")?;
+                let peel = req.get("peel").and_then(Value::as_bool) == Some(true);
+                let f =
+                    *doc.index().faces.get(face).ok_or_else(|| {
+                        ServeError::Refused(format!("face {face} does not exist"))
+                    })?;
+                let Some(mode) = doc.rind.as_mut() else {
+                    return Err(ServeError::Refused("not in rind mode".into()));
+                };
+                let outcome = if peel {
+                    mode.rind.peel(f)
+                } else {
+                    mode.rind.punch(f)
+                }
+                .map_err(|e| ServeError::Refused(format!("rind: {e}")))?;
+                if let PunchOutcome::NotPunchable { reason } = outcome {
+                    return Err(ServeError::Refused(format!(
+                        "that face cannot be {}: {reason}",
+                        if peel { "peeled" } else { "punched" }
+                    )));
+                }
+                doc.touch();
+                self.publish(&doc);
+                Ok(json!({}))
+            }
+            "rind_end" => {
+                let Some(mode) = doc.rind.take() else {
+                    return Err(ServeError::Refused("not in rind mode".into()));
+                };
+                if req.get("commit").and_then(Value::as_bool) == Some(true) {
+                    let t = mode.thickness;
+                    doc.commit(Content::Model(mode.rind.into_mesh()));
+                    self.publish(&doc);
+                    Ok(json!({"message": format!("rind of thickness {t} committed")}))
+                } else {
+                    doc.touch();
+                    self.publish(&doc);
+                    Ok(json!({"message": "rind cancelled"}))
+                }
+            }
+            "set_remesh" => {
+                let detail = num_field(req, "detail")?;
+                doc.remesh_detail = detail.clamp(0.0, 1.0);
+                self.publish_state(&doc);
+                Ok(json!({}))
+            }
+            "stroke_begin" => self.stroke_begin(conn, &mut doc, req),
+            "stroke_frame" => self.stroke_frame(&mut doc, req),
+            "stroke_end" => {
+                let Some(stroke) = doc.stroke.take() else {
+                    return Err(ServeError::Refused("no stroke in progress".into()));
+                };
+                let done = stroke.live.finish()?;
+                let r = done.report;
+                let changed = done.mesh != *doc.sculpt_mesh("sculpting")?;
+                if changed {
+                    doc.commit(Content::Sculpt(done.mesh));
+                }
+                self.publish(&doc);
+                Ok(json!({
+                    "changes": r.changes,
+                    "engine_runs": r.engine_runs,
+                    "frames": r.frames,
+                    "ms": r.seconds * 1e3,
+                }))
+            }
+            "" => Err(ServeError::BadRequest("the request has no \"op\"".into())),
+            _ => Err(ServeError::BadRequest(format!("unknown op {op:?}"))),
+        }
+    }
+
+    fn leave_rind(&self, doc: &mut Document) {
+        doc.rind = None;
+    }
+
+    fn cancel(&self) -> Reply {
+        let flag = self
+            .cancel
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .clone();
+        match flag {
+            Some(f) => {
+                f.store(true, Ordering::SeqCst);
+                Ok(json!({"message": "cancelling"}))
+            }
+            None => Err(ServeError::Refused("nothing to cancel".into())),
+        }
+    }
+}
+
+/// A model made while the sculpt workspace is open is sculpted too.
+fn keep_workspace(doc: &Document, content: Content) -> Result<Content, ServeError> {
+    match doc.content() {
+        Content::Sculpt(_) => content.into_sculpt(),
+        Content::Model(_) => Ok(content),
+    }
+}
+
+fn primitives() -> Value {
+    let list: Vec<Value> = holey_shapes::PRIMITIVES
+        .iter()
+        .map(|p| json!({"name": p.name, "spec": format!("@{}", p.name), "about": p.summary}))
+        .collect();
+    json!({"primitives": list})
+}

@@ -1,0 +1,117 @@
+//! Strokes fed one mouse event at a time.
+
+use holey_sculpt::{Brush, BrushSettings, LiveStroke, Remesh, RemeshOptions, default_range};
+use holey_topo::Options;
+use serde_json::{Value, json};
+
+use super::fields::{num_field, point_field, str_field};
+use super::{Out, Reply, Shared};
+use crate::doc::{ActiveStroke, Document};
+use crate::frame::{FLAG_PREVIEW, display_triangles, encode, encode_positions, encode_sparse};
+use crate::{ConnId, ServeError};
+
+impl Shared {
+    pub(super) fn stroke_begin(&self, conn: ConnId, doc: &mut Document, req: &Value) -> Reply {
+        let mesh = doc.sculpt_mesh("sculpting")?;
+        let brush = match str_field(req, "brush")? {
+            "inflate" => Brush::Inflate,
+            "smooth" => Brush::Smooth,
+            "grab" => Brush::Grab,
+            "move" => Brush::Move,
+            other => {
+                return Err(ServeError::BadRequest(format!(
+                    "unknown brush {other:?} (inflate, smooth, grab, move)"
+                )));
+            }
+        };
+        let radius = num_field(req, "radius")?;
+        let strength = match brush {
+            Brush::Move => 1.0,
+            _ => num_field(req, "strength")?,
+        };
+        if brush != Brush::Move && radius <= 0.0 {
+            return Err(ServeError::BadRequest("the radius must be positive".into()));
+        }
+        let point = point_field(req)?;
+        // A frame that pushes the surface farther than a fraction of the
+        // brush folds it over itself many times at once; every tab would
+        // wait for that frame. The modeler's slider stays far below.
+        if brush == Brush::Inflate && strength.abs() > MAX_INFLATE_PER_RADIUS * radius {
+            return Err(ServeError::Refused(format!(
+                "inflate strength {strength} is more than {MAX_INFLATE_PER_RADIUS} of the radius {radius} per frame"
+            )));
+        }
+        let settings = BrushSettings {
+            brush,
+            radius,
+            strength,
+        };
+        let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
+        live.set_preview(brush.is_drag());
+        live.set_remesh(remesh_options(mesh, doc.remesh_detail));
+        let display = doc.display().clone();
+        let sent = display.positions.clone();
+        doc.stroke = Some(ActiveStroke {
+            owner: conn,
+            live,
+            display,
+            sent,
+        });
+        self.stroke_frame(doc, req)
+    }
+
+    pub(super) fn stroke_frame(&self, doc: &mut Document, req: &Value) -> Reply {
+        let point = point_field(req)?;
+        let version = doc.version();
+        let Some(stroke) = doc.stroke.as_mut() else {
+            return Err(ServeError::Refused("no stroke in progress".into()));
+        };
+        let frame = stroke.live.frame(point)?;
+        let ms = frame.seconds * 1e3;
+        let vanish = frame.corrected_odd.as_deref();
+        let moved = &frame.mesh.positions;
+        let bytes = if frame.connectivity_changed {
+            let display = display_triangles(frame.mesh);
+            let bytes = encode(&display, FLAG_PREVIEW, version, vanish);
+            stroke.display = display;
+            bytes
+        } else {
+            // A brush moves few vertices: send those only.
+            encode_sparse(
+                &stroke.display,
+                &stroke.sent,
+                moved,
+                FLAG_PREVIEW,
+                version,
+                vanish,
+            )
+            .unwrap_or_else(|| {
+                encode_positions(&stroke.display, moved, FLAG_PREVIEW, version, vanish)
+            })
+        };
+        stroke.sent.clone_from(moved);
+        let vanishing = vanish.map_or(0, |m| m.iter().filter(|&&b| b).count());
+        self.hub.broadcast(&Out::Binary(bytes));
+        Ok(json!({"ms": ms, "vanishing": vanishing}))
+    }
+}
+
+/// The remeshing of the detail slider: off at 0; otherwise edges around
+/// `ℓ = L · 4^(1/2 − detail)` (L the mesh's mean edge length: the mesh as
+/// it is at 1/2, twice as fine at 1, twice as coarse near 0), kept within
+/// half to one and a half times ℓ.
+pub(super) fn remesh_options(mesh: &holey_topo::TriMesh, detail: f64) -> Option<RemeshOptions> {
+    if detail <= 0.0 {
+        return None;
+    }
+    let base = default_range(mesh)?;
+    let scale = 4f64.powf(0.5 - detail.min(1.0));
+    Some(RemeshOptions::new(Remesh {
+        min_edge: base.min_edge * scale,
+        max_edge: base.max_edge * scale,
+    }))
+}
+
+/// The largest inflate displacement per frame the server accepts, as a
+/// share of the brush radius.
+pub const MAX_INFLATE_PER_RADIUS: f64 = 0.25;
