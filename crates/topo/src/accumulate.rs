@@ -9,7 +9,9 @@ use glam::DVec3;
 use holey_geom::ccd::vertex_parities;
 
 use crate::engine::{Options, Outcome, TopoError, ccd_options, check, finish, static_stage};
-use crate::local::{Bounds, LocalReport, Region, from_whole, swept_box, union, with_margin};
+use crate::local::{
+    Bounds, LocalReport, Region, Spliced, from_whole, swept_box, union, with_margin,
+};
 use crate::mesh::TriMesh;
 
 /// Accumulates raw collision parity over the frames of a drag (§4): while
@@ -144,17 +146,11 @@ impl Accumulator {
         let started = Instant::now();
         let n = self.raw.len();
         let Some(bx) = self.swept else {
-            let report = LocalReport {
-                raw_odd: vec![false; n],
-                corrected_odd: vec![false; n],
-                positions_only: true,
-                ..LocalReport::default()
-            };
             let mesh = TriMesh {
                 positions: self.current,
                 triangles: self.mesh.triangles,
             };
-            return Ok((mesh, report));
+            return Ok((mesh, LocalReport::no_motion(n)));
         };
         let region = Region::select(
             &self.mesh.triangles,
@@ -164,35 +160,25 @@ impl Accumulator {
         );
         if region.worth_it() {
             let sub = region.submesh(&self.mesh.positions);
-            let end = region.gather(&self.current);
             let out = finish(
                 &sub,
                 &sub.positions,
-                &end,
+                &region.gather(&self.current),
                 region.gather(&self.raw),
                 (self.collisions, self.tests, self.seconds),
                 &self.options,
                 started,
             )?;
-            let mut result = LocalReport {
-                report: out.report.clone(),
-                raw_odd: region.scatter(&out.raw_odd, n, false),
-                corrected_odd: region.scatter(&out.corrected_odd, n, false),
-                intersection_curves: out.intersections.curve_count,
-                region_triangles: region.count,
-                ..LocalReport::default()
-            };
-            if region.unchanged(&out.mesh, &out.vertex_origin) {
-                result.positions_only = true;
-                let mesh = TriMesh {
-                    positions: self.current,
-                    triangles: self.mesh.triangles,
-                };
-                return Ok((mesh, result));
-            }
-            if let Some(m) = region.splice(&self.mesh, &self.current, &out.mesh, &out.vertex_origin)
-            {
-                return Ok((m, result));
+            match region.resolve(&self.mesh, &self.current, &out) {
+                (report, Spliced::PositionsOnly) => {
+                    let mesh = TriMesh {
+                        positions: self.current,
+                        triangles: self.mesh.triangles,
+                    };
+                    return Ok((mesh, report));
+                }
+                (report, Spliced::Mesh(m)) => return Ok((m, report)),
+                (_, Spliced::NotExact) => {}
             }
         }
         let mesh = self.mesh.clone();

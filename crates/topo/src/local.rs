@@ -26,7 +26,7 @@ use std::collections::HashSet;
 
 use glam::DVec3;
 
-use crate::engine::{Options, Report, TopoError, check, topology_change};
+use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
 use crate::mesh::TriMesh;
 
 /// What [`topology_change_local`] and
@@ -46,6 +46,36 @@ pub struct LocalReport {
     pub whole_mesh: bool,
     /// Whether only positions changed (same triangles, same vertices).
     pub positions_only: bool,
+}
+
+impl LocalReport {
+    /// Nothing a triangle uses moved: no collision, no crossing.
+    pub(crate) fn no_motion(n: usize) -> LocalReport {
+        LocalReport {
+            raw_odd: vec![false; n],
+            corrected_odd: vec![false; n],
+            positions_only: true,
+            ..LocalReport::default()
+        }
+    }
+}
+
+/// What the engine's output for a region means for the whole mesh.
+pub(crate) enum Spliced {
+    /// The region came back as it went in: only positions changed.
+    PositionsOnly,
+    /// The mesh with the region replaced.
+    Mesh(TriMesh),
+    /// The splice would not be exact: run on the whole mesh.
+    NotExact,
+}
+
+/// Whether `out` (with `origin`, per output vertex the input vertex it
+/// is) is the input `triangles` over `n` vertices, unchanged.
+fn is_identity(triangles: &[[u32; 3]], n: usize, out: &TriMesh, origin: &[u32]) -> bool {
+    out.triangles == triangles
+        && origin.len() == n
+        && origin.iter().enumerate().all(|(i, &o)| o == i as u32)
 }
 
 /// The share of the mesh above which the region is not worth extracting.
@@ -195,11 +225,34 @@ impl Region {
         }
     }
 
-    /// Whether the engine's output for the region is its input, moved.
-    pub fn unchanged(&self, out: &TriMesh, origin: &[u32]) -> bool {
-        out.triangles == self.triangles
-            && origin.len() == self.global.len()
-            && origin.iter().enumerate().all(|(i, &o)| o == i as u32)
+    /// The report of the engine's run `out` on the region of `mesh`, and
+    /// what its output means for the whole mesh (at `end` outside the
+    /// region).
+    pub fn resolve(&self, mesh: &TriMesh, end: &[DVec3], out: &Outcome) -> (LocalReport, Spliced) {
+        let n = mesh.positions.len();
+        let mut report = LocalReport {
+            report: out.report.clone(),
+            raw_odd: self.scatter(&out.raw_odd, n, false),
+            corrected_odd: self.scatter(&out.corrected_odd, n, false),
+            intersection_curves: out.intersections.curve_count,
+            region_triangles: self.count,
+            ..LocalReport::default()
+        };
+        let spliced = if is_identity(
+            &self.triangles,
+            self.global.len(),
+            &out.mesh,
+            &out.vertex_origin,
+        ) {
+            report.positions_only = true;
+            Spliced::PositionsOnly
+        } else {
+            match self.splice(mesh, end, &out.mesh, &out.vertex_origin) {
+                Some(m) => Spliced::Mesh(m),
+                None => Spliced::NotExact,
+            }
+        };
+        (report, spliced)
     }
 
     /// The mesh with the region replaced by the engine's output `out`
@@ -207,7 +260,7 @@ impl Region {
     /// `u32::MAX`), at `end` outside. `None` when the output does not keep
     /// the region's interface with the rest of the mesh (see the module
     /// documentation): the caller must then run on the whole mesh.
-    pub fn splice(
+    fn splice(
         &self,
         mesh: &TriMesh,
         end: &[DVec3],
@@ -284,16 +337,9 @@ pub fn topology_change_local(
     options: &Options,
 ) -> Result<LocalReport, TopoError> {
     check(mesh, end)?;
-    let n = mesh.positions.len();
     let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
-        // Nothing a triangle uses moves: no collision, no new crossing.
         mesh.positions.copy_from_slice(end);
-        return Ok(LocalReport {
-            raw_odd: vec![false; n],
-            corrected_odd: vec![false; n],
-            positions_only: true,
-            ..LocalReport::default()
-        });
+        return Ok(LocalReport::no_motion(mesh.positions.len()));
     };
     let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
     if !region.worth_it() {
@@ -301,26 +347,13 @@ pub fn topology_change_local(
     }
     let sub = region.submesh(&mesh.positions);
     let out = topology_change(&sub, &region.gather(end), options)?;
-    let mut result = LocalReport {
-        report: out.report.clone(),
-        raw_odd: region.scatter(&out.raw_odd, n, false),
-        corrected_odd: region.scatter(&out.corrected_odd, n, false),
-        intersection_curves: out.intersections.curve_count,
-        region_triangles: region.count,
-        ..LocalReport::default()
-    };
-    if region.unchanged(&out.mesh, &out.vertex_origin) {
-        mesh.positions.copy_from_slice(end);
-        result.positions_only = true;
-        return Ok(result);
+    let (report, spliced) = region.resolve(mesh, end, &out);
+    match spliced {
+        Spliced::PositionsOnly => mesh.positions.copy_from_slice(end),
+        Spliced::Mesh(m) => *mesh = m,
+        Spliced::NotExact => return whole(mesh, end, options),
     }
-    match region.splice(mesh, end, &out.mesh, &out.vertex_origin) {
-        Some(m) => {
-            *mesh = m;
-            Ok(result)
-        }
-        None => whole(mesh, end, options),
-    }
+    Ok(report)
 }
 
 fn whole(mesh: &mut TriMesh, end: &[DVec3], options: &Options) -> Result<LocalReport, TopoError> {
@@ -331,14 +364,13 @@ fn whole(mesh: &mut TriMesh, end: &[DVec3], options: &Options) -> Result<LocalRe
 }
 
 /// A whole-mesh outcome as a mesh and a [`LocalReport`].
-pub(crate) fn from_whole(mesh: &TriMesh, out: crate::Outcome) -> (TriMesh, LocalReport) {
-    let positions_only = out.mesh.triangles == mesh.triangles
-        && out.vertex_origin.len() == mesh.positions.len()
-        && out
-            .vertex_origin
-            .iter()
-            .enumerate()
-            .all(|(i, &o)| o == i as u32);
+pub(crate) fn from_whole(mesh: &TriMesh, out: Outcome) -> (TriMesh, LocalReport) {
+    let positions_only = is_identity(
+        &mesh.triangles,
+        mesh.positions.len(),
+        &out.mesh,
+        &out.vertex_origin,
+    );
     let report = LocalReport {
         intersection_curves: out.intersections.curve_count,
         region_triangles: mesh.triangles.len(),
