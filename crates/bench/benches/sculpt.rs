@@ -10,21 +10,13 @@
 
 use divan::{Bencher, black_box};
 use glam::DVec3;
-use holey_sculpt::{Brush, BrushSettings, LiveStroke, RemeshOptions, default_range};
+use holey_sculpt::{
+    Brush, BrushSettings, LiveStroke, Remesh, RemeshOptions, default_range, remesh_in_place,
+};
 use holey_topo::{Options, TriMesh};
 
 fn main() {
     divan::main();
-}
-
-fn sphere(level: u32) -> TriMesh {
-    let soup = holey_shapes::parse_primitive(&format!("@sphere:{level}"))
-        .unwrap_or_else(|e| panic!("sphere {level}: {e}"));
-    let (triangles, _) = soup.fan_triangles();
-    TriMesh {
-        positions: soup.positions,
-        triangles,
-    }
 }
 
 /// The radius whose cap on the unit sphere holds about 2,000 triangles.
@@ -35,7 +27,7 @@ fn radius_for(mesh: &TriMesh) -> f64 {
 }
 
 fn frame(bencher: Bencher, level: u32, brush: Brush, strength: f64, to: DVec3) {
-    let mesh = sphere(level);
+    let mesh = holey_bench::icosphere(level);
     let radius = radius_for(&mesh);
     let settings = BrushSettings {
         brush,
@@ -74,4 +66,53 @@ fn smooth_frame(bencher: Bencher, level: u32) {
 #[divan::bench(args = [6, 8], sample_count = 10)]
 fn grab_frame_with_preview(bencher: Bencher, level: u32) {
     frame(bencher, level, Brush::Grab, 1.0, DVec3::new(0.0, 0.2, -0.2));
+}
+
+/// Dynamic remeshing alone: a region of about 2,000 triangles in flat
+/// grids of 100k and 1M triangles, raised by one frame of inflate (which
+/// stretches its edges: splits and flips) or left flat (nothing to do:
+/// the cost of finding the region). Grids 224² and 708².
+#[divan::bench(args = [224, 708], sample_count = 10)]
+fn remesh_bumped_region(bencher: Bencher, n: u32) {
+    remesh_region(bencher, n, true);
+}
+
+#[divan::bench(args = [224, 708], sample_count = 10)]
+fn remesh_flat_region(bencher: Bencher, n: u32) {
+    remesh_region(bencher, n, false);
+}
+
+fn remesh_region(bencher: Bencher, n: u32, bump: bool) {
+    let mut mesh = holey_bench::tri_grid(n);
+    let h = 2.0 / f64::from(n);
+    let radius = (1000.0 * h * h / std::f64::consts::PI).sqrt();
+    let active: Vec<bool> = mesh
+        .positions
+        .iter()
+        .map(|p| p.truncate().length() < radius)
+        .collect();
+    if bump {
+        for p in &mut mesh.positions {
+            let d = p.truncate().length();
+            if d < radius {
+                let s = 1.0 - (d / radius).powi(2);
+                p.z += 0.5 * radius * s * s;
+            }
+        }
+    }
+    let opts = RemeshOptions::new(Remesh {
+        min_edge: 0.6 * h,
+        max_edge: 1.5 * h,
+    });
+    bencher
+        .with_inputs(|| {
+            // Room to grow, as a session keeps, so splits do not copy.
+            let mut m = mesh.clone();
+            m.positions.reserve(100_000);
+            m.triangles.reserve(100_000);
+            m
+        })
+        .bench_local_values(|mut m| {
+            black_box(remesh_in_place(&mut m, &active, &opts).map(|r| r.splits))
+        });
 }

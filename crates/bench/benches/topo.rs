@@ -12,20 +12,10 @@ fn main() {
     divan::main();
 }
 
-fn sphere(level: u32) -> TriMesh {
-    let soup = holey_shapes::parse_primitive(&format!("@sphere:{level}"))
-        .unwrap_or_else(|e| panic!("sphere {level}: {e}"));
-    let (triangles, _) = soup.fan_triangles();
-    TriMesh {
-        positions: soup.positions,
-        triangles,
-    }
-}
-
 /// Sphere A and sphere B = A + (0.5, 0.1, 0.05); B arrives from 4 units
 /// away along a generic direction, as `holey union` moves it.
 fn union_frame(level: u32) -> (TriMesh, Vec<DVec3>) {
-    let a = sphere(level);
+    let a = holey_bench::icosphere(level);
     let shift = DVec3::new(0.5, 0.1, 0.05);
     let away = DVec3::new(1.0, 0.3127, 0.1731).normalize() * 4.0;
     let n = a.positions.len() as u32;

@@ -4,6 +4,7 @@
 use holey_dlfl::Mesh;
 use holey_mesh::PolyMesh;
 use holey_mesh::convert::{ImportOptions, to_dlfl};
+use holey_topo::TriMesh;
 
 /// An n×m quad torus soup (n·m faces), welded and oriented.
 pub fn torus_soup(n: u32, m: u32) -> PolyMesh {
@@ -53,4 +54,26 @@ pub fn torus_obj(n: u32, m: u32) -> Vec<u8> {
         let _ = writeln!(s, "f {} {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1, f[3] + 1);
     }
     s.into_bytes()
+}
+
+/// `@sphere:level` (20·4^level triangles) as a triangle mesh.
+pub fn icosphere(level: u32) -> TriMesh {
+    let soup = holey_shapes::parse_primitive(&format!("@sphere:{level}"))
+        .unwrap_or_else(|e| panic!("sphere {level}: {e}"));
+    tri_mesh(soup)
+}
+
+/// `@tri-plane:n:n` on [-1, 1]² (2n² triangles) as a triangle mesh.
+pub fn tri_grid(n: u32) -> TriMesh {
+    let soup = holey_shapes::parse_primitive(&format!("@tri-plane:{n}:{n}"))
+        .unwrap_or_else(|e| panic!("grid {n}: {e}"));
+    tri_mesh(soup)
+}
+
+fn tri_mesh(soup: PolyMesh) -> TriMesh {
+    let (triangles, _) = soup.fan_triangles();
+    TriMesh {
+        positions: soup.positions,
+        triangles,
+    }
 }
