@@ -86,11 +86,7 @@ pub fn poly_to_tri(poly: &PolyMesh) -> Result<TriMesh, ServeError> {
 }
 
 fn tri_to_poly(mesh: &TriMesh) -> PolyMesh {
-    PolyMesh {
-        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
-        face_indices: mesh.triangles.iter().flatten().copied().collect(),
-        positions: mesh.positions.clone(),
-    }
+    PolyMesh::from_faces(mesh.positions.clone(), &mesh.triangles)
 }
 
 /// A rind being punched: the crust shown, and the mesh before it.
@@ -106,7 +102,7 @@ pub struct ActiveStroke {
     /// The connectivity the browser has (positions-only frames refer to it).
     pub display: Display,
     /// The positions the browser has (sparse frames are relative to them).
-    pub sent: Vec<glam::DVec3>,
+    pub sent: Vec<DVec3>,
 }
 
 /// The document the server edits.
@@ -294,17 +290,6 @@ impl Document {
                 "{what} works in the sculpt workspace; switch to it first"
             ))),
         }
-    }
-
-    /// The bounding-box diagonal of what is shown (for default radii).
-    pub fn diagonal(&self) -> f64 {
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for p in &self.display.positions {
-            lo = lo.min(*p);
-            hi = hi.max(*p);
-        }
-        if lo.x <= hi.x { lo.distance(hi) } else { 0.0 }
     }
 }
 

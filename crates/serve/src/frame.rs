@@ -33,6 +33,14 @@ pub struct Display {
     pub faces: usize,
 }
 
+impl Display {
+    /// The header counts of a frame over this connectivity with `nv`
+    /// vertices: vertices, triangles, edges, faces.
+    fn counts(&self, nv: usize) -> [usize; 4] {
+        [nv, self.triangles.len(), self.edges.len(), self.faces]
+    }
+}
+
 /// The kernel handles behind a DLFL's display indices.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ModelIndex {
@@ -168,7 +176,7 @@ pub fn encode(display: &Display, flags: u32, version: u64, vanish: Option<&[bool
         &mut out,
         flags & !FLAG_POSITIONS_ONLY,
         version,
-        [nv, nt, ne, display.faces],
+        display.counts(nv),
         vanish,
     );
     positions(&mut out, &display.positions);
@@ -203,12 +211,7 @@ pub fn encode_positions(
         &mut out,
         flags | FLAG_POSITIONS_ONLY,
         version,
-        [
-            nv,
-            display.triangles.len(),
-            display.edges.len(),
-            display.faces,
-        ],
+        display.counts(nv),
         vanish,
     );
     positions(&mut out, moved);
@@ -243,12 +246,7 @@ pub fn encode_sparse(
         &mut out,
         flags | FLAG_POSITIONS_ONLY | FLAG_SPARSE,
         version,
-        [
-            nv,
-            display.triangles.len(),
-            display.edges.len(),
-            display.faces,
-        ],
+        display.counts(nv),
         vanish,
     );
     put(&mut out, changed.len() as u32);

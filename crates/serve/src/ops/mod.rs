@@ -76,10 +76,6 @@ impl Hub {
             let _ = tx.send(out.clone());
         }
     }
-
-    pub fn count(&self) -> usize {
-        self.clients().len()
-    }
 }
 
 /// What every connection thread shares.
@@ -229,7 +225,7 @@ impl Shared {
                     .map_err(|e| ServeError::Refused(format!("{spec}: {e}")))?
                     .mesh;
                 let content = keep_workspace(&doc, Content::Model(mesh))?;
-                self.leave_rind(&mut doc);
+                doc.rind = None;
                 doc.commit(content);
                 self.publish(&doc);
                 Ok(json!({"message": format!("created {spec}")}))
@@ -239,7 +235,7 @@ impl Shared {
                 if doc.content().workspace() == to {
                     return Ok(json!({}));
                 }
-                self.leave_rind(&mut doc);
+                doc.rind = None;
                 let content = doc.content().clone();
                 let next = match to {
                     "model" => content.into_model()?,
@@ -377,10 +373,6 @@ impl Shared {
             "" => Err(ServeError::BadRequest("the request has no \"op\"".into())),
             _ => Err(ServeError::BadRequest(format!("unknown op {op:?}"))),
         }
-    }
-
-    fn leave_rind(&self, doc: &mut Document) {
-        doc.rind = None;
     }
 
     fn cancel(&self) -> Reply {
