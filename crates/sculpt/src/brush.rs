@@ -69,36 +69,32 @@ pub fn falloff(distance: f64, radius: f64) -> f64 {
 /// so on an unoriented mesh the normal is whatever the incident triangles
 /// agree on; the sculptor sees that as the surface's front.
 pub fn vertex_normals(mesh: &TriMesh) -> Vec<DVec3> {
-    let mut n = vec![DVec3::ZERO; mesh.positions.len()];
+    let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+    normals_of(mesh, &all)
+}
+
+/// [`vertex_normals`] of the vertices `which` only (increasing), in that
+/// order: one scan of the triangles, work only where they are used.
+fn normals_of(mesh: &TriMesh, which: &[u32]) -> Vec<DVec3> {
+    let mut slot = vec![u32::MAX; mesh.positions.len()];
+    for (i, &v) in which.iter().enumerate() {
+        slot[v as usize] = i as u32;
+    }
+    let mut n = vec![DVec3::ZERO; which.len()];
     for t in &mesh.triangles {
+        if t.iter().all(|&v| slot[v as usize] == u32::MAX) {
+            continue;
+        }
         let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
         // The cross product's length is twice the area: area weighting for free.
         let w = (b - a).cross(c - a);
         for &v in t {
-            n[v as usize] += w;
-        }
-    }
-    n.iter().map(|v| v.normalize_or_zero()).collect()
-}
-
-/// The edge neighbours of every vertex, sorted and without duplicates
-/// (degenerate triangles' self-edges are ignored).
-pub fn neighbours(mesh: &TriMesh) -> Vec<Vec<u32>> {
-    let mut adj = vec![Vec::new(); mesh.positions.len()];
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if a != b {
-                adj[a as usize].push(b);
-                adj[b as usize].push(a);
+            if let Some(x) = n.get_mut(slot[v as usize] as usize) {
+                *x += w;
             }
         }
     }
-    for l in &mut adj {
-        l.sort_unstable();
-        l.dedup();
-    }
-    adj
+    n.iter().map(|v| v.normalize_or_zero()).collect()
 }
 
 /// Vertices used by at least one triangle. Unreferenced vertices are not
@@ -138,29 +134,11 @@ fn touched(mesh: &TriMesh, centre: DVec3, radius: f64) -> Vec<u32> {
 /// cost beyond two linear scans is the brush's.
 pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
     let hit = touched(mesh, centre, radius);
-    let mut slot = vec![u32::MAX; mesh.positions.len()];
-    for (i, &v) in hit.iter().enumerate() {
-        slot[v as usize] = i as u32;
-    }
-    let mut normals = vec![DVec3::ZERO; hit.len()];
-    for t in &mesh.triangles {
-        if t.iter().all(|&v| slot[v as usize] == u32::MAX) {
-            continue;
-        }
-        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-        // The cross product's length is twice the area: area weighting for free.
-        let w = (b - a).cross(c - a);
-        for &v in t {
-            if let Some(n) = normals.get_mut(slot[v as usize] as usize) {
-                *n += w;
-            }
-        }
-    }
+    let normals = normals_of(mesh, &hit);
     let mut out = mesh.positions.clone();
     for (&v, n) in hit.iter().zip(&normals) {
         let p = out[v as usize];
-        out[v as usize] =
-            p + n.normalize_or_zero() * (strength * falloff(p.distance(centre), radius));
+        out[v as usize] = p + *n * (strength * falloff(p.distance(centre), radius));
     }
     out
 }
