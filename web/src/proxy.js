@@ -81,6 +81,25 @@ function gridCells(p, nv, lo, cell, g, tab, out) {
  * (a closed surface has about twice as many triangles as vertices).
  * Returns { positions, normals, index, nv, nt } with area-weighted normals.
  */
+/** Area-weighted vertex normals of triangles `index` over `pos`, written
+ * into `out` (zero-filled here), unit length. */
+export function areaNormals(pos, index, out) {
+  out.fill(0);
+  for (let i = 0; i < index.length; i += 3) {
+    const a = 3 * index[i], b = 3 * index[i + 1], c = 3 * index[i + 2];
+    const ux = pos[b] - pos[a], uy = pos[b + 1] - pos[a + 1], uz = pos[b + 2] - pos[a + 2];
+    const vx = pos[c] - pos[a], vy = pos[c + 1] - pos[a + 1], vz = pos[c + 2] - pos[a + 2];
+    const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    out[a] += nx; out[a + 1] += ny; out[a + 2] += nz;
+    out[b] += nx; out[b + 1] += ny; out[b + 2] += nz;
+    out[c] += nx; out[c + 1] += ny; out[c + 2] += nz;
+  }
+  for (let i = 0; i < out.length; i += 3) {
+    const l = Math.hypot(out[i], out[i + 1], out[i + 2]) || 1;
+    out[i] /= l; out[i + 1] /= l; out[i + 2] /= l;
+  }
+}
+
 export function clusterDecimate(positions, tris, bbox, targetTris = 120000) {
   const nv = positions.length / 3, nt = tris.length / 3;
   const ext = Math.max(bbox.max[0] - bbox.min[0], bbox.max[1] - bbox.min[1], bbox.max[2] - bbox.min[2]) || 1;
@@ -142,18 +161,6 @@ export function clusterDecimate(positions, tris, bbox, targetTris = 120000) {
   index = index.slice(0, k);
 
   const nrm = new Float32Array(3 * m);
-  for (let i = 0; i < k; i += 3) {
-    const a = 3 * index[i], b = 3 * index[i + 1], c = 3 * index[i + 2];
-    const ux = pos[b] - pos[a], uy = pos[b + 1] - pos[a + 1], uz = pos[b + 2] - pos[a + 2];
-    const vx = pos[c] - pos[a], vy = pos[c + 1] - pos[a + 1], vz = pos[c + 2] - pos[a + 2];
-    const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    nrm[a] += nx; nrm[a + 1] += ny; nrm[a + 2] += nz;
-    nrm[b] += nx; nrm[b + 1] += ny; nrm[b + 2] += nz;
-    nrm[c] += nx; nrm[c + 1] += ny; nrm[c + 2] += nz;
-  }
-  for (let i = 0; i < nrm.length; i += 3) {
-    const l = Math.hypot(nrm[i], nrm[i + 1], nrm[i + 2]) || 1;
-    nrm[i] /= l; nrm[i + 1] /= l; nrm[i + 2] /= l;
-  }
+  areaNormals(pos, index, nrm);
   return { positions: pos, normals: nrm, index, nv: m, nt: k / 3, grid: g };
 }

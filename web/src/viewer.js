@@ -8,7 +8,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { applySparse } from './frame.js';
-import { vertexTriangles, indexRuns, clusterDecimate } from './proxy.js';
+import { vertexTriangles, indexRuns, clusterDecimate, areaNormals } from './proxy.js';
 
 /** Meshes above this many triangles are drawn as a decimated proxy while the
  * camera moves (and the full mesh again when it stops). */
@@ -675,21 +675,7 @@ export class Viewer {
   updateNormals() {
     const f = this.frame;
     const attr = this.mesh.geometry.attributes.normal;
-    const n = attr.array, p = f.positions, t = f.tris;
-    n.fill(0);
-    for (let i = 0; i < t.length; i += 3) {
-      const a = 3 * t[i], b = 3 * t[i + 1], c = 3 * t[i + 2];
-      const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
-      const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
-      const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-      n[a] += nx; n[a + 1] += ny; n[a + 2] += nz;
-      n[b] += nx; n[b + 1] += ny; n[b + 2] += nz;
-      n[c] += nx; n[c + 1] += ny; n[c + 2] += nz;
-    }
-    for (let i = 0; i < n.length; i += 3) {
-      const l = Math.hypot(n[i], n[i + 1], n[i + 2]) || 1;
-      n[i] /= l; n[i + 1] /= l; n[i + 2] /= l;
-    }
+    areaNormals(f.positions, f.tris, attr.array);
     markWhole(attr);
   }
 

@@ -649,21 +649,21 @@ fn label(
         .filter(|&t| state[t as usize].is_none())
         .collect();
     let mut slot = vec![u32::MAX; tris.len()];
-    let mut touched = vec![false; on_curve.len().max(n_original)];
+    // Vertices of undecided triangles (new points included, so sized by
+    // the largest of them).
+    let size = undecided
+        .iter()
+        .flat_map(|&u| tris[u as usize])
+        .max()
+        .map_or(0, |v| v as usize + 1);
+    let mut touched = vec![false; size];
     let mut keys: Vec<(u32, u32, u32)> = Vec::with_capacity(undecided.len() * 3);
     for (k, &u) in undecided.iter().enumerate() {
         slot[u as usize] = k as u32;
         let t = tris[u as usize];
         for i in 0..3 {
             let (a, b) = (t[i], t[(i + 1) % 3]);
-            for v in [a, b] {
-                if let Some(f) = touched.get_mut(v as usize) {
-                    *f = true;
-                } else {
-                    touched.resize(v as usize + 1, false);
-                    touched[v as usize] = true;
-                }
-            }
+            touched[a as usize] = true;
             if !is_curve(a, b) {
                 keys.push((a.min(b), a.max(b), k as u32));
             }
