@@ -30,6 +30,19 @@ pub fn load_triangles(arg: &str) -> Result<TriMesh> {
     Ok(mesh)
 }
 
+/// Reads two mesh arguments at once, on two threads (parsing is most of
+/// the time a union of two large files spends outside the engine). A's
+/// error is reported first when both fail.
+pub fn load_triangle_pair(a: &str, b: &str) -> Result<(TriMesh, TriMesh)> {
+    let (ra, rb) = std::thread::scope(|s| {
+        let hb = s.spawn(|| load_triangles(b));
+        let ra = load_triangles(a);
+        (ra, hb.join())
+    });
+    let rb = rb.map_err(|_| anyhow::anyhow!("reading {b} failed unexpectedly"))?;
+    Ok((ra?, rb?))
+}
+
 /// A triangle mesh as a polygon soup, vertices as they are.
 fn to_poly(mesh: TriMesh) -> PolyMesh {
     PolyMesh {

@@ -43,23 +43,24 @@ impl TriMesh {
     /// directions, and no triangle with a repeated vertex: a closed,
     /// consistently oriented 2-manifold along its edges.
     pub fn is_closed_manifold(&self) -> bool {
-        let mut sides: Vec<(u32, u32, bool)> = Vec::with_capacity(3 * self.triangles.len());
+        // Each side as its undirected key and its direction. Sorted, a
+        // closed manifold gives runs of exactly two sides, one each way.
+        let mut sides: Vec<(u64, bool)> = Vec::with_capacity(3 * self.triangles.len());
         for t in &self.triangles {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 if a == b {
                     return false;
                 }
-                sides.push((a.min(b), a.max(b), a < b));
+                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+                sides.push((key, a < b));
             }
         }
-        sides.sort_unstable();
+        sides.par_sort_unstable();
         sides
-            .chunks(2)
-            .all(|c| c.len() == 2 && c[0].0 == c[1].0 && c[0].1 == c[1].1 && c[0].2 != c[1].2)
-            && sides
-                .windows(3)
-                .all(|w| !(w[0].0 == w[2].0 && w[0].1 == w[2].1))
+            .par_chunks(2)
+            .all(|c| c.len() == 2 && c[0].0 == c[1].0 && c[0].1 != c[1].1)
+            && sides.par_windows(3).all(|w| w[0].0 != w[2].0)
     }
 
     /// The mesh without the vertices no triangle uses, the others kept in

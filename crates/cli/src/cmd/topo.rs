@@ -7,7 +7,7 @@ use holey_topo::{Options, Scheme, TriMesh, topology_change};
 use crate::error::bad_input;
 use crate::progress::Progress;
 use crate::tri::{
-    load_triangles, report_json, report_text, write_colored, write_json, write_triangles,
+    load_triangle_pair, report_json, report_text, write_colored, write_json, write_triangles,
 };
 
 /// The error-correction scheme (§3.4).
@@ -99,8 +99,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let before = load_triangles(&args.before)?;
-    let after = load_triangles(&args.after)?;
+    let (before, after) = load_triangle_pair(&args.before, &args.after)?;
     if before.positions.len() != after.positions.len() {
         return Err(bad_input(format!(
             "{} has {} vertices but {} has {}: BEFORE and AFTER must be the same mesh",

@@ -9,7 +9,7 @@ use holey_topo::TriMesh;
 use crate::cmd::topo::{EngineArgs, write_outcome};
 use crate::error::bad_input;
 use crate::progress::Progress;
-use crate::tri::load_triangles;
+use crate::tri::load_triangle_pair;
 
 /// The default direction B arrives from: generic, so that B's vertices
 /// travel along lines that pass through none of the vertices and edges of
@@ -114,8 +114,7 @@ pub fn synthesize(a: &TriMesh, b: &TriMesh, d: DVec3) -> (TriMesh, Vec<DVec3>) {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let a = load_triangles(&args.a)?;
-    let b = load_triangles(&args.b)?;
+    let (a, b) = load_triangle_pair(&args.a, &args.b)?;
     if a.positions.is_empty() || b.positions.is_empty() {
         return Err(bad_input("both solids must have vertices"));
     }
