@@ -62,7 +62,9 @@ pub enum TopoError {
     Intersections(#[from] crate::intersect::IntersectError),
 }
 
-/// Seconds spent in each stage.
+/// Seconds spent in each stage (wall time). A one-frame run finds the
+/// collisions and the intersections at the same time, so those two
+/// overlap and `total` is less than the sum.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timings {
     pub collisions: f64,
@@ -112,6 +114,29 @@ pub struct Outcome {
     pub vertex_origin: Vec<u32>,
 }
 
+/// The static intersections at the end positions (§3.3), with the edges
+/// and identities the later stages share. It does not depend on the
+/// collisions, so a frame computes both at once.
+pub(crate) struct Geometry {
+    edges: Edges,
+    ids: Vec<u32>,
+    x: Intersections,
+    t_intersect: f64,
+}
+
+pub(crate) fn geometry_stage(mesh: &TriMesh, end: &[DVec3]) -> Result<Geometry, TopoError> {
+    let t = Instant::now();
+    let (edges, ids) = rayon::join(|| Edges::new(mesh), || position_classes(end));
+    let ids = ids?;
+    let x = intersections(mesh, end, &edges, &ids)?;
+    Ok(Geometry {
+        edges,
+        ids,
+        x,
+        t_intersect: t.elapsed().as_secs_f64(),
+    })
+}
+
 /// The static half of the pipeline at given end positions, shared by the
 /// one-frame run, the accumulator's preview and its release.
 pub(crate) struct Static {
@@ -130,11 +155,24 @@ pub(crate) fn static_stage(
     raw: &[bool],
     scheme: Scheme,
 ) -> Result<Static, TopoError> {
-    let t = Instant::now();
-    let edges = Edges::new(mesh);
-    let ids = position_classes(end)?;
-    let x = intersections(mesh, end, &edges, &ids)?;
-    let t_intersect = t.elapsed().as_secs_f64();
+    let g = geometry_stage(mesh, end)?;
+    Ok(correction_stage(g, mesh, end, raw, scheme))
+}
+
+/// Error correction (§3.4) of `raw` given the intersections.
+fn correction_stage(
+    geometry: Geometry,
+    mesh: &TriMesh,
+    end: &[DVec3],
+    raw: &[bool],
+    scheme: Scheme,
+) -> Static {
+    let Geometry {
+        edges,
+        ids,
+        x,
+        t_intersect,
+    } = geometry;
     let t = Instant::now();
     let w = Weights::new(mesh, end, &edges);
     let g = Graph {
@@ -146,7 +184,7 @@ pub(crate) fn static_stage(
         total_area: w.total_area,
     };
     let c = correct(&g, raw, scheme);
-    Ok(Static {
+    Static {
         edges,
         ids,
         x,
@@ -154,7 +192,7 @@ pub(crate) fn static_stage(
         solved: c.solved_components,
         t_intersect,
         t_correct: t.elapsed().as_secs_f64(),
-    })
+    }
 }
 
 pub(crate) fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
@@ -250,7 +288,23 @@ pub(crate) fn finish(
     options: &Options,
     started: Instant,
 ) -> Result<Outcome, TopoError> {
-    let s = static_stage(mesh, end, &raw, options.scheme)?;
+    let g = geometry_stage(mesh, end)?;
+    finish_with(mesh, start, end, raw, collisions, options, started, g)
+}
+
+/// [`finish`] with the intersections already found.
+#[allow(clippy::too_many_arguments)]
+fn finish_with(
+    mesh: &TriMesh,
+    start: &[DVec3],
+    end: &[DVec3],
+    raw: Vec<bool>,
+    collisions: (usize, u64, f64),
+    options: &Options,
+    started: Instant,
+    geometry: Geometry,
+) -> Result<Outcome, TopoError> {
+    let s = correction_stage(geometry, mesh, end, &raw, options.scheme);
     let t = Instant::now();
     let sampler = PointSampler {
         start,
@@ -332,19 +386,24 @@ pub fn topology_change(
 ) -> Result<Outcome, TopoError> {
     let started = Instant::now();
     check(mesh, end)?;
-    let t = Instant::now();
-    let ccd = vertex_parities(
-        &mesh.positions,
-        end,
-        &mesh.triangles,
-        &ccd_options(options, 0),
-    )?;
-    let collisions = (
-        ccd.odd_pairs.len(),
-        ccd.candidates,
-        t.elapsed().as_secs_f64(),
+    // Collisions need the motion, intersections only the end: both at
+    // once (each is parallel inside, but has sequential stretches).
+    let (ccd, geometry) = rayon::join(
+        || {
+            let t = Instant::now();
+            vertex_parities(
+                &mesh.positions,
+                end,
+                &mesh.triangles,
+                &ccd_options(options, 0),
+            )
+            .map(|c| (c, t.elapsed().as_secs_f64()))
+        },
+        || geometry_stage(mesh, end),
     );
-    finish(
+    let (ccd, t_ccd) = ccd?;
+    let collisions = (ccd.odd_pairs.len(), ccd.candidates, t_ccd);
+    finish_with(
         mesh,
         &mesh.positions,
         end,
@@ -352,6 +411,7 @@ pub fn topology_change(
         collisions,
         options,
         started,
+        geometry?,
     )
 }
 

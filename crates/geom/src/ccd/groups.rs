@@ -23,6 +23,7 @@
 //! frame change and of the grouping, so no colliding pair is missed.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::bvh::{Aabb, Bvh};
 use crate::error::GeomError;
@@ -133,21 +134,23 @@ impl Groups {
         for (t, &g) in self.triangle_group.iter().enumerate() {
             tris_of[g as usize].push(t as u32);
         }
-        let mut pairs = Vec::new();
+        // The (triangle group, vertex group) pairs to stream, then their
+        // hierarchies built side by side.
+        let mut jobs: Vec<(usize, usize)> = Vec::new();
         for (gt, tri_ids) in tris_of.iter().enumerate() {
-            let dt = self.displacement[gt];
-            if tri_ids.is_empty() {
-                continue;
-            }
             for (gv, members) in verts_of.iter().enumerate() {
-                if gv == gt && self.exact[gt] {
-                    // Equal displacements: every pair would be skipped.
-                    continue;
+                // Equal displacements: every pair would be skipped.
+                let rigid_self = gv == gt && self.exact[gt];
+                if !rigid_self && !tri_ids.is_empty() && !members.is_empty() {
+                    jobs.push((gt, gv));
                 }
-                let verts = members.clone();
-                if verts.is_empty() {
-                    continue;
-                }
+            }
+        }
+        let pairs = jobs
+            .par_iter()
+            .map(|&(gt, gv)| {
+                let dt = self.displacement[gt];
+                let tri_ids = &tris_of[gt];
                 let r = self.displacement[gv] - dt;
                 let frame = Frame::along(r);
                 // Triangles in the frame of their group: the box of their
@@ -165,16 +168,16 @@ impl Groups {
                     })
                     .collect();
                 let bvh = Bvh::build(&tri_boxes)?;
-                pairs.push(PairSet {
+                Ok(PairSet {
                     frame,
                     dt,
-                    verts,
+                    verts: verts_of[gv].clone(),
                     tri_ids: tri_ids.clone(),
                     bvh,
                     margin,
-                });
-            }
-        }
+                })
+            })
+            .collect::<Result<Vec<PairSet>, GeomError>>()?;
         Ok(Prepared { pairs })
     }
 }
