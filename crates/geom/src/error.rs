@@ -32,4 +32,7 @@ pub enum GeomError {
     /// More elements than the 32-bit indices of this crate can address.
     #[error("too many elements: {0} (at most 2^31)")]
     TooMany(usize),
+    /// The caller's cancel flag was raised while the work ran.
+    #[error("cancelled")]
+    Cancelled,
 }

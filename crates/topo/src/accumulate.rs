@@ -125,7 +125,7 @@ impl Accumulator {
         );
         if !region.worth_it() {
             return Ok(
-                static_stage(&self.mesh, &self.current, &self.raw, self.options.scheme)?.corrected,
+                static_stage(&self.mesh, &self.current, &self.raw, &self.options)?.corrected,
             );
         }
         let sub = region.submesh(&self.mesh.positions);
@@ -133,7 +133,7 @@ impl Accumulator {
             &sub,
             &region.gather(&self.current),
             &region.gather(&self.raw),
-            self.options.scheme,
+            &self.options,
         )?;
         Ok(region.scatter(&s.corrected, n, false))
     }
@@ -169,7 +169,7 @@ impl Accumulator {
                 &self.options,
                 started,
             )?;
-            match region.resolve(&self.mesh, &self.current, &out) {
+            match region.resolve(&self.mesh, &self.current, &out, self.options.solid_guard) {
                 (report, Spliced::PositionsOnly) => {
                     let mesh = TriMesh {
                         positions: self.current,

@@ -35,7 +35,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use crate::intersect::{Intersections, Node, PointKind};
+use crate::intersect::{Intersections, Node, PointKind, shared_ids};
 use crate::mesh::{Edges, TriMesh};
 
 /// What the subdivision did.
@@ -55,6 +55,9 @@ pub struct CutReport {
     pub undecided: usize,
     /// Regions without an input vertex whose parity was sampled.
     pub sampled_regions: usize,
+    /// The parity result of a solid input was not closed, and the regions
+    /// were labelled by containment number instead (`crate::solid`).
+    pub solid_relabelled: bool,
     /// Curve pieces that could not be inserted into their chart (spade
     /// failed on a rounding-induced crossing); 0 in every test case.
     pub dropped_constraints: usize,
@@ -329,12 +332,23 @@ pub fn cut(
             }
         }
     }
-    // False vertices and edges.
+    // Vertices a kept curve passes through (module docs, step 3).
+    let shared_ids = shared_ids(
+        x.pieces
+            .iter()
+            .zip(&kept_piece)
+            .filter(|(_, k)| **k)
+            .map(|(piece, _)| piece),
+    );
+    let on_shared = |v: u32| shared_ids.binary_search(&ids[v as usize]).is_ok();
+    // False vertices and edges. A vertex on a curve has no side, so an
+    // edge to it never gets one: its parity says nothing.
     let mut false_vertex = vec![NONE; edges.len()];
     let mut false_edges: Vec<Option<[u32; 2]>> = vec![None; nt];
     if let Some(odd) = odd {
         for (e, &[a, b]) in edges.ends.iter().enumerate() {
-            if odd[a as usize] != odd[b as usize] && !cut_edge[e] {
+            if odd[a as usize] != odd[b as usize] && !cut_edge[e] && !on_shared(a) && !on_shared(b)
+            {
                 false_vertex[e] = out_positions.len() as u32;
                 out_positions.push((positions[a as usize] + positions[b as usize]) * 0.5);
                 on_edge[e].push((false_vertex[e], 0.5));
@@ -526,19 +540,6 @@ pub fn cut(
     // one identity): the sheets' copies of that vertex are one point of the
     // curve, glued like the constructed points. Such a vertex lies on the
     // cut, so it has no side and does not vote in the labelling.
-    let mut shared_ids: Vec<u32> = x
-        .pieces
-        .iter()
-        .zip(&kept_piece)
-        .filter(|(_, k)| **k)
-        .flat_map(|(piece, _)| piece.ends)
-        .filter_map(|node| match node {
-            Node::Shared(id) => Some(id),
-            Node::Point(_) => None,
-        })
-        .collect();
-    shared_ids.sort_unstable();
-    shared_ids.dedup();
     if !shared_ids.is_empty() {
         let mut first_of_id: HashMap<u32, u32> = HashMap::new();
         for v in 0..n as u32 {

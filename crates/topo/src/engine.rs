@@ -7,20 +7,23 @@
 //! over many frames, the corrected field available on demand for live
 //! preview, and the topology change applied once at release.
 
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use glam::DVec3;
 use holey_geom::ccd::{
-    CcdOptions, CcdParity, Identities, MovingPoint, Narrow, vertex_parities, vertex_triangle_parity,
+    CcdOptions, CcdParity, Identities, MovingPoint, Narrow, vertex_parities_cancellable,
+    vertex_triangle_parity,
 };
 use holey_geom::position_classes;
 use holey_geom::{Aabb, Bvh, SymPoint};
 
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, cut};
-use crate::intersect::{Intersections, intersections};
+use crate::intersect::{Intersections, default_pair_limit, intersections, intersections_limited};
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
+use crate::solid::relabel;
 use crate::weights::Weights;
 
 /// Options of the engine.
@@ -38,6 +41,18 @@ pub struct Options {
     /// contain no vertex (Figure 13's failure; the refinement §7
     /// proposes). Off reproduces the paper, which keeps such regions.
     pub refine: bool,
+    /// When a solid (closed, consistently oriented) input comes out not
+    /// closed — a motion that folds the surface makes collision parity
+    /// inconsistent — label the arrangement by containment number instead
+    /// (Lemma 8.1's interpretation; [`crate::solid`]). Off reproduces the
+    /// paper.
+    pub solid_guard: bool,
+    /// Most intersecting triangle pairs a frame may have at its end before
+    /// the engine gives up with an error
+    /// ([`IntersectError::TooManyPairs`](crate::intersect::IntersectError));
+    /// `None` is [`default_pair_limit`](crate::intersect::default_pair_limit)
+    /// of the mesh's triangle count, `Some(usize::MAX)` no limit.
+    pub max_intersecting_pairs: Option<usize>,
 }
 
 impl Default for Options {
@@ -47,6 +62,8 @@ impl Default for Options {
             float_ccd: false,
             orient: true,
             refine: true,
+            solid_guard: true,
+            max_intersecting_pairs: None,
         }
     }
 }
@@ -124,11 +141,19 @@ pub(crate) struct Geometry {
     t_intersect: f64,
 }
 
-pub(crate) fn geometry_stage(mesh: &TriMesh, end: &[DVec3]) -> Result<Geometry, TopoError> {
+pub(crate) fn geometry_stage(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    abort: &AtomicBool,
+) -> Result<Geometry, TopoError> {
     let t = Instant::now();
     let (edges, ids) = rayon::join(|| Edges::new(mesh), || position_classes(end));
     let ids = ids?;
-    let x = intersections(mesh, end, &edges, &ids)?;
+    let limit = options
+        .max_intersecting_pairs
+        .unwrap_or_else(|| default_pair_limit(mesh.triangles.len()));
+    let x = intersections_limited(mesh, end, &edges, &ids, limit, abort)?;
     Ok(Geometry {
         edges,
         ids,
@@ -153,10 +178,10 @@ pub(crate) fn static_stage(
     mesh: &TriMesh,
     end: &[DVec3],
     raw: &[bool],
-    scheme: Scheme,
+    options: &Options,
 ) -> Result<Static, TopoError> {
-    let g = geometry_stage(mesh, end)?;
-    Ok(correction_stage(g, mesh, end, raw, scheme))
+    let g = geometry_stage(mesh, end, options, &AtomicBool::new(false))?;
+    Ok(correction_stage(g, mesh, end, raw, options.scheme))
 }
 
 /// Error correction (§3.4) of `raw` given the intersections.
@@ -193,6 +218,17 @@ fn correction_stage(
         t_intersect,
         t_correct: t.elapsed().as_secs_f64(),
     }
+}
+
+/// Whether `mesh` at `start` has no self-intersection (Theorem 5.1's
+/// premise), stopping at the first intersecting pair.
+fn starts_clear(mesh: &TriMesh, start: &[DVec3]) -> bool {
+    let edges = Edges::new(mesh);
+    let Ok(ids) = position_classes(start) else {
+        return false;
+    };
+    intersections_limited(mesh, start, &edges, &ids, 0, &AtomicBool::new(false))
+        .is_ok_and(|x| x.pairs.is_empty())
 }
 
 pub(crate) fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
@@ -288,7 +324,7 @@ pub(crate) fn finish(
     options: &Options,
     started: Instant,
 ) -> Result<Outcome, TopoError> {
-    let g = geometry_stage(mesh, end)?;
+    let g = geometry_stage(mesh, end, options, &AtomicBool::new(false))?;
     finish_with(mesh, start, end, raw, collisions, options, started, g)
 }
 
@@ -315,8 +351,8 @@ fn finish_with(
     let sample = |k: u32, t: u32, w: [f64; 3]| sampler.parity(k, t, w);
     let Cut {
         mesh: mut out,
-        report: cut_report,
-        origin,
+        report: mut cut_report,
+        mut origin,
     } = cut(
         mesh,
         end,
@@ -326,6 +362,24 @@ fn finish_with(
         Some(&s.corrected),
         if options.refine { Some(&sample) } else { None },
     );
+    // The solid guard: a solid whose parity result is not a solid (open,
+    // or crossed by a curve parity left unresolved, or parity changing
+    // where no curve runs) was folded by the motion; Theorem 5.1 holds
+    // again by labelling with the containment number (crate::solid).
+    let suspicious =
+        || !out.is_closed() || cut_report.curves_dropped > 0 || cut_report.false_vertices > 0;
+    if options.solid_guard
+        && suspicious()
+        && mesh.is_closed_manifold()
+        && starts_clear(mesh, start)
+        && let Some((relabelled, o, deleted)) = relabel(mesh, start, end, &s.edges, &s.ids, &s.x)
+        && relabelled.is_closed()
+    {
+        cut_report.triangles_deleted = deleted;
+        cut_report.solid_relabelled = true;
+        out = relabelled;
+        origin = o;
+    }
     let flips = if options.orient {
         orient_consistently(&mut out)
     } else {
@@ -388,19 +442,24 @@ pub fn topology_change(
     check(mesh, end)?;
     // Collisions need the motion, intersections only the end: both at
     // once (each is parallel inside, but has sequential stretches).
+    // A frame with too many intersections raises `abort` so that the
+    // collision half stops too; its error is the one reported.
+    let abort = AtomicBool::new(false);
     let (ccd, geometry) = rayon::join(
         || {
             let t = Instant::now();
-            vertex_parities(
+            vertex_parities_cancellable(
                 &mesh.positions,
                 end,
                 &mesh.triangles,
                 &ccd_options(options, 0),
+                &abort,
             )
             .map(|c| (c, t.elapsed().as_secs_f64()))
         },
-        || geometry_stage(mesh, end),
+        || geometry_stage(mesh, end, options, &abort),
     );
+    let geometry = geometry?;
     let (ccd, t_ccd) = ccd?;
     let collisions = (ccd.odd_pairs.len(), ccd.candidates, t_ccd);
     finish_with(
@@ -411,7 +470,7 @@ pub fn topology_change(
         collisions,
         options,
         started,
-        geometry?,
+        geometry,
     )
 }
 

@@ -24,6 +24,7 @@
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
 
 use glam::DVec3;
 use holey_geom::{
@@ -85,7 +86,9 @@ pub struct Intersections {
     pub curve_count: usize,
     /// Triangle pairs that intersect along a segment, `t1 < t2`, sorted.
     pub pairs: Vec<(u32, u32)>,
-    /// Mesh edges crossed by some triangle.
+    /// Mesh edges crossed by some triangle, and the edges of vertices a
+    /// curve passes through ([`Node::Shared`]): the edges whose coupling
+    /// error correction drops.
     pub cut_edges: Vec<bool>,
     /// Candidate pairs from the bounding-box pass, and how many the exact
     /// plane-side filter rejected.
@@ -112,6 +115,25 @@ pub enum IntersectError {
         "the intersection point of edge {edge} and triangle {tri} could not be constructed: {reason}"
     )]
     Construction { edge: u32, tri: u32, reason: String },
+    /// More intersecting triangle pairs than the caller allows: every
+    /// pair of them makes a curve piece and every three meeting a triple
+    /// point, so such a surface (a motion that crumples long triangles
+    /// through each other) would hold the engine for minutes.
+    #[error(
+        "the surface intersects itself in more than {limit} triangle pairs ({triangles} triangles); \
+         the motion crumples it too much for one frame: move less per frame or remesh first"
+    )]
+    TooManyPairs { limit: usize, triangles: usize },
+}
+
+/// The default limit on intersecting triangle pairs of a surface with
+/// `triangles` triangles: a million plus eight per triangle. Real
+/// surfaces stay far below it (two 262k-triangle spheres crossing: 2,472
+/// pairs); it stops frames like an unremeshed inflate of a third of the
+/// radius per frame, which made 11.7 million pairs on a 106k-triangle
+/// mesh.
+pub fn default_pair_limit(triangles: usize) -> usize {
+    1_000_000usize.saturating_add(triangles.saturating_mul(8))
 }
 
 /// Orders the triple points `(point, third triangle)` on one intersection
@@ -198,6 +220,28 @@ pub fn intersections(
     edges: &Edges,
     ids: &[u32],
 ) -> Result<Intersections, IntersectError> {
+    intersections_limited(
+        mesh,
+        positions,
+        edges,
+        ids,
+        usize::MAX,
+        &AtomicBool::new(false),
+    )
+}
+
+/// [`intersections`] that stops with [`IntersectError::TooManyPairs`] once
+/// more than `limit` triangle pairs intersect, raising `abort` so that
+/// work running beside it can stop too; it also stops (with the same
+/// error) when `abort` is raised from outside.
+pub fn intersections_limited(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<Intersections, IntersectError> {
     let sym = Symbolic { positions, ids };
     let tris = &mesh.triangles;
     let boxes: Vec<Aabb> = tris
@@ -206,6 +250,7 @@ pub fn intersections(
         .collect();
     let bvh = Bvh::build(&boxes)?;
     let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
+    let hits = AtomicUsize::new(0);
 
     // Exact tests, in parallel, as the descent finds each pair of
     // overlapping boxes; the output keeps the descent's order. Only hits
@@ -213,6 +258,9 @@ pub fn intersections(
     // against 2.5k for two 262k-triangle spheres).
     let (mut segs, candidates): (Vec<(u32, u32, [SegEnd; 2])>, usize) = bvh
         .self_overlaps_filter_map(|t1, t2| {
+            if abort.load(AtomicOrdering::Relaxed) {
+                return None;
+            }
             let (i1, i2) = (tid(t1), tid(t2));
             let s2 = i2.map(|i| i1.contains(&i));
             if s2.iter().filter(|&&s| s).count() >= 2 {
@@ -224,9 +272,20 @@ pub fn intersections(
             if separated(p1, p2, s2) || separated(p2, p1, s1) {
                 return None;
             }
-            triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))
-                .map(|ends| (t1, t2, ends))
+            let seg =
+                triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))?;
+            if hits.fetch_add(1, AtomicOrdering::Relaxed) >= limit {
+                abort.store(true, AtomicOrdering::Relaxed);
+                return None;
+            }
+            Some((t1, t2, seg))
         });
+    if abort.load(AtomicOrdering::Relaxed) {
+        return Err(IntersectError::TooManyPairs {
+            limit,
+            triangles: tris.len(),
+        });
+    }
     let filtered = candidates - segs.len();
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));
@@ -447,6 +506,21 @@ pub fn intersections(
             cut_edges[edge as usize] = true;
         }
     }
+    // A curve through a vertex both triangles share (a fold's branch
+    // point, or sheets meeting at a welded vertex) puts that vertex on the
+    // curve even after perturbation: it has no side, so its edges carry no
+    // coupling either.
+    let shared = shared_ids(&pieces);
+    if !shared.is_empty() {
+        for (e, ends) in edges.ends.iter().enumerate() {
+            if ends
+                .iter()
+                .any(|&v| shared.binary_search(&ids[v as usize]).is_ok())
+            {
+                cut_edges[e] = true;
+            }
+        }
+    }
     Ok(Intersections {
         points,
         pieces,
@@ -457,6 +531,22 @@ pub fn intersections(
         candidates,
         filtered,
     })
+}
+
+/// The identities of the vertices that curve pieces pass through
+/// ([`Node::Shared`]), sorted and without repeats.
+pub fn shared_ids<'a>(pieces: impl IntoIterator<Item = &'a Piece>) -> Vec<u32> {
+    let mut ids: Vec<u32> = pieces
+        .into_iter()
+        .flat_map(|piece| piece.ends)
+        .filter_map(|node| match node {
+            Node::Shared(id) => Some(id),
+            Node::Point(_) => None,
+        })
+        .collect();
+    ids.sort_unstable();
+    ids.dedup();
+    ids
 }
 
 #[cfg(test)]

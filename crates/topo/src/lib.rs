@@ -11,6 +11,7 @@ pub mod intersect;
 pub mod local;
 pub mod mesh;
 pub mod orient;
+mod solid;
 pub mod weights;
 
 pub use accumulate::Accumulator;

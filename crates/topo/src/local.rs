@@ -22,7 +22,7 @@
 //! the frame is recomputed on the whole mesh. Correctness never depends
 //! on the region; only speed does.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use glam::DVec3;
 
@@ -227,8 +227,17 @@ impl Region {
 
     /// The report of the engine's run `out` on the region of `mesh`, and
     /// what its output means for the whole mesh (at `end` outside the
-    /// region).
-    pub fn resolve(&self, mesh: &TriMesh, end: &[DVec3], out: &Outcome) -> (LocalReport, Spliced) {
+    /// region). With `solid_guard` (the engine option), an output that
+    /// opens a hole in a closed, consistently oriented mesh is not spliced:
+    /// the region is only a patch of the solid, so the guard
+    /// ([`crate::solid`]) can only run on the whole mesh.
+    pub fn resolve(
+        &self,
+        mesh: &TriMesh,
+        end: &[DVec3],
+        out: &Outcome,
+        solid_guard: bool,
+    ) -> (LocalReport, Spliced) {
         let n = mesh.positions.len();
         let mut report = LocalReport {
             report: out.report.clone(),
@@ -246,6 +255,11 @@ impl Region {
         ) {
             report.positions_only = true;
             Spliced::PositionsOnly
+        } else if solid_guard
+            && self.opens(&out.mesh, &out.vertex_origin)
+            && mesh.is_closed_manifold()
+        {
+            Spliced::NotExact
         } else {
             match self.splice(mesh, end, &out.mesh, &out.vertex_origin) {
                 Some(m) => Spliced::Mesh(m),
@@ -253,6 +267,36 @@ impl Region {
             }
         };
         (report, spliced)
+    }
+
+    /// Whether the engine's output `out` (`origin` as for
+    /// [`Region::splice`]) has a boundary edge that is not one of the
+    /// region's own: an edge at a new point, or between region vertices
+    /// that the region's triangles do not leave open.
+    fn opens(&self, out: &TriMesh, origin: &[u32]) -> bool {
+        let boundary = |tris: &mut dyn Iterator<Item = [u32; 3]>| {
+            let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+            for t in tris {
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    *count.entry((a.min(b), a.max(b))).or_default() += 1;
+                }
+            }
+            count
+                .into_iter()
+                .filter(|&(_, c)| c == 1)
+                .map(|(e, _)| e)
+                .collect::<Vec<_>>()
+        };
+        let own: HashSet<(u32, u32)> = boundary(&mut self.triangles.iter().copied())
+            .into_iter()
+            .collect();
+        boundary(&mut out.triangles.iter().copied())
+            .into_iter()
+            .any(|(a, b)| {
+                let (a, b) = (origin[a as usize], origin[b as usize]);
+                a == u32::MAX || b == u32::MAX || !own.contains(&(a.min(b), a.max(b)))
+            })
     }
 
     /// The mesh with the region replaced by the engine's output `out`
@@ -347,7 +391,7 @@ pub fn topology_change_local(
     }
     let sub = region.submesh(&mesh.positions);
     let out = topology_change(&sub, &region.gather(end), options)?;
-    let (report, spliced) = region.resolve(mesh, end, &out);
+    let (report, spliced) = region.resolve(mesh, end, &out, options.solid_guard);
     match spliced {
         Spliced::PositionsOnly => mesh.positions.copy_from_slice(end),
         Spliced::Mesh(m) => *mesh = m,

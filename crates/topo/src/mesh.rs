@@ -43,24 +43,43 @@ impl TriMesh {
     /// directions, and no triangle with a repeated vertex: a closed,
     /// consistently oriented 2-manifold along its edges.
     pub fn is_closed_manifold(&self) -> bool {
-        // Each side as its undirected key and its direction. Sorted, a
-        // closed manifold gives runs of exactly two sides, one each way.
+        self.sorted_sides().is_some_and(|sides| {
+            sides
+                .par_chunks(2)
+                .all(|c| c.len() == 2 && c[0].0 == c[1].0 && c[0].1 != c[1].1)
+                && sides.par_windows(3).all(|w| w[0].0 != w[2].0)
+        })
+    }
+
+    /// Every undirected edge used by exactly two triangles and no triangle
+    /// with a repeated vertex, whatever the orientations: closed and
+    /// manifold along its edges.
+    pub fn is_closed(&self) -> bool {
+        self.sorted_sides().is_some_and(|sides| {
+            sides
+                .par_chunks(2)
+                .all(|c| c.len() == 2 && c[0].0 == c[1].0)
+                && sides.par_windows(3).all(|w| w[0].0 != w[2].0)
+        })
+    }
+
+    /// Each side as its undirected key and its direction, sorted; `None`
+    /// if a triangle repeats a vertex. On a closed manifold they come in
+    /// runs of exactly two.
+    fn sorted_sides(&self) -> Option<Vec<(u64, bool)>> {
         let mut sides: Vec<(u64, bool)> = Vec::with_capacity(3 * self.triangles.len());
         for t in &self.triangles {
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 if a == b {
-                    return false;
+                    return None;
                 }
                 let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
                 sides.push((key, a < b));
             }
         }
         sides.par_sort_unstable();
-        sides
-            .par_chunks(2)
-            .all(|c| c.len() == 2 && c[0].0 == c[1].0 && c[0].1 != c[1].1)
-            && sides.par_windows(3).all(|w| w[0].0 != w[2].0)
+        Some(sides)
     }
 
     /// The mesh without the vertices no triangle uses, the others kept in

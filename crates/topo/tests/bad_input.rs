@@ -131,3 +131,39 @@ fn huge_finite_coordinates_do_not_panic() {
         }
     }
 }
+
+/// A frame whose end crumples the surface into more intersecting pairs
+/// than the limit is refused with a message saying so, from the one-frame
+/// engine, its local twin and the accumulator's release alike; the mesh
+/// handed to the local engine is left as it was.
+#[test]
+fn too_many_intersecting_pairs_is_an_error() {
+    let a = primitive("@sphere:2");
+    let b = translate(&a, DVec3::new(0.6, 0.05, 0.02));
+    let start = join(&a, &translate(&b, DVec3::new(4.0, 0.0, 0.0)));
+    let end: Vec<DVec3> = a.positions.iter().chain(&b.positions).copied().collect();
+    let options = Options {
+        max_intersecting_pairs: Some(5),
+        ..Options::default()
+    };
+    let check = |e: String| assert!(e.contains("more than 5 triangle pairs"), "{e}");
+    match topology_change(&start, &end, &options) {
+        Ok(_) => panic!("a limit of 5 pairs must stop this union"),
+        Err(e) => check(e.to_string()),
+    }
+    let mut local = start.clone();
+    match holey_topo::topology_change_local(&mut local, &end, &options) {
+        Ok(_) => panic!("the local engine must stop too"),
+        Err(e) => check(e.to_string()),
+    }
+    assert_eq!(local.positions, start.positions);
+    assert_eq!(local.triangles, start.triangles);
+    let mut acc = Accumulator::new(start.clone(), options).unwrap();
+    acc.advance(&end).unwrap();
+    match acc.release() {
+        Ok(_) => panic!("the release must stop too"),
+        Err(e) => check(e.to_string()),
+    }
+    // Without the limit the same union goes through.
+    assert!(topology_change(&start, &end, &Options::default()).is_ok());
+}

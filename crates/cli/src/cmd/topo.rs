@@ -50,6 +50,11 @@ pub struct EngineArgs {
     /// their parity at a new point.
     #[arg(long)]
     pub no_refine: bool,
+    /// Keep the parity result of a solid input even when it is not closed,
+    /// as the paper does, instead of labelling the cut surface by
+    /// containment number (motions that fold the surface).
+    #[arg(long)]
+    pub no_solid_guard: bool,
     /// Write the input at its end positions coloured by parity (PLY):
     /// grey even, red odd, yellow odd only before correction, blue odd only
     /// after it.
@@ -67,6 +72,8 @@ impl EngineArgs {
             float_ccd: self.float_ccd,
             orient: !self.keep_orientation,
             refine: !self.no_refine,
+            solid_guard: !self.no_solid_guard,
+            max_intersecting_pairs: None,
         }
     }
 }

@@ -58,6 +58,7 @@ use crate::sos::SymPoint;
 use glam::DVec3;
 use groups::Groups;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Which narrow phase to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -163,6 +164,19 @@ pub fn vertex_parities(
     tris: &[[u32; 3]],
     opts: &CcdOptions,
 ) -> Result<CcdReport, GeomError> {
+    vertex_parities_cancellable(start, end, tris, opts, &AtomicBool::new(false))
+}
+
+/// [`vertex_parities`] that gives up with [`GeomError::Cancelled`] once
+/// `cancel` is raised (checked between chunks of work), so a caller
+/// running it beside another stage can stop it when that stage fails.
+pub fn vertex_parities_cancellable(
+    start: &[DVec3],
+    end: &[DVec3],
+    tris: &[[u32; 3]],
+    opts: &CcdOptions,
+    cancel: &AtomicBool,
+) -> Result<CcdReport, GeomError> {
     check_input(start, end, tris)?;
     let n = start.len();
     let (sid, eid) = match opts.identities {
@@ -239,6 +253,9 @@ pub fn vertex_parities(
                     .par_chunks(CHUNK)
                     .map(|chunk| {
                         let mut part: Part = Default::default();
+                        if cancel.load(Ordering::Relaxed) {
+                            return part;
+                        }
                         for &v in chunk {
                             set.candidates(v, start, end, |t| test(v, t, &mut part));
                         }
@@ -258,6 +275,9 @@ pub fn vertex_parities(
             .enumerate()
             .map(|(ci, chunk)| {
                 let mut part: Part = Default::default();
+                if cancel.load(Ordering::Relaxed) {
+                    return part;
+                }
                 for (k, tri) in chunk.iter().enumerate() {
                     let t = (ci * CHUNK + k) as u32;
                     let bb = Aabb::from_points(&[
@@ -274,6 +294,9 @@ pub fn vertex_parities(
             })
             .collect()
     };
+    if cancel.load(Ordering::Relaxed) {
+        return Err(GeomError::Cancelled);
+    }
     let mut report = CcdReport {
         odd: vec![false; n],
         ..Default::default()

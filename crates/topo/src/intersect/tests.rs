@@ -104,6 +104,40 @@ fn two_octahedra_meet_in_one_closed_curve() {
     assert_eq!(x.pieces.len(), x.points.len());
 }
 
+/// The pair limit: exactly `limit` intersecting pairs pass, one more
+/// stops with `TooManyPairs` and raises the abort flag; a flag raised from
+/// outside stops it too.
+#[test]
+fn the_pair_limit_stops_the_stage() {
+    let m = join(
+        &octahedron(DVec3::ZERO, 1.0),
+        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
+    );
+    let pairs = run(&m).pairs.len();
+    assert!(pairs > 2);
+    let edges = Edges::new(&m);
+    let ids = position_classes(&m.positions).unwrap();
+    let flag = AtomicBool::new(false);
+    let x = intersections_limited(&m, &m.positions, &edges, &ids, pairs, &flag).unwrap();
+    assert_eq!(x.pairs.len(), pairs);
+    assert!(!flag.load(AtomicOrdering::Relaxed));
+    let err = intersections_limited(&m, &m.positions, &edges, &ids, pairs - 1, &flag).unwrap_err();
+    assert_eq!(
+        err,
+        IntersectError::TooManyPairs {
+            limit: pairs - 1,
+            triangles: m.triangles.len()
+        }
+    );
+    assert!(flag.load(AtomicOrdering::Relaxed));
+    assert!(err.to_string().contains("move less per frame"));
+    // Raised from outside: stops at once.
+    let raised = AtomicBool::new(true);
+    assert!(intersections_limited(&m, &m.positions, &edges, &ids, usize::MAX, &raised).is_err());
+    assert!(default_pair_limit(100) > 1_000_000);
+    assert_eq!(default_pair_limit(usize::MAX), usize::MAX);
+}
+
 #[test]
 fn three_planes_make_a_triple_point() {
     // Three big triangles through the origin in the coordinate planes.

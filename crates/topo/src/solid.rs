@@ -1,0 +1,199 @@
+//! The containment-number labelling of a solid's arrangement: the guard
+//! that keeps a solid solid when the motion folds the surface.
+//!
+//! Appendix C proves Theorem 5.1 through Lemma 8.1: for a solid (closed,
+//! outward-oriented) surface under a deformation in general position,
+//! collision parity deletes exactly the surface whose two sides have
+//! equal "inside" status under the *modulo interpretation* of the
+//! containment number ω (inside iff ω ≡ 1 or 2 mod 4). Since ω drops by
+//! one across the surface in the direction of its normal, a piece of
+//! surface is kept iff ω on its inner side, ω⁻, is odd:
+//! (ω⁻, ω⁺) = (1, 0) and (3, 2) are kept, (2, 1) and (0, −1) deleted.
+//!
+//! The lemma needs every point's collisions to change ω on its two sides
+//! alike. A motion that *folds* the surface — a triangle swung through its
+//! neighbour, a vertex fan turned into a figure eight — breaks that: the
+//! folded-through points collide, yet no static intersection separates
+//! them from their neighbours, and the fold leaves intersection curves
+//! that end at branch points (Whitney umbrellas). The collision parity is
+//! then inconsistent on the surface, error correction has no consistent
+//! field to find, and the result can come out open.
+//!
+//! ω itself needs no motion: it is a function of the final surface. So
+//! for a solid input whose parity result is not closed, the engine labels
+//! the arrangement (the surface cut and glued along every intersection
+//! curve, [`crate::resolve`]) directly: each region between curves gets
+//! the parity of ω⁻ from one ray cast to infinity, decided exactly with
+//! simulation of simplicity. The kept regions bound {ω ≡ 1, 2 mod 4}, so
+//! the result is closed by construction, and for a motion that does not
+//! fold it is the result Lemma 8.1 says parity gives.
+
+use glam::DVec3;
+use holey_geom::{Aabb, Bvh, SymPoint, position_classes, segment_triangle_intersect};
+
+use crate::cut::cut;
+use crate::intersect::Intersections;
+use crate::mesh::{Edges, TriMesh};
+
+/// For each triangle of `arrangement` (a closed surface cut and glued
+/// along all its self-intersections, triangles oriented as the solid
+/// they came from; `outward` says whether that orientation points out of
+/// the solid): whether it bounds {ω ≡ 1, 2 mod 4}. `None` when the
+/// labelling cannot be trusted (coordinates too large for a ray to leave
+/// the scene).
+pub(crate) fn keep_by_containment(arrangement: &TriMesh, outward: bool) -> Option<Vec<bool>> {
+    let tris = &arrangement.triangles;
+    let pos = &arrangement.positions;
+    if tris.is_empty() {
+        return Some(Vec::new());
+    }
+    let region = regions(arrangement);
+    let count = region.iter().copied().max().map_or(0, |r| r as usize + 1);
+    // The largest triangle of each region carries its ray: its centroid is
+    // farthest from the curves that bound the region.
+    let area = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|v| pos[v as usize]);
+        (b - a).cross(c - a).length()
+    };
+    let mut seed: Vec<Option<(f64, u32)>> = vec![None; count];
+    for (t, tri) in tris.iter().enumerate() {
+        let r = region[t] as usize;
+        let a = area(tri);
+        if seed[r].is_none_or(|(best, _)| a > best) {
+            seed[r] = Some((a, t as u32));
+        }
+    }
+    let ids = position_classes(pos).ok()?;
+    let boxes: Vec<Aabb> = tris
+        .iter()
+        .map(|t| Aabb::from_points(&t.map(|v| pos[v as usize])))
+        .collect();
+    let bvh = Bvh::build(&boxes).ok()?;
+    let bounds = bvh.bounds();
+    let span = (bounds.max.x - bounds.min.x)
+        .max(bounds.max.x.abs())
+        .max(1.0);
+    let far_x = bounds.max.x + span;
+    if !far_x.is_finite() {
+        return None;
+    }
+    // Fresh identities for the two ends of every ray.
+    let ray_id = u32::try_from(pos.len()).ok()?;
+    let sym = |v: u32| SymPoint::new(pos[v as usize], ids[v as usize]);
+    let mut keep_region = vec![false; count];
+    for (r, s) in seed.iter().enumerate() {
+        let Some((_, s)) = *s else { continue };
+        let tri = tris[s as usize];
+        let c = tri.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / 3.0;
+        let start = SymPoint::new(c, ray_id);
+        let end = SymPoint::new(DVec3::new(far_x, c.y, c.z), ray_id + 1);
+        // Crossings of the ray from the (perturbed) start, its own
+        // triangle included: their parity is ω's at the start.
+        let mut crossings = 0u32;
+        bvh.for_each_overlap(&Aabb::new(c, end.pos), |t| {
+            let [a, b, d] = tris[t as usize].map(sym);
+            if segment_triangle_intersect(start, end, a, b, d) {
+                crossings += 1;
+            }
+        });
+        // Which side of its triangle the perturbed start lies on: the
+        // orientation is positive on the side opposite the normal.
+        let [a, b, d] = tri.map(sym);
+        let behind = holey_geom::orient3d_sos(a, b, d, start) == holey_geom::SosSign::Positive;
+        let inner = behind == outward;
+        let omega_odd = crossings % 2 == 1;
+        // ω⁻ = ω at the start if the start is on the inner side, else ω + 1.
+        keep_region[r] = if inner { omega_odd } else { !omega_odd };
+    }
+    Some(region.iter().map(|&r| keep_region[r as usize]).collect())
+}
+
+/// Regions of the arrangement: triangles joined across edges that exactly
+/// two triangles share (curve edges are shared by four or more, so the
+/// curves bound the regions).
+fn regions(mesh: &TriMesh) -> Vec<u32> {
+    let edges = Edges::new(mesh);
+    let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+    fn find(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let up = parent[parent[x as usize] as usize];
+            parent[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    for e in 0..edges.ends.len() {
+        if let [t, u] = *edges.triangles(e) {
+            let (a, b) = (find(&mut parent, t), find(&mut parent, u));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let mut label = vec![u32::MAX; parent.len()];
+    let mut next = 0;
+    (0..parent.len() as u32)
+        .map(|t| {
+            let root = find(&mut parent, t) as usize;
+            if label[root] == u32::MAX {
+                label[root] = next;
+                next += 1;
+            }
+            label[root]
+        })
+        .collect()
+}
+
+/// Signed volume of a closed triangle mesh (positive when its triangles
+/// face outward), by the divergence theorem.
+pub(crate) fn signed_volume(positions: &[DVec3], triangles: &[[u32; 3]]) -> f64 {
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| positions[v as usize]);
+            a.dot(b.cross(c))
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+/// The solid's result by containment number: the arrangement of `mesh` at
+/// `end` (from the intersections `x`), its regions kept by
+/// [`keep_by_containment`]. `start` gives the outward orientation. Returns
+/// the mesh and, per output vertex, the input vertex it is (`u32::MAX` for
+/// a point the cut made), and how many triangles of the arrangement were
+/// deleted; `None` if the labelling is not available.
+pub(crate) fn relabel(
+    mesh: &TriMesh,
+    start: &[DVec3],
+    end: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    x: &Intersections,
+) -> Option<(TriMesh, Vec<u32>, usize)> {
+    let volume = signed_volume(start, &mesh.triangles);
+    if !volume.is_finite() || volume == 0.0 {
+        return None;
+    }
+    let arrangement = cut(mesh, end, edges, ids, x, None, None);
+    let keep = keep_by_containment(&arrangement.mesh, volume > 0.0)?;
+    let deleted = keep.iter().filter(|&&k| !k).count();
+    let kept: Vec<[u32; 3]> = arrangement
+        .mesh
+        .triangles
+        .iter()
+        .zip(&keep)
+        .filter(|(_, k)| **k)
+        .map(|(t, _)| *t)
+        .collect();
+    let (out, local) = TriMesh {
+        positions: arrangement.mesh.positions,
+        triangles: kept,
+    }
+    .compacted_with_origin();
+    let origin = local
+        .iter()
+        .map(|&v| arrangement.origin[v as usize])
+        .collect();
+    Some((out, origin, deleted))
+}
