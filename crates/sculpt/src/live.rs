@@ -17,7 +17,7 @@ use glam::DVec3;
 use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_local};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
-use crate::remesh::{RemeshOptions, RemeshReport, remesh_in_place};
+use crate::remesh::{RemeshOptions, RemeshReport, remesh_in_place_checked};
 use crate::report::{Diagnostics, SculptError, StrokeReport};
 
 /// The share of the bounding-box diagonal within which a move's first
@@ -215,7 +215,7 @@ impl LiveStroke {
                         .map(|p| p.distance(point) < radius)
                         .collect();
                     if active.contains(&true) {
-                        let r = remesh_in_place(mesh, &active, opts).map_err(|source| {
+                        let r = remesh_in_place_checked(mesh, &active, opts).map_err(|source| {
                             SculptError::Remesh {
                                 frame: index,
                                 source,
@@ -311,7 +311,7 @@ impl LiveStroke {
                 .map(|&p| distance_to_segment(p, tube.0, tube.1) < self.settings.radius)
                 .collect();
             if active.contains(&true) {
-                let r = remesh_in_place(&mut mesh, &active, opts).map_err(|source| {
+                let r = remesh_in_place_checked(&mut mesh, &active, opts).map_err(|source| {
                     SculptError::Remesh {
                         frame: last,
                         source,

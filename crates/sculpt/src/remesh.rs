@@ -114,6 +114,10 @@ pub struct RemeshReport {
     pub loaded_triangles: usize,
     /// True when [`RemeshOptions::max_splits`] stopped the splitting.
     pub split_budget_exhausted: bool,
+    /// True when [`remesh_in_place_checked`] undid the run because it made
+    /// the surface cross itself where it had not (the counts above are
+    /// what the undone run did).
+    pub undone: bool,
     /// Input vertices removed by collapses (input numbering).
     pub removed_vertices: Vec<u32>,
     /// Vertices made by splits (output numbering).
@@ -246,6 +250,75 @@ pub fn remesh_in_place(
     }
     work.store(mesh, &mut report);
     Ok(report)
+}
+
+/// [`remesh_in_place`] that never makes the surface intersect itself
+/// more: a collapse or flip can swing a triangle through a sheet nearby
+/// (the brushed region is often where sheets were just glued), and the
+/// next frame's engine would then start from a self-intersecting surface.
+/// The triangles near the active region are tested exactly before and
+/// after; if the run added intersecting pairs there, it is undone and
+/// [`RemeshReport::undone`] says so.
+pub fn remesh_in_place_checked(
+    mesh: &mut TriMesh,
+    active: &[bool],
+    options: &RemeshOptions,
+) -> Result<RemeshReport, RemeshError> {
+    // Everything a run can touch lies within two edge lengths of the
+    // active vertices' triangles (the work set is their ring).
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let mut reach = 0.0f64;
+    for t in &mesh.triangles {
+        if t.iter()
+            .any(|&v| active.get(v as usize).copied().unwrap_or(false))
+        {
+            for k in 0..3 {
+                let (p, q) = (
+                    mesh.positions[t[k] as usize],
+                    mesh.positions[t[(k + 1) % 3] as usize],
+                );
+                (lo, hi) = (lo.min(p), hi.max(p));
+                reach = reach.max(p.distance(q));
+            }
+        }
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return remesh_in_place(mesh, active, options);
+    }
+    let grow = DVec3::splat(2.0 * reach.max(options.max_edge));
+    let region = (lo - grow, hi + grow);
+    let before = crossings_within(mesh, region);
+    let saved = mesh.clone();
+    let mut report = remesh_in_place(mesh, active, options)?;
+    if report.splits + report.collapses + report.flips > 0
+        && crossings_within(mesh, region) > before
+    {
+        *mesh = saved;
+        report.undone = true;
+    }
+    Ok(report)
+}
+
+/// Intersecting triangle pairs among the triangles whose boxes meet the
+/// box `region` (exact; 0 when the test cannot run).
+fn crossings_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
+    let mut local = vec![u32::MAX; mesh.positions.len()];
+    let mut part = TriMesh::default();
+    for t in &mesh.triangles {
+        let p = t.map(|v| mesh.positions[v as usize]);
+        let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+        if lo.cmpgt(region.1).any() || hi.cmplt(region.0).any() {
+            continue;
+        }
+        part.triangles.push(t.map(|v| {
+            if local[v as usize] == u32::MAX {
+                local[v as usize] = part.positions.len() as u32;
+                part.positions.push(mesh.positions[v as usize]);
+            }
+            local[v as usize]
+        }));
+    }
+    holey_topo::self_intersections(&part).map_or(0, |x| x.pairs.len())
 }
 
 const NONE: u32 = u32::MAX;

@@ -47,8 +47,8 @@ pub struct Options {
     /// (Lemma 8.1's interpretation; [`crate::solid`]). Off reproduces the
     /// paper.
     pub solid_guard: bool,
-    /// Most intersecting triangle pairs a frame may have at its end before
-    /// the engine gives up with an error
+    /// Most intersecting triangle pairs plus candidate triple points a
+    /// frame may have at its end before the engine gives up with an error
     /// ([`IntersectError::TooManyPairs`](crate::intersect::IntersectError));
     /// `None` is [`default_pair_limit`](crate::intersect::default_pair_limit)
     /// of the mesh's triangle count, `Some(usize::MAX)` no limit.

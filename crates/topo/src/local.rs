@@ -247,7 +247,18 @@ impl Region {
             region_triangles: self.count,
             ..LocalReport::default()
         };
-        let spliced = if is_identity(
+        // What would make the whole-mesh run's solid guard step in:
+        // checked first, since a fold can leave a crossing that parity
+        // does not resolve while changing nothing (positions only).
+        let cut = &out.report.cut;
+        let spliced = if solid_guard
+            && (cut.curves_dropped > 0
+                || cut.false_vertices > 0
+                || self.opens(&out.mesh, &out.vertex_origin))
+            && mesh.is_closed_manifold()
+        {
+            Spliced::NotExact
+        } else if is_identity(
             &self.triangles,
             self.global.len(),
             &out.mesh,
@@ -255,11 +266,6 @@ impl Region {
         ) {
             report.positions_only = true;
             Spliced::PositionsOnly
-        } else if solid_guard
-            && self.opens(&out.mesh, &out.vertex_origin)
-            && mesh.is_closed_manifold()
-        {
-            Spliced::NotExact
         } else {
             match self.splice(mesh, end, &out.mesh, &out.vertex_origin) {
                 Some(m) => Spliced::Mesh(m),
