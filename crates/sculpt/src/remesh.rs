@@ -318,7 +318,7 @@ fn crossings_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
             local[v as usize]
         }));
     }
-    holey_topo::self_intersections(&part).map_or(0, |x| x.pairs.len())
+    holey_topo::intersect::intersecting_pair_count(&part, usize::MAX).unwrap_or(0)
 }
 
 const NONE: u32 = u32::MAX;

@@ -84,6 +84,9 @@ impl HasPosition for ChartVertex {
 }
 
 const NONE: u32 = u32::MAX;
+
+/// Most vertex-free regions sampled per cut (see `label`).
+pub const MAX_SAMPLED_REGIONS: usize = 256;
 const CHART: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 
 /// The point of the chart's hypotenuse `u + v = 1` with `v ≈ s`, chosen
@@ -722,13 +725,21 @@ fn label(
         }
     }
     report.diffused = undecided_before - state.iter().filter(|s| s.is_none()).count();
-    // Regions no vertex reaches: one sample each (Figure 13).
+    // Regions no vertex reaches: one sample each (Figure 13), at most
+    // MAX_SAMPLED_REGIONS. A sample is a moving point tested against every
+    // triangle its path passes, so on a crumpled surface (thousands of
+    // vertex-free slivers between curves) sampling them all took minutes;
+    // past the cap regions stay undecided and are kept, as in the paper.
     if let Some(sample) = sample {
-        let mut region = 0u32;
+        let (mut region, mut tried) = (0u32, 0usize);
         for (k, &seed) in undecided.iter().enumerate() {
             if state[seed as usize].is_some() {
                 continue;
             }
+            if tried >= MAX_SAMPLED_REGIONS {
+                break;
+            }
+            tried += 1;
             let (t, [u, v]) = source[seed as usize];
             let Some(parity) = sample(region, t, [1.0 - u - v, u, v]) else {
                 continue;

@@ -111,6 +111,8 @@ impl Intersections {
 pub enum IntersectError {
     #[error("geometry: {0}")]
     Geometry(#[from] holey_geom::GeomError),
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
     #[error(
         "the intersection point of edge {edge} and triangle {tri} could not be constructed: {reason}"
     )]
@@ -217,6 +219,78 @@ fn coord(p: DVec3) -> robust::Coord3D<f64> {
     }
 }
 
+/// An intersection segment of triangles `t1 < t2` and its two ends.
+type Segment = (u32, u32, [SegEnd; 2]);
+
+/// The intersection segments of every pair of triangles (in the BVH
+/// descent's order, possibly repeated) and the number of candidate pairs
+/// tested; [`IntersectError::TooManyPairs`] past `limit` (see
+/// [`intersections_limited`]).
+fn segments(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    ids: &[u32],
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<(Vec<Segment>, usize), IntersectError> {
+    let sym = Symbolic { positions, ids };
+    let tris = &mesh.triangles;
+    let boxes: Vec<Aabb> = tris
+        .iter()
+        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
+        .collect();
+    let bvh = Bvh::build(&boxes)?;
+    let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
+    let hits = AtomicUsize::new(0);
+
+    // Exact tests, in parallel, as the descent finds each pair of
+    // overlapping boxes; the output keeps the descent's order. Only hits
+    // are kept: candidates outnumber hits by orders of magnitude (4.7M
+    // against 2.5k for two 262k-triangle spheres).
+    let (segs, candidates): (Vec<Segment>, usize) = bvh.self_overlaps_filter_map(|t1, t2| {
+        if abort.load(AtomicOrdering::Relaxed) {
+            return None;
+        }
+        let (i1, i2) = (tid(t1), tid(t2));
+        let s2 = i2.map(|i| i1.contains(&i));
+        if s2.iter().filter(|&&s| s).count() >= 2 {
+            return None;
+        }
+        let s1 = i1.map(|i| i2.contains(&i));
+        let p1 = tris[t1 as usize].map(|v| positions[v as usize]);
+        let p2 = tris[t2 as usize].map(|v| positions[v as usize]);
+        if separated(p1, p2, s2) || separated(p2, p1, s1) {
+            return None;
+        }
+        let seg =
+            triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))?;
+        if hits.fetch_add(1, AtomicOrdering::Relaxed) >= limit {
+            abort.store(true, AtomicOrdering::Relaxed);
+            return None;
+        }
+        Some((t1, t2, seg))
+    });
+    if abort.load(AtomicOrdering::Relaxed) {
+        return Err(IntersectError::TooManyPairs {
+            limit,
+            triangles: tris.len(),
+        });
+    }
+    Ok((segs, candidates))
+}
+
+/// How many triangle pairs of `mesh` intersect (exactly, as
+/// [`intersections`] finds them), without building points or curves;
+/// [`IntersectError::TooManyPairs`] once more than `limit` do.
+pub fn intersecting_pair_count(mesh: &TriMesh, limit: usize) -> Result<usize, IntersectError> {
+    mesh.check()?;
+    let ids = holey_geom::position_classes(&mesh.positions)?;
+    let (mut segs, _) = segments(mesh, &mesh.positions, &ids, limit, &AtomicBool::new(false))?;
+    segs.sort_by_key(|s| (s.0, s.1));
+    segs.dedup_by_key(|s| (s.0, s.1));
+    Ok(segs.len())
+}
+
 /// Finds every self-intersection of `mesh` at `positions`, with identities
 /// `ids` (normally [`holey_geom::position_classes`] of `positions`).
 pub fn intersections(
@@ -247,50 +321,10 @@ pub fn intersections_limited(
     limit: usize,
     abort: &AtomicBool,
 ) -> Result<Intersections, IntersectError> {
-    let sym = Symbolic { positions, ids };
     let tris = &mesh.triangles;
-    let boxes: Vec<Aabb> = tris
-        .iter()
-        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
-        .collect();
-    let bvh = Bvh::build(&boxes)?;
+    let sym = Symbolic { positions, ids };
     let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
-    let hits = AtomicUsize::new(0);
-
-    // Exact tests, in parallel, as the descent finds each pair of
-    // overlapping boxes; the output keeps the descent's order. Only hits
-    // are kept: candidates outnumber hits by orders of magnitude (4.7M
-    // against 2.5k for two 262k-triangle spheres).
-    let (mut segs, candidates): (Vec<(u32, u32, [SegEnd; 2])>, usize) = bvh
-        .self_overlaps_filter_map(|t1, t2| {
-            if abort.load(AtomicOrdering::Relaxed) {
-                return None;
-            }
-            let (i1, i2) = (tid(t1), tid(t2));
-            let s2 = i2.map(|i| i1.contains(&i));
-            if s2.iter().filter(|&&s| s).count() >= 2 {
-                return None;
-            }
-            let s1 = i1.map(|i| i2.contains(&i));
-            let p1 = tris[t1 as usize].map(|v| positions[v as usize]);
-            let p2 = tris[t2 as usize].map(|v| positions[v as usize]);
-            if separated(p1, p2, s2) || separated(p2, p1, s1) {
-                return None;
-            }
-            let seg =
-                triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))?;
-            if hits.fetch_add(1, AtomicOrdering::Relaxed) >= limit {
-                abort.store(true, AtomicOrdering::Relaxed);
-                return None;
-            }
-            Some((t1, t2, seg))
-        });
-    if abort.load(AtomicOrdering::Relaxed) {
-        return Err(IntersectError::TooManyPairs {
-            limit,
-            triangles: tris.len(),
-        });
-    }
+    let (mut segs, candidates) = segments(mesh, positions, ids, limit, abort)?;
     let filtered = candidates - segs.len();
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));

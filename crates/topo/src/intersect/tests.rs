@@ -135,6 +135,16 @@ fn the_pair_limit_stops_the_stage() {
     let raised = AtomicBool::new(true);
     assert!(intersections_limited(&m, &m.positions, &edges, &ids, usize::MAX, &raised).is_err());
     assert!(default_pair_limit(100) > 250_000);
+    // The count alone agrees with the full stage, has the same limit, and
+    // refuses a bad index instead of panicking.
+    assert_eq!(intersecting_pair_count(&m, usize::MAX).unwrap(), pairs);
+    assert!(intersecting_pair_count(&m, pairs - 1).is_err());
+    let mut bad = m.clone();
+    bad.triangles[0][1] = 1_000_000;
+    assert!(matches!(
+        intersecting_pair_count(&bad, usize::MAX),
+        Err(IntersectError::Mesh(_))
+    ));
     assert_eq!(default_pair_limit(usize::MAX), usize::MAX);
 }
 
