@@ -27,6 +27,7 @@ use std::collections::{HashMap, HashSet};
 use glam::DVec3;
 
 use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
+use crate::intersect::intersecting_pair_count;
 use crate::mesh::TriMesh;
 
 /// What [`topology_change_local`] and
@@ -250,12 +251,17 @@ impl Region {
         // What would make the whole-mesh run's solid guard step in:
         // checked first, since a fold can leave a crossing that parity
         // does not resolve while changing nothing (positions only).
+        // The region must start free of intersections too, or the whole
+        // mesh does not either and its guard would not apply: a closed
+        // mesh that already crossed itself would otherwise go to the
+        // whole mesh at every frame near its old curves.
         let cut = &out.report.cut;
         let spliced = if solid_guard
             && (cut.curves_dropped > 0
                 || cut.false_vertices > 0
                 || self.opens(&out.mesh, &out.vertex_origin))
             && mesh.is_closed_manifold()
+            && intersecting_pair_count(&self.submesh(&mesh.positions), 0) == Ok(0)
         {
             Spliced::NotExact
         } else if is_identity(
