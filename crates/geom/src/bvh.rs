@@ -137,6 +137,15 @@ pub struct Bvh {
     prims: Vec<u32>,
     /// Their boxes, in the same order.
     prim_boxes: Vec<Aabb>,
+    /// The upward links [`Bvh::refit_some`] walks, built on its first
+    /// call: most hierarchies are built, queried and dropped, and filling
+    /// these three arrays was a tenth of a build.
+    refit_index: Option<RefitIndex>,
+}
+
+/// Links from primitives up to the root.
+#[derive(Clone, Debug)]
+struct RefitIndex {
     /// Slot of each primitive id in `prims`.
     slot_of: Vec<u32>,
     /// Leaf node of each slot's leaf, by slot.
@@ -234,9 +243,7 @@ impl Bvh {
                 nodes: Vec::new(),
                 prims: Vec::new(),
                 prim_boxes: Vec::new(),
-                slot_of: Vec::new(),
-                leaf_of_slot: Vec::new(),
-                parent: Vec::new(),
+                refit_index: None,
             });
         }
         let mut items: Vec<Item> = boxes
@@ -258,13 +265,22 @@ impl Bvh {
         build_rec(&mut items, &mut nodes, 0, 0, boxes, &memo);
         let prims: Vec<u32> = items.iter().map(|it| it.id).collect();
         let prim_boxes: Vec<Aabb> = prims.par_iter().map(|&i| boxes[i as usize]).collect();
-        let mut slot_of = vec![0u32; n];
-        for (s, &p) in prims.iter().enumerate() {
+        Ok(Bvh {
+            nodes,
+            prims,
+            prim_boxes,
+            refit_index: None,
+        })
+    }
+
+    fn make_refit_index(&self) -> RefitIndex {
+        let mut slot_of = vec![0u32; self.prims.len()];
+        for (s, &p) in self.prims.iter().enumerate() {
             slot_of[p as usize] = s as u32;
         }
-        let mut parent = vec![u32::MAX; total];
-        let mut leaf_of_slot = vec![0u32; n];
-        for (i, nd) in nodes.iter().enumerate() {
+        let mut parent = vec![u32::MAX; self.nodes.len()];
+        let mut leaf_of_slot = vec![0u32; self.prims.len()];
+        for (i, nd) in self.nodes.iter().enumerate() {
             if nd.is_leaf() {
                 for s in nd.range() {
                     leaf_of_slot[s] = i as u32;
@@ -274,14 +290,11 @@ impl Bvh {
                 parent[nd.b as usize] = i as u32;
             }
         }
-        Ok(Bvh {
-            nodes,
-            prims,
-            prim_boxes,
+        RefitIndex {
             slot_of,
             leaf_of_slot,
             parent,
-        })
+        }
     }
 
     /// Number of primitives.
@@ -538,9 +551,24 @@ impl Bvh {
     /// primitive's current box.
     pub fn refit_some(&mut self, boxes: &[Aabb], changed: &[u32]) -> Result<(), GeomError> {
         self.check_boxes(boxes)?;
+        let index = match self.refit_index.take() {
+            Some(index) => index,
+            None => self.make_refit_index(),
+        };
+        let result = self.refit_some_with(&index, boxes, changed);
+        self.refit_index = Some(index);
+        result
+    }
+
+    fn refit_some_with(
+        &mut self,
+        index: &RefitIndex,
+        boxes: &[Aabb],
+        changed: &[u32],
+    ) -> Result<(), GeomError> {
         let mut dirty: Vec<u32> = Vec::with_capacity(changed.len() * 8);
         for &p in changed {
-            let Some(&slot) = self.slot_of.get(p as usize) else {
+            let Some(&slot) = index.slot_of.get(p as usize) else {
                 return Err(GeomError::LengthMismatch {
                     what: "changed primitive id",
                     got: p as usize,
@@ -548,10 +576,10 @@ impl Bvh {
                 });
             };
             self.prim_boxes[slot as usize] = boxes[p as usize];
-            let mut n = self.leaf_of_slot[slot as usize];
+            let mut n = index.leaf_of_slot[slot as usize];
             while n != u32::MAX {
                 dirty.push(n);
-                n = self.parent[n as usize];
+                n = index.parent[n as usize];
             }
         }
         dirty.sort_unstable();
@@ -595,6 +623,7 @@ impl Bvh {
     /// and primitives' boxes; every primitive in exactly one leaf). For
     /// tests.
     pub fn validate(&self) -> bool {
+        let index = self.make_refit_index();
         let mut seen = vec![false; self.prims.len()];
         for (i, nd) in self.nodes.iter().enumerate() {
             let inside = |b: &Aabb| nd.bb.min.cmple(b.min).all() && b.max.cmple(nd.bb.max).all();
@@ -604,7 +633,7 @@ impl Bvh {
                         return false;
                     }
                     seen[s] = true;
-                    if self.leaf_of_slot[s] as usize != i {
+                    if index.leaf_of_slot[s] as usize != i {
                         return false;
                     }
                 }
