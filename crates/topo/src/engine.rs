@@ -366,11 +366,14 @@ fn finish_with(
     // or crossed by a curve parity left unresolved, or parity changing
     // where no curve runs) was folded by the motion; Theorem 5.1 holds
     // again by labelling with the containment number (crate::solid).
+    // Cheapest tests first: the input's closedness from the edge table
+    // the intersections already built, then the cut's counts, then a
+    // sort of the output's sides.
     let suspicious =
-        || !out.is_closed() || cut_report.curves_dropped > 0 || cut_report.false_vertices > 0;
+        || cut_report.curves_dropped > 0 || cut_report.false_vertices > 0 || !out.is_closed();
     if options.solid_guard
+        && s.edges.closed_oriented(&mesh.triangles)
         && suspicious()
-        && mesh.is_closed_manifold()
         && starts_clear(mesh, start)
         && let Some((relabelled, o, deleted)) = relabel(mesh, start, end, &s.edges, &s.ids, &s.x)
         && relabelled.is_closed()

@@ -242,6 +242,32 @@ impl Edges {
     pub fn triangles(&self, e: usize) -> &[u32] {
         &self.tris[self.offsets[e] as usize..self.offsets[e + 1] as usize]
     }
+
+    /// [`TriMesh::is_closed_manifold`] of the mesh these edges were
+    /// collected from (`triangles`), in one pass over the edges instead of
+    /// a sort: every edge has two triangles that run along it in opposite
+    /// directions, and no triangle repeats a vertex.
+    pub fn closed_oriented(&self, triangles: &[[u32; 3]]) -> bool {
+        if triangles
+            .iter()
+            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        {
+            return false;
+        }
+        // Whether triangle `t` runs along edge `e` from its first end.
+        let forward = |t: u32, e: usize| {
+            let tri = triangles[t as usize];
+            (0..3)
+                .find(|&k| self.of_triangle[t as usize][k] as usize == e)
+                .map(|k| tri[k] == self.ends[e][0])
+        };
+        (0..self.ends.len())
+            .into_par_iter()
+            .all(|e| match *self.triangles(e) {
+                [t, u] => matches!((forward(t, e), forward(u, e)), (Some(a), Some(b)) if a != b),
+                _ => false,
+            })
+    }
 }
 
 #[cfg(test)]
@@ -273,6 +299,20 @@ mod tests {
             .triangles
             .extend(tet.triangles.iter().map(|t| [t[0], t[2], t[1]]));
         assert!(!doubled.is_closed_manifold());
+        // The edge-table test and the unoriented one agree case by case.
+        let mut pinched = tet.clone();
+        pinched.triangles[0] = [0, 0, 1];
+        for (m, oriented, closed) in [
+            (&tet, true, true),
+            (&open, false, false),
+            (&flipped, false, true),
+            (&doubled, false, false),
+            (&pinched, false, false),
+        ] {
+            assert_eq!(m.is_closed_manifold(), oriented);
+            assert_eq!(Edges::new(m).closed_oriented(&m.triangles), oriented);
+            assert_eq!(m.is_closed(), closed);
+        }
     }
 
     #[test]
