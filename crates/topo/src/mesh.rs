@@ -189,16 +189,52 @@ impl Edges {
     /// Collects the edges of `mesh` (indices are assumed checked).
     pub fn new(mesh: &TriMesh) -> Edges {
         let nt = mesh.triangles.len();
-        // Sort the 3·nt sides by their undirected key.
-        let mut sides: Vec<(u64, u32)> = Vec::with_capacity(3 * nt);
+        // The 3·nt sides in the order of their undirected key (smaller
+        // end, larger end), then side number: a counting sort by the
+        // smaller end, then a sort of each bucket (a vertex's few edges
+        // to larger vertices), instead of one comparison sort of them all.
+        let vertices = mesh
+            .triangles
+            .iter()
+            .flatten()
+            .max()
+            .map_or(0, |&v| v as usize + 1);
+        let mut start = vec![0u32; vertices + 1];
+        for tri in &mesh.triangles {
+            for k in 0..3 {
+                start[tri[k].min(tri[(k + 1) % 3]) as usize + 1] += 1;
+            }
+        }
+        for v in 0..vertices {
+            start[v + 1] += start[v];
+        }
+        let mut cursor = start.clone();
+        let mut bucketed = vec![(0u32, 0u32); 3 * nt];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-                sides.push((key, (t * 3 + k) as u32));
+                let slot = &mut cursor[a.min(b) as usize];
+                bucketed[*slot as usize] = (a.max(b), (t * 3 + k) as u32);
+                *slot += 1;
             }
         }
-        sides.par_sort_unstable();
+        let sides: Vec<(u64, u32)> = {
+            let mut buckets: Vec<&mut [(u32, u32)]> = Vec::with_capacity(vertices);
+            let mut rest = bucketed.as_mut_slice();
+            for v in 0..vertices {
+                let (head, tail) = rest.split_at_mut((start[v + 1] - start[v]) as usize);
+                buckets.push(head);
+                rest = tail;
+            }
+            buckets.par_iter_mut().for_each(|b| b.sort_unstable());
+            (0..vertices)
+                .flat_map(|a| {
+                    bucketed[start[a] as usize..start[a + 1] as usize]
+                        .iter()
+                        .map(move |&(b, side)| ((a as u64) << 32 | u64::from(b), side))
+                })
+                .collect()
+        };
         let mut ends = Vec::new();
         let mut of_triangle = vec![[0u32; 3]; nt];
         let mut offsets = vec![0u32];
