@@ -67,19 +67,23 @@ impl TriMesh {
     /// if a triangle repeats a vertex. On a closed manifold they come in
     /// runs of exactly two.
     fn sorted_sides(&self) -> Option<Vec<(u64, bool)>> {
-        let mut sides: Vec<(u64, bool)> = Vec::with_capacity(3 * self.triangles.len());
-        for t in &self.triangles {
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                if a == b {
-                    return None;
-                }
-                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-                sides.push((key, a < b));
-            }
+        if self
+            .triangles
+            .iter()
+            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        {
+            return None;
         }
-        sides.par_sort_unstable();
-        Some(sides)
+        Some(
+            sides_by_edge(&self.triangles)
+                .into_iter()
+                .map(|(key, side)| {
+                    let t = self.triangles[side as usize / 3];
+                    let k = side as usize % 3;
+                    (key, t[k] < t[(k + 1) % 3])
+                })
+                .collect(),
+        )
     }
 
     /// The mesh without the vertices no triangle uses, the others kept in
@@ -171,6 +175,53 @@ pub fn check_positions(what: &'static str, positions: &[DVec3]) -> Result<(), Me
     }
 }
 
+/// Every triangle side `(key, 3·t + k)` (side `k` of triangle `t` runs
+/// from corner `k` to `k + 1`; `key` is `(smaller end << 32) | larger
+/// end`), ordered by key, then side: the order of a sort of all 3n sides,
+/// found by a counting sort on the smaller end and a sort of each bucket
+/// (a vertex's few edges to larger vertices).
+pub(crate) fn sides_by_edge(triangles: &[[u32; 3]]) -> Vec<(u64, u32)> {
+    let vertices = triangles
+        .iter()
+        .flatten()
+        .max()
+        .map_or(0, |&v| v as usize + 1);
+    let mut start = vec![0u32; vertices + 1];
+    for tri in triangles {
+        for k in 0..3 {
+            start[tri[k].min(tri[(k + 1) % 3]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..vertices {
+        start[v + 1] += start[v];
+    }
+    let mut cursor = start.clone();
+    let mut bucketed = vec![(0u32, 0u32); 3 * triangles.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let slot = &mut cursor[a.min(b) as usize];
+            bucketed[*slot as usize] = (a.max(b), (t * 3 + k) as u32);
+            *slot += 1;
+        }
+    }
+    let mut buckets: Vec<&mut [(u32, u32)]> = Vec::with_capacity(vertices);
+    let mut rest = bucketed.as_mut_slice();
+    for v in 0..vertices {
+        let (head, tail) = rest.split_at_mut((start[v + 1] - start[v]) as usize);
+        buckets.push(head);
+        rest = tail;
+    }
+    buckets.par_iter_mut().for_each(|b| b.sort_unstable());
+    (0..vertices)
+        .flat_map(|a| {
+            bucketed[start[a] as usize..start[a + 1] as usize]
+                .iter()
+                .map(move |&(b, side)| (((a as u64) << 32) | u64::from(b), side))
+        })
+        .collect()
+}
+
 /// The undirected edges of a triangle mesh, by vertex index, with the
 /// triangles around each (any number: boundary, manifold, non-manifold).
 #[derive(Clone, Debug, Default)]
@@ -189,52 +240,7 @@ impl Edges {
     /// Collects the edges of `mesh` (indices are assumed checked).
     pub fn new(mesh: &TriMesh) -> Edges {
         let nt = mesh.triangles.len();
-        // The 3·nt sides in the order of their undirected key (smaller
-        // end, larger end), then side number: a counting sort by the
-        // smaller end, then a sort of each bucket (a vertex's few edges
-        // to larger vertices), instead of one comparison sort of them all.
-        let vertices = mesh
-            .triangles
-            .iter()
-            .flatten()
-            .max()
-            .map_or(0, |&v| v as usize + 1);
-        let mut start = vec![0u32; vertices + 1];
-        for tri in &mesh.triangles {
-            for k in 0..3 {
-                start[tri[k].min(tri[(k + 1) % 3]) as usize + 1] += 1;
-            }
-        }
-        for v in 0..vertices {
-            start[v + 1] += start[v];
-        }
-        let mut cursor = start.clone();
-        let mut bucketed = vec![(0u32, 0u32); 3 * nt];
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let slot = &mut cursor[a.min(b) as usize];
-                bucketed[*slot as usize] = (a.max(b), (t * 3 + k) as u32);
-                *slot += 1;
-            }
-        }
-        let sides: Vec<(u64, u32)> = {
-            let mut buckets: Vec<&mut [(u32, u32)]> = Vec::with_capacity(vertices);
-            let mut rest = bucketed.as_mut_slice();
-            for v in 0..vertices {
-                let (head, tail) = rest.split_at_mut((start[v + 1] - start[v]) as usize);
-                buckets.push(head);
-                rest = tail;
-            }
-            buckets.par_iter_mut().for_each(|b| b.sort_unstable());
-            (0..vertices)
-                .flat_map(|a| {
-                    bucketed[start[a] as usize..start[a + 1] as usize]
-                        .iter()
-                        .map(move |&(b, side)| ((a as u64) << 32 | u64::from(b), side))
-                })
-                .collect()
-        };
+        let sides = sides_by_edge(&mesh.triangles);
         let mut ends = Vec::new();
         let mut of_triangle = vec![[0u32; 3]; nt];
         let mut offsets = vec![0u32];

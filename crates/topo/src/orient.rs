@@ -9,25 +9,23 @@
 //! triangles (by area) as they were is chosen, so a correctly oriented
 //! input is never turned inside out.
 
-use rayon::slice::ParallelSliceMut;
-
-use crate::mesh::TriMesh;
+use crate::mesh::{TriMesh, sides_by_edge};
 
 /// Flips triangles so that orientations agree across manifold edges where
 /// the surface allows; returns the number of triangles flipped.
 pub fn orient_consistently(mesh: &mut TriMesh) -> usize {
     let nt = mesh.triangles.len();
     // Sides sorted by undirected edge: (min, max, triangle, forward).
-    let mut sides: Vec<(u32, u32, u32, bool)> = Vec::with_capacity(3 * nt);
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
+    let sides: Vec<(u32, u32, u32, bool)> = sides_by_edge(&mesh.triangles)
+        .into_iter()
+        .filter_map(|(key, side)| {
+            let t = side / 3;
+            let tri = mesh.triangles[t as usize];
+            let k = side as usize % 3;
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if a != b {
-                sides.push((a.min(b), a.max(b), t as u32, a < b));
-            }
-        }
-    }
-    sides.par_sort_unstable();
+            (a != b).then_some(((key >> 32) as u32, key as u32, t, a < b))
+        })
+        .collect();
     // Already consistent (the usual case: a cut keeps each piece's
     // orientation): every component's walk would keep every triangle.
     let disagree = sides.windows(2).enumerate().any(|(i, w)| {
