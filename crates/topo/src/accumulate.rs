@@ -8,7 +8,9 @@ use std::time::Instant;
 use glam::DVec3;
 use holey_geom::ccd::vertex_parities;
 
-use crate::engine::{Options, Outcome, TopoError, ccd_options, check, finish, static_stage};
+use crate::engine::{
+    Options, Outcome, TopoError, ccd_options, check, finish, geometry, static_stage,
+};
 use crate::local::{
     Bounds, LocalReport, Region, Spliced, from_whole, swept_box, union, with_margin,
 };
@@ -160,14 +162,16 @@ impl Accumulator {
         );
         if region.worth_it() {
             let sub = region.submesh(&self.mesh.positions);
+            let end = region.gather(&self.current);
             let out = finish(
                 &sub,
                 &sub.positions,
-                &region.gather(&self.current),
+                &end,
                 region.gather(&self.raw),
                 (self.collisions, self.tests, self.seconds),
                 &self.options,
                 started,
+                geometry(&sub, &end, &self.options)?,
             )?;
             match region.resolve(&self.mesh, &self.current, &out, self.options.solid_guard) {
                 (report, Spliced::PositionsOnly) => {
@@ -188,6 +192,7 @@ impl Accumulator {
     /// Applies the topology change with the accumulated parity.
     pub fn release(self) -> Result<Outcome, TopoError> {
         let started = Instant::now();
+        let geometry = geometry(&self.mesh, &self.current, &self.options)?;
         finish(
             &self.mesh,
             &self.mesh.positions,
@@ -196,6 +201,7 @@ impl Accumulator {
             (self.collisions, self.tests, self.seconds),
             &self.options,
             started,
+            geometry,
         )
     }
 }

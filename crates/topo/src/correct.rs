@@ -80,7 +80,8 @@ pub struct Correction {
 /// The authors' regulariser, in units where the total area is 1.
 pub const GAMMA: f64 = 1e-2;
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
+/// The root of `x` in the union-find forest `parent`, halving the path.
+pub(crate) fn find(parent: &mut [u32], mut x: u32) -> u32 {
     while parent[x as usize] != x {
         let p = parent[x as usize];
         parent[x as usize] = parent[p as usize];

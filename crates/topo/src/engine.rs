@@ -20,7 +20,9 @@ use holey_geom::{Aabb, Bvh, SymPoint};
 
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, cut};
-use crate::intersect::{Intersections, default_pair_limit, intersections, intersections_limited};
+use crate::intersect::{
+    Intersections, default_pair_limit, intersections, intersections_limited, pair_count_at,
+};
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
 use crate::solid::relabel;
@@ -165,12 +167,9 @@ pub(crate) fn geometry_stage(
 /// The static half of the pipeline at given end positions, shared by the
 /// one-frame run, the accumulator's preview and its release.
 pub(crate) struct Static {
-    edges: Edges,
-    ids: Vec<u32>,
-    x: Intersections,
+    geometry: Geometry,
     pub(crate) corrected: Vec<bool>,
     solved: usize,
-    t_intersect: f64,
     t_correct: f64,
 }
 
@@ -180,8 +179,22 @@ pub(crate) fn static_stage(
     raw: &[bool],
     options: &Options,
 ) -> Result<Static, TopoError> {
-    let g = geometry_stage(mesh, end, options, &AtomicBool::new(false))?;
-    Ok(correction_stage(g, mesh, end, raw, options.scheme))
+    Ok(correction_stage(
+        geometry(mesh, end, options)?,
+        mesh,
+        end,
+        raw,
+        options.scheme,
+    ))
+}
+
+/// [`geometry_stage`] with nothing running beside it to stop.
+pub(crate) fn geometry(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+) -> Result<Geometry, TopoError> {
+    geometry_stage(mesh, end, options, &AtomicBool::new(false))
 }
 
 /// Error correction (§3.4) of `raw` given the intersections.
@@ -192,30 +205,21 @@ fn correction_stage(
     raw: &[bool],
     scheme: Scheme,
 ) -> Static {
-    let Geometry {
-        edges,
-        ids,
-        x,
-        t_intersect,
-    } = geometry;
     let t = Instant::now();
-    let w = Weights::new(mesh, end, &edges);
+    let w = Weights::new(mesh, end, &geometry.edges);
     let g = Graph {
         vertices: end.len(),
-        ends: &edges.ends,
+        ends: &geometry.edges.ends,
         edge_weight: &w.edge,
         vertex_weight: &w.vertex,
-        cut: &x.cut_edges,
+        cut: &geometry.x.cut_edges,
         total_area: w.total_area,
     };
     let c = correct(&g, raw, scheme);
     Static {
-        edges,
-        ids,
-        x,
+        geometry,
         corrected: c.odd,
         solved: c.solved_components,
-        t_intersect,
         t_correct: t.elapsed().as_secs_f64(),
     }
 }
@@ -223,12 +227,7 @@ fn correction_stage(
 /// Whether `mesh` at `start` has no self-intersection (Theorem 5.1's
 /// premise), stopping at the first intersecting pair.
 fn starts_clear(mesh: &TriMesh, start: &[DVec3]) -> bool {
-    let edges = Edges::new(mesh);
-    let Ok(ids) = position_classes(start) else {
-        return false;
-    };
-    intersections_limited(mesh, start, &edges, &ids, 0, &AtomicBool::new(false))
-        .is_ok_and(|x| x.pairs.is_empty())
+    pair_count_at(mesh, start, 0) == Ok(0)
 }
 
 pub(crate) fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
@@ -312,25 +311,12 @@ impl PointSampler<'_> {
     }
 }
 
+/// The rest of a frame once collisions and intersections are known:
+/// correction, cut, the solid guard, orientation and the report.
 /// `start` → `end` is the straight motion sampled points follow: the frame
 /// itself, or for a drag its first and last positions.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn finish(
-    mesh: &TriMesh,
-    start: &[DVec3],
-    end: &[DVec3],
-    raw: Vec<bool>,
-    collisions: (usize, u64, f64),
-    options: &Options,
-    started: Instant,
-) -> Result<Outcome, TopoError> {
-    let g = geometry_stage(mesh, end, options, &AtomicBool::new(false))?;
-    finish_with(mesh, start, end, raw, collisions, options, started, g)
-}
-
-/// [`finish`] with the intersections already found.
-#[allow(clippy::too_many_arguments)]
-fn finish_with(
     mesh: &TriMesh,
     start: &[DVec3],
     end: &[DVec3],
@@ -356,9 +342,9 @@ fn finish_with(
     } = cut(
         mesh,
         end,
-        &s.edges,
-        &s.ids,
-        &s.x,
+        &s.geometry.edges,
+        &s.geometry.ids,
+        &s.geometry.x,
         Some(&s.corrected),
         if options.refine { Some(&sample) } else { None },
     );
@@ -372,10 +358,17 @@ fn finish_with(
     let suspicious =
         || cut_report.curves_dropped > 0 || cut_report.false_vertices > 0 || !out.is_closed();
     if options.solid_guard
-        && s.edges.closed_oriented(&mesh.triangles)
+        && s.geometry.edges.closed_oriented(&mesh.triangles)
         && suspicious()
         && starts_clear(mesh, start)
-        && let Some((relabelled, o, deleted)) = relabel(mesh, start, end, &s.edges, &s.ids, &s.x)
+        && let Some((relabelled, o, deleted)) = relabel(
+            mesh,
+            start,
+            end,
+            &s.geometry.edges,
+            &s.geometry.ids,
+            &s.geometry.x,
+        )
         && relabelled.is_closed()
     {
         cut_report.triangles_deleted = deleted;
@@ -394,18 +387,18 @@ fn finish_with(
         collision_tests: collisions.1,
         raw_odd_vertices: raw.iter().filter(|&&o| o).count(),
         corrected_odd_vertices: s.corrected.iter().filter(|&&o| o).count(),
-        intersection_points: s.x.points.len(),
-        triple_points: s.x.triple_points(),
-        intersection_edges: s.x.pieces.len(),
-        intersection_curves: s.x.curve_count,
-        intersecting_pairs: s.x.pairs.len(),
+        intersection_points: s.geometry.x.points.len(),
+        triple_points: s.geometry.x.triple_points(),
+        intersection_edges: s.geometry.x.pieces.len(),
+        intersection_curves: s.geometry.x.curve_count,
+        intersecting_pairs: s.geometry.x.pairs.len(),
         cut: cut_report,
         solved_components: s.solved,
         perturbation_retries: 0,
         orientation_flips: flips,
         timings: Timings {
             collisions: collisions.2,
-            intersections: s.t_intersect,
+            intersections: s.geometry.t_intersect,
             correction: s.t_correct,
             cut: t_cut,
             total: started.elapsed().as_secs_f64(),
@@ -416,7 +409,7 @@ fn finish_with(
         report,
         raw_odd: raw,
         corrected_odd: s.corrected,
-        intersections: s.x,
+        intersections: s.geometry.x,
         vertex_origin: origin,
     })
 }
@@ -465,7 +458,7 @@ pub fn topology_change(
     let geometry = geometry?;
     let (ccd, t_ccd) = ccd?;
     let collisions = (ccd.odd_pairs.len(), ccd.candidates, t_ccd);
-    finish_with(
+    finish(
         mesh,
         &mesh.positions,
         end,

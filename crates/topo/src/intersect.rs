@@ -284,8 +284,18 @@ fn segments(
 /// [`IntersectError::TooManyPairs`] once more than `limit` do.
 pub fn intersecting_pair_count(mesh: &TriMesh, limit: usize) -> Result<usize, IntersectError> {
     mesh.check()?;
-    let ids = holey_geom::position_classes(&mesh.positions)?;
-    let (mut segs, _) = segments(mesh, &mesh.positions, &ids, limit, &AtomicBool::new(false))?;
+    pair_count_at(mesh, &mesh.positions, limit)
+}
+
+/// [`intersecting_pair_count`] of `mesh`'s triangles at `positions`
+/// (indices already checked).
+pub(crate) fn pair_count_at(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    limit: usize,
+) -> Result<usize, IntersectError> {
+    let ids = holey_geom::position_classes(positions)?;
+    let (mut segs, _) = segments(mesh, positions, &ids, limit, &AtomicBool::new(false))?;
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));
     Ok(segs.len())

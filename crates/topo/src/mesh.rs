@@ -43,47 +43,14 @@ impl TriMesh {
     /// directions, and no triangle with a repeated vertex: a closed,
     /// consistently oriented 2-manifold along its edges.
     pub fn is_closed_manifold(&self) -> bool {
-        self.sorted_sides().is_some_and(|sides| {
-            sides
-                .par_chunks(2)
-                .all(|c| c.len() == 2 && c[0].0 == c[1].0 && c[0].1 != c[1].1)
-                && sides.par_windows(3).all(|w| w[0].0 != w[2].0)
-        })
+        Edges::new(self).closed_oriented(&self.triangles)
     }
 
     /// Every undirected edge used by exactly two triangles and no triangle
     /// with a repeated vertex, whatever the orientations: closed and
     /// manifold along its edges.
     pub fn is_closed(&self) -> bool {
-        self.sorted_sides().is_some_and(|sides| {
-            sides
-                .par_chunks(2)
-                .all(|c| c.len() == 2 && c[0].0 == c[1].0)
-                && sides.par_windows(3).all(|w| w[0].0 != w[2].0)
-        })
-    }
-
-    /// Each side as its undirected key and its direction, sorted; `None`
-    /// if a triangle repeats a vertex. On a closed manifold they come in
-    /// runs of exactly two.
-    fn sorted_sides(&self) -> Option<Vec<(u64, bool)>> {
-        if self
-            .triangles
-            .iter()
-            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-        {
-            return None;
-        }
-        Some(
-            sides_by_edge(&self.triangles)
-                .into_iter()
-                .map(|(key, side)| {
-                    let t = self.triangles[side as usize / 3];
-                    let k = side as usize % 3;
-                    (key, t[k] < t[(k + 1) % 3])
-                })
-                .collect(),
-        )
+        Edges::new(self).closed(&self.triangles)
     }
 
     /// The mesh without the vertices no triangle uses, the others kept in
@@ -285,15 +252,24 @@ impl Edges {
         &self.tris[self.offsets[e] as usize..self.offsets[e + 1] as usize]
     }
 
-    /// [`TriMesh::is_closed_manifold`] of the mesh these edges were
-    /// collected from (`triangles`), in one pass over the edges instead of
-    /// a sort: every edge has two triangles that run along it in opposite
-    /// directions, and no triangle repeats a vertex.
-    pub fn closed_oriented(&self, triangles: &[[u32; 3]]) -> bool {
-        if triangles
+    /// [`TriMesh::is_closed`] of the mesh these edges were collected from
+    /// (`triangles`): no triangle repeats a vertex and every edge has
+    /// exactly two triangles.
+    pub fn closed(&self, triangles: &[[u32; 3]]) -> bool {
+        !triangles
             .iter()
             .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-        {
+            && (0..self.ends.len())
+                .into_par_iter()
+                .all(|e| self.triangles(e).len() == 2)
+    }
+
+    /// [`TriMesh::is_closed_manifold`] of the mesh these edges were
+    /// collected from (`triangles`), in one pass over the edges: closed,
+    /// and the two triangles of every edge run along it in opposite
+    /// directions.
+    pub fn closed_oriented(&self, triangles: &[[u32; 3]]) -> bool {
+        if !self.closed(triangles) {
             return false;
         }
         // Whether triangle `t` runs along edge `e` from its first end.

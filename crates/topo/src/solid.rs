@@ -31,6 +31,7 @@
 use glam::DVec3;
 use holey_geom::{Aabb, Bvh, SymPoint, position_classes, segment_triangle_intersect};
 
+use crate::correct::find;
 use crate::cut::cut;
 use crate::intersect::Intersections;
 use crate::mesh::{Edges, TriMesh};
@@ -114,14 +115,6 @@ pub(crate) fn keep_by_containment(arrangement: &TriMesh, outward: bool) -> Optio
 fn regions(mesh: &TriMesh) -> Vec<u32> {
     let edges = Edges::new(mesh);
     let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            let up = parent[parent[x as usize] as usize];
-            parent[x as usize] = up;
-            x = up;
-        }
-        x
-    }
     for e in 0..edges.ends.len() {
         if let [t, u] = *edges.triangles(e) {
             let (a, b) = (find(&mut parent, t), find(&mut parent, u));
