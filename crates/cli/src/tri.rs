@@ -82,6 +82,7 @@ pub fn report_json(r: &Report) -> Value {
     json!({
         "collisions": r.collisions,
         "collision_tests": r.collision_tests,
+        "containment_rays": r.containment_rays,
         "raw_odd_vertices": r.raw_odd_vertices,
         "corrected_odd_vertices": r.corrected_odd_vertices,
         "intersecting_pairs": r.intersecting_pairs,

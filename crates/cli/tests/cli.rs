@@ -912,13 +912,28 @@ fn union_of_two_spheres_is_one_closed_solid() {
         (v - want).abs() < 0.01 * want,
         "union volume {v}, expected about {want}"
     );
+    // Closed solids: the parity is computed by containment rays, not by
+    // simulating the motion.
     let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
-    assert!(report["collisions"].as_u64().unwrap() > 0);
+    assert_eq!(report["collisions"], 0);
+    assert!(report["containment_rays"].as_u64().unwrap() >= 2);
     assert_eq!(report["intersection_curves"], 1);
     assert!(report["seconds"]["total"].as_f64().is_some());
     // No self-intersection is left.
     let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&u)])).unwrap();
     assert_eq!(si["intersecting_pairs"], 0);
+    // The motion itself, through the whole pipeline, gives the same solid.
+    let um = dir.path().join("um.ply");
+    let rm = dir.path().join("rm.json");
+    ok(&["union", s(&a), s(&b), s(&um), "--via-motion", "--report", s(&rm)]);
+    let mm = info(s(&um), &[]);
+    let motion: Value = serde_json::from_str(&std::fs::read_to_string(&rm).unwrap()).unwrap();
+    assert!(motion["collisions"].as_u64().unwrap() > 0);
+    assert_eq!(motion["containment_rays"], 0);
+    assert_eq!(mm["faces"], m["faces"]);
+    assert_eq!(mm["vertices"], m["vertices"]);
+    assert_eq!(mm["volume"], m["volume"]);
+    assert_eq!(motion["raw_odd_vertices"], report["raw_odd_vertices"]);
 }
 
 /// `holey topo` with zero motion returns the mesh unchanged (quads come

@@ -33,6 +33,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
+use rayon::prelude::*;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 use crate::intersect::{Intersections, Node, PointKind, shared_ids};
@@ -84,6 +85,52 @@ impl HasPosition for ChartVertex {
 }
 
 const NONE: u32 = u32::MAX;
+
+/// Lists attached to a few of many items (the edges and triangles a cut
+/// touches, out of a whole mesh's): a slot per item, storage only for the
+/// items that have a list. A list per item cost 24 bytes per triangle and
+/// per edge, fresh memory the kernel zeroed, for the few thousand that
+/// are used.
+struct Lists<T> {
+    slot: Vec<u32>,
+    lists: Vec<Vec<T>>,
+    owner: Vec<u32>,
+}
+
+impl<T> Lists<T> {
+    fn new(items: usize) -> Self {
+        Lists {
+            slot: vec![NONE; items],
+            lists: Vec::new(),
+            owner: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, item: usize, x: T) {
+        let mut s = self.slot[item];
+        if s == NONE {
+            s = self.lists.len() as u32;
+            self.slot[item] = s;
+            self.lists.push(Vec::new());
+            self.owner.push(item as u32);
+        }
+        self.lists[s as usize].push(x);
+    }
+
+    fn get(&self, item: usize) -> &[T] {
+        match self.slot[item] {
+            NONE => &[],
+            s => &self.lists[s as usize],
+        }
+    }
+
+    /// The items that have a list, in increasing order.
+    fn owners_in_order(&self) -> Vec<usize> {
+        let mut o: Vec<usize> = self.owner.iter().map(|&i| i as usize).collect();
+        o.sort_unstable();
+        o
+    }
+}
 
 /// Most vertex-free regions sampled per cut (see `label`).
 pub const MAX_SAMPLED_REGIONS: usize = 256;
@@ -185,8 +232,34 @@ pub struct Cut {
 /// of its corners; `None` when it cannot tell.
 pub type Sampler<'a> = dyn Fn(u32, u32, [f64; 3]) -> Option<bool> + 'a;
 
+/// What the cut deletes.
+#[derive(Clone, Copy, Debug)]
+pub enum Deletion<'a> {
+    /// Resolve mode: every curve is cut, nothing is deleted.
+    Nothing,
+    /// The odd part of a per-vertex parity field (`true` = odd), as in
+    /// §3.5: a curve whose triangles' vertices all have one parity is not
+    /// cut.
+    Odd(&'a [bool]),
+    /// The odd part of an exact parity field (containment numbers, in the
+    /// union of two solids): every curve then separates odd from even,
+    /// so every curve is cut, even one whose triangles have only even
+    /// vertices (two ridges crossing: the lens between them holds no
+    /// vertex, and its parity is sampled).
+    OddExact(&'a [bool]),
+}
+
+impl<'a> Deletion<'a> {
+    fn odd(self) -> Option<&'a [bool]> {
+        match self {
+            Deletion::Nothing => None,
+            Deletion::Odd(o) | Deletion::OddExact(o) => Some(o),
+        }
+    }
+}
+
 /// Subdivides `mesh` (at `positions`) along the intersection curves `x`,
-/// glues, and deletes the odd part of `odd` (`None`: resolve mode).
+/// glues, and deletes what `deletion` says.
 ///
 /// A region cut off by intersection curves that holds no input vertex has
 /// no parity sample (the paper's Figure 13: a cylinder plunged through one
@@ -199,17 +272,18 @@ pub fn cut(
     edges: &Edges,
     ids: &[u32],
     x: &Intersections,
-    odd: Option<&[bool]>,
+    deletion: Deletion<'_>,
     sample: Option<&Sampler<'_>>,
 ) -> Cut {
     let n = positions.len();
     let tris = &mesh.triangles;
     let mut report = CutReport::default();
+    let odd = deletion.odd();
 
     // 1. Curves to resolve.
-    let keep_curve: Vec<bool> = match odd {
-        None => vec![true; x.curve_count],
-        Some(odd) => {
+    let keep_curve: Vec<bool> = match deletion {
+        Deletion::Nothing | Deletion::OddExact(_) => vec![true; x.curve_count],
+        Deletion::Odd(odd) => {
             let mut seen = vec![[false; 2]; x.curve_count];
             for (p, piece) in x.pieces.iter().enumerate() {
                 let c = x.curve_of_piece[p] as usize;
@@ -254,11 +328,31 @@ pub fn cut(
     let mut point_global = vec![NONE; x.points.len()];
     let mut on_curve = vec![false; n];
     let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-    let mut at: HashMap<[u64; 3], u32> = HashMap::new();
-    if x.points.iter().zip(&active).any(|(_, &a)| a) {
-        for (v, p) in positions.iter().enumerate() {
-            at.entry(key(*p)).or_insert(v as u32);
+    // The first input vertex at each active point's exact position: the
+    // few active positions are hashed and the vertices scanned in
+    // parallel against them, instead of hashing every vertex.
+    let mut at: HashMap<[u64; 3], u32> = x
+        .points
+        .iter()
+        .zip(&active)
+        .filter(|(_, a)| **a)
+        .map(|(p, _)| (key(p.position), NONE))
+        .collect();
+    if !at.is_empty() {
+        let hits: Vec<([u64; 3], u32)> = positions
+            .par_iter()
+            .enumerate()
+            .filter_map(|(v, p)| {
+                let k = key(*p);
+                at.contains_key(&k).then_some((k, v as u32))
+            })
+            .collect();
+        for (k, v) in hits {
+            if let Some(first) = at.get_mut(&k) {
+                *first = (*first).min(v);
+            }
         }
+        at.retain(|_, v| *v != NONE);
     }
     for (i, p) in x.points.iter().enumerate() {
         if active[i] {
@@ -278,8 +372,8 @@ pub fn cut(
 
     // Per-triangle lists of what lies on it.
     let nt = tris.len();
-    let mut on_edge: Vec<Vec<(u32, f64)>> = vec![Vec::new(); edges.len()]; // (global, t along ends)
-    let mut interior: Vec<Vec<(u32, [f64; 3])>> = vec![Vec::new(); nt];
+    let mut on_edge: Lists<(u32, f64)> = Lists::new(edges.len()); // (global, t along ends)
+    let mut interior: Lists<(u32, [f64; 3])> = Lists::new(nt);
     let mut cut_edge = vec![false; edges.len()];
     let mut touched = vec![false; nt];
     for (i, p) in x.points.iter().enumerate() {
@@ -289,9 +383,9 @@ pub fn cut(
         let g = point_global[i];
         match p.kind {
             PointKind::EdgeTri { edge, tri, t, bary } => {
-                on_edge[edge as usize].push((g, t));
+                on_edge.push(edge as usize, (g, t));
                 cut_edge[edge as usize] = true;
-                interior[tri as usize].push((g, bary));
+                interior.push(tri as usize, (g, bary));
                 touched[tri as usize] = true;
                 for &u in edges.triangles(edge as usize) {
                     touched[u as usize] = true;
@@ -299,7 +393,7 @@ pub fn cut(
             }
             PointKind::Triple { tris: ts, bary } => {
                 for k in 0..3 {
-                    interior[ts[k] as usize].push((g, bary[k]));
+                    interior.push(ts[k] as usize, (g, bary[k]));
                     touched[ts[k] as usize] = true;
                 }
             }
@@ -310,15 +404,15 @@ pub fn cut(
     // lies on the neighbouring triangles' chart edge too: give it to the
     // edge, or the neighbour would keep the edge whole while this triangle
     // splits it, and the glued surface would crack there.
-    for t in 0..nt {
-        for &(g, b) in &interior[t] {
+    for t in interior.owners_in_order() {
+        for &(g, b) in interior.get(t) {
             let Some((side, s)) = chart_side(from_bary(b)) else {
                 continue;
             };
             let e = edges.of_triangle[t][side] as usize;
             let forward = tris[t][side] == edges.ends[e][0];
-            if !on_edge[e].iter().any(|&(h, _)| h == g) {
-                on_edge[e].push((g, if forward { s } else { 1.0 - s }));
+            if !on_edge.get(e).iter().any(|&(h, _)| h == g) {
+                on_edge.push(e, (g, if forward { s } else { 1.0 - s }));
                 cut_edge[e] = true;
                 for &u in edges.triangles(e) {
                     touched[u as usize] = true;
@@ -326,11 +420,11 @@ pub fn cut(
             }
         }
     }
-    let mut constraints: Vec<Vec<[Node; 2]>> = vec![Vec::new(); nt];
+    let mut constraints: Lists<[Node; 2]> = Lists::new(nt);
     for (p, piece) in x.pieces.iter().enumerate() {
         if kept_piece[p] {
             for &t in &piece.tris {
-                constraints[t as usize].push(piece.ends);
+                constraints.push(t as usize, piece.ends);
                 touched[t as usize] = true;
             }
         }
@@ -347,19 +441,34 @@ pub fn cut(
     // False vertices and edges. A vertex on a curve has no side, so an
     // edge to it never gets one: its parity says nothing.
     let mut false_vertex = vec![NONE; edges.len()];
-    let mut false_edges: Vec<Option<[u32; 2]>> = vec![None; nt];
+    let mut false_edges: Lists<[u32; 2]> = Lists::new(nt);
     if let Some(odd) = odd {
-        for (e, &[a, b]) in edges.ends.iter().enumerate() {
-            if odd[a as usize] != odd[b as usize] && !cut_edge[e] && !on_shared(a) && !on_shared(b)
+        // The edges whose ends disagree with no curve between them, found
+        // in parallel (few or none: a scan of every edge), then numbered in
+        // order.
+        let disagree: Vec<usize> = edges
+            .ends
+            .par_iter()
+            .enumerate()
+            .filter(|&(e, &[a, b])| {
+                odd[a as usize] != odd[b as usize] && !cut_edge[e] && !on_shared(a) && !on_shared(b)
+            })
+            .map(|(e, _)| e)
+            .collect();
+        for e in disagree {
+            let [a, b] = edges.ends[e];
             {
                 false_vertex[e] = out_positions.len() as u32;
                 out_positions.push((positions[a as usize] + positions[b as usize]) * 0.5);
-                on_edge[e].push((false_vertex[e], 0.5));
+                on_edge.push(e, (false_vertex[e], 0.5));
                 report.false_vertices += 1;
             }
         }
-        for t in 0..nt {
-            if touched[t] {
+        for (t, &touched) in touched.iter().enumerate() {
+            if report.false_vertices == 0 {
+                break;
+            }
+            if touched {
                 continue;
             }
             let fv: Vec<u32> = edges.of_triangle[t]
@@ -368,7 +477,7 @@ pub fn cut(
                 .filter(|&g| g != NONE)
                 .collect();
             if fv.len() == 2 {
-                false_edges[t] = Some([fv[0], fv[1]]);
+                false_edges.push(t, [fv[0], fv[1]]);
                 report.false_edges += 1;
             }
         }
@@ -380,17 +489,16 @@ pub fn cut(
     let mut source: Vec<(u32, [f64; 2])> = Vec::with_capacity(nt);
     let mut curve_edges: Vec<(u32, u32)> = Vec::new();
     let mut alias: HashMap<u32, u32> = HashMap::new();
-    for t in 0..nt {
-        let tri = tris[t];
+    for (t, &tri) in tris.iter().enumerate() {
         let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
         let has_edge_points = edges.of_triangle[t]
             .iter()
-            .any(|&e| !on_edge[e as usize].is_empty());
+            .any(|&e| !on_edge.get(e as usize).is_empty());
         if degenerate
             || (!has_edge_points
-                && interior[t].is_empty()
-                && constraints[t].is_empty()
-                && false_edges[t].is_none())
+                && interior.get(t).is_empty()
+                && constraints.get(t).is_empty()
+                && false_edges.get(t).is_empty())
         {
             out_tris.push(tri);
             source.push((t as u32, [1.0 / 3.0; 2]));
@@ -401,6 +509,7 @@ pub fn cut(
             ConstrainedDelaunayTriangulation::new();
         let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
         let mut global_of_handle: HashMap<usize, u32> = HashMap::new();
+        let mut inserted: Vec<ChartVertex> = Vec::new();
         let mut insert = |cdt: &mut ConstrainedDelaunayTriangulation<ChartVertex>,
                           global: u32,
                           pos: [f64; 2],
@@ -410,10 +519,12 @@ pub fn cut(
                 return;
             }
             let before = cdt.num_vertices();
-            let Ok(h) = cdt.insert(ChartVertex {
+            let v = ChartVertex {
                 pos: Point2::new(pos[0], pos[1]),
                 global,
-            }) else {
+            };
+            inserted.push(v);
+            let Ok(h) = cdt.insert(v) else {
                 return;
             };
             if cdt.num_vertices() == before {
@@ -435,12 +546,12 @@ pub fn cut(
         for (k, &corner) in tri.iter().enumerate() {
             let e = edges.of_triangle[t][k] as usize;
             let forward = corner == edges.ends[e][0];
-            for &(g, s) in &on_edge[e] {
+            for &(g, s) in on_edge.get(e) {
                 let s = if forward { s } else { 1.0 - s };
                 insert(&mut cdt, g, on_side(k, s), &mut report, &mut alias);
             }
         }
-        for &(g, b) in &interior[t] {
+        for &(g, b) in interior.get(t) {
             insert(&mut cdt, g, from_bary(b), &mut report, &mut alias);
         }
         let node_global = |node: Node| -> u32 {
@@ -453,13 +564,12 @@ pub fn cut(
                     .unwrap_or(NONE),
             }
         };
-        let mut segs: Vec<[u32; 2]> = constraints[t]
+        let mut segs: Vec<[u32; 2]> = constraints
+            .get(t)
             .iter()
             .map(|ends| [node_global(ends[0]), node_global(ends[1])])
             .collect();
-        if let Some(fe) = false_edges[t] {
-            segs.push(fe);
-        }
+        segs.extend_from_slice(false_edges.get(t));
         let split = |p: Point2<f64>| ChartVertex {
             pos: p,
             global: NONE,
@@ -476,7 +586,6 @@ pub fn cut(
         // fail on such near-degenerate input (it panics); the chart is then
         // rebuilt from its points and every constraint that fits is added
         // without splitting, the others counted as dropped.
-        let points_only = cdt.clone();
         let mut failed = false;
         for &(ha, hb) in &pairs {
             if cdt.can_add_constraint(ha, hb) {
@@ -492,7 +601,13 @@ pub fn cut(
             }
         }
         if failed {
-            cdt = points_only;
+            // The same insertions in the same order give the same
+            // vertices and handles (cloning every chart up front, for
+            // this rare case, was a third of the subdivision's time).
+            cdt = ConstrainedDelaunayTriangulation::new();
+            for v in &inserted {
+                let _ = cdt.insert(*v);
+            }
             for &(ha, hb) in &pairs {
                 if cdt.can_add_constraint(ha, hb) {
                     cdt.add_constraint(ha, hb);
@@ -556,9 +671,19 @@ pub fn cut(
             }
         }
     }
+    // Only the few merged vertices have aliases: flag them so the
+    // triangles' other corners skip the lookup.
+    let mut aliased = vec![false; out_positions.len()];
+    for &g in alias.keys() {
+        if let Some(f) = aliased.get_mut(g as usize) {
+            *f = true;
+        }
+    }
     for t in &mut out_tris {
         for v in t.iter_mut() {
-            *v = resolve(&alias, *v);
+            if aliased.get(*v as usize).copied().unwrap_or(true) {
+                *v = resolve(&alias, *v);
+            }
         }
     }
     for e in &mut curve_edges {

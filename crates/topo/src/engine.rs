@@ -19,7 +19,7 @@ use holey_geom::position_classes;
 use holey_geom::{Aabb, Bvh, SymPoint};
 
 use crate::correct::{Graph, Scheme, correct};
-use crate::cut::{Cut, CutReport, cut};
+use crate::cut::{Cut, CutReport, Deletion, cut};
 use crate::intersect::{
     Intersections, default_pair_limit, intersections, intersections_limited, pair_count_at,
 };
@@ -100,6 +100,9 @@ pub struct Report {
     pub collisions: usize,
     /// Narrow-phase collision tests run.
     pub collision_tests: u64,
+    /// Rays cast to decide containment parity (the union of two solids,
+    /// [`crate::union()`], computes the motion's parity this way).
+    pub containment_rays: usize,
     pub raw_odd_vertices: usize,
     pub corrected_odd_vertices: usize,
     pub intersection_points: usize,
@@ -345,7 +348,7 @@ pub(crate) fn finish(
         &s.geometry.edges,
         &s.geometry.ids,
         &s.geometry.x,
-        Some(&s.corrected),
+        Deletion::Odd(&s.corrected),
         if options.refine { Some(&sample) } else { None },
     );
     // The solid guard: a solid whose parity result is not a solid (open,
@@ -385,6 +388,7 @@ pub(crate) fn finish(
     let report = Report {
         collisions: collisions.0,
         collision_tests: collisions.1,
+        containment_rays: 0,
         raw_odd_vertices: raw.iter().filter(|&&o| o).count(),
         corrected_odd_vertices: s.corrected.iter().filter(|&&o| o).count(),
         intersection_points: s.geometry.x.points.len(),
@@ -479,7 +483,15 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     let x = intersections(mesh, &mesh.positions, &edges, &ids)?;
     let Cut {
         mesh: out, report, ..
-    } = cut(mesh, &mesh.positions, &edges, &ids, &x, None, None);
+    } = cut(
+        mesh,
+        &mesh.positions,
+        &edges,
+        &ids,
+        &x,
+        Deletion::Nothing,
+        None,
+    );
     Ok((out, x, report))
 }
 

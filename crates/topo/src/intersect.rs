@@ -222,24 +222,48 @@ fn coord(p: DVec3) -> robust::Coord3D<f64> {
 /// An intersection segment of triangles `t1 < t2` and its two ends.
 type Segment = (u32, u32, [SegEnd; 2]);
 
-/// The intersection segments of every pair of triangles (in the BVH
-/// descent's order, possibly repeated) and the number of candidate pairs
-/// tested; [`IntersectError::TooManyPairs`] past `limit` (see
+/// Where the candidate triangle pairs come from.
+#[derive(Clone, Copy)]
+pub(crate) enum Candidates<'a> {
+    /// Every pair of the mesh's triangles whose boxes overlap: one tree
+    /// over all of them.
+    Within(&'a Bvh),
+    /// Only pairs across two parts: the triangles before `split` (tree
+    /// `first`) against those from `split` on (tree `second`, whose
+    /// primitive `i` is triangle `split + i`).
+    Across {
+        first: &'a Bvh,
+        second: &'a Bvh,
+        split: u32,
+    },
+}
+
+/// The bounding boxes of triangles `range` of `mesh` at `positions`.
+pub(crate) fn triangle_boxes(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    range: std::ops::Range<usize>,
+) -> Vec<Aabb> {
+    mesh.triangles[range]
+        .par_iter()
+        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
+        .collect()
+}
+
+/// The intersection segments of every candidate pair of triangles (in the
+/// BVH descent's order, possibly repeated) and the number of candidate
+/// pairs tested; [`IntersectError::TooManyPairs`] past `limit` (see
 /// [`intersections_limited`]).
 fn segments(
     mesh: &TriMesh,
     positions: &[DVec3],
     ids: &[u32],
+    candidates: Candidates<'_>,
     limit: usize,
     abort: &AtomicBool,
 ) -> Result<(Vec<Segment>, usize), IntersectError> {
     let sym = Symbolic { positions, ids };
     let tris = &mesh.triangles;
-    let boxes: Vec<Aabb> = tris
-        .iter()
-        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
-        .collect();
-    let bvh = Bvh::build(&boxes)?;
     let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
     let hits = AtomicUsize::new(0);
 
@@ -247,7 +271,7 @@ fn segments(
     // overlapping boxes; the output keeps the descent's order. Only hits
     // are kept: candidates outnumber hits by orders of magnitude (4.7M
     // against 2.5k for two 262k-triangle spheres).
-    let (segs, candidates): (Vec<Segment>, usize) = bvh.self_overlaps_filter_map(|t1, t2| {
+    let test = |t1: u32, t2: u32| {
         if abort.load(AtomicOrdering::Relaxed) {
             return None;
         }
@@ -269,7 +293,15 @@ fn segments(
             return None;
         }
         Some((t1, t2, seg))
-    });
+    };
+    let (segs, candidates): (Vec<Segment>, usize) = match candidates {
+        Candidates::Within(bvh) => bvh.self_overlaps_filter_map(test),
+        Candidates::Across {
+            first,
+            second,
+            split,
+        } => first.overlaps_with_filter_map(second, |t1, t2| test(t1, split + t2)),
+    };
     if abort.load(AtomicOrdering::Relaxed) {
         return Err(IntersectError::TooManyPairs {
             limit,
@@ -277,6 +309,18 @@ fn segments(
         });
     }
     Ok((segs, candidates))
+}
+
+/// [`segments`] over all pairs of `mesh`'s triangles.
+fn all_segments(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    ids: &[u32],
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<(Vec<Segment>, usize), IntersectError> {
+    let bvh = Bvh::build(&triangle_boxes(mesh, positions, 0..mesh.triangles.len()))?;
+    segments(mesh, positions, ids, Candidates::Within(&bvh), limit, abort)
 }
 
 /// How many triangle pairs of `mesh` intersect (exactly, as
@@ -295,7 +339,7 @@ pub(crate) fn pair_count_at(
     limit: usize,
 ) -> Result<usize, IntersectError> {
     let ids = holey_geom::position_classes(positions)?;
-    let (mut segs, _) = segments(mesh, positions, &ids, limit, &AtomicBool::new(false))?;
+    let (mut segs, _) = all_segments(mesh, positions, &ids, limit, &AtomicBool::new(false))?;
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));
     Ok(segs.len())
@@ -331,10 +375,32 @@ pub fn intersections_limited(
     limit: usize,
     abort: &AtomicBool,
 ) -> Result<Intersections, IntersectError> {
+    let bvh = Bvh::build(&triangle_boxes(mesh, positions, 0..mesh.triangles.len()))?;
+    intersections_among(
+        mesh,
+        positions,
+        edges,
+        ids,
+        Candidates::Within(&bvh),
+        limit,
+        abort,
+    )
+}
+
+/// [`intersections_limited`] of the candidate pairs `candidates` only.
+pub(crate) fn intersections_among(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    candidates: Candidates<'_>,
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<Intersections, IntersectError> {
     let tris = &mesh.triangles;
     let sym = Symbolic { positions, ids };
     let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
-    let (mut segs, candidates) = segments(mesh, positions, ids, limit, abort)?;
+    let (mut segs, candidates) = segments(mesh, positions, ids, candidates, limit, abort)?;
     let filtered = candidates - segs.len();
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));

@@ -12,6 +12,7 @@ pub mod local;
 pub mod mesh;
 pub mod orient;
 mod solid;
+pub mod union;
 pub mod weights;
 
 pub use accumulate::Accumulator;
@@ -21,3 +22,4 @@ pub use engine::{
 };
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;
+pub use union::{UnionError, union};

@@ -148,6 +148,20 @@ pub fn check_positions(what: &'static str, positions: &[DVec3]) -> Result<(), Me
 /// found by a counting sort on the smaller end and a sort of each bucket
 /// (a vertex's few edges to larger vertices).
 pub(crate) fn sides_by_edge(triangles: &[[u32; 3]]) -> Vec<(u64, u32)> {
+    let (start, bucketed) = bucketed_sides(triangles);
+    (0..start.len() - 1)
+        .flat_map(|a| {
+            bucketed[start[a] as usize..start[a + 1] as usize]
+                .iter()
+                .map(move |&(b, side)| (((a as u64) << 32) | u64::from(b), side))
+        })
+        .collect()
+}
+
+/// [`sides_by_edge`] before the keys are spelled out: `bucketed[start[a]
+/// .. start[a + 1]]` holds `(larger end, side)` of the sides whose smaller
+/// end is `a`, sorted.
+fn bucketed_sides(triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<(u32, u32)>) {
     let vertices = triangles
         .iter()
         .flatten()
@@ -180,13 +194,7 @@ pub(crate) fn sides_by_edge(triangles: &[[u32; 3]]) -> Vec<(u64, u32)> {
         rest = tail;
     }
     buckets.par_iter_mut().for_each(|b| b.sort_unstable());
-    (0..vertices)
-        .flat_map(|a| {
-            bucketed[start[a] as usize..start[a + 1] as usize]
-                .iter()
-                .map(move |&(b, side)| (((a as u64) << 32) | u64::from(b), side))
-        })
-        .collect()
+    (start, bucketed)
 }
 
 /// The undirected edges of a triangle mesh, by vertex index, with the
@@ -207,27 +215,32 @@ impl Edges {
     /// Collects the edges of `mesh` (indices are assumed checked).
     pub fn new(mesh: &TriMesh) -> Edges {
         let nt = mesh.triangles.len();
-        let sides = sides_by_edge(&mesh.triangles);
-        let mut ends = Vec::new();
+        let (start, sides) = bucketed_sides(&mesh.triangles);
+        let mut ends = Vec::with_capacity(sides.len() / 2 + 1);
         let mut of_triangle = vec![[0u32; 3]; nt];
-        let mut offsets = vec![0u32];
+        let mut offsets = Vec::with_capacity(sides.len() / 2 + 2);
+        offsets.push(0u32);
         let mut tris = Vec::with_capacity(3 * nt);
-        let mut i = 0;
-        while i < sides.len() {
-            let key = sides[i].0;
-            let e = ends.len() as u32;
-            ends.push([(key >> 32) as u32, key as u32]);
-            while i < sides.len() && sides[i].0 == key {
-                let side = sides[i].1 as usize;
-                of_triangle[side / 3][side % 3] = e;
-                let t = (side / 3) as u32;
-                // A triangle with a repeated vertex may use one edge twice.
-                if tris.last() != Some(&t) || tris.len() == *offsets.last().unwrap_or(&0) as usize {
-                    tris.push(t);
+        for a in 0..start.len() - 1 {
+            let bucket = &sides[start[a] as usize..start[a + 1] as usize];
+            let mut i = 0;
+            while i < bucket.len() {
+                let b = bucket[i].0;
+                let e = ends.len() as u32;
+                ends.push([a as u32, b]);
+                let first = tris.len();
+                while i < bucket.len() && bucket[i].0 == b {
+                    let side = bucket[i].1 as usize;
+                    of_triangle[side / 3][side % 3] = e;
+                    let t = (side / 3) as u32;
+                    // A triangle with a repeated vertex may use one edge twice.
+                    if tris.len() == first || tris.last() != Some(&t) {
+                        tris.push(t);
+                    }
+                    i += 1;
                 }
-                i += 1;
+                offsets.push(tris.len() as u32);
             }
-            offsets.push(tris.len() as u32);
         }
         Edges {
             ends,
@@ -235,6 +248,22 @@ impl Edges {
             offsets,
             tris,
         }
+    }
+
+    /// The edges of two meshes side by side, `self`'s (of a mesh with
+    /// `vertices` vertices and `triangles` triangles) then `other`'s, its
+    /// vertices and triangles numbered after them: [`Edges::new`] of the
+    /// joined mesh, built in two independent halves.
+    pub fn concat(mut self, other: Edges, vertices: u32, triangles: u32) -> Edges {
+        let (edge_offset, tri_offset) = (self.ends.len() as u32, self.tris.len() as u32);
+        self.ends
+            .extend(other.ends.iter().map(|e| e.map(|v| v + vertices)));
+        self.of_triangle
+            .extend(other.of_triangle.iter().map(|s| s.map(|e| e + edge_offset)));
+        self.offsets
+            .extend(other.offsets[1..].iter().map(|&o| o + tri_offset));
+        self.tris.extend(other.tris.iter().map(|&t| t + triangles));
+        self
     }
 
     /// Number of edges.
@@ -368,6 +397,36 @@ mod tests {
         let degenerate = e.of_triangle[3][0] as usize;
         assert_eq!(e.ends[degenerate], [1, 1]);
         assert_eq!(e.triangles(degenerate), &[3]);
+    }
+
+    #[test]
+    fn concatenated_edges_are_those_of_the_joined_mesh() {
+        // A non-manifold, degenerate mesh with an unused last vertex, then
+        // the quad: numbering, triangle lists and degenerate edges carry
+        // over.
+        let mut a = quad();
+        a.positions.push(DVec3::Z);
+        a.positions.push(DVec3::splat(5.0));
+        a.triangles.push([0, 2, 4]);
+        a.triangles.push([1, 1, 3]);
+        let b = quad();
+        let n = a.positions.len() as u32;
+        let mut joined = a.clone();
+        joined.positions.extend_from_slice(&b.positions);
+        joined
+            .triangles
+            .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+        let whole = Edges::new(&joined);
+        let parts = Edges::new(&a).concat(Edges::new(&b), n, a.triangles.len() as u32);
+        assert_eq!(parts.ends, whole.ends);
+        assert_eq!(parts.of_triangle, whole.of_triangle);
+        assert_eq!(parts.offsets, whole.offsets);
+        assert_eq!(parts.tris, whole.tris);
+        // An empty first part.
+        let empty = TriMesh::default();
+        let alone = Edges::new(&empty).concat(Edges::new(&b), 0, 0);
+        assert_eq!(alone.ends, Edges::new(&b).ends);
+        assert_eq!(alone.offsets, Edges::new(&b).offsets);
     }
 
     #[test]

@@ -30,9 +30,10 @@
 
 use glam::DVec3;
 use holey_geom::{Aabb, Bvh, SymPoint, position_classes, segment_triangle_intersect};
+use rayon::prelude::*;
 
 use crate::correct::find;
-use crate::cut::cut;
+use crate::cut::{Deletion, cut};
 use crate::intersect::Intersections;
 use crate::mesh::{Edges, TriMesh};
 
@@ -141,7 +142,7 @@ fn regions(mesh: &TriMesh) -> Vec<u32> {
 /// face outward), by the divergence theorem.
 pub(crate) fn signed_volume(positions: &[DVec3], triangles: &[[u32; 3]]) -> f64 {
     triangles
-        .iter()
+        .par_iter()
         .map(|t| {
             let [a, b, c] = t.map(|v| positions[v as usize]);
             a.dot(b.cross(c))
@@ -168,7 +169,7 @@ pub(crate) fn relabel(
     if !volume.is_finite() || volume == 0.0 {
         return None;
     }
-    let arrangement = cut(mesh, end, edges, ids, x, None, None);
+    let arrangement = cut(mesh, end, edges, ids, x, Deletion::Nothing, None);
     let keep = keep_by_containment(&arrangement.mesh, volume > 0.0)?;
     let deleted = keep.iter().filter(|&&k| !k).count();
     let kept: Vec<[u32; 3]> = arrangement

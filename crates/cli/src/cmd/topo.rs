@@ -141,16 +141,19 @@ pub fn run_engine(
         let _p = Progress::start("changing topology");
         topology_change(mesh, end, &args.options()).map_err(|e| bad_input(e.to_string()))?
     };
-    write_outcome(mesh, end, &out, output, args)
+    write_outcome(&out, output, args, || TriMesh {
+        positions: end.to_vec(),
+        triangles: mesh.triangles.clone(),
+    })
 }
 
-/// Writes an outcome: the mesh, the report and the parity picture.
+/// Writes an outcome: the mesh, the report and the parity picture (of
+/// the input at its end positions, made by `at_end` only when asked for).
 pub fn write_outcome(
-    mesh: &TriMesh,
-    end: &[glam::DVec3],
     out: &holey_topo::Outcome,
     output: &str,
     args: &EngineArgs,
+    at_end: impl FnOnce() -> TriMesh,
 ) -> Result<()> {
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &args.report {
@@ -168,11 +171,7 @@ pub fn write_outcome(
                 (false, true) => [40, 90, 230],
             })
             .collect();
-        let at_end = TriMesh {
-            positions: end.to_vec(),
-            triangles: mesh.triangles.clone(),
-        };
-        write_colored(path, &at_end, colors)?;
+        write_colored(path, &at_end(), colors)?;
     }
     if args.verbose {
         eprint!("{}", report_text(&out.report));

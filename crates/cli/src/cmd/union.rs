@@ -4,7 +4,7 @@
 
 use anyhow::Result;
 use glam::DVec3;
-use holey_topo::TriMesh;
+use holey_topo::{TriMesh, UnionError};
 
 use crate::cmd::topo::{EngineArgs, write_outcome};
 use crate::error::bad_input;
@@ -20,34 +20,43 @@ const DEFAULT_DIRECTION: [f64; 3] = [1.0, 0.3127, 0.1731];
 
 #[derive(clap::Args)]
 #[command(after_help = "\
-The motion: B is first translated by s·d, where d is the unit vector
-along --direction and s is the distance that puts B's shadow on d wholly
-beyond A's plus 10% of the two shadows' combined length (so B starts well
-clear of A's bounding box), and then moves in a straight line back to its
-given position in one frame. A vertex of either solid that ends inside the
-other hits the other's surface an odd number of times (Theorem 5.2), so
-the topology change deletes exactly the parts inside: the union.
+The motion (Theorem 5.2): B is first translated by s·d, where d is the
+unit vector along --direction and s is the distance that puts B's shadow
+on d wholly beyond A's plus 10% of the two shadows' combined length (so
+B starts well clear of A's bounding box), and then moves in a straight
+line back to its given position in one frame. A vertex of either solid
+that ends inside the other hits the other's surface an odd number of
+times, so the topology change deletes exactly the parts inside: the
+union.
+
+How it is computed: when A and B are both closed (every edge shared by
+an even number of triangles), the parity that motion gives each vertex
+is its containment in the other solid, so it is computed without
+simulating the motion: the intersections of A with B only, then one
+exact ray per region of vertices between the intersection curves (the
+report counts the rays; it has no collisions). --via-motion runs the
+synthesized frame through the whole pipeline of `holey topo` instead
+(collisions, intersections, error correction), as it does by itself
+for open or non-manifold input. Each solid's own self-intersections are
+resolved only by --via-motion.
 
 Degenerate contact (faces of A and B coplanar, vertices or edges
-coinciding: a copy of a mesh shifted by a lattice step) is resolved by a
-deterministic, scale-relative perturbation: B's final position is moved
-by 2^-30 of the scene's diagonal along a fixed generic direction (about
-1e-9 relative, far below any modelling precision). If A and B are closed
-2-manifolds and the union is not, the run is retried with the
-perturbation 16 and 256 times larger along other directions; the report
-counts the retries. --exact moves nothing and relies on symbolic
-perturbation alone, which is exact but can leave both solids whole where
-they touch exactly along shared edges.
+coinciding: a copy of a mesh shifted by a lattice step) is resolved by
+symbolic perturbation, and first by a deterministic, scale-relative
+nudge: B's final position is moved by 2^-30 of the scene's diagonal
+along a fixed generic direction (about 1e-9 relative, far below any
+modelling precision). If A and B are closed 2-manifolds and the union is
+not, the run is retried with the nudge 16 and 256 times larger along
+other directions; the report counts the retries. --exact moves nothing
+and relies on symbolic perturbation alone.
 
-A and B should be closed, consistently oriented solids; other meshes are
-accepted and give what the same motion gives in `holey topo`. The default
-direction is generic (not along an axis) so that the paths of B's
-vertices avoid A's vertices and edges even when A and B are copies of one
-lattice-built mesh.
+The default direction is generic (not along an axis) so that the paths
+of B's vertices avoid A's vertices and edges even when A and B are
+copies of one lattice-built mesh.
 
 Examples:
   holey union a.obj b.obj union.obj
-  holey union @sphere:4 b.ply u.ply --direction 0,0,1 --report r.json")]
+  holey union @sphere:4 b.ply u.ply --via-motion --direction 0,0,1 --report r.json")]
 pub struct Args {
     /// The first solid; it stays in place.
     pub a: String,
@@ -61,6 +70,10 @@ pub struct Args {
     /// Do not perturb B's final position (see below).
     #[arg(long)]
     pub exact: bool,
+    /// Run the synthesized motion through the whole pipeline even when
+    /// both solids are closed (see below).
+    #[arg(long)]
+    pub via_motion: bool,
     #[command(flatten)]
     pub engine: EngineArgs,
 }
@@ -100,17 +113,20 @@ pub fn synthesize(a: &TriMesh, b: &TriMesh, d: DVec3) -> (TriMesh, Vec<DVec3>) {
     let (blo, bhi) = shadow(b);
     let (alen, blen) = ((ahi - alo).max(0.0), (bhi - blo).max(0.0));
     let s = (ahi - blo).max(0.0) + 0.1 * (alen + blen) + f64::MIN_POSITIVE;
-    let offset = d * s;
-    let n = a.positions.len() as u32;
-    let mut start = a.clone();
-    start
-        .positions
-        .extend(b.positions.iter().map(|p| *p + offset));
-    start
-        .triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    let start = joined(a, b, d * s);
     let end: Vec<DVec3> = a.positions.iter().chain(&b.positions).copied().collect();
     (start, end)
+}
+
+/// `a` and `b` as one mesh, `b` moved by `offset` (A's vertices first).
+fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
+    let n = a.positions.len() as u32;
+    let mut both = a.clone();
+    both.positions
+        .extend(b.positions.iter().map(|p| *p + offset));
+    both.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    both
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -142,6 +158,7 @@ pub fn run(args: Args) -> Result<()> {
         &NUDGES
     };
     let _p = Progress::start("uniting");
+    let options = args.engine.options();
     let mut last = None;
     for (retries, &(scale, dir)) in attempts.iter().enumerate() {
         let mut moved = b.clone();
@@ -149,25 +166,54 @@ pub fn run(args: Args) -> Result<()> {
         for p in &mut moved.positions {
             *p += nudge;
         }
-        let (start, end) = synthesize(&a, &moved, d);
-        if start.positions.iter().any(|p| !p.is_finite()) {
-            return Err(bad_input(
-                "B's start position overflows: the coordinates are too large",
-            ));
-        }
-        let mut out = holey_topo::topology_change(&start, &end, &args.engine.options())
-            .map_err(|e| bad_input(e.to_string()))?;
+        let direct = if args.via_motion {
+            None
+        } else {
+            match holey_topo::union(&a, &moved, &options) {
+                Ok(out) => Some(out),
+                Err(UnionError::NotClosed(_)) => None,
+                Err(e) => return Err(bad_input(e.to_string())),
+            }
+        };
+        let (mut out, picture) = match direct {
+            Some(out) => (out, Picture::Direct(moved)),
+            None => {
+                let (start, end) = synthesize(&a, &moved, d);
+                if start.positions.iter().any(|p| !p.is_finite()) {
+                    return Err(bad_input(
+                        "B's start position overflows: the coordinates are too large",
+                    ));
+                }
+                let out = holey_topo::topology_change(&start, &end, &options)
+                    .map_err(|e| bad_input(e.to_string()))?;
+                (out, Picture::Motion(start, end))
+            }
+        };
         out.report.perturbation_retries = retries;
         let good = !both_closed || out.mesh.is_closed_manifold();
-        last = Some((start, end, out));
+        last = Some((picture, out));
         if good {
             break;
         }
     }
-    let Some((start, end, out)) = last else {
+    let Some((picture, out)) = last else {
         return Err(bad_input("no attempt was made"));
     };
-    write_outcome(&start, &end, &out, &args.output, &args.engine)
+    write_outcome(&out, &args.output, &args.engine, || match picture {
+        Picture::Direct(moved) => joined(&a, &moved, DVec3::ZERO),
+        Picture::Motion(start, end) => TriMesh {
+            positions: end,
+            triangles: start.triangles,
+        },
+    })
+}
+
+/// What the parity picture shows: A and B at their final positions.
+enum Picture {
+    /// The direct union: B at its (nudged) position.
+    Direct(TriMesh),
+    /// The motion: its start mesh and end positions.
+    Motion(TriMesh, Vec<DVec3>),
 }
 
 /// Perturbations of B's final position: (fraction of the scene diagonal,

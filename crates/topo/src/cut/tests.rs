@@ -69,7 +69,7 @@ fn resolve_cuts_and_glues_without_deleting() {
         &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
     );
     let (edges, ids, x) = setup(&m);
-    let out = cut(&m, &m.positions, &edges, &ids, &x, None, None);
+    let out = cut(&m, &m.positions, &edges, &ids, &x, Deletion::Nothing, None);
     assert_eq!(out.report.curves_kept, 1);
     assert_eq!(out.report.triangles_deleted, 0);
     assert!((area(&out.mesh) - area(&m)).abs() < 1e-12 * area(&m));
@@ -100,7 +100,15 @@ fn deleting_the_odd_parts_of_two_octahedra_gives_their_union() {
             }
         })
         .collect();
-    let out = cut(&m, &m.positions, &edges, &ids, &x, Some(&odd), None);
+    let out = cut(
+        &m,
+        &m.positions,
+        &edges,
+        &ids,
+        &x,
+        Deletion::Odd(&odd),
+        None,
+    );
     assert!(
         closed_oriented(&out.mesh),
         "the union is not closed and oriented"
@@ -149,7 +157,15 @@ fn false_edges_close_a_parity_change_that_no_curve_separates() {
     assert_eq!(x.curve_count, 0);
     let c = DVec3::new(4.0, 4.0, 0.0);
     let odd: Vec<bool> = m.positions.iter().map(|p| p.distance(c) < 2.5).collect();
-    let out = cut(&m, &m.positions, &edges, &ids, &x, Some(&odd), None);
+    let out = cut(
+        &m,
+        &m.positions,
+        &edges,
+        &ids,
+        &x,
+        Deletion::Odd(&odd),
+        None,
+    );
     assert!(out.report.false_vertices > 0 && out.report.false_edges > 0);
     // A hole opened, and the remaining surface is a disk with one hole:
     // every edge has one or two triangle sides.

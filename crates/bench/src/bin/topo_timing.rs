@@ -1,0 +1,108 @@
+//! In-process timings of the topology engine on mesh files, for the
+//! side-by-side comparison with peers (`bench/peers/topo_spheres.py`).
+//!
+//! The peers are timed inside one long-lived Python process, each call
+//! after the first reusing memory the process already has. A fresh
+//! `holey` process instead pays for every page it touches: on the
+//! benchmark machine (a virtual machine) first touches of fresh memory
+//! cost up to 2.7 ms per MB. This program times the library the way the
+//! peers are timed: the files are read once, then the job runs `--runs`
+//! times in one process, and the best run and every run are printed as
+//! JSON.
+//!
+//! ```text
+//! topo_timing union A.obj B.obj [--runs N]
+//! topo_timing selfint MESH.obj [--runs N]
+//! ```
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use holey_io::MeshFile;
+use holey_topo::{Options, TriMesh};
+
+// The allocator the `holey` command line uses, so that the timings are
+// the library's as the command runs it.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
+fn load(path: &str) -> Result<TriMesh, String> {
+    match holey_io::read_path(Path::new(path)).map_err(|e| e.to_string())? {
+        MeshFile::Poly(poly) => {
+            let (triangles, _) = poly.fan_triangles();
+            Ok(TriMesh {
+                positions: poly.positions,
+                triangles,
+            })
+        }
+        MeshFile::Dlfl(_) => Err(format!("{path}: give a polygon file (OBJ, OFF, PLY, STL)")),
+    }
+}
+
+fn run() -> Result<String, String> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut runs = 5usize;
+    let mut files = Vec::new();
+    let mut it = args.iter();
+    let job = it
+        .next()
+        .ok_or("usage: topo_timing union A B | selfint MESH [--runs N]")?;
+    while let Some(a) = it.next() {
+        if a == "--runs" {
+            runs = it
+                .next()
+                .and_then(|n| n.parse().ok())
+                .filter(|&n| n > 0)
+                .ok_or("--runs needs a positive number")?;
+        } else {
+            files.push(a.clone());
+        }
+    }
+    let mut times = Vec::with_capacity(runs);
+    let mut result = 0usize;
+    let triangles;
+    match (job.as_str(), files.as_slice()) {
+        ("union", [a, b]) => {
+            let (a, b) = (load(a)?, load(b)?);
+            triangles = a.triangles.len() + b.triangles.len();
+            for _ in 0..runs {
+                let t = Instant::now();
+                let out =
+                    holey_topo::union(&a, &b, &Options::default()).map_err(|e| e.to_string())?;
+                times.push(t.elapsed().as_secs_f64());
+                result = out.mesh.triangles.len();
+            }
+        }
+        ("selfint", [m]) => {
+            let m = load(m)?;
+            triangles = m.triangles.len();
+            for _ in 0..runs {
+                let t = Instant::now();
+                let x = holey_topo::self_intersections(&m).map_err(|e| e.to_string())?;
+                times.push(t.elapsed().as_secs_f64());
+                result = x.pairs.len();
+            }
+        }
+        _ => return Err("usage: topo_timing union A B | selfint MESH [--runs N]".into()),
+    }
+    let best = times.iter().copied().fold(f64::INFINITY, f64::min);
+    let list: Vec<String> = times.iter().map(|t| format!("{t:.6}")).collect();
+    Ok(format!(
+        "{{\"job\": \"{job}\", \"triangles\": {triangles}, \"result\": {result}, \"best\": {best:.6}, \"runs\": [{}]}}",
+        list.join(", ")
+    ))
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(json) => {
+            println!("{json}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("topo_timing: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
