@@ -925,7 +925,15 @@ fn union_of_two_spheres_is_one_closed_solid() {
     // The motion itself, through the whole pipeline, gives the same solid.
     let um = dir.path().join("um.ply");
     let rm = dir.path().join("rm.json");
-    ok(&["union", s(&a), s(&b), s(&um), "--via-motion", "--report", s(&rm)]);
+    ok(&[
+        "union",
+        s(&a),
+        s(&b),
+        s(&um),
+        "--via-motion",
+        "--report",
+        s(&rm),
+    ]);
     let mm = info(s(&um), &[]);
     let motion: Value = serde_json::from_str(&std::fs::read_to_string(&rm).unwrap()).unwrap();
     assert!(motion["collisions"].as_u64().unwrap() > 0);
@@ -934,6 +942,29 @@ fn union_of_two_spheres_is_one_closed_solid() {
     assert_eq!(mm["vertices"], m["vertices"]);
     assert_eq!(mm["volume"], m["volume"]);
     assert_eq!(motion["raw_odd_vertices"], report["raw_odd_vertices"]);
+}
+
+/// An open B (a sphere with one face removed) bounds no solid, so
+/// `holey union` runs the synthesized motion through the whole pipeline
+/// instead of the containment rays: collisions are found, no ray is cast.
+#[test]
+fn union_with_an_open_surface_runs_the_motion() {
+    let dir = tmp();
+    let a = dir.path().join("a.obj");
+    let b = dir.path().join("b.obj");
+    let u = dir.path().join("u.ply");
+    let r = dir.path().join("r.json");
+    ok(&["primitive", "@sphere:2", s(&a)]);
+    ok(&["primitive", "@sphere:2", s(&b)]);
+    shift_obj_x(&b, 1.0);
+    let text = std::fs::read_to_string(&b).unwrap();
+    let last_face = text.rfind("\nf ").unwrap();
+    std::fs::write(&b, &text[..last_face + 1]).unwrap();
+    ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert!(report["collisions"].as_u64().unwrap() > 0);
+    assert_eq!(report["containment_rays"], 0);
+    assert_eq!(report["intersection_curves"], 1);
 }
 
 /// `holey topo` with zero motion returns the mesh unchanged (quads come

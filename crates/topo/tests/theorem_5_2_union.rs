@@ -5,7 +5,8 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use holey_topo::{Options, TriMesh};
+use holey_topo::union::Solid;
+use holey_topo::{Options, TriMesh, UnionError};
 
 /// `b` starts far away along a generic direction (an axis-aligned approach
 /// would send the vertices of lattice-built meshes exactly through each
@@ -17,8 +18,26 @@ fn union(a: &TriMesh, b: &TriMesh) -> TriMesh {
     out.mesh
 }
 
+/// The union by containment parity ([`holey_topo::union()`]): the parity
+/// the motion gives, computed without the motion.
+fn direct_union(a: &TriMesh, b: &TriMesh) -> TriMesh {
+    let out = holey_topo::union(a, b, &Options::default()).expect("closed solids");
+    assert_eq!(out.report.collisions, 0);
+    assert!(out.report.containment_rays >= 1);
+    assert_eq!(out.report.cut.curves_dropped, 0);
+    out.mesh
+}
+
 fn check_union(a: &TriMesh, b: &TriMesh, genus_expected: i64, what: &str) {
     let u = union(a, b);
+    // The motion through the whole pipeline (CCD, correction) and the
+    // containment parity give the same triangles, corner for corner.
+    let d = direct_union(a, b);
+    assert_eq!(
+        oriented_triangle_keys(&d),
+        oriented_triangle_keys(&u),
+        "{what}: the containment union differs from the motion's"
+    );
     assert!(
         closed_oriented(&u),
         "{what}: the union is not closed and oriented"
@@ -112,4 +131,140 @@ fn two_bunnies_match_the_peers() {
     assert_eq!(genus(&u), 0);
     assert!((volume(&u) - 1.23335).abs() < 5e-5, "volume {}", volume(&u));
     assert_eq!(self_intersecting_pairs(&u), 0);
+}
+
+/// The torus-and-sphere and two-tori unions, by containment parity, are
+/// the motion's too (genus carried through handles).
+#[test]
+fn containment_union_of_tori_is_the_motions() {
+    let a = primitive("@torus:32:16");
+    for shift in [1.0, 1.4] {
+        let b = translate(&a, DVec3::new(shift, 0.0, 0.0));
+        assert_eq!(
+            oriented_triangle_keys(&direct_union(&a, &b)),
+            oriented_triangle_keys(&union(&a, &b)),
+            "shift {shift}"
+        );
+    }
+}
+
+/// A unit cube centred at the origin, outward.
+fn unit_cube() -> TriMesh {
+    let positions = (0..8)
+        .map(|i| {
+            DVec3::new(
+                f64::from(i & 1) - 0.5,
+                f64::from((i >> 1) & 1) - 0.5,
+                f64::from((i >> 2) & 1) - 0.5,
+            )
+        })
+        .collect();
+    let triangles = vec![
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    TriMesh {
+        positions,
+        triangles,
+    }
+}
+
+/// Two cubes turned 45° (one about x, one about y) so that A's top ridge
+/// crosses B's bottom ridge at right angles, depth `d` = 0.2 deep. The
+/// overlap is the pyramid over the square |x| + |y| ≤ d of height d,
+/// volume 2d³/3, and it holds no vertex of either cube: the intersection
+/// curve's triangles have only outside ("even") vertices, a curve §3.5
+/// would drop. The union must cut it anyway and delete the vertex-free
+/// lens (sampled by one more ray).
+#[test]
+fn crossing_ridges_cut_a_curve_with_no_inside_vertex() {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let d = 0.2;
+    let turn_x = |p: DVec3| DVec3::new(p.x, h * (p.y - p.z), h * (p.y + p.z));
+    let turn_y = |p: DVec3| DVec3::new(h * (p.x + p.z), p.y, h * (p.z - p.x));
+    let a = map_positions(&unit_cube(), turn_x);
+    let b = map_positions(&unit_cube(), |p| {
+        turn_y(p) + DVec3::new(0.0, 0.0, 2.0 * h - d)
+    });
+    let out = holey_topo::union(&a, &b, &Options::default()).expect("closed solids");
+    assert_eq!(out.report.raw_odd_vertices, 0, "no vertex is inside");
+    assert!(out.report.intersection_curves >= 1);
+    assert_eq!(out.report.cut.curves_dropped, 0);
+    assert!(out.report.cut.sampled_regions >= 1);
+    let u = out.mesh;
+    assert!(closed_oriented(&u));
+    assert_eq!(components(&u), 1);
+    assert_eq!(genus(&u), 0);
+    assert_eq!(self_intersecting_pairs(&u), 0);
+    let want = 2.0 - 2.0 * d * d * d / 3.0;
+    assert!(
+        (volume(&u) - want).abs() < 1e-12,
+        "volume {} vs {want}",
+        volume(&u)
+    );
+    // The motion gets there too (its solid guard relabels the arrangement
+    // when parity drops the curve).
+    let m = union(&a, &b);
+    assert!(closed_oriented(&m));
+    assert!(
+        (volume(&m) - want).abs() < 1e-12,
+        "motion volume {}",
+        volume(&m)
+    );
+}
+
+/// Disjoint solids are both kept whole; one inside the other leaves the
+/// outer one; a solid's union with itself moved a little is one solid.
+#[test]
+fn containment_union_of_nested_and_apart_solids() {
+    let a = primitive("@sphere:2");
+    let far = translate(&a, DVec3::new(5.0, 0.0, 0.0));
+    let u = direct_union(&a, &far);
+    assert_eq!(components(&u), 2);
+    assert!((volume(&u) - 2.0 * volume(&a)).abs() < 1e-12);
+    let small = map_positions(&a, |p| p * 0.5 + DVec3::new(0.1, 0.05, 0.0));
+    let u = direct_union(&a, &small);
+    assert_eq!(oriented_triangle_keys(&u), oriented_triangle_keys(&a));
+    let u = direct_union(&small, &a);
+    assert_eq!(oriented_triangle_keys(&u), oriented_triangle_keys(&a));
+}
+
+/// Open or odd surfaces bound no solid: the containment union names the
+/// one that is not closed (the command line then runs the motion), and bad
+/// coordinates or indices are errors, never panics.
+#[test]
+fn containment_union_refuses_what_bounds_no_solid() {
+    let a = primitive("@sphere:2");
+    let mut open = translate(&a, DVec3::new(0.5, 0.0, 0.0));
+    open.triangles.pop();
+    assert_eq!(
+        holey_topo::union(&a, &open, &Options::default()).unwrap_err(),
+        UnionError::NotClosed(Solid::B)
+    );
+    assert_eq!(
+        holey_topo::union(&open, &a, &Options::default()).unwrap_err(),
+        UnionError::NotClosed(Solid::A)
+    );
+    let mut nan = a.clone();
+    nan.positions[3].y = f64::NAN;
+    let e = holey_topo::union(&nan, &a, &Options::default()).unwrap_err();
+    assert!(e.to_string().contains("vertex 3"), "{e}");
+    let mut bad = a.clone();
+    bad.triangles[0][1] = 99_999;
+    let e = holey_topo::union(&a, &bad, &Options::default()).unwrap_err();
+    assert!(e.to_string().contains("99999"), "{e}");
+    // Empty solids are closed (no edge at all): the union is the other.
+    let empty = TriMesh::default();
+    let u = holey_topo::union(&a, &empty, &Options::default()).expect("empty is closed");
+    assert_eq!(oriented_triangle_keys(&u.mesh), oriented_triangle_keys(&a));
 }
