@@ -8,6 +8,7 @@ in memory); holey is timed both by the engine's own report (in-process, no
 file reading) and as a whole process (reading two OBJ files included), with
 its peak memory.
 
+    cargo build --release -p holey-cli -p holey-bench
     python3 bench/peers/topo_spheres.py [--holey target/release/holey] [--runs 3]
 """
 import argparse, json, os, subprocess, sys, tempfile, time
@@ -33,9 +34,10 @@ def best(fn, runs):
     return min(times), out
 
 
-def run_holey(cmd, runs):
-    """Best wall time, peak RSS (KB) and stdout of a holey command."""
-    best_t, peak, stdout = None, 0, ""
+def run_holey(cmd, runs, report=None):
+    """Best wall time, peak RSS (KB), stdout of a holey command, and the
+    report (JSON at `report`) of the run whose engine total was best."""
+    best_t, peak, stdout, best_report = None, 0, "", None
     for _ in range(runs):
         t = time.perf_counter()
         p = subprocess.run(["/usr/bin/time", "-f", "%M"] + cmd, capture_output=True, text=True)
@@ -45,15 +47,34 @@ def run_holey(cmd, runs):
         peak = max(peak, int(p.stderr.strip().splitlines()[-1]))
         best_t = dt if best_t is None else min(best_t, dt)
         stdout = p.stdout
-    return best_t, peak, stdout
+        if report:
+            r = json.load(open(report))
+            if best_report is None or r["seconds"]["total"] < best_report["seconds"]["total"]:
+                best_report = r
+    return best_t, peak, stdout, best_report
+
+
+def run_timing(timing, args, runs):
+    """Best in-process time of the library, run `runs` times in one
+    process (as the peers are timed), from the bench crate's timing
+    program; None when it is not built."""
+    if not os.path.exists(timing):
+        return None
+    p = subprocess.run([timing] + args + ["--runs", str(runs)], capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"{timing} failed: {p.stderr}")
+    return json.loads(p.stdout)["best"]
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--holey", default="target/release/holey")
+    ap.add_argument("--timing", default="target/release/topo_timing",
+                    help="in-process timing program (cargo build --release -p holey-bench --bin topo_timing)")
     ap.add_argument("--runs", type=int, default=3)
     args = ap.parse_args()
     holey = os.path.abspath(args.holey)
+    timing = os.path.abspath(args.timing)
 
     a = m3d.Manifold.sphere(1, 724)
     b = a.translate([0.5, 0, 0])
@@ -99,11 +120,13 @@ def main():
 
         out = os.path.join(d, "u.ply")
         rep = os.path.join(d, "r.json")
-        t_hu, mem_hu, _ = run_holey([holey, "union", pa, pb, out, "--report", rep], args.runs)
-        report = json.load(open(rep))
+        t_hu, mem_hu, _, report = run_holey([holey, "union", pa, pb, out, "--report", rep], args.runs, rep)
         info = json.loads(subprocess.run([holey, "info", "--json", out], capture_output=True, text=True).stdout)
-        t_hs, mem_hs, si = run_holey([holey, "selfint", "--json", pab], args.runs)
+        t_hm, _, _, motion = run_holey([holey, "union", pa, pb, out, "--via-motion", "--report", rep], args.runs, rep)
+        t_hs, mem_hs, si, _ = run_holey([holey, "selfint", "--json", pab], args.runs)
         si = json.loads(si)
+        warm_union = run_timing(timing, ["union", pa, pb], max(args.runs, 5))
+        warm_si = run_timing(timing, ["selfint", pab], max(args.runs, 5))
 
     engine = report["seconds"]["total"]
     print(f"two spheres, {tris} triangles; best of {args.runs}")
@@ -112,11 +135,18 @@ def main():
           f"correction {report['seconds']['correction']:.3f}, cut {report['seconds']['cut']:.3f})  "
           f"holey whole process {t_hu:.3f} s, peak {mem_hu / 1024:.0f} MB = {mem_hu * 1024 / tris:.0f} B/triangle")
     print(f"         holey/manifold3d {engine / t_m3d:.2f}x  holey/trueform {engine / t_tf:.2f}x (engine)")
+    if warm_union is not None:
+        print(f"         holey in one process, best of {max(args.runs, 5)}: {warm_union:.3f} s; "
+              f"holey/manifold3d {warm_union / t_m3d:.2f}x  holey/trueform {warm_union / t_tf:.2f}x")
+    print(f"         --via-motion (collisions {motion['seconds']['collisions']:.3f} s): engine "
+          f"{motion['seconds']['total']:.3f} s, whole process {t_hm:.3f} s")
     print(f"         result: {info['faces']} triangles, closed {info['closed']}, genus {info['genus']}, "
           f"volume {info['volume']:.9f}; manifold3d {m3d_runs[0][1]} triangles, volume {m3d_runs[0][2]:.9f}")
     print(f"selfint  trueform {t_tf_si:.3f} s  holey engine {si['seconds']:.3f} s  holey whole process {t_hs:.3f} s, "
           f"peak {mem_hs / 1024:.0f} MB; holey/trueform {si['seconds'] / t_tf_si:.2f}x (engine); "
           f"{si['intersecting_pairs']} pairs, {si['intersection_curves']} curves")
+    if warm_si is not None:
+        print(f"         holey in one process, best of {max(args.runs, 5)}: {warm_si:.3f} s; holey/trueform {warm_si / t_tf_si:.2f}x")
 
 
 if __name__ == "__main__":

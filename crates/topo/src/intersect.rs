@@ -236,6 +236,9 @@ pub(crate) enum Candidates<'a> {
         second: &'a Bvh,
         split: u32,
     },
+    /// Pairs among a subset of the triangles: `tree`'s primitive `i` is
+    /// triangle `triangles[i]`.
+    Among { tree: &'a Bvh, triangles: &'a [u32] },
 }
 
 /// The bounding boxes of triangles `range` of `mesh` at `positions`.
@@ -301,6 +304,10 @@ fn segments(
             second,
             split,
         } => first.overlaps_with_filter_map(second, |t1, t2| test(t1, split + t2)),
+        Candidates::Among { tree, triangles } => tree.self_overlaps_filter_map(|i, j| {
+            let (t1, t2) = (triangles[i as usize], triangles[j as usize]);
+            test(t1.min(t2), t1.max(t2))
+        }),
     };
     if abort.load(AtomicOrdering::Relaxed) {
         return Err(IntersectError::TooManyPairs {
@@ -309,6 +316,37 @@ fn segments(
         });
     }
     Ok((segs, candidates))
+}
+
+/// Whether any two of `triangles` (of `mesh` at `positions`, with
+/// identities `ids`) intersect, stopping at the first pair that does.
+pub(crate) fn any_intersection_among(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    ids: &[u32],
+    triangles: &[u32],
+) -> Result<bool, IntersectError> {
+    let boxes: Vec<Aabb> = triangles
+        .iter()
+        .map(|&t| Aabb::from_points(&mesh.triangles[t as usize].map(|v| positions[v as usize])))
+        .collect();
+    let tree = Bvh::build(&boxes)?;
+    let found = segments(
+        mesh,
+        positions,
+        ids,
+        Candidates::Among {
+            tree: &tree,
+            triangles,
+        },
+        0,
+        &AtomicBool::new(false),
+    );
+    match found {
+        Ok(_) => Ok(false),
+        Err(IntersectError::TooManyPairs { .. }) => Ok(true),
+        Err(e) => Err(e),
+    }
 }
 
 /// [`segments`] over all pairs of `mesh`'s triangles.

@@ -38,26 +38,31 @@
 //! right, without the cost of the motion (the collision stage over the
 //! long swept paths of B's vertices was 60% of a union).
 //!
-//! Identities are per solid: a vertex of A and a vertex of B at the same
+//! Identities are per vertex: a vertex of A and a vertex of B at the same
 //! position are two symbolic points, so the perturbation separates the
 //! solids consistently where they touch exactly (faces of lattice-aligned
 //! copies of one mesh), as a motion would.
 //!
-//! If A or B intersects itself, its own curves are left as they are: each
-//! surface keeps what lies outside the other, self-intersections
-//! included. The motion (`topology_change`) resolves those too.
+//! If A or B intersects itself away from the other, its own curves are
+//! left as they are: each surface keeps what lies outside the other,
+//! self-intersections included. If it intersects itself where it meets
+//! the other, the points where the curves cross would be missing, so the
+//! union refuses ([`UnionError::SelfIntersecting`]) and the motion
+//! (`topology_change`) resolves it.
 
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_geom::{Aabb, Bvh, SymPoint, position_classes, segment_triangle_intersect};
+use holey_geom::{Aabb, Bvh, SymPoint, segment_triangle_intersect};
 use rayon::prelude::*;
 
 use crate::correct::find;
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
-use crate::intersect::{Candidates, default_pair_limit, intersections_among, triangle_boxes};
+use crate::intersect::{
+    Candidates, any_intersection_among, default_pair_limit, intersections_among, triangle_boxes,
+};
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
 use crate::solid::signed_volume;
@@ -124,15 +129,15 @@ impl Pair {
     }
 }
 
-/// Identities per solid: exact position classes within A and within B,
-/// never across them.
-fn identities(pair: &Pair) -> Result<Vec<u32>, TopoError> {
-    let s = pair.split_vertex as usize;
-    let (a, b) = pair.mesh.positions.split_at(s);
-    let (ia, ib) = rayon::join(|| position_classes(a), || position_classes(b));
-    let mut ids = ia?;
-    ids.extend(ib?.into_iter().map(|i| i + pair.split_vertex));
-    Ok(ids)
+/// Identities: each vertex its own index. The union compares only A's
+/// points with B's (never two points of one solid), so what matters is
+/// that no point of A shares an identity with one of B: then the
+/// perturbation separates the solids consistently where they touch
+/// exactly. Two vertices of one solid at one position (a pinch) are
+/// separated by it too, which is as consistent, and spares the exact
+/// position classes (a hash of every vertex, a tenth of the union).
+fn identities(pair: &Pair) -> Vec<u32> {
+    (0..pair.mesh.positions.len() as u32).collect()
 }
 
 /// How the two surfaces are shaped along their edges.
@@ -225,6 +230,14 @@ pub enum UnionError {
     /// of the synthesized frame) still gives a result.
     #[error("solid {0} is not closed: an edge has an odd number of triangles")]
     NotClosed(Solid),
+    /// The solid intersects itself where it meets the other: the points
+    /// where its own curves cross the union's curves would be missing
+    /// (the union finds only intersections between A and B), and the
+    /// result would crack there. The motion resolves them.
+    #[error(
+        "solid {0} intersects itself where it meets the other; the motion (--via-motion) resolves that"
+    )]
+    SelfIntersecting(Solid),
     /// A ray could not leave the scene (coordinates near the largest
     /// float).
     #[error("the coordinates are too large to cast a ray past the solids")]
@@ -276,7 +289,6 @@ pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, Uni
         },
     );
     let (ids, outward) = ids;
-    let ids = ids?;
     let (tree_a, tree_b) = (
         tree_a.map_err(TopoError::from)?,
         tree_b.map_err(TopoError::from)?,
@@ -302,6 +314,22 @@ pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, Uni
         &AtomicBool::new(false),
     )
     .map_err(TopoError::from)?;
+    // A triple point of A, A and B needs two triangles of A that both
+    // meet B and meet each other: testing the triangles of each solid that
+    // meet the other (a few thousand) finds every one the union would
+    // miss.
+    for (solid, side) in [(Solid::A, 0usize), (Solid::B, 1)] {
+        let mut meeting: Vec<u32> = x
+            .pairs
+            .iter()
+            .map(|p| if side == 0 { p.0 } else { p.1 })
+            .collect();
+        meeting.sort_unstable();
+        meeting.dedup();
+        if any_intersection_among(mesh, pos, &ids, &meeting).map_err(TopoError::from)? {
+            return Err(UnionError::SelfIntersecting(solid));
+        }
+    }
     let t_intersect = t.elapsed().as_secs_f64();
 
     // Containment parity: one ray per component of uncut edges.

@@ -268,3 +268,31 @@ fn containment_union_refuses_what_bounds_no_solid() {
     let u = holey_topo::union(&a, &empty, &Options::default()).expect("empty is closed");
     assert_eq!(oriented_triangle_keys(&u.mesh), oriented_triangle_keys(&a));
 }
+
+/// A solid that is two overlapping spheres (closed, but crossing itself
+/// along a circle at x = 0.4): where B reaches that circle, the union
+/// would miss the points where A's own curve crosses A × B, so it refuses
+/// and names A; where B stays clear of it, the union goes ahead and keeps
+/// A's own crossing as it is.
+#[test]
+fn containment_union_refuses_a_solid_crossing_itself_where_they_meet() {
+    let s = primitive("@sphere:3");
+    let a = join(&s, &translate(&s, DVec3::new(0.8, 0.0, 0.0)));
+    let near = translate(&s, DVec3::new(0.4, 0.0, 1.2));
+    assert_eq!(
+        holey_topo::union(&a, &near, &Options::default()).unwrap_err(),
+        UnionError::SelfIntersecting(Solid::A)
+    );
+    assert_eq!(
+        holey_topo::union(&near, &a, &Options::default()).unwrap_err(),
+        UnionError::SelfIntersecting(Solid::B)
+    );
+    let away = translate(&s, DVec3::new(-1.5, 0.0, 0.0));
+    let u = holey_topo::union(&a, &away, &Options::default())
+        .expect("B meets A away from its crossing");
+    assert!(closed_oriented(&u.mesh));
+    // A's own crossing is still there; A × B is resolved.
+    let own = self_intersecting_pairs(&a);
+    assert!(own > 0);
+    assert_eq!(self_intersecting_pairs(&u.mesh), own);
+}

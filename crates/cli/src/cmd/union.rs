@@ -37,8 +37,9 @@ exact ray per region of vertices between the intersection curves (the
 report counts the rays; it has no collisions). --via-motion runs the
 synthesized frame through the whole pipeline of `holey topo` instead
 (collisions, intersections, error correction), as it does by itself
-for open or non-manifold input. Each solid's own self-intersections are
-resolved only by --via-motion.
+for open input and for a solid that intersects itself where it meets
+the other. A solid's own self-intersections elsewhere are kept as they
+are, except by --via-motion.
 
 Degenerate contact (faces of A and B coplanar, vertices or edges
 coinciding: a copy of a mesh shifted by a lattice step) is resolved by
@@ -171,7 +172,7 @@ pub fn run(args: Args) -> Result<()> {
         } else {
             match holey_topo::union(&a, &moved, &options) {
                 Ok(out) => Some(out),
-                Err(UnionError::NotClosed(_)) => None,
+                Err(UnionError::NotClosed(_) | UnionError::SelfIntersecting(_)) => None,
                 Err(e) => return Err(bad_input(e.to_string())),
             }
         };
