@@ -6,7 +6,7 @@
 
 use divan::{Bencher, black_box};
 use glam::DVec3;
-use holey_topo::{Options, TriMesh, self_intersections, topology_change};
+use holey_topo::{Options, TriMesh, self_intersections, topology_change, union};
 
 fn main() {
     divan::main();
@@ -43,6 +43,24 @@ fn union_of_two_spheres(bencher: Bencher, level: u32) {
         black_box(
             topology_change(&start, &end, &Options::default()).map(|o| o.mesh.triangles.len()),
         )
+    });
+}
+
+/// The same union by containment parity (`holey_topo::union`, what
+/// `holey union` runs for closed solids): no motion, A × B only.
+#[divan::bench(args = [5, 6, 7], sample_count = 3)]
+fn union_of_two_spheres_by_containment(bencher: Bencher, level: u32) {
+    let a = holey_bench::icosphere(level);
+    let b = TriMesh {
+        positions: a
+            .positions
+            .iter()
+            .map(|p| *p + DVec3::new(0.5, 0.1, 0.05))
+            .collect(),
+        triangles: a.triangles.clone(),
+    };
+    bencher.bench_local(|| {
+        black_box(union(&a, &b, &Options::default()).map(|o| o.mesh.triangles.len()))
     });
 }
 
