@@ -21,7 +21,10 @@
 //! the batch, output in batch order then tree order: deterministic); all
 //! pairs of overlapping primitives ([`Bvh::self_overlaps`], a simultaneous
 //! descent of the tree against itself, parallel over the top levels, each
-//! unordered pair once). **Refit** recomputes boxes bottom-up after the
+//! unordered pair once); all pairs across two trees
+//! ([`Bvh::overlaps_with_filter_map`], the same descent of one tree
+//! against another, for two meshes whose own overlaps do not matter).
+//! **Refit** recomputes boxes bottom-up after the
 //! primitives moved, either everywhere ([`Bvh::refit`]) or only above the
 //! primitives that changed ([`Bvh::refit_some`], O(k log n)): for local
 //! edits such as a sculpting brush. Refitting keeps the topology, so the
