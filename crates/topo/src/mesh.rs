@@ -301,19 +301,30 @@ impl Edges {
         if !self.closed(triangles) {
             return false;
         }
-        // Whether triangle `t` runs along edge `e` from its first end.
-        let forward = |t: u32, e: usize| {
-            let tri = triangles[t as usize];
-            (0..3)
-                .find(|&k| self.of_triangle[t as usize][k] as usize == e)
-                .map(|k| tri[k] == self.ends[e][0])
-        };
         (0..self.ends.len())
             .into_par_iter()
-            .all(|e| match *self.triangles(e) {
-                [t, u] => matches!((forward(t, e), forward(u, e)), (Some(a), Some(b)) if a != b),
-                _ => false,
-            })
+            .all(|e| self.opposite(triangles, e))
+    }
+
+    /// Whether triangle `t` (of `triangles`, the mesh these edges were
+    /// collected from) runs along edge `e` from its first end; `None` if
+    /// `e` is not one of its sides.
+    pub fn runs_forward(&self, triangles: &[[u32; 3]], t: u32, e: usize) -> Option<bool> {
+        (0..3)
+            .find(|&k| self.of_triangle[t as usize][k] as usize == e)
+            .map(|k| triangles[t as usize][k] == self.ends[e][0])
+    }
+
+    /// Whether edge `e` has exactly two triangles, running along it in
+    /// opposite directions (consistently oriented there).
+    pub fn opposite(&self, triangles: &[[u32; 3]], e: usize) -> bool {
+        match *self.triangles(e) {
+            [t, u] => matches!(
+                (self.runs_forward(triangles, t, e), self.runs_forward(triangles, u, e)),
+                (Some(a), Some(b)) if a != b
+            ),
+            _ => false,
+        }
     }
 }
 

@@ -71,14 +71,6 @@ pub(crate) fn keep_by_containment(arrangement: &TriMesh, outward: bool) -> Optio
         .map(|t| Aabb::from_points(&t.map(|v| pos[v as usize])))
         .collect();
     let bvh = Bvh::build(&boxes).ok()?;
-    let bounds = bvh.bounds();
-    let span = (bounds.max.x - bounds.min.x)
-        .max(bounds.max.x.abs())
-        .max(1.0);
-    let far_x = bounds.max.x + span;
-    if !far_x.is_finite() {
-        return None;
-    }
     // Fresh identities for the two ends of every ray.
     let ray_id = u32::try_from(pos.len()).ok()?;
     let sym = |v: u32| SymPoint::new(pos[v as usize], ids[v as usize]);
@@ -88,26 +80,52 @@ pub(crate) fn keep_by_containment(arrangement: &TriMesh, outward: bool) -> Optio
         let tri = tris[s as usize];
         let c = tri.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / 3.0;
         let start = SymPoint::new(c, ray_id);
-        let end = SymPoint::new(DVec3::new(far_x, c.y, c.z), ray_id + 1);
         // Crossings of the ray from the (perturbed) start, its own
         // triangle included: their parity is ω's at the start.
-        let mut crossings = 0u32;
-        bvh.for_each_overlap(&Aabb::new(c, end.pos), |t| {
-            let [a, b, d] = tris[t as usize].map(sym);
-            if segment_triangle_intersect(start, end, a, b, d) {
-                crossings += 1;
-            }
-        });
+        let omega_odd = ray_crossings_odd(&bvh, start, ray_id + 1, |t| tris[t as usize].map(sym))?;
         // Which side of its triangle the perturbed start lies on: the
         // orientation is positive on the side opposite the normal.
         let [a, b, d] = tri.map(sym);
         let behind = holey_geom::orient3d_sos(a, b, d, start) == holey_geom::SosSign::Positive;
         let inner = behind == outward;
-        let omega_odd = crossings % 2 == 1;
         // ω⁻ = ω at the start if the start is on the inner side, else ω + 1.
         keep_region[r] = if inner { omega_odd } else { !omega_odd };
     }
     Some(region.iter().map(|&r| keep_region[r as usize]).collect())
+}
+
+/// Whether the ray from `start` towards +x, past everything `tree`
+/// holds, crosses an odd number of its triangles (`triangle(i)` gives
+/// primitive `i`'s corners), decided exactly with simulation of
+/// simplicity; the far end has identity `far_id`, which no point of the
+/// scene may have. `None` when the coordinates are too large for the ray
+/// to leave the scene.
+pub(crate) fn ray_crossings_odd(
+    tree: &Bvh,
+    start: SymPoint,
+    far_id: u32,
+    triangle: impl Fn(u32) -> [SymPoint; 3],
+) -> Option<bool> {
+    let bounds = tree.bounds();
+    if !bounds.is_finite() {
+        return Some(false);
+    }
+    let span = (bounds.max.x - bounds.min.x)
+        .max(bounds.max.x.abs())
+        .max(1.0);
+    let far_x = bounds.max.x.max(start.pos.x) + span;
+    if !far_x.is_finite() {
+        return None;
+    }
+    let end = SymPoint::new(DVec3::new(far_x, start.pos.y, start.pos.z), far_id);
+    let mut odd = false;
+    tree.for_each_overlap(&Aabb::new(start.pos, end.pos), |i| {
+        let [a, b, c] = triangle(i);
+        if segment_triangle_intersect(start, end, a, b, c) {
+            odd = !odd;
+        }
+    });
+    Some(odd)
 }
 
 /// Regions of the arrangement: triangles joined across edges that exactly

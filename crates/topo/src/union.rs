@@ -54,7 +54,7 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_geom::{Aabb, Bvh, SymPoint, segment_triangle_intersect};
+use holey_geom::{Bvh, SymPoint};
 use rayon::prelude::*;
 
 use crate::correct::find;
@@ -65,7 +65,7 @@ use crate::intersect::{
 };
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
-use crate::solid::signed_volume;
+use crate::solid::{ray_crossings_odd, signed_volume};
 
 /// Which of the two solids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -160,21 +160,17 @@ fn shape(pair: &Pair, edges: &Edges) -> Shape {
     {
         return Shape::NotClosed(pair.solid_of_triangle(t as u32));
     }
-    // Whether triangle `t` runs along edge `e` from its first end.
-    let forward = |t: u32, e: usize| {
-        let k = (0..3).find(|&k| edges.of_triangle[t as usize][k] as usize == e);
-        k.map(|k| tris[t as usize][k] == edges.ends[e][0])
-    };
     // Per edge: 0 oriented manifold, 1 even but not that, 2 odd.
     let worst = (0..edges.len())
         .into_par_iter()
-        .map(|e| match *edges.triangles(e) {
-            [t, u] => match (forward(t, e), forward(u, e)) {
-                (Some(a), Some(b)) if a != b => (0u8, e),
-                _ => (1, e),
-            },
-            ref ts if ts.len() % 2 == 0 => (1, e),
-            _ => (2, e),
+        .map(|e| {
+            if edges.opposite(tris, e) {
+                (0u8, e)
+            } else if edges.triangles(e).len().is_multiple_of(2) {
+                (1, e)
+            } else {
+                (2, e)
+            }
         })
         .reduce(|| (0, usize::MAX), |x, y| if y.0 > x.0 { y } else { x });
     match worst {
@@ -196,27 +192,10 @@ struct Rays<'a> {
 
 impl Rays<'_> {
     fn inside(&self, start: SymPoint, tree: &Bvh, offset: u32) -> Option<bool> {
-        let bounds = tree.bounds();
-        if !bounds.is_finite() {
-            return Some(false);
-        }
-        let span = (bounds.max.x - bounds.min.x)
-            .max(bounds.max.x.abs())
-            .max(1.0);
-        let far_x = bounds.max.x.max(start.pos.x) + span;
-        if !far_x.is_finite() {
-            return None;
-        }
-        let end = SymPoint::new(DVec3::new(far_x, start.pos.y, start.pos.z), self.far_id);
         let sym = |v: u32| SymPoint::new(self.positions[v as usize], self.ids[v as usize]);
-        let mut odd = false;
-        tree.for_each_overlap(&Aabb::new(start.pos, end.pos), |i| {
-            let [a, b, c] = self.triangles[(offset + i) as usize].map(sym);
-            if segment_triangle_intersect(start, end, a, b, c) {
-                odd = !odd;
-            }
-        });
-        Some(odd)
+        ray_crossings_odd(tree, start, self.far_id, |i| {
+            self.triangles[(offset + i) as usize].map(sym)
+        })
     }
 }
 
