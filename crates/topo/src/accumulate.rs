@@ -172,6 +172,7 @@ impl Accumulator {
                 &self.options,
                 started,
                 geometry(&sub, &end, &self.options)?,
+                self.frame <= 1,
             )?;
             match region.resolve(&self.mesh, &self.current, &out, self.options.solid_guard) {
                 (report, Spliced::PositionsOnly) => {
@@ -202,6 +203,7 @@ impl Accumulator {
             &self.options,
             started,
             geometry,
+            self.frame <= 1,
         )
     }
 }

@@ -24,7 +24,11 @@
 //! 4. **Delete.** A sub-triangle takes the parity of its original corners;
 //!    one with none (all its corners on curves) is decided by 50 rounds of
 //!    diffusion across sub-triangle edges that are not curve edges, and an
-//!    undecided one is kept (even). Odd sub-triangles are deleted.
+//!    undecided one is kept (even). Odd sub-triangles are deleted. For
+//!    one frame of motion, a curve edge left with three kept
+//!    sub-triangles (a T where a curve ends at a sheet's boundary) has the
+//!    two halves of its uncut sheet sampled, and the swept one deleted
+//!    (`cut/junctions.rs`).
 //!
 //! In *resolve* mode (no parity field) every curve is kept and nothing is
 //! deleted: the result is the mesh cut along all its self-intersections and
@@ -68,6 +72,10 @@ pub struct CutReport {
     pub constraint_splits: usize,
     /// Points that rounded onto the same chart position as another.
     pub merged_points: usize,
+    /// Curve edges where three sub-triangles were kept (a T: the swept
+    /// sheet's parity missed the curve's last stretch) and the motion,
+    /// sampled beside the edge, deleted the swept one (`cut/junctions.rs`).
+    pub junctions_repaired: usize,
 }
 
 /// A vertex of a chart triangulation.
@@ -241,6 +249,14 @@ pub enum Deletion<'a> {
     /// §3.5: a curve whose triangles' vertices all have one parity is not
     /// cut.
     Odd(&'a [bool]),
+    /// As [`Deletion::Odd`], for one frame of linear motion: a sampled
+    /// point then follows the surface exactly (it is a fixed barycentric
+    /// point of a triangle whose corners move linearly), so the sampler
+    /// can also decide the T-junctions vertex parity leaves where a curve
+    /// ends at a sheet's boundary (Figure 7; `cut/junctions.rs`). Over a
+    /// drag of many frames the sampler's straight path is only an
+    /// approximation of the true one, too coarse beside a curve.
+    OddOneFrame(&'a [bool]),
     /// The odd part of an exact parity field (containment numbers, in the
     /// union of two solids): every curve then separates odd from even,
     /// so every curve is cut, even one whose triangles have only even
@@ -253,7 +269,7 @@ impl<'a> Deletion<'a> {
     fn odd(self) -> Option<&'a [bool]> {
         match self {
             Deletion::Nothing => None,
-            Deletion::Odd(o) | Deletion::OddExact(o) => Some(o),
+            Deletion::Odd(o) | Deletion::OddOneFrame(o) | Deletion::OddExact(o) => Some(o),
         }
     }
 }
@@ -283,7 +299,7 @@ pub fn cut(
     // 1. Curves to resolve.
     let keep_curve: Vec<bool> = match deletion {
         Deletion::Nothing | Deletion::OddExact(_) => vec![true; x.curve_count],
-        Deletion::Odd(odd) => {
+        Deletion::Odd(odd) | Deletion::OddOneFrame(odd) => {
             let mut seen = vec![[false; 2]; x.curve_count];
             for (p, piece) in x.pieces.iter().enumerate() {
                 let c = x.curve_of_piece[p] as usize;
@@ -707,7 +723,22 @@ pub fn cut(
                 &source,
                 sample,
             );
-            labels.iter().map(|&o| !o).collect()
+            let mut keep: Vec<bool> = labels.iter().map(|&o| !o).collect();
+            if let (Deletion::OddOneFrame(_), Some(sample)) = (deletion, sample) {
+                let mut curve = curve_edges.clone();
+                curve.sort_unstable();
+                curve.dedup();
+                report.junctions_repaired = junctions::Junctions {
+                    tris: &out_tris,
+                    source: &source,
+                    positions: &out_positions,
+                    input_tris: tris,
+                    input_positions: positions,
+                    curve: &curve,
+                }
+                .repair(&mut keep, sample, MAX_SAMPLED_REGIONS as u32);
+            }
+            keep
         }
     };
     report.triangles_deleted = keep.iter().filter(|&&k| !k).count();
@@ -888,6 +919,8 @@ fn label(
     report.undecided = state.iter().filter(|s| s.is_none()).count();
     state.into_iter().map(|s| s.unwrap_or(false)).collect()
 }
+
+mod junctions;
 
 #[cfg(test)]
 mod tests;

@@ -317,7 +317,7 @@ impl PointSampler<'_> {
 /// The rest of a frame once collisions and intersections are known:
 /// correction, cut, the solid guard, orientation and the report.
 /// `start` → `end` is the straight motion sampled points follow: the frame
-/// itself, or for a drag its first and last positions.
+/// itself (`one_frame`), or for a drag its first and last positions.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn finish(
     mesh: &TriMesh,
@@ -328,6 +328,7 @@ pub(crate) fn finish(
     options: &Options,
     started: Instant,
     geometry: Geometry,
+    one_frame: bool,
 ) -> Result<Outcome, TopoError> {
     let s = correction_stage(geometry, mesh, end, &raw, options.scheme);
     let t = Instant::now();
@@ -348,7 +349,11 @@ pub(crate) fn finish(
         &s.geometry.edges,
         &s.geometry.ids,
         &s.geometry.x,
-        Deletion::Odd(&s.corrected),
+        if one_frame {
+            Deletion::OddOneFrame(&s.corrected)
+        } else {
+            Deletion::Odd(&s.corrected)
+        },
         if options.refine { Some(&sample) } else { None },
     );
     // The solid guard: a solid whose parity result is not a solid (open,
@@ -471,6 +476,7 @@ pub fn topology_change(
         options,
         started,
         geometry,
+        true,
     )
 }
 

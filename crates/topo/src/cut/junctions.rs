@@ -1,0 +1,216 @@
+//! T-junctions left by vertex-sampled parity (Figure 7).
+//!
+//! Where a kept curve ends at a sheet's boundary, the even/odd boundary
+//! parity draws on the *other* sheet runs along mesh edges (false edges,
+//! §3.5) and rarely reaches the curve's end. The curve's last stretch then
+//! crosses triangles of the swept sheet whose corners are all even, so
+//! both halves of that sheet are kept, while the crossing sheet is cut
+//! (one half kept, one deleted): three kept sub-triangles at one curve
+//! edge, a non-manifold T.
+//!
+//! The motion decides which half of the swept sheet was crossed: a point
+//! just beside the curve edge on each half is tested as if it were a
+//! vertex ([`Sampler`], the refinement of §7). When exactly one half is
+//! odd its sub-triangle at that edge is deleted, and the edge joins the
+//! kept half of each sheet. When the motion says both halves are even the
+//! edge is left as it is: the parity field then really has a T there.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use super::Sampler;
+
+/// Most junction edges examined per cut: each costs two moving-point
+/// queries, and past a few thousand the surface is crumpled beyond what
+/// local repair can mend.
+pub const MAX_JUNCTION_EDGES: usize = 4096;
+
+/// How far into a sub-triangle, from its curve edge toward the opposite
+/// corner, a side's sample sits (a fraction of that corner's weight):
+/// close to the curve, where the swept half is swept, yet off it.
+const OFFSET: f64 = 1.0 / 64.0;
+
+/// The sub-triangles and geometry one repair reads.
+pub(super) struct Junctions<'a> {
+    /// Sub-triangles (global vertex indices) and their source triangles.
+    pub tris: &'a [[u32; 3]],
+    pub source: &'a [(u32, [f64; 2])],
+    /// Positions of the global vertices (at the frame's end).
+    pub positions: &'a [DVec3],
+    /// The input's triangles and their end positions (the source frame).
+    pub input_tris: &'a [[u32; 3]],
+    pub input_positions: &'a [DVec3],
+    /// Curve edges (sorted, deduplicated `(min, max)` pairs).
+    pub curve: &'a [(u32, u32)],
+}
+
+/// Barycentric weights of `q` in triangle `p` (least squares in its
+/// plane); `None` for a degenerate triangle.
+fn barycentric(p: [DVec3; 3], q: DVec3) -> Option<[f64; 3]> {
+    let (e1, e2, d) = (p[1] - p[0], p[2] - p[0], q - p[0]);
+    let (a, b, c) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let det = a * c - b * b;
+    // Scale-relative: the Gram determinant against its own terms (NaN
+    // fails too).
+    if det.partial_cmp(&(a * c * 1e-14)) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let (r1, r2) = (d.dot(e1), d.dot(e2));
+    let u = (c * r1 - b * r2) / det;
+    let w = (a * r2 - b * r1) / det;
+    Some([1.0 - u - w, u, w])
+}
+
+impl Junctions<'_> {
+    /// The parity of the point beside edge `(a, b)` inside sub-triangle
+    /// `s`, sampled with call number `k`.
+    fn side_parity(&self, sample: &Sampler<'_>, k: u32, s: usize, a: u32, b: u32) -> Option<bool> {
+        let t = self.tris[s];
+        let c = *t.iter().find(|&&v| v != a && v != b)?;
+        let at = |v: u32| self.positions.get(v as usize).copied();
+        let q = (at(a)? + at(b)?) * (0.5 * (1.0 - OFFSET)) + at(c)? * OFFSET;
+        let src = self.source[s].0;
+        let corners = *self.input_tris.get(src as usize)?;
+        let p = corners.map(|v| self.input_positions[v as usize]);
+        let w = barycentric(p, q)?;
+        sample(k, src, w)
+    }
+
+    /// Deletes the swept side of a source triangle: the kept sub-triangles
+    /// of its source reachable from `swept` without crossing a curve edge.
+    /// Deleting only `swept` would leave the side's other sub-triangles
+    /// at the same curve point as a second fan there (a pinch vertex).
+    fn delete_side(
+        &self,
+        keep: &mut [bool],
+        swept: usize,
+        by_source: &HashMap<u32, Vec<usize>>,
+    ) -> usize {
+        let Some(siblings) = by_source.get(&self.source[swept].0) else {
+            return 0;
+        };
+        let is_curve = |a: u32, b: u32| self.curve.binary_search(&(a.min(b), a.max(b))).is_ok();
+        let shares_open_edge = |s: usize, r: usize| {
+            let (t, u) = (self.tris[s], self.tris[r]);
+            (0..3).any(|i| {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                !is_curve(a, b) && u.contains(&a) && u.contains(&b)
+            })
+        };
+        keep[swept] = false;
+        let mut deleted = 1;
+        let mut stack = vec![swept];
+        while let Some(s) = stack.pop() {
+            for &r in siblings {
+                if keep[r] && shares_open_edge(s, r) {
+                    keep[r] = false;
+                    deleted += 1;
+                    stack.push(r);
+                }
+            }
+        }
+        deleted
+    }
+
+    /// Deletes (`keep[s] = false`) the swept half at every curve edge with
+    /// three kept sub-triangles where the motion tells the halves apart.
+    /// Returns the number of sub-triangles deleted. `first_call` numbers
+    /// the samples after those the labelling made.
+    pub fn repair(&self, keep: &mut [bool], sample: &Sampler<'_>, first_call: u32) -> usize {
+        // Sub-triangles around each curve edge.
+        if self.curve.is_empty() {
+            return 0;
+        }
+        let mut around: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        let mut on_curve = vec![false; self.positions.len()];
+        for &(a, b) in self.curve {
+            for v in [a, b] {
+                if let Some(f) = on_curve.get_mut(v as usize) {
+                    *f = true;
+                }
+            }
+        }
+        let flagged = |v: u32| on_curve.get(v as usize).copied().unwrap_or(false);
+        for (s, t) in self.tris.iter().enumerate() {
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                if !(flagged(a) && flagged(b)) {
+                    continue;
+                }
+                let key = (a.min(b), a.max(b));
+                if self.curve.binary_search(&key).is_ok() {
+                    around.entry(key).or_default().push(s);
+                }
+            }
+        }
+        let mut junctions: Vec<((u32, u32), Vec<usize>)> = around
+            .into_iter()
+            .filter(|(_, ss)| ss.iter().filter(|&&s| keep[s]).count() == 3)
+            .collect();
+        // Deterministic order (the map's is not).
+        junctions.sort_unstable_by_key(|(e, _)| *e);
+        // Sub-triangles of each source triangle touched by a junction.
+        let mut by_source: HashMap<u32, Vec<usize>> = HashMap::new();
+        for (_, ss) in &junctions {
+            for &s in ss {
+                by_source.entry(self.source[s].0).or_default();
+            }
+        }
+        for (s, &(t, _)) in self.source.iter().enumerate() {
+            if let Some(list) = by_source.get_mut(&t) {
+                list.push(s);
+            }
+        }
+        let mut call = first_call;
+        let mut deleted = 0;
+        for ((a, b), ss) in junctions.into_iter().take(MAX_JUNCTION_EDGES) {
+            // Still a T after the repairs so far?
+            if ss.iter().filter(|&&s| keep[s]).count() != 3 {
+                continue;
+            }
+            // The sheet kept on both sides: two sub-triangles of one source
+            // triangle, both kept.
+            let Some((s0, s1)) = ss.iter().enumerate().find_map(|(i, &s)| {
+                ss[i + 1..]
+                    .iter()
+                    .find(|&&r| keep[s] && keep[r] && self.source[r].0 == self.source[s].0)
+                    .map(|&r| (s, r))
+            }) else {
+                continue;
+            };
+            let odd0 = self.side_parity(sample, call, s0, a, b);
+            let odd1 = self.side_parity(sample, call + 1, s1, a, b);
+            call += 2;
+            let swept = match (odd0, odd1) {
+                (Some(true), Some(false)) => s0,
+                (Some(false), Some(true)) => s1,
+                _ => continue,
+            };
+            deleted += self.delete_side(keep, swept, &by_source);
+        }
+        deleted
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn barycentric_recovers_weights_and_refuses_degenerate() {
+        let p = [
+            DVec3::new(1.0, 2.0, 3.0),
+            DVec3::new(4.0, 2.5, 3.0),
+            DVec3::new(1.5, 6.0, 2.0),
+        ];
+        let w = [0.2, 0.3, 0.5];
+        let q = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+        let got = barycentric(p, q).expect("a proper triangle");
+        for k in 0..3 {
+            assert!((got[k] - w[k]).abs() < 1e-12, "{got:?}");
+        }
+        let flat = [DVec3::ZERO, DVec3::X, DVec3::X * 2.0];
+        assert_eq!(barycentric(flat, DVec3::X), None);
+    }
+}
