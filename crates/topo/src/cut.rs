@@ -235,6 +235,36 @@ pub struct Cut {
     pub origin: Vec<u32>,
 }
 
+/// The source triangle of each output triangle, and its chart centroid:
+/// the whole triangles first (the chart's centroid), then the
+/// sub-triangles of the split ones. A whole triangle costs 4 bytes here,
+/// not 24: it is nearly all of them.
+pub(crate) struct Sources {
+    whole: Vec<u32>,
+    sub: Vec<(u32, [f64; 2])>,
+}
+
+impl Sources {
+    /// Source triangle and chart centroid of output triangle `i`.
+    fn get(&self, i: usize) -> (u32, [f64; 2]) {
+        match self.whole.get(i) {
+            Some(&t) => (t, [1.0 / 3.0; 2]),
+            None => self.sub[i - self.whole.len()],
+        }
+    }
+
+    /// Source triangle of output triangle `i`.
+    fn triangle(&self, i: usize) -> u32 {
+        self.get(i).0
+    }
+
+    /// The first output triangle that is a sub-triangle: curve edges are
+    /// sides of sub-triangles only (a triangle a curve touches is split).
+    fn first_sub(&self) -> usize {
+        self.whole.len()
+    }
+}
+
 /// The parity of a point of the surface that no vertex decides: called
 /// with a number unique to the call, the triangle and barycentric weights
 /// of its corners; `None` when it cannot tell.
@@ -355,9 +385,16 @@ pub fn cut(
         .map(|(p, _)| (key(p.position), NONE))
         .collect();
     if !at.is_empty() {
+        // Only vertices inside the active points' box can be at one: a
+        // few comparisons reject the rest before any hashing.
+        let (lo, hi) = x.points.iter().zip(&active).filter(|(_, a)| **a).fold(
+            (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |(lo, hi), (p, _)| (lo.min(p.position), hi.max(p.position)),
+        );
         let hits: Vec<([u64; 3], u32)> = positions
             .par_iter()
             .enumerate()
+            .filter(|(_, p)| p.cmpge(lo).all() && p.cmple(hi).all())
             .filter_map(|(v, p)| {
                 let k = key(*p);
                 at.contains_key(&k).then_some((k, v as u32))
@@ -457,6 +494,7 @@ pub fn cut(
     // False vertices and edges. A vertex on a curve has no side, so an
     // edge to it never gets one: its parity says nothing.
     let mut false_vertex = vec![NONE; edges.len()];
+    let mut false_vertex_edges: Vec<usize> = Vec::new();
     let mut false_edges: Lists<[u32; 2]> = Lists::new(nt);
     if let Some(odd) = odd {
         // The edges whose ends disagree with no curve between them, found
@@ -475,6 +513,7 @@ pub fn cut(
             let [a, b] = edges.ends[e];
             {
                 false_vertex[e] = out_positions.len() as u32;
+                false_vertex_edges.push(e);
                 out_positions.push((positions[a as usize] + positions[b as usize]) * 0.5);
                 on_edge.push(e, (false_vertex[e], 0.5));
                 report.false_vertices += 1;
@@ -499,25 +538,47 @@ pub fn cut(
         }
     }
 
-    // 2. Subdivide each affected triangle in its chart.
+    // 2. Subdivide each affected triangle in its chart. The triangles no
+    // point, curve piece or false edge touches (nearly all of them) are
+    // copied first, in parallel; the split ones follow, in order.
+    // `touched` has every triangle a point, a curve piece or a false edge
+    // lies on, or whose side has a point; the sides with a false vertex
+    // remain.
+    let mut whole: Vec<bool> = tris
+        .par_iter()
+        .zip(&touched)
+        .map(|(tri, &touched)| {
+            let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
+            degenerate || !touched
+        })
+        .collect();
+    for &e in &false_vertex_edges {
+        for &t in edges.triangles(e) {
+            let tri = tris[t as usize];
+            // A degenerate triangle stays whole: its chart has no area.
+            if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+                whole[t as usize] = false;
+            }
+        }
+    }
+    // A sequential copy: rayon's filtered collect into two vectors cost
+    // more than the copy itself.
     let mut out_tris: Vec<[u32; 3]> = Vec::with_capacity(nt);
-    // Source triangle and chart centroid of each output triangle.
-    let mut source: Vec<(u32, [f64; 2])> = Vec::with_capacity(nt);
+    let mut whole_source: Vec<u32> = Vec::with_capacity(nt);
+    for (t, (tri, &w)) in tris.iter().zip(&whole).enumerate() {
+        if w {
+            out_tris.push(*tri);
+            whole_source.push(t as u32);
+        }
+    }
+    let mut source = Sources {
+        whole: whole_source,
+        sub: Vec::new(),
+    };
     let mut curve_edges: Vec<(u32, u32)> = Vec::new();
     let mut alias: HashMap<u32, u32> = HashMap::new();
     for (t, &tri) in tris.iter().enumerate() {
-        let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
-        let has_edge_points = edges.of_triangle[t]
-            .iter()
-            .any(|&e| !on_edge.get(e as usize).is_empty());
-        if degenerate
-            || (!has_edge_points
-                && interior.get(t).is_empty()
-                && constraints.get(t).is_empty()
-                && false_edges.get(t).is_empty())
-        {
-            out_tris.push(tri);
-            source.push((t as u32, [1.0 / 3.0; 2]));
+        if whole[t] {
             continue;
         }
         report.triangles_split += 1;
@@ -655,7 +716,7 @@ pub fn cut(
             let vs = f.vertices().map(|v| global[v.fix().index()]);
             out_tris.push(vs);
             let c = f.vertices().map(|v| v.position());
-            source.push((
+            source.sub.push((
                 t as u32,
                 [
                     (c[0].x + c[1].x + c[2].x) / 3.0,
@@ -743,7 +804,7 @@ pub fn cut(
     };
     report.triangles_deleted = keep.iter().filter(|&&k| !k).count();
     let kept: Vec<[u32; 3]> = out_tris
-        .iter()
+        .par_iter()
         .zip(&keep)
         .filter(|(_, k)| **k)
         .map(|(t, _)| *t)
@@ -776,11 +837,12 @@ fn label(
     odd: &[bool],
     curve_edges: &[(u32, u32)],
     report: &mut CutReport,
-    source: &[(u32, [f64; 2])],
+    source: &Sources,
     sample: Option<&Sampler<'_>>,
 ) -> Vec<bool> {
-    let mut state: Vec<Option<bool>> = tris
-        .iter()
+    // Each triangle's vote, and whether its corners disagreed.
+    let votes: Vec<(Option<bool>, bool)> = tris
+        .par_iter()
         .map(|t| {
             let (mut o, mut e) = (0, 0);
             for &v in t {
@@ -788,14 +850,13 @@ fn label(
                     if odd[v as usize] { o += 1 } else { e += 1 }
                 }
             }
-            if o > 0 && e > 0 {
-                report.conflicting += 1;
-            }
-            if o + e == 0 { None } else { Some(o > e) }
+            (if o + e == 0 { None } else { Some(o > e) }, o > 0 && e > 0)
         })
         .collect();
-    if state.iter().all(Option::is_some) {
-        return state.into_iter().map(|s| s.unwrap_or(false)).collect();
+    report.conflicting += votes.par_iter().filter(|v| v.1).count();
+    let mut state: Vec<Option<bool>> = votes.into_par_iter().map(|v| v.0).collect();
+    if state.par_iter().all(Option::is_some) {
+        return state.into_par_iter().map(|s| s.unwrap_or(false)).collect();
     }
     let mut curve: Vec<(u32, u32)> = curve_edges.to_vec();
     curve.sort_unstable();
@@ -896,7 +957,7 @@ fn label(
                 break;
             }
             tried += 1;
-            let (t, [u, v]) = source[seed as usize];
+            let (t, [u, v]) = source.get(seed as usize);
             let Some(parity) = sample(region, t, [1.0 - u - v, u, v]) else {
                 continue;
             };

@@ -83,7 +83,7 @@ impl TriMesh {
         }
         let triangles = self
             .triangles
-            .iter()
+            .par_iter()
             .map(|t| t.map(|v| index[v as usize]))
             .collect();
         (
@@ -209,6 +209,30 @@ pub struct Edges {
     /// Triangles of edge `e`: `tris[offsets[e]..offsets[e + 1]]`.
     pub offsets: Vec<u32>,
     pub tris: Vec<u32>,
+    /// What the construction saw of every edge, in the same pass.
+    pub summary: EdgeSummary,
+}
+
+/// The closedness and orientation of a mesh's edges, gathered while its
+/// edge table is built (a separate pass over the edges cost as much as a
+/// fifth of the table).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeSummary {
+    /// The first edge with an odd number of triangles.
+    pub first_odd: Option<u32>,
+    /// Every edge has exactly two triangles, running along it in opposite
+    /// directions ([`Edges::opposite`] of every edge).
+    pub all_opposite: bool,
+}
+
+impl Default for EdgeSummary {
+    /// The summary of no edges.
+    fn default() -> Self {
+        EdgeSummary {
+            first_odd: None,
+            all_opposite: true,
+        }
+    }
 }
 
 impl Edges {
@@ -221,6 +245,7 @@ impl Edges {
         let mut offsets = Vec::with_capacity(sides.len() / 2 + 2);
         offsets.push(0u32);
         let mut tris = Vec::with_capacity(3 * nt);
+        let mut summary = EdgeSummary::default();
         for a in 0..start.len() - 1 {
             let bucket = &sides[start[a] as usize..start[a + 1] as usize];
             let mut i = 0;
@@ -229,16 +254,26 @@ impl Edges {
                 let e = ends.len() as u32;
                 ends.push([a as u32, b]);
                 let first = tris.len();
+                // Sides along the edge from its first end, and against it.
+                let mut runs = [0u32; 2];
                 while i < bucket.len() && bucket[i].0 == b {
                     let side = bucket[i].1 as usize;
                     of_triangle[side / 3][side % 3] = e;
                     let t = (side / 3) as u32;
+                    runs[usize::from(mesh.triangles[side / 3][side % 3] != a as u32)] += 1;
                     // A triangle with a repeated vertex may use one edge twice.
                     if tris.len() == first || tris.last() != Some(&t) {
                         tris.push(t);
                     }
                     i += 1;
                 }
+                let count = tris.len() - first;
+                if count % 2 == 1 && summary.first_odd.is_none() {
+                    summary.first_odd = Some(e);
+                }
+                // Two triangles, one running each way (a degenerate edge,
+                // a == b, never qualifies: both its sides count as along).
+                summary.all_opposite &= count == 2 && runs == [1, 1] && a as u32 != b;
                 offsets.push(tris.len() as u32);
             }
         }
@@ -247,6 +282,7 @@ impl Edges {
             of_triangle,
             offsets,
             tris,
+            summary,
         }
     }
 
@@ -263,6 +299,13 @@ impl Edges {
         self.offsets
             .extend(other.offsets[1..].iter().map(|&o| o + tri_offset));
         self.tris.extend(other.tris.iter().map(|&t| t + triangles));
+        self.summary = EdgeSummary {
+            first_odd: self
+                .summary
+                .first_odd
+                .or(other.summary.first_odd.map(|e| e + edge_offset)),
+            all_opposite: self.summary.all_opposite && other.summary.all_opposite,
+        };
         self
     }
 
@@ -298,12 +341,10 @@ impl Edges {
     /// and the two triangles of every edge run along it in opposite
     /// directions.
     pub fn closed_oriented(&self, triangles: &[[u32; 3]]) -> bool {
-        if !self.closed(triangles) {
-            return false;
-        }
-        (0..self.ends.len())
-            .into_par_iter()
-            .all(|e| self.opposite(triangles, e))
+        self.summary.all_opposite
+            && !triangles
+                .par_iter()
+                .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
     }
 
     /// Whether triangle `t` (of `triangles`, the mesh these edges were
@@ -370,6 +411,16 @@ mod tests {
             assert_eq!(m.is_closed_manifold(), oriented);
             assert_eq!(Edges::new(m).closed_oriented(&m.triangles), oriented);
             assert_eq!(m.is_closed(), closed);
+            // The summary is the per-edge tests, gathered while building.
+            let e = Edges::new(m);
+            assert_eq!(
+                e.summary.all_opposite,
+                (0..e.len()).all(|k| e.opposite(&m.triangles, k))
+            );
+            assert_eq!(
+                e.summary.first_odd,
+                (0..e.len() as u32).find(|&k| e.triangles(k as usize).len() % 2 == 1)
+            );
         }
     }
 
@@ -433,6 +484,15 @@ mod tests {
         assert_eq!(parts.of_triangle, whole.of_triangle);
         assert_eq!(parts.offsets, whole.offsets);
         assert_eq!(parts.tris, whole.tris);
+        assert_eq!(parts.summary, whole.summary);
+        assert!(whole.summary.first_odd.is_some());
+        // Two closed, oriented parts: so is the whole.
+        let tet = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        };
+        let two = Edges::new(&tet).concat(Edges::new(&tet), 4, 4);
+        assert_eq!(two.summary, EdgeSummary::default());
         // An empty first part.
         let empty = TriMesh::default();
         let alone = Edges::new(&empty).concat(Edges::new(&b), 0, 0);

@@ -151,7 +151,8 @@ enum Shape {
     Closed { oriented: bool },
 }
 
-/// One parallel pass over the edges.
+/// From the edge table's summary, and one parallel pass over the
+/// triangles for repeated corners.
 fn shape(pair: &Pair, edges: &Edges) -> Shape {
     let tris = &pair.mesh.triangles;
     if let Some(t) = tris
@@ -160,22 +161,11 @@ fn shape(pair: &Pair, edges: &Edges) -> Shape {
     {
         return Shape::NotClosed(pair.solid_of_triangle(t as u32));
     }
-    // Per edge: 0 oriented manifold, 1 even but not that, 2 odd.
-    let worst = (0..edges.len())
-        .into_par_iter()
-        .map(|e| {
-            if edges.opposite(tris, e) {
-                (0u8, e)
-            } else if edges.triangles(e).len().is_multiple_of(2) {
-                (1, e)
-            } else {
-                (2, e)
-            }
-        })
-        .reduce(|| (0, usize::MAX), |x, y| if y.0 > x.0 { y } else { x });
-    match worst {
-        (2, e) => Shape::NotClosed(pair.solid_of_vertex(edges.ends[e][0])),
-        (w, _) => Shape::Closed { oriented: w == 0 },
+    match edges.summary.first_odd {
+        Some(e) => Shape::NotClosed(pair.solid_of_vertex(edges.ends[e as usize][0])),
+        None => Shape::Closed {
+            oriented: edges.summary.all_opposite,
+        },
     }
 }
 

@@ -19,7 +19,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use super::Sampler;
+use super::{Sampler, Sources};
 
 /// Most junction edges examined per cut: each costs two moving-point
 /// queries, and past a few thousand the surface is crumpled beyond what
@@ -35,7 +35,7 @@ const OFFSET: f64 = 1.0 / 64.0;
 pub(super) struct Junctions<'a> {
     /// Sub-triangles (global vertex indices) and their source triangles.
     pub tris: &'a [[u32; 3]],
-    pub source: &'a [(u32, [f64; 2])],
+    pub source: &'a Sources,
     /// Positions of the global vertices (at the frame's end).
     pub positions: &'a [DVec3],
     /// The input's triangles and their end positions (the source frame).
@@ -70,7 +70,7 @@ impl Junctions<'_> {
         let c = *t.iter().find(|&&v| v != a && v != b)?;
         let at = |v: u32| self.positions.get(v as usize).copied();
         let q = (at(a)? + at(b)?) * (0.5 * (1.0 - OFFSET)) + at(c)? * OFFSET;
-        let src = self.source[s].0;
+        let src = self.source.triangle(s);
         let corners = *self.input_tris.get(src as usize)?;
         let p = corners.map(|v| self.input_positions[v as usize]);
         let w = barycentric(p, q)?;
@@ -87,7 +87,7 @@ impl Junctions<'_> {
         swept: usize,
         by_source: &HashMap<u32, Vec<usize>>,
     ) -> usize {
-        let Some(siblings) = by_source.get(&self.source[swept].0) else {
+        let Some(siblings) = by_source.get(&self.source.triangle(swept)) else {
             return 0;
         };
         let is_curve = |a: u32, b: u32| self.curve.binary_search(&(a.min(b), a.max(b))).is_ok();
@@ -132,7 +132,8 @@ impl Junctions<'_> {
             }
         }
         let flagged = |v: u32| on_curve.get(v as usize).copied().unwrap_or(false);
-        for (s, t) in self.tris.iter().enumerate() {
+        let subs = self.source.first_sub()..self.tris.len();
+        for (s, t) in self.tris.iter().enumerate().skip(subs.start) {
             for i in 0..3 {
                 let (a, b) = (t[i], t[(i + 1) % 3]);
                 if !(flagged(a) && flagged(b)) {
@@ -154,11 +155,11 @@ impl Junctions<'_> {
         let mut by_source: HashMap<u32, Vec<usize>> = HashMap::new();
         for (_, ss) in &junctions {
             for &s in ss {
-                by_source.entry(self.source[s].0).or_default();
+                by_source.entry(self.source.triangle(s)).or_default();
             }
         }
-        for (s, &(t, _)) in self.source.iter().enumerate() {
-            if let Some(list) = by_source.get_mut(&t) {
+        for s in subs {
+            if let Some(list) = by_source.get_mut(&self.source.triangle(s)) {
                 list.push(s);
             }
         }
@@ -174,7 +175,9 @@ impl Junctions<'_> {
             let Some((s0, s1)) = ss.iter().enumerate().find_map(|(i, &s)| {
                 ss[i + 1..]
                     .iter()
-                    .find(|&&r| keep[s] && keep[r] && self.source[r].0 == self.source[s].0)
+                    .find(|&&r| {
+                        keep[s] && keep[r] && self.source.triangle(r) == self.source.triangle(s)
+                    })
                     .map(|&r| (s, r))
             }) else {
                 continue;
