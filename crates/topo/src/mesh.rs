@@ -289,24 +289,43 @@ impl Edges {
     /// The edges of two meshes side by side, `self`'s (of a mesh with
     /// `vertices` vertices and `triangles` triangles) then `other`'s, its
     /// vertices and triangles numbered after them: [`Edges::new`] of the
-    /// joined mesh, built in two independent halves.
-    pub fn concat(mut self, other: Edges, vertices: u32, triangles: u32) -> Edges {
+    /// joined mesh, built from two independent halves.
+    pub fn joined(&self, other: &Edges, vertices: u32, triangles: u32) -> Edges {
         let (edge_offset, tri_offset) = (self.ends.len() as u32, self.tris.len() as u32);
-        self.ends
-            .extend(other.ends.iter().map(|e| e.map(|v| v + vertices)));
-        self.of_triangle
-            .extend(other.of_triangle.iter().map(|s| s.map(|e| e + edge_offset)));
-        self.offsets
-            .extend(other.offsets[1..].iter().map(|&o| o + tri_offset));
-        self.tris.extend(other.tris.iter().map(|&t| t + triangles));
-        self.summary = EdgeSummary {
-            first_odd: self
-                .summary
-                .first_odd
-                .or(other.summary.first_odd.map(|e| e + edge_offset)),
-            all_opposite: self.summary.all_opposite && other.summary.all_opposite,
+        let glue = |a: &[[u32; 2]], b: &[[u32; 2]], f: &(dyn Fn([u32; 2]) -> [u32; 2] + Sync)| {
+            let mut out = Vec::with_capacity(a.len() + b.len());
+            out.extend_from_slice(a);
+            out.par_extend(b.par_iter().map(|&x| f(x)));
+            out
         };
-        self
+        let ends = glue(&self.ends, &other.ends, &|e| e.map(|v| v + vertices));
+        let mut of_triangle = Vec::with_capacity(self.of_triangle.len() + other.of_triangle.len());
+        of_triangle.extend_from_slice(&self.of_triangle);
+        of_triangle.par_extend(
+            other
+                .of_triangle
+                .par_iter()
+                .map(|s| s.map(|e| e + edge_offset)),
+        );
+        let mut offsets = Vec::with_capacity(self.offsets.len() + other.offsets.len());
+        offsets.extend_from_slice(&self.offsets);
+        offsets.par_extend(other.offsets[1..].par_iter().map(|&o| o + tri_offset));
+        let mut tris = Vec::with_capacity(self.tris.len() + other.tris.len());
+        tris.extend_from_slice(&self.tris);
+        tris.par_extend(other.tris.par_iter().map(|&t| t + triangles));
+        Edges {
+            ends,
+            of_triangle,
+            offsets,
+            tris,
+            summary: EdgeSummary {
+                first_odd: self
+                    .summary
+                    .first_odd
+                    .or(other.summary.first_odd.map(|e| e + edge_offset)),
+                all_opposite: self.summary.all_opposite && other.summary.all_opposite,
+            },
+        }
     }
 
     /// Number of edges.
@@ -462,7 +481,7 @@ mod tests {
     }
 
     #[test]
-    fn concatenated_edges_are_those_of_the_joined_mesh() {
+    fn joined_edges_are_those_of_the_joined_mesh() {
         // A non-manifold, degenerate mesh with an unused last vertex, then
         // the quad: numbering, triangle lists and degenerate edges carry
         // over.
@@ -479,7 +498,7 @@ mod tests {
             .triangles
             .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
         let whole = Edges::new(&joined);
-        let parts = Edges::new(&a).concat(Edges::new(&b), n, a.triangles.len() as u32);
+        let parts = Edges::new(&a).joined(&Edges::new(&b), n, a.triangles.len() as u32);
         assert_eq!(parts.ends, whole.ends);
         assert_eq!(parts.of_triangle, whole.of_triangle);
         assert_eq!(parts.offsets, whole.offsets);
@@ -491,11 +510,11 @@ mod tests {
             positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
             triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
         };
-        let two = Edges::new(&tet).concat(Edges::new(&tet), 4, 4);
+        let two = Edges::new(&tet).joined(&Edges::new(&tet), 4, 4);
         assert_eq!(two.summary, EdgeSummary::default());
         // An empty first part.
         let empty = TriMesh::default();
-        let alone = Edges::new(&empty).concat(Edges::new(&b), 0, 0);
+        let alone = Edges::new(&empty).joined(&Edges::new(&b), 0, 0);
         assert_eq!(alone.ends, Edges::new(&b).ends);
         assert_eq!(alone.offsets, Edges::new(&b).offsets);
     }

@@ -43,6 +43,10 @@
 //! solids consistently where they touch exactly (faces of lattice-aligned
 //! copies of one mesh), as a motion would.
 //!
+//! [`PreparedSolid`] keeps what a union builds of one solid alone (its
+//! edge table, its tree, its orientation), for unions of one solid with
+//! many others: [`union_prepared`] then does only the work of the pair.
+//!
 //! If A or B intersects itself away from the other, its own curves are
 //! left as they are: each surface keeps what lies outside the other,
 //! self-intersections included. If it intersects itself where it meets
@@ -92,9 +96,8 @@ struct Pair {
 }
 
 impl Pair {
-    fn new(a: &TriMesh, b: &TriMesh) -> Result<Pair, TopoError> {
-        a.check()?;
-        b.check()?;
+    /// A's vertices and triangles, then B's (both checked already).
+    fn join(a: &TriMesh, b: &TriMesh) -> Result<Pair, TopoError> {
         let n = a.positions.len() + b.positions.len();
         if n >= (1usize << 31) || a.triangles.len() + b.triangles.len() >= (1usize << 31) {
             return Err(MeshError::TooLarge(n).into());
@@ -140,32 +143,96 @@ fn identities(pair: &Pair) -> Vec<u32> {
     (0..pair.mesh.positions.len() as u32).collect()
 }
 
-/// How the two surfaces are shaped along their edges.
-enum Shape {
-    /// A solid has an edge that an odd number of its triangles share, or
-    /// a triangle that repeats a vertex: it bounds no solid, and
-    /// containment in it means nothing.
-    NotClosed(Solid),
-    /// Every edge has an even number of triangles; `oriented`: exactly
-    /// two, running along it in opposite directions.
-    Closed { oriented: bool },
+/// What a union needs of one solid besides its mesh, built once: its
+/// edge table (with the closedness and orientation summary), its tree,
+/// whether a triangle repeats a corner, and its orientation.
+struct Parts {
+    edges: Edges,
+    tree: Bvh,
+    /// No triangle repeats a corner.
+    proper: bool,
+    /// The signed volume is positive: the triangles face outward.
+    outward: bool,
 }
 
-/// From the edge table's summary, and one parallel pass over the
-/// triangles for repeated corners.
-fn shape(pair: &Pair, edges: &Edges) -> Shape {
-    let tris = &pair.mesh.triangles;
-    if let Some(t) = tris
-        .par_iter()
-        .position_first(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-    {
-        return Shape::NotClosed(pair.solid_of_triangle(t as u32));
+impl Parts {
+    fn new(mesh: &TriMesh) -> Result<Parts, UnionError> {
+        mesh.check()?;
+        let ((edges, proper), (tree, outward)) = rayon::join(
+            || {
+                rayon::join(
+                    || Edges::new(mesh),
+                    || {
+                        !mesh
+                            .triangles
+                            .par_iter()
+                            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+                    },
+                )
+            },
+            || {
+                rayon::join(
+                    || {
+                        Bvh::build(&triangle_boxes(
+                            mesh,
+                            &mesh.positions,
+                            0..mesh.triangles.len(),
+                        ))
+                    },
+                    || signed_volume(&mesh.positions, &mesh.triangles) > 0.0,
+                )
+            },
+        );
+        Ok(Parts {
+            edges,
+            tree: tree.map_err(TopoError::from)?,
+            proper,
+            outward,
+        })
     }
-    match edges.summary.first_odd {
-        Some(e) => Shape::NotClosed(pair.solid_of_vertex(edges.ends[e as usize][0])),
-        None => Shape::Closed {
-            oriented: edges.summary.all_opposite,
-        },
+
+    /// Every edge has an even number of triangles and no triangle repeats
+    /// a corner: the surface bounds a solid, and containment means
+    /// something.
+    fn closed(&self) -> bool {
+        self.proper && self.edges.summary.first_odd.is_none()
+    }
+
+    /// Closed, and the two triangles of every edge run along it in
+    /// opposite directions.
+    fn oriented(&self) -> bool {
+        self.proper && self.edges.summary.all_opposite
+    }
+}
+
+/// A closed surface made ready for unions: its edge table, its tree and
+/// its orientation are built once and kept, so that unions of the same
+/// solid with many others (a part placed many times, a tool applied
+/// again and again) skip them. Peers keep the same on their mesh objects
+/// (manifold3d at construction, trueform on first use).
+pub struct PreparedSolid {
+    mesh: TriMesh,
+    parts: Parts,
+}
+
+impl PreparedSolid {
+    /// Checks `mesh` (indices, finite coordinates) and builds what a union
+    /// needs of it. A surface that is not closed is accepted here; the
+    /// union refuses it ([`UnionError::NotClosed`]).
+    pub fn new(mesh: TriMesh) -> Result<PreparedSolid, UnionError> {
+        let parts = Parts::new(&mesh)?;
+        Ok(PreparedSolid { mesh, parts })
+    }
+
+    /// The surface.
+    pub fn mesh(&self) -> &TriMesh {
+        &self.mesh
+    }
+
+    /// Whether it bounds a solid: every edge has an even number of
+    /// triangles and no triangle repeats a corner.
+    pub fn is_closed(&self) -> bool {
+        self.parts.closed()
     }
 }
 
@@ -227,45 +294,49 @@ impl From<MeshError> for UnionError {
 /// `options.scheme`, `float_ccd` and `solid_guard` play no part.
 pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
     let started = Instant::now();
-    let pair = Pair::new(a, b)?;
-    let t = Instant::now();
+    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(b));
+    unite(a, &pa?, b, &pb?, options, started)
+}
+
+/// [`union()`] of two prepared solids: their edge tables and trees are
+/// reused, not rebuilt.
+pub fn union_prepared(
+    a: &PreparedSolid,
+    b: &PreparedSolid,
+    options: &Options,
+) -> Result<Outcome, UnionError> {
+    unite(
+        &a.mesh,
+        &a.parts,
+        &b.mesh,
+        &b.parts,
+        options,
+        Instant::now(),
+    )
+}
+
+fn unite(
+    a: &TriMesh,
+    pa: &Parts,
+    b: &TriMesh,
+    pb: &Parts,
+    options: &Options,
+    started: Instant,
+) -> Result<Outcome, UnionError> {
+    for (solid, parts) in [(Solid::A, pa), (Solid::B, pb)] {
+        if !parts.closed() {
+            return Err(UnionError::NotClosed(solid));
+        }
+    }
+    let pair = Pair::join(a, b)?;
+    let t = started;
     let mesh = &pair.mesh;
     let pos = &mesh.positions;
-    let split = pair.split as usize;
-    let ((edges, ids), (tree_a, tree_b)) = rayon::join(
-        || {
-            rayon::join(
-                || {
-                    let (ea, eb) = rayon::join(|| Edges::new(a), || Edges::new(b));
-                    ea.concat(eb, pair.split_vertex, pair.split)
-                },
-                || {
-                    let outward = |range: std::ops::Range<usize>| {
-                        signed_volume(pos, &mesh.triangles[range]) > 0.0
-                    };
-                    (
-                        identities(&pair),
-                        outward(0..split) && outward(split..mesh.triangles.len()),
-                    )
-                },
-            )
-        },
-        || {
-            rayon::join(
-                || Bvh::build(&triangle_boxes(mesh, pos, 0..split)),
-                || Bvh::build(&triangle_boxes(mesh, pos, split..mesh.triangles.len())),
-            )
-        },
-    );
-    let (ids, outward) = ids;
-    let (tree_a, tree_b) = (
-        tree_a.map_err(TopoError::from)?,
-        tree_b.map_err(TopoError::from)?,
-    );
-    let oriented = match shape(&pair, &edges) {
-        Shape::NotClosed(which) => return Err(UnionError::NotClosed(which)),
-        Shape::Closed { oriented } => oriented,
-    };
+    let edges = pa.edges.joined(&pb.edges, pair.split_vertex, pair.split);
+    let ids = identities(&pair);
+    let (tree_a, tree_b) = (&pa.tree, &pb.tree);
+    let oriented = pa.oriented() && pb.oriented();
+    let outward = pa.outward && pb.outward;
     let limit = options
         .max_intersecting_pairs
         .unwrap_or_else(|| default_pair_limit(mesh.triangles.len()));
@@ -275,8 +346,8 @@ pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, Uni
         &edges,
         &ids,
         Candidates::Across {
-            first: &tree_a,
-            second: &tree_b,
+            first: tree_a,
+            second: tree_b,
             split: pair.split,
         },
         limit,
@@ -321,8 +392,8 @@ pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, Uni
         far_id,
     };
     let other = |s: Solid| match s {
-        Solid::A => (&tree_b, pair.split),
-        Solid::B => (&tree_a, 0),
+        Solid::A => (tree_b, pair.split),
+        Solid::B => (tree_a, 0),
     };
     let mut odd = vec![false; n];
     let mut cast = 0usize;

@@ -296,3 +296,63 @@ fn containment_union_refuses_a_solid_crossing_itself_where_they_meet() {
     assert!(own > 0);
     assert_eq!(self_intersecting_pairs(&u.mesh), own);
 }
+
+/// A prepared solid (its edge table, tree and orientation built once)
+/// gives the union the unprepared call gives, triangle for triangle, and
+/// can be reused with many others: a tool sphere united with a torus at
+/// three places, and the torus with itself moved.
+#[test]
+fn prepared_solids_give_the_same_unions_and_can_be_reused() {
+    use holey_topo::{PreparedSolid, union_prepared};
+    let torus = primitive("@torus");
+    let tool = PreparedSolid::new(primitive("@sphere:3")).expect("a valid mesh");
+    assert!(tool.is_closed());
+    let body = PreparedSolid::new(torus.clone()).expect("a valid mesh");
+    for shift in [
+        DVec3::new(1.0, 0.0, 0.3),
+        DVec3::new(-0.7, 0.6, 0.0),
+        DVec3::new(0.0, -1.2, -0.2),
+    ] {
+        let moved = translate(tool.mesh(), shift);
+        let prepared_moved = PreparedSolid::new(moved.clone()).expect("a valid mesh");
+        let direct = holey_topo::union(&torus, &moved, &Options::default()).expect("solids");
+        let prepared = union_prepared(&body, &prepared_moved, &Options::default()).expect("solids");
+        assert_eq!(
+            oriented_triangle_keys(&prepared.mesh),
+            oriented_triangle_keys(&direct.mesh),
+            "shift {shift}"
+        );
+        assert!(closed_oriented(&prepared.mesh), "shift {shift}");
+        assert!(
+            direct.report.intersection_curves > 0,
+            "shift {shift}: they meet"
+        );
+        assert_eq!(
+            prepared.report.intersection_curves,
+            direct.report.intersection_curves
+        );
+    }
+    // The body with itself, moved: reuse on both sides.
+    let again = PreparedSolid::new(translate(&torus, DVec3::new(0.5, 0.0, 0.0))).expect("valid");
+    let u = union_prepared(&body, &again, &Options::default()).expect("solids");
+    assert_eq!(
+        oriented_triangle_keys(&u.mesh),
+        oriented_triangle_keys(
+            &holey_topo::union(&torus, again.mesh(), &Options::default())
+                .expect("solids")
+                .mesh
+        )
+    );
+    // Refusals carry over: an open surface prepares, but does not unite.
+    let mut open = torus.clone();
+    open.triangles.pop();
+    let open = PreparedSolid::new(open).expect("a valid mesh");
+    assert!(!open.is_closed());
+    assert_eq!(
+        union_prepared(&open, &tool, &Options::default()).unwrap_err(),
+        UnionError::NotClosed(Solid::A)
+    );
+    let mut nan = torus;
+    nan.positions[0].x = f64::NAN;
+    assert!(PreparedSolid::new(nan).is_err());
+}
