@@ -858,8 +858,10 @@ fn shift_obj_x(path: &Path, dx: f64) {
 
 /// Two cubes [-1,1]³, the second shifted by exactly 1 in x: coplanar
 /// faces and coinciding vertices and edges wherever they touch. The union
-/// is the box [-1,2]×[-1,1]², volume 12, up to the 2^-30-relative
-/// perturbation `holey union` applies by default.
+/// is the box [-1,2]×[-1,1]², volume 12, up to the 2^-30-relative nudge
+/// `holey union` retries with when the exact result is not a closed
+/// 2-manifold (here it has duplicate triangles: the report counts one
+/// retry).
 #[test]
 fn union_of_lattice_aligned_cubes() {
     let dir = tmp();
@@ -869,7 +871,8 @@ fn union_of_lattice_aligned_cubes() {
     ok(&["primitive", "@cube:4", s(&a)]);
     ok(&["primitive", "@cube:4", s(&b)]);
     shift_obj_x(&b, 1.0);
-    ok(&["union", s(&a), s(&b), s(&u)]);
+    let r = dir.path().join("r.json");
+    ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
     let m = info(s(&u), &[]);
     assert_eq!(m["closed"], true);
     assert_eq!(m["manifold"], true);
@@ -877,6 +880,14 @@ fn union_of_lattice_aligned_cubes() {
     assert_eq!(m["genus"], 0);
     let v = m["volume"].as_f64().unwrap();
     assert!((v - 12.0).abs() < 1e-6, "volume {v}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(report["perturbation_retries"], 1);
+    // --exact keeps the first attempt, whatever it gives.
+    ok(&["union", s(&a), s(&b), s(&u), "--exact", "--report", s(&r)]);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(report["perturbation_retries"], 0);
 }
 
 /// `holey union` of two unit icospheres one unit apart along x, through
@@ -923,6 +934,9 @@ fn union_of_two_spheres_is_one_closed_solid() {
     let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&u)])).unwrap();
     assert_eq!(si["intersecting_pairs"], 0);
     // The motion itself, through the whole pipeline, gives the same solid.
+    // Both unmoved: the direct union's first attempt was closed, so it
+    // kept it (no retry), and the motion starts nudged unless --exact.
+    assert_eq!(report["perturbation_retries"], 0);
     let um = dir.path().join("um.ply");
     let rm = dir.path().join("rm.json");
     ok(&[
@@ -931,6 +945,7 @@ fn union_of_two_spheres_is_one_closed_solid() {
         s(&b),
         s(&um),
         "--via-motion",
+        "--exact",
         "--report",
         s(&rm),
     ]);
@@ -940,8 +955,16 @@ fn union_of_two_spheres_is_one_closed_solid() {
     assert_eq!(motion["containment_rays"], 0);
     assert_eq!(mm["faces"], m["faces"]);
     assert_eq!(mm["vertices"], m["vertices"]);
-    assert_eq!(mm["volume"], m["volume"]);
+    let (vm, v0) = (
+        mm["volume"].as_f64().unwrap(),
+        m["volume"].as_f64().unwrap(),
+    );
+    assert!((vm - v0).abs() < 1e-12 * v0, "{vm} vs {v0}");
     assert_eq!(motion["raw_odd_vertices"], report["raw_odd_vertices"]);
+    // Nudged (the motion's default), the same solid to the nudge's size.
+    ok(&["union", s(&a), s(&b), s(&um), "--via-motion"]);
+    let vn = info(s(&um), &[])["volume"].as_f64().unwrap();
+    assert!((vn - v0).abs() < 1e-7 * v0, "{vn} vs {v0}");
 }
 
 /// An open B (a sphere with one face removed) bounds no solid, so

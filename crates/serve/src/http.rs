@@ -221,7 +221,7 @@ fn import(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request, start
     };
     let limit = shared.config.max_upload;
     if length > limit {
-        return error(
+        error(
             stream,
             413,
             &format!(
@@ -230,6 +230,7 @@ fn import(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request, start
                 limit >> 20
             ),
         );
+        return linger(stream, length.saturating_sub(started.len()));
     }
     let mut body = Vec::with_capacity(length);
     body.extend_from_slice(&started[..started.len().min(length)]);
@@ -240,6 +241,29 @@ fn import(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request, start
     match shared.import(&name, &body) {
         Ok(message) => respond_json(stream, 200, &json!({"ok": true, "message": message})),
         Err(e) => error(stream, 400, &e.to_string()),
+    }
+}
+
+/// Most of a refused body read and dropped after the refusal.
+const LINGER_BYTES: usize = 64 << 20;
+
+/// Closes a connection whose client is still sending a body we refused:
+/// closing with unread data makes the kernel reset the connection, and
+/// the reset can destroy the refusal before the client reads it (the
+/// client sees a broken connection instead of the reason). So the
+/// response is followed by a half-close and the body, up to `pending`
+/// bytes (at most [`LINGER_BYTES`]), is read and dropped, each read
+/// waiting at most two seconds.
+fn linger(stream: &mut TcpStream, pending: usize) {
+    let _ = stream.shutdown(std::net::Shutdown::Write);
+    let _ = stream.set_read_timeout(Some(Duration::from_secs(2)));
+    let mut left = pending.min(LINGER_BYTES);
+    let mut scratch = [0u8; 16 << 10];
+    while left > 0 {
+        match stream.read(&mut scratch[..left.min(16 << 10)]) {
+            Ok(0) | Err(_) => break,
+            Ok(n) => left -= n,
+        }
     }
 }
 

@@ -22,4 +22,4 @@ pub use engine::{
 };
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;
-pub use union::{PreparedSolid, UnionError, union, union_prepared};
+pub use union::{PreparedSolid, UnionError, union, union_prepared, union_robust};

@@ -298,6 +298,79 @@ pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, Uni
     unite(a, &pa?, b, &pb?, options, started)
 }
 
+/// The perturbations of B that [`union_robust`] tries in turn, as
+/// (fraction of the scene's diagonal, unit direction): none first, then
+/// 2^-30, 2^-26 and 2^-22 of the diagonal along generic directions (along
+/// no axis or lattice diagonal). Scale-relative, so they mean the same at
+/// any size or offset, and far below any modelling precision.
+pub const NUDGES: [(f64, [f64; 3]); 4] = [
+    (0.0, [0.0, 0.0, 0.0]),
+    (
+        1.0 / 1_073_741_824.0,
+        [0.801_783_7, 0.534_522_5, 0.267_261_2],
+    ),
+    (
+        16.0 / 1_073_741_824.0,
+        [-0.272_165_5, 0.952_579_3, 0.136_082_8],
+    ),
+    (
+        256.0 / 1_073_741_824.0,
+        [0.408_248_3, -0.408_248_3, 0.816_496_6],
+    ),
+];
+
+/// The translation of B for attempt `k` of [`NUDGES`] (zero past the
+/// list): its fraction of the diagonal of A's and B's joint bounding box.
+pub fn nudge(a: &TriMesh, b: &TriMesh, k: usize) -> DVec3 {
+    let Some(&(scale, dir)) = NUDGES.get(k) else {
+        return DVec3::ZERO;
+    };
+    if scale == 0.0 {
+        return DVec3::ZERO;
+    }
+    let (lo, hi) = a
+        .positions
+        .iter()
+        .chain(&b.positions)
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+            (l.min(*p), h.max(*p))
+        });
+    DVec3::from_array(dir) * (scale * (hi - lo).length())
+}
+
+/// [`union()`], robust to coplanar contact. Simulation of simplicity
+/// decides every degenerate predicate consistently, but where faces of A
+/// and B overlap in one plane the perturbed arrangement is embedded at
+/// the unperturbed coordinates, points it keeps apart coincide, and the
+/// result can have duplicate triangles or cracks. So when A and B are
+/// closed 2-manifolds and the result is not, B is moved by the next of
+/// [`NUDGES`] and the union redone (up to three times; the report's
+/// `perturbation_retries` counts them, and the output has B where it was
+/// moved to). The price is one closed-manifold check of the result. Exact
+/// touching that the perturbation resolves well (faces meeting from
+/// opposite sides) is left exact: the first attempt moves nothing.
+pub fn union_robust(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
+    let started = Instant::now();
+    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(b));
+    let (pa, pb) = (pa?, pb?);
+    let manifold_inputs = pa.oriented() && pb.oriented();
+    let mut out = unite(a, &pa, b, &pb, options, started)?;
+    for k in 1..NUDGES.len() {
+        if !manifold_inputs || out.mesh.is_closed_manifold() {
+            break;
+        }
+        let d = nudge(a, b, k);
+        let moved = TriMesh {
+            positions: b.positions.iter().map(|p| *p + d).collect(),
+            triangles: b.triangles.clone(),
+        };
+        let pm = Parts::new(&moved)?;
+        out = unite(a, &pa, &moved, &pm, options, started)?;
+        out.report.perturbation_retries = k;
+    }
+    Ok(out)
+}
+
 /// [`union()`] of two prepared solids: their edge tables and trees are
 /// reused, not rebuilt.
 pub fn union_prepared(
