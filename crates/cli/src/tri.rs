@@ -101,6 +101,7 @@ pub fn report_json(r: &Report) -> Value {
         "dropped_constraints": r.cut.dropped_constraints,
         "sampled_regions": r.cut.sampled_regions,
         "junctions_repaired": r.cut.junctions_repaired,
+        "pinches_split": r.cut.pinches_split,
         "solid_relabelled": r.cut.solid_relabelled,
         "conflicting_triangles": r.cut.conflicting,
         "constraint_splits": r.cut.constraint_splits,

@@ -76,6 +76,9 @@ pub struct CutReport {
     /// sheet's parity missed the curve's last stretch) and the motion,
     /// sampled beside the edge, deleted the swept one (`cut/junctions.rs`).
     pub junctions_repaired: usize,
+    /// Vertices split because the solid guard's result touched itself
+    /// there at a single point (one vertex per fan).
+    pub pinches_split: usize,
 }
 
 /// A vertex of a chart triangulation.

@@ -384,6 +384,20 @@ pub(crate) fn finish(
         out = relabelled;
         origin = o;
     }
+    // Kept regions can meet at a single point (where a folded surface
+    // branched, or two deleted wedges of one vertex's fan): the surface is
+    // pinched there. One vertex per fan makes it a 2-manifold; the
+    // input's own pinches are left as they were.
+    let pinched_before = mesh.pinched_vertices();
+    let split = out.split_pinches_where(|v| {
+        origin
+            .get(v)
+            .is_none_or(|&o| !pinched_before.get(o as usize).copied().unwrap_or(false))
+    });
+    cut_report.pinches_split = split.len();
+    for v in split {
+        origin.push(origin[v as usize]);
+    }
     let flips = if options.orient {
         orient_consistently(&mut out)
     } else {

@@ -95,6 +95,128 @@ impl TriMesh {
         )
     }
 
+    /// Calls `f(v, corners, fan)` for every vertex with two or more
+    /// corners: `corners` are its corner slots (`3t + k`), `fan[j]` the
+    /// fan of `corners[j]`, numbered from 0 in order of first corner.
+    /// Triangles around a vertex are in one fan when they are joined
+    /// through edges at that vertex.
+    fn for_each_fan(&self, mut f: impl FnMut(usize, &[u32], &[u32])) {
+        let n = self.positions.len();
+        let mut start = vec![0u32; n + 1];
+        for t in &self.triangles {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut corners = vec![0u32; 3 * self.triangles.len()];
+        for (i, t) in self.triangles.iter().enumerate() {
+            for (k, &v) in t.iter().enumerate() {
+                corners[fill[v as usize] as usize] = (3 * i + k) as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        // Scratch reused across vertices.
+        let mut parent: Vec<usize> = Vec::new();
+        let mut by_neighbour: Vec<(u32, usize)> = Vec::new();
+        let mut fan: Vec<u32> = Vec::new();
+        let mut number: Vec<u32> = Vec::new();
+        fn root(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for v in 0..n {
+            let around = &corners[start[v] as usize..start[v + 1] as usize];
+            if around.len() < 2 {
+                continue;
+            }
+            parent.clear();
+            parent.extend(0..around.len());
+            by_neighbour.clear();
+            for (j, &c) in around.iter().enumerate() {
+                let t = self.triangles[c as usize / 3];
+                let k = c as usize % 3;
+                for u in [t[(k + 1) % 3], t[(k + 2) % 3]] {
+                    if u as usize != v {
+                        by_neighbour.push((u, j));
+                    }
+                }
+            }
+            by_neighbour.sort_unstable();
+            for w in by_neighbour.windows(2) {
+                if w[0].0 == w[1].0 {
+                    let (a, b) = (root(&mut parent, w[0].1), root(&mut parent, w[1].1));
+                    parent[a.max(b)] = a.min(b);
+                }
+            }
+            number.clear();
+            number.resize(around.len(), u32::MAX);
+            fan.clear();
+            let mut fans = 0;
+            for j in 0..around.len() {
+                let r = root(&mut parent, j);
+                if number[r] == u32::MAX {
+                    number[r] = fans;
+                    fans += 1;
+                }
+                fan.push(number[r]);
+            }
+            f(v, around, &fan);
+        }
+    }
+
+    /// Per vertex: whether its triangles form more than one fan (sheets
+    /// that touch at a point: a pinch).
+    pub fn pinched_vertices(&self) -> Vec<bool> {
+        let mut pinched = vec![false; self.positions.len()];
+        self.for_each_fan(|v, _, fan| pinched[v] = fan.iter().any(|&f| f > 0));
+        pinched
+    }
+
+    /// Splits every pinched vertex `v` (see [`TriMesh::pinched_vertices`])
+    /// with `eligible(v)` into one vertex per fan, at the same position,
+    /// so that the surface is a 2-manifold there (a DLFL needs that). The
+    /// fan holding the vertex's first corner keeps it; each other fan
+    /// gets a new vertex, appended. Returns, for each new vertex in order,
+    /// the vertex it was split from.
+    pub fn split_pinches_where(&mut self, eligible: impl Fn(usize) -> bool) -> Vec<u32> {
+        // (corner, fan) of every corner that moves to a new vertex.
+        let mut moves: Vec<(u32, u32, u32)> = Vec::new();
+        self.for_each_fan(|v, corners, fan| {
+            if eligible(v) {
+                for (&c, &f) in corners.iter().zip(fan) {
+                    if f > 0 {
+                        moves.push((v as u32, f, c));
+                    }
+                }
+            }
+        });
+        moves.sort_unstable();
+        let mut split_from = Vec::new();
+        let mut last = (u32::MAX, u32::MAX, 0u32);
+        for (v, f, c) in moves {
+            if (v, f) != (last.0, last.1) {
+                let new = self.positions.len() as u32;
+                self.positions.push(self.positions[v as usize]);
+                split_from.push(v);
+                last = (v, f, new);
+            }
+            self.triangles[c as usize / 3][c as usize % 3] = last.2;
+        }
+        split_from
+    }
+
+    /// [`TriMesh::split_pinches_where`] for every vertex.
+    pub fn split_pinches(&mut self) -> Vec<u32> {
+        self.split_pinches_where(|_| true)
+    }
+
     /// Checks indices and that every position is finite.
     pub fn check(&self) -> Result<(), MeshError> {
         check_positions("mesh", &self.positions)?;
@@ -441,6 +563,46 @@ mod tests {
                 (0..e.len() as u32).find(|&k| e.triangles(k as usize).len() % 2 == 1)
             );
         }
+    }
+
+    #[test]
+    fn split_pinches_gives_each_fan_its_own_vertex() {
+        // Two tetrahedra sharing only vertex 0: a pinch.
+        let tet = |o: DVec3, first: u32| {
+            let [a, b, c] = [first, first + 1, first + 2];
+            (
+                vec![o + DVec3::X, o + DVec3::Y, o + DVec3::Z],
+                vec![[0, b, a], [0, a, c], [a, b, c], [b, 0, c]],
+            )
+        };
+        let (p1, t1) = tet(DVec3::ZERO, 1);
+        let (p2, t2) = tet(DVec3::ZERO, 4);
+        let mut m = TriMesh {
+            positions: [vec![DVec3::ZERO], p1, p2.iter().map(|p| -*p).collect()].concat(),
+            triangles: [t1, t2].concat(),
+        };
+        let before = m.clone();
+        let split = m.split_pinches();
+        assert_eq!(split, vec![0]);
+        assert_eq!(m.positions.len(), 8);
+        assert_eq!(m.positions[7], m.positions[0]);
+        // The first fan kept vertex 0, the second has the copy.
+        assert!(m.triangles[..4].iter().all(|t| !t.contains(&7)));
+        assert!(m.triangles[4..].iter().all(|t| !t.contains(&0)));
+        assert!(m.is_closed_manifold());
+        // Nothing else changed; a manifold is left alone.
+        for (a, b) in m.triangles.iter().zip(&before.triangles) {
+            assert_eq!(a.map(|v| if v == 7 { 0 } else { v }), *b);
+        }
+        let mut again = m.clone();
+        assert!(again.split_pinches().is_empty());
+        assert_eq!(again.triangles, m.triangles);
+        // Only eligible vertices are split.
+        let mut kept = before.clone();
+        assert_eq!(before.pinched_vertices().iter().filter(|&&p| p).count(), 1);
+        assert!(before.pinched_vertices()[0]);
+        assert!(kept.split_pinches_where(|v| v != 0).is_empty());
+        assert_eq!(kept.triangles, before.triangles);
     }
 
     #[test]

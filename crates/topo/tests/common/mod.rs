@@ -469,3 +469,41 @@ pub fn folds(m: &TriMesh) -> usize {
         .filter(|v| v.len() == 2 && normals[v[0]].dot(normals[v[1]]) < 0.0)
         .count()
 }
+
+/// Vertices whose triangles form more than one fan (joined through shared
+/// edges around the vertex): pinch points where sheets touch at a point.
+pub fn pinch_vertices(m: &TriMesh) -> usize {
+    let mut around: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (i, t) in m.triangles.iter().enumerate() {
+        for &v in t {
+            around.entry(v).or_default().push(i);
+        }
+    }
+    let mut pinched = 0;
+    for (v, ts) in around {
+        // Union the triangles around v that share an edge through v.
+        let mut parent: Vec<usize> = (0..ts.len()).collect();
+        fn root(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for i in 0..ts.len() {
+            for j in i + 1..ts.len() {
+                let (a, b) = (m.triangles[ts[i]], m.triangles[ts[j]]);
+                let shared = a.iter().filter(|&&u| u != v && b.contains(&u)).count();
+                if shared > 0 {
+                    let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                    parent[ri] = rj;
+                }
+            }
+        }
+        let fans = (0..ts.len()).filter(|&i| root(&mut parent, i) == i).count();
+        if fans > 1 {
+            pinched += 1;
+        }
+    }
+    pinched
+}
