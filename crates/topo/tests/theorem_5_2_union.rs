@@ -43,6 +43,8 @@ fn check_union(a: &TriMesh, b: &TriMesh, genus_expected: i64, what: &str) {
         "{what}: the union is not closed and oriented"
     );
     assert_eq!(components(&u), 1, "{what}: components");
+    assert_eq!(pinch_vertices(&u), 0, "{what}: pinch vertices");
+    assert_eq!(pinch_vertices(&d), 0, "{what}: pinch vertices (containment)");
     assert_eq!(genus(&u), genus_expected, "{what}: genus");
     assert_eq!(
         self_intersecting_pairs(&u),
@@ -399,6 +401,7 @@ fn coplanar_and_lattice_aligned_unions_are_closed_solids() {
         let out = holey_topo::union_robust(&a, &b, &Options::default()).expect("closed solids");
         let u = &out.mesh;
         assert!(closed_oriented(u), "{what}: not a closed oriented surface");
+        assert_eq!(pinch_vertices(u), 0, "{what}: pinch vertices");
         assert_eq!(components(u), 1, "{what}: components");
         assert_eq!(genus(u), 0, "{what}: genus");
         let v = volume(u);
