@@ -48,7 +48,7 @@ fn union_of_two_spheres(bencher: Bencher, level: u32) {
 
 /// The same union by containment parity (`holey_topo::union`, what
 /// `holey union` runs for closed solids): no motion, A × B only.
-#[divan::bench(args = [5, 6, 7], sample_count = 3)]
+#[divan::bench(args = [4, 5, 6, 7, 8], sample_count = 3)]
 fn union_of_two_spheres_by_containment(bencher: Bencher, level: u32) {
     let a = holey_bench::icosphere(level);
     let b = TriMesh {
