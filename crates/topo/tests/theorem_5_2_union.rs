@@ -44,7 +44,11 @@ fn check_union(a: &TriMesh, b: &TriMesh, genus_expected: i64, what: &str) {
     );
     assert_eq!(components(&u), 1, "{what}: components");
     assert_eq!(pinch_vertices(&u), 0, "{what}: pinch vertices");
-    assert_eq!(pinch_vertices(&d), 0, "{what}: pinch vertices (containment)");
+    assert_eq!(
+        pinch_vertices(&d),
+        0,
+        "{what}: pinch vertices (containment)"
+    );
     assert_eq!(genus(&u), genus_expected, "{what}: genus");
     assert_eq!(
         self_intersecting_pairs(&u),
