@@ -69,12 +69,20 @@ pub fn write_colored(path: &str, mesh: &TriMesh, colors: Vec<[u8; 3]>) -> Result
         ascii: false,
         vertex_colors: Some(colors),
     };
-    if !path.to_ascii_lowercase().ends_with(".ply") {
-        return Err(bad_input(format!(
-            "{path}: the parity picture must be a .ply file"
-        )));
-    }
+    check_parity_path(path)?;
     crate::output::write_soup(path, &poly, &opts, true)
+}
+
+/// The parity picture is a PLY file (the one format here with vertex
+/// colours).
+pub fn check_parity_path(path: &str) -> Result<()> {
+    if path.to_ascii_lowercase().ends_with(".ply") {
+        Ok(())
+    } else {
+        Err(bad_input(format!(
+            "{path}: the parity picture must be a .ply file"
+        )))
+    }
 }
 
 /// The engine's report as JSON.

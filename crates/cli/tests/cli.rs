@@ -1047,3 +1047,191 @@ fn selfint_and_resolve_on_crossing_triangles() {
     let err = bad(&["selfint", s(&dir.path().join("missing.obj"))]);
     assert!(err.contains("missing.obj"), "{err}");
 }
+
+/// `a` moved by a Gaussian bump: vertices near `centre` move by up to `d`.
+fn bumped_obj(from: &Path, to: &Path, centre: [f64; 3], d: [f64; 3], sigma: f64) {
+    let text = std::fs::read_to_string(from).unwrap();
+    let moved: String = text
+        .lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(rest) => {
+                let p: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|t| t.parse().unwrap())
+                    .collect();
+                let r2: f64 = (0..3).map(|k| (p[k] - centre[k]).powi(2)).sum();
+                let w = (-r2 / (sigma * sigma)).exp();
+                format!(
+                    "v {} {} {}\n",
+                    p[0] + w * d[0],
+                    p[1] + w * d[1],
+                    p[2] + w * d[2]
+                )
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    std::fs::write(to, moved).unwrap();
+}
+
+/// Vertex colours of a binary PLY written by holey (x, y, z as doubles,
+/// then red, green, blue).
+fn ply_colours(path: &Path) -> Vec<[u8; 3]> {
+    let bytes = std::fs::read(path).unwrap();
+    let end = bytes
+        .windows(11)
+        .position(|w| w == b"end_header\n")
+        .unwrap()
+        + 11;
+    let header = String::from_utf8_lossy(&bytes[..end]).into_owned();
+    assert!(header.contains("binary_little_endian"), "{header}");
+    assert!(header.contains("property double x"), "{header}");
+    let n: usize = header
+        .lines()
+        .find_map(|l| l.strip_prefix("element vertex "))
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    (0..n)
+        .map(|i| {
+            let at = end + i * 27 + 24;
+            [bytes[at], bytes[at + 1], bytes[at + 2]]
+        })
+        .collect()
+}
+
+/// `holey topo` on a real frame: a sphere's north pole pushed through its
+/// south pole punches a tunnel (genus 1), with every scheme and the
+/// paper's float collision test. The report counts what happened, and the
+/// parity picture colours the input's vertices as the report counts them
+/// (grey even, red odd, yellow odd only before correction, blue odd only
+/// after).
+#[test]
+fn topo_punches_a_tunnel_and_reports_it() {
+    let dir = tmp();
+    let a = dir.path().join("a.obj");
+    let b = dir.path().join("b.obj");
+    let out = dir.path().join("out.obj");
+    let r = dir.path().join("r.json");
+    let p = dir.path().join("p.ply");
+    ok(&["primitive", "@sphere:4", s(&a)]);
+    bumped_obj(&a, &b, [0.013, 0.007, 1.0], [0.0, 0.0, -2.6], 0.35);
+    for extra in [&[][..], &["--scheme", "majority"], &["--float-ccd"]] {
+        let mut args = vec![
+            "topo",
+            s(&a),
+            s(&b),
+            s(&out),
+            "--report",
+            s(&r),
+            "--parity",
+            s(&p),
+        ];
+        args.extend_from_slice(extra);
+        ok(&args);
+        let m = info(s(&out), &[]);
+        assert_eq!(m["closed"], true, "{extra:?}");
+        assert_eq!(m["manifold"], true, "{extra:?}");
+        assert_eq!(m["genus"], 1, "{extra:?}: a tunnel");
+        let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+        assert!(report["collisions"].as_u64().unwrap() > 0, "{extra:?}");
+        assert!(
+            report["intersection_curves"].as_u64().unwrap() >= 1,
+            "{extra:?}"
+        );
+        assert!(
+            report["triangles_deleted"].as_u64().unwrap() > 0,
+            "{extra:?}"
+        );
+        for key in [
+            "collisions",
+            "intersection_points",
+            "seconds",
+            "perturbation_retries",
+        ] {
+            assert!(!report[key].is_null(), "{extra:?}: no {key}");
+        }
+        let colours = ply_colours(&p);
+        assert_eq!(
+            colours.len(),
+            info(s(&a), &[])["vertices"].as_u64().unwrap() as usize
+        );
+        let count = |c: [u8; 3]| colours.iter().filter(|&&x| x == c).count() as u64;
+        let (grey, red, yellow, blue) = (
+            count([170, 170, 170]),
+            count([220, 40, 40]),
+            count([240, 200, 30]),
+            count([40, 90, 230]),
+        );
+        assert_eq!(grey + red + yellow + blue, colours.len() as u64);
+        assert_eq!(red + yellow, report["raw_odd_vertices"].as_u64().unwrap());
+        assert_eq!(
+            red + blue,
+            report["corrected_odd_vertices"].as_u64().unwrap()
+        );
+        assert!(red > 0 && grey > 0, "{extra:?}");
+    }
+    // Same vertex count, different faces: refused before any work.
+    let c = dir.path().join("c.obj");
+    let text = std::fs::read_to_string(&a).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let first_face = lines.iter().position(|l| l.starts_with("f ")).unwrap();
+    let f: Vec<&str> = lines[first_face].split_whitespace().collect();
+    lines[first_face] = format!("f {} {} {}", f[1], f[3], f[2]);
+    std::fs::write(&c, lines.join("\n") + "\n").unwrap();
+    let err = bad(&["topo", s(&a), s(&c), s(&out)]);
+    assert!(err.contains("faces") && err.contains("differ"), "{err}");
+    // A parity picture that cannot be written is refused before the
+    // result is: nothing is written.
+    let never = dir.path().join("never.obj");
+    let err = bad(&["topo", s(&a), s(&b), s(&never), "--parity", "p.png"]);
+    assert!(err.contains(".ply"), "{err}");
+    assert!(!never.exists());
+}
+
+/// Bad input to the topology commands gets a clear error naming the
+/// problem and the place, exit status 2, never a panic: NaN and infinite
+/// coordinates, an index out of range, for `topo`, `union`, `selfint` and
+/// `resolve` alike.
+#[test]
+fn topology_commands_refuse_bad_input() {
+    let dir = tmp();
+    let good = dir.path().join("good.obj");
+    let out = dir.path().join("out.obj");
+    ok(&["primitive", "@tetrahedron", s(&good)]);
+    let cases = [
+        (
+            "nan.obj",
+            "v 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n",
+            "nan.obj:3",
+        ),
+        (
+            "inf.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 inf\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n",
+            "inf.obj:4",
+        ),
+        (
+            "index.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 9\nf 1 4 2\nf 2 4 3\n",
+            "index.obj:6",
+        ),
+    ];
+    for (name, text, place) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        for args in [
+            vec!["topo", s(&path), s(&path), s(&out)],
+            vec!["topo", s(&good), s(&path), s(&out)],
+            vec!["union", s(&good), s(&path), s(&out)],
+            vec!["union", s(&path), s(&good), s(&out)],
+            vec!["selfint", s(&path)],
+            vec!["resolve", s(&path), s(&out)],
+        ] {
+            let err = bad(&args);
+            assert!(err.contains(place), "{args:?}: {err}");
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+        }
+    }
+    assert!(!out.exists(), "nothing was written");
+}

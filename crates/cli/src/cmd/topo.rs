@@ -66,6 +66,15 @@ pub struct EngineArgs {
 }
 
 impl EngineArgs {
+    /// Refuses an output the run could only fail to write at its end
+    /// (after the result had been written): checked before any work.
+    pub fn check_outputs(&self) -> Result<()> {
+        if let Some(path) = &self.parity {
+            crate::tri::check_parity_path(path)?;
+        }
+        Ok(())
+    }
+
     pub fn options(&self) -> Options {
         Options {
             scheme: self.scheme.into(),
@@ -106,6 +115,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    args.engine.check_outputs()?;
     let (before, after) = load_triangle_pair(&args.before, &args.after)?;
     if before.positions.len() != after.positions.len() {
         return Err(bad_input(format!(

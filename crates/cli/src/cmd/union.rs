@@ -135,6 +135,7 @@ fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    args.engine.check_outputs()?;
     let (a, b) = load_triangle_pair(&args.a, &args.b)?;
     if a.positions.is_empty() || b.positions.is_empty() {
         return Err(bad_input("both solids must have vertices"));
