@@ -72,6 +72,44 @@ pub fn position_classes(positions: &[DVec3]) -> Result<Vec<u32>, GeomError> {
     Ok(ids)
 }
 
+/// Class of each moving point: the smallest index of a point with
+/// exactly the same position at the start and at the end of the motion
+/// (the same point of a surface: the copies of a soup's shared corner).
+/// Points that only meet at the end (two parts landing exactly on each
+/// other, a grid moved onto the lattice of another) are in different
+/// classes. Errors as [`position_classes`].
+pub fn motion_classes(start: &[DVec3], end: &[DVec3]) -> Result<Vec<u32>, GeomError> {
+    if start.len() != end.len() {
+        return Err(GeomError::LengthMismatch {
+            what: "start positions",
+            got: start.len(),
+            expected: end.len(),
+        });
+    }
+    let mut ids = position_classes(end)?;
+    if let Some(index) = start.iter().position(|p| !p.is_finite()) {
+        return Err(GeomError::NonFinite { index });
+    }
+    // Most meshes have no two vertices at one place: nothing to refine.
+    let mut size = vec![0u32; ids.len()];
+    for &c in &ids {
+        size[c as usize] += 1;
+    }
+    if size.iter().all(|&k| k <= 1) {
+        return Ok(ids);
+    }
+    // Split the shared classes by the start position.
+    let mut map: HashMap<(u32, [u64; 3]), u32, BuildHasherDefault<MulHasher>> = HashMap::default();
+    for (v, id) in ids.iter_mut().enumerate() {
+        if size[*id as usize] > 1 {
+            let p = start[v];
+            let k = (*id, [key_bits(p.x), key_bits(p.y), key_bits(p.z)]);
+            *id = *map.entry(k).or_insert(v as u32);
+        }
+    }
+    Ok(ids)
+}
+
 /// `id = index` for `n` points.
 pub fn index_identities(n: usize) -> Result<Vec<u32>, GeomError> {
     if n > (1usize << 31) {
@@ -83,6 +121,35 @@ pub fn index_identities(n: usize) -> Result<Vec<u32>, GeomError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn motion_classes_need_both_ends() {
+        let start = [
+            DVec3::ZERO,
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(5.0, 0.0, 0.0),
+            DVec3::Y,
+        ];
+        // 0 and 1 are one point throughout; 2 and 3 land on it at the
+        // end; 4 is alone.
+        let end = [DVec3::Z, DVec3::Z, DVec3::Z, DVec3::Z, DVec3::Y];
+        assert_eq!(motion_classes(&start, &end), Ok(vec![0, 0, 2, 3, 4]));
+        // At rest the classes are the position classes.
+        assert_eq!(motion_classes(&end, &end), position_classes(&end));
+        let bad = [
+            DVec3::ZERO,
+            DVec3::new(0.0, f64::INFINITY, 0.0),
+            DVec3::X,
+            DVec3::X,
+            DVec3::Y,
+        ];
+        assert_eq!(
+            motion_classes(&bad, &end),
+            Err(GeomError::NonFinite { index: 1 })
+        );
+        assert!(motion_classes(&start[..2], &end).is_err());
+    }
 
     #[test]
     fn classes_by_exact_position() {

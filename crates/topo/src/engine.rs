@@ -15,8 +15,8 @@ use holey_geom::ccd::{
     CcdOptions, CcdParity, Identities, MovingPoint, Narrow, vertex_parities_cancellable,
     vertex_triangle_parity,
 };
-use holey_geom::position_classes;
 use holey_geom::{Aabb, Bvh, SymPoint};
+use holey_geom::{motion_classes, position_classes};
 
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, Deletion, cut};
@@ -113,8 +113,11 @@ pub struct Report {
     pub cut: CutReport,
     /// Components whose correction system was solved.
     pub solved_components: usize,
-    /// Perturbations and retries: always 0. Degeneracies are resolved by
-    /// simulation of simplicity, exactly, without retrying.
+    /// Retries with perturbed end positions (one frame:
+    /// [`topology_change`]'s; the union: [`crate::union_robust`]'s
+    /// nudges). Degeneracies are resolved by simulation of simplicity; a
+    /// retry happens only when a closed 2-manifold input came out as
+    /// something else (coplanar overlaps).
     pub perturbation_retries: usize,
     pub orientation_flips: usize,
     pub timings: Timings,
@@ -452,7 +455,94 @@ pub(crate) fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
 /// Topology change for one frame: `mesh` at its positions moves linearly to
 /// `end`. Collided parts that should vanish are cut out along the
 /// intersection curves and the rest is glued there.
+///
+/// Degeneracies are resolved by simulation of simplicity. One kind can
+/// still break a solid: faces of two parts landing exactly in one plane
+/// and overlapping there (a grid moved onto the lattice of another). The
+/// perturbed arrangement is consistent, but placed at the exact
+/// coordinates its distinct points coincide, and the result can come out
+/// with duplicate triangles or cracks; and parts landing exactly on each
+/// other's lattice can cross only at shared points, so that no
+/// intersection is found for what collided. So with the solid guard on,
+/// when the input is a closed 2-manifold and the result is not (or its
+/// odd vertices have no intersection to explain them), the frame is
+/// run again with every end position moved by a deterministic
+/// pseudo-random offset of up to 2^-20 of the scene's diagonal (16 and
+/// 256 times that on the next tries; smaller offsets leave slivers so
+/// thin that rounding the constructed points makes them cross; equal for
+/// vertices that are one point
+/// throughout the motion, so a soup's corners stay together). The report
+/// counts the retries.
 pub fn topology_change(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+) -> Result<Outcome, TopoError> {
+    let out = topology_change_once(mesh, end, options)?;
+    if !options.solid_guard || !suspect(&out) || !mesh.is_closed_manifold() {
+        return Ok(out);
+    }
+    // Offsets by point of the surface (same place at both ends), so that
+    // the copies of a soup's corner move together while parts that only
+    // land on each other move apart.
+    let ids = motion_classes(&mesh.positions, end)?;
+    let diagonal = {
+        let (lo, hi) = end
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+                (l.min(*p), h.max(*p))
+            });
+        (hi - lo).length()
+    };
+    let mut last = out;
+    for k in 1..=3usize {
+        let size = diagonal * (16f64).powi(k as i32 - 1) / 1_048_576.0;
+        let jittered: Vec<DVec3> = end
+            .iter()
+            .zip(&ids)
+            .map(|(p, &id)| *p + jitter(id, k) * size)
+            .collect();
+        let mut out = topology_change_once(mesh, &jittered, options)?;
+        out.report.perturbation_retries = k;
+        let good = !suspect(&out);
+        last = out;
+        if good {
+            break;
+        }
+    }
+    Ok(last)
+}
+
+/// Whether a solid's result shows the marks of exact coincidence: it is
+/// not a closed 2-manifold (coplanar overlaps placed at exact
+/// coordinates), or collisions made vertices odd that no intersection at
+/// the end accounts for (parts landing exactly on each other's lattice,
+/// where every crossing is a shared point, edge or plane), so that
+/// correction evened them out and both parts were kept whole.
+fn suspect(out: &Outcome) -> bool {
+    let r = &out.report;
+    let unexplained = r.intersecting_pairs == 0
+        && r.raw_odd_vertices > 0
+        && r.corrected_odd_vertices != r.raw_odd_vertices;
+    unexplained || !out.mesh.is_closed_manifold()
+}
+
+/// A deterministic offset in [-1, 1]³ for identity `id` on try `k` (a
+/// 64-bit mix of the two: no state, no seed to pass around).
+fn jitter(id: u32, k: usize) -> DVec3 {
+    let mut x = (u64::from(id) << 8 | k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    let mut next = || {
+        x ^= x >> 31;
+        x = x.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        x ^= x >> 29;
+        // 53 random bits to [-1, 1).
+        (x >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    DVec3::new(next(), next(), next())
+}
+
+/// [`topology_change`] without the retry.
+fn topology_change_once(
     mesh: &TriMesh,
     end: &[DVec3],
     options: &Options,
