@@ -115,6 +115,7 @@ pub fn report_json(r: &Report) -> Value {
         "constraint_splits": r.cut.constraint_splits,
         "merged_points": r.cut.merged_points,
         "solved_components": r.solved_components,
+        "unsolved_components": r.unsolved_components,
         "perturbation_retries": r.perturbation_retries,
         "orientation_flips": r.orientation_flips,
         "seconds": {

@@ -88,6 +88,9 @@ pub enum TopoError {
 pub struct Timings {
     pub collisions: f64,
     pub intersections: f64,
+    /// Error correction (§3.4); in a union by containment
+    /// ([`crate::union()`]), which has nothing to correct, the rays that
+    /// compute its exact parity.
     pub correction: f64,
     pub cut: f64,
     pub total: f64,
@@ -113,6 +116,9 @@ pub struct Report {
     pub cut: CutReport,
     /// Components whose correction system was solved.
     pub solved_components: usize,
+    /// Components whose correction system could not be factorised; they
+    /// keep their raw parity.
+    pub unsolved_components: usize,
     /// Retries with perturbed end positions (one frame:
     /// [`topology_change`]'s; the union: [`crate::union_robust`]'s
     /// nudges). Degeneracies are resolved by simulation of simplicity; a
@@ -176,6 +182,7 @@ pub(crate) struct Static {
     geometry: Geometry,
     pub(crate) corrected: Vec<bool>,
     solved: usize,
+    unsolved: usize,
     t_correct: f64,
 }
 
@@ -226,6 +233,7 @@ fn correction_stage(
         geometry,
         corrected: c.odd,
         solved: c.solved_components,
+        unsolved: c.failed_components,
         t_correct: t.elapsed().as_secs_f64(),
     }
 }
@@ -420,6 +428,7 @@ pub(crate) fn finish(
         intersecting_pairs: s.geometry.x.pairs.len(),
         cut: cut_report,
         solved_components: s.solved,
+        unsolved_components: s.unsolved,
         perturbation_retries: 0,
         orientation_flips: flips,
         timings: Timings {

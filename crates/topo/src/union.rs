@@ -548,6 +548,7 @@ fn unite(
         intersecting_pairs: x.pairs.len(),
         cut: cut_report,
         solved_components: 0,
+        unsolved_components: 0,
         perturbation_retries: 0,
         orientation_flips: flips,
         timings: Timings {
