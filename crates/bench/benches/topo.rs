@@ -35,8 +35,9 @@ fn union_frame(level: u32) -> (TriMesh, Vec<DVec3>) {
     (start, end)
 }
 
-/// Levels 5, 6, 7: 40,960, 163,840 and 655,360 triangles in all.
-#[divan::bench(args = [5, 6, 7], sample_count = 3)]
+/// Levels 4 to 8: 10,240, 40,960, 163,840, 655,360 and 2,621,440
+/// triangles in all.
+#[divan::bench(args = [4, 5, 6, 7, 8], sample_count = 3)]
 fn union_of_two_spheres(bencher: Bencher, level: u32) {
     let (start, end) = union_frame(level);
     bencher.bench_local(|| {
@@ -64,7 +65,7 @@ fn union_of_two_spheres_by_containment(bencher: Bencher, level: u32) {
     });
 }
 
-#[divan::bench(args = [5, 6, 7], sample_count = 3)]
+#[divan::bench(args = [4, 5, 6, 7, 8], sample_count = 3)]
 fn self_intersections_of_two_spheres(bencher: Bencher, level: u32) {
     let (mut both, end) = union_frame(level);
     both.positions = end;
