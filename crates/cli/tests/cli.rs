@@ -1039,6 +1039,27 @@ fn selfint_and_resolve_on_crossing_triangles() {
     assert_eq!(si["intersecting_pairs"], 1);
     assert_eq!(si["intersection_curves"], 1);
     assert_eq!(si["pairs"][0], serde_json::json!([0, 1]));
+    // The curve as geometry: the segment from where the second
+    // triangle's edge pierces the first, (0.5, 0.5, 0), to where the
+    // first's edge x + y = 2 crosses the second, (1, 1, 0).
+    let c = dir.path().join("c.obj");
+    ok(&["selfint", s(&m), "--curves", s(&c)]);
+    let text = std::fs::read_to_string(&c).unwrap();
+    let mut points: Vec<[f64; 3]> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    points.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    assert_eq!(points, vec![[0.5, 0.5, 0.0], [1.0, 1.0, 0.0]]);
+    let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("l ")).collect();
+    assert_eq!(lines.len(), 1);
+    assert_eq!(text.lines().filter(|l| l.starts_with("g curve")).count(), 1);
+    let err = bad(&["selfint", s(&m), "--curves", "c.png"]);
+    assert!(err.contains(".obj"), "{err}");
     ok(&["resolve", s(&m), s(&r)]);
     let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&r)])).unwrap();
     assert_eq!(si["intersecting_pairs"], 0);

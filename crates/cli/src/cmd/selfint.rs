@@ -21,7 +21,8 @@ fan-triangulated; vertices with equal positions are the same point.
 
 Examples:
   holey selfint teapot.obj
-  holey selfint soup.stl --json")]
+  holey selfint soup.stl --json
+  holey selfint teapot.obj --curves curves.obj")]
 pub struct Args {
     /// The mesh.
     pub mesh: String,
@@ -32,9 +33,18 @@ pub struct Args {
     /// fan triangulation).
     #[arg(long)]
     pub pairs: bool,
+    /// Write the intersection curves as an OBJ of points and line
+    /// segments, one group per curve (`g curve0`, ...), for viewing them.
+    #[arg(long, value_name = "CURVES.obj")]
+    pub curves: Option<String>,
 }
 
 pub fn run(args: Args) -> Result<()> {
+    if let Some(path) = &args.curves
+        && !path.to_ascii_lowercase().ends_with(".obj")
+    {
+        return Err(bad_input(format!("{path}: the curves are written as .obj")));
+    }
     let mesh = load_triangles(&args.mesh)?;
     let t = std::time::Instant::now();
     let x = {
@@ -42,6 +52,10 @@ pub fn run(args: Args) -> Result<()> {
         self_intersections(&mesh).map_err(|e| bad_input(format!("{}: {e}", args.mesh)))?
     };
     let seconds = t.elapsed().as_secs_f64();
+    if let Some(path) = &args.curves {
+        holey_io::write_bytes_atomic(std::path::Path::new(path), curves_obj(&mesh, &x).as_bytes())
+            .map_err(crate::error::from_io)?;
+    }
     let triple = x.triple_points();
     if args.json {
         let mut v = json!({
@@ -72,4 +86,51 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The curves as OBJ text: every intersection point and every vertex a
+/// curve passes through as a `v` line, every intersection edge as an `l`
+/// line, grouped by curve.
+fn curves_obj(mesh: &holey_topo::TriMesh, x: &holey_topo::intersect::Intersections) -> String {
+    use holey_topo::intersect::Node;
+    use std::fmt::Write;
+    let mut text = String::from("# intersection curves written by holey selfint\n");
+    let n = x.points.len();
+    for p in &x.points {
+        let q = p.position;
+        let _ = writeln!(text, "v {} {} {}", q.x, q.y, q.z);
+    }
+    // Vertices shared by the two triangles of a piece, numbered after the
+    // points in order of first use.
+    let mut shared: std::collections::HashMap<u32, usize> = std::collections::HashMap::new();
+    let mut index = |node: Node, text: &mut String| -> usize {
+        match node {
+            Node::Point(i) => i as usize + 1,
+            Node::Shared(id) => {
+                let next = n + shared.len() + 1;
+                *shared.entry(id).or_insert_with(|| {
+                    let q = mesh.positions.get(id as usize).copied().unwrap_or_default();
+                    let _ = writeln!(text, "v {} {} {}", q.x, q.y, q.z);
+                    next
+                })
+            }
+        }
+    };
+    let mut by_curve: Vec<Vec<usize>> = vec![Vec::new(); x.curve_count];
+    for (k, &c) in x.curve_of_piece.iter().enumerate() {
+        if let Some(list) = by_curve.get_mut(c as usize) {
+            list.push(k);
+        }
+    }
+    let mut lines = String::new();
+    for (c, pieces) in by_curve.iter().enumerate() {
+        let _ = writeln!(lines, "g curve{c}");
+        for &k in pieces {
+            let [a, b] = x.pieces[k].ends;
+            let (a, b) = (index(a, &mut text), index(b, &mut text));
+            let _ = writeln!(lines, "l {a} {b}");
+        }
+    }
+    text.push_str(&lines);
+    text
 }
