@@ -117,6 +117,7 @@ pub fn report_json(r: &Report) -> Value {
         "solved_components": r.solved_components,
         "unsolved_components": r.unsolved_components,
         "perturbation_retries": r.perturbation_retries,
+        "solid_input": r.solid_input,
         "orientation_flips": r.orientation_flips,
         "seconds": {
             "collisions": r.timings.collisions,

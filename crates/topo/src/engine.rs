@@ -46,8 +46,9 @@ pub struct Options {
     /// When a solid (closed, consistently oriented) input comes out not
     /// closed — a motion that folds the surface makes collision parity
     /// inconsistent — label the arrangement by containment number instead
-    /// (Lemma 8.1's interpretation; [`crate::solid`]). Off reproduces the
-    /// paper.
+    /// (Lemma 8.1's interpretation; [`crate::solid`]). For one frame it
+    /// also redoes a frame whose exact coincidences broke the solid
+    /// ([`topology_change`]). Off reproduces the paper.
     pub solid_guard: bool,
     /// Most intersecting triangle pairs plus candidate triple points a
     /// frame may have at its end before the engine gives up with an error
@@ -125,6 +126,9 @@ pub struct Report {
     /// retry happens only when a closed 2-manifold input came out as
     /// something else (coplanar overlaps).
     pub perturbation_retries: usize,
+    /// The input was a closed, consistently oriented 2-manifold (a
+    /// solid's surface): the solid guard and the coplanar retry apply.
+    pub solid_input: bool,
     pub orientation_flips: usize,
     pub timings: Timings,
 }
@@ -376,8 +380,9 @@ pub(crate) fn finish(
     // sort of the output's sides.
     let suspicious =
         || cut_report.curves_dropped > 0 || cut_report.false_vertices > 0 || !out.is_closed();
+    let solid_input = s.geometry.edges.closed_oriented(&mesh.triangles);
     if options.solid_guard
-        && s.geometry.edges.closed_oriented(&mesh.triangles)
+        && solid_input
         && suspicious()
         && starts_clear(mesh, start)
         && let Some((relabelled, o, deleted)) = relabel(
@@ -398,12 +403,15 @@ pub(crate) fn finish(
     // Kept regions can meet at a single point (where a folded surface
     // branched, or two deleted wedges of one vertex's fan): the surface is
     // pinched there. One vertex per fan makes it a 2-manifold; the
-    // input's own pinches are left as they were.
-    let pinched_before = mesh.pinched_vertices();
-    let split = out.split_pinches_where(|v| {
-        origin
-            .get(v)
-            .is_none_or(|&o| !pinched_before.get(o as usize).copied().unwrap_or(false))
+    // input's own pinches are left as they were (found only if the output
+    // has a pinch: a pass over the input that most frames never pay for).
+    let mut pinched_before: Option<Vec<bool>> = None;
+    let split = out.split_pinches_where(|v| match origin.get(v) {
+        Some(&o) if o != u32::MAX => {
+            let before = pinched_before.get_or_insert_with(|| mesh.pinched_vertices());
+            !before.get(o as usize).copied().unwrap_or(false)
+        }
+        _ => true,
     });
     cut_report.pinches_split = split.len();
     for v in split {
@@ -430,6 +438,7 @@ pub(crate) fn finish(
         solved_components: s.solved,
         unsolved_components: s.unsolved,
         perturbation_retries: 0,
+        solid_input,
         orientation_flips: flips,
         timings: Timings {
             collisions: collisions.2,
@@ -488,7 +497,7 @@ pub fn topology_change(
     options: &Options,
 ) -> Result<Outcome, TopoError> {
     let out = topology_change_once(mesh, end, options)?;
-    if !options.solid_guard || !suspect(&out) || !mesh.is_closed_manifold() {
+    if !options.solid_guard || !out.report.solid_input || !suspect(&out) {
         return Ok(out);
     }
     // Offsets by point of the surface (same place at both ends), so that

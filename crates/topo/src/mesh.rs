@@ -184,12 +184,14 @@ impl TriMesh {
     /// so that the surface is a 2-manifold there (a DLFL needs that). The
     /// fan holding the vertex's first corner keeps it; each other fan
     /// gets a new vertex, appended. Returns, for each new vertex in order,
-    /// the vertex it was split from.
-    pub fn split_pinches_where(&mut self, eligible: impl Fn(usize) -> bool) -> Vec<u32> {
+    /// the vertex it was split from. `eligible` is asked only about
+    /// pinched vertices (so it may be costly the first time, and is
+    /// never paid for on a mesh without pinches).
+    pub fn split_pinches_where(&mut self, mut eligible: impl FnMut(usize) -> bool) -> Vec<u32> {
         // (corner, fan) of every corner that moves to a new vertex.
         let mut moves: Vec<(u32, u32, u32)> = Vec::new();
         self.for_each_fan(|v, corners, fan| {
-            if eligible(v) {
+            if fan.iter().any(|&f| f > 0) && eligible(v) {
                 for (&c, &f) in corners.iter().zip(fan) {
                     if f > 0 {
                         moves.push((v as u32, f, c));
@@ -210,11 +212,6 @@ impl TriMesh {
             self.triangles[c as usize / 3][c as usize % 3] = last.2;
         }
         split_from
-    }
-
-    /// [`TriMesh::split_pinches_where`] for every vertex.
-    pub fn split_pinches(&mut self) -> Vec<u32> {
-        self.split_pinches_where(|_| true)
     }
 
     /// Checks indices and that every position is finite.
@@ -357,6 +354,14 @@ impl Default for EdgeSummary {
     }
 }
 
+/// `a` then `b` with `shift` applied to each of `b`'s items (in parallel).
+fn glue<T: Copy + Send + Sync>(a: &[T], b: &[T], shift: impl Fn(T) -> T + Sync + Send) -> Vec<T> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    out.extend_from_slice(a);
+    out.par_extend(b.par_iter().map(|&x| shift(x)));
+    out
+}
+
 impl Edges {
     /// Collects the edges of `mesh` (indices are assumed checked).
     pub fn new(mesh: &TriMesh) -> Edges {
@@ -414,27 +419,15 @@ impl Edges {
     /// joined mesh, built from two independent halves.
     pub fn joined(&self, other: &Edges, vertices: u32, triangles: u32) -> Edges {
         let (edge_offset, tri_offset) = (self.ends.len() as u32, self.tris.len() as u32);
-        let glue = |a: &[[u32; 2]], b: &[[u32; 2]], f: &(dyn Fn([u32; 2]) -> [u32; 2] + Sync)| {
-            let mut out = Vec::with_capacity(a.len() + b.len());
-            out.extend_from_slice(a);
-            out.par_extend(b.par_iter().map(|&x| f(x)));
-            out
-        };
-        let ends = glue(&self.ends, &other.ends, &|e| e.map(|v| v + vertices));
-        let mut of_triangle = Vec::with_capacity(self.of_triangle.len() + other.of_triangle.len());
-        of_triangle.extend_from_slice(&self.of_triangle);
-        of_triangle.par_extend(
-            other
-                .of_triangle
-                .par_iter()
-                .map(|s| s.map(|e| e + edge_offset)),
-        );
-        let mut offsets = Vec::with_capacity(self.offsets.len() + other.offsets.len());
-        offsets.extend_from_slice(&self.offsets);
-        offsets.par_extend(other.offsets[1..].par_iter().map(|&o| o + tri_offset));
-        let mut tris = Vec::with_capacity(self.tris.len() + other.tris.len());
-        tris.extend_from_slice(&self.tris);
-        tris.par_extend(other.tris.par_iter().map(|&t| t + triangles));
+        let ends = glue(&self.ends, &other.ends, |e| e.map(|v| v + vertices));
+        let of_triangle = glue(&self.of_triangle, &other.of_triangle, |s| {
+            s.map(|e| e + edge_offset)
+        });
+        // `other`'s offsets start with its own 0, which `self`'s last
+        // offset already stands for.
+        let other_offsets = other.offsets.get(1..).unwrap_or(&[]);
+        let offsets = glue(&self.offsets, other_offsets, |o| o + tri_offset);
+        let tris = glue(&self.tris, &other.tris, |t| t + triangles);
         Edges {
             ends,
             of_triangle,
@@ -582,7 +575,7 @@ mod tests {
             triangles: [t1, t2].concat(),
         };
         let before = m.clone();
-        let split = m.split_pinches();
+        let split = m.split_pinches_where(|_| true);
         assert_eq!(split, vec![0]);
         assert_eq!(m.positions.len(), 8);
         assert_eq!(m.positions[7], m.positions[0]);
@@ -595,7 +588,7 @@ mod tests {
             assert_eq!(a.map(|v| if v == 7 { 0 } else { v }), *b);
         }
         let mut again = m.clone();
-        assert!(again.split_pinches().is_empty());
+        assert!(again.split_pinches_where(|_| true).is_empty());
         assert_eq!(again.triangles, m.triangles);
         // Only eligible vertices are split.
         let mut kept = before.clone();

@@ -550,6 +550,7 @@ fn unite(
         solved_components: 0,
         unsolved_components: 0,
         perturbation_retries: 0,
+        solid_input: oriented,
         orientation_flips: flips,
         timings: Timings {
             collisions: 0.0,

@@ -69,18 +69,9 @@ fn run() -> Result<String, String> {
         ("union", [a, b]) => {
             let (a, b) = (load(a)?, load(b)?);
             triangles = a.triangles.len() + b.triangles.len();
-            for _ in 0..runs {
-                let t = Instant::now();
-                let out =
-                    holey_topo::union(&a, &b, &Options::default()).map_err(|e| e.to_string())?;
-                let took = t.elapsed().as_secs_f64();
-                if times.iter().all(|&b| took < b) {
-                    let s = out.report.timings;
-                    stages = Some([s.intersections, s.correction, s.cut]);
-                }
-                times.push(took);
-                result = out.mesh.triangles.len();
-            }
+            time_unions(runs, &mut times, &mut stages, &mut result, || {
+                holey_topo::union(&a, &b, &Options::default())
+            })?;
         }
         ("union-prepared", [a, b]) => {
             // Both solids prepared once, outside the clock (as the peers'
@@ -89,18 +80,9 @@ fn run() -> Result<String, String> {
             triangles = a.triangles.len() + b.triangles.len();
             let a = holey_topo::PreparedSolid::new(a).map_err(|e| e.to_string())?;
             let b = holey_topo::PreparedSolid::new(b).map_err(|e| e.to_string())?;
-            for _ in 0..runs {
-                let t = Instant::now();
-                let out = holey_topo::union_prepared(&a, &b, &Options::default())
-                    .map_err(|e| e.to_string())?;
-                let took = t.elapsed().as_secs_f64();
-                if times.iter().all(|&b| took < b) {
-                    let s = out.report.timings;
-                    stages = Some([s.intersections, s.correction, s.cut]);
-                }
-                times.push(took);
-                result = out.mesh.triangles.len();
-            }
+            time_unions(runs, &mut times, &mut stages, &mut result, || {
+                holey_topo::union_prepared(&a, &b, &Options::default())
+            })?;
         }
         ("selfint", [m]) => {
             let m = load(m)?;
@@ -131,6 +113,29 @@ fn run() -> Result<String, String> {
         "{{\"job\": \"{job}\", \"triangles\": {triangles}, \"result\": {result}, \"best\": {best:.6}, \"runs\": [{}]{stages}}}",
         list.join(", ")
     ))
+}
+
+/// Runs `union` `runs` times: every time into `times`, the stages of the
+/// fastest run into `stages`, its triangle count into `result`.
+fn time_unions(
+    runs: usize,
+    times: &mut Vec<f64>,
+    stages: &mut Option<[f64; 3]>,
+    result: &mut usize,
+    union: impl Fn() -> Result<holey_topo::Outcome, holey_topo::UnionError>,
+) -> Result<(), String> {
+    for _ in 0..runs {
+        let t = Instant::now();
+        let out = union().map_err(|e| e.to_string())?;
+        let took = t.elapsed().as_secs_f64();
+        if times.iter().all(|&b| took < b) {
+            let s = out.report.timings;
+            *stages = Some([s.intersections, s.correction, s.cut]);
+        }
+        times.push(took);
+        *result = out.mesh.triangles.len();
+    }
+    Ok(())
 }
 
 fn main() -> ExitCode {
