@@ -1,0 +1,269 @@
+//! What a surface is, measured exactly: the properties a topology change
+//! must keep (issue 15's "what a stroke changes") and the tests check.
+//!
+//! [`SurfaceAudit::of`] counts, for any triangle list, its components,
+//! boundary and non-manifold edges, pinched vertices, exactly degenerate
+//! triangles and exactly intersecting triangle pairs. [`SurfaceAudit::regressions`]
+//! says in words what got worse from one audit to the next.
+//!
+//! Every count is exact: degeneracy is exact collinearity (all three
+//! coordinate projections of the corners have orientation zero), and
+//! intersections are the engine's own exact static intersections
+//! ([`crate::intersect`]), which ignore the contact of triangles that
+//! share a vertex or an edge.
+
+use glam::{DVec2, DVec3};
+use holey_geom::{Sign, orient2d};
+use rayon::prelude::*;
+
+use crate::intersect::{IntersectError, intersecting_pair_count};
+use crate::mesh::{Edges, TriMesh};
+use crate::union_find::UnionFind;
+
+/// The exact properties of a triangle mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SurfaceAudit {
+    pub triangles: usize,
+    /// Vertices some triangle uses.
+    pub vertices: usize,
+    pub edges: usize,
+    /// Components joined through shared vertices.
+    pub components: usize,
+    /// Edges with exactly one triangle.
+    pub boundary_edges: usize,
+    /// Connected pieces of the boundary (joined through shared vertices):
+    /// the boundary loops of a manifold. Unlike the edge count, it does
+    /// not change when remeshing splits or collapses a boundary edge.
+    pub boundary_loops: usize,
+    /// Edges with more than two triangles.
+    pub nonmanifold_edges: usize,
+    /// Connected pieces of the non-manifold edges (joined through shared
+    /// vertices): the non-manifold curves, however finely split.
+    pub nonmanifold_curves: usize,
+    /// Vertices whose triangles form more than one fan (joined through
+    /// edges at the vertex): the surface is pinched there.
+    pub pinched_vertices: usize,
+    /// Triangles with a repeated vertex or three collinear corners.
+    pub degenerate_triangles: usize,
+    /// Triangle pairs that intersect other than along a shared vertex or
+    /// edge (exact).
+    pub intersecting_pairs: usize,
+}
+
+impl SurfaceAudit {
+    /// Audits `mesh` (its indices must be in range: [`TriMesh::check`]).
+    pub fn of(mesh: &TriMesh) -> Result<SurfaceAudit, IntersectError> {
+        let mut audit = SurfaceAudit::topology(mesh);
+        audit.intersecting_pairs = intersecting_pair_count(mesh, usize::MAX)?;
+        Ok(audit)
+    }
+
+    /// Everything but the intersections (linear time).
+    pub fn topology(mesh: &TriMesh) -> SurfaceAudit {
+        let edges = Edges::new(mesh);
+        let degree = |e: usize| edges.triangles(e).len();
+        let mut used = vec![false; mesh.positions.len()];
+        let mut sets = UnionFind::new(mesh.positions.len());
+        for t in &mesh.triangles {
+            for &v in t {
+                used[v as usize] = true;
+            }
+            sets.union(t[0], t[1]);
+            sets.union(t[0], t[2]);
+        }
+        let vertices = used.iter().filter(|&&u| u).count();
+        let pieces = |pick: &dyn Fn(usize) -> bool| {
+            let mut sets = UnionFind::new(mesh.positions.len());
+            let mut on = vec![false; mesh.positions.len()];
+            for e in (0..edges.len()).filter(|&e| pick(e)) {
+                let [a, b] = edges.ends[e];
+                on[a as usize] = true;
+                on[b as usize] = true;
+                sets.union(a, b);
+            }
+            (0..mesh.positions.len() as u32)
+                .filter(|&v| on[v as usize] && sets.find(v) == v)
+                .count()
+        };
+        let components = (0..mesh.positions.len() as u32)
+            .filter(|&v| used[v as usize] && sets.find(v) == v)
+            .count();
+        SurfaceAudit {
+            triangles: mesh.triangles.len(),
+            vertices,
+            edges: edges.len(),
+            components,
+            boundary_edges: (0..edges.len()).filter(|&e| degree(e) == 1).count(),
+            boundary_loops: pieces(&|e| degree(e) == 1),
+            nonmanifold_edges: (0..edges.len()).filter(|&e| degree(e) > 2).count(),
+            nonmanifold_curves: pieces(&|e| degree(e) > 2),
+            pinched_vertices: mesh.pinched_vertices().iter().filter(|&&p| p).count(),
+            degenerate_triangles: mesh
+                .triangles
+                .par_iter()
+                .filter(|t| is_degenerate(mesh, **t))
+                .count(),
+            intersecting_pairs: 0,
+        }
+    }
+
+    /// Euler characteristic V − E + F of the used vertices.
+    pub fn euler(&self) -> i64 {
+        self.vertices as i64 - self.edges as i64 + self.triangles as i64
+    }
+
+    /// What is worse in `after` than in `self`, in words: more boundary
+    /// loops, non-manifold curves, pinches, degenerate triangles or
+    /// intersecting pairs. Empty when nothing is. Edge counts are not
+    /// compared: remeshing splits and collapses boundary and non-manifold
+    /// edges without changing what the surface is.
+    pub fn regressions(&self, after: &SurfaceAudit) -> Vec<String> {
+        let checks = [
+            ("boundary loops", self.boundary_loops, after.boundary_loops),
+            (
+                "non-manifold curves",
+                self.nonmanifold_curves,
+                after.nonmanifold_curves,
+            ),
+            (
+                "pinched vertices",
+                self.pinched_vertices,
+                after.pinched_vertices,
+            ),
+            (
+                "degenerate triangles",
+                self.degenerate_triangles,
+                after.degenerate_triangles,
+            ),
+            (
+                "intersecting triangle pairs",
+                self.intersecting_pairs,
+                after.intersecting_pairs,
+            ),
+        ];
+        checks
+            .iter()
+            .filter(|(_, before, now)| now > before)
+            .map(|(what, before, now)| format!("{what}: {before} -> {now}"))
+            .collect()
+    }
+}
+
+impl std::fmt::Display for SurfaceAudit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} triangles, {} components, {} boundary edges in {} loops, \
+             {} non-manifold edges in {} curves, {} pinched vertices, \
+             {} degenerate triangles, {} intersecting pairs, euler {}",
+            self.triangles,
+            self.components,
+            self.boundary_edges,
+            self.boundary_loops,
+            self.nonmanifold_edges,
+            self.nonmanifold_curves,
+            self.pinched_vertices,
+            self.degenerate_triangles,
+            self.intersecting_pairs,
+            self.euler()
+        )
+    }
+}
+
+/// Whether triangle `t` of `mesh` repeats a vertex or has three exactly
+/// collinear corners (zero area). Three points in space are collinear
+/// exactly when their projections onto the three coordinate planes all
+/// are.
+pub fn is_degenerate(mesh: &TriMesh, t: [u32; 3]) -> bool {
+    if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+        return true;
+    }
+    let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+    let planes: [fn(DVec3) -> DVec2; 3] = [
+        |p| DVec2::new(p.x, p.y),
+        |p| DVec2::new(p.y, p.z),
+        |p| DVec2::new(p.z, p.x),
+    ];
+    planes
+        .iter()
+        .all(|proj| orient2d(proj(a), proj(b), proj(c)) == Sign::Zero)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    fn tetra() -> TriMesh {
+        TriMesh {
+            positions: vec![
+                DVec3::new(1.0, 1.0, 1.0),
+                DVec3::new(1.0, -1.0, -1.0),
+                DVec3::new(-1.0, 1.0, -1.0),
+                DVec3::new(-1.0, -1.0, 1.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+        }
+    }
+
+    #[test]
+    fn a_tetrahedron_is_clean() {
+        let a = SurfaceAudit::of(&tetra()).unwrap();
+        assert_eq!(
+            a,
+            SurfaceAudit {
+                triangles: 4,
+                vertices: 4,
+                edges: 6,
+                components: 1,
+                ..SurfaceAudit::default()
+            }
+        );
+        assert_eq!(a.euler(), 2);
+        assert!(a.regressions(&a).is_empty());
+    }
+
+    #[test]
+    fn counts_what_is_wrong() {
+        let mut m = tetra();
+        // Open it, add a second tetrahedron through the first, a fin on an
+        // edge (non-manifold) and a collinear triangle.
+        m.triangles.pop();
+        let n = m.positions.len() as u32;
+        m.positions
+            .extend(tetra().positions.iter().map(|p| *p * 0.8 + DVec3::X * 0.9));
+        m.triangles
+            .extend(tetra().triangles.iter().map(|t| t.map(|v| v + n)));
+        m.positions.push(DVec3::new(0.0, 5.0, 5.0));
+        m.triangles.push([0, 1, 8]);
+        m.positions.push(DVec3::new(2.0, 2.0, 2.0)); // on the line of vertex 0
+        m.triangles.push([9, 0, 9 - 1]);
+        m.positions.push(DVec3::new(3.0, 3.0, 3.0));
+        m.triangles.push([9, 0, 10]);
+        let a = SurfaceAudit::of(&m).unwrap();
+        assert_eq!(a.components, 2);
+        assert_eq!(a.degenerate_triangles, 1);
+        assert!(a.nonmanifold_edges >= 1);
+        assert!(a.boundary_edges > 0);
+        assert!(a.intersecting_pairs > 0);
+        let clean = SurfaceAudit::of(&tetra()).unwrap();
+        let worse = clean.regressions(&a);
+        assert!(worse.iter().any(|w| w.starts_with("boundary loops")));
+        assert!(worse.iter().any(|w| w.starts_with("non-manifold curves")));
+        assert!(worse.iter().any(|w| w.starts_with("degenerate")));
+        assert!(worse.iter().any(|w| w.starts_with("intersecting")));
+    }
+
+    #[test]
+    fn a_bow_tie_is_pinched() {
+        let m = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y],
+            triangles: vec![[0, 1, 2], [0, 3, 4]],
+        };
+        let a = SurfaceAudit::topology(&m);
+        assert_eq!(a.pinched_vertices, 1);
+        assert_eq!(a.components, 1);
+        assert_eq!(a.boundary_edges, 6);
+        assert_eq!(a.boundary_loops, 1);
+    }
+}
