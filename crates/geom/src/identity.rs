@@ -33,6 +33,13 @@ fn key_bits(x: f64) -> u64 {
     if x == 0.0 { 0 } else { x.to_bits() }
 }
 
+/// The key of a position's exact class: its coordinates' bit patterns,
+/// `-0.0` mapped to `0.0` ([`position_classes`] groups points by it).
+#[inline]
+pub fn position_key(p: DVec3) -> [u64; 3] {
+    [key_bits(p.x), key_bits(p.y), key_bits(p.z)]
+}
+
 /// A small multiplicative hasher for `[u64; 3]` keys (keys are not
 /// adversarial here; this keeps the pass at memory speed).
 #[derive(Default)]
@@ -66,8 +73,7 @@ pub fn position_classes(positions: &[DVec3]) -> Result<Vec<u32>, GeomError> {
         if !p.is_finite() {
             return Err(GeomError::NonFinite { index: i });
         }
-        let k = [key_bits(p.x), key_bits(p.y), key_bits(p.z)];
-        ids.push(*map.entry(k).or_insert(i as u32));
+        ids.push(*map.entry(position_key(*p)).or_insert(i as u32));
     }
     Ok(ids)
 }

@@ -7,6 +7,7 @@
 //! unoriented, many components), because the engine does.
 
 use glam::DVec3;
+use holey_geom::position_key;
 use holey_topo::TriMesh;
 use serde::{Deserialize, Serialize};
 
@@ -67,18 +68,40 @@ pub fn falloff(distance: f64, radius: f64) -> f64 {
 /// Area-weighted vertex normals (unit length, or zero where the incident
 /// area cancels or vanishes). The triangles' own winding decides the side,
 /// so on an unoriented mesh the normal is whatever the incident triangles
-/// agree on; the sculptor sees that as the surface's front.
+/// agree on; the sculptor sees that as the surface's front. Vertices at
+/// exactly one position (the corners of a soup, the unwelded seams of
+/// patches) are one point of the surface and get one normal, summed over
+/// all their triangles.
 pub fn vertex_normals(mesh: &TriMesh) -> Vec<DVec3> {
     let all: Vec<u32> = (0..mesh.positions.len() as u32).collect();
     normals_of(mesh, &all)
+}
+
+/// The classes of coincident positions among `which` (increasing; exact
+/// equality with `-0.0 == 0.0`, as the engine's identities):
+/// `class[i]` is the first index into `which` with the same position.
+/// Only the brushed vertices are hashed.
+fn coincident(mesh: &TriMesh, which: &[u32]) -> Vec<u32> {
+    let mut first: std::collections::HashMap<[u64; 3], u32> =
+        std::collections::HashMap::with_capacity(which.len());
+    which
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            *first
+                .entry(position_key(mesh.positions[v as usize]))
+                .or_insert(i as u32)
+        })
+        .collect()
 }
 
 /// [`vertex_normals`] of the vertices `which` only (increasing), in that
 /// order: one scan of the triangles, work only where they are used.
 fn normals_of(mesh: &TriMesh, which: &[u32]) -> Vec<DVec3> {
     let mut slot = vec![u32::MAX; mesh.positions.len()];
+    let class = coincident(mesh, which);
     for (i, &v) in which.iter().enumerate() {
-        slot[v as usize] = i as u32;
+        slot[v as usize] = class[i];
     }
     let mut n = vec![DVec3::ZERO; which.len()];
     for t in &mesh.triangles {
@@ -94,7 +117,10 @@ fn normals_of(mesh: &TriMesh, which: &[u32]) -> Vec<DVec3> {
             }
         }
     }
-    n.iter().map(|v| v.normalize_or_zero()).collect()
+    class
+        .iter()
+        .map(|&c| n[c as usize].normalize_or_zero())
+        .collect()
 }
 
 /// Vertices used by at least one triangle. Unreferenced vertices are not
@@ -131,7 +157,8 @@ fn touched(mesh: &TriMesh, centre: DVec3, radius: f64) -> Vec<u32> {
 /// One frame of inflate (§4): every vertex within `radius` of `centre`
 /// moves along its (area-weighted) normal by `strength × falloff`.
 /// Normals are computed only for the vertices the brush touches, so the
-/// cost beyond two linear scans is the brush's.
+/// cost beyond two linear scans is the brush's. Coincident vertices move
+/// as one point.
 pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
     let hit = touched(mesh, centre, radius);
     let normals = normals_of(mesh, &hit);
@@ -147,32 +174,39 @@ pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec
 /// vertex moving the fraction `strength × falloff` of the way to the mean
 /// of its edge neighbours. Jacobi-style (all from the old positions), so
 /// the result does not depend on vertex order. Only the touched vertices'
-/// rings are gathered.
+/// rings are gathered. Coincident vertices are one point: they share
+/// their rings, and a neighbour position counts once however many
+/// vertices sit there, so a soup smooths as its welded surface would.
 pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
     let hit = touched(mesh, centre, radius);
+    let class = coincident(mesh, &hit);
     let mut slot = vec![u32::MAX; mesh.positions.len()];
     for (i, &v) in hit.iter().enumerate() {
-        slot[v as usize] = i as u32;
+        slot[v as usize] = class[i];
     }
-    let mut rings: Vec<Vec<u32>> = vec![Vec::new(); hit.len()];
+    let mut rings: Vec<Vec<[u64; 3]>> = vec![Vec::new(); hit.len()];
+    let key = |v: u32| position_key(mesh.positions[v as usize]);
     for t in &mesh.triangles {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
-            if a == b {
+            if key(a) == key(b) {
                 continue;
             }
             if let Some(r) = rings.get_mut(slot[a as usize] as usize) {
-                r.push(b);
+                r.push(key(b));
             }
             if let Some(r) = rings.get_mut(slot[b as usize] as usize) {
-                r.push(a);
+                r.push(key(a));
             }
         }
     }
-    let mut out = mesh.positions.clone();
-    for (&v, ring) in hit.iter().zip(&mut rings) {
+    for ring in &mut rings {
         ring.sort_unstable();
         ring.dedup();
+    }
+    let mut out = mesh.positions.clone();
+    for (&v, &c) in hit.iter().zip(&class) {
+        let ring = &rings[c as usize];
         let p = mesh.positions[v as usize];
         let w = strength * falloff(p.distance(centre), radius);
         if w == 0.0 || ring.is_empty() {
@@ -180,7 +214,13 @@ pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<
         }
         let mean = ring
             .iter()
-            .map(|&u| mesh.positions[u as usize])
+            .map(|k| {
+                DVec3::new(
+                    f64::from_bits(k[0]),
+                    f64::from_bits(k[1]),
+                    f64::from_bits(k[2]),
+                )
+            })
             .sum::<DVec3>()
             / ring.len() as f64;
         out[v as usize] = p + w * (mean - p);

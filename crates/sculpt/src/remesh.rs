@@ -257,8 +257,8 @@ pub fn remesh_in_place(
 /// (the brushed region is often where sheets were just glued), and the
 /// next frame's engine would then start from a self-intersecting surface.
 /// The triangles near the active region are tested exactly before and
-/// after; if the run added intersecting pairs there, it is undone and
-/// [`RemeshReport::undone`] says so.
+/// after; if the run added intersecting pairs or degenerate (zero-area)
+/// triangles there, it is undone and [`RemeshReport::undone`] says so.
 pub fn remesh_in_place_checked(
     mesh: &mut TriMesh,
     active: &[bool],
@@ -288,15 +288,30 @@ pub fn remesh_in_place_checked(
     let grow = DVec3::splat(2.0 * reach.max(options.max_edge));
     let region = (lo - grow, hi + grow);
     let before = crossings_within(mesh, region);
+    let flat_before = flat_within(mesh, region);
     let saved = mesh.clone();
     let mut report = remesh_in_place(mesh, active, options)?;
     if report.splits + report.collapses + report.flips > 0
-        && crossings_within(mesh, region) > before
+        && (crossings_within(mesh, region) > before || flat_within(mesh, region) > flat_before)
     {
         *mesh = saved;
         report.undone = true;
     }
     Ok(report)
+}
+
+/// Triangles with exactly collinear corners (zero area) among those whose
+/// boxes meet the box `region`.
+fn flat_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
+    mesh.triangles
+        .iter()
+        .filter(|t| {
+            let p = t.map(|v| mesh.positions[v as usize]);
+            let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+            !(lo.cmpgt(region.1).any() || hi.cmplt(region.0).any())
+                && holey_topo::audit::is_degenerate(mesh, **t)
+        })
+        .count()
 }
 
 /// Intersecting triangle pairs among the triangles whose boxes meet the

@@ -4,22 +4,27 @@
 //! section 3 and appendices A–C.
 
 pub mod accumulate;
+pub mod audit;
 pub mod correct;
 pub mod cut;
 pub mod engine;
+pub mod guard;
 pub mod intersect;
 pub mod local;
 pub mod mesh;
 pub mod orient;
 mod solid;
 pub mod union;
+pub mod union_find;
 pub mod weights;
 
 pub use accumulate::Accumulator;
+pub use audit::SurfaceAudit;
 pub use correct::Scheme;
 pub use engine::{
     Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
 };
+pub use guard::{GuardedReport, topology_change_guarded};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;
 pub use union::{PreparedSolid, UnionError, union, union_prepared, union_robust};

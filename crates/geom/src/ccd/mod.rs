@@ -209,6 +209,19 @@ pub fn vertex_parities_cancellable(
         if tri.iter().all(|&c| disp(c) == d) {
             return;
         }
+        // A vertex at one of the triangle's corners at both ends of the
+        // motion is that corner (the copies of an unwelded soup's shared
+        // corner move together): a triangle does not collide with its own
+        // corner, whatever the perturbation of two identities says (as
+        // with identities by motion class, `crate::motion_classes`).
+        let (p0, p1) = (start[v as usize], end[v as usize]);
+        if tri
+            .iter()
+            .any(|&c| start[c as usize] == p0 && end[c as usize] == p1)
+        {
+            part.2 += 1;
+            return;
+        }
         let is_odd = match opts.narrow {
             Narrow::Exact => {
                 let corners = tri.map(|c| [start[c as usize], end[c as usize]]);
