@@ -14,7 +14,7 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_local};
+use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_guarded};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
 use crate::remesh::{RemeshOptions, RemeshReport, remesh_in_place_checked};
@@ -190,14 +190,21 @@ impl LiveStroke {
                 // also keeps a brush that wanders off the surface from
                 // re-cutting intersections the mesh already had.
                 if end != mesh.positions {
-                    // Only the region the brush reaches is recomputed.
-                    let out =
-                        topology_change_local(mesh, &end, &self.options).map_err(|source| {
+                    // Only the region the brush reaches is recomputed,
+                    // and never left worse than it was (the guard).
+                    let guarded =
+                        topology_change_guarded(mesh, &end, &self.options).map_err(|source| {
                             SculptError::Topo {
                                 frame: index,
                                 source,
                             }
                         })?;
+                    if guarded.attempts > 1 {
+                        self.report.guarded_frames += 1;
+                        self.report.held_vertices += guarded.held_vertices;
+                        self.report.held_frames += usize::from(guarded.held_all);
+                    }
+                    let out = guarded.local;
                     tally(&mut self.report, &out.report);
                     self.diagnostics = Some(Diagnostics {
                         raw_odd: out.raw_odd,
@@ -209,11 +216,7 @@ impl LiveStroke {
                 if let Some(opts) = &self.remesh {
                     // After the topology change (§4): the vertices the
                     // brush reaches, at their new positions.
-                    let active: Vec<bool> = mesh
-                        .positions
-                        .iter()
-                        .map(|p| p.distance(point) < radius)
-                        .collect();
+                    let active = remesh_active(mesh, |p| p.distance(point) < radius);
                     if active.contains(&true) {
                         let r = remesh_in_place_checked(mesh, &active, opts).map_err(|source| {
                             SculptError::Remesh {
@@ -305,11 +308,8 @@ impl LiveStroke {
         if let (Some(opts), Some(tube)) = (&self.remesh, self.grab_tube) {
             // The stretched region of a grab: within the radius of the
             // segment from the picked point to where it was dragged.
-            let active: Vec<bool> = mesh
-                .positions
-                .iter()
-                .map(|&p| distance_to_segment(p, tube.0, tube.1) < self.settings.radius)
-                .collect();
+            let radius = self.settings.radius;
+            let active = remesh_active(&mesh, |p| distance_to_segment(p, tube.0, tube.1) < radius);
             if active.contains(&true) {
                 let r = remesh_in_place_checked(&mut mesh, &active, opts).map_err(|source| {
                     SculptError::Remesh {
@@ -421,6 +421,37 @@ fn tally(report: &mut StrokeReport, r: &Report) {
     }
     report.raw_odd_vertices += r.raw_odd_vertices;
     report.corrected_odd_vertices += r.corrected_odd_vertices;
+}
+
+/// The vertices remeshing may work around: those `near` picks, except
+/// the ones sharing their exact position with another vertex. Such copies
+/// are the seams of unwelded patches and the corners of a soup; one side
+/// of a seam split or collapsed alone would open a crack there, so seams
+/// are left as they are (the collapse of a neighbour onto them never
+/// moves them: inactive vertices stay put).
+fn remesh_active(mesh: &TriMesh, near: impl Fn(DVec3) -> bool) -> Vec<bool> {
+    let mut active: Vec<bool> = mesh.positions.iter().map(|&p| near(p)).collect();
+    let key = holey_geom::position_key;
+    let mut first: std::collections::HashMap<[u64; 3], u32> = std::collections::HashMap::new();
+    let mut copies: Vec<u32> = Vec::new();
+    for (v, p) in mesh.positions.iter().enumerate() {
+        if !active[v] {
+            continue;
+        }
+        match first.entry(key(*p)) {
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(v as u32);
+            }
+            std::collections::hash_map::Entry::Occupied(e) => {
+                copies.push(*e.get());
+                copies.push(v as u32);
+            }
+        }
+    }
+    for v in copies {
+        active[v as usize] = false;
+    }
+    active
 }
 
 /// The bounding-box diagonal of the vertices triangles use.

@@ -64,6 +64,15 @@ pub struct StrokeReport {
     pub triangles_after: usize,
     /// Splits, collapses and flips of dynamic remeshing.
     pub remesh_operations: usize,
+    /// Frames whose first result would have left the surface worse (a
+    /// new hole, non-manifold curve, pinch, degenerate triangle or
+    /// intersection) and that held some vertices still instead
+    /// ([`holey_topo::guard`]).
+    pub guarded_frames: usize,
+    /// Vertex-frames held still by the guard, over the stroke.
+    pub held_vertices: usize,
+    /// Frames the guard held entirely (nothing moved).
+    pub held_frames: usize,
     pub seconds: f64,
 }
 

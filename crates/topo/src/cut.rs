@@ -289,7 +289,19 @@ pub enum Deletion<'a> {
     /// ends at a sheet's boundary (Figure 7; `cut/junctions.rs`). Over a
     /// drag of many frames the sampler's straight path is only an
     /// approximation of the true one, too coarse beside a curve.
-    OddOneFrame(&'a [bool]),
+    ///
+    /// `new_curve` flags the curves the frame made (none of their
+    /// triangle pairs intersected at its start). Such a curve is cut even
+    /// when every vertex around it has one parity: the parts of the
+    /// surface it bounds swept through each other between vertices (two
+    /// edges crossing, a fold between a fan's triangles), so they hold no
+    /// vertex to carry their parity, and their regions are sampled. Left
+    /// whole, the surface would come out crossing itself where it did not
+    /// before.
+    OddOneFrame {
+        odd: &'a [bool],
+        new_curve: &'a [bool],
+    },
     /// The odd part of an exact parity field (containment numbers, in the
     /// union of two solids): every curve then separates odd from even,
     /// so every curve is cut, even one whose triangles have only even
@@ -302,9 +314,26 @@ impl<'a> Deletion<'a> {
     fn odd(self) -> Option<&'a [bool]> {
         match self {
             Deletion::Nothing => None,
-            Deletion::Odd(o) | Deletion::OddOneFrame(o) | Deletion::OddExact(o) => Some(o),
+            Deletion::Odd(o) | Deletion::OddOneFrame { odd: o, .. } | Deletion::OddExact(o) => {
+                Some(o)
+            }
         }
     }
+}
+
+/// Per curve of `x`: whether the vertices of its triangles have both
+/// parities under `odd` (§3.5, step 1: a curve with only one is not cut).
+pub fn mixed_curves(tris: &[[u32; 3]], x: &Intersections, odd: &[bool]) -> Vec<bool> {
+    let mut seen = vec![[false; 2]; x.curve_count];
+    for (p, piece) in x.pieces.iter().enumerate() {
+        let c = x.curve_of_piece[p] as usize;
+        for &t in &piece.tris {
+            for &v in &tris[t as usize] {
+                seen[c][usize::from(odd[v as usize])] = true;
+            }
+        }
+    }
+    seen.iter().map(|s| s[0] && s[1]).collect()
 }
 
 /// Subdivides `mesh` (at `positions`) along the intersection curves `x`,
@@ -332,18 +361,14 @@ pub fn cut(
     // 1. Curves to resolve.
     let keep_curve: Vec<bool> = match deletion {
         Deletion::Nothing | Deletion::OddExact(_) => vec![true; x.curve_count],
-        Deletion::Odd(odd) | Deletion::OddOneFrame(odd) => {
-            let mut seen = vec![[false; 2]; x.curve_count];
-            for (p, piece) in x.pieces.iter().enumerate() {
-                let c = x.curve_of_piece[p] as usize;
-                for &t in &piece.tris {
-                    for &v in &tris[t as usize] {
-                        seen[c][usize::from(odd[v as usize])] = true;
-                    }
-                }
-            }
-            seen.iter().map(|s| s[0] && s[1]).collect()
-        }
+        Deletion::Odd(odd) => mixed_curves(tris, x, odd),
+        Deletion::OddOneFrame { odd, new_curve } => mixed_curves(tris, x, odd)
+            .iter()
+            .enumerate()
+            .map(|(c, &mixed)| {
+                mixed || (sample.is_some() && new_curve.get(c).copied().unwrap_or(false))
+            })
+            .collect(),
     };
     report.curves_kept = keep_curve.iter().filter(|&&k| k).count();
     report.curves_dropped = x.curve_count - report.curves_kept;
@@ -788,7 +813,7 @@ pub fn cut(
                 sample,
             );
             let mut keep: Vec<bool> = labels.iter().map(|&o| !o).collect();
-            if let (Deletion::OddOneFrame(_), Some(sample)) = (deletion, sample) {
+            if let (Deletion::OddOneFrame { .. }, Some(sample)) = (deletion, sample) {
                 let mut curve = curve_edges.clone();
                 curve.sort_unstable();
                 curve.dedup();

@@ -19,9 +19,10 @@ use holey_geom::{Aabb, Bvh, SymPoint};
 use holey_geom::{motion_classes, position_classes};
 
 use crate::correct::{Graph, Scheme, correct};
-use crate::cut::{Cut, CutReport, Deletion, cut};
+use crate::cut::{Cut, CutReport, Deletion, cut, mixed_curves};
 use crate::intersect::{
-    Intersections, default_pair_limit, intersections, intersections_limited, pair_count_at,
+    Intersections, Node, PointKind, default_pair_limit, intersections, intersections_limited,
+    pair_count_at, pairs_intersect_at,
 };
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
@@ -185,6 +186,9 @@ pub(crate) fn geometry_stage(
 pub(crate) struct Static {
     geometry: Geometry,
     pub(crate) corrected: Vec<bool>,
+    /// Per curve: some triangle pair of it intersected at the start (the
+    /// mesh's own positions); the motion did not make it.
+    old_curve: Vec<bool>,
     solved: usize,
     unsolved: usize,
     t_correct: f64,
@@ -196,13 +200,13 @@ pub(crate) fn static_stage(
     raw: &[bool],
     options: &Options,
 ) -> Result<Static, TopoError> {
-    Ok(correction_stage(
+    correction_stage(
         geometry(mesh, end, options)?,
         mesh,
         end,
         raw,
         options.scheme,
-    ))
+    )
 }
 
 /// [`geometry_stage`] with nothing running beside it to stop.
@@ -214,32 +218,99 @@ pub(crate) fn geometry(
     geometry_stage(mesh, end, options, &AtomicBool::new(false))
 }
 
-/// Error correction (§3.4) of `raw` given the intersections.
+/// Per curve of `x` (intersections at the end of a motion from the
+/// positions of `mesh`): whether some triangle pair of it intersected at
+/// the start already. Such a curve is the surface's own, carried along by
+/// the motion; the others the motion made.
+fn old_curves(mesh: &TriMesh, x: &Intersections) -> Result<Vec<bool>, TopoError> {
+    let mut old = vec![false; x.curve_count];
+    if x.pairs.is_empty() {
+        return Ok(old);
+    }
+    let was = pairs_intersect_at(mesh, &mesh.positions, &x.pairs)?;
+    for (piece, &c) in x.pieces.iter().zip(&x.curve_of_piece) {
+        let [a, b] = piece.tris;
+        if let Ok(i) = x.pairs.binary_search(&(a.min(b), a.max(b))) {
+            old[c as usize] |= was[i];
+        }
+    }
+    Ok(old)
+}
+
+/// The mesh edges the curves that are not `old` cross, and the edges at
+/// the vertices they pass through: [`Intersections::cut_edges`] without
+/// the surface's own intersections.
+fn new_cut_edges(x: &Intersections, edges: &Edges, ids: &[u32], old: &[bool]) -> Vec<bool> {
+    if !old.contains(&true) {
+        return x.cut_edges.clone();
+    }
+    let mut cut = vec![false; edges.len()];
+    let mut shared: Vec<u32> = Vec::new();
+    for (piece, &c) in x.pieces.iter().zip(&x.curve_of_piece) {
+        if old[c as usize] {
+            continue;
+        }
+        for node in piece.ends {
+            match node {
+                Node::Point(i) => {
+                    if let PointKind::EdgeTri { edge, .. } = x.points[i as usize].kind {
+                        cut[edge as usize] = true;
+                    }
+                }
+                Node::Shared(id) => shared.push(id),
+            }
+        }
+    }
+    if !shared.is_empty() {
+        shared.sort_unstable();
+        shared.dedup();
+        for (e, ends) in edges.ends.iter().enumerate() {
+            if ends
+                .iter()
+                .any(|&v| shared.binary_search(&ids[v as usize]).is_ok())
+            {
+                cut[e] = true;
+            }
+        }
+    }
+    cut
+}
+
+/// Error correction (§3.4) of `raw` given the intersections. Only the
+/// curves the motion made decouple the two sides of the mesh edges they
+/// cross: an intersection the surface already had at the start (a scan's
+/// overlapping patches, a character's armpit) is no evidence of what
+/// collided, and letting it cut the graph let the sweep cut's penalty on
+/// unused intersections (eq. 3.3) flip whole parts of a surface odd to
+/// "use" curves that were there all along.
 fn correction_stage(
     geometry: Geometry,
     mesh: &TriMesh,
     end: &[DVec3],
     raw: &[bool],
     scheme: Scheme,
-) -> Static {
+) -> Result<Static, TopoError> {
     let t = Instant::now();
+    let old_curve = old_curves(mesh, &geometry.x)?;
+    let cut = new_cut_edges(&geometry.x, &geometry.edges, &geometry.ids, &old_curve);
     let w = Weights::new(mesh, end, &geometry.edges);
     let g = Graph {
         vertices: end.len(),
         ends: &geometry.edges.ends,
         edge_weight: &w.edge,
         vertex_weight: &w.vertex,
-        cut: &geometry.x.cut_edges,
+        cut: &cut,
         total_area: w.total_area,
     };
     let c = correct(&g, raw, scheme);
-    Static {
+    Ok(Static {
         geometry,
         corrected: c.odd,
+        old_curve,
         solved: c.solved_components,
         unsolved: c.failed_components,
         t_correct: t.elapsed().as_secs_f64(),
-    }
+    })
 }
 
 /// Whether `mesh` at `start` has no self-intersection (Theorem 5.1's
@@ -329,6 +400,18 @@ impl PointSampler<'_> {
     }
 }
 
+/// Per curve of `x`: whether the frame made it, so that no vertex parity
+/// has to say it should be cut ([`Deletion::OddOneFrame`]): the curves
+/// that are not `old` and whose vertices all have one parity under `odd`
+/// (the others are cut by §3.5's rule anyway).
+fn new_curves(mesh: &TriMesh, x: &Intersections, odd: &[bool], old: &[bool]) -> Vec<bool> {
+    mixed_curves(&mesh.triangles, x, odd)
+        .iter()
+        .zip(old)
+        .map(|(&mixed, &old)| !mixed && !old)
+        .collect()
+}
+
 /// The rest of a frame once collisions and intersections are known:
 /// correction, cut, the solid guard, orientation and the report.
 /// `start` → `end` is the straight motion sampled points follow: the frame
@@ -345,7 +428,7 @@ pub(crate) fn finish(
     geometry: Geometry,
     one_frame: bool,
 ) -> Result<Outcome, TopoError> {
-    let s = correction_stage(geometry, mesh, end, &raw, options.scheme);
+    let s = correction_stage(geometry, mesh, end, &raw, options.scheme)?;
     let t = Instant::now();
     let sampler = PointSampler {
         start,
@@ -354,6 +437,11 @@ pub(crate) fn finish(
         bvh: std::sync::OnceLock::new(),
     };
     let sample = |k: u32, t: u32, w: [f64; 3]| sampler.parity(k, t, w);
+    let new_curve = if one_frame && options.refine {
+        new_curves(mesh, &s.geometry.x, &s.corrected, &s.old_curve)
+    } else {
+        Vec::new()
+    };
     let Cut {
         mesh: mut out,
         report: mut cut_report,
@@ -365,7 +453,10 @@ pub(crate) fn finish(
         &s.geometry.ids,
         &s.geometry.x,
         if one_frame {
-            Deletion::OddOneFrame(&s.corrected)
+            Deletion::OddOneFrame {
+                odd: &s.corrected,
+                new_curve: &new_curve,
+            }
         } else {
             Deletion::Odd(&s.corrected)
         },

@@ -219,6 +219,44 @@ fn coord(p: DVec3) -> robust::Coord3D<f64> {
     }
 }
 
+/// The intersection segment of triangles `t1` and `t2` of `tris` (exact,
+/// in the perturbed world of `sym`), or `None` when they do not
+/// intersect other than along a shared vertex or edge.
+fn pair_segment(tris: &[[u32; 3]], sym: &Symbolic<'_>, t1: u32, t2: u32) -> Option<[SegEnd; 2]> {
+    let tid = |t: u32| tris[t as usize].map(|v| sym.ids[v as usize]);
+    let (i1, i2) = (tid(t1), tid(t2));
+    let s2 = i2.map(|i| i1.contains(&i));
+    if s2.iter().filter(|&&s| s).count() >= 2 {
+        return None;
+    }
+    let s1 = i1.map(|i| i2.contains(&i));
+    let p1 = tris[t1 as usize].map(|v| sym.positions[v as usize]);
+    let p2 = tris[t2 as usize].map(|v| sym.positions[v as usize]);
+    if separated(p1, p2, s2) || separated(p2, p1, s1) {
+        return None;
+    }
+    triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))
+}
+
+/// Which of the triangle pairs `pairs` of `mesh` intersect at `positions`
+/// (exact, identities by position class, as [`intersections`] decides):
+/// whether an intersection of a frame's end was there at its start.
+pub(crate) fn pairs_intersect_at(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    pairs: &[(u32, u32)],
+) -> Result<Vec<bool>, IntersectError> {
+    let ids = holey_geom::position_classes(positions)?;
+    let sym = Symbolic {
+        positions,
+        ids: &ids,
+    };
+    Ok(pairs
+        .par_iter()
+        .map(|&(a, b)| pair_segment(&mesh.triangles, &sym, a, b).is_some())
+        .collect())
+}
+
 /// An intersection segment of triangles `t1 < t2` and its two ends.
 type Segment = (u32, u32, [SegEnd; 2]);
 
@@ -267,7 +305,6 @@ fn segments(
 ) -> Result<(Vec<Segment>, usize), IntersectError> {
     let sym = Symbolic { positions, ids };
     let tris = &mesh.triangles;
-    let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
     let hits = AtomicUsize::new(0);
 
     // Exact tests, in parallel, as the descent finds each pair of
@@ -278,19 +315,7 @@ fn segments(
         if abort.load(AtomicOrdering::Relaxed) {
             return None;
         }
-        let (i1, i2) = (tid(t1), tid(t2));
-        let s2 = i2.map(|i| i1.contains(&i));
-        if s2.iter().filter(|&&s| s).count() >= 2 {
-            return None;
-        }
-        let s1 = i1.map(|i| i2.contains(&i));
-        let p1 = tris[t1 as usize].map(|v| positions[v as usize]);
-        let p2 = tris[t2 as usize].map(|v| positions[v as usize]);
-        if separated(p1, p2, s2) || separated(p2, p1, s1) {
-            return None;
-        }
-        let seg =
-            triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))?;
+        let seg = pair_segment(tris, &sym, t1, t2)?;
         if hits.fetch_add(1, AtomicOrdering::Relaxed) >= limit {
             abort.store(true, AtomicOrdering::Relaxed);
             return None;

@@ -353,11 +353,15 @@ impl Region {
             }
         }
         let mut positions = end.to_vec();
+        // An input vertex the engine split (one copy per fan where the
+        // surface was pinched) has several outputs: the first keeps its
+        // number, the others are new vertices.
+        let mut taken = vec![false; self.global.len()];
         let map: Vec<u32> = origin
             .iter()
             .zip(&out.positions)
             .map(|(&o, &p)| {
-                if o == u32::MAX {
+                if o == u32::MAX || std::mem::replace(&mut taken[o as usize], true) {
                     positions.push(p);
                     (positions.len() - 1) as u32
                 } else {

@@ -226,10 +226,14 @@ fn crossing_ridges_cut_a_curve_with_no_inside_vertex() {
         "volume {} vs {want}",
         volume(&u)
     );
-    // The motion gets there too: its parity has no odd vertex and drops
-    // the curve (§3.5), so the solid guard relabels the arrangement.
+    // The motion gets there too: its parity has no odd vertex, but the
+    // curve is new (neither pair crossed at the start), so it is cut
+    // anyway and the vertex-free lens sampled (§7's refinement), without
+    // the solid guard.
     let out = motion_union(&a, &b);
-    assert!(out.report.cut.solid_relabelled);
+    assert!(!out.report.cut.solid_relabelled);
+    assert_eq!(out.report.cut.curves_dropped, 0);
+    assert!(out.report.cut.sampled_regions >= 1);
     let m = out.mesh;
     assert!(closed_oriented(&m));
     assert!(

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use holey_sculpt::{SculptError, Session, StrokeFileError, parse_strokes};
+use holey_topo::SurfaceAudit;
 
 use crate::cmd::render::{options as render_options, write_picture};
 use crate::error::{bad_input, from_io};
@@ -64,6 +65,12 @@ pub struct Args {
     /// Do not remesh the brushed region between frames.
     #[arg(long)]
     pub no_remesh: bool,
+    /// Measure the surface exactly before and after every stroke (with
+    /// -v: every frame): components, boundary and non-manifold edges,
+    /// pinched vertices, degenerate triangles and intersecting triangle
+    /// pairs, and name whatever got worse.
+    #[arg(long)]
+    pub audit: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -90,10 +97,33 @@ pub fn run(args: Args) -> Result<()> {
         }
         None => None,
     };
+    let audit = |mesh: &holey_topo::TriMesh| {
+        SurfaceAudit::of(mesh).map_err(|e| anyhow::anyhow!("audit: {e}"))
+    };
+    let mut audits = Vec::new();
+    if args.audit {
+        audits.push(audit(session.mesh())?);
+        eprintln!("input: {}", audits[0]);
+    }
     let reports = {
         let _p = Progress::start(format!("sculpting {} strokes", file.strokes.len()));
+        let mut previous = audits.first().copied();
         session
             .replay(&file, &mut |stroke, frame| {
+                if args.audit && args.verbose {
+                    let now = SurfaceAudit::of(frame.mesh).map_err(|e| e.to_string())?;
+                    let worse = previous.map(|p| p.regressions(&now)).unwrap_or_default();
+                    eprintln!(
+                        "stroke {stroke} frame {}: {now}{}",
+                        frame.index,
+                        if worse.is_empty() {
+                            String::new()
+                        } else {
+                            format!(" [worse: {}]", worse.join(", "))
+                        }
+                    );
+                    previous = Some(now);
+                }
                 if let Some(dir) = &frames_dir {
                     let path = dir.join(format!("stroke{stroke:03}_frame{:04}.png", frame.index));
                     write_picture(&path.to_string_lossy(), &compact(frame.mesh), &opts)
@@ -114,15 +144,26 @@ pub fn run(args: Args) -> Result<()> {
             })?
     };
     write_triangles(&args.output, session.mesh())?;
+    if args.audit {
+        let after = audit(session.mesh())?;
+        let worse = audits[0].regressions(&after);
+        eprintln!("output: {after}");
+        if !worse.is_empty() {
+            eprintln!("worse than the input: {}", worse.join(", "));
+        }
+    }
     if args.verbose {
         for (i, r) in reports.iter().enumerate() {
             let brush = r.brush.map(|b| b.name()).unwrap_or("?");
             eprintln!(
-                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} remeshing operation(s), {} -> {} triangles, {:.3} s",
+                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} remeshing operation(s), {} guarded frame(s) ({} held whole, {} vertex-frames held), {} -> {} triangles, {:.3} s",
                 r.frames,
                 r.engine_runs,
                 r.changes,
                 r.remesh_operations,
+                r.guarded_frames,
+                r.held_frames,
+                r.held_vertices,
                 r.triangles_before,
                 r.triangles_after,
                 r.seconds

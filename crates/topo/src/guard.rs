@@ -1,0 +1,381 @@
+//! A frame that never leaves the surface worse than it found it: the
+//! engine's result is checked, and where the motion cannot be resolved
+//! cleanly the vertices that make the trouble are held still.
+//!
+//! Parity-based topology change (§3) is proven for solids (Theorem 5.1);
+//! on the meshes people have — open sheets whose rims cross, scans folding
+//! at a crease, surfaces already crossing themselves — the discrete
+//! parity field can ask for a cut no clean surface follows (the paper's
+//! §7: rims sweeping through a sheet, intersecting parts starting to
+//! move). A sculpting frame must still end on a surface that is no worse
+//! than the one it started from:
+//!
+//! - no new boundary loop (a closed surface stays closed), no new
+//!   non-manifold curve, no new pinched vertex;
+//! - no new degenerate (zero-area) triangle;
+//! - no more intersecting triangle pairs than before: every intersection
+//!   the motion makes is resolved.
+//!
+//! [`topology_change_guarded`] runs the frame on the region the motion
+//! reaches ([`crate::local`]) and audits that region and the ring of
+//! triangles around it ([`crate::audit`]) before and after. When the
+//! result is worse, the vertices at the frame's new contacts (the
+//! triangles of its new intersecting pairs and the vertices parity would
+//! delete), with their neighbours, keep their start positions — an impact
+//! zone, as collision response in cloth simulation holds colliding
+//! regions (Provot 1997; Bridson, Fedkiw & Anderson 2002) — and the frame
+//! is run again. After [`MAX_ATTEMPTS`] the whole brushed region is held:
+//! the motion that made the trouble does not happen, and the surface is
+//! exactly as it was. The report says how many vertices were held.
+
+use glam::DVec3;
+
+use crate::audit::SurfaceAudit;
+use crate::engine::{Options, Outcome, TopoError, check, topology_change};
+use crate::intersect::{pair_count_at, pairs_intersect_at};
+use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
+use crate::mesh::TriMesh;
+
+/// Attempts with a growing set of held vertices before the whole motion
+/// is held.
+pub const MAX_ATTEMPTS: usize = 4;
+
+/// What [`topology_change_guarded`] did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GuardedReport {
+    /// The engine's report of the attempt that was kept.
+    pub local: LocalReport,
+    /// Engine runs (1 when the first result was clean).
+    pub attempts: usize,
+    /// Vertices that kept their start positions because moving them made
+    /// the surface worse.
+    pub held_vertices: usize,
+    /// Every moving vertex was held: the frame changed nothing.
+    pub held_all: bool,
+    /// What the first attempt would have made worse, in words (empty when
+    /// it was clean).
+    pub refused: Vec<String>,
+}
+
+/// [`crate::topology_change_local`] that keeps the surface's invariants
+/// (see the module documentation): on success `mesh` is the result, which
+/// is never worse than the input in any of the audited respects; on error
+/// `mesh` is left as it was.
+pub fn topology_change_guarded(
+    mesh: &mut TriMesh,
+    end: &[DVec3],
+    options: &Options,
+) -> Result<GuardedReport, TopoError> {
+    check(mesh, end)?;
+    let n = mesh.positions.len();
+    let mut held = vec![false; n];
+    let mut report = GuardedReport::default();
+    for attempt in 0..=MAX_ATTEMPTS {
+        let last = attempt == MAX_ATTEMPTS;
+        if last {
+            // Hold everything that moves: the frame becomes a no-op.
+            for (v, h) in held.iter_mut().enumerate() {
+                *h |= mesh.positions[v] != end[v];
+            }
+            report.held_all = true;
+        }
+        let target: Vec<DVec3> = (0..n)
+            .map(|v| if held[v] { mesh.positions[v] } else { end[v] })
+            .collect();
+        let run = run_once(mesh, &target, options)?;
+        report.attempts += 1;
+        if attempt == 0 {
+            report.refused = run.worse.clone();
+        }
+        if std::env::var_os("HOLEY_DEBUG_GUARD").is_some() {
+            let r = &run.report.report;
+            eprintln!(
+                "guard attempt {attempt}: {:?} (offenders {}, held {}) raw {} corrected {} deleted {} region {} whole {} relabelled {}",
+                run.worse,
+                run.offenders.len(),
+                held.iter().filter(|&&h| h).count(),
+                r.raw_odd_vertices,
+                r.corrected_odd_vertices,
+                r.cut.triangles_deleted,
+                run.report.region_triangles,
+                run.report.whole_mesh,
+                r.cut.solid_relabelled
+            );
+        }
+        if run.worse.is_empty() || last {
+            report.held_vertices = held
+                .iter()
+                .enumerate()
+                .filter(|&(v, &h)| h && mesh.positions[v] != end[v])
+                .count();
+            report.local = run.report;
+            *mesh = run.mesh;
+            return Ok(report);
+        }
+        let grew = hold(mesh, &target, &run.offenders, &mut held);
+        if !grew {
+            // Nothing new to hold: go straight to holding all.
+            let target_all = mesh.positions.clone();
+            let run = run_once(mesh, &target_all, options)?;
+            report.attempts += 1;
+            report.held_all = true;
+            report.held_vertices = (0..n).filter(|&v| mesh.positions[v] != end[v]).count();
+            report.local = run.report;
+            *mesh = run.mesh;
+            return Ok(report);
+        }
+    }
+    Ok(report)
+}
+
+/// Holds `offenders` and their edge neighbours that move (start `mesh`,
+/// target `target`); whether any vertex was newly held.
+fn hold(mesh: &TriMesh, target: &[DVec3], offenders: &[u32], held: &mut [bool]) -> bool {
+    let mut mark = vec![false; held.len()];
+    for &v in offenders {
+        mark[v as usize] = true;
+    }
+    let mut grew = false;
+    for t in &mesh.triangles {
+        if t.iter().any(|&v| mark[v as usize]) {
+            for &v in t {
+                let moving = mesh.positions[v as usize] != target[v as usize];
+                if moving && !held[v as usize] {
+                    held[v as usize] = true;
+                    grew = true;
+                }
+            }
+        }
+    }
+    grew
+}
+
+/// One run of the frame and its audit.
+struct Run {
+    mesh: TriMesh,
+    report: LocalReport,
+    /// What got worse (empty: the result is clean).
+    worse: Vec<String>,
+    /// Vertices (of the input) at the frame's new contacts and those
+    /// parity deletes: what to hold if the result is not clean.
+    offenders: Vec<u32>,
+}
+
+fn run_once(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Run, TopoError> {
+    let n = mesh.positions.len();
+    let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
+        return Ok(Run {
+            mesh: TriMesh {
+                positions: end.to_vec(),
+                triangles: mesh.triangles.clone(),
+            },
+            report: LocalReport::no_motion(n),
+            worse: Vec::new(),
+            offenders: Vec::new(),
+        });
+    };
+    let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
+    if region.worth_it() {
+        let sub = region.submesh(&mesh.positions);
+        let out = topology_change(&sub, &region.gather(end), options)?;
+        let (report, spliced) = region.resolve(mesh, end, &out, options.solid_guard);
+        let result = match spliced {
+            Spliced::PositionsOnly => Some(TriMesh {
+                positions: end.to_vec(),
+                triangles: mesh.triangles.clone(),
+            }),
+            Spliced::Mesh(m) => Some(m),
+            Spliced::NotExact => None,
+        };
+        if let Some(result) = result {
+            let (worse, offenders) = audit_region(mesh, end, &region, &sub, &out, &report)?;
+            return Ok(Run {
+                mesh: result,
+                report,
+                worse,
+                offenders,
+            });
+        }
+    }
+    // The whole mesh, as one region (so numbers work as above).
+    let everything = Region::select(
+        &mesh.triangles,
+        &mesh.positions,
+        end,
+        (DVec3::NEG_INFINITY, DVec3::INFINITY),
+    );
+    let sub = everything.submesh(&mesh.positions);
+    let out = topology_change(&sub, &everything.gather(end), options)?;
+    let (result, mut report) = from_whole(&sub, out.clone());
+    report.raw_odd = everything.scatter(&report.raw_odd, n, false);
+    report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
+    let (worse, offenders) = audit_region(mesh, end, &everything, &sub, &out, &report)?;
+    Ok(Run {
+        mesh: result,
+        report,
+        worse,
+        offenders,
+    })
+}
+
+/// Audits the region `region` of `mesh` (submesh `sub` at the start) and
+/// the engine's output `out` for it, each with the ring of outside
+/// triangles around the region (so that every region vertex has its whole
+/// fan and every region edge all its triangles), and returns what got
+/// worse and the vertices to hold if anything did (global numbers).
+fn audit_region(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    region: &Region,
+    sub: &TriMesh,
+    out: &Outcome,
+    report: &LocalReport,
+) -> Result<(Vec<String>, Vec<u32>), TopoError> {
+    // New contacts: the end's intersecting pairs that did not intersect at
+    // the start.
+    let pairs = &out.intersections.pairs;
+    let was = pairs_intersect_at(sub, &sub.positions, pairs)?;
+    let new_pairs: Vec<(u32, u32)> = pairs
+        .iter()
+        .zip(&was)
+        .filter(|(_, w)| !**w)
+        .map(|(p, _)| *p)
+        .collect();
+    let mut offenders: Vec<u32> = new_pairs
+        .iter()
+        .flat_map(|&(a, b)| [a, b])
+        .flat_map(|t| sub.triangles[t as usize])
+        .map(|v| region.global[v as usize])
+        .collect();
+    offenders.extend(
+        report
+            .corrected_odd
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| **o)
+            .map(|(v, _)| v as u32),
+    );
+    offenders.sort_unstable();
+    offenders.dedup();
+    let worse = if report.positions_only {
+        // Same triangles: only intersections (and, in principle, a
+        // triangle squashed flat) can be new.
+        let mut worse = Vec::new();
+        if !new_pairs.is_empty() {
+            // Pairs the motion made; a curve the surface had may also
+            // have slid off some: only a growing count is worse.
+            let before = pair_count_at(sub, &sub.positions, usize::MAX)?;
+            if pairs.len() > before {
+                worse.push(format!(
+                    "intersecting triangle pairs: {before} -> {}",
+                    pairs.len()
+                ));
+            }
+        }
+        let flat_before = sub
+            .triangles
+            .iter()
+            .filter(|t| crate::audit::is_degenerate(sub, **t))
+            .count();
+        let moved = region.submesh(end);
+        let flat_after = moved
+            .triangles
+            .iter()
+            .filter(|t| crate::audit::is_degenerate(&moved, **t))
+            .count();
+        if flat_after > flat_before {
+            worse.push(format!(
+                "degenerate triangles: {flat_before} -> {flat_after}"
+            ));
+        }
+        worse
+    } else {
+        let (before, after) = neighbourhoods(mesh, end, region, out);
+        let b = SurfaceAudit::of(&before)?;
+        let a = SurfaceAudit::of(&after)?;
+        b.regressions(&a)
+    };
+    Ok((worse, offenders))
+}
+
+/// The region with its ring of outside triangles, before (at the start)
+/// and after (the engine's output `out` in place of the region, at `end`
+/// elsewhere), each compacted to its own vertices.
+fn neighbourhoods(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    region: &Region,
+    out: &Outcome,
+) -> (TriMesh, TriMesh) {
+    let ring: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .zip(&region.mask)
+        .filter(|(t, inside)| !**inside && t.iter().any(|&v| region.local[v as usize] != u32::MAX))
+        .map(|(t, _)| *t)
+        .collect();
+    let inside: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .zip(&region.mask)
+        .filter(|(_, inside)| **inside)
+        .map(|(t, _)| *t)
+        .collect();
+    let before = compact_of(inside.iter().chain(&ring).copied(), &|v| {
+        mesh.positions[v as usize]
+    });
+    // The output's vertices: region vertices by their global number, new
+    // ones after every global number.
+    let n = mesh.positions.len() as u32;
+    // The copies of a vertex the engine split at a pinch are new vertices
+    // but the first.
+    let mut taken = vec![false; region.global.len()];
+    let global: Vec<u32> = out
+        .vertex_origin
+        .iter()
+        .enumerate()
+        .map(|(i, &o)| {
+            if o == u32::MAX || std::mem::replace(&mut taken[o as usize], true) {
+                n + i as u32
+            } else {
+                region.global[o as usize]
+            }
+        })
+        .collect();
+    let position = |v: u32| {
+        if v < n {
+            end[v as usize]
+        } else {
+            out.mesh.positions[(v - n) as usize]
+        }
+    };
+    let after = compact_of(
+        out.mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| global[v as usize]))
+            .chain(ring.iter().copied()),
+        &position,
+    );
+    (before, after)
+}
+
+/// A mesh of `triangles` (any vertex numbers) with only their vertices,
+/// numbered in order of first use.
+fn compact_of(
+    triangles: impl Iterator<Item = [u32; 3]>,
+    position: &dyn Fn(u32) -> DVec3,
+) -> TriMesh {
+    let mut index: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    let mut m = TriMesh::default();
+    for t in triangles {
+        let local = t.map(|v| {
+            *index.entry(v).or_insert_with(|| {
+                m.positions.push(position(v));
+                (m.positions.len() - 1) as u32
+            })
+        });
+        m.triangles.push(local);
+    }
+    m
+}
