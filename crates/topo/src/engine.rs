@@ -154,9 +154,9 @@ pub struct Outcome {
 /// and identities the later stages share. It does not depend on the
 /// collisions, so a frame computes both at once.
 pub(crate) struct Geometry {
-    edges: Edges,
-    ids: Vec<u32>,
-    x: Intersections,
+    pub(crate) edges: Edges,
+    pub(crate) ids: Vec<u32>,
+    pub(crate) x: Intersections,
     t_intersect: f64,
 }
 
@@ -222,7 +222,7 @@ pub(crate) fn geometry(
 /// positions of `mesh`): whether some triangle pair of it intersected at
 /// the start already. Such a curve is the surface's own, carried along by
 /// the motion; the others the motion made.
-fn old_curves(mesh: &TriMesh, x: &Intersections) -> Result<Vec<bool>, TopoError> {
+pub(crate) fn old_curves(mesh: &TriMesh, x: &Intersections) -> Result<Vec<bool>, TopoError> {
     let mut old = vec![false; x.curve_count];
     if x.pairs.is_empty() {
         return Ok(old);
@@ -496,18 +496,7 @@ pub(crate) fn finish(
     // pinched there. One vertex per fan makes it a 2-manifold; the
     // input's own pinches are left as they were (found only if the output
     // has a pinch: a pass over the input that most frames never pay for).
-    let mut pinched_before: Option<Vec<bool>> = None;
-    let split = out.split_pinches_where(|v| match origin.get(v) {
-        Some(&o) if o != u32::MAX => {
-            let before = pinched_before.get_or_insert_with(|| mesh.pinched_vertices());
-            !before.get(o as usize).copied().unwrap_or(false)
-        }
-        _ => true,
-    });
-    cut_report.pinches_split = split.len();
-    for v in split {
-        origin.push(origin[v as usize]);
-    }
+    cut_report.pinches_split = split_new_pinches(&mut out, &mut origin, mesh);
     let flips = if options.orient {
         orient_consistently(&mut out)
     } else {
@@ -547,6 +536,30 @@ pub(crate) fn finish(
         intersections: s.geometry.x,
         vertex_origin: origin,
     })
+}
+
+/// Splits the vertices of `out` where kept regions touch at a single
+/// point into one vertex per fan (see [`TriMesh::split_pinches_where`]),
+/// except where `input`, the mesh `out` was made from (`origin`: per
+/// output vertex its input vertex, or `u32::MAX`), was already pinched;
+/// each copy's origin is its vertex's. Returns the number of copies.
+pub(crate) fn split_new_pinches(
+    out: &mut TriMesh,
+    origin: &mut Vec<u32>,
+    input: &TriMesh,
+) -> usize {
+    let mut pinched_before: Option<Vec<bool>> = None;
+    let split = out.split_pinches_where(|v| match origin.get(v) {
+        Some(&o) if o != u32::MAX => {
+            let before = pinched_before.get_or_insert_with(|| input.pinched_vertices());
+            !before.get(o as usize).copied().unwrap_or(false)
+        }
+        _ => true,
+    });
+    for &v in &split {
+        origin.push(origin[v as usize]);
+    }
+    split.len()
 }
 
 pub(crate) fn ccd_options(options: &Options, frame: u64) -> CcdOptions {

@@ -31,6 +31,7 @@
 use glam::DVec3;
 
 use crate::audit::SurfaceAudit;
+use crate::containment::{Surroundings, by_containment};
 use crate::engine::{Options, Outcome, TopoError, check, topology_change};
 use crate::intersect::{pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
@@ -177,7 +178,7 @@ fn run_once(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Run, Top
     let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
     if region.worth_it() {
         let sub = region.submesh(&mesh.positions);
-        let out = topology_change(&sub, &region.gather(end), options)?;
+        let out = resolve_frame(mesh, end, &region, &sub, options)?;
         let (report, spliced) = region.resolve(mesh, end, &out, options.solid_guard);
         let result = match spliced {
             Spliced::PositionsOnly => Some(TriMesh {
@@ -205,7 +206,7 @@ fn run_once(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Run, Top
         (DVec3::NEG_INFINITY, DVec3::INFINITY),
     );
     let sub = everything.submesh(&mesh.positions);
-    let out = topology_change(&sub, &everything.gather(end), options)?;
+    let out = resolve_frame(mesh, end, &everything, &sub, options)?;
     let (result, mut report) = from_whole(&sub, out.clone());
     report.raw_odd = everything.scatter(&report.raw_odd, n, false);
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
@@ -216,6 +217,26 @@ fn run_once(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Run, Top
         worse,
         offenders,
     })
+}
+
+/// The engine's result for `region` of `mesh` (submesh `sub`) moving to
+/// `end`: by containment number where the region is a piece of a solid
+/// ([`crate::containment`]), by collision parity (§3) elsewhere.
+fn resolve_frame(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    region: &Region,
+    sub: &TriMesh,
+    options: &Options,
+) -> Result<Outcome, TopoError> {
+    let local_end = region.gather(end);
+    if options.solid_guard {
+        let surroundings = Surroundings::new(mesh, &region.mask, end);
+        if let Some(out) = by_containment(sub, &local_end, options, &surroundings)? {
+            return Ok(out);
+        }
+    }
+    topology_change(sub, &local_end, options)
 }
 
 /// Audits the region `region` of `mesh` (submesh `sub` at the start) and

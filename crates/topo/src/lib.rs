@@ -5,6 +5,7 @@
 
 pub mod accumulate;
 pub mod audit;
+mod containment;
 pub mod correct;
 pub mod cut;
 pub mod engine;
@@ -17,6 +18,7 @@ mod solid;
 pub mod union;
 pub mod union_find;
 pub mod weights;
+pub mod winding;
 
 pub use accumulate::Accumulator;
 pub use audit::SurfaceAudit;

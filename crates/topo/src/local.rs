@@ -47,6 +47,9 @@ pub struct LocalReport {
     pub whole_mesh: bool,
     /// Whether only positions changed (same triangles, same vertices).
     pub positions_only: bool,
+    /// Vertices the frame made (intersection points, split vertices,
+    /// copies at pinches): the result's last `new_vertices` vertices.
+    pub new_vertices: usize,
 }
 
 impl LocalReport {
@@ -241,6 +244,7 @@ impl Region {
     ) -> (LocalReport, Spliced) {
         let n = mesh.positions.len();
         let mut report = LocalReport {
+            new_vertices: new_vertex_count(&out.vertex_origin),
             report: out.report.clone(),
             raw_odd: self.scatter(&out.raw_odd, n, false),
             corrected_odd: self.scatter(&out.corrected_odd, n, false),
@@ -423,6 +427,18 @@ fn whole(mesh: &mut TriMesh, end: &[DVec3], options: &Options) -> Result<LocalRe
     Ok(report)
 }
 
+/// How many of an output's vertices are new (`origin` per output vertex:
+/// its input vertex, `u32::MAX` for a new point; a repeated input vertex
+/// is a copy made at a pinch). Both kinds are numbered after the
+/// surviving input vertices.
+pub(crate) fn new_vertex_count(origin: &[u32]) -> usize {
+    let mut seen = std::collections::HashSet::new();
+    origin
+        .iter()
+        .filter(|&&o| o == u32::MAX || !seen.insert(o))
+        .count()
+}
+
 /// A whole-mesh outcome as a mesh and a [`LocalReport`].
 pub(crate) fn from_whole(mesh: &TriMesh, out: Outcome) -> (TriMesh, LocalReport) {
     let positions_only = is_identity(
@@ -432,6 +448,7 @@ pub(crate) fn from_whole(mesh: &TriMesh, out: Outcome) -> (TriMesh, LocalReport)
         &out.vertex_origin,
     );
     let report = LocalReport {
+        new_vertices: new_vertex_count(&out.vertex_origin),
         intersection_curves: out.intersections.curve_count,
         region_triangles: mesh.triangles.len(),
         whole_mesh: true,

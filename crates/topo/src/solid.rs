@@ -131,7 +131,7 @@ pub(crate) fn ray_crossings_odd(
 /// Regions of the arrangement: triangles joined across edges that exactly
 /// two triangles share (curve edges are shared by four or more, so the
 /// curves bound the regions).
-fn regions(mesh: &TriMesh) -> Vec<u32> {
+pub(crate) fn regions(mesh: &TriMesh) -> Vec<u32> {
     let edges = Edges::new(mesh);
     let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
     for e in 0..edges.ends.len() {

@@ -1,0 +1,346 @@
+//! A frame resolved by containment number where the surface is a solid:
+//! the result parity-based topology change gives a solid (Appendix C,
+//! Lemma 8.1), computed from the final surface so that it is closed by
+//! construction.
+//!
+//! For a solid, collision parity deletes exactly the surface whose two
+//! sides are both inside or both outside (Lemma 8.1). The discrete parity
+//! field only approximates that: it is sampled at vertices, misses what
+//! passes between them (two edges crossing, a fold between a fan's
+//! triangles), and a drag that folds the surface over itself (a grab
+//! pushed against its own falloff) collides it with itself all along the
+//! fold; error correction then has no consistent field to find, and on a
+//! scan with holes underneath the solid guard ([`crate::solid`]), which
+//! needs a closed mesh, cannot step in. So where the brushed region is a
+//! piece of a solid — every edge there has two triangles running opposite
+//! ways, and the region did not cross itself before the frame — the frame
+//! is resolved from the surface it ends on: the arrangement of the region
+//! (cut along every curve the frame made) keeps each piece whose two sides
+//! differ in being inside, by the *sign* interpretation of Appendix C
+//! (inside where the containment number is at least 1): the union of
+//! everything the surface encloses. For ω ∈ {−1, 0, 1, 2}, all a frame of
+//! sculpting makes, it agrees with the modulo interpretation the lemma
+//! names; where a crumpled drag overlaps a part three times it keeps the
+//! union whole instead of opening a void inside it.
+//!
+//! The containment number of a piece comes from the generalized winding
+//! number ([`crate::winding`]) of the whole surface at a point of it, so a
+//! mesh open far from the brush (a scan's holes underneath) still counts
+//! as the solid it is where it is sculpted: a piece whose winding number
+//! is not within a quarter of an integer on both sides makes the frame
+//! fall back to parity.
+
+use glam::DVec3;
+
+use crate::cut::{Deletion, cut};
+use crate::engine::{Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches};
+use crate::mesh::{Edges, TriMesh};
+use crate::solid::regions;
+use crate::union_find::UnionFind;
+use crate::winding::WindingField;
+
+/// How far a winding number may be from an integer for its piece to be
+/// labelled by it: a quarter (holes far away shift it by the solid angle
+/// they subtend; one that shifts it by a quarter is no longer far away).
+const WINDING_SLACK: f64 = 0.25;
+
+/// Most pieces a frame relabels by winding number (one query each); a
+/// frame that crumples the surface into more falls back to parity, whose
+/// result the guard still checks.
+const MAX_LABELLED_PIECES: usize = 4096;
+
+/// The surface around a region, for winding numbers: the triangles of the
+/// whole mesh outside the region, at the frame's end positions.
+pub(crate) struct Surroundings<'a> {
+    pub triangles: Vec<[u32; 3]>,
+    pub positions: &'a [DVec3],
+    /// The sign of the whole surface's signed volume at the end: +1 when
+    /// it faces outward (inside has winding number +1), −1 when inward.
+    pub orientation: f64,
+}
+
+impl<'a> Surroundings<'a> {
+    /// The triangles of `mesh` that `inside` does not flag, at `end`.
+    pub fn new(mesh: &TriMesh, inside: &[bool], end: &'a [DVec3]) -> Surroundings<'a> {
+        let mut volume = 0.0;
+        let mut triangles = Vec::new();
+        for (t, &r) in mesh.triangles.iter().zip(inside) {
+            let [a, b, c] = t.map(|v| end[v as usize]);
+            volume += a.dot(b.cross(c));
+            if !r {
+                triangles.push(*t);
+            }
+        }
+        Surroundings {
+            triangles,
+            positions: end,
+            orientation: if volume < 0.0 { -1.0 } else { 1.0 },
+        }
+    }
+}
+
+/// The frame of `sub` (a region of a mesh, at its start positions)
+/// moving to `end`, resolved by containment number (module
+/// documentation); `None` when the region is not a piece of a solid (a
+/// non-manifold edge, two triangles running the same way along an edge,
+/// a degenerate triangle), it crossed itself before the frame, or some
+/// piece's winding number is not near an integer.
+pub(crate) fn by_containment(
+    sub: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    surroundings: &Surroundings<'_>,
+) -> Result<Option<Outcome>, TopoError> {
+    let started = std::time::Instant::now();
+    let edges = Edges::new(sub);
+    if !piece_of_a_solid(sub, &edges) {
+        return Ok(None);
+    }
+    let g = geometry(sub, end, options)?;
+    let (edges, ids, x) = (g.edges, g.ids, g.x);
+    if old_curves(sub, &x)?.contains(&true) {
+        return Ok(None);
+    }
+    let arrangement = cut(sub, end, &edges, &ids, &x, Deletion::Nothing, None);
+    let arr = &arrangement.mesh;
+    let region = regions(arr);
+    let count = region.iter().copied().max().map_or(0, |r| r as usize + 1);
+    // Only the pieces a curve bounds are relabelled; a piece no curve of
+    // the frame touches stays as it is (an inner shell the surface had,
+    // say, which the containment number would call inside).
+    let arr_edges = Edges::new(arr);
+    let mut touched = vec![false; count];
+    for e in 0..arr_edges.len() {
+        let around = arr_edges.triangles(e);
+        if around.len() > 2 {
+            for &t in around {
+                touched[region[t as usize] as usize] = true;
+            }
+        }
+    }
+    if touched.iter().filter(|&&t| t).count() > MAX_LABELLED_PIECES {
+        return Ok(None);
+    }
+    let area = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|v| arr.positions[v as usize]);
+        (b - a).cross(c - a).length()
+    };
+    let mut seed: Vec<Option<(f64, usize)>> = vec![None; count];
+    for (t, tri) in arr.triangles.iter().enumerate() {
+        let r = region[t] as usize;
+        let a = area(tri);
+        if touched[r] && seed[r].is_none_or(|(best, _)| a > best) {
+            seed[r] = Some((a, t));
+        }
+    }
+    let inside = |w: f64| surroundings.orientation * w >= 0.5;
+    let arr_at = |v: u32| arr.positions[v as usize];
+    let out_at = |v: u32| surroundings.positions[v as usize];
+    let near = WindingField::new(&arr.triangles, &arr_at);
+    let far = WindingField::new(&surroundings.triangles, &out_at);
+    // Per region: keep, and flip (its inside lies in front of it).
+    let mut label = vec![(true, false); count];
+    for (r, s) in seed.iter().enumerate() {
+        let Some((_, t)) = *s else { continue };
+        let c = arr.triangles[t].map(arr_at).iter().sum::<DVec3>() / 3.0;
+        let w = near.at(c, Some(t)) + far.at(c, None);
+        // The seed's own triangle adds ±1/2 on its two sides.
+        let (behind, front) = (w + 0.5, w - 0.5);
+        if (behind - behind.round()).abs() > WINDING_SLACK {
+            return Ok(None);
+        }
+        label[r] = (inside(behind) != inside(front), inside(front));
+    }
+    if std::env::var_os("HOLEY_DEBUG_GUARD").is_some() {
+        eprintln!(
+            "containment: {} arrangement triangles, {} regions, {} touched, {:.3} s so far",
+            arr.triangles.len(),
+            count,
+            touched.iter().filter(|&&t| t).count(),
+            started.elapsed().as_secs_f64()
+        );
+    }
+    let mut keep: Vec<bool> = region.iter().map(|&r| label[r as usize].0).collect();
+    fill_voids(arr, &region, &touched, &mut keep, &far, &inside);
+    let mut triangles = Vec::with_capacity(arr.triangles.len());
+    let mut deleted = 0;
+    for (t, tri) in arr.triangles.iter().enumerate() {
+        match (keep[t], label[region[t] as usize].1) {
+            (true, false) => triangles.push(*tri),
+            (true, true) => triangles.push([tri[0], tri[2], tri[1]]),
+            _ => deleted += 1,
+        }
+    }
+    let (mut mesh, local) = TriMesh {
+        positions: arr.positions.clone(),
+        triangles,
+    }
+    .compacted_with_origin();
+    let mut origin: Vec<u32> = local
+        .iter()
+        .map(|&v| arrangement.origin[v as usize])
+        .collect();
+    let mut cut_report = arrangement.report;
+    cut_report.triangles_deleted = deleted;
+    cut_report.solid_relabelled = true;
+    cut_report.pinches_split = split_new_pinches(&mut mesh, &mut origin, sub);
+    // A vertex of the input is deleted when no output vertex comes from it.
+    let mut kept = vec![false; sub.positions.len()];
+    for &o in &origin {
+        if let Some(k) = kept.get_mut(o as usize) {
+            *k = true;
+        }
+    }
+    let used = {
+        let mut used = vec![false; sub.positions.len()];
+        for t in &sub.triangles {
+            for &v in t {
+                used[v as usize] = true;
+            }
+        }
+        used
+    };
+    let corrected: Vec<bool> = kept.iter().zip(&used).map(|(&k, &u)| u && !k).collect();
+    let report = Report {
+        corrected_odd_vertices: corrected.iter().filter(|&&o| o).count(),
+        intersection_points: x.points.len(),
+        triple_points: x.triple_points(),
+        intersection_edges: x.pieces.len(),
+        intersection_curves: x.curve_count,
+        intersecting_pairs: x.pairs.len(),
+        cut: cut_report,
+        solid_input: true,
+        timings: crate::engine::Timings {
+            total: started.elapsed().as_secs_f64(),
+            ..Default::default()
+        },
+        ..Report::default()
+    };
+    Ok(Some(Outcome {
+        mesh,
+        report,
+        raw_odd: vec![false; sub.positions.len()],
+        corrected_odd: corrected,
+        intersections: x,
+        vertex_origin: origin,
+    }))
+}
+
+/// Deletes the closed pieces of the kept surface that a relabelled piece
+/// belongs to and that the rest of the surface encloses: voids a closing
+/// crease traps, a part pushed wholly inside. By the sign
+/// interpretation they bound outside space, but space nobody can reach:
+/// a hidden shell inside the solid, which a sculptor sees nothing of and
+/// every later frame pays for. Shells that no curve of the frame touches
+/// are left alone.
+fn fill_voids(
+    arr: &TriMesh,
+    region: &[u32],
+    touched: &[bool],
+    keep: &mut [bool],
+    far: &WindingField<'_>,
+    inside: &dyn Fn(f64) -> bool,
+) {
+    // Components of the kept triangles, through edges that exactly two
+    // kept triangles share (not through single vertices: where a void
+    // touched the outer surface at a point, that point is split later).
+    let mut sets = UnionFind::new(arr.triangles.len());
+    let mut sides: Vec<((u32, u32), u32)> = Vec::new();
+    for (t, tri) in arr.triangles.iter().enumerate() {
+        if keep[t] {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                sides.push(((a.min(b), a.max(b)), t as u32));
+            }
+        }
+    }
+    sides.sort_unstable();
+    for run in sides.chunk_by(|x, y| x.0 == y.0) {
+        if let [(_, t), (_, u)] = run {
+            sets.union(*t, *u);
+        }
+    }
+    let root_of = |sets: &mut UnionFind, t: usize| sets.find(t as u32);
+    // Per component: touched by a curve, closed (every kept edge twice).
+    let mut info: std::collections::HashMap<u32, (bool, Vec<usize>)> = Default::default();
+    for t in (0..arr.triangles.len()).filter(|&t| keep[t]) {
+        let r = root_of(&mut sets, t);
+        let e = info.entry(r).or_insert((false, Vec::new()));
+        e.0 |= touched[region[t] as usize];
+        e.1.push(t);
+    }
+    let candidates: Vec<Vec<usize>> = info
+        .into_values()
+        .filter(|(touched, members)| *touched && closed(arr, members))
+        .map(|(_, members)| members)
+        .collect();
+    if candidates.is_empty() {
+        return;
+    }
+    let kept: Vec<[u32; 3]> = arr
+        .triangles
+        .iter()
+        .zip(keep.iter())
+        .filter(|(_, k)| **k)
+        .map(|(t, _)| *t)
+        .collect();
+    let kept_index: Vec<usize> = (0..arr.triangles.len()).filter(|&t| keep[t]).collect();
+    let arr_at = |v: u32| arr.positions[v as usize];
+    let near = WindingField::new(&kept, &arr_at);
+    for members in candidates {
+        // At a point of the shell's first triangle, the rest of the kept
+        // surface: everything kept but that triangle, less the rest of the
+        // shell, which a closed surface's own point sees as a half (of
+        // the sign of its orientation).
+        let seed = members[0];
+        let p = arr.triangles[seed].map(arr_at).iter().sum::<DVec3>() / 3.0;
+        let own = kept_index.binary_search(&seed).ok();
+        let volume: f64 = members
+            .iter()
+            .map(|&t| {
+                let [a, b, c] = arr.triangles[t].map(arr_at);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        let shell = if volume < 0.0 { -0.5 } else { 0.5 };
+        let w = near.at(p, own) - shell + far.at(p, None);
+        if inside(w) {
+            for t in members {
+                keep[t] = false;
+            }
+        }
+    }
+}
+
+/// Whether the triangles `members` of `mesh` use every edge of theirs
+/// exactly twice (a closed surface).
+fn closed(mesh: &TriMesh, members: &[usize]) -> bool {
+    let mut count: std::collections::HashMap<(u32, u32), u32> = Default::default();
+    for &t in members {
+        let tri = mesh.triangles[t];
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    count.values().all(|&c| c == 2)
+}
+
+/// Whether every edge of `sub` has one triangle (where the region meets
+/// the rest of the mesh, a seam, or a hole: the winding numbers decide
+/// whether the surface is closed enough there) or two running opposite
+/// ways, and no triangle repeats a vertex.
+fn piece_of_a_solid(sub: &TriMesh, edges: &Edges) -> bool {
+    if sub
+        .triangles
+        .iter()
+        .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+    {
+        return false;
+    }
+    (0..edges.len()).all(|e| match edges.triangles(e).len() {
+        1 => true,
+        2 => edges.opposite(&sub.triangles, e),
+        _ => false,
+    })
+}

@@ -1,0 +1,361 @@
+//! The generalized winding number of a triangle mesh (Jacobson, Kavan &
+//! Sorkine-Hornung 2013): w(p) = (1/4π) Σ Ω_t(p), the signed solid angles
+//! of the triangles seen from p. For a closed, consistently oriented
+//! surface it is the containment number of Appendix C (an integer off the
+//! surface, +1 inside an outward-oriented solid); for a surface with
+//! holes it is a smooth field that stays near those integers away from
+//! the holes, which is what lets a scan with a few holes (the Stanford
+//! bunny's five underneath) be treated as the solid it is where it is
+//! sculpted.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// The signed solid angle of triangle `abc` seen from `p` (Van Oosterom &
+/// Strackee 1983): `tan(Ω/2) = det[a b c] / (|a||b||c| + (a·b)|c| +
+/// (b·c)|a| + (c·a)|b|)` with the corners taken relative to `p`. Positive
+/// when `p` is behind the triangle (on the side its normal points away
+/// from); in `[-2π, 2π]`; 0 for a degenerate triangle.
+pub fn solid_angle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let (a, b, c) = (a - p, b - p, c - p);
+    let (la, lb, lc) = (a.length(), b.length(), c.length());
+    let det = a.dot(b.cross(c));
+    let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    2.0 * det.atan2(den)
+}
+
+/// The winding number at `p` of the triangles `triangles` (corner
+/// positions by `position`), every triangle but `skip`: (1/4π) Σ Ω.
+pub fn winding_number(
+    triangles: &[[u32; 3]],
+    position: &(dyn Fn(u32) -> DVec3 + Sync),
+    p: DVec3,
+    skip: Option<usize>,
+) -> f64 {
+    triangles
+        .par_iter()
+        .enumerate()
+        .filter(|(t, _)| Some(*t) != skip)
+        .map(|(_, t)| {
+            let [a, b, c] = t.map(position);
+            solid_angle(p, a, b, c)
+        })
+        .sum::<f64>()
+        / (4.0 * std::f64::consts::PI)
+}
+
+/// The winding number of a fixed set of triangles, fast: the triangles
+/// are bucketed by centroid into a uniform grid of 2^k cells a side (one
+/// pass, O(n)), summarised level by level into an octree: each cell keeps
+/// its area vector Σ A·n̂, area-weighted centre and the radius around it
+/// that holds its triangles. A query descends from the root, taking a
+/// cell's dipole term `(Σ A·n̂)·(c − p) / |c − p|³` once it is farther than
+/// three times its radius and the exact solid angles of the triangles in the
+/// finest cells that are not (the far field of Barill et al., *Fast
+/// Winding Numbers for Soups and Clouds*, 2018, on a regular octree that
+/// is cheap to rebuild every frame). The far-field error is a few percent
+/// of a cell's contribution, far below the quarter the callers' rounding
+/// to an integer allows.
+pub struct WindingField<'a> {
+    triangles: &'a [[u32; 3]],
+    position: &'a (dyn Fn(u32) -> DVec3 + Sync),
+    /// Finest cells per side (a power of two) and the octree's depth.
+    side: usize,
+    depth: u32,
+    /// Triangles by finest cell (CSR), and each triangle's cell.
+    start: Vec<u32>,
+    order: Vec<u32>,
+    cell: Vec<u32>,
+    /// Per level, from the root (1 cell) to the finest: per cell,
+    /// Σ area vector, area-weighted centre, radius, triangle count.
+    levels: Vec<Vec<Summary>>,
+}
+
+/// What a cell of a [`WindingField`] holds, for its far field.
+#[derive(Clone, Copy, Debug, Default)]
+struct Summary {
+    area_vector: DVec3,
+    centre: DVec3,
+    radius: f64,
+    area: f64,
+    count: u32,
+}
+
+impl<'a> WindingField<'a> {
+    /// The field of `triangles` with corners at `position`.
+    pub fn new(
+        triangles: &'a [[u32; 3]],
+        position: &'a (dyn Fn(u32) -> DVec3 + Sync),
+    ) -> WindingField<'a> {
+        let centroid = |t: &[u32; 3]| t.map(position).iter().sum::<DVec3>() / 3.0;
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for t in triangles {
+            let c = centroid(t);
+            lo = lo.min(c);
+            hi = hi.max(c);
+        }
+        // About eight triangles a finest cell, at most 64 cells a side.
+        let wanted = ((triangles.len() as f64 / 8.0).cbrt().ceil() as usize).clamp(1, 64);
+        let depth = wanted.next_power_of_two().trailing_zeros();
+        let side = 1usize << depth;
+        let size = ((hi - lo) / side as f64).max(DVec3::splat(f64::MIN_POSITIVE));
+        let index = |x: usize, y: usize, z: usize, side: usize| (x * side + y) * side + z;
+        let cell_of = |c: DVec3| -> usize {
+            let k = ((c - lo) / size).floor();
+            let clamp = |x: f64| (x.max(0.0) as usize).min(side - 1);
+            index(clamp(k.x), clamp(k.y), clamp(k.z), side)
+        };
+        let cell: Vec<u32> = triangles
+            .iter()
+            .map(|t| cell_of(centroid(t)) as u32)
+            .collect();
+        let n_cells = side * side * side;
+        let mut start = vec![0u32; n_cells + 1];
+        for &c in &cell {
+            start[c as usize + 1] += 1;
+        }
+        for c in 0..n_cells {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut order = vec![0u32; triangles.len()];
+        for (t, &c) in cell.iter().enumerate() {
+            order[fill[c as usize] as usize] = t as u32;
+            fill[c as usize] += 1;
+        }
+        let finest: Vec<Summary> = (0..n_cells)
+            .map(|c| {
+                let members = &order[start[c] as usize..start[c + 1] as usize];
+                let (mut n, mut weighted, mut area) = (DVec3::ZERO, DVec3::ZERO, 0.0);
+                for &t in members {
+                    let [a, b, d] = triangles[t as usize].map(position);
+                    let v = 0.5 * (b - a).cross(d - a);
+                    let len = v.length();
+                    n += v;
+                    weighted += len * (a + b + d) / 3.0;
+                    area += len;
+                }
+                let centre = if area > 0.0 {
+                    weighted / area
+                } else {
+                    members
+                        .first()
+                        .map_or(DVec3::ZERO, |&t| centroid(&triangles[t as usize]))
+                };
+                let radius = members
+                    .iter()
+                    .flat_map(|&t| triangles[t as usize].map(position))
+                    .map(|p| p.distance(centre))
+                    .fold(0.0, f64::max);
+                Summary {
+                    area_vector: n,
+                    centre,
+                    radius,
+                    area,
+                    count: members.len() as u32,
+                }
+            })
+            .collect();
+        let mut levels = vec![finest];
+        let mut s = side;
+        while s > 1 {
+            let half = s / 2;
+            let below = levels.last().map(Vec::as_slice).unwrap_or(&[]);
+            let mut up = vec![Summary::default(); half * half * half];
+            for x in 0..half {
+                for y in 0..half {
+                    for z in 0..half {
+                        let kids: Vec<Summary> = (0..8)
+                            .map(|k| {
+                                below[index(
+                                    2 * x + (k >> 2),
+                                    2 * y + ((k >> 1) & 1),
+                                    2 * z + (k & 1),
+                                    s,
+                                )]
+                            })
+                            .filter(|k| k.count > 0)
+                            .collect();
+                        up[index(x, y, z, half)] = merge(&kids);
+                    }
+                }
+            }
+            levels.push(up);
+            s = half;
+        }
+        levels.reverse();
+        WindingField {
+            triangles,
+            position,
+            side,
+            depth,
+            start,
+            order,
+            cell,
+            levels,
+        }
+    }
+
+    /// The winding number at `p` of every triangle but `skip`.
+    pub fn at(&self, p: DVec3, skip: Option<usize>) -> f64 {
+        // The finest cell holding `skip` is always opened.
+        let skip_cell = skip.and_then(|s| self.cell.get(s)).map(|&c| c as usize);
+        let mut total = 0.0;
+        // (level, x, y, z)
+        let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
+        while let Some((level, x, y, z)) = stack.pop() {
+            let s = 1usize << level;
+            let c = (x * s + y) * s + z;
+            let cell = self.levels[level as usize][c];
+            if cell.count == 0 {
+                continue;
+            }
+            let shift = self.depth - level;
+            let holds_skip = skip_cell.is_some_and(|k| {
+                let fs = self.side;
+                let (kx, ky, kz) = (k / (fs * fs), (k / fs) % fs, k % fs);
+                (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
+            });
+            let d = cell.centre - p;
+            let dist = d.length();
+            if dist > FAR * cell.radius && !holds_skip {
+                total += cell.area_vector.dot(d) / (dist * dist * dist);
+            } else if level == self.depth {
+                for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
+                    if Some(t as usize) != skip {
+                        let [a, b, e] = self.triangles[t as usize].map(self.position);
+                        total += solid_angle(p, a, b, e);
+                    }
+                }
+            } else {
+                for k in 0..8 {
+                    stack.push((
+                        level + 1,
+                        2 * x + (k >> 2),
+                        2 * y + ((k >> 1) & 1),
+                        2 * z + (k & 1),
+                    ));
+                }
+            }
+        }
+        total / (4.0 * std::f64::consts::PI)
+    }
+}
+
+/// A cell farther than this many times its radius counts by its dipole.
+const FAR: f64 = 3.0;
+
+/// The summary of the union of cells.
+fn merge(kids: &[Summary]) -> Summary {
+    let area: f64 = kids.iter().map(|k| k.area).sum();
+    let count: u32 = kids.iter().map(|k| k.count).sum();
+    if count == 0 {
+        return Summary::default();
+    }
+    let centre = if area > 0.0 {
+        kids.iter().map(|k| k.area * k.centre).sum::<DVec3>() / area
+    } else {
+        kids.iter().map(|k| k.centre).sum::<DVec3>() / kids.len() as f64
+    };
+    Summary {
+        area_vector: kids.iter().map(|k| k.area_vector).sum(),
+        centre,
+        radius: kids
+            .iter()
+            .map(|k| k.centre.distance(centre) + k.radius)
+            .fold(0.0, f64::max),
+        area,
+        count,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tetra() -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        (
+            vec![
+                DVec3::new(1.0, 1.0, 1.0),
+                DVec3::new(1.0, -1.0, -1.0),
+                DVec3::new(-1.0, 1.0, -1.0),
+                DVec3::new(-1.0, -1.0, 1.0),
+            ],
+            vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+        )
+    }
+
+    #[test]
+    fn inside_is_one_outside_is_zero() {
+        let (p, t) = tetra();
+        let at = |v: u32| p[v as usize];
+        let w = |q: DVec3| winding_number(&t, &at, q, None);
+        assert!((w(DVec3::ZERO) - 1.0).abs() < 1e-12);
+        assert!(w(DVec3::new(0.1, -0.2, 0.05)) > 0.999_999);
+        assert!(w(DVec3::new(3.0, 0.0, 0.0)).abs() < 1e-12);
+        // Flipped orientation: −1 inside.
+        let flipped: Vec<[u32; 3]> = t.iter().map(|f| [f[0], f[2], f[1]]).collect();
+        assert!((winding_number(&flipped, &at, DVec3::ZERO, None) + 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_grid_field_agrees_with_the_exact_sum() {
+        // A finely triangulated sphere (UV), queried inside, outside and
+        // close to the surface.
+        let (rings, segs) = (40u32, 60u32);
+        let mut pos = vec![DVec3::Z, -DVec3::Z];
+        for i in 1..rings {
+            let th = std::f64::consts::PI * f64::from(i) / f64::from(rings);
+            for j in 0..segs {
+                let ph = std::f64::consts::TAU * f64::from(j) / f64::from(segs);
+                pos.push(DVec3::new(
+                    th.sin() * ph.cos(),
+                    th.sin() * ph.sin(),
+                    th.cos(),
+                ));
+            }
+        }
+        let at = |i: u32, j: u32| 2 + (i - 1) * segs + (j % segs);
+        let mut tris = Vec::new();
+        for j in 0..segs {
+            tris.push([0, at(1, j), at(1, j + 1)]);
+            tris.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);
+        }
+        for i in 1..rings - 1 {
+            for j in 0..segs {
+                tris.push([at(i, j), at(i + 1, j), at(i, j + 1)]);
+                tris.push([at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)]);
+            }
+        }
+        let p = |v: u32| pos[v as usize];
+        let field = WindingField::new(&tris, &p);
+        for q in [
+            DVec3::ZERO,
+            DVec3::new(0.3, -0.2, 0.5),
+            DVec3::new(0.0, 0.0, 0.97),
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.03, 0.0),
+        ] {
+            let exact = winding_number(&tris, &p, q, None);
+            let fast = field.at(q, None);
+            assert!((exact - fast).abs() < 0.03, "{q}: {exact} vs {fast}");
+        }
+        // On a face, without it: a half.
+        let c = tris[500].map(p).iter().sum::<DVec3>() / 3.0;
+        assert!((field.at(c, Some(500)) - winding_number(&tris, &p, c, Some(500))).abs() < 0.03);
+    }
+
+    #[test]
+    fn on_a_face_it_is_a_half_without_that_face() {
+        let (p, t) = tetra();
+        let at = |v: u32| p[v as usize];
+        // The centroid of face 0: the other three faces see it with a
+        // winding of exactly 1/2 (the face's own would be ±1/2).
+        let c = (p[0] + p[1] + p[2]) / 3.0;
+        assert!((winding_number(&t, &at, c, Some(0)) - 0.5).abs() < 1e-12);
+        // A single triangle seen from straight behind and in front.
+        let one = [[0u32, 1, 2]];
+        let behind = (p[0] + p[1] + p[2]) / 3.0 - (p[1] - p[0]).cross(p[2] - p[0]) * 1e-9;
+        assert!((winding_number(&one, &at, behind, None) - 0.5).abs() < 1e-6);
+    }
+}
