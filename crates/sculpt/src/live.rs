@@ -14,10 +14,11 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_topo::{Accumulator, Options, Report, TriMesh, topology_change_guarded};
+use holey_topo::intersect::IntersectError;
+use holey_topo::{Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
-use crate::remesh::{RemeshOptions, RemeshReport, remesh_in_place_checked};
+use crate::remesh::{RemeshOptions, RemeshReport, default_range, remesh_in_place_checked};
 use crate::report::{Diagnostics, SculptError, StrokeReport};
 
 /// The share of the bounding-box diagonal within which a move's first
@@ -76,6 +77,9 @@ pub struct LiveStroke {
     options: Options,
     preview: bool,
     remesh: Option<RemeshOptions>,
+    /// Collapses of the short edges a topology change leaves, when
+    /// remeshing is off (see [`cleanup_options`]).
+    cleanup: Option<RemeshOptions>,
     remeshed: RemeshTally,
     state: State,
     frames: usize,
@@ -122,6 +126,7 @@ impl LiveStroke {
             options,
             preview: false,
             remesh: None,
+            cleanup: cleanup_options(mesh),
             remeshed: RemeshTally::default(),
             state,
             frames: 0,
@@ -182,53 +187,18 @@ impl LiveStroke {
         let mut corrected_odd = None;
         match &mut self.state {
             State::Paint { mesh } => {
-                let end = match brush {
-                    Brush::Smooth => smooth(mesh, point, radius, strength),
-                    _ => inflate(mesh, point, radius, strength),
+                let mut step = PaintStep {
+                    options: &self.options,
+                    remesh: self.remesh.as_ref(),
+                    cleanup: self.cleanup.as_ref(),
+                    report: &mut self.report,
+                    remeshed: &mut self.remeshed,
+                    diagnostics: &mut self.diagnostics,
+                    connectivity_changed: false,
                 };
-                // A frame that moves nothing cannot collide; skipping it
-                // also keeps a brush that wanders off the surface from
-                // re-cutting intersections the mesh already had.
-                if end != mesh.positions {
-                    // Only the region the brush reaches is recomputed,
-                    // and never left worse than it was (the guard).
-                    let guarded =
-                        topology_change_guarded(mesh, &end, &self.options).map_err(|source| {
-                            SculptError::Topo {
-                                frame: index,
-                                source,
-                            }
-                        })?;
-                    if guarded.attempts > 1 {
-                        self.report.guarded_frames += 1;
-                        self.report.held_vertices += guarded.held_vertices;
-                        self.report.held_frames += usize::from(guarded.held_all);
-                    }
-                    let out = guarded.local;
-                    tally(&mut self.report, &out.report);
-                    self.diagnostics = Some(Diagnostics {
-                        raw_odd: out.raw_odd,
-                        corrected_odd: out.corrected_odd,
-                        intersection_curves: out.intersection_curves,
-                    });
-                    connectivity_changed = !out.positions_only;
-                }
-                if let Some(opts) = &self.remesh {
-                    // After the topology change (§4): the vertices the
-                    // brush reaches, at their new positions.
-                    let active = remesh_active(mesh, |p| p.distance(point) < radius);
-                    if active.contains(&true) {
-                        let r = remesh_in_place_checked(mesh, &active, opts).map_err(|source| {
-                            SculptError::Remesh {
-                                frame: index,
-                                source,
-                            }
-                        })?;
-                        if self.remeshed.add(&r) {
-                            connectivity_changed = true;
-                        }
-                    }
-                }
+                step.paint(mesh, brush, point, radius, strength, 0)
+                    .map_err(|e| e.at_frame(index))?;
+                connectivity_changed = step.connectivity_changed;
             }
             State::Drag {
                 start,
@@ -331,6 +301,192 @@ impl LiveStroke {
     }
 }
 
+/// How many times a paint frame may be halved when the engine finds it
+/// crumples the surface too much for one frame: 2⁶ = 64 sub-frames.
+pub const MAX_SUBFRAME_DEPTH: u32 = 6;
+
+/// What a paint frame writes into its stroke.
+struct PaintStep<'a> {
+    options: &'a Options,
+    remesh: Option<&'a RemeshOptions>,
+    cleanup: Option<&'a RemeshOptions>,
+    report: &'a mut StrokeReport,
+    remeshed: &'a mut RemeshTally,
+    diagnostics: &'a mut Option<Diagnostics>,
+    connectivity_changed: bool,
+}
+
+/// An error of a paint frame, before it knows its frame number.
+enum StepError {
+    Topo(holey_topo::TopoError),
+    Remesh(crate::remesh::RemeshError),
+}
+
+impl StepError {
+    fn at_frame(self, frame: usize) -> SculptError {
+        match self {
+            StepError::Topo(source) => SculptError::Topo { frame, source },
+            StepError::Remesh(source) => SculptError::Remesh { frame, source },
+        }
+    }
+}
+
+impl PaintStep<'_> {
+    /// Collapses the edges shorter than the cleanup length at the last
+    /// `new` vertices of `mesh` (the points a topology change made), onto
+    /// the vertices around them, which stay put. The cut inserts its
+    /// points wherever curves cross edges, often a hair's breadth from a
+    /// vertex; left alone, those slivers' normals send the next frames'
+    /// brush every which way and the surface crumples into storms of
+    /// ever smaller triangles. With remeshing on, remeshing does this.
+    fn clean_up(&mut self, mesh: &mut TriMesh, new: usize) -> Result<(), StepError> {
+        let Some(opts) = self.cleanup else {
+            return Ok(());
+        };
+        let n = mesh.positions.len();
+        let mut active = vec![false; n];
+        for a in &mut active[n.saturating_sub(new)..] {
+            *a = true;
+        }
+        let r = remesh_in_place_checked(mesh, &active, opts).map_err(StepError::Remesh)?;
+        self.remeshed.add(&r);
+        Ok(())
+    }
+
+    /// One frame of inflate or smooth at `point`: the brush, the guarded
+    /// topology change, then remeshing. A motion the engine refuses as
+    /// too crumpled for one frame ([`IntersectError::TooManyPairs`]) is
+    /// split into two frames of half the motion, each with the brush
+    /// evaluated again on the surface it then finds, up to
+    /// [`MAX_SUBFRAME_DEPTH`] halvings; past that the frame is held (the
+    /// surface does not move), so a stroke never stops on a refusal.
+    fn paint(
+        &mut self,
+        mesh: &mut TriMesh,
+        brush: Brush,
+        point: DVec3,
+        radius: f64,
+        strength: f64,
+        depth: u32,
+    ) -> Result<(), StepError> {
+        let end = match brush {
+            Brush::Smooth => smooth(mesh, point, radius, strength),
+            _ => inflate(mesh, point, radius, strength),
+        };
+        // A frame that moves a vertex farther than the edges around the
+        // moving vertices are long is cut into as many sub-frames as it
+        // takes (at most 2^MAX_SUBFRAME_DEPTH), each evaluating the brush
+        // again on the surface it finds: the step control of deforming
+        // meshes, which keeps a frame from folding the surface over itself
+        // between two evaluations of its normals.
+        if depth == 0 {
+            let steps = substeps(mesh, &end);
+            if steps > 1 {
+                self.report.subframes += steps - 1;
+                let part = sub_strength(brush, strength, steps);
+                for _ in 0..steps {
+                    self.paint(mesh, brush, point, radius, part, 1)?;
+                }
+                return Ok(());
+            }
+        }
+        // A frame that moves nothing cannot collide; skipping it also
+        // keeps a brush that wanders off the surface from re-cutting
+        // intersections the mesh already had.
+        if end != mesh.positions {
+            // Only the region the brush reaches is recomputed, and never
+            // left worse than it was (the guard).
+            match topology_change_guarded(mesh, &end, self.options) {
+                Ok(guarded) => {
+                    if guarded.attempts > 1 {
+                        self.report.guarded_frames += 1;
+                        self.report.held_vertices += guarded.held_vertices;
+                        self.report.held_frames += usize::from(guarded.held_all);
+                    }
+                    let out = guarded.local;
+                    tally(self.report, &out.report);
+                    *self.diagnostics = Some(Diagnostics {
+                        raw_odd: out.raw_odd,
+                        corrected_odd: out.corrected_odd,
+                        intersection_curves: out.intersection_curves,
+                    });
+                    self.connectivity_changed |= !out.positions_only;
+                    if self.remesh.is_none() && out.new_vertices > 0 {
+                        self.clean_up(mesh, out.new_vertices)?;
+                    }
+                }
+                Err(TopoError::Intersections(IntersectError::TooManyPairs { .. })) => {
+                    if depth >= MAX_SUBFRAME_DEPTH {
+                        self.report.held_frames += 1;
+                        return Ok(());
+                    }
+                    self.report.subframes += 1;
+                    let half = sub_strength(brush, strength, 2);
+                    self.paint(mesh, brush, point, radius, half, depth + 1)?;
+                    return self.paint(mesh, brush, point, radius, half, depth + 1);
+                }
+                Err(e) => return Err(StepError::Topo(e)),
+            }
+        }
+        if let Some(opts) = self.remesh {
+            // After the topology change (§4): the vertices the brush
+            // reaches, at their new positions.
+            let active = remesh_active(mesh, |p| p.distance(point) < radius);
+            if active.contains(&true) {
+                let r = remesh_in_place_checked(mesh, &active, opts).map_err(StepError::Remesh)?;
+                if self.remeshed.add(&r) {
+                    self.connectivity_changed = true;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The strength of each of `steps` frames that together make one frame
+/// of `strength`: the displacement shared out, or for smoothing the step
+/// whose `steps`-th power is the whole one, (1 − s')ⁿ = 1 − s.
+fn sub_strength(brush: Brush, strength: f64, steps: usize) -> f64 {
+    match brush {
+        Brush::Smooth => 1.0 - (1.0 - strength.clamp(0.0, 1.0)).powf(1.0 / steps as f64),
+        _ => strength / steps as f64,
+    }
+}
+
+/// How many frames the motion of `mesh` to `end` should take so that no
+/// vertex moves farther in one than the mean length of the edges at the
+/// moving vertices: ⌈largest displacement / that length⌉, at most
+/// 2^[`MAX_SUBFRAME_DEPTH`].
+fn substeps(mesh: &TriMesh, end: &[DVec3]) -> usize {
+    let moved: Vec<bool> = mesh
+        .positions
+        .iter()
+        .zip(end)
+        .map(|(p, q)| p != q)
+        .collect();
+    let farthest = mesh
+        .positions
+        .iter()
+        .zip(end)
+        .map(|(p, q)| p.distance(*q))
+        .fold(0.0, f64::max);
+    let (mut sum, mut count) = (0.0, 0usize);
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            if moved[a] || moved[b] {
+                sum += mesh.positions[a].distance(mesh.positions[b]);
+                count += 1;
+            }
+        }
+    }
+    let mean = sum / count.max(1) as f64;
+    if !(mean > 0.0 && farthest.is_finite()) {
+        return 1;
+    }
+    ((farthest / mean).ceil() as usize).clamp(1, 1 << MAX_SUBFRAME_DEPTH)
+}
+
 /// The result of [`LiveStroke::finish`].
 #[derive(Debug)]
 pub struct FinishedStroke {
@@ -421,6 +577,21 @@ fn tally(report: &mut StrokeReport, r: &Report) {
     }
     report.raw_odd_vertices += r.raw_odd_vertices;
     report.corrected_odd_vertices += r.corrected_odd_vertices;
+}
+
+/// The cleanup after a topology change when remeshing is off: collapses
+/// only (no edge is longer than the largest finite length), of edges
+/// shorter than 0.3 of the mesh's mean edge length at the stroke's start,
+/// with remeshing's angle bounds. `None` for a mesh without a measurable
+/// edge.
+fn cleanup_options(mesh: &TriMesh) -> Option<RemeshOptions> {
+    let range = default_range(mesh)?;
+    Some(RemeshOptions {
+        min_edge: 0.6 * range.min_edge,
+        max_edge: f64::MAX,
+        passes: 2,
+        ..RemeshOptions::new(range)
+    })
 }
 
 /// The vertices remeshing may work around: those `near` picks, except

@@ -71,8 +71,12 @@ pub struct StrokeReport {
     pub guarded_frames: usize,
     /// Vertex-frames held still by the guard, over the stroke.
     pub held_vertices: usize,
-    /// Frames the guard held entirely (nothing moved).
+    /// Frames held entirely (nothing moved): by the guard, or a frame
+    /// still too crumpled after the most sub-frames.
     pub held_frames: usize,
+    /// Frames split in two because the engine found the motion crumpled
+    /// the surface too much for one frame (each split counts once).
+    pub subframes: usize,
     pub seconds: f64,
 }
 
