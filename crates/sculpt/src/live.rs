@@ -228,11 +228,12 @@ impl LiveStroke {
                     view.positions = next;
                 }
                 if self.preview {
-                    corrected_odd =
-                        Some(acc.corrected_parity().map_err(|source| SculptError::Topo {
+                    corrected_odd = Some(acc.preview().map(|r| r.vanishing.clone()).map_err(
+                        |source| SculptError::Topo {
                             frame: index,
                             source,
-                        })?);
+                        },
+                    )?);
                 }
             }
         }
@@ -260,10 +261,17 @@ impl LiveStroke {
                 if acc.frames() == 0 {
                     (start, None)
                 } else {
-                    let (mesh, out) = acc.release_local().map_err(|source| SculptError::Topo {
+                    let release = acc.release_guarded().map_err(|source| SculptError::Topo {
                         frame: last,
                         source,
                     })?;
+                    if !release.refused.is_empty() {
+                        // The drag would have left the surface worse: it
+                        // is undone (the guard held every vertex).
+                        report.held_frames += 1;
+                        report.refused = release.refused.clone();
+                    }
+                    let (mesh, out) = (release.mesh, release.report);
                     tally(&mut report, &out.report);
                     let d = Diagnostics {
                         raw_odd: out.raw_odd,

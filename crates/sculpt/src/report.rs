@@ -74,6 +74,9 @@ pub struct StrokeReport {
     /// Frames held entirely (nothing moved): by the guard, or a frame
     /// still too crumpled after the most sub-frames.
     pub held_frames: usize,
+    /// For a drag the guard refused at release (the drag was undone): what
+    /// the change would have made worse, in words.
+    pub refused: Vec<String>,
     /// Frames split in two because the engine found the motion crumpled
     /// the surface too much for one frame (each split counts once).
     pub subframes: usize,

@@ -12,7 +12,7 @@ use glam::DVec3;
 use holey_sculpt::{
     Brush, Remesh, RemeshOptions, SculptError, Session, Stroke, parse_strokes, remesh_with,
 };
-use holey_topo::{TriMesh, self_intersections};
+use holey_topo::{Options, TriMesh, self_intersections};
 
 fn sphere(centre: DVec3) -> TriMesh {
     let p = holey_shapes::parse_primitive("@sphere:3").unwrap();
@@ -404,16 +404,23 @@ fn hemisphere(r: f64, offset: DVec3) -> TriMesh {
 /// hemisphere, rim first) into a closed body. The part's rim and the
 /// portion inside the body cross the body once and are deleted, and the
 /// rest is glued to the body along the intersection curve: one component,
-/// no boundary left. As §7 warns, the body's surface inside the nose is
-/// kept: the nose's open side led the way, so its surface never swept
+/// no boundary left. As §7 warns, parity keeps the body's surface inside
+/// the nose: the nose's open side led the way, so its surface never swept
 /// over that cap, which stays as an occluded surface the user does not
-/// see, meeting body and nose along edges of three triangles.
+/// see, meeting body and nose along edges of three triangles. That is
+/// non-manifold, so it needs [`Options::nonmanifold_joins`]; by default
+/// see `part_assembly_by_default_leaves_no_occluded_cap`.
 #[test]
 fn part_assembly_glues_an_open_part_onto_a_body() {
     let nose = hemisphere(0.3, DVec3::new(2.0, 0.0, 0.0));
     assert_eq!(boundary_loops(&nose), 1);
     let m = join(&sphere(DVec3::ZERO), &nose);
-    let mut s = Session::new(m).unwrap();
+    let options = Options {
+        nonmanifold_joins: true,
+        solid_guard: false,
+        ..Options::default()
+    };
+    let mut s = Session::with_options(m, options).unwrap();
     // Pick the tip of the nose, then push it in by 1.2: the rim ends at
     // x = 0.8 (inside the unit body), the tip at 1.1 (outside).
     let mv = stroke(
@@ -498,9 +505,54 @@ fn part_assembly_with_an_open_tube_keeps_its_outer_end() {
     }
 }
 
+/// Part assembly with the default options: where the body is a solid the
+/// move is resolved by containment number, so the body's cap inside the
+/// nose goes too (it lies inside the union) and the join is a 2-manifold:
+/// one closed component, every edge on two triangles, no vertex of the
+/// body's cap or the nose's rim left inside.
+#[test]
+fn part_assembly_by_default_leaves_no_occluded_cap() {
+    let nose = hemisphere(0.3, DVec3::new(2.0, 0.0, 0.0));
+    let m = join(&sphere(DVec3::ZERO), &nose);
+    let mut s = Session::new(m).unwrap();
+    let mv = stroke(
+        Brush::Move,
+        0.0,
+        1.0,
+        &[
+            [2.3, 0., 0.],
+            [1.9, 0.004, 0.002],
+            [1.5, 0.008, 0.004],
+            [1.1, 0.013, 0.007],
+        ],
+    );
+    let r = s.apply_stroke(&mv).unwrap();
+    assert!(r.refused.is_empty(), "{:?}", r.refused);
+    let m = s.mesh();
+    assert!(valid(m));
+    assert_eq!(components(m), 1, "the part is attached");
+    assert!(closed(m), "a 2-manifold without boundary");
+    assert!(no_self_intersections(m));
+    for p in &m.positions {
+        assert!(
+            p.length() > 0.99 || p.x > 0.99,
+            "a vertex inside the union: {p}"
+        );
+    }
+    assert!(
+        !m.positions
+            .iter()
+            .any(|p| p.distance(DVec3::new(1.0, 0.0, 0.0)) < 0.05),
+        "the body's cap inside the nose is gone"
+    );
+}
+
 /// §6, paper mâché (Figure 11): grab a sheet by its edge and drag the
 /// edge into another surface. The part of the sheet that went through
-/// is deleted and the sheet is glued to the surface: they connect.
+/// is deleted and the sheet is glued to the surface: they connect, along
+/// a curve of edges with three triangles (the sheet meets the ball from
+/// one side), which needs [`Options::nonmanifold_joins`]: by default the
+/// guard undoes such a drag.
 #[test]
 fn paper_mache_connects_a_sheet_to_another_surface() {
     let sheet = from_poly(holey_shapes::tri_plane(16, 16).unwrap());
@@ -508,7 +560,11 @@ fn paper_mache_connects_a_sheet_to_another_surface() {
     let ball = transformed(&sphere(DVec3::ZERO), 0.6, DVec3::new(1.6, 0.0, 0.0));
     let m = join(&sheet, &ball);
     assert_eq!(components(&m), 2);
-    let mut s = Session::new(m).unwrap();
+    let options = Options {
+        nonmanifold_joins: true,
+        ..Options::default()
+    };
+    let mut s = Session::with_options(m.clone(), options).unwrap();
     // Grab the middle of the sheet's right edge (x = 0.5) and pull it
     // 0.8 to the right and a little up, into the ball (x from 1 to 2.2).
     let g = stroke(
@@ -812,13 +868,13 @@ fn replays_are_bit_identical_with_topology_change_and_remeshing() {
     let run = || {
         let mut s = Session::new(sphere(DVec3::ZERO)).unwrap();
         let strokes = [
-            stroke(Brush::Inflate, 0.4, 0.03, &[[0., 0., 1.]; 4]),
-            stroke(Brush::Smooth, 0.4, 0.5, &[[0., 0., 1.1]]),
+            stroke(Brush::Inflate, 0.4, 0.03, &[[1., 0., 0.]; 4]),
+            stroke(Brush::Smooth, 0.4, 0.5, &[[1.1, 0., 0.]]),
             stroke(
                 Brush::Grab,
                 0.7,
                 1.0,
-                &[[0., 0., 1.1], [0., 0., 0.], [0., 0., -1.], [0., 0., -2.5]],
+                &[[0., 0., 1.], [0., 0., 0.], [0., 0., -1.], [0., 0., -2.5]],
             ),
         ];
         for st in &strokes {

@@ -11,6 +11,7 @@ use holey_geom::ccd::vertex_parities;
 use crate::engine::{
     Options, Outcome, TopoError, ccd_options, check, finish, geometry, static_stage,
 };
+use crate::guard::{Motion, run_once};
 use crate::local::{
     Bounds, LocalReport, Region, Spliced, from_whole, swept_box, union, with_margin,
 };
@@ -35,6 +36,23 @@ pub struct Accumulator {
     /// The box of everything that moved so far: collisions, and so odd
     /// vertices and new intersections, lie inside it.
     swept: Option<Bounds>,
+    /// The guarded release computed for the last preview, at frame
+    /// `.0`: the release reuses it when nothing moved since.
+    last_release: Option<(u64, std::sync::Arc<Release>)>,
+}
+
+/// What releasing a drag does (see [`Accumulator::release_guarded`]).
+#[derive(Clone, Debug)]
+pub struct Release {
+    /// The surface after the release.
+    pub mesh: TriMesh,
+    /// The engine's report (of the attempt kept).
+    pub report: LocalReport,
+    /// Per vertex of the drag's mesh: it vanishes at release.
+    pub vanishing: Vec<bool>,
+    /// Empty when the release is clean; otherwise what the change would
+    /// have made worse, in words, and the release undoes the drag.
+    pub refused: Vec<String>,
 }
 
 impl Accumulator {
@@ -52,6 +70,7 @@ impl Accumulator {
             seconds: 0.0,
             options,
             swept: None,
+            last_release: None,
         })
     }
 
@@ -138,6 +157,57 @@ impl Accumulator {
             &self.options,
         )?;
         Ok(region.scatter(&s.corrected, n, false))
+    }
+
+    /// What releasing the drag now would do, computed as the release
+    /// computes it (so the preview of §4 shows exactly that): by
+    /// containment number where the dragged region is a piece of a solid,
+    /// by the accumulated parity elsewhere, guarded like a sculpting frame
+    /// ([`crate::guard`]). A release that would leave the surface worse
+    /// is refused: the drag is undone and nothing vanishes.
+    pub fn preview(&mut self) -> Result<std::sync::Arc<Release>, TopoError> {
+        if let Some((frame, r)) = &self.last_release
+            && *frame == self.frame
+        {
+            return Ok(r.clone());
+        }
+        let run = run_once(
+            &self.mesh,
+            &self.current,
+            &self.options,
+            &Motion::Drag {
+                raw: &self.raw,
+                collisions: (self.collisions, self.tests, self.seconds),
+                frames: self.frame,
+            },
+        )?;
+        let release = if run.worse.is_empty() {
+            Release {
+                vanishing: run.report.corrected_odd.clone(),
+                mesh: run.mesh,
+                report: run.report,
+                refused: Vec::new(),
+            }
+        } else {
+            Release {
+                vanishing: vec![false; self.mesh.positions.len()],
+                mesh: self.mesh.clone(),
+                report: LocalReport::no_motion(self.mesh.positions.len()),
+                refused: run.worse,
+            }
+        };
+        let release = std::sync::Arc::new(release);
+        self.last_release = Some((self.frame, release.clone()));
+        Ok(release)
+    }
+
+    /// Ends the drag: the surface after the guarded topology change (see
+    /// [`Accumulator::preview`], whose result it reuses when nothing moved
+    /// since). A drag that came back to its start gives the start surface.
+    pub fn release_guarded(mut self) -> Result<Release, TopoError> {
+        let r = self.preview()?;
+        self.last_release = None;
+        Ok(std::sync::Arc::try_unwrap(r).unwrap_or_else(|shared| (*shared).clone()))
     }
 
     /// [`Accumulator::release`] run on the region everything moved

@@ -17,10 +17,13 @@
 //! is resolved from the surface it ends on: the arrangement of the region
 //! (cut along every curve the frame made) keeps each piece whose two sides
 //! differ in being inside, by the *sign* interpretation of Appendix C
-//! (inside where the containment number is at least 1): the union of
-//! everything the surface encloses. For ω ∈ {−1, 0, 1, 2}, all a frame of
-//! sculpting makes, it agrees with the modulo interpretation the lemma
-//! names; where a crumpled drag overlaps a part three times it keeps the
+//! (inside where the containment number, counted with the surface's own
+//! orientation, is at least 1): the union of everything the surface
+//! encloses. For ω ∈ {−1, 0, 1, 2}, all a frame of sculpting makes, it
+//! agrees with the modulo interpretation the lemma names: a part pushed
+//! through the far wall turns inside out there (ω = −1) and is deleted,
+//! which opens Figure 1's tunnel; a part pushed into a body (ω = 2) fuses
+//! with it. Where a crumpled drag overlaps a part three times it keeps the
 //! union whole instead of opening a void inside it.
 //!
 //! The containment number of a piece comes from the generalized winding
@@ -43,6 +46,10 @@ use crate::winding::WindingField;
 /// labelled by it: a quarter (holes far away shift it by the solid angle
 /// they subtend; one that shifts it by a quarter is no longer far away).
 const WINDING_SLACK: f64 = 0.25;
+
+/// How near an integer a piece's winding number must be for its sample to
+/// decide it (see `settle_unsure`).
+const SURE: f64 = 0.05;
 
 /// Most pieces a frame relabels by winding number (one query each); a
 /// frame that crumples the surface into more falls back to parity, whose
@@ -133,42 +140,61 @@ pub(crate) fn by_containment(
             seed[r] = Some((a, t));
         }
     }
+    // The sign interpretation: inside where the containment number,
+    // counted with the surface's own orientation, is at least 1.
     let inside = |w: f64| surroundings.orientation * w >= 0.5;
     let arr_at = |v: u32| arr.positions[v as usize];
     let out_at = |v: u32| surroundings.positions[v as usize];
     let near = WindingField::new(&arr.triangles, &arr_at);
     let far = WindingField::new(&surroundings.triangles, &out_at);
-    // Per region: keep, and flip (its inside lies in front of it).
+    let outward = surroundings.orientation > 0.0;
+    // Per region: keep, and flip (its inside lies on the other side of it
+    // than the rest of the surface's does).
     let mut label = vec![(true, false); count];
+    // Pieces whose winding number is not within a twentieth of an
+    // integer are slivers between curves meeting at a point, whose sample
+    // lies within rounding of another sheet: they are decided by their
+    // neighbours below instead.
+    let mut unsure: Vec<usize> = Vec::new();
     for (r, s) in seed.iter().enumerate() {
         let Some((_, t)) = *s else { continue };
         let c = arr.triangles[t].map(arr_at).iter().sum::<DVec3>() / 3.0;
         let w = near.at(c, Some(t)) + far.at(c, None);
         // The seed's own triangle adds ±1/2 on its two sides.
         let (behind, front) = (w + 0.5, w - 0.5);
-        if (behind - behind.round()).abs() > WINDING_SLACK {
+        let off = (behind - behind.round()).abs();
+        if off > WINDING_SLACK {
             return Ok(None);
         }
-        label[r] = (inside(behind) != inside(front), inside(front));
+        if off > SURE {
+            unsure.push(r);
+        }
+        label[r] = (inside(behind) != inside(front), inside(behind) != outward);
     }
-    if std::env::var_os("HOLEY_DEBUG_GUARD").is_some() {
-        eprintln!(
-            "containment: {} arrangement triangles, {} regions, {} touched, {:.3} s so far",
-            arr.triangles.len(),
-            count,
-            touched.iter().filter(|&&t| t).count(),
-            started.elapsed().as_secs_f64()
-        );
-    }
+    settle_unsure(arr, &arr_edges, &region, &unsure, &mut label);
     let mut keep: Vec<bool> = region.iter().map(|&r| label[r as usize].0).collect();
-    fill_voids(arr, &region, &touched, &mut keep, &far, &inside);
+    // The triangles as they will be output: reversed where their inside
+    // lies in front.
+    let output: Vec<[u32; 3]> = arr
+        .triangles
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            if label[region[t] as usize].1 {
+                [tri[0], tri[2], tri[1]]
+            } else {
+                *tri
+            }
+        })
+        .collect();
+    fill_voids(arr, &output, &region, &touched, &mut keep, &far, &inside);
     let mut triangles = Vec::with_capacity(arr.triangles.len());
     let mut deleted = 0;
-    for (t, tri) in arr.triangles.iter().enumerate() {
-        match (keep[t], label[region[t] as usize].1) {
-            (true, false) => triangles.push(*tri),
-            (true, true) => triangles.push([tri[0], tri[2], tri[1]]),
-            _ => deleted += 1,
+    for (t, tri) in output.iter().enumerate() {
+        if keep[t] {
+            triangles.push(*tri);
+        } else {
+            deleted += 1;
         }
     }
     let (mut mesh, local) = TriMesh {
@@ -226,6 +252,99 @@ pub(crate) fn by_containment(
     }))
 }
 
+/// Decides the pieces in `unsure` by the pieces around them: at an edge
+/// where curves cross (four pieces, two per sheet), a 2-manifold keeps
+/// exactly two, running opposite ways along it. So an unsure piece is
+/// kept where one of the others at its curve edges is, deleted where two
+/// are (a vote over its curve edges), and faces against the kept one.
+/// Repeated while it settles something, for unsure pieces next to each
+/// other.
+fn settle_unsure(
+    arr: &TriMesh,
+    edges: &Edges,
+    region: &[u32],
+    unsure: &[usize],
+    label: &mut [(bool, bool)],
+) {
+    let mut open: Vec<usize> = unsure.to_vec();
+    let mut decided = vec![true; label.len()];
+    for &r in &open {
+        decided[r] = false;
+    }
+    // Each unsure piece's curve edges.
+    let mut curve_edges: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+    for e in 0..edges.len() {
+        let around = edges.triangles(e);
+        if around.len() > 2 {
+            for &t in around {
+                let r = region[t as usize] as usize;
+                if !decided[r] {
+                    curve_edges.entry(r).or_default().push(e);
+                }
+            }
+        }
+    }
+    // Whether triangle `t` (as output, flipped per `flip`) runs along edge
+    // `e` from its first end.
+    let runs = |t: u32, e: usize, flip: bool| {
+        edges
+            .runs_forward(&arr.triangles, t, e)
+            .map(|forward| forward != flip)
+    };
+    loop {
+        let mut progress = false;
+        open.retain(|&r| {
+            let mut votes = (0i32, 0i32); // (keep, delete)
+            let mut facing: Option<bool> = None;
+            for &e in curve_edges.get(&r).map(Vec::as_slice).unwrap_or(&[]) {
+                let around = edges.triangles(e);
+                let own = around.iter().find(|&&t| region[t as usize] as usize == r);
+                let others: Vec<u32> = around
+                    .iter()
+                    .copied()
+                    .filter(|&t| region[t as usize] as usize != r)
+                    .collect();
+                if others
+                    .iter()
+                    .any(|&t| !decided[region[t as usize] as usize])
+                {
+                    continue;
+                }
+                let kept: Vec<u32> = others
+                    .iter()
+                    .copied()
+                    .filter(|&t| label[region[t as usize] as usize].0)
+                    .collect();
+                match kept.len() {
+                    1 => {
+                        votes.0 += 1;
+                        if let (Some(&own), Some(other)) = (own, kept.first()) {
+                            let theirs = runs(*other, e, label[region[*other as usize] as usize].1);
+                            let mine = runs(own, e, false);
+                            if let (Some(theirs), Some(mine)) = (theirs, mine) {
+                                // Opposite ways: flip when the unflipped
+                                // piece runs the same way as the kept one.
+                                facing = Some(mine == theirs);
+                            }
+                        }
+                    }
+                    _ => votes.1 += 1,
+                }
+            }
+            if votes == (0, 0) {
+                return true;
+            }
+            label[r] = (votes.0 > votes.1, facing.unwrap_or(label[r].1));
+            decided[r] = true;
+            progress = true;
+            false
+        });
+        if !progress || open.is_empty() {
+            break;
+        }
+    }
+}
+
 /// Deletes the closed pieces of the kept surface that a relabelled piece
 /// belongs to and that the rest of the surface encloses: voids a closing
 /// crease traps, a part pushed wholly inside. By the sign
@@ -235,6 +354,7 @@ pub(crate) fn by_containment(
 /// are left alone.
 fn fill_voids(
     arr: &TriMesh,
+    output: &[[u32; 3]],
     region: &[u32],
     touched: &[bool],
     keep: &mut [bool],
@@ -277,8 +397,7 @@ fn fill_voids(
     if candidates.is_empty() {
         return;
     }
-    let kept: Vec<[u32; 3]> = arr
-        .triangles
+    let kept: Vec<[u32; 3]> = output
         .iter()
         .zip(keep.iter())
         .filter(|(_, k)| **k)
@@ -293,12 +412,12 @@ fn fill_voids(
         // shell, which a closed surface's own point sees as a half (of
         // the sign of its orientation).
         let seed = members[0];
-        let p = arr.triangles[seed].map(arr_at).iter().sum::<DVec3>() / 3.0;
+        let p = output[seed].map(arr_at).iter().sum::<DVec3>() / 3.0;
         let own = kept_index.binary_search(&seed).ok();
         let volume: f64 = members
             .iter()
             .map(|&t| {
-                let [a, b, c] = arr.triangles[t].map(arr_at);
+                let [a, b, c] = output[t].map(arr_at);
                 a.dot(b.cross(c))
             })
             .sum();

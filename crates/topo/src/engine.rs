@@ -57,6 +57,13 @@ pub struct Options {
     /// `None` is [`default_pair_limit`](crate::intersect::default_pair_limit)
     /// of the mesh's triangle count, `Some(usize::MAX)` no limit.
     pub max_intersecting_pairs: Option<usize>,
+    /// Let a sculpting frame or drag ([`crate::guard`]) leave new
+    /// non-manifold curves and pinched vertices: an open sheet glued to a
+    /// surface along a curve (the T-junctions of Figures 9 and 11, part
+    /// assembly and paper mâché). Off by default: the guard then refuses
+    /// such a result (a frame holds the vertices that make it, a drag is
+    /// undone).
+    pub nonmanifold_joins: bool,
 }
 
 impl Default for Options {
@@ -68,6 +75,7 @@ impl Default for Options {
             refine: true,
             solid_guard: true,
             max_intersecting_pairs: None,
+            nonmanifold_joins: false,
         }
     }
 }

@@ -20,7 +20,7 @@ pub mod union_find;
 pub mod weights;
 pub mod winding;
 
-pub use accumulate::Accumulator;
+pub use accumulate::{Accumulator, Release};
 pub use audit::SurfaceAudit;
 pub use correct::Scheme;
 pub use engine::{

@@ -82,7 +82,7 @@ impl EngineArgs {
             orient: !self.keep_orientation,
             refine: !self.no_refine,
             solid_guard: !self.no_solid_guard,
-            max_intersecting_pairs: None,
+            ..Options::default()
         }
     }
 }
