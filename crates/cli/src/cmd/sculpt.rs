@@ -169,6 +169,12 @@ pub fn run(args: Args) -> Result<()> {
                 r.triangles_after,
                 r.seconds
             );
+            if !r.refused.is_empty() {
+                eprintln!(
+                    "stroke {i} ({brush}) was undone: it would have left {}",
+                    r.refused.join(", ")
+                );
+            }
         }
     }
     Ok(())
