@@ -113,7 +113,7 @@ function parseObj(text) {
 
 // ---- document -------------------------------------------------------------------
 
-const doc = { mesh: cube(), workspace: 'model', version: 1, undo: [], redo: [], remesh: 0 };
+const doc = { mesh: cube(), workspace: 'model', version: 1, undo: [], redo: [], remesh: 0.5 };
 const clients = new Set();
 let stroke = null;
 

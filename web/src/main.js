@@ -11,16 +11,23 @@ const num = (id) => Number($(id).value);
 
 // ---- messages to the user ---------------------------------------------------
 
+/** One message at a time: a new one replaces the one on screen (an error
+ * stays until it is replaced, dismissed or times out; the same message
+ * again only restarts its timer). */
 function toast(text, kind = 'info', ms = kind === 'error' ? 9000 : 3500) {
-  const el = document.createElement('div');
-  el.className = `toast ${kind}`;
-  el.dataset.testid = kind === 'error' ? 'toast-error' : 'toast';
-  el.textContent = text;
-  el.title = 'Click to dismiss';
-  el.onclick = () => el.remove();
-  $('toasts').append(el);
-  while ($('toasts').children.length > 5) $('toasts').firstChild.remove();
-  setTimeout(() => el.remove(), ms);
+  const box = $('toasts');
+  const same = [...box.children].find((e) => e.textContent === text);
+  const el = same ?? document.createElement('div');
+  if (!same) {
+    el.className = `toast ${kind}`;
+    el.dataset.testid = kind === 'error' ? 'toast-error' : 'toast';
+    el.textContent = text;
+    el.title = 'Click to dismiss';
+    el.onclick = () => el.remove();
+    box.replaceChildren(el);
+  }
+  clearTimeout(el.timer);
+  el.timer = setTimeout(() => el.remove(), ms);
 }
 // Anything unexpected still reaches the user as a message, never a dead page.
 window.addEventListener('error', (e) => toast(`Unexpected error: ${e.message}`, 'error'));
@@ -556,6 +563,15 @@ $('remesh-detail').oninput = () => {
 };
 $('remesh-detail').onchange = () => call('set_remesh', { detail: num('remesh-detail') });
 
+// ---- repairs ------------------------------------------------------------------
+
+async function repair(op, fields) {
+  const ok = await call(op, fields);
+  if (ok?.message) toast(ok.message);
+}
+$('op-weld').onclick = () => repair('weld', { distance: num('weld-distance') / 100 });
+$('op-make-manifold').onclick = () => repair('make_manifold');
+
 /** Stroke protocol: stroke_begin, then stroke_frame with at most one request
  * in flight (the newest pointer position waits in `queued`), then stroke_end
  * once everything sent has been answered. */
@@ -618,7 +634,10 @@ function strokeAnswered(stroke) {
     app.stroke = null;
     viewer.endMotion('stroke'); // full resolution again
     viewer.hideBrush(); // back on the surface with the next hover
-    call('stroke_end');
+    call('stroke_end').then((ok) => {
+      // A drag whose release would have torn the surface is undone.
+      if (ok?.message) toast(ok.message);
+    });
   }
 }
 

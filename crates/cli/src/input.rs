@@ -137,3 +137,67 @@ impl Loaded {
         }
     }
 }
+
+/// A weld distance as written on the command line: a length, or a share
+/// of the bounding-box diagonal written with `%`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum WeldDistance {
+    Absolute(f64),
+    OfDiagonal(f64),
+}
+
+impl std::str::FromStr for WeldDistance {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        let bad = || {
+            format!(
+                "{s:?} is not a weld distance (a length such as 0.001, or a share of the diagonal such as 0.1%)"
+            )
+        };
+        let (number, relative) = match s.strip_suffix('%') {
+            Some(n) => (n, true),
+            None => (s, false),
+        };
+        let x: f64 = number.trim().parse().map_err(|_| bad())?;
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(bad());
+        }
+        Ok(if relative {
+            WeldDistance::OfDiagonal(x / 100.0)
+        } else {
+            WeldDistance::Absolute(x)
+        })
+    }
+}
+
+/// `soup` with its vertices within `distance` welded
+/// ([`holey_mesh::analysis::weld_by_distance`]), telling on stderr what
+/// was merged.
+pub fn weld(name: &str, soup: &PolyMesh, distance: WeldDistance) -> Result<PolyMesh> {
+    let length = match distance {
+        WeldDistance::Absolute(d) => d,
+        WeldDistance::OfDiagonal(share) => {
+            let (mut lo, mut hi) = (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY);
+            for f in soup.faces() {
+                for &i in f {
+                    if let Some(p) = soup.positions.get(i as usize) {
+                        lo = lo.min(*p);
+                        hi = hi.max(*p);
+                    }
+                }
+            }
+            if lo.x <= hi.x {
+                share * lo.distance(hi)
+            } else {
+                0.0
+            }
+        }
+    };
+    let w = holey_mesh::analysis::weld_by_distance(soup, length)
+        .map_err(|e| bad_input(format!("{name}: weld: {e}")))?;
+    eprintln!(
+        "{name}: welded at {length}: {} vertices merged, {} collapsed faces dropped",
+        w.merged_vertices, w.dropped_faces
+    );
+    Ok(w.mesh)
+}

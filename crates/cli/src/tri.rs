@@ -8,19 +8,32 @@ use holey_topo::{Report, TriMesh};
 use serde_json::{Value, json};
 
 use crate::error::bad_input;
-use crate::input::{Input, load};
+use crate::input::{Input, WeldDistance, load, weld};
 
 /// Reads a mesh argument as triangles: polygons are fan-triangulated; a
 /// `.dlfl` file contributes its non-hole faces.
 pub fn load_triangles(arg: &str) -> Result<TriMesh> {
+    triangles_of(arg, load_soup(arg)?)
+}
+
+/// [`load_triangles`] with the vertices within `distance` welded first.
+pub fn load_triangles_welded(arg: &str, distance: WeldDistance) -> Result<TriMesh> {
+    triangles_of(arg, weld(arg, &load_soup(arg)?, distance)?)
+}
+
+/// A mesh argument as a polygon soup (a `.dlfl` file's non-hole faces).
+fn load_soup(arg: &str) -> Result<PolyMesh> {
     let loaded = load(arg)?;
-    let soup = match loaded.input {
+    Ok(match loaded.input {
         Input::Soup(s) => s,
         Input::Dlfl(_) => {
-            let kernel = load(arg)?.into_kernel(false)?;
+            let kernel = loaded.into_kernel(false)?;
             holey_mesh::convert::to_poly(&kernel.mesh).poly
         }
-    };
+    })
+}
+
+fn triangles_of(arg: &str, soup: PolyMesh) -> Result<TriMesh> {
     let (triangles, _) = soup.fan_triangles();
     let mesh = TriMesh {
         positions: soup.positions,

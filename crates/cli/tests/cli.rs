@@ -1256,3 +1256,37 @@ fn topology_commands_refuse_bad_input() {
     }
     assert!(!out.exists(), "nothing was written");
 }
+
+/// `--weld`: a square given as two triangles whose shared corners are
+/// repeated, one of them off by 1e-6, welds into one piece at a distance
+/// above the gap (absolute or as a share of the diagonal), stays two
+/// pieces below it, and a weld distance that is not one is refused.
+#[test]
+fn convert_and_sculpt_weld_by_distance() {
+    let dir = tmp();
+    let soup = dir.path().join("soup.obj");
+    std::fs::write(
+        &soup,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1.000001 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out.obj");
+    let (soup, out) = (s(&soup), s(&out));
+    ok(&["convert", soup, out, "--weld", "0"]);
+    assert_eq!(info(out, &[])["vertices"], 5);
+    ok(&["convert", soup, out, "--weld", "1e-5"]);
+    assert_eq!(info(out, &[])["vertices"], 4);
+    assert_eq!(info(out, &[])["components"], 1);
+    ok(&["convert", soup, out, "--weld", "0.001%"]);
+    assert_eq!(info(out, &[])["vertices"], 4);
+    let e = bad(&["convert", soup, out, "--weld=-1"]);
+    assert!(e.contains("weld distance"), "{e}");
+    let strokes = dir.path().join("s.json");
+    std::fs::write(
+        &strokes,
+        r#"{"strokes": [{"brush": "smooth", "radius": 0.5, "strength": 0.5, "path": [[0.5,0.5,0]]}]}"#,
+    )
+    .unwrap();
+    ok(&["sculpt", soup, s(&strokes), out, "--weld", "1e-5"]);
+    assert_eq!(info(out, &[])["vertices"], 4);
+}

@@ -56,12 +56,74 @@ impl Content {
                 let poly = tri_to_poly(&t.compacted());
                 let imported = to_dlfl(&poly, ImportOptions::default()).map_err(|e| {
                     ServeError::Refused(format!(
-                        "the model tools need an orientable 2-manifold and this mesh is not one: {e}"
+                        "the model tools need an orientable 2-manifold and this mesh is not one ({}); press Make manifold first",
+                        without_flag(&e)
                     ))
                 })?;
                 Ok(Content::Model(imported.mesh))
             }
         }
+    }
+
+    /// The same workspace with the vertices closer than `share` of the
+    /// bounding-box diagonal welded (a scan's or a patch model's seams
+    /// that do not meet exactly), and a message saying what merged.
+    pub fn welded(&self, share: f64) -> Result<(Content, String), ServeError> {
+        if !(share.is_finite() && share >= 0.0) {
+            return Err(ServeError::BadRequest(format!(
+                "the weld distance must be a share of the mesh size of 0 or more, got {share}"
+            )));
+        }
+        let poly = self.to_poly();
+        let info = holey_mesh::analysis::analyze(&poly);
+        let diagonal = info.bbox.map_or(0.0, |[lo, hi]| {
+            glam::DVec3::from_array(lo).distance(glam::DVec3::from_array(hi))
+        });
+        let w = holey_mesh::analysis::weld_by_distance(&poly, share * diagonal)
+            .map_err(|e| ServeError::Refused(format!("weld: {e}")))?;
+        let message = format!(
+            "welded {} vertices closer than {:.3}% of the size{}",
+            w.merged_vertices,
+            share * 100.0,
+            if w.dropped_faces > 0 {
+                format!(", dropping {} collapsed faces", w.dropped_faces)
+            } else {
+                String::new()
+            }
+        );
+        let content = match self {
+            Content::Sculpt(_) => Content::Sculpt(poly_to_tri(&w.mesh)?),
+            Content::Model(_) => Content::Model(
+                to_dlfl(&w.mesh, ImportOptions::default())
+                    .map_err(|e| {
+                        ServeError::Refused(format!(
+                            "welding leaves a mesh the model tools cannot take ({}); weld in Sculpt, then press Make manifold",
+                            without_flag(&e)
+                        ))
+                    })?
+                    .mesh,
+            ),
+        };
+        Ok((content, message))
+    }
+
+    /// The mesh made a 2-manifold the model tools can take: non-manifold
+    /// and misoriented edges cut, non-manifold vertices split into one
+    /// copy per fan, degenerate faces dropped (the repair of `holey
+    /// convert --split-nonmanifold`), in the same workspace.
+    pub fn made_manifold(&self) -> Result<Content, ServeError> {
+        let poly = self.to_poly();
+        let imported = to_dlfl(
+            &poly,
+            ImportOptions {
+                split_nonmanifold: true,
+            },
+        )
+        .map_err(|e| ServeError::Refused(format!("the mesh cannot be made a 2-manifold: {e}")))?;
+        Ok(match self {
+            Content::Model(_) => Content::Model(imported.mesh),
+            Content::Sculpt(_) => Content::Sculpt(poly_to_tri(&to_poly(&imported.mesh).poly)?),
+        })
     }
 
     /// Converts to the sculpt workspace: faces are fan-triangulated.
@@ -71,6 +133,16 @@ impl Content {
             Content::Model(m) => Ok(Content::Sculpt(poly_to_tri(&to_poly(&m).poly)?)),
         }
     }
+}
+
+/// An import error without the command line's advice at its end (the
+/// modeler's repair is a button).
+fn without_flag(e: &holey_mesh::convert::ImportError) -> String {
+    let why = e.to_string();
+    why.split("; split it with")
+        .next()
+        .unwrap_or(&why)
+        .to_owned()
 }
 
 /// A polygon soup's faces fan-triangulated.
@@ -88,6 +160,12 @@ pub fn poly_to_tri(poly: &PolyMesh) -> Result<TriMesh, ServeError> {
 fn tri_to_poly(mesh: &TriMesh) -> PolyMesh {
     PolyMesh::from_faces(mesh.positions.clone(), &mesh.triangles)
 }
+
+/// Dynamic remeshing's default detail: on, at the mesh's own resolution.
+/// Sculpting with topology change wants it (§4 remeshes every frame): the
+/// cut leaves short edges where curves pass near vertices, and a brush
+/// stretches what it lifts.
+pub const DEFAULT_REMESH_DETAIL: f64 = 0.5;
 
 /// A rind being punched: the crust shown, and the mesh before it.
 pub struct RindMode {
@@ -132,7 +210,7 @@ impl Document {
             rind: None,
             stroke: None,
             busy: None,
-            remesh_detail: 0.0,
+            remesh_detail: DEFAULT_REMESH_DETAIL,
             display: Display::default(),
             index: ModelIndex::default(),
             stats: Value::Null,

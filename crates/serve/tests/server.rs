@@ -439,3 +439,58 @@ fn long_operations_report_progress_and_cancel() {
     assert!(r["message"].as_str().unwrap_or("").contains("faces"));
     assert_eq!(a.genus(), 0);
 }
+
+/// The repairs: an unwelded soup (two triangles of a square, corners
+/// repeated and one nudged by 1e-6 of the size) welded into one piece,
+/// and a bow tie (two triangles touching at a vertex, non-manifold) that
+/// the model workspace refuses until Make manifold splits its vertex.
+#[test]
+fn weld_and_make_manifold_repair_what_the_model_refuses() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    let soup = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1.000001 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n";
+    let (status, r) = upload(addr, "soup.obj", soup);
+    assert_eq!(status, 200, "{r}");
+    while a.state["stats"]["components"] != 2 {
+        a.pump_one();
+    }
+    // In the model workspace, welding the shared corner would pinch it.
+    let r = a.call(json!({"op": "weld", "distance": 0}));
+    assert_eq!(r["type"], "error");
+    assert!(!r["message"].as_str().unwrap_or("").contains("--"), "{r}");
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    // Identical positions only: the nudged corner stays apart.
+    a.ok(json!({"op": "weld", "distance": 0}));
+    assert_eq!(a.state["stats"]["vertices"], 5, "{}", a.state);
+    // Within 1e-4 of the diagonal: one square.
+    let r = a.ok(json!({"op": "weld", "distance": 1e-4}));
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("welded 1"),
+        "{r}"
+    );
+    assert_eq!(a.state["stats"]["vertices"], 4);
+    assert_eq!(a.state["stats"]["components"], 1);
+    let r = a.call(json!({"op": "weld", "distance": -1}));
+    assert_eq!(r["type"], "error");
+
+    let bowtie = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n";
+    let (status, r) = upload(addr, "bowtie.obj", bowtie);
+    assert_eq!(status, 200, "{r}");
+    while a.state["workspace"] != "sculpt" {
+        a.pump_one();
+    }
+    let r = a.call(json!({"op": "workspace", "workspace": "model"}));
+    assert_eq!(r["type"], "error");
+    let msg = r["message"].as_str().unwrap_or("");
+    assert!(
+        msg.contains("Make manifold") && !msg.contains("--"),
+        "{msg}"
+    );
+    a.ok(json!({"op": "make_manifold"}));
+    a.ok(json!({"op": "workspace", "workspace": "model"}));
+    assert_eq!(a.state["stats"]["components"], 2);
+    a.ok(json!({"op": "undo"}));
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(a.state["stats"]["components"], 1, "the bow tie is back");
+}

@@ -149,6 +149,29 @@ impl SurfaceAudit {
     }
 }
 
+/// What a regression of [`SurfaceAudit::regressions`] means to someone
+/// sculpting, in plain words ("open a hole", "pinch the surface at a
+/// point"); the regression itself when it is not one of those.
+pub fn in_plain_words(regression: &str) -> &str {
+    const WORDS: [(&str, &str); 5] = [
+        ("boundary loops", "open a hole"),
+        (
+            "non-manifold curves",
+            "join surfaces along an edge shared by more than two faces",
+        ),
+        ("pinched vertices", "pinch the surface at a point"),
+        ("degenerate triangles", "leave a flat sliver triangle"),
+        (
+            "intersecting triangle pairs",
+            "leave the surface passing through itself",
+        ),
+    ];
+    WORDS
+        .iter()
+        .find(|(key, _)| regression.starts_with(key))
+        .map_or(regression, |(_, plain)| plain)
+}
+
 impl std::fmt::Display for SurfaceAudit {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(

@@ -3,7 +3,7 @@
 use anyhow::Result;
 use holey_io::WriteOptions;
 
-use crate::input::{Input, load};
+use crate::input::{Input, WeldDistance, load, weld};
 use crate::output::{write_kernel, write_soup};
 
 #[derive(clap::Args)]
@@ -18,7 +18,8 @@ drops self-loops from face lists and omits two-gons and point-spheres.
 Examples:
   holey convert bunny.obj bunny.ply
   holey convert part.stl part.dlfl --split-nonmanifold
-  holey convert sierpinski.dlfl sierpinski.obj")]
+  holey convert sierpinski.dlfl sierpinski.obj
+  holey convert teapot.obj teapot.ply --weld 0.01%")]
 pub struct Args {
     /// Input mesh: a file or a primitive such as @torus.
     pub input: String,
@@ -31,6 +32,11 @@ pub struct Args {
     /// edges and split non-manifold vertices instead of failing.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    /// Merge vertices closer than this first (a length, or a share of the
+    /// bounding-box diagonal such as 0.01%; 0 merges identical positions):
+    /// the seams of scans and of patches that do not meet exactly.
+    #[arg(long, value_name = "DIST")]
+    pub weld: Option<WeldDistance>,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -38,7 +44,10 @@ pub fn run(args: Args) -> Result<()> {
         ascii: args.ascii,
         ..WriteOptions::default()
     };
-    let loaded = load(&args.input)?;
+    let mut loaded = load(&args.input)?;
+    if let (Some(d), Input::Soup(soup)) = (args.weld, &loaded.input) {
+        loaded.input = Input::Soup(weld(&args.input, soup, d)?);
+    }
     match loaded.input {
         Input::Soup(ref soup) => write_soup(&args.output, soup, &opts, args.split_nonmanifold),
         Input::Dlfl(_) => {

@@ -9,8 +9,9 @@ use holey_topo::SurfaceAudit;
 
 use crate::cmd::render::{options as render_options, write_picture};
 use crate::error::{bad_input, from_io};
+use crate::input::WeldDistance;
 use crate::progress::Progress;
-use crate::tri::{compact, load_triangles, write_triangles};
+use crate::tri::{compact, load_triangles, load_triangles_welded, write_triangles};
 
 #[derive(clap::Args)]
 #[command(after_help = "\
@@ -71,6 +72,11 @@ pub struct Args {
     /// pairs, and name whatever got worse.
     #[arg(long)]
     pub audit: bool,
+    /// Merge vertices closer than this before sculpting (a length, or a
+    /// share of the bounding-box diagonal such as 0.01%; 0 merges
+    /// identical positions): unwelded patch seams then move as one.
+    #[arg(long, value_name = "DIST")]
+    pub weld: Option<WeldDistance>,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -87,7 +93,10 @@ pub fn run(args: Args) -> Result<()> {
     let file = parse_strokes(&text)
         .map_err(|e: StrokeFileError| bad_input(format!("{}: {e}", args.strokes)))?;
     let opts = render_options(&args.size, &args.view, "z", false, false)?;
-    let mesh = load_triangles(&args.input)?;
+    let mesh = match args.weld {
+        Some(d) => load_triangles_welded(&args.input, d)?,
+        None => load_triangles(&args.input)?,
+    };
     let mut session = Session::new(mesh).map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
     session.set_remeshing(!args.no_remesh);
     let frames_dir = match &args.frames {

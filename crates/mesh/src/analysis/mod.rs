@@ -97,7 +97,7 @@ use serde::Serialize;
 
 use crate::PolyMesh;
 pub use dlfl::dlfl_info;
-pub use weld::weld_exact;
+pub use weld::{WeldError, Welded, weld_by_distance, weld_exact};
 
 /// Measures of a whole mesh. See the [module documentation](self) for the
 /// exact definitions. The fields are meaningful for any polygon mesh, so

@@ -1,4 +1,4 @@
-//! Welding of bit-identical positions.
+//! Welding of bit-identical positions, and by distance.
 
 use crate::PolyMesh;
 
@@ -64,5 +64,220 @@ pub fn weld_exact(mesh: &PolyMesh) -> PolyMesh {
         positions,
         face_offsets: mesh.face_offsets.clone(),
         face_indices,
+    }
+}
+
+/// What [`weld_by_distance`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Welded {
+    pub mesh: PolyMesh,
+    /// Vertices merged into another.
+    pub merged_vertices: usize,
+    /// Faces left with fewer than three distinct corners, dropped.
+    pub dropped_faces: usize,
+}
+
+/// Why [`weld_by_distance`] refused its input.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum WeldError {
+    #[error("the weld distance must be finite and not negative, got {0}")]
+    Distance(f64),
+    #[error("vertex {0} has a non-finite coordinate")]
+    NonFinite(usize),
+    #[error("face {face} refers to vertex {index}, but there are only {count} vertices")]
+    IndexOutOfRange {
+        face: usize,
+        index: u32,
+        count: usize,
+    },
+}
+
+/// Merges the vertices that lie within `distance` of one another
+/// (Euclidean, and transitively: a chain of close vertices becomes one),
+/// the weld-by-distance of modelers, for scans and soups whose seams do
+/// not meet exactly. Each group keeps the position of its lowest-numbered
+/// vertex, so no coordinate is invented, and the survivors keep their
+/// order. Within a face, consecutive corners that became one vertex are
+/// merged; a face left with fewer than three distinct corners is dropped.
+/// `distance` 0 merges exactly equal positions only (`-0.0 == 0.0`), like
+/// [`weld_exact`].
+///
+/// Close pairs are found on a grid of cells `distance` wide, so each
+/// vertex is compared with those in its 27 neighbouring cells: O(n) for
+/// the sparse contacts of a mesh's seams.
+pub fn weld_by_distance(mesh: &PolyMesh, distance: f64) -> Result<Welded, WeldError> {
+    if !(distance.is_finite() && distance >= 0.0) {
+        return Err(WeldError::Distance(distance));
+    }
+    let n = mesh.positions.len();
+    if let Some(v) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(WeldError::NonFinite(v));
+    }
+    for (face, f) in mesh.faces().enumerate() {
+        if let Some(&index) = f.iter().find(|&&i| i as usize >= n) {
+            return Err(WeldError::IndexOutOfRange {
+                face,
+                index,
+                count: n,
+            });
+        }
+    }
+    // Union of the exact classes, then of pairs within the distance.
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            let up = p[p[x as usize] as usize];
+            p[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+    fn join(p: &mut [u32], a: u32, b: u32) {
+        let (ra, rb) = (find(p, a), find(p, b));
+        if ra != rb {
+            p[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    let mut first_of: std::collections::HashMap<[u64; 3], u32> = std::collections::HashMap::new();
+    let key = |x: f64| if x == 0.0 { 0 } else { x.to_bits() };
+    for (i, p) in mesh.positions.iter().enumerate() {
+        let k = [key(p.x), key(p.y), key(p.z)];
+        let f = *first_of.entry(k).or_insert(i as u32);
+        join(&mut parent, f, i as u32);
+    }
+    if distance > 0.0 {
+        let cell = |p: glam::DVec3| {
+            let c = (p / distance).floor();
+            (c.x as i64, c.y as i64, c.z as i64)
+        };
+        let mut grid: std::collections::HashMap<(i64, i64, i64), Vec<u32>> =
+            std::collections::HashMap::new();
+        for (i, &p) in mesh.positions.iter().enumerate() {
+            grid.entry(cell(p)).or_default().push(i as u32);
+        }
+        let d2 = distance * distance;
+        for (i, &p) in mesh.positions.iter().enumerate() {
+            let (x, y, z) = cell(p);
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for dz in -1..=1 {
+                        let Some(others) = grid.get(&(x + dx, y + dy, z + dz)) else {
+                            continue;
+                        };
+                        for &j in others {
+                            if (j as usize) > i
+                                && p.distance_squared(mesh.positions[j as usize]) <= d2
+                            {
+                                join(&mut parent, i as u32, j);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Roots are the lowest index of their group, so they come first and
+    // every vertex finds its root's number already set.
+    let mut new_index = vec![0u32; n];
+    let mut positions = Vec::new();
+    for (i, p) in mesh.positions.iter().enumerate() {
+        let r = find(&mut parent, i as u32) as usize;
+        new_index[i] = if r == i {
+            positions.push(*p);
+            (positions.len() - 1) as u32
+        } else {
+            new_index[r]
+        };
+    }
+    let mut faces: Vec<Vec<u32>> = Vec::with_capacity(mesh.face_count());
+    let mut dropped = 0;
+    for f in mesh.faces() {
+        let mut g: Vec<u32> = Vec::with_capacity(f.len());
+        for &i in f {
+            let v = new_index[i as usize];
+            if g.last() != Some(&v) {
+                g.push(v);
+            }
+        }
+        while g.len() > 1 && g.first() == g.last() {
+            g.pop();
+        }
+        let mut distinct = g.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        if distinct.len() < 3 {
+            dropped += 1;
+        } else {
+            faces.push(g);
+        }
+    }
+    Ok(Welded {
+        merged_vertices: n - positions.len(),
+        dropped_faces: dropped,
+        mesh: PolyMesh::from_faces(positions, &faces),
+    })
+}
+
+#[cfg(test)]
+mod distance_tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// Two unit squares side by side as separate quads, the second's
+    /// shared corners off by `gap`.
+    fn two_squares(gap: f64) -> PolyMesh {
+        let positions = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(1.0 + gap, 0.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0 + gap, 0.0),
+        ];
+        PolyMesh::from_faces(positions, &[vec![0, 1, 2, 3], vec![4, 5, 6, 7]])
+    }
+
+    #[test]
+    fn close_seams_are_welded_and_far_ones_kept() {
+        let m = two_squares(1e-4);
+        let w = weld_by_distance(&m, 1e-3).unwrap();
+        assert_eq!(w.merged_vertices, 2);
+        assert_eq!(w.mesh.positions.len(), 6);
+        assert_eq!(w.dropped_faces, 0);
+        // The survivors keep the first vertex's position exactly.
+        assert_eq!(w.mesh.positions[1], DVec3::new(1.0, 0.0, 0.0));
+        let faces: Vec<Vec<u32>> = w.mesh.faces().map(|f| f.to_vec()).collect();
+        assert_eq!(faces, vec![vec![0, 1, 2, 3], vec![1, 4, 5, 2]]);
+        let kept = weld_by_distance(&m, 1e-5).unwrap();
+        assert_eq!(kept.merged_vertices, 0);
+    }
+
+    #[test]
+    fn collapsed_faces_are_dropped_and_bad_input_refused() {
+        let m = two_squares(0.0);
+        // Exact: only the identical corners.
+        assert_eq!(weld_by_distance(&m, 0.0).unwrap().merged_vertices, 2);
+        // So coarse the second square collapses to a segment.
+        let w = weld_by_distance(&m, 1.5).unwrap();
+        assert_eq!(w.dropped_faces, 2);
+        assert!(matches!(
+            weld_by_distance(&m, f64::NAN),
+            Err(WeldError::Distance(_))
+        ));
+        assert!(matches!(
+            weld_by_distance(&m, -1.0),
+            Err(WeldError::Distance(_))
+        ));
+        let mut bad = m.clone();
+        bad.positions[3].x = f64::INFINITY;
+        assert_eq!(weld_by_distance(&bad, 0.1), Err(WeldError::NonFinite(3)));
+        let mut out = m;
+        out.face_indices[2] = 99;
+        assert!(matches!(
+            weld_by_distance(&out, 0.1),
+            Err(WeldError::IndexOutOfRange { face: 0, .. })
+        ));
     }
 }

@@ -344,6 +344,24 @@ impl Shared {
                     Ok(json!({"message": "rind cancelled"}))
                 }
             }
+            "weld" | "make_manifold" => {
+                if doc.rind.is_some() {
+                    return Err(ServeError::Refused(
+                        "finish or cancel the rind first".into(),
+                    ));
+                }
+                let (content, message) = if op == "weld" {
+                    doc.content().welded(num_field(req, "distance")?)?
+                } else {
+                    (
+                        doc.content().made_manifold()?,
+                        "split the non-manifold edges and vertices".to_owned(),
+                    )
+                };
+                doc.commit(content);
+                self.publish(&doc);
+                Ok(json!({"message": message}))
+            }
             "set_remesh" => {
                 let detail = num_field(req, "detail")?;
                 doc.remesh_detail = detail.clamp(0.0, 1.0);
@@ -363,12 +381,24 @@ impl Shared {
                     doc.commit(Content::Sculpt(done.mesh));
                 }
                 self.publish(&doc);
-                Ok(json!({
+                let mut reply = json!({
                     "changes": r.changes,
                     "engine_runs": r.engine_runs,
                     "frames": r.frames,
                     "ms": r.seconds * 1e3,
-                }))
+                });
+                if !r.refused.is_empty() {
+                    let why: Vec<&str> = r
+                        .refused
+                        .iter()
+                        .map(|w| holey_topo::audit::in_plain_words(w))
+                        .collect();
+                    reply["message"] = json!(format!(
+                        "The drag was undone: releasing it here would {}.",
+                        why.join(" and ")
+                    ));
+                }
+                Ok(reply)
             }
             "" => Err(ServeError::BadRequest("the request has no \"op\"".into())),
             _ => Err(ServeError::BadRequest(format!("unknown op {op:?}"))),
