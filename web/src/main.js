@@ -435,8 +435,8 @@ window.addEventListener('keydown', (e) => {
     viewer?.setView();
   } else if (!mod && k === 'escape') {
     clearSelection();
-  } else if (!mod && app.state?.workspace === 'sculpt' && '1234'.includes(k) && k) {
-    setTool(['inflate', 'smooth', 'grab', 'move'][Number(k) - 1]);
+  } else if (!mod && app.state?.workspace === 'sculpt' && '12345'.includes(k) && k) {
+    setTool(['inflate', 'smooth', 'grab', 'move', 'move-piece'][Number(k) - 1]);
   }
 });
 
@@ -580,11 +580,13 @@ const INFLATE_PER_FRAME = 0.05;
 
 function beginStroke(hit, e) {
   const sign = $('deflate').checked !== e.ctrlKey ? -1 : 1;
+  // "Move piece" is the move brush without a radius: the whole piece.
+  const piece = app.tool === 'move-piece';
   const stroke = {
-    brush: app.tool,
+    brush: piece ? 'move' : app.tool,
     anchor: hit.point,
     normal: hit.normal,
-    radius: brushRadius(),
+    radius: piece ? 0 : brushRadius(),
     inflight: { t: e.timeStamp, measured: true },
     queued: null,
     ending: false,

@@ -22,7 +22,10 @@ pub enum Brush {
     Smooth,
     /// Hold part of the surface with a distance-based falloff and drag it.
     Grab,
-    /// Hold a whole connected component rigidly and drag it.
+    /// Drag a part rigidly: with a radius, the part of the picked piece
+    /// within it (held whole in the inner half, blended out to the rim:
+    /// [`crate::live::move_falloff`]); with radius 0, the whole connected
+    /// piece, as §4's move.
     Move,
 }
 

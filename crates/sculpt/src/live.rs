@@ -533,6 +533,20 @@ fn pick(
         });
     }
     let weights = match brush {
+        // A radius makes the move local: the picked piece's vertices
+        // within it, rigidly in the inner half (a plateau) and blending
+        // out to the rim.
+        Brush::Move if settings.radius > 0.0 => component_of(mesh, triangle)
+            .into_iter()
+            .zip(&mesh.positions)
+            .map(|(held, p)| {
+                if held {
+                    move_falloff(p.distance(picked), settings.radius)
+                } else {
+                    0.0
+                }
+            })
+            .collect(),
         Brush::Move => component_of(mesh, triangle)
             .into_iter()
             .map(|held| if held { 1.0 } else { 0.0 })
@@ -543,6 +557,19 @@ fn pick(
             .collect(),
     };
     Ok((weights, picked))
+}
+
+/// The local move's weight at `distance` from the pick: 1 within half
+/// the radius, then the brush falloff over the outer half
+/// (`falloff((d − r/2) / (r/2))`), 0 beyond: a part held rigidly,
+/// blended into the rest.
+pub fn move_falloff(distance: f64, radius: f64) -> f64 {
+    let half = 0.5 * radius;
+    if distance <= half {
+        if radius > 0.0 { 1.0 } else { 0.0 }
+    } else {
+        crate::brush::falloff(distance - half, half)
+    }
 }
 
 fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {

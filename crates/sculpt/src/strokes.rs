@@ -16,7 +16,9 @@
 //! path, a non-positive radius or a non-finite number is an error naming
 //! the stroke (numbered from 0, like faces). Each path point is one frame.
 //! `grab` takes an optional `strength` (default 1) that scales the drag;
-//! `move` takes only a path.
+//! `move` takes a path and an optional `radius`: without one (or 0) it
+//! moves the whole piece it picks, with one the part of it within the
+//! radius, held rigidly in the inner half and blended out to the rim.
 //!
 //! `remesh` is the target edge-length range of dynamic remeshing; without
 //! it the session derives one from the mesh's mean edge length
@@ -31,7 +33,7 @@ use crate::brush::Brush;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Stroke {
     pub brush: Brush,
-    /// World-space radius of the brush (unused by move).
+    /// World-space radius of the brush (move: 0 moves the whole piece).
     pub radius: f64,
     /// Inflate: displacement per frame at the centre (negative deflates).
     /// Smooth: fraction of a Laplacian step, in `[0, 1]`. Grab: scale of
@@ -97,6 +99,8 @@ enum StrokeSpec {
         path: Vec<[f64; 3]>,
     },
     Move {
+        #[serde(default)]
+        radius: f64,
         path: Vec<[f64; 3]>,
     },
 }
@@ -156,10 +160,15 @@ fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
             strength,
             path,
         } => (Brush::Grab, radius, strength.unwrap_or(1.0), path),
-        StrokeSpec::Move { path } => (Brush::Move, 0.0, 1.0, path),
+        StrokeSpec::Move { radius, path } => (Brush::Move, radius, 1.0, path),
     };
     if brush != Brush::Move && !(radius.is_finite() && radius > 0.0) {
         return Err(format!("{brush}: radius must be positive, got {radius}"));
+    }
+    if brush == Brush::Move && !(radius.is_finite() && radius >= 0.0) {
+        return Err(format!(
+            "move: radius must be 0 (the whole piece) or positive (a part of it), got {radius}"
+        ));
     }
     if !strength.is_finite() {
         return Err(format!("{brush}: strength must be finite, got {strength}"));
@@ -257,8 +266,12 @@ mod tests {
         let (_, r) = stroke_error(r#"{"strokes": [{"brush": "move", "path": [[0,0]]}]}"#);
         assert!(!r.is_empty());
         let (_, r) =
-            stroke_error(r#"{"strokes": [{"brush": "move", "radius": 1, "path": [[0,0,0]]}]}"#);
+            stroke_error(r#"{"strokes": [{"brush": "move", "radius": -1, "path": [[0,0,0]]}]}"#);
         assert!(r.contains("radius"), "{r}");
+        let local =
+            parse_strokes(r#"{"strokes": [{"brush": "move", "radius": 0.5, "path": [[0,0,0]]}]}"#)
+                .unwrap();
+        assert_eq!(local.strokes[0].radius, 0.5);
     }
 
     #[test]

@@ -923,3 +923,48 @@ fn strong_circling_inflate_keeps_the_solid() {
     }
     assert!(subframes >= 10, "the frames were split: {subframes}");
 }
+
+/// The local move: with a radius, move drags the part of the picked
+/// piece within it, every vertex by `move_falloff(d) × offset` (the whole
+/// offset inside half the radius, blending to nothing at the rim) and
+/// the rest not at all; without one it drags the whole piece.
+#[test]
+fn local_move_drags_the_part_within_its_radius() {
+    let start = sphere(DVec3::ZERO);
+    let mut s = Session::new(start.clone()).unwrap();
+    s.set_remeshing(false);
+    // The drag's offset as the stroke computes it: last point − first.
+    let offset = DVec3::new(0.0, 0.0, 1.1) - DVec3::new(0.0, 0.0, 1.0);
+    let mv = stroke(
+        Brush::Move,
+        0.6,
+        1.0,
+        &[[0., 0., 1.], [0., 0., 1.05], [0., 0., 1.1]],
+    );
+    let r = s.apply_stroke(&mv).unwrap();
+    assert!(r.refused.is_empty());
+    let m = s.mesh();
+    assert_eq!(m.triangles, start.triangles, "nothing collided");
+    let picked = DVec3::new(0.0, 0.0, 1.0);
+    let mut rigid = 0;
+    for (p0, p1) in start.positions.iter().zip(&m.positions) {
+        let d = p0.distance(picked);
+        let want = *p0 + offset * holey_sculpt::live::move_falloff(d, 0.6);
+        assert!((*p1 - want).length() < 1e-12, "{p0}: {p1} vs {want}");
+        if d < 0.3 {
+            assert_eq!(*p1, *p0 + offset, "held rigidly");
+            rigid += 1;
+        }
+        if d >= 0.6 {
+            assert_eq!(p1, p0);
+        }
+    }
+    assert!(rigid > 3, "some vertices inside half the radius");
+    // Radius 0: the whole piece.
+    let whole = stroke(Brush::Move, 0.0, 1.0, &[[0., 0., 1.], [0., 0., 1.1]]);
+    let mut s = Session::new(start.clone()).unwrap();
+    s.apply_stroke(&whole).unwrap();
+    for (p0, p1) in start.positions.iter().zip(&s.mesh().positions) {
+        assert!((*p1 - *p0 - offset).length() < 1e-12);
+    }
+}

@@ -32,6 +32,11 @@ impl Shared {
         if brush != Brush::Move && radius <= 0.0 {
             return Err(ServeError::BadRequest("the radius must be positive".into()));
         }
+        if brush == Brush::Move && radius < 0.0 {
+            return Err(ServeError::BadRequest(
+                "a move's radius must be 0 (the whole piece) or positive".into(),
+            ));
+        }
         let point = point_field(req)?;
         // A frame that pushes the surface farther than a fraction of the
         // brush folds it over itself many times at once; every tab would
