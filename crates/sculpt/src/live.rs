@@ -14,8 +14,11 @@
 use std::time::Instant;
 
 use glam::DVec3;
+use holey_geom::position_key;
 use holey_topo::intersect::IntersectError;
-use holey_topo::{Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded};
+use holey_topo::{
+    Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
+};
 
 use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
 use crate::remesh::{RemeshOptions, RemeshReport, default_range, remesh_in_place_checked};
@@ -80,6 +83,8 @@ pub struct LiveStroke {
     /// Collapses of the short edges a topology change leaves, when
     /// remeshing is off (see [`cleanup_options`]).
     cleanup: Option<RemeshOptions>,
+    /// Positions of the vertices the guard held in earlier frames.
+    held: std::collections::HashSet<[u64; 3]>,
     remeshed: RemeshTally,
     state: State,
     frames: usize,
@@ -127,6 +132,7 @@ impl LiveStroke {
             preview: false,
             remesh: None,
             cleanup: cleanup_options(mesh),
+            held: std::collections::HashSet::new(),
             remeshed: RemeshTally::default(),
             state,
             frames: 0,
@@ -189,6 +195,7 @@ impl LiveStroke {
             State::Paint { mesh } => {
                 let mut step = PaintStep {
                     options: &self.options,
+                    held: &mut self.held,
                     remesh: self.remesh.as_ref(),
                     cleanup: self.cleanup.as_ref(),
                     report: &mut self.report,
@@ -316,6 +323,8 @@ pub const MAX_SUBFRAME_DEPTH: u32 = 6;
 /// What a paint frame writes into its stroke.
 struct PaintStep<'a> {
     options: &'a Options,
+    /// Positions of the vertices the stroke's frames had to hold.
+    held: &'a mut std::collections::HashSet<[u64; 3]>,
     remesh: Option<&'a RemeshOptions>,
     cleanup: Option<&'a RemeshOptions>,
     report: &'a mut StrokeReport,
@@ -404,9 +413,22 @@ impl PaintStep<'_> {
         if end != mesh.positions {
             // Only the region the brush reaches is recomputed, and never
             // left worse than it was (the guard).
-            match topology_change_guarded(mesh, &end, self.options) {
+            // Vertices an earlier frame of the stroke had to hold stay
+            // held: the contact that made them is still there.
+            let already: Vec<bool> = if self.held.is_empty() {
+                Vec::new()
+            } else {
+                mesh.positions
+                    .iter()
+                    .zip(&end)
+                    .map(|(p, q)| p != q && self.held.contains(&position_key(*p)))
+                    .collect()
+            };
+            match topology_change_guarded_holding(mesh, &end, self.options, &already) {
                 Ok(guarded) => {
-                    if guarded.attempts > 1 {
+                    self.held
+                        .extend(guarded.held_positions.iter().map(|&p| position_key(p)));
+                    if guarded.attempts > 1 || guarded.held_vertices > 0 {
                         self.report.guarded_frames += 1;
                         self.report.held_vertices += guarded.held_vertices;
                         self.report.held_frames += usize::from(guarded.held_all);

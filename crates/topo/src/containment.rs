@@ -57,32 +57,50 @@ const SURE: f64 = 0.05;
 const MAX_LABELLED_PIECES: usize = 4096;
 
 /// The surface around a region, for winding numbers: the triangles of the
-/// whole mesh outside the region, at the frame's end positions.
+/// whole mesh outside the region, at the frame's end positions. Gathered
+/// on first use: most frames cross nothing and never need them.
 pub(crate) struct Surroundings<'a> {
-    pub triangles: Vec<[u32; 3]>,
+    mesh: &'a TriMesh,
+    inside: &'a [bool],
     pub positions: &'a [DVec3],
-    /// The sign of the whole surface's signed volume at the end: +1 when
-    /// it faces outward (inside has winding number +1), −1 when inward.
-    pub orientation: f64,
+    gathered: std::sync::OnceLock<(Vec<[u32; 3]>, f64)>,
 }
 
 impl<'a> Surroundings<'a> {
     /// The triangles of `mesh` that `inside` does not flag, at `end`.
-    pub fn new(mesh: &TriMesh, inside: &[bool], end: &'a [DVec3]) -> Surroundings<'a> {
-        let mut volume = 0.0;
-        let mut triangles = Vec::new();
-        for (t, &r) in mesh.triangles.iter().zip(inside) {
-            let [a, b, c] = t.map(|v| end[v as usize]);
-            volume += a.dot(b.cross(c));
-            if !r {
-                triangles.push(*t);
-            }
-        }
+    pub fn new(mesh: &'a TriMesh, inside: &'a [bool], end: &'a [DVec3]) -> Surroundings<'a> {
         Surroundings {
-            triangles,
+            mesh,
+            inside,
             positions: end,
-            orientation: if volume < 0.0 { -1.0 } else { 1.0 },
+            gathered: std::sync::OnceLock::new(),
         }
+    }
+
+    fn gathered(&self) -> &(Vec<[u32; 3]>, f64) {
+        self.gathered.get_or_init(|| {
+            let mut volume = 0.0;
+            let mut triangles = Vec::new();
+            for (t, &r) in self.mesh.triangles.iter().zip(self.inside) {
+                let [a, b, c] = t.map(|v| self.positions[v as usize]);
+                volume += a.dot(b.cross(c));
+                if !r {
+                    triangles.push(*t);
+                }
+            }
+            (triangles, if volume < 0.0 { -1.0 } else { 1.0 })
+        })
+    }
+
+    /// The outside triangles.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.gathered().0
+    }
+
+    /// The sign of the whole surface's signed volume at the end: +1 when
+    /// it faces outward (inside has winding number +1), −1 when inward.
+    pub fn orientation(&self) -> f64 {
+        self.gathered().1
     }
 }
 
@@ -105,6 +123,24 @@ pub(crate) fn by_containment(
     }
     let g = geometry(sub, end, options)?;
     let (edges, ids, x) = (g.edges, g.ids, g.x);
+    if x.pairs.is_empty() {
+        // Nothing crosses at the end: the frame only moves the surface.
+        let n = sub.positions.len();
+        return Ok(Some(Outcome {
+            mesh: TriMesh {
+                positions: end.to_vec(),
+                triangles: sub.triangles.clone(),
+            },
+            report: Report {
+                solid_input: true,
+                ..Report::default()
+            },
+            raw_odd: vec![false; n],
+            corrected_odd: vec![false; n],
+            intersections: x,
+            vertex_origin: (0..n as u32).collect(),
+        }));
+    }
     if old_curves(sub, &x)?.contains(&true) {
         return Ok(None);
     }
@@ -142,12 +178,12 @@ pub(crate) fn by_containment(
     }
     // The sign interpretation: inside where the containment number,
     // counted with the surface's own orientation, is at least 1.
-    let inside = |w: f64| surroundings.orientation * w >= 0.5;
+    let inside = |w: f64| surroundings.orientation() * w >= 0.5;
     let arr_at = |v: u32| arr.positions[v as usize];
     let out_at = |v: u32| surroundings.positions[v as usize];
     let near = WindingField::new(&arr.triangles, &arr_at);
-    let far = WindingField::new(&surroundings.triangles, &out_at);
-    let outward = surroundings.orientation > 0.0;
+    let far = WindingField::new(surroundings.triangles(), &out_at);
+    let outward = surroundings.orientation() > 0.0;
     // Per region: keep, and flip (its inside lies on the other side of it
     // than the rest of the surface's does).
     let mut label = vec![(true, false); count];

@@ -26,7 +26,7 @@ pub use correct::Scheme;
 pub use engine::{
     Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
 };
-pub use guard::{GuardedReport, topology_change_guarded};
+pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_holding};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;
 pub use union::{PreparedSolid, UnionError, union, union_prepared, union_robust};
