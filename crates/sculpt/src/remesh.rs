@@ -35,6 +35,7 @@
 
 use glam::DVec3;
 use holey_topo::TriMesh;
+use holey_topo::audit::is_flat;
 use holey_topo::mesh::MeshError;
 
 use crate::strokes::Remesh;
@@ -682,7 +683,25 @@ impl Work {
         if ts.is_empty() || ts.iter().any(|&t| degenerate(self.tris[t as usize])) {
             return false;
         }
-        let m = self.add_vertex(0.5 * (self.pos[a as usize] + self.pos[b as usize]));
+        // Both halves of every triangle must keep an area: a triangle
+        // whose opposite corner lies exactly on the edge (a flat sliver a
+        // scan or a cut left) would otherwise give a zero-length edge at
+        // the midpoint, and the passes after would multiply it.
+        let mid = 0.5 * (self.pos[a as usize] + self.pos[b as usize]);
+        let halves_flat = ts.iter().any(|&t| {
+            let tri = self.tris[t as usize];
+            let place = |end: u32| tri.map(|v| if v == end { mid } else { self.pos[v as usize] });
+            is_flat(place(a)) || is_flat(place(b))
+        });
+        if halves_flat {
+            return false;
+        }
+        let m = self.add_vertex(mid);
+        // The midpoint of an edge leaving the active region is not active:
+        // a long edge reaching out of the brush (a CAD model's fan across
+        // a whole face) is halved towards the region, not cut all along
+        // its length into a strip the brush never touched.
+        self.active[m as usize] = self.active[a as usize] && self.active[b as usize];
         for t in ts {
             self.touch(t);
             let tri = self.tris[t as usize];
@@ -857,7 +876,7 @@ impl Work {
             let tri = self.tris[t as usize];
             let old = self.corners(tri);
             let new = tri.map(new_pos);
-            if !self.normal_ok(old, new, reference) {
+            if !self.normal_ok(old, new, reference) || is_flat(new) {
                 return false;
             }
             new_worst = new_worst.max(self.violation(new));
@@ -978,6 +997,9 @@ impl Work {
         let new_t1 = [a, d, c];
         let new_t2 = [d, b, c];
         let new = [self.corners(new_t1), self.corners(new_t2)];
+        if new.iter().any(|&p| is_flat(p)) {
+            return false;
+        }
         let reference = normal(old[0]) + normal(old[1]);
         for n in &new {
             for o in &old {
@@ -1434,6 +1456,86 @@ pub(crate) mod tests {
             let c = out.corners(t);
             assert!(normal(c).dot(c[0] + c[1] + c[2]) > 0.0, "inverted {t}");
         }
+    }
+
+    /// A flat sliver (its third corner exactly at the middle of its long
+    /// edge, as a cut or a scan leaves them) beside a fair triangle: the
+    /// long edge is not split there (its midpoint is the sliver's
+    /// corner, so a split would make a zero-length edge), and no pass
+    /// makes a triangle of zero area that was not there before, nor a
+    /// zero-length edge. The fuzz loop once grew one such sliver into
+    /// hundreds of coincident vertices over four remeshings.
+    #[test]
+    fn a_flat_sliver_is_never_split_into_a_zero_length_edge() {
+        let m = TriMesh {
+            positions: vec![
+                DVec3::new(0.0, 0.0, 0.0),
+                DVec3::new(1.0, 0.0, 0.0),
+                DVec3::new(0.5, 0.0, 0.0),
+                DVec3::new(0.5, -0.8, 0.0),
+                DVec3::new(0.5, 0.7, 0.1),
+            ],
+            // The sliver (0, 1, 2) over the edge 0–1, the fair (1, 0, 3)
+            // under it, and (0, 2, 4), (2, 1, 4) closing the fan above.
+            triangles: vec![[0, 1, 2], [1, 0, 3], [0, 2, 4], [2, 1, 4]],
+        };
+        let flat = |t: &TriMesh| {
+            t.triangles
+                .iter()
+                .filter(|&&tri| holey_topo::audit::is_degenerate(t, tri))
+                .count()
+        };
+        assert_eq!(flat(&m), 1);
+        let opts = RemeshOptions::new(range(0.05, 0.3));
+        // The split itself refuses (a collapse might otherwise remove the
+        // zero-length edge again here, but cannot where the link
+        // condition forbids it, as in the fuzz loop's case).
+        let mut report = RemeshReport::default();
+        let mut work = Work::load(&m, &all(&m), &opts, &mut report).unwrap();
+        assert!(!work.split(0, 1), "the sliver's long edge was split");
+        assert!(work.split(0, 3), "a fair edge is split");
+        let (out, r) = remesh_checked(&m, &all(&m), &opts);
+        assert!(r.splits > 0, "the fair triangles are refined: {r:?}");
+        assert!(flat(&out) <= 1, "{} flat triangles", flat(&out));
+        for t in &out.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                assert_ne!(
+                    out.positions[a], out.positions[b],
+                    "zero-length edge {a}-{b}"
+                );
+            }
+        }
+    }
+
+    /// A CAD model's long thin triangles reaching into the brush: with
+    /// one corner of a 10 × 0.1 strip active and edges to be at most
+    /// 0.3 long, the long edges are halved towards the active corner (a
+    /// logarithmic number of splits: the midpoint of an edge leaving the
+    /// active region is not active), not cut along their whole length
+    /// into some 70 pieces the brush never reached; and the far end of the
+    /// strip keeps its triangle.
+    #[test]
+    fn long_edges_leaving_the_region_are_halved_towards_it() {
+        let m = TriMesh {
+            positions: vec![
+                DVec3::new(0.0, 0.0, 0.0),
+                DVec3::new(10.0, 0.0, 0.0),
+                DVec3::new(10.0, 0.1, 0.0),
+                DVec3::new(0.0, 0.1, 0.0),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        };
+        let active = vec![true, false, false, false];
+        let opts = RemeshOptions::new(range(0.1, 0.3));
+        let (out, r) = remesh_checked(&m, &active, &opts);
+        assert!(r.splits > 0, "{r:?}");
+        // Two long edges at the active corner, each halved about
+        // log2(10 / 0.3) ≈ 5 times, and a few splits of the short edges
+        // those leave.
+        assert!(r.splits <= 20, "{} splits", r.splits);
+        let near = out.positions.iter().filter(|p| p.x > 5.0).count();
+        assert!(near <= 3, "{near} vertices in the strip's far half");
     }
 
     #[test]

@@ -201,7 +201,13 @@ pub fn is_degenerate(mesh: &TriMesh, t: [u32; 3]) -> bool {
     if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
         return true;
     }
-    let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+    is_flat(t.map(|v| mesh.positions[v as usize]))
+}
+
+/// The three points are exactly collinear (or coincide): the triangle
+/// they make has zero area. Exact: a triangle is flat exactly when its
+/// projections onto the three coordinate planes all are.
+pub fn is_flat([a, b, c]: [DVec3; 3]) -> bool {
     let planes: [fn(DVec3) -> DVec2; 3] = [
         |p| DVec2::new(p.x, p.y),
         |p| DVec2::new(p.y, p.z),

@@ -602,7 +602,9 @@ pub(crate) fn ccd_options(options: &Options, frame: u64) -> CcdOptions {
 /// thin that rounding the constructed points makes them cross; equal for
 /// vertices that are one point
 /// throughout the motion, so a soup's corners stay together). The report
-/// counts the retries.
+/// counts the retries. A retry that fails (the offsets tangle slivers far
+/// thinner than themselves into more intersections than a frame may
+/// have) ends the retries, and the last result stands.
 pub fn topology_change(
     mesh: &TriMesh,
     end: &[DVec3],
@@ -632,7 +634,13 @@ pub fn topology_change(
             .zip(&ids)
             .map(|(p, &id)| *p + jitter(id, k) * size)
             .collect();
-        let mut out = topology_change_once(mesh, &jittered, options)?;
+        // A retry only ever replaces a result: where the offsets tangle
+        // a crumpled region (slivers far thinner than the offset) into
+        // more intersections than a frame may have, the first result
+        // stands and the caller's audit judges it.
+        let Ok(mut out) = topology_change_once(mesh, &jittered, options) else {
+            break;
+        };
         out.report.perturbation_retries = k;
         let good = !suspect(&out);
         last = out;
