@@ -65,6 +65,10 @@ enum Command {
     Topo(cmd::topo::Args),
     /// Boolean union of two solids by moving one into the other (Theorem 5.2).
     Union(cmd::union::Args),
+    /// Boolean intersection A ∩ B of two closed solids.
+    Intersection(cmd::boolean::Args),
+    /// Boolean difference A − B of two closed solids.
+    Difference(cmd::boolean::Args),
     /// Exact self-intersections: pairs, points, edges and curves.
     Selfint(cmd::selfint::Args),
     /// Cut and glue a surface along its self-intersections (the arrangement).
@@ -107,6 +111,8 @@ fn main() {
         Command::Subdivide(a) => cmd::subdivide::run(a),
         Command::Topo(a) => cmd::topo::run(a),
         Command::Union(a) => cmd::union::run(a),
+        Command::Intersection(a) => cmd::boolean::run(a, holey_topo::Operation::Intersection),
+        Command::Difference(a) => cmd::boolean::run(a, holey_topo::Operation::Difference),
         Command::Selfint(a) => cmd::selfint::run(a),
         Command::Resolve(a) => cmd::resolve::run(a),
         Command::Sculpt(a) => cmd::sculpt::run(a),

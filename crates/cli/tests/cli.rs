@@ -102,6 +102,8 @@ fn help_has_examples_for_every_command() {
         "primitive",
         "topo",
         "union",
+        "intersection",
+        "difference",
         "selfint",
         "resolve",
         "sculpt",
@@ -888,6 +890,70 @@ fn union_of_lattice_aligned_cubes() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
     assert_eq!(report["perturbation_retries"], 0);
+}
+
+/// `holey intersection` and `holey difference` of two cubes [-1,1]³, the
+/// second moved by (0.9, 0.7, 0.55) (general position: no faces in one
+/// plane): the overlap is the box 1.1 × 1.3 × 1.45, so A ∩ B has that
+/// volume and A − B the rest of 8; both are single closed solids of genus
+/// 0 without self-intersections. An open B is refused by name, and
+/// nothing is written.
+#[test]
+fn intersection_and_difference_of_two_cubes() {
+    let dir = tmp();
+    let a = dir.path().join("a.obj");
+    let b = dir.path().join("b.obj");
+    ok(&["primitive", "@cube:4", s(&a)]);
+    ok(&["primitive", "@cube:4", s(&b)]);
+    let text = std::fs::read_to_string(&b).unwrap();
+    let moved: String = text
+        .lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(rest) => {
+                let c: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|x| x.parse().unwrap())
+                    .collect();
+                format!("v {} {} {}\n", c[0] + 0.9, c[1] + 0.7, c[2] + 0.55)
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    std::fs::write(&b, moved).unwrap();
+    let overlap = 1.1 * 1.3 * 1.45;
+    for (cmd, want) in [("intersection", overlap), ("difference", 8.0 - overlap)] {
+        let out = dir.path().join(format!("{cmd}.obj"));
+        let r = dir.path().join(format!("{cmd}.json"));
+        ok(&[cmd, s(&a), s(&b), s(&out), "--report", s(&r)]);
+        let m = info(s(&out), &[]);
+        assert_eq!(m["closed"], true, "{cmd}");
+        assert_eq!(m["manifold"], true, "{cmd}");
+        assert_eq!(m["components"], 1, "{cmd}");
+        assert_eq!(m["genus"], 0, "{cmd}");
+        let v = m["volume"].as_f64().unwrap();
+        assert!(
+            (v - want).abs() < 1e-12,
+            "{cmd}: volume {v}, expected {want}"
+        );
+        let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&out)])).unwrap();
+        assert_eq!(si["intersecting_pairs"], 0, "{cmd}");
+        let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+        assert!(
+            report["intersection_curves"].as_u64().unwrap() >= 1,
+            "{cmd}"
+        );
+    }
+    // An open solid is refused, naming it; no output appears.
+    let open = dir.path().join("open.obj");
+    let text = std::fs::read_to_string(&b).unwrap();
+    let mut lines: Vec<&str> = text.lines().collect();
+    let last_face = lines.iter().rposition(|l| l.starts_with("f ")).unwrap();
+    lines.remove(last_face);
+    std::fs::write(&open, lines.join("\n")).unwrap();
+    let out = dir.path().join("never.obj");
+    let e = bad(&["difference", s(&a), s(&open), s(&out)]);
+    assert!(e.contains("solid B is not closed"), "{e}");
+    assert!(!out.exists());
 }
 
 /// `holey union` of two unit icospheres one unit apart along x, through

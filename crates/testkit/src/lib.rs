@@ -59,6 +59,24 @@ pub fn shared_meshes() -> Option<PathBuf> {
     root.is_dir().then(|| root.canonicalize().unwrap_or(root))
 }
 
+/// The shared Boolean corpus (`../shared/data/corpus`: the EMBER pairs and
+/// the overlapping shells), or `None` when it is absent; the variable
+/// `HOLEY_SHARED_CORPUS` points elsewhere. Prints a visible SKIP line
+/// naming `test` when it is absent.
+pub fn shared_corpus_or_skip(test: &str) -> Option<PathBuf> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/corpus");
+    let dir = match std::env::var("HOLEY_SHARED_CORPUS") {
+        Ok(dir) => Some(PathBuf::from(dir)).filter(|p| p.is_dir()),
+        Err(_) => root.is_dir().then(|| root.canonicalize().unwrap_or(root)),
+    };
+    if dir.is_none() {
+        eprintln!(
+            "SKIP {test}: ../shared/data/corpus is absent (set HOLEY_SHARED_CORPUS to point at it)"
+        );
+    }
+    dir
+}
+
 /// Returns the shared mesh folder, or prints a visible SKIP line naming the
 /// test and returns `None`.
 pub fn shared_meshes_or_skip(test: &str) -> Option<PathBuf> {

@@ -29,4 +29,7 @@ pub use engine::{
 pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_holding};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;
-pub use union::{PreparedSolid, UnionError, union, union_prepared, union_robust};
+pub use union::{
+    Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,
+    union_prepared, union_robust,
+};

@@ -87,6 +87,53 @@ impl std::fmt::Display for Solid {
     }
 }
 
+/// A Boolean operation on two solids, each point of space classified by
+/// its containment in A and in B.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Operation {
+    /// A ∪ B: the surface of each outside the other.
+    #[default]
+    Union,
+    /// A ∩ B: the surface of each inside the other.
+    Intersection,
+    /// A − B: A's surface outside B, and B's surface inside A turned
+    /// inside out (it faces into B's former volume, which is outside).
+    Difference,
+}
+
+impl Operation {
+    /// Whether the part of `solid`'s surface that lies inside the other
+    /// solid (`inside`) or outside it is deleted.
+    fn deletes(self, solid: Solid, inside: bool) -> bool {
+        match (self, solid) {
+            (Operation::Union, _) | (Operation::Difference, Solid::A) => inside,
+            (Operation::Intersection, _) | (Operation::Difference, Solid::B) => !inside,
+        }
+    }
+
+    /// The name used in messages and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Operation::Union => "union",
+            Operation::Intersection => "intersection",
+            Operation::Difference => "difference",
+        }
+    }
+}
+
+/// B as the operation takes it: for a difference, turned inside out (its
+/// kept part is the wall of the hole it leaves in A, facing into it).
+fn operand(b: &TriMesh, op: Operation) -> std::borrow::Cow<'_, TriMesh> {
+    if op == Operation::Difference {
+        std::borrow::Cow::Owned(TriMesh {
+            positions: b.positions.clone(),
+            triangles: b.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect(),
+        })
+    } else {
+        std::borrow::Cow::Borrowed(b)
+    }
+}
+
 /// The combined mesh of A and B and what the union needs of it.
 struct Pair {
     mesh: TriMesh,
@@ -293,9 +340,35 @@ impl From<MeshError> for UnionError {
 /// vertex (A's, then B's), and the report has no collisions.
 /// `options.scheme`, `float_ccd` and `solid_guard` play no part.
 pub fn union(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
+    boolean(a, b, Operation::Union, options)
+}
+
+/// The operation `op` on the solids bounded by the closed surfaces `a`
+/// and `b`: [`union()`]'s containment parity, with the part of each
+/// surface inside or outside the other deleted as `op` says (for a
+/// difference, B turned inside out first, so that the kept part of B
+/// faces into the hole). The output numbers A's vertices first, then
+/// B's.
+pub fn boolean(
+    a: &TriMesh,
+    b: &TriMesh,
+    op: Operation,
+    options: &Options,
+) -> Result<Outcome, UnionError> {
     let started = Instant::now();
-    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(b));
-    unite(a, &pa?, b, &pb?, options, started)
+    let b = operand(b, op);
+    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(&b));
+    unite(a, &pa?, &b, &pb?, op, options, started)
+}
+
+/// A ∩ B of two closed solids ([`boolean`], robust as [`union_robust`]).
+pub fn intersection(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
+    boolean_robust(a, b, Operation::Intersection, options)
+}
+
+/// A − B of two closed solids ([`boolean`], robust as [`union_robust`]).
+pub fn difference(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
+    boolean_robust(a, b, Operation::Difference, options)
 }
 
 /// The perturbations of B that [`union_robust`] tries in turn, as
@@ -350,22 +423,33 @@ pub fn nudge(a: &TriMesh, b: &TriMesh, k: usize) -> DVec3 {
 /// touching that the perturbation resolves well (faces meeting from
 /// opposite sides) is left exact: the first attempt moves nothing.
 pub fn union_robust(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
+    boolean_robust(a, b, Operation::Union, options)
+}
+
+/// [`boolean`], robust to coplanar contact as [`union_robust`] is.
+pub fn boolean_robust(
+    a: &TriMesh,
+    b: &TriMesh,
+    op: Operation,
+    options: &Options,
+) -> Result<Outcome, UnionError> {
     let started = Instant::now();
-    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(b));
+    let b = operand(b, op);
+    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(&b));
     let (pa, pb) = (pa?, pb?);
     let manifold_inputs = pa.oriented() && pb.oriented();
-    let mut out = unite(a, &pa, b, &pb, options, started)?;
+    let mut out = unite(a, &pa, &b, &pb, op, options, started)?;
     for k in 1..NUDGES.len() {
         if !manifold_inputs || out.mesh.is_closed_manifold() {
             break;
         }
-        let d = nudge(a, b, k);
+        let d = nudge(a, &b, k);
         let moved = TriMesh {
             positions: b.positions.iter().map(|p| *p + d).collect(),
             triangles: b.triangles.clone(),
         };
         let pm = Parts::new(&moved)?;
-        out = unite(a, &pa, &moved, &pm, options, started)?;
+        out = unite(a, &pa, &moved, &pm, op, options, started)?;
         out.report.perturbation_retries = k;
     }
     Ok(out)
@@ -383,16 +467,20 @@ pub fn union_prepared(
         &a.parts,
         &b.mesh,
         &b.parts,
+        Operation::Union,
         options,
         Instant::now(),
     )
 }
 
+// One argument per part of the problem; a struct would only rename them.
+#[allow(clippy::too_many_arguments)]
 fn unite(
     a: &TriMesh,
     pa: &Parts,
     b: &TriMesh,
     pb: &Parts,
+    op: Operation,
     options: &Options,
     started: Instant,
 ) -> Result<Outcome, UnionError> {
@@ -409,7 +497,8 @@ fn unite(
     let ids = identities(&pair);
     let (tree_a, tree_b) = (&pa.tree, &pb.tree);
     let oriented = pa.oriented() && pb.oriented();
-    let outward = pa.outward && pb.outward;
+    // A difference takes B inside out: then B faces inward.
+    let outward = pa.outward && pb.outward == (op != Operation::Difference);
     let limit = options
         .max_intersecting_pairs
         .unwrap_or_else(|| default_pair_limit(mesh.triangles.len()));
@@ -473,14 +562,17 @@ fn unite(
     for v in 0..n as u32 {
         let root = find(&mut parent, v);
         odd[v as usize] = if root == v {
-            let (tree, offset) = other(pair.solid_of_vertex(v));
+            let solid = pair.solid_of_vertex(v);
+            let (tree, offset) = other(solid);
             cast += 1;
-            rays.inside(
-                SymPoint::new(pos[v as usize], ids[v as usize]),
-                tree,
-                offset,
-            )
-            .ok_or(UnionError::TooLarge)?
+            let inside = rays
+                .inside(
+                    SymPoint::new(pos[v as usize], ids[v as usize]),
+                    tree,
+                    offset,
+                )
+                .ok_or(UnionError::TooLarge)?;
+            op.deletes(solid, inside)
         } else {
             // Roots are the smallest vertex of their component, so they
             // come first.
@@ -497,8 +589,10 @@ fn unite(
             .map(|(&c, wi)| pos[c as usize] * wi)
             .sum::<DVec3>();
         let id = far_id.checked_add(1)?.checked_add(k)?;
-        let (tree, offset) = other(pair.solid_of_triangle(t));
-        rays.inside(SymPoint::new(p, id), tree, offset)
+        let solid = pair.solid_of_triangle(t);
+        let (tree, offset) = other(solid);
+        let inside = rays.inside(SymPoint::new(p, id), tree, offset)?;
+        Some(op.deletes(solid, inside))
     };
     let t_parity = t.elapsed().as_secs_f64();
 

@@ -124,7 +124,7 @@ pub fn synthesize(a: &TriMesh, b: &TriMesh, d: DVec3) -> (TriMesh, Vec<DVec3>) {
 }
 
 /// `a` and `b` as one mesh, `b` moved by `offset` (A's vertices first).
-fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
+pub(crate) fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
     let n = a.positions.len() as u32;
     let mut both = a.clone();
     both.positions

@@ -1,0 +1,128 @@
+"""The EMBER pairs of ../shared/data/corpus (A minus B, and A union B):
+holey against trueform and manifold3d, measured side by side in one run.
+
+Each STL is read as binary float32 and welded where coordinates are
+bit-identical, then moved by its pair's 3x4 transform in float64
+(ember_pairs.json). All three get the same float64 arrays: manifold3d
+through Mesh64, trueform through float64 arrays. Peers are timed in
+process from arrays (fresh mesh objects each run, construction included);
+holey's figure is the engine's own `seconds.total` from `--report` (in
+process, no file reading), and the whole process is timed too.
+
+    cargo build --release -p holey-cli
+    python3 bench/peers/ember_boolean.py [--holey target/release/holey] [--runs 3]
+"""
+import argparse, json, os, subprocess, sys, tempfile, time
+
+import numpy as np
+import manifold3d as m3d
+import trueform as tf
+
+
+def read_stl(path):
+    data = open(path, "rb").read()
+    n = int.from_bytes(data[80:84], "little")
+    rec = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
+                        count=n, offset=84)
+    corners = rec["v"].reshape(-1, 3)
+    keys = corners.view(np.uint32).reshape(-1, 3)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    return corners[first].astype(np.float64), inverse.reshape(-1, 3).astype(np.int64)
+
+
+def transform(v, m):
+    m = np.asarray(m, dtype=np.float64)
+    return v @ m[:, :3].T + m[:, 3]
+
+
+def volume(v, f):
+    p = v[f]
+    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+
+
+def write_obj(path, v, f):
+    with open(path, "w") as fh:
+        fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist()))
+        fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f.tolist()))
+
+
+def best(fn, runs):
+    times, out = [], None
+    for _ in range(runs):
+        t = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t)
+    return min(times), out
+
+
+def holey_run(holey, op, pa, pb, out, report, runs):
+    wall, engine, err = None, None, None
+    for _ in range(runs):
+        t = time.perf_counter()
+        p = subprocess.run([holey, op, pa, pb, out, "--report", report], capture_output=True, text=True)
+        dt = time.perf_counter() - t
+        if p.returncode != 0:
+            return None, None, p.stderr.strip().splitlines()[-1]
+        r = json.load(open(report))
+        wall = dt if wall is None else min(wall, dt)
+        e = r["seconds"]["total"]
+        engine = e if engine is None else min(engine, e)
+    return wall, engine, err
+
+
+def holey_info(holey, path):
+    p = subprocess.run([holey, "info", "--json", path], capture_output=True, text=True)
+    return json.loads(p.stdout)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--holey", default="target/release/holey")
+    ap.add_argument("--corpus", default=os.path.join(os.path.dirname(__file__), "../../../shared/data/corpus"))
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    holey = os.path.abspath(args.holey)
+    pairs = json.load(open(os.path.join(args.corpus, "ember_pairs.json")))["pairs"]
+    rows = []
+    with tempfile.TemporaryDirectory() as d:
+        for pair in pairs:
+            va, fa = read_stl(os.path.join(args.corpus, pair["a"]))
+            vb, fb = read_stl(os.path.join(args.corpus, pair["b"]))
+            va, vb = transform(va, pair["transform_a"]), transform(vb, pair["transform_b"])
+            pa, pb = os.path.join(d, "a.obj"), os.path.join(d, "b.obj")
+            write_obj(pa, va, fa)
+            write_obj(pb, vb, fb)
+            name = f'{pair["a"][9:-4]} {{}} {pair["b"][9:-4]}'
+            for op, sym, tf_op, m3d_op in [
+                ("difference", "-", tf.boolean_difference, lambda A, B: A - B),
+                ("union", "+", tf.boolean_union, lambda A, B: A + B),
+            ]:
+                t_tf, r_tf = best(lambda: tf_op(tf.Mesh(fa, va), tf.Mesh(fb, vb)), args.runs)
+                (f_tf, p_tf) = r_tf[0]
+                v_tf = volume(p_tf, f_tf)
+
+                def m3d_run():
+                    A = m3d.Manifold(m3d.Mesh64(vert_properties=va, tri_verts=fa.astype(np.uint64)))
+                    B = m3d.Manifold(m3d.Mesh64(vert_properties=vb, tri_verts=fb.astype(np.uint64)))
+                    r = m3d_op(A, B)
+                    return r.volume()
+                t_m3d, v_m3d = best(m3d_run, args.runs)
+                out, rep = os.path.join(d, "out.obj"), os.path.join(d, "r.json")
+                wall, engine, err = holey_run(holey, op, pa, pb, out, rep, args.runs)
+                if err is None:
+                    info = holey_info(holey, out)
+                    v_h = info.get("volume")
+                    shape = "closed manifold" if info.get("closed") and info.get("manifold") else "NOT closed manifold"
+                else:
+                    v_h, shape = None, err
+                rows.append((name.format(sym), t_m3d, v_m3d, t_tf, v_tf, engine, wall, v_h, shape))
+                print(f"{name.format(sym):24} m3d {t_m3d:.3f}s vol {v_m3d:.6g} | tf {t_tf:.3f}s vol {v_tf:.6g} | "
+                      f"holey {engine if engine is not None else float('nan'):.3f}s (process {wall if wall else float('nan'):.3f}s) "
+                      f"vol {v_h} {shape} | holey/tf {engine / t_tf if engine else float('nan'):.2f}", flush=True)
+    ratios = [r[5] / r[3] for r in rows if r[5] is not None]
+    if ratios:
+        print(f"median holey/trueform (engine, from arrays): {np.median(ratios):.2f} over {len(ratios)} of {len(rows)}")
+
+
+if __name__ == "__main__":
+    main()
