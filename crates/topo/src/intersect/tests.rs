@@ -280,3 +280,56 @@ fn intersecting_pairs_match_the_shared_readme() {
         assert_eq!(x.pairs.len(), pairs, "{file}");
     }
 }
+
+/// The shortcut for nearly coplanar pairs agrees with the exact test:
+/// pairs of triangles lying in one tilted plane up to rounding (the flat
+/// bases of two CAD parts placed on one another) that the projection
+/// rejects never intersect in the perturbed world, and the float filter
+/// is unsure of them (otherwise the shortcut would not be asked). Both
+/// branches are exercised: some pairs are rejected in projection, others
+/// overlap there and go to the exact test.
+#[test]
+fn nearly_coplanar_pairs_rejected_in_projection_do_not_intersect() {
+    let mut rng = holey_testkit::Rng::new(114);
+    let (u, v) = (
+        DVec3::new(0.8, 0.1, 0.3).normalize(),
+        DVec3::new(-0.2, 0.9, 0.4),
+    );
+    let v = (v - u * u.dot(v)).normalize();
+    let on_plane = |rng: &mut holey_testkit::Rng| {
+        let (s, t) = (rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        // A point of the plane, rounded to floats: off it by rounding.
+        u * s + v * t + DVec3::splat(3.0)
+    };
+    let (mut rejected, mut overlapping, mut unsure) = (0, 0, 0);
+    for _ in 0..4000 {
+        let p1 = [(); 3].map(|_| on_plane(&mut rng));
+        let p2 = [(); 3].map(|_| on_plane(&mut rng));
+        let none = [false; 3];
+        if side_filter(p1, p2, none) == Side::Unsure || side_filter(p2, p1, none) == Side::Unsure {
+            unsure += 1;
+        }
+        let m = soup(&[p1, p2]);
+        let ids: Vec<u32> = (0..6).collect();
+        let sym = Symbolic {
+            positions: &m.positions,
+            ids: &ids,
+        };
+        let exact = triangle_triangle_segment(sym.tri([0, 1, 2]), sym.tri([3, 4, 5]));
+        if apart_in_projection(p1, p2) {
+            rejected += 1;
+            assert!(exact.is_none(), "{p1:?} {p2:?} rejected but intersecting");
+        } else {
+            overlapping += 1;
+        }
+        assert_eq!(
+            pair_segment(&m.triangles, &sym, 0, 1).is_some(),
+            exact.is_some()
+        );
+    }
+    assert!(unsure > 3000, "{unsure} pairs left to the exact test");
+    assert!(
+        rejected > 500 && overlapping > 500,
+        "{rejected} rejected, {overlapping} overlapping"
+    );
+}
