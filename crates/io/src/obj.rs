@@ -11,6 +11,12 @@
 //! the whole file is read. Vertices are kept exactly as stored: nothing is
 //! welded and unreferenced vertices stay in `positions`.
 //!
+//! What is not an OBJ file is refused rather than read as an empty mesh:
+//! binary data (a NUL or another control byte than tab, line feed,
+//! vertical tab, form feed and carriage return), and text of which no
+//! statement is one of OBJ's (a file of only comments and blank lines is
+//! an empty OBJ). Each error names the first bad line.
+//!
 //! Write: a `# written by holey` comment, one `v` line per position in
 //! shortest round-trip decimals (so reading gives back the same `f64`
 //! bits) and one `f` line per face, 1-based.
@@ -22,8 +28,75 @@ use holey_mesh::{DVec3, PolyMesh};
 use crate::IoError;
 use crate::text::{Cursor, push_f64, push_u64};
 
+/// The statements of the OBJ format (Wavefront's Appendix B1): geometry,
+/// free-form curves and surfaces, grouping, display and rendering. Only
+/// `v` and `f` are read; the rest are skipped, but they make a file an
+/// OBJ file.
+const STATEMENTS: [&[u8]; 41] = [
+    b"v",
+    b"vt",
+    b"vn",
+    b"vp",
+    b"f",
+    b"fo",
+    b"l",
+    b"p",
+    b"g",
+    b"o",
+    b"s",
+    b"mg",
+    b"usemtl",
+    b"mtllib",
+    b"usemap",
+    b"maplib",
+    b"cstype",
+    b"deg",
+    b"bmat",
+    b"step",
+    b"curv",
+    b"curv2",
+    b"surf",
+    b"parm",
+    b"trim",
+    b"hole",
+    b"scrv",
+    b"sp",
+    b"end",
+    b"con",
+    b"bevel",
+    b"c_interp",
+    b"d_interp",
+    b"lod",
+    b"shadow_obj",
+    b"trace_obj",
+    b"ctech",
+    b"stech",
+    b"call",
+    b"csh",
+    b"res",
+];
+
+/// The 1-based line of the first byte no text file has, with the byte.
+fn binary_byte(bytes: &[u8]) -> Option<(usize, u8)> {
+    let at = bytes.iter().position(|&b| {
+        (b < 0x20 && !matches!(b, b'\t' | b'\n' | 0x0b | 0x0c | b'\r')) || b == 0x7f
+    })?;
+    let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+    Some((line, bytes[at]))
+}
+
 /// Parses OBJ text. `source` names the file in error messages.
 pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
+    if let Some((line, byte)) = binary_byte(bytes) {
+        return Err(IoError::line(
+            source,
+            line,
+            format!("not an OBJ file: binary data (byte 0x{byte:02x})"),
+        ));
+    }
+    // Whether any statement was OBJ's, and the first that was not.
+    let mut recognised = false;
+    let mut first_unknown: Option<(usize, String)> = None;
     let mut c = Cursor::new(bytes, true, true);
     let mut positions: Vec<DVec3> = Vec::new();
     let mut offsets: Vec<u32> = vec![0];
@@ -40,6 +113,11 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
             continue;
         };
         let line = c.line();
+        if STATEMENTS.contains(&keyword) {
+            recognised = true;
+        } else if first_unknown.is_none() {
+            first_unknown = Some((line, crate::error::show(keyword)));
+        }
         match keyword {
             b"v" => {
                 let mut xyz = [0.0; 3];
@@ -122,6 +200,13 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
         }
         c.next_line();
     }
+    if let (false, Some((line, token))) = (recognised, first_unknown) {
+        return Err(IoError::line(
+            source,
+            line,
+            format!("not an OBJ file: \"{token}\" is no OBJ statement, and no line has one"),
+        ));
+    }
     let n = positions.len() as u64;
     if n >= u64::from(u32::MAX) {
         return Err(IoError::content(
@@ -185,6 +270,37 @@ mod tests {
 
     fn err(text: &str) -> String {
         parse(text.as_bytes(), "m.obj").unwrap_err().to_string()
+    }
+
+    /// Issue 14's garbage files: 5,000 random bytes named `.obj` were read
+    /// as an empty mesh (exit 0 from `info`, `convert`, `subdivide`). Binary
+    /// data and text with no OBJ statement are refused, naming the first
+    /// bad line; comments and blank lines alone are an empty OBJ, and
+    /// unknown statements beside OBJ's are skipped as before.
+    #[test]
+    fn what_is_not_an_obj_file_is_refused_by_line() {
+        let mut rng = 0x9e37_79b9_7f4a_7c15u64;
+        let random: Vec<u8> = (0..5000)
+            .map(|_| {
+                rng ^= rng << 13;
+                rng ^= rng >> 7;
+                rng ^= rng << 17;
+                (rng >> 24) as u8
+            })
+            .collect();
+        let e = parse(&random, "r.obj").unwrap_err().to_string();
+        assert!(e.contains("not an OBJ file: binary data"), "{e}");
+        let e = err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\0\n");
+        assert!(e.starts_with("m.obj:4:") && e.contains("byte 0x00"), "{e}");
+        let e = err("# notes\n\nhello world\nthis is not obj\n");
+        assert!(
+            e.starts_with("m.obj:3:") && e.contains("\"hello\" is no OBJ statement"),
+            "{e}"
+        );
+        let empty = parse(b"# only a comment\n\n  \r\n", "m.obj").unwrap();
+        assert!(empty.positions.is_empty() && empty.face_count() == 0);
+        let m = parse(b"hello\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "m.obj").unwrap();
+        assert_eq!(m.face_count(), 1);
     }
 
     #[test]
