@@ -839,8 +839,8 @@ fn demo_writes_the_gallery() {
     assert_eq!(genus("cup"), 1);
 }
 
-/// Shifts the vertices of an OBJ file along x, in place.
-fn shift_obj_x(path: &Path, dx: f64) {
+/// Shifts the vertices of an OBJ file by (dx, dy, dz), in place.
+fn shift_obj(path: &Path, [dx, dy, dz]: [f64; 3]) {
     let text = std::fs::read_to_string(path).unwrap();
     let shifted: String = text
         .lines()
@@ -850,7 +850,7 @@ fn shift_obj_x(path: &Path, dx: f64) {
                     .split_whitespace()
                     .map(|t| t.parse().unwrap())
                     .collect();
-                format!("v {} {} {}\n", c[0] + dx, c[1], c[2])
+                format!("v {} {} {}\n", c[0] + dx, c[1] + dy, c[2] + dz)
             }
             None => format!("{l}\n"),
         })
@@ -872,7 +872,7 @@ fn union_of_lattice_aligned_cubes() {
     let u = dir.path().join("u.obj");
     ok(&["primitive", "@cube:4", s(&a)]);
     ok(&["primitive", "@cube:4", s(&b)]);
-    shift_obj_x(&b, 1.0);
+    shift_obj(&b, [1.0, 0.0, 0.0]);
     let r = dir.path().join("r.json");
     ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
     let m = info(s(&u), &[]);
@@ -905,21 +905,7 @@ fn intersection_and_difference_of_two_cubes() {
     let b = dir.path().join("b.obj");
     ok(&["primitive", "@cube:4", s(&a)]);
     ok(&["primitive", "@cube:4", s(&b)]);
-    let text = std::fs::read_to_string(&b).unwrap();
-    let moved: String = text
-        .lines()
-        .map(|l| match l.strip_prefix("v ") {
-            Some(rest) => {
-                let c: Vec<f64> = rest
-                    .split_whitespace()
-                    .map(|x| x.parse().unwrap())
-                    .collect();
-                format!("v {} {} {}\n", c[0] + 0.9, c[1] + 0.7, c[2] + 0.55)
-            }
-            None => format!("{l}\n"),
-        })
-        .collect();
-    std::fs::write(&b, moved).unwrap();
+    shift_obj(&b, [0.9, 0.7, 0.55]);
     let overlap = 1.1 * 1.3 * 1.45;
     for (cmd, want) in [("intersection", overlap), ("difference", 8.0 - overlap)] {
         let out = dir.path().join(format!("{cmd}.obj"));
@@ -970,7 +956,7 @@ fn union_of_two_spheres_is_one_closed_solid() {
     let r = dir.path().join("r.json");
     ok(&["primitive", "@sphere:4", s(&a)]);
     ok(&["primitive", "@sphere:4", s(&b)]);
-    shift_obj_x(&b, 1.0);
+    shift_obj(&b, [1.0, 0.0, 0.0]);
     ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
     let m = info(s(&u), &[]);
     assert_eq!(m["closed"], true);
@@ -1045,7 +1031,7 @@ fn union_with_an_open_surface_runs_the_motion() {
     let r = dir.path().join("r.json");
     ok(&["primitive", "@sphere:2", s(&a)]);
     ok(&["primitive", "@sphere:2", s(&b)]);
-    shift_obj_x(&b, 1.0);
+    shift_obj(&b, [1.0, 0.0, 0.0]);
     let text = std::fs::read_to_string(&b).unwrap();
     let last_face = text.rfind("\nf ").unwrap();
     std::fs::write(&b, &text[..last_face + 1]).unwrap();

@@ -47,28 +47,32 @@ impl Rng {
     }
 }
 
-/// The shared folder of real meshes made by others (`../shared/data/meshes`
-/// relative to the repository), or `None` when it is absent. Tests that
-/// read it must say so and skip visibly when this is `None`.
-pub fn shared_meshes() -> Option<PathBuf> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/meshes");
-    if let Ok(dir) = std::env::var("HOLEY_SHARED_MESHES") {
+/// `../shared/data/<sub>` relative to the repository, or the folder the
+/// environment variable `var` names; `None` when it is absent.
+fn shared_dir(sub: &str, var: &str) -> Option<PathBuf> {
+    if let Ok(dir) = std::env::var(var) {
         let p = PathBuf::from(dir);
         return p.is_dir().then_some(p);
     }
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data")
+        .join(sub);
     root.is_dir().then(|| root.canonicalize().unwrap_or(root))
 }
 
+/// The shared folder of real meshes made by others (`../shared/data/meshes`
+/// relative to the repository, or `HOLEY_SHARED_MESHES`), or `None` when
+/// it is absent. Tests that read it must say so and skip visibly when this
+/// is `None`.
+pub fn shared_meshes() -> Option<PathBuf> {
+    shared_dir("meshes", "HOLEY_SHARED_MESHES")
+}
+
 /// The shared Boolean corpus (`../shared/data/corpus`: the EMBER pairs and
-/// the overlapping shells), or `None` when it is absent; the variable
-/// `HOLEY_SHARED_CORPUS` points elsewhere. Prints a visible SKIP line
-/// naming `test` when it is absent.
+/// the overlapping shells, or `HOLEY_SHARED_CORPUS`), or `None` when it is
+/// absent, after a visible SKIP line naming `test`.
 pub fn shared_corpus_or_skip(test: &str) -> Option<PathBuf> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/corpus");
-    let dir = match std::env::var("HOLEY_SHARED_CORPUS") {
-        Ok(dir) => Some(PathBuf::from(dir)).filter(|p| p.is_dir()),
-        Err(_) => root.is_dir().then(|| root.canonicalize().unwrap_or(root)),
-    };
+    let dir = shared_dir("corpus", "HOLEY_SHARED_CORPUS");
     if dir.is_none() {
         eprintln!(
             "SKIP {test}: ../shared/data/corpus is absent (set HOLEY_SHARED_CORPUS to point at it)"

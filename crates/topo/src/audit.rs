@@ -12,11 +12,11 @@
 //! ([`crate::intersect`]), which ignore the contact of triangles that
 //! share a vertex or an edge.
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use holey_geom::{Sign, orient2d};
 use rayon::prelude::*;
 
-use crate::intersect::{IntersectError, intersecting_pair_count};
+use crate::intersect::{COORDINATE_PLANES, IntersectError, intersecting_pair_count};
 use crate::mesh::{Edges, TriMesh};
 use crate::union_find::UnionFind;
 
@@ -208,12 +208,7 @@ pub fn is_degenerate(mesh: &TriMesh, t: [u32; 3]) -> bool {
 /// they make has zero area. Exact: a triangle is flat exactly when its
 /// projections onto the three coordinate planes all are.
 pub fn is_flat([a, b, c]: [DVec3; 3]) -> bool {
-    let planes: [fn(DVec3) -> DVec2; 3] = [
-        |p| DVec2::new(p.x, p.y),
-        |p| DVec2::new(p.y, p.z),
-        |p| DVec2::new(p.z, p.x),
-    ];
-    planes
+    COORDINATE_PLANES
         .iter()
         .all(|proj| orient2d(proj(a), proj(b), proj(c)) == Sign::Zero)
 }

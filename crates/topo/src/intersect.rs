@@ -260,6 +260,13 @@ fn side_filter(a: [DVec3; 3], b: [DVec3; 3], b_shared: [bool; 3]) -> Side {
     }
 }
 
+/// The projections onto the three coordinate planes (xy, yz, zx).
+pub(crate) const COORDINATE_PLANES: [fn(DVec3) -> DVec2; 3] = [
+    |p| DVec2::new(p.x, p.y),
+    |p| DVec2::new(p.y, p.z),
+    |p| DVec2::new(p.z, p.x),
+];
+
 /// Exact rejection of two nearly coplanar triangles without orient3d:
 /// true when, in the projection onto some coordinate plane, an edge of one
 /// triangle has the other triangle's three corners strictly on its outer
@@ -271,12 +278,7 @@ fn side_filter(a: [DVec3; 3], b: [DVec3; 3], b_shared: [bool; 3]) -> Side {
 /// orient2d tests decide at once: the profile of an EMBER pair had 5
 /// million such predicates.
 fn apart_in_projection(p1: [DVec3; 3], p2: [DVec3; 3]) -> bool {
-    let planes: [fn(DVec3) -> DVec2; 3] = [
-        |p| DVec2::new(p.x, p.y),
-        |p| DVec2::new(p.y, p.z),
-        |p| DVec2::new(p.z, p.x),
-    ];
-    planes.iter().any(|proj| {
+    COORDINATE_PLANES.iter().any(|proj| {
         let (a, b) = (p1.map(proj), p2.map(proj));
         edge_separates(a, b) || edge_separates(b, a)
     })

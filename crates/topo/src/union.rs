@@ -356,9 +356,20 @@ pub fn boolean(
     options: &Options,
 ) -> Result<Outcome, UnionError> {
     let started = Instant::now();
+    let (b, pa, pb) = prepare(a, b, op)?;
+    unite(a, &pa, &b, &pb, op, options, started)
+}
+
+/// B as `op` takes it ([`operand`]) and what a Boolean builds of each
+/// solid alone.
+fn prepare<'b>(
+    a: &TriMesh,
+    b: &'b TriMesh,
+    op: Operation,
+) -> Result<(std::borrow::Cow<'b, TriMesh>, Parts, Parts), UnionError> {
     let b = operand(b, op);
     let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(&b));
-    unite(a, &pa?, &b, &pb?, op, options, started)
+    Ok((b, pa?, pb?))
 }
 
 /// A ∩ B of two closed solids ([`boolean`], robust as [`union_robust`]).
@@ -434,9 +445,7 @@ pub fn boolean_robust(
     options: &Options,
 ) -> Result<Outcome, UnionError> {
     let started = Instant::now();
-    let b = operand(b, op);
-    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(&b));
-    let (pa, pb) = (pa?, pb?);
+    let (b, pa, pb) = prepare(a, b, op)?;
     let manifold_inputs = pa.oriented() && pb.oriented();
     let mut out = unite(a, &pa, &b, &pb, op, options, started)?;
     for k in 1..NUDGES.len() {

@@ -12,37 +12,6 @@ use glam::DVec3;
 use holey_testkit::Rng;
 use holey_topo::{Operation, Options, TriMesh, boolean_robust, difference, intersection};
 
-/// An axis-aligned box from `lo` to `hi`, outward, 12 triangles.
-fn cuboid(lo: DVec3, hi: DVec3) -> TriMesh {
-    let positions = (0..8)
-        .map(|i| {
-            DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        })
-        .collect();
-    let triangles = vec![
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
-    TriMesh {
-        positions,
-        triangles,
-    }
-}
-
 /// The winding number of `m` at `p`: the sum of its triangles' signed
 /// solid angles over 4π (Van Oosterom and Strackee's formula for the
 /// solid angle of a triangle), in floating point.
@@ -79,13 +48,7 @@ fn check(a: &TriMesh, b: &TriMesh, op: Operation, samples: usize, what: &str) ->
     well_formed(&out);
     assert!(closed_oriented(&out), "{what}: not closed and oriented");
     assert_eq!(self_intersecting_pairs(&out), 0, "{what}: crosses itself");
-    let (lo, hi) = a
-        .positions
-        .iter()
-        .chain(&b.positions)
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
-            (l.min(*p), h.max(*p))
-        });
+    let (lo, hi) = used_bounds(&join(a, b));
     let pad = (hi - lo) * 0.1;
     let mut rng = Rng::new(14);
     let mut decided = 0;

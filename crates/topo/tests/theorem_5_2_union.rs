@@ -164,33 +164,7 @@ fn containment_union_of_tori_is_the_motions() {
 
 /// A unit cube centred at the origin, outward.
 fn unit_cube() -> TriMesh {
-    let positions = (0..8)
-        .map(|i| {
-            DVec3::new(
-                f64::from(i & 1) - 0.5,
-                f64::from((i >> 1) & 1) - 0.5,
-                f64::from((i >> 2) & 1) - 0.5,
-            )
-        })
-        .collect();
-    let triangles = vec![
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
-    TriMesh {
-        positions,
-        triangles,
-    }
+    cuboid(DVec3::splat(-0.5), DVec3::splat(0.5))
 }
 
 /// Two cubes turned 45° (one about x, one about y) so that A's top ridge

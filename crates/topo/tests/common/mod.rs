@@ -18,6 +18,37 @@ pub fn primitive(spec: &str) -> TriMesh {
     }
 }
 
+/// An axis-aligned box from `lo` to `hi`, outward, 12 triangles.
+pub fn cuboid(lo: DVec3, hi: DVec3) -> TriMesh {
+    let positions = (0..8)
+        .map(|i| {
+            DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        })
+        .collect();
+    let triangles = vec![
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    TriMesh {
+        positions,
+        triangles,
+    }
+}
+
 pub fn translate(m: &TriMesh, d: DVec3) -> TriMesh {
     TriMesh {
         positions: m.positions.iter().map(|p| *p + d).collect(),
