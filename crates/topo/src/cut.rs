@@ -229,6 +229,10 @@ fn merge(alias: &mut HashMap<u32, u32>, a: u32, b: u32) -> bool {
     true
 }
 
+/// An output triangle's input triangle and its centroid in that
+/// triangle's chart.
+pub type SourcePoint = (u32, [f64; 2]);
+
 /// The subdivided (and, with a parity field, trimmed) mesh.
 pub struct Cut {
     pub mesh: TriMesh,
@@ -236,6 +240,11 @@ pub struct Cut {
     /// Per output vertex: the input vertex it is, or `u32::MAX` for a new
     /// point (an intersection point or a split's vertex).
     pub origin: Vec<u32>,
+    /// Per output triangle: the input triangle it is part of (its
+    /// orientation is that triangle's), and its centroid in that
+    /// triangle's chart (`(u, v)`: the point `p₀ + u (p₁ − p₀) + v (p₂ −
+    /// p₀)`, as the subdivision placed it).
+    pub source: Vec<SourcePoint>,
 }
 
 /// The source triangle of each output triangle, and its chart centroid:
@@ -831,13 +840,14 @@ pub fn cut(
         }
     };
     report.triangles_deleted = keep.iter().filter(|&&k| !k).count();
-    let kept: Vec<[u32; 3]> = out_tris
+    let (kept, kept_source): (Vec<[u32; 3]>, Vec<SourcePoint>) = out_tris
         .par_iter()
+        .enumerate()
         .zip(&keep)
         .filter(|(_, k)| **k)
-        .map(|(t, _)| *t)
-        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
-        .collect();
+        .map(|((i, t), _)| (*t, source.get(i)))
+        .filter(|(t, _)| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .unzip();
     let (mesh, origin) = TriMesh {
         positions: out_positions,
         triangles: kept,
@@ -852,6 +862,7 @@ pub fn cut(
         mesh,
         report,
         origin,
+        source: kept_source,
     }
 }
 

@@ -454,6 +454,7 @@ pub(crate) fn finish(
         mesh: mut out,
         report: mut cut_report,
         mut origin,
+        ..
     } = cut(
         mesh,
         end,

@@ -19,6 +19,7 @@ pub mod union;
 pub mod union_find;
 pub mod weights;
 pub mod winding;
+pub mod winding_boolean;
 
 pub use accumulate::{Accumulator, Release};
 pub use audit::SurfaceAudit;
@@ -33,3 +34,4 @@ pub use union::{
     Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,
     union_prepared, union_robust,
 };
+pub use winding_boolean::{WindingError, WindingOutcome, WindingReport, boolean_by_winding};

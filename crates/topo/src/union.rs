@@ -610,6 +610,7 @@ fn unite(
         mesh: mut out,
         report: cut_report,
         origin,
+        ..
     } = cut(
         mesh,
         pos,

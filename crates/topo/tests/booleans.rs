@@ -3,7 +3,7 @@
 //! each surface inside or outside the other deleted as the operation
 //! says. Checked against closed-form volumes and against the
 //! winding-number rule, with winding numbers summed from solid angles in
-//! this file (independent of the engine's exact rays).
+//! the tests' common module (independent of the engine's exact rays).
 
 mod common;
 
@@ -11,31 +11,6 @@ use common::*;
 use glam::DVec3;
 use holey_testkit::Rng;
 use holey_topo::{Operation, Options, TriMesh, boolean_robust, difference, intersection};
-
-/// The winding number of `m` at `p`: the sum of its triangles' signed
-/// solid angles over 4π (Van Oosterom and Strackee's formula for the
-/// solid angle of a triangle), in floating point.
-fn winding(m: &TriMesh, p: DVec3) -> f64 {
-    let mut sum = 0.0;
-    for t in &m.triangles {
-        let [a, b, c] = t.map(|v| m.positions[v as usize] - p);
-        let (la, lb, lc) = (a.length(), b.length(), c.length());
-        let numerator = a.dot(b.cross(c));
-        let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-        sum += 2.0 * numerator.atan2(denominator);
-    }
-    sum / (4.0 * std::f64::consts::PI)
-}
-
-/// What the operation keeps of a point inside A or not and inside B or
-/// not.
-fn rule(op: Operation, in_a: bool, in_b: bool) -> bool {
-    match op {
-        Operation::Union => in_a || in_b,
-        Operation::Intersection => in_a && in_b,
-        Operation::Difference => in_a && !in_b,
-    }
-}
 
 /// Checks the output of `op` on `a` and `b`: a closed, consistently
 /// oriented surface without self-intersections, whose winding number at
@@ -65,7 +40,7 @@ fn check(a: &TriMesh, b: &TriMesh, op: Operation, samples: usize, what: &str) ->
             continue;
         }
         decided += 1;
-        let want = rule(op, wa.round() >= 1.0, wb.round() >= 1.0);
+        let want = op.contains(&[wa.round() >= 1.0, wb.round() >= 1.0]);
         assert_eq!(
             wo.round(),
             f64::from(u8::from(want)),

@@ -538,3 +538,19 @@ pub fn pinch_vertices(m: &TriMesh) -> usize {
     }
     pinched
 }
+
+/// The winding number of `m` at `p`: the sum of its triangles' signed
+/// solid angles over 4π (Van Oosterom and Strackee's formula for the
+/// solid angle of a triangle), in floating point: an oracle independent
+/// of the engine's exact rays.
+pub fn winding(m: &TriMesh, p: DVec3) -> f64 {
+    let mut sum = 0.0;
+    for t in &m.triangles {
+        let [a, b, c] = t.map(|v| m.positions[v as usize] - p);
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let numerator = a.dot(b.cross(c));
+        let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+        sum += 2.0 * numerator.atan2(denominator);
+    }
+    sum / (4.0 * std::f64::consts::PI)
+}

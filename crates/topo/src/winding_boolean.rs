@@ -1,0 +1,778 @@
+//! Booleans by the winding number: union, intersection and difference of
+//! closed surfaces that may cross themselves, overlap one another or
+//! nest, on the arrangement of all their triangles.
+//!
+//! A point x is inside input X when its winding number w_X(x) ≥ ½; for a
+//! closed surface whose triangles pair up along every edge in opposite
+//! directions, w_X is an integer off the surface, so inside means
+//! w_X ≥ 1. The result bounds the points the operation's rule keeps:
+//! inside any input (union), inside all (intersection), inside the first
+//! and no other (difference). One input's union is the solid its surface
+//! encloses, with its self-intersections and inner shells removed.
+//!
+//! The construction (Zhou, Grinspun, Zorin & Jacobson, *Mesh Arrangements
+//! for Solid Geometry*, 2016, gives the same semantics with exact cells):
+//!
+//! 1. All triangles of all inputs are intersected exactly, each with each
+//!    (the inputs with each other and each with itself), and cut and
+//!    glued along the curves ([`crate::cut`], the paper's §3.3 with
+//!    nothing deleted): the arrangement. Its vertices are welded where
+//!    their rounded positions are equal.
+//! 2. Its *regions* are the triangles joined across edges that exactly two
+//!    triangles share in opposite directions; the curves (edges of four or
+//!    more) bound them, so the winding numbers on each side of a region
+//!    are constant along it.
+//! 3. Each region gets them from one ray, decided exactly with simulation
+//!    of simplicity, from a point of its largest triangle. The triangles
+//!    the point lies on (its own source triangle, and those of identical
+//!    coincident cells) are left out of the ray, which leaves the plane
+//!    along the coordinate axis closest to its normal, towards the front:
+//!    the crossings count w on the front side, and the back side differs
+//!    by the signed count of the left-out sheets (each sheet changes w by
+//!    one across it, by its orientation).
+//! 4. A region whose two sides differ in being inside is kept, facing from
+//!    inside to outside. Identical coincident cells (duplicate triangles,
+//!    faces two solids share) are one sheet whose sheets' orientations
+//!    add: of opposite ones nothing or one is kept, of equal ones one.
+//!
+//! A sample point that lies exactly on a triangle it does not leave out
+//! (coplanar triangles overlapping without identical cells) would make
+//! the count depend on the perturbation: another triangle of the region
+//! is tried, and if none is clear the operation refuses
+//! ([`WindingError::CoplanarOverlap`]) rather than guess.
+
+use std::collections::HashMap;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use glam::DVec3;
+use holey_geom::ring::{Ring, V3, orient3};
+use holey_geom::sos::{Poly, sos_sign};
+use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
+use rayon::prelude::*;
+
+use crate::correct::find;
+use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
+use crate::engine::{Options, TopoError};
+use crate::intersect::{default_pair_limit, intersections_limited};
+use crate::mesh::{Edges, MeshError, TriMesh};
+use crate::union::Operation;
+
+/// Why [`boolean_by_winding`] cannot take its input.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum WindingError {
+    #[error(transparent)]
+    Topo(#[from] TopoError),
+    #[error("an operation needs at least one input mesh")]
+    NoInput,
+    #[error("a difference needs at least two input meshes")]
+    DifferenceNeedsTwo,
+    /// The winding number of a surface with a hole is not an integer:
+    /// which points are inside is a matter of choice there.
+    #[error(
+        "input {input} is not closed: its triangles do not pair up in opposite directions along the edge from vertex {from} to vertex {to}"
+    )]
+    NotClosed { input: usize, from: u32, to: u32 },
+    /// Coplanar triangles overlap without forming identical cells, and no
+    /// point of the region could be tested clear of them.
+    #[error(
+        "coplanar triangles overlap near ({x}, {y}, {z}) without matching cells; the winding arrangement does not merge such overlaps yet"
+    )]
+    CoplanarOverlap { x: f64, y: f64, z: f64 },
+    /// A ray could not leave the scene (coordinates near the largest
+    /// float).
+    #[error("the coordinates are too large to cast a ray past the inputs")]
+    TooLarge,
+}
+
+impl From<MeshError> for WindingError {
+    fn from(e: MeshError) -> Self {
+        WindingError::Topo(e.into())
+    }
+}
+
+/// What [`boolean_by_winding`] did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct WindingReport {
+    /// Triangle pairs (of any inputs, or of one) that intersect.
+    pub intersecting_pairs: usize,
+    pub intersection_points: usize,
+    pub triple_points: usize,
+    pub intersection_curves: usize,
+    /// Triangles of the arrangement, and its regions (cells of the
+    /// surface between curves).
+    pub arrangement_triangles: usize,
+    pub regions: usize,
+    /// Groups of identical coincident cells, treated as one sheet.
+    pub coincident_groups: usize,
+    /// Rays cast (one per region and group, more where a sample point lay
+    /// on a coplanar triangle).
+    pub rays: usize,
+    /// Vertices of the arrangement merged because their rounded positions
+    /// were equal.
+    pub welded_points: usize,
+    /// Sides of result triangles split where a vertex of the other side
+    /// lies on them ([`repair_t_junctions`]).
+    pub t_junctions_repaired: usize,
+    /// Directed edges of the result without a partner running the other
+    /// way: 0 for a closed, consistently oriented result.
+    pub unpaired_edges: usize,
+    pub cut: CutReport,
+    pub seconds: WindingTimings,
+}
+
+/// Seconds spent in each stage.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct WindingTimings {
+    pub intersections: f64,
+    pub cut: f64,
+    pub classify: f64,
+    pub total: f64,
+}
+
+/// The result of [`boolean_by_winding`].
+#[derive(Clone, Debug)]
+pub struct WindingOutcome {
+    pub mesh: TriMesh,
+    pub report: WindingReport,
+}
+
+impl Operation {
+    /// Whether a point inside exactly the inputs flagged in `inside` is in
+    /// the result: any (union), all (intersection), the first and no
+    /// other (difference).
+    pub fn contains(self, inside: &[bool]) -> bool {
+        match self {
+            Operation::Union => inside.iter().any(|&i| i),
+            Operation::Intersection => !inside.is_empty() && inside.iter().all(|&i| i),
+            Operation::Difference => inside.first() == Some(&true) && !inside[1..].contains(&true),
+        }
+    }
+}
+
+/// The operation `op` on the solids `inputs` bound, by the winding-number
+/// rule (see the module docs): `Union` of one or more inputs,
+/// `Intersection` of one or more, `Difference` of the first minus all the
+/// others. Every input must be closed (its triangles pair up along every
+/// edge in opposite directions, vertices at equal positions counting as
+/// one); it may cross itself, hold several shells, overlap the others,
+/// or face inward (an inward shell has winding number −1 inside: a
+/// cavity in what holds it).
+pub fn boolean_by_winding(
+    inputs: &[&TriMesh],
+    op: Operation,
+    options: &Options,
+) -> Result<WindingOutcome, WindingError> {
+    let started = Instant::now();
+    if inputs.is_empty() {
+        return Err(WindingError::NoInput);
+    }
+    if op == Operation::Difference && inputs.len() < 2 {
+        return Err(WindingError::DifferenceNeedsTwo);
+    }
+    let (joined, owner) = join(inputs)?;
+    let ids = position_classes(&joined.positions).map_err(TopoError::from)?;
+    check_closed(&joined.triangles, &ids, &owner, inputs)?;
+    let mut report = WindingReport::default();
+
+    let edges = Edges::new(&joined);
+    let limit = options
+        .max_intersecting_pairs
+        .unwrap_or_else(|| default_pair_limit(joined.triangles.len()));
+    let x = intersections_limited(
+        &joined,
+        &joined.positions,
+        &edges,
+        &ids,
+        limit,
+        &AtomicBool::new(false),
+    )
+    .map_err(TopoError::from)?;
+    report.intersecting_pairs = x.pairs.len();
+    report.intersection_points = x.points.len();
+    report.triple_points = x.triple_points();
+    report.intersection_curves = x.curve_count;
+    report.seconds.intersections = started.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let Cut {
+        mesh: arrangement,
+        report: cut_report,
+        source,
+        ..
+    } = cut(
+        &joined,
+        &joined.positions,
+        &edges,
+        &ids,
+        &x,
+        Deletion::Nothing,
+        None,
+    );
+    report.cut = cut_report;
+    let (arrangement, source, welded) = weld(arrangement, source)?;
+    report.welded_points = welded;
+    report.arrangement_triangles = arrangement.triangles.len();
+    report.seconds.cut = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let rays = Rays::new(&joined, &ids, &owner, inputs.len())?;
+    let mut faces = classify(&arrangement, &source, &rays, op, &mut report)?;
+    report.t_junctions_repaired = repair_t_junctions(&arrangement.positions, &mut faces);
+    report.unpaired_edges = unpaired_edges(&faces).len();
+    report.seconds.classify = t.elapsed().as_secs_f64();
+    let mesh = TriMesh {
+        positions: arrangement.positions,
+        triangles: faces,
+    }
+    .compacted();
+    report.seconds.total = started.elapsed().as_secs_f64();
+    Ok(WindingOutcome { mesh, report })
+}
+
+/// All inputs in one mesh, and the input of each triangle.
+fn join(inputs: &[&TriMesh]) -> Result<(TriMesh, Vec<u32>), WindingError> {
+    let mut joined = TriMesh::default();
+    let mut owner = Vec::new();
+    for (i, m) in inputs.iter().enumerate() {
+        m.check()?;
+        let base = joined.positions.len();
+        let total = base + m.positions.len();
+        if total >= u32::MAX as usize - 2 {
+            return Err(MeshError::TooLarge(total).into());
+        }
+        joined.positions.extend_from_slice(&m.positions);
+        joined
+            .triangles
+            .extend(m.triangles.iter().map(|t| t.map(|v| v + base as u32)));
+        owner.extend(std::iter::repeat_n(i as u32, m.triangles.len()));
+    }
+    Ok((joined, owner))
+}
+
+/// Every input closed: along each edge (vertices at one position counting
+/// as one) as many of its triangles run one way as the other, so its
+/// winding number is an integer off the surface.
+fn check_closed(
+    triangles: &[[u32; 3]],
+    ids: &[u32],
+    owner: &[u32],
+    inputs: &[&TriMesh],
+) -> Result<(), WindingError> {
+    let mut balance: HashMap<(u32, u32, u32), i32> = HashMap::with_capacity(triangles.len() * 2);
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (ids[tri[k] as usize], ids[tri[(k + 1) % 3] as usize]);
+            if a == b {
+                continue;
+            }
+            let key = (owner[t], a.min(b), a.max(b));
+            *balance.entry(key).or_insert(0) += if a < b { 1 } else { -1 };
+        }
+    }
+    let bad = balance
+        .into_iter()
+        .filter(|&(_, b)| b != 0)
+        .min_by_key(|&((input, a, b), _)| (input, a, b));
+    match bad {
+        None => Ok(()),
+        Some(((input, a, b), _)) => {
+            // Report the input's own vertex numbers.
+            let base: usize = inputs[..input as usize]
+                .iter()
+                .map(|m| m.positions.len())
+                .sum();
+            Err(WindingError::NotClosed {
+                input: input as usize,
+                from: a - base as u32,
+                to: b - base as u32,
+            })
+        }
+    }
+}
+
+/// The arrangement with vertices at equal positions merged (the cut
+/// rounds constructed points; two can land on one place, and the inputs'
+/// coincident vertices are still apart), triangles that collapsed
+/// dropped with their sources. Returns how many vertices merged.
+fn weld(mesh: TriMesh, source: Vec<Source>) -> Result<(TriMesh, Vec<Source>, usize), WindingError> {
+    let class = position_classes(&mesh.positions).map_err(TopoError::from)?;
+    let merged = class
+        .iter()
+        .enumerate()
+        .filter(|&(v, &c)| c as usize != v)
+        .count();
+    let (triangles, source): (Vec<[u32; 3]>, Vec<Source>) = mesh
+        .triangles
+        .iter()
+        .zip(source)
+        .map(|(t, s)| (t.map(|v| class[v as usize]), s))
+        .filter(|(t, _)| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .unzip();
+    Ok((
+        TriMesh {
+            positions: mesh.positions,
+            triangles,
+        },
+        source,
+        merged,
+    ))
+}
+
+/// The directed edges of `faces` that no face runs the other way (with
+/// multiplicity: an edge run twice one way and once the other is one).
+fn unpaired_edges(faces: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    let mut net: HashMap<(u32, u32), i32> = HashMap::with_capacity(faces.len() * 2);
+    for f in faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            *net.entry((a.min(b), a.max(b))).or_insert(0) += if a < b { 1 } else { -1 };
+        }
+    }
+    let mut out = Vec::new();
+    for ((a, b), n) in net {
+        let (from, to) = if n > 0 { (a, b) } else { (b, a) };
+        out.extend(std::iter::repeat_n((from, to), n.unsigned_abs() as usize));
+    }
+    out.sort_unstable();
+    out
+}
+
+/// Longest chain of vertices one side of a T-junction is searched for.
+const T_JUNCTION_CHAIN: usize = 8;
+
+/// Closes T-junctions: where the side `u → v` of a result triangle has no
+/// partner and the other side runs `v → w₁ → … → wₖ → u` through vertices
+/// between `u` and `v` (each a constructed point the perturbation put on
+/// the other sheet, rounded onto the side's line: coplanar sheets meeting
+/// along an edge), the triangle is split at `wₖ, …, w₁` so that both
+/// sides have the same vertices. Returns how many sides were split.
+fn repair_t_junctions(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
+    let mut repaired = 0;
+    loop {
+        let open = unpaired_edges(faces);
+        if open.is_empty() {
+            return repaired;
+        }
+        let mut from: HashMap<u32, Vec<u32>> = HashMap::new();
+        for &(a, b) in &open {
+            from.entry(a).or_default().push(b);
+        }
+        let between = |u: u32, v: u32, w: u32| {
+            let (pu, pv, pw) = (
+                positions[u as usize],
+                positions[v as usize],
+                positions[w as usize],
+            );
+            let d = pv - pu;
+            let t = (pw - pu).dot(d);
+            t > 0.0 && t < d.dot(d)
+        };
+        // The chain v → … → u of unpaired sides through points between u
+        // and v, ordered from v towards u.
+        let chain = |u: u32, v: u32| -> Option<Vec<u32>> {
+            let mut path = vec![v];
+            let mut at = v;
+            for _ in 0..T_JUNCTION_CHAIN {
+                let next = from.get(&at)?;
+                if next.contains(&u) && path.len() > 1 {
+                    return Some(path[1..].to_vec());
+                }
+                let w = *next
+                    .iter()
+                    .filter(|&&w| w != u && between(u, v, w) && !path.contains(&w))
+                    .min_by(|&&a, &&b| {
+                        let d = |w: u32| (positions[w as usize] - positions[at as usize]).length();
+                        d(a).total_cmp(&d(b))
+                    })?;
+                path.push(w);
+                at = w;
+            }
+            None
+        };
+        let open_set: std::collections::HashSet<(u32, u32)> = open.iter().copied().collect();
+        let mut split_any = false;
+        let mut done: std::collections::HashSet<(u32, u32)> = Default::default();
+        let mut out = Vec::with_capacity(faces.len());
+        for &f in faces.iter() {
+            let side = (0..3).find_map(|k| {
+                let (u, v) = (f[k], f[(k + 1) % 3]);
+                if !open_set.contains(&(u, v)) || done.contains(&(u, v)) {
+                    return None;
+                }
+                // A chain through the third corner would fold the split.
+                chain(u, v)
+                    .filter(|c| !c.contains(&f[(k + 2) % 3]))
+                    .map(|c| (k, c))
+            });
+            let Some((k, c)) = side else {
+                out.push(f);
+                continue;
+            };
+            let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+            done.insert((u, v));
+            // Along u → v the points come in the reverse of the chain.
+            let mut along = vec![u];
+            along.extend(c.iter().rev());
+            along.push(v);
+            out.extend(along.windows(2).map(|w| [w[0], w[1], x]));
+            repaired += 1;
+            split_any = true;
+        }
+        *faces = out;
+        if !split_any {
+            return repaired;
+        }
+    }
+}
+
+/// An arrangement triangle's input triangle and its centroid in that
+/// triangle's chart (see [`Cut::source`]).
+type Source = SourcePoint;
+
+/// Exact rays through the inputs' triangles.
+struct Rays<'a> {
+    joined: &'a TriMesh,
+    ids: &'a [u32],
+    owner: &'a [u32],
+    inputs: usize,
+    tree: Bvh,
+    /// Identities of a ray's two ends: no vertex has them.
+    start_id: u32,
+}
+
+/// Which side of a region is inside: the inputs' winding numbers on its
+/// front (where its normal points) and back.
+struct Sides {
+    front: Vec<i64>,
+    back: Vec<i64>,
+}
+
+impl<'a> Rays<'a> {
+    fn new(
+        joined: &'a TriMesh,
+        ids: &'a [u32],
+        owner: &'a [u32],
+        inputs: usize,
+    ) -> Result<Rays<'a>, WindingError> {
+        let boxes: Vec<Aabb> = (0..joined.triangles.len())
+            .map(|t| Aabb::from_points(&joined.corners(t)))
+            .collect();
+        let tree = Bvh::build(&boxes).map_err(|_| WindingError::TooLarge)?;
+        Ok(Rays {
+            joined,
+            ids,
+            owner,
+            inputs,
+            tree,
+            start_id: joined.positions.len() as u32,
+        })
+    }
+
+    fn sym(&self, t: u32) -> [SymPoint; 3] {
+        self.joined.triangles[t as usize]
+            .map(|v| SymPoint::new(self.joined.positions[v as usize], self.ids[v as usize]))
+    }
+
+    /// The winding numbers on the two sides of a cell of input triangle
+    /// `x` (front: where `x`'s normal points), sampled at the point
+    /// `p = Σ wᵢ xᵢ` of `x` with chart coordinates `(u, v)`, with the input
+    /// triangles `on` that hold the cell left out of the ray (`x` among
+    /// them; each with +1 when it faces as `x` does, −1 when opposite).
+    /// `None` when `(u, v)` is not inside `x`.
+    ///
+    /// `p` is taken exactly and in the perturbed world, as a point of the
+    /// perturbed `x`: every predicate with `p` among its points is affine
+    /// in it, so its sign is that of `Σ wᵢ P(xᵢ)` ([`Weighted`]). That
+    /// puts the sample on the side of every other sheet the cut saw the
+    /// cell on, coplanar overlaps included (there the sheets are apart only
+    /// in the perturbed world), which no rounded point could.
+    fn sides(&self, (x, [u, v]): Source, on: &[(u32, i64)]) -> Result<Option<Sides>, WindingError> {
+        let normal = area_vector(self.joined, x as usize);
+        let n = normal.abs();
+        let axis = if n.x >= n.y && n.x >= n.z {
+            0
+        } else if n.y >= n.z {
+            1
+        } else {
+            2
+        };
+        let weights = [1.0 - u - v, u, v];
+        if !weights.iter().all(|&w| w > 0.0 && w.is_finite()) {
+            return Ok(None);
+        }
+        let xc = self.joined.corners(x as usize);
+        let p = xc[0] * weights[0] + xc[1] * weights[1] + xc[2] * weights[2];
+        // The ray leaves along the axis closest to the normal, towards
+        // the front: it crosses none of the left-out sheets.
+        let bounds = self.tree.bounds();
+        let span = (bounds.max - bounds.min)
+            .max_element()
+            .max(bounds.max.abs().max_element())
+            .max(bounds.min.abs().max_element())
+            .max(1.0);
+        let mut far = p;
+        far[axis] = if normal[axis] > 0.0 {
+            bounds.max[axis].max(p[axis]) + span
+        } else {
+            bounds.min[axis].min(p[axis]) - span
+        };
+        if !far.is_finite() {
+            return Err(WindingError::TooLarge);
+        }
+        let ray = WeightedRay {
+            x: self.sym(x),
+            weights,
+            end: SymPoint::new(far, self.start_id),
+        };
+        let left_out = |t: u32| on.iter().any(|&(s, _)| s == t);
+        let mut front = vec![0i64; self.inputs];
+        // The exact start lies in `x`, so this box holds the whole ray.
+        let reach = Aabb::from_points(&[xc[0], xc[1], xc[2], far]);
+        self.tree.for_each_overlap(&reach, |t| {
+            if left_out(t) {
+                return;
+            }
+            let [a, b, c] = self.sym(t);
+            if let Some(behind) = ray.crosses(a, b, c) {
+                // Leaving from behind a triangle (the side its normal
+                // points away from) is leaving its inside: +1.
+                front[self.owner[t as usize] as usize] += if behind { 1 } else { -1 };
+            }
+        });
+        let mut back = front.clone();
+        for &(t, sign) in on {
+            back[self.owner[t as usize] as usize] += sign;
+        }
+        Ok(Some(Sides { front, back }))
+    }
+}
+
+/// A segment from the point `Σ wᵢ xᵢ` of a triangle `x` (perturbed with
+/// it) to `end`.
+struct WeightedRay {
+    x: [SymPoint; 3],
+    weights: [f64; 3],
+    end: SymPoint,
+}
+
+impl WeightedRay {
+    /// orient3d with the start point in argument `slot` of `rest` (the
+    /// three other points, in order).
+    fn orient(&self, slot: usize, rest: [SymPoint; 3]) -> SosSign {
+        let pts = [self.x[0], self.x[1], self.x[2], rest[0], rest[1], rest[2]];
+        sos_sign(
+            &Weighted {
+                weights: self.weights,
+                slot,
+            },
+            &pts,
+        )
+    }
+
+    /// Whether the segment crosses the open triangle `abc` in the
+    /// perturbed world, and if it does, whether it starts behind it (the
+    /// side its normal points away from): the test of
+    /// [`segment_triangle_intersect`] with the start a weighted point.
+    fn crosses(&self, a: SymPoint, b: SymPoint, c: SymPoint) -> Option<bool> {
+        if a.id == b.id || b.id == c.id || a.id == c.id || [a.id, b.id, c.id].contains(&self.end.id)
+        {
+            return None;
+        }
+        let sp = self.orient(3, [a, b, c]);
+        let sq = orient3d_sos(a, b, c, self.end);
+        if sp == SosSign::Degenerate || sp == sq {
+            return None;
+        }
+        let e1 = self.orient(0, [self.end, a, b]);
+        if e1 == SosSign::Degenerate
+            || self.orient(0, [self.end, b, c]) != e1
+            || self.orient(0, [self.end, c, a]) != e1
+        {
+            return None;
+        }
+        Some(sp == SosSign::Positive)
+    }
+}
+
+/// orient3d of four points, one of which (argument `slot`) is the point
+/// `Σ wᵢ xᵢ` of a triangle: points 0–2 are the triangle's corners, points
+/// 3–5 the other three arguments in order. The determinant is affine in
+/// each argument, so its value there is `Σ wᵢ orient3d(…, xᵢ, …)` when the
+/// weights add up to one, and has the sign of the point `Σ wᵢ xᵢ / Σ wᵢ`
+/// otherwise: only signs are asked.
+struct Weighted {
+    weights: [f64; 3],
+    slot: usize,
+}
+
+impl Poly for Weighted {
+    fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
+        let (a, b, c) = (&p[3], &p[4], &p[5]);
+        let term = |i: usize| {
+            let x = &p[i];
+            let o = match self.slot {
+                0 => orient3(x, a, b, c),
+                1 => orient3(a, x, b, c),
+                2 => orient3(a, b, x, c),
+                _ => orient3(a, b, c, x),
+            };
+            o.mul(&T::cst(self.weights[i]))
+        };
+        term(0).add(&term(1)).add(&term(2))
+    }
+}
+
+/// Area vector of triangle `t` (twice its area, along its normal).
+fn area_vector(mesh: &TriMesh, t: usize) -> DVec3 {
+    let [a, b, c] = mesh.corners(t);
+    (b - a).cross(c - a)
+}
+
+/// How a region or group comes out: deleted, kept as it faces, or kept
+/// turned over.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Fate {
+    Deleted,
+    Kept,
+    Flipped,
+}
+
+fn fate(op: Operation, sides: &Sides) -> Fate {
+    let inside = |w: &[i64]| op.contains(&w.iter().map(|&w| w >= 1).collect::<Vec<_>>());
+    match (inside(&sides.back), inside(&sides.front)) {
+        (true, false) => Fate::Kept,
+        (false, true) => Fate::Flipped,
+        _ => Fate::Deleted,
+    }
+}
+
+/// How many triangles of a region are tried as its sample before the
+/// region is declared on a coplanar overlap.
+const SAMPLE_TRIES: usize = 16;
+
+/// The result's triangles: each region and each group of identical
+/// coincident cells classified by one ray (module docs, steps 2–4).
+fn classify(
+    arr: &TriMesh,
+    source: &[Source],
+    rays: &Rays<'_>,
+    op: Operation,
+    report: &mut WindingReport,
+) -> Result<Vec<[u32; 3]>, WindingError> {
+    let tris = &arr.triangles;
+    // Groups of identical cells (the same three vertices).
+    let mut keyed: Vec<([u32; 3], u32)> = tris
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let mut k = *tri;
+            k.sort_unstable();
+            (k, t as u32)
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    let mut in_group = vec![false; tris.len()];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+        if run.len() > 1 {
+            groups.push(run.iter().map(|&(_, t)| t).collect());
+            for &(_, t) in run {
+                in_group[t as usize] = true;
+            }
+        }
+    }
+    report.coincident_groups = groups.len();
+
+    // Regions: joined across edges two triangles share in opposite
+    // directions.
+    let edges = Edges::new(arr);
+    let mut parent: Vec<u32> = (0..tris.len() as u32).collect();
+    for e in 0..edges.len() {
+        if edges.opposite(tris, e)
+            && let [t, u] = *edges.triangles(e)
+        {
+            let (a, b) = (find(&mut parent, t), find(&mut parent, u));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let root: Vec<u32> = (0..tris.len() as u32)
+        .map(|t| find(&mut parent, t))
+        .collect();
+    // Each region's triangles, largest first.
+    let mut order: Vec<(u32, f64, u32)> = (0..tris.len())
+        .filter(|&t| !in_group[t])
+        .map(|t| (root[t], -area_vector(arr, t).length(), t as u32))
+        .collect();
+    order.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+
+    let centroid = |t: usize| arr.corners(t).iter().sum::<DVec3>() / 3.0;
+    let mut region_fate: HashMap<u32, Fate> = HashMap::new();
+    for run in order.chunk_by(|a, b| a.0 == b.0) {
+        let mut decided = None;
+        for &(_, _, t) in run.iter().take(SAMPLE_TRIES) {
+            report.rays += 1;
+            let x = source[t as usize];
+            if let Some(sides) = rays.sides(x, &[(x.0, 1)])? {
+                decided = Some(fate(op, &sides));
+                break;
+            }
+        }
+        let t = run[0].2 as usize;
+        let Some(f) = decided else {
+            let p = centroid(t);
+            return Err(WindingError::CoplanarOverlap {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            });
+        };
+        region_fate.insert(run[0].0, f);
+    }
+    report.regions = region_fate.len() + groups.len();
+
+    let mut out: Vec<[u32; 3]> = Vec::new();
+    for (t, tri) in tris.iter().enumerate() {
+        if in_group[t] {
+            continue;
+        }
+        match region_fate[&root[t]] {
+            Fate::Deleted => {}
+            Fate::Kept => out.push(*tri),
+            Fate::Flipped => out.push([tri[0], tri[2], tri[1]]),
+        }
+    }
+    for group in &groups {
+        let first = group[0] as usize;
+        let reference = tris[first];
+        // Same cyclic order as the first cell: faces the same way.
+        let same =
+            |t: [u32; 3]| (0..3).any(|k| [t[k], t[(k + 1) % 3], t[(k + 2) % 3]] == reference);
+        let on: Vec<(u32, i64)> = group
+            .iter()
+            .map(|&g| {
+                (
+                    source[g as usize].0,
+                    if same(tris[g as usize]) { 1 } else { -1 },
+                )
+            })
+            .collect();
+        report.rays += 1;
+        let p = centroid(first);
+        let sides = rays
+            .sides(source[first], &on)?
+            .ok_or(WindingError::CoplanarOverlap {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            })?;
+        match fate(op, &sides) {
+            Fate::Deleted => {}
+            Fate::Kept => out.push(reference),
+            Fate::Flipped => out.push([reference[0], reference[2], reference[1]]),
+        }
+    }
+    Ok(out)
+}
