@@ -942,6 +942,97 @@ fn intersection_and_difference_of_two_cubes() {
     assert!(!out.exists());
 }
 
+/// The OBJ files `parts` as one file: their vertices in order, face
+/// indices offset.
+fn concatenate_obj(parts: &[&Path], out: &Path) {
+    let (mut verts, mut faces, mut base) = (String::new(), String::new(), 0usize);
+    for p in parts {
+        let text = std::fs::read_to_string(p).unwrap();
+        let mut count = 0;
+        for line in text.lines() {
+            if let Some(rest) = line.strip_prefix("v ") {
+                verts += &format!("v {rest}\n");
+                count += 1;
+            } else if let Some(rest) = line.strip_prefix("f ") {
+                let ids: Vec<String> = rest
+                    .split_whitespace()
+                    .map(|i| (i.parse::<usize>().unwrap() + base).to_string())
+                    .collect();
+                faces += &format!("f {}\n", ids.join(" "));
+            }
+        }
+        base += count;
+    }
+    std::fs::write(out, verts + &faces).unwrap();
+}
+
+/// The winding-number Booleans (issue 14) from the command line: one file
+/// holding two crossing cubes unites into their union (one input: the
+/// solid it encloses); three inputs unite; a difference whose first solid
+/// crosses itself takes the arrangement too. Volumes by inclusion and
+/// exclusion of boxes; the report says which method ran.
+#[test]
+fn crossing_and_many_solids_by_the_winding_number() {
+    let dir = tmp();
+    let (a, b, c) = (
+        dir.path().join("a.obj"),
+        dir.path().join("b.obj"),
+        dir.path().join("c.obj"),
+    );
+    for p in [&a, &b, &c] {
+        ok(&["primitive", "@cube", s(p)]);
+    }
+    shift_obj(&b, [0.9, 0.7, 0.55]);
+    shift_obj(&c, [10.0, 0.0, 0.0]);
+    let shells = dir.path().join("shells.obj");
+    concatenate_obj(&[&a, &b], &shells);
+    let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&shells)])).unwrap();
+    assert!(si["intersecting_pairs"].as_u64().unwrap() > 0);
+    let overlap = 1.1 * 1.3 * 1.45;
+    let united = 16.0 - overlap;
+    let check = |out: &Path, want: f64, what: &str| {
+        let m = info(s(out), &[]);
+        assert_eq!(m["closed"], true, "{what}");
+        assert_eq!(m["manifold"], true, "{what}");
+        let v = m["volume"].as_f64().unwrap();
+        assert!(
+            (v - want).abs() < 1e-12,
+            "{what}: volume {v}, expected {want}"
+        );
+        let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(out)])).unwrap();
+        assert_eq!(si["intersecting_pairs"], 0, "{what}");
+    };
+    let out = dir.path().join("one.obj");
+    let r = dir.path().join("one.json");
+    ok(&["union", s(&shells), s(&out), "--report", s(&r)]);
+    check(&out, united, "one input");
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(report["method"], "winding");
+    assert_eq!(report["output_intersecting_pairs"], 0);
+    assert!(report["cells"].as_u64().unwrap() >= 2);
+
+    let out = dir.path().join("three.obj");
+    ok(&["union", s(&a), s(&b), s(&c), s(&out)]);
+    check(&out, united + 8.0, "three inputs");
+
+    let out = dir.path().join("minus.obj");
+    let r = dir.path().join("minus.json");
+    ok(&["difference", s(&shells), s(&c), s(&out), "--report", s(&r)]);
+    check(&out, united, "crossing minus apart");
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(report["method"], "winding");
+
+    // An open input is refused, naming it; nothing is written.
+    let open = dir.path().join("open.obj");
+    let text = std::fs::read_to_string(&c).unwrap();
+    let kept: Vec<&str> = text.lines().filter(|l| !l.starts_with("f 5")).collect();
+    std::fs::write(&open, kept.join("\n")).unwrap();
+    let never = dir.path().join("never.obj");
+    let e = bad(&["union", s(&a), s(&b), s(&open), s(&never)]);
+    assert!(e.contains("open.obj: not closed"), "{e}");
+    assert!(!never.exists());
+}
+
 /// `holey union` of two unit icospheres one unit apart along x, through
 /// the synthesized motion: one closed genus-0 solid whose volume is the
 /// two spheres' minus the overlap. The overlap of the polyhedra is bounded

@@ -744,6 +744,24 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     Ok((out, x, report))
 }
 
+/// Whether any two triangles of `mesh` intersect (exact, identities by
+/// position class, as [`self_intersections`] decides), stopping at the
+/// first pair: which Boolean a pair of solids needs. The containment
+/// union of Theorem 5.2 is right for solids that do not cross
+/// themselves; one that does needs the winding-number arrangement
+/// ([`crate::boolean_by_winding`]).
+pub fn crosses_itself(mesh: &TriMesh) -> Result<bool, TopoError> {
+    mesh.check()?;
+    let ids = position_classes(&mesh.positions)?;
+    let all: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+    Ok(crate::intersect::any_intersection_among(
+        mesh,
+        &mesh.positions,
+        &ids,
+        &all,
+    )?)
+}
+
 /// The self-intersections of a mesh (`holey selfint`).
 pub fn self_intersections(mesh: &TriMesh) -> Result<Intersections, TopoError> {
     mesh.check()?;

@@ -25,7 +25,8 @@ pub use accumulate::{Accumulator, Release};
 pub use audit::SurfaceAudit;
 pub use correct::Scheme;
 pub use engine::{
-    Options, Outcome, Report, TopoError, resolve, self_intersections, topology_change,
+    Options, Outcome, Report, TopoError, crosses_itself, resolve, self_intersections,
+    topology_change,
 };
 pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_holding};
 pub use local::{LocalReport, topology_change_local};

@@ -8,20 +8,29 @@ use holey_topo::{Operation, UnionError};
 
 use crate::cmd::topo::{EngineArgs, write_outcome};
 use crate::cmd::union::joined;
+use crate::cmd::winding;
 use crate::error::bad_input;
 use crate::progress::Progress;
 use crate::tri::load_triangle_pair;
 
 #[derive(clap::Args)]
 #[command(after_help = "\
-How it is computed: the intersections of A with B (exact, with symbolic
+What is inside: a point is inside a solid when the solid's winding number
+there is at least 1/2. The intersection is what is inside both, the
+difference A − B what is inside A and not inside B.
+
+When A or B crosses itself (checked exactly first), or with --winding,
+the winding-number arrangement of `holey union` computes it (see `holey
+union --help`): self-crossing solids, overlapping and nested shells.
+
+Otherwise, how it is computed: the intersections of A with B (exact, with symbolic
 perturbation), then one exact ray per region of vertices between the
 intersection curves says whether the region lies inside the other
 solid. The intersection keeps the part of each surface inside the other;
 the difference A − B keeps A's surface outside B and B's surface inside
 A, turned to face into the hole. Both solids must be closed (every edge
-shared by an even number of triangles) and must not cross themselves
-where they meet; otherwise the command says which one and stops.
+shared by an even number of triangles); otherwise the command says which
+one and stops.
 
 As for `holey union`, where coplanar faces of A and B overlap and the
 exactly placed result is not a closed surface, the run is retried with B
@@ -41,6 +50,10 @@ pub struct Args {
     /// Do not perturb B's position where coplanar faces overlap.
     #[arg(long)]
     pub exact: bool,
+    /// Use the winding-number arrangement even when neither solid crosses
+    /// itself (see below).
+    #[arg(long)]
+    pub winding: bool,
     #[command(flatten)]
     pub engine: EngineArgs,
 }
@@ -52,6 +65,10 @@ pub fn run(args: Args, op: Operation) -> Result<()> {
         return Err(bad_input("both solids must have vertices"));
     }
     let _p = Progress::start(op.name());
+    if args.winding || winding::needs_winding(&a, &b)? {
+        let names = [args.a.as_str(), args.b.as_str()];
+        return winding::run(&[a, b], &names, op, &args.output, &args.engine);
+    }
     let options = args.engine.options();
     let result = if args.exact {
         holey_topo::boolean(&a, &b, op, &options)
@@ -59,10 +76,9 @@ pub fn run(args: Args, op: Operation) -> Result<()> {
         holey_topo::boolean_robust(&a, &b, op, &options)
     };
     let out = result.map_err(|e| match e {
-        UnionError::NotClosed(_) | UnionError::SelfIntersecting(_) => bad_input(format!(
-            "{e} (the {} needs two closed solids that do not cross themselves where they meet)",
-            op.name()
-        )),
+        UnionError::NotClosed(_) | UnionError::SelfIntersecting(_) => {
+            bad_input(format!("{e} (the {} needs two closed solids)", op.name()))
+        }
         e => bad_input(e.to_string()),
     })?;
     let retries = out.report.perturbation_retries;

@@ -17,3 +17,4 @@ pub mod sierpinski;
 pub mod subdivide;
 pub mod topo;
 pub mod union;
+pub mod winding;

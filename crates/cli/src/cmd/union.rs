@@ -5,12 +5,13 @@
 use anyhow::Result;
 use glam::DVec3;
 use holey_topo::union::{NUDGES, nudge};
-use holey_topo::{TriMesh, UnionError};
+use holey_topo::{Operation, TriMesh, UnionError};
 
 use crate::cmd::topo::{EngineArgs, write_outcome};
+use crate::cmd::winding;
 use crate::error::bad_input;
 use crate::progress::Progress;
-use crate::tri::load_triangle_pair;
+use crate::tri::{load_triangle_pair, load_triangles};
 
 /// The default direction B arrives from: generic, so that B's vertices
 /// travel along lines that pass through none of the vertices and edges of
@@ -21,6 +22,25 @@ const DEFAULT_DIRECTION: [f64; 3] = [1.0, 0.3127, 0.1731];
 
 #[derive(clap::Args)]
 #[command(after_help = "\
+What is inside: a point is inside a solid when the solid's winding number
+there is at least 1/2 (for a closed surface, an integer: the number of
+times the surface wraps around the point). The union is everything inside
+any input.
+
+Which computation: with one input, or three and more, and whenever an
+input crosses itself (checked exactly first), or with --winding: the
+winding-number arrangement. Every triangle of every input is intersected
+with every other, the surfaces are cut and glued along the curves, and
+each region between curves gets its inputs' winding numbers on both sides
+from one exact ray (simulation of simplicity); the regions with inside on
+one side and outside on the other are kept, facing out. One input alone
+gives the solid its surface encloses: self-intersections and inner shells
+removed. Every input must be closed. The output is checked for crossing
+triangles; if it has any (coplanar faces that touch), a warning says so.
+
+Otherwise, for two solids that do not cross themselves, the union of
+Theorem 5.2 below.
+
 The motion (Theorem 5.2): B is first translated by s·d, where d is the
 unit vector along --direction and s is the distance that puts B's shadow
 on d wholly beyond A's plus 10% of the two shadows' combined length (so
@@ -61,14 +81,20 @@ copies of one lattice-built mesh.
 
 Examples:
   holey union a.obj b.obj union.obj
+  holey union scan.stl repaired.stl        (one input: its enclosed solid)
+  holey union a.obj b.obj c.obj all.obj --report r.json
   holey union @sphere:4 b.ply u.ply --via-motion --direction 0,0,1 --report r.json")]
 pub struct Args {
     /// The first solid; it stays in place.
     pub a: String,
-    /// The second solid, at its final position.
-    pub b: String,
-    /// Output file; its extension names the format.
-    pub output: String,
+    /// The other solids (none, one, or more), then the output file, whose
+    /// extension names the format.
+    #[arg(required = true, num_args = 1.., value_name = "B... OUT")]
+    pub rest: Vec<String>,
+    /// Use the winding-number arrangement even for two solids that do
+    /// not cross themselves (see below).
+    #[arg(long, conflicts_with = "via_motion")]
+    pub winding: bool,
     /// Direction B arrives from, as x,y,z.
     #[arg(long, value_name = "X,Y,Z")]
     pub direction: Option<String>,
@@ -136,7 +162,24 @@ pub(crate) fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
 
 pub fn run(args: Args) -> Result<()> {
     args.engine.check_outputs()?;
-    let (a, b) = load_triangle_pair(&args.a, &args.b)?;
+    let Some((output, others)) = args.rest.split_last() else {
+        return Err(bad_input("union needs an output file"));
+    };
+    if others.len() != 1 {
+        if args.via_motion {
+            return Err(bad_input("--via-motion unites exactly two solids"));
+        }
+        let names: Vec<&str> = std::iter::once(args.a.as_str())
+            .chain(others.iter().map(String::as_str))
+            .collect();
+        let inputs = names
+            .iter()
+            .map(|n| load_triangles(n))
+            .collect::<Result<Vec<_>>>()?;
+        let _p = Progress::start("uniting");
+        return winding::run(&inputs, &names, Operation::Union, output, &args.engine);
+    }
+    let (a, b) = load_triangle_pair(&args.a, &others[0])?;
     if a.positions.is_empty() || b.positions.is_empty() {
         return Err(bad_input("both solids must have vertices"));
     }
@@ -148,6 +191,10 @@ pub fn run(args: Args) -> Result<()> {
         None => DVec3::from_array(DEFAULT_DIRECTION).normalize(),
     };
     let _p = Progress::start("uniting");
+    if !args.via_motion && (args.winding || winding::needs_winding(&a, &b)?) {
+        let names = [args.a.as_str(), others[0].as_str()];
+        return winding::run(&[a, b], &names, Operation::Union, output, &args.engine);
+    }
     let options = args.engine.options();
     let direct = if args.via_motion {
         None
@@ -170,7 +217,7 @@ pub fn run(args: Args) -> Result<()> {
         }
         None => via_motion(&a, &b, d, &args, &options)?,
     };
-    write_outcome(&out, &args.output, &args.engine, || match picture {
+    write_outcome(&out, output, &args.engine, || match picture {
         Picture::Direct(retries) => joined(&a, &b, nudge(&a, &b, retries)),
         Picture::Motion(start, end) => TriMesh {
             positions: end,

@@ -1,0 +1,110 @@
+//! The winding-number Booleans behind `holey union`, `intersection` and
+//! `difference` when an input crosses itself, when there are more than
+//! two inputs or one, or with `--winding`: the library's
+//! [`holey_topo::boolean_by_winding`], its output checked for crossings
+//! (a result that crosses itself is written, but never silently).
+
+use anyhow::Result;
+use holey_topo::{Operation, TriMesh, WindingError, WindingOutcome};
+use serde_json::{Value, json};
+
+use crate::cmd::topo::EngineArgs;
+use crate::error::bad_input;
+use crate::tri::{write_json, write_triangles};
+
+/// Which of the two Booleans a pair of solids needs: the winding-number
+/// arrangement when either crosses itself (the containment union keeps
+/// a solid's own crossings), else the direct one.
+pub fn needs_winding(a: &TriMesh, b: &TriMesh) -> Result<bool> {
+    let crosses = |m: &TriMesh| holey_topo::crosses_itself(m).map_err(|e| bad_input(e.to_string()));
+    Ok(crosses(a)? || crosses(b)?)
+}
+
+/// Runs `op` on `inputs` (named `names` in errors) by the winding number
+/// and writes the result to `output`, the report where `engine` says.
+pub fn run(
+    inputs: &[TriMesh],
+    names: &[&str],
+    op: Operation,
+    output: &str,
+    engine: &EngineArgs,
+) -> Result<()> {
+    let refs: Vec<&TriMesh> = inputs.iter().collect();
+    let out = holey_topo::boolean_by_winding(&refs, op, &engine.options()).map_err(|e| match e {
+        WindingError::NotClosed { input, from, to } => bad_input(format!(
+            "{}: not closed: its triangles do not pair up in opposite directions along the edge from vertex {from} to vertex {to} (the winding number of an open surface is not an integer)",
+            names.get(input).copied().unwrap_or("an input")
+        )),
+        e => bad_input(e.to_string()),
+    })?;
+    let crossing = holey_topo::self_intersections(&out.mesh)
+        .map(|x| x.pairs.len())
+        .map_err(|e| bad_input(e.to_string()))?;
+    write_triangles(output, &out.mesh)?;
+    if let Some(path) = &engine.report {
+        write_json(path, &report_json(&out, crossing))?;
+    }
+    if engine.verbose {
+        eprint!("{}", report_text(&out, crossing));
+    }
+    if out.report.unpaired_edges > 0 {
+        eprintln!(
+            "warning: the result is not closed: {} edges have no partner (constructed points that should meet an input vertex rounded a few ulps from it)",
+            out.report.unpaired_edges
+        );
+    }
+    if crossing > 0 {
+        eprintln!(
+            "warning: {crossing} triangle pairs of the result cross (coplanar faces that touch kept as a wall of no thickness, or points rounded past a sheet); its volume and inside are still the winding-number rule's"
+        );
+    }
+    Ok(())
+}
+
+fn report_json(out: &WindingOutcome, crossing: usize) -> Value {
+    let r = &out.report;
+    json!({
+        "method": "winding",
+        "inputs_closed": true,
+        "intersecting_pairs": r.intersecting_pairs,
+        "intersection_points": r.intersection_points,
+        "triple_points": r.triple_points,
+        "intersection_curves": r.intersection_curves,
+        "arrangement_triangles": r.arrangement_triangles,
+        "cells": r.regions,
+        "coincident_groups": r.coincident_groups,
+        "rays": r.rays,
+        "snapped_points": r.welded_points,
+        "t_junctions_repaired": r.t_junctions_repaired,
+        "unpaired_edges": r.unpaired_edges,
+        "output_triangles": out.mesh.triangles.len(),
+        "output_intersecting_pairs": crossing,
+        "seconds": {
+            "intersections": r.seconds.intersections,
+            "cut": r.seconds.cut,
+            "classify": r.seconds.classify,
+            "total": r.seconds.total,
+        },
+    })
+}
+
+fn report_text(out: &WindingOutcome, crossing: usize) -> String {
+    let r = &out.report;
+    format!(
+        "winding-number arrangement: {} intersecting pairs, {} curves, {} triangles in {} cells ({} coincident groups), {} rays\n\
+         result: {} triangles, {} unpaired edges, {} crossing pairs; {:.3} s (intersections {:.3}, cut {:.3}, classify {:.3})\n",
+        r.intersecting_pairs,
+        r.intersection_curves,
+        r.arrangement_triangles,
+        r.regions,
+        r.coincident_groups,
+        r.rays,
+        out.mesh.triangles.len(),
+        r.unpaired_edges,
+        crossing,
+        r.seconds.total,
+        r.seconds.intersections,
+        r.seconds.cut,
+        r.seconds.classify,
+    )
+}
