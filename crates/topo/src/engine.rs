@@ -752,14 +752,11 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
 /// ([`crate::boolean_by_winding`]).
 pub fn crosses_itself(mesh: &TriMesh) -> Result<bool, TopoError> {
     mesh.check()?;
-    let ids = position_classes(&mesh.positions)?;
-    let all: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
-    Ok(crate::intersect::any_intersection_among(
-        mesh,
-        &mesh.positions,
-        &ids,
-        &all,
-    )?)
+    match crate::intersect::intersecting_pair_count(mesh, 0) {
+        Ok(_) => Ok(false),
+        Err(crate::intersect::IntersectError::TooManyPairs { .. }) => Ok(true),
+        Err(e) => Err(e.into()),
+    }
 }
 
 /// The self-intersections of a mesh (`holey selfint`).

@@ -212,3 +212,45 @@ fn scale_and_offset_do_not_change_the_result() {
         assert_eq!(signature(f.as_ref()), unit, "{what}");
     }
 }
+
+/// A degenerate storm (issue 14): one polygon of 900,000 corners over
+/// three points fans into 300,000 copies of one triangle and 600,000
+/// triangles with a repeated corner. Copies share every point and a
+/// repeated corner has no area, so there is one triangle to test: no
+/// pair intersects, and the count comes back at once instead of after
+/// 4.5 × 10¹⁰ box pairs. With a triangle crossing the copies, every copy
+/// crosses it: 300,000 pairs, past the limit asked for, which refuses.
+#[test]
+fn a_degenerate_storm_is_one_triangle() {
+    let corners = 900_000u32;
+    let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+    let fan: Vec<[u32; 3]> = (1..corners - 1).map(|k| [0, k % 3, (k + 1) % 3]).collect();
+    let storm = TriMesh {
+        positions: positions.clone(),
+        triangles: fan.clone(),
+    };
+    assert_eq!(
+        holey_topo::self_intersections(&storm).unwrap().pairs.len(),
+        0
+    );
+    assert!(!holey_topo::crosses_itself(&storm).unwrap());
+
+    let mut crossed = storm.clone();
+    crossed.positions.extend([
+        DVec3::new(0.2, 0.2, -1.0),
+        DVec3::new(0.3, 0.2, 1.0),
+        DVec3::new(0.2, 0.3, 1.0),
+    ]);
+    crossed.triangles.push([3, 4, 5]);
+    let copies = fan.iter().filter(|t| t[1] != 0 && t[2] != 0).count();
+    assert_eq!(copies, 300_000);
+    assert_eq!(
+        holey_topo::intersect::intersecting_pair_count(&crossed, usize::MAX).unwrap(),
+        copies
+    );
+    assert!(matches!(
+        holey_topo::intersect::intersecting_pair_count(&crossed, 1000),
+        Err(holey_topo::intersect::IntersectError::TooManyPairs { .. })
+    ));
+    assert!(holey_topo::crosses_itself(&crossed).unwrap());
+}
