@@ -310,6 +310,81 @@ fn coord(p: DVec3) -> robust::Coord3D<f64> {
 /// in the perturbed world of `sym`), or `None` when they do not
 /// intersect other than along a shared vertex or edge.
 fn pair_segment(tris: &[[u32; 3]], sym: &Symbolic<'_>, t1: u32, t2: u32) -> Option<[SegEnd; 2]> {
+    pair_segment_with(tris, sym, None, t1, t2)
+}
+
+/// A triangle's plane as [`side_filter`] evaluates it, computed once: the
+/// cross product `q × r` of its edges from its first corner and the
+/// absolute values of its terms, so that each corner of another triangle
+/// costs one difference and two dot products (`p · (q × r)` and the
+/// permanent `|p| · (|q_y r_z| + |q_z r_y|, …)`), the same floating-point
+/// operations and so the same error bound. The side filter was more than
+/// half of `holey selfint` on rotated CAD meshes, whose long thin
+/// triangles have boxes that overlap many others.
+#[derive(Clone, Copy)]
+pub(crate) struct Plane {
+    normal: DVec3,
+    terms: DVec3,
+}
+
+impl Plane {
+    fn of(a: [DVec3; 3]) -> Plane {
+        let (q, r) = (a[1] - a[0], a[2] - a[0]);
+        Plane {
+            normal: q.cross(r),
+            terms: DVec3::new(
+                (q.y * r.z).abs() + (q.z * r.y).abs(),
+                (q.z * r.x).abs() + (q.x * r.z).abs(),
+                (q.x * r.y).abs() + (q.y * r.x).abs(),
+            ),
+        }
+    }
+
+    /// The planes of all of `tris` at `positions`.
+    pub(crate) fn all(tris: &[[u32; 3]], positions: &[DVec3]) -> Vec<Plane> {
+        tris.par_iter()
+            .map(|t| Plane::of(t.map(|v| positions[v as usize])))
+            .collect()
+    }
+}
+
+/// [`side_filter`] with `a`'s plane computed beforehand: orient3d of
+/// `(b_k, a₁, a₂, a₀)`, expanded along `b_k − a₀`.
+fn side_filter_plane(a0: DVec3, plane: &Plane, b: [DVec3; 3], b_shared: [bool; 3]) -> Side {
+    const BOUND: f64 = 7.771_561_172_376_103e-16;
+    let mut side = 0i8;
+    let mut unsure = false;
+    for k in 0..3 {
+        if b_shared[k] {
+            continue;
+        }
+        let p = b[k] - a0;
+        let det = p.dot(plane.normal);
+        if det.abs() <= BOUND * p.abs().dot(plane.terms) {
+            unsure = true;
+            continue;
+        }
+        let s = if det > 0.0 { 1 } else { -1 };
+        if side != 0 && s != side {
+            return Side::Straddles;
+        }
+        side = s;
+    }
+    match (unsure, side) {
+        (true, _) => Side::Unsure,
+        (false, 0) => Side::Straddles,
+        (false, _) => Side::Separated,
+    }
+}
+
+/// [`pair_segment`], with the triangles' planes when they were computed.
+fn pair_segment_with(
+    tris: &[[u32; 3]],
+    sym: &Symbolic<'_>,
+    planes: Option<&[Plane]>,
+    t1: u32,
+    t2: u32,
+) -> Option<[SegEnd; 2]> {
     let tid = |t: u32| tris[t as usize].map(|v| sym.ids[v as usize]);
     let (i1, i2) = (tid(t1), tid(t2));
     let s2 = i2.map(|i| i1.contains(&i));
@@ -319,19 +394,26 @@ fn pair_segment(tris: &[[u32; 3]], sym: &Symbolic<'_>, t1: u32, t2: u32) -> Opti
     let s1 = i1.map(|i| i2.contains(&i));
     let p1 = tris[t1 as usize].map(|v| sym.positions[v as usize]);
     let p2 = tris[t2 as usize].map(|v| sym.positions[v as usize]);
-    let (f1, f2) = (side_filter(p1, p2, s2), side_filter(p2, p1, s1));
+    let (f1, f2) = match planes {
+        Some(pl) => (
+            side_filter_plane(p1[0], &pl[t1 as usize], p2, s2),
+            side_filter_plane(p2[0], &pl[t2 as usize], p1, s1),
+        ),
+        None => (side_filter(p1, p2, s2), side_filter(p2, p1, s1)),
+    };
     if f1 == Side::Separated || f2 == Side::Separated {
         return None;
     }
-    if f1 == Side::Unsure || f2 == Side::Unsure {
-        if apart_in_projection(p1, p2) {
-            return None;
-        }
-        if (f1 == Side::Unsure && separated(p1, p2, s2))
-            || (f2 == Side::Unsure && separated(p2, p1, s1))
-        {
-            return None;
-        }
+    // Nearly coplanar neighbours (the fans of a rotated CAD mesh) bend
+    // through each other's planes yet lie apart in some projection: the
+    // exact 2-D test is far cheaper than the perturbed segment.
+    if apart_in_projection(p1, p2) {
+        return None;
+    }
+    if (f1 == Side::Unsure && separated(p1, p2, s2))
+        || (f2 == Side::Unsure && separated(p2, p1, s1))
+    {
+        return None;
     }
     triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))
 }
@@ -505,11 +587,16 @@ fn segments(
     // overlapping boxes; the output keeps the descent's order. Only hits
     // are kept: candidates outnumber hits by orders of magnitude (4.7M
     // against 2.5k for two 262k-triangle spheres).
+    // Every triangle's plane, once, where most triangles take part.
+    let planes = match candidates {
+        Candidates::Among { .. } => None,
+        _ => Some(Plane::all(tris, positions)),
+    };
     let test = |t1: u32, t2: u32| {
         if abort.load(AtomicOrdering::Relaxed) {
             return None;
         }
-        let seg = pair_segment(tris, &sym, t1, t2)?;
+        let seg = pair_segment_with(tris, &sym, planes.as_deref(), t1, t2)?;
         if hits.fetch_add(1, AtomicOrdering::Relaxed) >= limit {
             abort.store(true, AtomicOrdering::Relaxed);
             return None;
