@@ -929,17 +929,19 @@ fn intersection_and_difference_of_two_cubes() {
             "{cmd}"
         );
     }
-    // An open solid is refused, naming it; no output appears.
+    // An open solid is classified by its generalized winding number (the
+    // winding-number arrangement), and the report says which one was open.
     let open = dir.path().join("open.obj");
     let text = std::fs::read_to_string(&b).unwrap();
     let mut lines: Vec<&str> = text.lines().collect();
     let last_face = lines.iter().rposition(|l| l.starts_with("f ")).unwrap();
     lines.remove(last_face);
     std::fs::write(&open, lines.join("\n")).unwrap();
-    let out = dir.path().join("never.obj");
-    let e = bad(&["difference", s(&a), s(&open), s(&out)]);
-    assert!(e.contains("solid B is not closed"), "{e}");
-    assert!(!out.exists());
+    let out = dir.path().join("open.ply");
+    let r = dir.path().join("open.json");
+    ok(&["difference", s(&a), s(&open), s(&out), "--report", s(&r)]);
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(report["inputs_closed"], serde_json::json!([true, false]));
 }
 
 /// The OBJ files `parts` as one file: their vertices in order, face
@@ -1022,15 +1024,27 @@ fn crossing_and_many_solids_by_the_winding_number() {
     let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
     assert_eq!(report["method"], "winding");
 
-    // An open input is refused, naming it; nothing is written.
+    // An open input counts by its generalized winding number, and the
+    // report says it is open: a cube without its top, apart from the
+    // others, is kept as it is (w ≥ ½ only inside it, near its hole less).
     let open = dir.path().join("open.obj");
     let text = std::fs::read_to_string(&c).unwrap();
     let kept: Vec<&str> = text.lines().filter(|l| !l.starts_with("f 5")).collect();
     std::fs::write(&open, kept.join("\n")).unwrap();
-    let never = dir.path().join("never.obj");
-    let e = bad(&["union", s(&a), s(&b), s(&open), s(&never)]);
-    assert!(e.contains("open.obj: not closed"), "{e}");
-    assert!(!never.exists());
+    let out = dir.path().join("open_union.obj");
+    let r = dir.path().join("open_union.json");
+    ok(&["union", s(&a), s(&b), s(&open), s(&out), "--report", s(&r)]);
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(
+        report["inputs_closed"],
+        serde_json::json!([true, true, false])
+    );
+    // The same as the union with the closed cube, less its two top
+    // triangles.
+    let closed_c = info(s(&dir.path().join("three.obj")), &[])["faces"]
+        .as_u64()
+        .unwrap();
+    assert_eq!(info(s(&out), &[])["faces"].as_u64().unwrap(), closed_c - 2);
 }
 
 /// `holey union` of two unit icospheres one unit apart along x, through
@@ -1110,11 +1124,13 @@ fn union_of_two_spheres_is_one_closed_solid() {
     assert!((vn - v0).abs() < 1e-7 * v0, "{vn} vs {v0}");
 }
 
-/// An open B (a sphere with one face removed) bounds no solid, so
-/// `holey union` runs the synthesized motion through the whole pipeline
-/// instead of the containment rays: collisions are found, no ray is cast.
+/// An open B (a sphere with one face removed) bounds no solid exactly:
+/// `holey union` classifies it by its generalized winding number, which
+/// keeps B's surface outside A and its hole as it is (the report says B is
+/// open); `--via-motion` runs the synthesized motion through the whole
+/// pipeline instead: collisions are found, no ray is cast.
 #[test]
-fn union_with_an_open_surface_runs_the_motion() {
+fn union_with_an_open_surface() {
     let dir = tmp();
     let a = dir.path().join("a.obj");
     let b = dir.path().join("b.obj");
@@ -1127,6 +1143,25 @@ fn union_with_an_open_surface_runs_the_motion() {
     let last_face = text.rfind("\nf ").unwrap();
     std::fs::write(&b, &text[..last_face + 1]).unwrap();
     ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    assert_eq!(report["method"], "winding");
+    assert_eq!(report["inputs_closed"], serde_json::json!([true, false]));
+    assert_eq!(report["intersection_curves"], 1);
+    // The removed face's three sides are the only boundary.
+    assert_eq!(report["unpaired_edges"], 3);
+    let m = info(s(&u), &[]);
+    assert_eq!(m["boundary_edges"], 3);
+    assert_eq!(m["components"], 1);
+
+    ok(&[
+        "union",
+        s(&a),
+        s(&b),
+        s(&u),
+        "--report",
+        s(&r),
+        "--via-motion",
+    ]);
     let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
     assert!(report["collisions"].as_u64().unwrap() > 0);
     assert_eq!(report["containment_rays"], 0);

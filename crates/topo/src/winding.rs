@@ -198,8 +198,19 @@ impl<'a> WindingField<'a> {
 
     /// The winding number at `p` of every triangle but `skip`.
     pub fn at(&self, p: DVec3, skip: Option<usize>) -> f64 {
-        // The finest cell holding `skip` is always opened.
-        let skip_cell = skip.and_then(|s| self.cell.get(s)).map(|&c| c as usize);
+        self.at_skipping(p, skip.as_slice())
+    }
+
+    /// The winding number at `p` of every triangle but those of `skip`
+    /// (the triangles `p` lies on: their solid angle there is ±2π by side,
+    /// which the caller adds).
+    pub fn at_skipping(&self, p: DVec3, skip: &[usize]) -> f64 {
+        // The finest cells holding `skip` are always opened.
+        let skip_cells: Vec<usize> = skip
+            .iter()
+            .filter_map(|&s| self.cell.get(s))
+            .map(|&c| c as usize)
+            .collect();
         let mut total = 0.0;
         // (level, x, y, z)
         let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
@@ -211,7 +222,7 @@ impl<'a> WindingField<'a> {
                 continue;
             }
             let shift = self.depth - level;
-            let holds_skip = skip_cell.is_some_and(|k| {
+            let holds_skip = skip_cells.iter().any(|&k| {
                 let fs = self.side;
                 let (kx, ky, kz) = (k / (fs * fs), (k / fs) % fs, k % fs);
                 (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
@@ -222,7 +233,7 @@ impl<'a> WindingField<'a> {
                 total += cell.area_vector.dot(d) / (dist * dist * dist);
             } else if level == self.depth {
                 for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
-                    if Some(t as usize) != skip {
+                    if !skip.contains(&(t as usize)) {
                         let [a, b, e] = self.triangles[t as usize].map(self.position);
                         total += solid_angle(p, a, b, e);
                     }

@@ -5,17 +5,21 @@
 //! (a result that crosses itself is written, but never silently).
 
 use anyhow::Result;
-use holey_topo::{Operation, TriMesh, WindingError, WindingOutcome};
+use holey_topo::{Operation, TriMesh, WindingOutcome};
 use serde_json::{Value, json};
 
 use crate::cmd::topo::EngineArgs;
 use crate::error::bad_input;
 use crate::tri::{write_json, write_triangles};
 
-/// Which of the two Booleans a pair of solids needs: the winding-number
-/// arrangement when either crosses itself (the containment union keeps
-/// a solid's own crossings), else the direct one.
+/// Which of the two Booleans a pair of meshes needs: the winding-number
+/// arrangement when either is not a closed 2-manifold (its generalized
+/// winding number then says what is inside) or crosses itself (the
+/// containment union keeps a solid's own crossings), else the direct one.
 pub fn needs_winding(a: &TriMesh, b: &TriMesh) -> Result<bool> {
+    if !a.is_closed() || !b.is_closed() {
+        return Ok(true);
+    }
     let crosses = |m: &TriMesh| holey_topo::crosses_itself(m).map_err(|e| bad_input(e.to_string()));
     Ok(crosses(a)? || crosses(b)?)
 }
@@ -30,13 +34,15 @@ pub fn run(
     engine: &EngineArgs,
 ) -> Result<()> {
     let refs: Vec<&TriMesh> = inputs.iter().collect();
-    let out = holey_topo::boolean_by_winding(&refs, op, &engine.options()).map_err(|e| match e {
-        WindingError::NotClosed { input, from, to } => bad_input(format!(
-            "{}: not closed: its triangles do not pair up in opposite directions along the edge from vertex {from} to vertex {to} (the winding number of an open surface is not an integer)",
-            names.get(input).copied().unwrap_or("an input")
-        )),
-        e => bad_input(e.to_string()),
-    })?;
+    let out = holey_topo::boolean_by_winding(&refs, op, &engine.options())
+        .map_err(|e| bad_input(e.to_string()))?;
+    for (name, closed) in names.iter().zip(&out.report.inputs_closed) {
+        if !closed {
+            eprintln!(
+                "note: {name} is not closed: inside it means a generalized winding number of at least 1/2 (Jacobson et al. 2013)"
+            );
+        }
+    }
     let crossing = holey_topo::self_intersections(&out.mesh)
         .map(|x| x.pairs.len())
         .map_err(|e| bad_input(e.to_string()))?;
@@ -47,7 +53,7 @@ pub fn run(
     if engine.verbose {
         eprint!("{}", report_text(&out, crossing));
     }
-    if out.report.unpaired_edges > 0 {
+    if out.report.unpaired_edges > 0 && out.report.inputs_closed.iter().all(|&c| c) {
         eprintln!(
             "warning: the result is not closed: {} edges have no partner (constructed points that should meet an input vertex rounded a few ulps from it)",
             out.report.unpaired_edges
@@ -65,7 +71,7 @@ fn report_json(out: &WindingOutcome, crossing: usize) -> Value {
     let r = &out.report;
     json!({
         "method": "winding",
-        "inputs_closed": true,
+        "inputs_closed": r.inputs_closed,
         "intersecting_pairs": r.intersecting_pairs,
         "intersection_points": r.intersection_points,
         "triple_points": r.triple_points,
