@@ -11,6 +11,11 @@ process, no file reading), and the whole process is timed too.
 
     cargo build --release -p holey-cli
     python3 bench/peers/ember_boolean.py [--holey target/release/holey] [--runs 3]
+    python3 bench/peers/ember_boolean.py --holey-args=--no-check
+
+By default holey first checks exactly that neither solid crosses itself
+(its winding-number arrangement takes those); `--no-check` skips that, as
+the peers do, for inputs known to be solids.
 """
 import argparse, json, os, subprocess, sys, tempfile, time
 
@@ -55,11 +60,11 @@ def best(fn, runs):
     return min(times), out
 
 
-def holey_run(holey, op, pa, pb, out, report, runs):
+def holey_run(holey, op, pa, pb, out, report, runs, extra=()):
     wall, engine, err = None, None, None
     for _ in range(runs):
         t = time.perf_counter()
-        p = subprocess.run([holey, op, pa, pb, out, "--report", report], capture_output=True, text=True)
+        p = subprocess.run([holey, op, pa, pb, out, "--report", report, *extra], capture_output=True, text=True)
         dt = time.perf_counter() - t
         if p.returncode != 0:
             return None, None, p.stderr.strip().splitlines()[-1]
@@ -80,6 +85,7 @@ def main():
     ap.add_argument("--holey", default="target/release/holey")
     ap.add_argument("--corpus", default=os.path.join(os.path.dirname(__file__), "../../../shared/data/corpus"))
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--holey-args", default="", help="extra holey flags, space-separated")
     args = ap.parse_args()
     holey = os.path.abspath(args.holey)
     pairs = json.load(open(os.path.join(args.corpus, "ember_pairs.json")))["pairs"]
@@ -108,7 +114,7 @@ def main():
                     return r.volume()
                 t_m3d, v_m3d = best(m3d_run, args.runs)
                 out, rep = os.path.join(d, "out.obj"), os.path.join(d, "r.json")
-                wall, engine, err = holey_run(holey, op, pa, pb, out, rep, args.runs)
+                wall, engine, err = holey_run(holey, op, pa, pb, out, rep, args.runs, args.holey_args.split())
                 if err is None:
                     info = holey_info(holey, out)
                     v_h = info.get("volume")
