@@ -35,4 +35,6 @@ pub use union::{
     Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,
     union_prepared, union_robust,
 };
-pub use winding_boolean::{WindingError, WindingOutcome, WindingReport, boolean_by_winding};
+pub use winding_boolean::{
+    WindingError, WindingOutcome, WindingReport, boolean_by_winding, needs_arrangement,
+};

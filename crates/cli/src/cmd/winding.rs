@@ -12,16 +12,9 @@ use crate::cmd::topo::EngineArgs;
 use crate::error::bad_input;
 use crate::tri::{write_json, write_triangles};
 
-/// Which of the two Booleans a pair of meshes needs: the winding-number
-/// arrangement when either is not a closed 2-manifold (its generalized
-/// winding number then says what is inside) or crosses itself (the
-/// containment union keeps a solid's own crossings), else the direct one.
+/// [`holey_topo::needs_arrangement`], its errors as bad input.
 pub fn needs_winding(a: &TriMesh, b: &TriMesh) -> Result<bool> {
-    if !a.is_closed() || !b.is_closed() {
-        return Ok(true);
-    }
-    let crosses = |m: &TriMesh| holey_topo::crosses_itself(m).map_err(|e| bad_input(e.to_string()));
-    Ok(crosses(a)? || crosses(b)?)
+    holey_topo::needs_arrangement(a, b).map_err(|e| bad_input(e.to_string()))
 }
 
 /// Runs `op` on `inputs` (named `names` in errors) by the winding number
