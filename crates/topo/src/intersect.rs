@@ -277,21 +277,29 @@ pub(crate) const COORDINATE_PLANES: [fn(DVec3) -> DVec2; 3] = [
 /// the rejection above falls through to expansion arithmetic, while these
 /// orient2d tests decide at once: the profile of an EMBER pair had 5
 /// million such predicates.
-fn apart_in_projection(p1: [DVec3; 3], p2: [DVec3; 3]) -> bool {
+fn apart_in_projection(p1: [DVec3; 3], p2: [DVec3; 3], i1: [u32; 3], i2: [u32; 3]) -> bool {
     COORDINATE_PLANES.iter().any(|proj| {
         let (a, b) = (p1.map(proj), p2.map(proj));
-        edge_separates(a, b) || edge_separates(b, a)
+        edge_separates(a, b, i1, i2) || edge_separates(b, a, i2, i1)
     })
 }
 
 /// Some edge of `a` has `a`'s third corner strictly on one side and all of
-/// `b` strictly on the other (exact).
-fn edge_separates(a: [DVec2; 3], b: [DVec2; 3]) -> bool {
+/// `b` strictly on the other (exact), but for a corner of `b` that is an
+/// end of that edge (the same identity): two triangles sharing a vertex
+/// and lying on either side of an edge through it meet only there, which
+/// is no intersection (a fan of exactly coplanar CAD triangles, whose
+/// every neighbouring pair otherwise went to the perturbed predicates).
+fn edge_separates(a: [DVec2; 3], b: [DVec2; 3], a_ids: [u32; 3], b_ids: [u32; 3]) -> bool {
     (0..3).any(|k| {
         let (i, j, o) = (a[k], a[(k + 1) % 3], a[(k + 2) % 3]);
+        let ends = [a_ids[k], a_ids[(k + 1) % 3]];
         let inner = orient2d(i, j, o);
         inner != Sign::Zero
-            && b.iter().all(|&q| {
+            && b.iter().zip(b_ids).all(|(&q, id)| {
+                if ends.contains(&id) {
+                    return true;
+                }
                 let s = orient2d(i, j, q);
                 s != Sign::Zero && s != inner
             })
@@ -407,7 +415,7 @@ fn pair_segment_with(
     // Nearly coplanar neighbours (the fans of a rotated CAD mesh) bend
     // through each other's planes yet lie apart in some projection: the
     // exact 2-D test is far cheaper than the perturbed segment.
-    if apart_in_projection(p1, p2) {
+    if apart_in_projection(p1, p2, i1, i2) {
         return None;
     }
     if (f1 == Side::Unsure && separated(p1, p2, s2))

@@ -1,0 +1,83 @@
+"""`holey selfint` against trueform's `self_intersection_curves` on every
+mesh of ../shared/data/meshes and ../shared/data/corpus, side by side in
+one run. Each mesh is read once here (OBJ faces fanned, STL welded where
+bit-identical) and trueform gets float64 arrays, timed in process (best of
+`--runs`, fresh mesh object each run, construction included). holey's
+figure is its own `seconds` from `--json` (no file reading), best of
+`--runs`; the whole process is timed too. holey reads the file itself
+(OBJ as written, STL welded the same way).
+
+    cargo build --release -p holey-cli
+    python3 bench/peers/selfint_all.py [--holey target/release/holey] [--runs 3]
+"""
+import argparse, glob, json, os, subprocess, time
+
+import numpy as np
+import trueform as tf
+
+
+def read_obj(path):
+    verts, faces = [], []
+    with open(path, errors="replace") as fh:
+        for line in fh:
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "v":
+                verts.append([float(x) for x in parts[1:4]])
+            elif parts[0] == "f":
+                ids = [int(p.split("/")[0]) for p in parts[1:]]
+                ids = [i - 1 if i > 0 else len(verts) + i for i in ids]
+                faces += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
+    return np.array(verts, dtype=np.float64), np.array(faces, dtype=np.int32)
+
+
+def read_stl(path):
+    data = open(path, "rb").read()
+    n = int.from_bytes(data[80:84], "little")
+    rec = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
+                        count=n, offset=84)
+    corners = rec["v"].reshape(-1, 3)
+    keys = corners.view(np.uint32).reshape(-1, 3)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    return corners[first].astype(np.float64), inverse.reshape(-1, 3).astype(np.int32)
+
+
+def main():
+    here = os.path.dirname(__file__)
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--holey", default="target/release/holey")
+    ap.add_argument("--shared", default=os.path.join(here, "../../../shared/data"))
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    holey = os.path.abspath(args.holey)
+    paths = sorted(glob.glob(os.path.join(args.shared, "meshes", "*.obj")))
+    paths += sorted(glob.glob(os.path.join(args.shared, "corpus", "*.obj")))
+    paths += sorted(glob.glob(os.path.join(args.shared, "corpus", "*.stl")))
+    ratios = []
+    for path in paths:
+        v, f = read_stl(path) if path.endswith(".stl") else read_obj(path)
+        best_tf, pairs_tf = 1e9, None
+        for _ in range(args.runs):
+            t = time.perf_counter()
+            r = tf.self_intersection_curves(tf.Mesh(f, v))
+            best_tf = min(best_tf, time.perf_counter() - t)
+        best_h, wall, pairs = 1e9, 1e9, None
+        for _ in range(args.runs):
+            t = time.perf_counter()
+            p = subprocess.run([holey, "selfint", "--json", path], capture_output=True, text=True)
+            wall = min(wall, time.perf_counter() - t)
+            if p.returncode != 0:
+                pairs = p.stderr.strip().splitlines()[-1]
+                break
+            j = json.loads(p.stdout)
+            best_h, pairs = min(best_h, j["seconds"]), j["intersecting_pairs"]
+        ratio = best_h / best_tf if best_tf > 0 else float("nan")
+        ratios.append(ratio)
+        print(f"{os.path.basename(path):40s} {len(f):8d} tris | trueform {best_tf:.4f}s | holey {best_h:.4f}s "
+              f"(process {wall:.3f}s) pairs {pairs} | holey/tf {ratio:.2f}", flush=True)
+    print(f"median holey/trueform: {np.median(ratios):.2f}; worst {max(ratios):.2f}")
+
+
+if __name__ == "__main__":
+    main()
