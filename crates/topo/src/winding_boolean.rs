@@ -88,12 +88,6 @@ pub enum WindingError {
     NoInput,
     #[error("a difference needs at least two input meshes")]
     DifferenceNeedsTwo,
-    /// No triangle of a region had its centroid strictly inside its
-    /// source triangle (a region of slivers along an edge).
-    #[error(
-        "a region of the arrangement near ({x}, {y}, {z}) has no triangle to sample its sides from"
-    )]
-    NoSample { x: f64, y: f64, z: f64 },
     /// A ray could not leave the scene (coordinates near the largest
     /// float).
     #[error("the coordinates are too large to cast a ray past the inputs")]
@@ -129,6 +123,9 @@ pub struct WindingReport {
     /// Vertices of the arrangement merged because their rounded positions
     /// were equal.
     pub welded_points: usize,
+    /// Regions no sample point could classify (slivers of no area), given
+    /// the fate that leaves the result closed ([`close_unsampled`]).
+    pub unsampled_regions: usize,
     /// Sides of result triangles split where a vertex of the other side
     /// lies on them ([`repair_t_junctions`]).
     pub t_junctions_repaired: usize,
@@ -790,7 +787,7 @@ fn fate(op: Operation, sides: &Sides) -> Fate {
 }
 
 /// How many triangles of a region are tried as its sample before the
-/// region is declared unsampled.
+/// region is left to [`close_unsampled`].
 const SAMPLE_TRIES: usize = 16;
 
 /// The result's triangles: each region and each group of identical
@@ -850,7 +847,6 @@ fn classify(
         .collect();
     order.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
 
-    let centroid = |t: usize| arr.corners(t).iter().sum::<DVec3>() / 3.0;
     let mut region_fate: HashMap<u32, Fate> = HashMap::new();
     for run in order.chunk_by(|a, b| a.0 == b.0) {
         let mut decided = None;
@@ -862,30 +858,26 @@ fn classify(
                 break;
             }
         }
-        let t = run[0].2 as usize;
-        let Some(f) = decided else {
-            let p = centroid(t);
-            return Err(WindingError::NoSample {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        };
-        region_fate.insert(run[0].0, f);
+        if let Some(f) = decided {
+            region_fate.insert(run[0].0, f);
+        }
     }
-    report.regions = region_fate.len() + groups.len();
+    report.regions = order.chunk_by(|a, b| a.0 == b.0).count() + groups.len();
 
     let mut out: Vec<[u32; 3]> = Vec::new();
+    let mut unsampled: HashMap<u32, Vec<[u32; 3]>> = HashMap::new();
     for (t, tri) in tris.iter().enumerate() {
         if in_group[t] {
             continue;
         }
-        match region_fate[&root[t]] {
-            Fate::Deleted => {}
-            Fate::Kept => out.push(*tri),
-            Fate::Flipped => out.push([tri[0], tri[2], tri[1]]),
+        match region_fate.get(&root[t]) {
+            Some(Fate::Deleted) => {}
+            Some(Fate::Kept) => out.push(*tri),
+            Some(Fate::Flipped) => out.push([tri[0], tri[2], tri[1]]),
+            None => unsampled.entry(root[t]).or_default().push(*tri),
         }
     }
+    let mut unsampled: Vec<Vec<[u32; 3]>> = unsampled.into_values().collect();
     for group in &groups {
         let first = group[0] as usize;
         let reference = tris[first];
@@ -902,19 +894,69 @@ fn classify(
             })
             .collect();
         report.rays += 1;
-        let p = centroid(first);
-        let sides = rays
-            .sides(source[first], &on)?
-            .ok_or(WindingError::NoSample {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            })?;
+        let Some(sides) = rays.sides(source[first], &on)? else {
+            unsampled.push(vec![reference]);
+            continue;
+        };
         match fate(op, &sides) {
             Fate::Deleted => {}
             Fate::Kept => out.push(reference),
             Fate::Flipped => out.push([reference[0], reference[2], reference[1]]),
         }
     }
+    // Largest first: a big piece's choice settles its small neighbours'.
+    unsampled.sort_by_key(|piece| std::cmp::Reverse(piece.len()));
+    report.unsampled_regions = unsampled.len();
+    close_unsampled(&mut out, unsampled);
     Ok(out)
+}
+
+/// Gives each region no sample could classify (slivers of no area along
+/// an edge, where coplanar sheets cross in the perturbed world only) the
+/// fate, of deleted, kept and turned over, that leaves the fewest of the
+/// edges it touches unpaired among the faces already chosen: such a
+/// region bounds no volume, and only the result's closedness depends on
+/// it.
+fn close_unsampled(out: &mut Vec<[u32; 3]>, pieces: Vec<Vec<[u32; 3]>>) {
+    if pieces.is_empty() {
+        return;
+    }
+    // Net direction count per undirected edge: + for min → max.
+    let mut net: HashMap<(u32, u32), i32> = HashMap::new();
+    let add = |net: &mut HashMap<(u32, u32), i32>, f: [u32; 3], sign: i32| {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            *net.entry((a.min(b), a.max(b))).or_insert(0) += if a < b { sign } else { -sign };
+        }
+    };
+    for &f in out.iter() {
+        add(&mut net, f, 1);
+    }
+    for piece in pieces {
+        let keys: Vec<(u32, u32)> = piece
+            .iter()
+            .flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]))))
+            .collect();
+        let score = |sign: i32| -> i32 {
+            let mut local: HashMap<(u32, u32), i32> = keys
+                .iter()
+                .map(|k| (*k, net.get(k).copied().unwrap_or(0)))
+                .collect();
+            for &f in &piece {
+                add(&mut local, f, sign);
+            }
+            local.values().map(|v| v.abs()).sum()
+        };
+        // Deleted (0), kept (+1), turned over (−1); ties keep it deleted.
+        let best = [0, 1, -1]
+            .into_iter()
+            .min_by_key(|&sign| score(sign))
+            .unwrap_or(0);
+        if best != 0 {
+            for &f in &piece {
+                add(&mut net, f, best);
+                out.push(if best > 0 { f } else { [f[0], f[2], f[1]] });
+            }
+        }
+    }
 }

@@ -28,6 +28,11 @@ fn run(inputs: &[&TriMesh], op: Operation) -> WindingOutcome {
 /// `samples` random points is 1 where the rule says and 0 elsewhere.
 fn check(inputs: &[&TriMesh], op: Operation, out: &WindingOutcome, samples: usize, what: &str) {
     check_crossing(inputs, op, out, samples, what, true);
+    let m = &out.mesh;
+    assert!(
+        m.triangles.is_empty() || closed_oriented(m),
+        "{what}: not a closed, oriented 2-manifold"
+    );
 }
 
 /// [`check`], optionally without the check that no two triangles cross:
@@ -45,9 +50,21 @@ fn check_crossing(
     let m = &out.mesh;
     well_formed(m);
     assert_eq!(out.report.unpaired_edges, 0, "{what}: open");
+    // Closed and consistently oriented: along every edge as many faces
+    // run one way as the other (solids touching along an edge give it
+    // four).
+    let (boundary, _, _) = closedness_defects(m);
+    assert_eq!(boundary, 0, "{what}: boundary edges");
+    let mut net: std::collections::HashMap<(u32, u32), i32> = Default::default();
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *net.entry((a.min(b), a.max(b))).or_default() += if a < b { 1 } else { -1 };
+        }
+    }
     assert!(
-        m.triangles.is_empty() || closed_oriented(m),
-        "{what}: not closed and oriented"
+        net.values().all(|&n| n == 0),
+        "{what}: an edge is not balanced"
     );
     if no_crossing {
         assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
@@ -485,5 +502,73 @@ fn offset1_and_offset2_match_libigl() {
         assert_volume(&out, want, 1e-8, what);
         assert_eq!(out.report.unpaired_edges, 0, "{what}: open");
         assert_eq!(closedness_defects(&out.mesh).0, 0, "{what}: boundary");
+    }
+}
+
+/// Random Booleans of boxes on a coarse lattice (corners at multiples of
+/// ¼): faces coplanar, edges collinear and vertices shared all the time.
+/// Every output closed, oriented, and classifying sample points as the
+/// rule does; the no-crossing check is left out where coplanar faces of
+/// opposite orientation can touch (see `check_crossing`).
+///
+/// Not passing yet, so not run by default: rounds 0–51 pass, round 52
+/// (A two crossing boxes, B touching them on three coplanar faces, A − B)
+/// comes out with a hole of 15 unpaired edges around faces where the two
+/// coincide with opposite orientations, and 5 crossing pairs. It needs the
+/// coplanar overlay (issue 14). `HOLEY_DUMP_ROUND=52` writes the inputs
+/// to /tmp/ra.obj and /tmp/rb.obj; run with `--ignored`.
+#[test]
+#[ignore = "coplanar overlay not built: round 52 comes out open (issue 14)"]
+fn fuzz_lattice_boxes() {
+    let mut rng = Rng::new(77);
+    let corner = |rng: &mut Rng| {
+        DVec3::new(
+            rng.below(5) as f64 * 0.25,
+            rng.below(5) as f64 * 0.25,
+            rng.below(5) as f64 * 0.25,
+        )
+    };
+    let boxed = |rng: &mut Rng| loop {
+        let (p, q) = (corner(rng), corner(rng));
+        let (lo, hi) = (p.min(q), p.max(q));
+        if (hi - lo).min_element() > 0.0 {
+            return cuboid(lo, hi);
+        }
+    };
+    for round in 0..60 {
+        let a = if rng.chance(0.3) {
+            join(&boxed(&mut rng), &boxed(&mut rng))
+        } else {
+            boxed(&mut rng)
+        };
+        let b = boxed(&mut rng);
+        let op = *rng.pick(&[
+            Operation::Union,
+            Operation::Intersection,
+            Operation::Difference,
+        ]);
+        if std::env::var_os("HOLEY_DUMP_ROUND").is_some_and(|r| r == round.to_string().as_str()) {
+            let w = |m: &TriMesh, path: &str| {
+                let mut t = String::new();
+                for p in &m.positions {
+                    t += &format!("v {} {} {}\n", p.x, p.y, p.z);
+                }
+                for f in &m.triangles {
+                    t += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+                }
+                std::fs::write(path, t).unwrap();
+            };
+            w(&a, "/tmp/ra.obj");
+            w(&b, "/tmp/rb.obj");
+        }
+        let out = run(&[&a, &b], op);
+        check_crossing(
+            &[&a, &b],
+            op,
+            &out,
+            80,
+            &format!("round {round}, {}", op.name()),
+            false,
+        );
     }
 }

@@ -75,6 +75,7 @@ fn report_json(out: &WindingOutcome, crossing: usize) -> Value {
         "rays": r.rays,
         "snapped_points": r.welded_points,
         "t_junctions_repaired": r.t_junctions_repaired,
+        "unsampled_regions": r.unsampled_regions,
         "unpaired_edges": r.unpaired_edges,
         "output_triangles": out.mesh.triangles.len(),
         "output_intersecting_pairs": crossing,
