@@ -36,5 +36,6 @@ pub use union::{
     union_prepared, union_robust,
 };
 pub use winding_boolean::{
-    WindingError, WindingOutcome, WindingReport, boolean_by_winding, needs_arrangement,
+    WindingError, WindingOutcome, WindingReport, boolean_by_winding, boolean_by_winding_robust,
+    needs_arrangement,
 };

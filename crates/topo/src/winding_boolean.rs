@@ -132,6 +132,12 @@ pub struct WindingReport {
     /// Directed edges of the result without a partner running the other
     /// way: 0 for a closed, consistently oriented result.
     pub unpaired_edges: usize,
+    /// Pairs of the result's triangles that cross, when they were counted
+    /// ([`boolean_by_winding_robust`] does).
+    pub output_intersecting_pairs: Option<usize>,
+    /// How many nudges of the inputs after the first the result took
+    /// ([`boolean_by_winding_robust`]).
+    pub perturbation_retries: usize,
     pub cut: CutReport,
     pub seconds: WindingTimings,
 }
@@ -260,6 +266,125 @@ pub fn boolean_by_winding(
     .compacted();
     report.seconds.total = started.elapsed().as_secs_f64();
     Ok(WindingOutcome { mesh, report })
+}
+
+/// [`boolean_by_winding`], robust to coplanar contact between inputs.
+/// Where faces of different inputs lie in one plane, the perturbed
+/// arrangement is embedded at the unperturbed coordinates and can come
+/// out open, or with coincident walls that cross in the limit. So when
+/// every input is closed and the result is open or crosses itself
+/// (checked exactly: one self-intersection pass over the result), every
+/// connected piece of every input but the first piece of the first is
+/// moved its own generic way by the next step of
+/// [`crate::union::NUDGES`] (scale-relative: 2⁻³⁰ of the scene's
+/// diagonal first, then 2⁻²⁶ and 2⁻²²) and the operation redone, up to
+/// three times; the result with the fewest defects is returned, and
+/// the report says how many nudges it took and how many pairs of its
+/// triangles cross.
+pub fn boolean_by_winding_robust(
+    inputs: &[&TriMesh],
+    op: Operation,
+    options: &Options,
+) -> Result<WindingOutcome, WindingError> {
+    let started = Instant::now();
+    let mut best: Option<(usize, WindingOutcome)> = None;
+    let parts: Vec<Vec<u32>> = inputs.iter().map(|m| vertex_components(m)).collect();
+    let (lo, hi) = inputs
+        .iter()
+        .flat_map(|m| m.positions.iter())
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), p| {
+            (l.min(*p), h.max(*p))
+        });
+    let diagonal = if lo.x <= hi.x {
+        (hi - lo).length()
+    } else {
+        0.0
+    };
+    for (k, &(scale, _)) in crate::union::NUDGES.iter().enumerate() {
+        // Every connected piece of every input but the very first moves
+        // its own generic way, by the same scale-relative step: coplanar
+        // contact between inputs and between the shells of one input is
+        // broken alike.
+        let mut piece = 0usize;
+        let moved: Vec<TriMesh> = inputs
+            .iter()
+            .zip(&parts)
+            .map(|(m, part)| {
+                let count = part.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
+                let steps: Vec<DVec3> = (0..count)
+                    .map(|c| generic_direction(piece + c) * (scale * diagonal))
+                    .collect();
+                piece += count;
+                TriMesh {
+                    positions: m
+                        .positions
+                        .iter()
+                        .zip(part)
+                        .map(|(p, &c)| *p + steps[c as usize])
+                        .collect(),
+                    triangles: m.triangles.clone(),
+                }
+            })
+            .collect();
+        let refs: Vec<&TriMesh> = moved.iter().collect();
+        let mut out = boolean_by_winding(&refs, op, options)?;
+        let crossing = crate::self_intersections(&out.mesh)?.pairs.len();
+        out.report.output_intersecting_pairs = Some(crossing);
+        out.report.perturbation_retries = k;
+        let closed = out.report.inputs_closed.iter().all(|&c| c);
+        let defects = out.report.unpaired_edges + crossing;
+        if best.as_ref().is_none_or(|(d, _)| defects < *d) {
+            best = Some((defects, out));
+        }
+        if defects == 0 || !closed {
+            break;
+        }
+    }
+    let mut out = best.map(|(_, out)| out).ok_or(WindingError::NoInput)?;
+    // Every attempt and check counts.
+    out.report.seconds.total = started.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The connected piece of each vertex of `m` (pieces numbered from 0 in
+/// order of their first vertex; a vertex no triangle uses is its own).
+fn vertex_components(m: &TriMesh) -> Vec<u32> {
+    let mut parent: Vec<u32> = (0..m.positions.len() as u32).collect();
+    for t in &m.triangles {
+        for k in 0..2 {
+            let (a, b) = (find(&mut parent, t[k]), find(&mut parent, t[k + 1]));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let mut label = vec![u32::MAX; parent.len()];
+    let mut next = 0;
+    (0..parent.len() as u32)
+        .map(|v| {
+            let r = find(&mut parent, v) as usize;
+            if label[r] == u32::MAX {
+                label[r] = next;
+                next += 1;
+            }
+            label[r]
+        })
+        .collect()
+}
+
+/// A unit direction for piece `j`, none for piece 0: points of a
+/// low-discrepancy sequence on the sphere (golden-ratio steps in azimuth
+/// and height), along no axis or lattice diagonal.
+fn generic_direction(j: usize) -> DVec3 {
+    if j == 0 {
+        return DVec3::ZERO;
+    }
+    let u = (0.5 + j as f64 * 0.618_033_988_749_895).fract();
+    let v = (0.5 + j as f64 * 0.754_877_666_246_693).fract();
+    let theta = std::f64::consts::TAU * u;
+    let z = 2.0 * v - 1.0;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    DVec3::new(r * theta.cos(), r * theta.sin(), z)
 }
 
 /// Which Boolean a pair of meshes needs: the winding-number arrangement

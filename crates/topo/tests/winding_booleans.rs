@@ -16,7 +16,10 @@ mod common;
 use common::*;
 use glam::{DMat3, DVec3};
 use holey_testkit::Rng;
-use holey_topo::{Operation, Options, TriMesh, WindingError, WindingOutcome, boolean_by_winding};
+use holey_topo::{
+    Operation, Options, TriMesh, WindingError, WindingOutcome, boolean_by_winding,
+    boolean_by_winding_robust,
+};
 
 fn run(inputs: &[&TriMesh], op: Operation) -> WindingOutcome {
     boolean_by_winding(inputs, op, &Options::default())
@@ -506,19 +509,14 @@ fn offset1_and_offset2_match_libigl() {
 }
 
 /// Random Booleans of boxes on a coarse lattice (corners at multiples of
-/// ¼): faces coplanar, edges collinear and vertices shared all the time.
-/// Every output closed, oriented, and classifying sample points as the
-/// rule does; the no-crossing check is left out where coplanar faces of
-/// opposite orientation can touch (see `check_crossing`).
-///
-/// Not passing yet, so not run by default: rounds 0–51 pass, round 52
-/// (A two crossing boxes, B touching them on three coplanar faces, A − B)
-/// comes out with a hole of 15 unpaired edges around faces where the two
-/// coincide with opposite orientations, and 5 crossing pairs. It needs the
-/// coplanar overlay (issue 14). `HOLEY_DUMP_ROUND=52` writes the inputs
-/// to /tmp/ra.obj and /tmp/rb.obj; run with `--ignored`.
+/// ¼): faces coplanar, edges collinear and vertices shared all the time,
+/// the first input often two boxes crossing or touching. Through
+/// [`boolean_by_winding_robust`] (the CLI's default), every output is
+/// closed, oriented, crosses nowhere, and classifies sample points as the
+/// rule does. Round 556 of this sequence does not (below); 200 rounds run
+/// here. `HOLEY_DUMP_ROUND=N` writes round N's inputs to /tmp/ra.obj and
+/// /tmp/rb.obj.
 #[test]
-#[ignore = "coplanar overlay not built: round 52 comes out open (issue 14)"]
 fn fuzz_lattice_boxes() {
     let mut rng = Rng::new(77);
     let corner = |rng: &mut Rng| {
@@ -535,7 +533,7 @@ fn fuzz_lattice_boxes() {
             return cuboid(lo, hi);
         }
     };
-    for round in 0..60 {
+    for round in 0..200 {
         let a = if rng.chance(0.3) {
             join(&boxed(&mut rng), &boxed(&mut rng))
         } else {
@@ -561,14 +559,37 @@ fn fuzz_lattice_boxes() {
             w(&a, "/tmp/ra.obj");
             w(&b, "/tmp/rb.obj");
         }
-        let out = run(&[&a, &b], op);
+        let out = boolean_by_winding_robust(&[&a, &b], op, &Options::default()).unwrap();
         check_crossing(
             &[&a, &b],
             op,
             &out,
             80,
             &format!("round {round}, {}", op.name()),
-            false,
+            true,
         );
     }
+}
+
+/// Not passing yet (issue 14): round 556 of [`fuzz_lattice_boxes`]. A is
+/// two boxes touching face to face, sharing a corner (in this order: with
+/// the boxes the other way round the result is right); B a slab crossing
+/// the second with faces on three of its planes. A − B comes out closed,
+/// oriented and crossing nowhere, but without the part of the second box
+/// beyond B (volume 0.046875 instead of 0.109375): the region of its
+/// surface outside B is joined to the part inside, so one sample decides
+/// both. Exact and nudged alike, so the robust retry does not see it.
+#[test]
+#[ignore = "wrong result on a lattice configuration (issue 14): a region leaks across a curve"]
+fn lattice_round_556_keeps_the_whole_difference() {
+    let a = join(
+        &cuboid(DVec3::new(0.25, 0.5, 0.0), DVec3::new(0.5, 1.0, 1.0)),
+        &cuboid(DVec3::ZERO, DVec3::new(0.25, 1.0, 0.25)),
+    );
+    let b = cuboid(DVec3::new(0.0, 0.5, 0.0), DVec3::new(1.0, 0.75, 1.0));
+    let out =
+        boolean_by_winding_robust(&[&a, &b], Operation::Difference, &Options::default()).unwrap();
+    // The first box less B's band, and the second box beyond B.
+    let want = 0.25 * 0.25 * 0.75 + 0.25 * 0.25 * 1.0;
+    assert_volume(&out, want, 1e-6, "A − B");
 }

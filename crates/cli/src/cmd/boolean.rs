@@ -74,7 +74,7 @@ pub fn run(args: Args, op: Operation) -> Result<()> {
     let checked = std::time::Instant::now();
     if args.winding || (!args.no_check && winding::needs_winding(&a, &b)?) {
         let names = [args.a.as_str(), args.b.as_str()];
-        return winding::run(&[a, b], &names, op, &args.output, &args.engine);
+        return winding::run(&[a, b], &names, op, &args.output, &args.engine, args.exact);
     }
     let options = args.engine.options();
     let result = if args.exact {

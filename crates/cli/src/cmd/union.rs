@@ -183,7 +183,14 @@ pub fn run(args: Args) -> Result<()> {
             .map(|n| load_triangles(n))
             .collect::<Result<Vec<_>>>()?;
         let _p = Progress::start("uniting");
-        return winding::run(&inputs, &names, Operation::Union, output, &args.engine);
+        return winding::run(
+            &inputs,
+            &names,
+            Operation::Union,
+            output,
+            &args.engine,
+            args.exact,
+        );
     }
     let (a, b) = load_triangle_pair(&args.a, &others[0])?;
     if a.positions.is_empty() || b.positions.is_empty() {
@@ -200,7 +207,14 @@ pub fn run(args: Args) -> Result<()> {
     let checked = std::time::Instant::now();
     if !args.via_motion && (args.winding || (!args.no_check && winding::needs_winding(&a, &b)?)) {
         let names = [args.a.as_str(), others[0].as_str()];
-        return winding::run(&[a, b], &names, Operation::Union, output, &args.engine);
+        return winding::run(
+            &[a, b],
+            &names,
+            Operation::Union,
+            output,
+            &args.engine,
+            args.exact,
+        );
     }
     let options = args.engine.options();
     let direct = if args.via_motion {

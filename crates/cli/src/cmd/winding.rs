@@ -25,10 +25,16 @@ pub fn run(
     op: Operation,
     output: &str,
     engine: &EngineArgs,
+    exact: bool,
 ) -> Result<()> {
     let refs: Vec<&TriMesh> = inputs.iter().collect();
-    let out = holey_topo::boolean_by_winding(&refs, op, &engine.options())
-        .map_err(|e| bad_input(e.to_string()))?;
+    let options = engine.options();
+    let out = if exact {
+        holey_topo::boolean_by_winding(&refs, op, &options)
+    } else {
+        holey_topo::boolean_by_winding_robust(&refs, op, &options)
+    }
+    .map_err(|e| bad_input(e.to_string()))?;
     for (name, closed) in names.iter().zip(&out.report.inputs_closed) {
         if !closed {
             eprintln!(
@@ -36,9 +42,12 @@ pub fn run(
             );
         }
     }
-    let crossing = holey_topo::self_intersections(&out.mesh)
-        .map(|x| x.pairs.len())
-        .map_err(|e| bad_input(e.to_string()))?;
+    let crossing = match out.report.output_intersecting_pairs {
+        Some(n) => n,
+        None => holey_topo::self_intersections(&out.mesh)
+            .map(|x| x.pairs.len())
+            .map_err(|e| bad_input(e.to_string()))?,
+    };
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &engine.report {
         write_json(path, &report_json(&out, crossing))?;
@@ -76,6 +85,7 @@ fn report_json(out: &WindingOutcome, crossing: usize) -> Value {
         "snapped_points": r.welded_points,
         "t_junctions_repaired": r.t_junctions_repaired,
         "unsampled_regions": r.unsampled_regions,
+        "perturbation_retries": r.perturbation_retries,
         "unpaired_edges": r.unpaired_edges,
         "output_triangles": out.mesh.triangles.len(),
         "output_intersecting_pairs": crossing,
