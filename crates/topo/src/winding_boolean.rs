@@ -278,9 +278,10 @@ pub fn boolean_by_winding(
 /// moved its own generic way by the next step of
 /// [`crate::union::NUDGES`] (scale-relative: 2⁻³⁰ of the scene's
 /// diagonal first, then 2⁻²⁶ and 2⁻²²) and the operation redone, up to
-/// three times; the result with the fewest defects is returned, and
-/// the report says how many nudges it took and how many pairs of its
-/// triangles cross.
+/// three times. The first clean result is returned, else the exact one
+/// (a nudge moves the answer by its size: worth it only for a clean
+/// result); the report says how many nudges it took and how many pairs of
+/// its triangles cross.
 pub fn boolean_by_winding_robust(
     inputs: &[&TriMesh],
     op: Operation,
@@ -333,7 +334,9 @@ pub fn boolean_by_winding_robust(
         out.report.perturbation_retries = k;
         let closed = out.report.inputs_closed.iter().all(|&c| c);
         let defects = out.report.unpaired_edges + crossing;
-        if best.as_ref().is_none_or(|(d, _)| defects < *d) {
+        // The exact attempt, unless a nudged one is clean: a nudge moves
+        // the answer by its size, worth it only for a clean result.
+        if best.is_none() || defects == 0 {
             best = Some((defects, out));
         }
         if defects == 0 || !closed {
