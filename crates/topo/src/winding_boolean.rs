@@ -329,7 +329,7 @@ pub fn boolean_by_winding_robust(
             .collect();
         let refs: Vec<&TriMesh> = moved.iter().collect();
         let mut out = boolean_by_winding(&refs, op, options)?;
-        let crossing = crate::self_intersections(&out.mesh)?.pairs.len();
+        let crossing = crate::engine::self_intersections(&out.mesh)?.pairs.len();
         out.report.output_intersecting_pairs = Some(crossing);
         out.report.perturbation_retries = k;
         let closed = out.report.inputs_closed.iter().all(|&c| c);
@@ -393,14 +393,14 @@ fn generic_direction(j: usize) -> DVec3 {
 /// Which Boolean a pair of meshes needs: the winding-number arrangement
 /// ([`boolean_by_winding`]) when either is not a closed 2-manifold (its
 /// generalized winding number then says what is inside) or crosses itself
-/// (the containment union of Theorem 5.2, [`crate::boolean`], keeps a
+/// (the containment union of Theorem 5.2, [`crate::union::boolean`], keeps a
 /// solid's own crossings), else the containment union, which is faster.
-/// Costs about one [`crate::self_intersections`] of each.
+/// Costs about one [`crate::engine::self_intersections`] of each.
 pub fn needs_arrangement(a: &TriMesh, b: &TriMesh) -> Result<bool, TopoError> {
     if !a.is_closed() || !b.is_closed() {
         return Ok(true);
     }
-    Ok(crate::crosses_itself(a)? || crate::crosses_itself(b)?)
+    Ok(crate::engine::crosses_itself(a)? || crate::engine::crosses_itself(b)?)
 }
 
 /// All inputs in one mesh, and the input of each triangle.
