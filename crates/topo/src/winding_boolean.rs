@@ -895,6 +895,53 @@ fn area_vector(mesh: &TriMesh, t: usize) -> DVec3 {
     (b - a).cross(c - a)
 }
 
+/// Per edge of the arrangement: whether some vertex lies exactly inside
+/// it (collinear in every coordinate projection, strictly between its
+/// ends). Such an edge is one side of a T-junction: where an intersection
+/// curve runs along a triangle's side in the limit (coplanar sheets
+/// meeting at an edge), the cut puts the curve's points on one sheet's
+/// side but not on the other's, and the two triangles that seem to share
+/// the side are on opposite sides of another sheet. Regions are not
+/// joined across it.
+fn vertices_on_edges(arr: &TriMesh, edges: &Edges) -> Vec<bool> {
+    let pos = &arr.positions;
+    let mut used = vec![false; pos.len()];
+    for t in &arr.triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let boxes: Vec<Aabb> = edges
+        .ends
+        .iter()
+        .map(|&[u, v]| Aabb::from_points(&[pos[u as usize], pos[v as usize]]))
+        .collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return vec![false; edges.len()];
+    };
+    let mut through = vec![false; edges.len()];
+    for (w, &p) in pos.iter().enumerate() {
+        if !used[w] {
+            continue;
+        }
+        tree.for_each_overlap(&Aabb::new(p, p), |e| {
+            let [u, v] = edges.ends[e as usize];
+            if u as usize == w || v as usize == w || through[e as usize] {
+                return;
+            }
+            let (a, b) = (pos[u as usize], pos[v as usize]);
+            let collinear = crate::intersect::COORDINATE_PLANES.iter().all(|proj| {
+                holey_geom::orient2d(proj(a), proj(b), proj(p)) == holey_geom::Sign::Zero
+            });
+            let t = (p - a).dot(b - a);
+            if collinear && t > 0.0 && t < (b - a).dot(b - a) {
+                through[e as usize] = true;
+            }
+        });
+    }
+    through
+}
+
 /// How a region or group comes out: deleted, kept as it faces, or kept
 /// turned over.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -954,9 +1001,11 @@ fn classify(
     // Regions: joined across edges two triangles share in opposite
     // directions.
     let edges = Edges::new(arr);
+    let through = vertices_on_edges(arr, &edges);
     let mut parent: Vec<u32> = (0..tris.len() as u32).collect();
-    for e in 0..edges.len() {
-        if edges.opposite(tris, e)
+    for (e, &t_junction) in through.iter().enumerate() {
+        if !t_junction
+            && edges.opposite(tris, e)
             && let [t, u] = *edges.triangles(e)
         {
             let (a, b) = (find(&mut parent, t), find(&mut parent, u));
