@@ -392,15 +392,76 @@ fn generic_direction(j: usize) -> DVec3 {
 
 /// Which Boolean a pair of meshes needs: the winding-number arrangement
 /// ([`boolean_by_winding`]) when either is not a closed 2-manifold (its
-/// generalized winding number then says what is inside) or crosses itself
+/// generalized winding number then says what is inside), crosses itself
 /// (the containment union of Theorem 5.2, [`crate::union::boolean`], keeps a
-/// solid's own crossings), else the containment union, which is faster.
-/// Costs about one [`crate::engine::self_intersections`] of each.
+/// solid's own crossings) or has a piece inside another of its pieces
+/// (containment parity counts nested shells modulo two, the winding
+/// number by their orientations), else the containment union, which is
+/// faster. Costs about one [`crate::engine::self_intersections`] of each.
 pub fn needs_arrangement(a: &TriMesh, b: &TriMesh) -> Result<bool, TopoError> {
     if !a.is_closed() || !b.is_closed() {
         return Ok(true);
     }
-    Ok(crate::engine::crosses_itself(a)? || crate::engine::crosses_itself(b)?)
+    Ok(crate::engine::crosses_itself(a)?
+        || crate::engine::crosses_itself(b)?
+        || has_nested_pieces(a)?
+        || has_nested_pieces(b)?)
+}
+
+/// Whether some connected piece of `m` (closed, not crossing itself) lies
+/// inside another: one exact ray per piece, from one of its vertices,
+/// counting the crossings with the other pieces' triangles (simulation of
+/// simplicity; the ray's far end has an identity no vertex has).
+fn has_nested_pieces(m: &TriMesh) -> Result<bool, TopoError> {
+    let piece = vertex_components(m);
+    let count = piece.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
+    if count < 2 {
+        return Ok(false);
+    }
+    let ids = position_classes(&m.positions)?;
+    let boxes: Vec<Aabb> = (0..m.triangles.len())
+        .map(|t| Aabb::from_points(&m.corners(t)))
+        .collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return Ok(true);
+    };
+    let bounds = tree.bounds();
+    let span = (bounds.max - bounds.min).max_element().max(1.0);
+    let far_id =
+        u32::try_from(m.positions.len()).map_err(|_| MeshError::TooLarge(m.positions.len()))?;
+    let sym = |v: u32| SymPoint::new(m.positions[v as usize], ids[v as usize]);
+    let mut seen = vec![false; count];
+    for t in &m.triangles {
+        let (v, c) = (t[0], piece[t[0] as usize]);
+        if seen[c as usize] {
+            continue;
+        }
+        seen[c as usize] = true;
+        let start = sym(v);
+        let far = DVec3::new(
+            bounds.max.x.max(start.pos.x) + span,
+            start.pos.y,
+            start.pos.z,
+        );
+        if !far.is_finite() {
+            return Ok(true);
+        }
+        let end = SymPoint::new(far, far_id);
+        let mut odd = false;
+        tree.for_each_overlap(&Aabb::new(start.pos, far), |t| {
+            let tri = m.triangles[t as usize];
+            if piece[tri[0] as usize] != c {
+                let [p, q, r] = tri.map(sym);
+                if holey_geom::segment_triangle_intersect(start, end, p, q, r) {
+                    odd = !odd;
+                }
+            }
+        });
+        if odd {
+            return Ok(true);
+        }
+    }
+    Ok(false)
 }
 
 /// All inputs in one mesh, and the input of each triangle.

@@ -250,6 +250,53 @@ fn scale_and_offset_do_not_change_the_result() {
     }
 }
 
+/// Which Boolean a pair needs: the containment union of Theorem 5.2 only
+/// for closed solids that neither cross themselves nor hold a piece
+/// inside another (nested shells count by parity there, by orientation in
+/// the winding number).
+#[test]
+fn the_arrangement_is_chosen_for_crossing_nested_and_open_inputs() {
+    let a = cuboid(DVec3::ZERO, DVec3::ONE);
+    let apart = join(&a, &cuboid(DVec3::splat(2.0), DVec3::splat(3.0)));
+    let crossing = join(&a, &cuboid(DVec3::splat(0.5), DVec3::splat(1.5)));
+    let outer = cuboid(DVec3::splat(-1.0), DVec3::splat(2.0));
+    let nested = join(&outer, &a);
+    let hollow = join(&outer, &reversed(&a));
+    let mut open = a.clone();
+    open.triangles.pop();
+    let b = cuboid(DVec3::splat(0.5), DVec3::splat(5.0));
+    for (m, want, what) in [
+        (&a, false, "one box"),
+        (&apart, false, "two boxes apart"),
+        (&crossing, true, "two boxes crossing"),
+        (&nested, true, "a box inside another, facing out"),
+        (&hollow, true, "a box inside another, facing in"),
+        (&open, true, "an open box"),
+    ] {
+        assert_eq!(
+            holey_topo::needs_arrangement(m, &b).unwrap(),
+            want,
+            "{what}"
+        );
+        assert_eq!(
+            holey_topo::needs_arrangement(&b, m).unwrap(),
+            want,
+            "{what}"
+        );
+    }
+    // Nested and facing out, the inner box has w = 2: inside, not a
+    // cavity. The union with b is the outer box with b's part beyond it.
+    let out =
+        boolean_by_winding_robust(&[&nested, &b], Operation::Union, &Options::default()).unwrap();
+    check(&[&nested, &b], Operation::Union, &out, 200, "nested ∪ b");
+    assert_volume(
+        &out,
+        27.0 + 4.5f64.powi(3) - 1.5f64.powi(3),
+        1e-12,
+        "nested ∪ b",
+    );
+}
+
 /// A union of three inputs, and the difference of the first minus the
 /// other two.
 #[test]
