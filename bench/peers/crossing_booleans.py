@@ -19,36 +19,7 @@ import numpy as np
 import manifold3d as m3d
 import trueform as tf
 
-
-def read_obj(path):
-    verts, faces = [], []
-    with open(path) as fh:
-        for line in fh:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "v":
-                verts.append([float(x) for x in parts[1:4]])
-            elif parts[0] == "f":
-                ids = [int(p.split("/")[0]) - 1 for p in parts[1:]]
-                faces += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
-    return np.array(verts, dtype=np.float64), np.array(faces, dtype=np.int64)
-
-
-def volume(v, f):
-    if len(f) == 0:
-        return 0.0
-    p = (v - v[0])[f]
-    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
-
-
-def best(fn, runs):
-    times, out = [], None
-    for _ in range(runs):
-        t = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), out
+from peer_io import best, read_obj, volume
 
 
 def main():

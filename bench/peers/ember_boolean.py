@@ -23,16 +23,7 @@ import numpy as np
 import manifold3d as m3d
 import trueform as tf
 
-
-def read_stl(path):
-    data = open(path, "rb").read()
-    n = int.from_bytes(data[80:84], "little")
-    rec = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
-                        count=n, offset=84)
-    corners = rec["v"].reshape(-1, 3)
-    keys = corners.view(np.uint32).reshape(-1, 3)
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    return corners[first].astype(np.float64), inverse.reshape(-1, 3).astype(np.int64)
+from peer_io import best, read_stl, volume
 
 
 def transform(v, m):
@@ -40,24 +31,10 @@ def transform(v, m):
     return v @ m[:, :3].T + m[:, 3]
 
 
-def volume(v, f):
-    p = v[f]
-    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
-
-
 def write_obj(path, v, f):
     with open(path, "w") as fh:
         fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist()))
         fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f.tolist()))
-
-
-def best(fn, runs):
-    times, out = [], None
-    for _ in range(runs):
-        t = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), out
 
 
 def holey_run(holey, op, pa, pb, out, report, runs, extra=()):

@@ -15,32 +15,7 @@ import argparse, glob, json, os, subprocess, time
 import numpy as np
 import trueform as tf
 
-
-def read_obj(path):
-    verts, faces = [], []
-    with open(path, errors="replace") as fh:
-        for line in fh:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "v":
-                verts.append([float(x) for x in parts[1:4]])
-            elif parts[0] == "f":
-                ids = [int(p.split("/")[0]) for p in parts[1:]]
-                ids = [i - 1 if i > 0 else len(verts) + i for i in ids]
-                faces += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
-    return np.array(verts, dtype=np.float64), np.array(faces, dtype=np.int32)
-
-
-def read_stl(path):
-    data = open(path, "rb").read()
-    n = int.from_bytes(data[80:84], "little")
-    rec = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
-                        count=n, offset=84)
-    corners = rec["v"].reshape(-1, 3)
-    keys = corners.view(np.uint32).reshape(-1, 3)
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    return corners[first].astype(np.float64), inverse.reshape(-1, 3).astype(np.int32)
+from peer_io import read_obj, read_stl
 
 
 def main():
@@ -57,6 +32,7 @@ def main():
     ratios = []
     for path in paths:
         v, f = read_stl(path) if path.endswith(".stl") else read_obj(path)
+        f = f.astype(np.int32)
         best_tf, pairs_tf = 1e9, None
         for _ in range(args.runs):
             t = time.perf_counter()

@@ -18,30 +18,7 @@ import time
 import numpy as np
 import igl.copyleft.cgal as cgal
 
-
-def read_obj(path):
-    verts, faces = [], []
-    with open(path) as fh:
-        for line in fh:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "v":
-                verts.append([float(x) for x in parts[1:4]])
-            elif parts[0] == "f":
-                ids = [int(p.split("/")[0]) - 1 for p in parts[1:]]
-                faces += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
-    return np.array(verts, dtype=np.float64), np.array(faces, dtype=np.int64)
-
-
-def volume(v, f):
-    # About the first vertex: with coordinates near 2e4 (Offset*.obj) the
-    # products about the origin lose a part in 1e8 to cancellation.
-    if len(f) == 0:
-        return 0.0
-    v = v - v[0]
-    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
-    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+from peer_io import read_obj, volume
 
 
 def main():

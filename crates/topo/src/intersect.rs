@@ -229,35 +229,10 @@ enum Side {
 /// orient3d is certified by Shewchuk's first error bound, (7 + 56ε)ε
 /// times the permanent (`o3derrboundA` of his adaptive orient3d, here with
 /// the cofactors taken along the first vector), and [`Side::Unsure`] is
-/// returned when a corner is within it.
+/// returned when a corner is within it. The plane is computed here; the
+/// candidate pass computes every triangle's once ([`Plane`]).
 fn side_filter(a: [DVec3; 3], b: [DVec3; 3], b_shared: [bool; 3]) -> Side {
-    const BOUND: f64 = 7.771_561_172_376_103e-16;
-    let mut side = 0i8;
-    let mut unsure = false;
-    for k in 0..3 {
-        if b_shared[k] {
-            continue;
-        }
-        let (p, q, r) = (a[0] - b[k], a[1] - b[k], a[2] - b[k]);
-        let det = p.dot(q.cross(r));
-        let permanent = p.x.abs() * ((q.y * r.z).abs() + (q.z * r.y).abs())
-            + p.y.abs() * ((q.z * r.x).abs() + (q.x * r.z).abs())
-            + p.z.abs() * ((q.x * r.y).abs() + (q.y * r.x).abs());
-        if det.abs() <= BOUND * permanent {
-            unsure = true;
-            continue;
-        }
-        let s = if det > 0.0 { 1 } else { -1 };
-        if side != 0 && s != side {
-            return Side::Straddles;
-        }
-        side = s;
-    }
-    match (unsure, side) {
-        (true, _) => Side::Unsure,
-        (false, 0) => Side::Straddles,
-        (false, _) => Side::Separated,
-    }
+    side_filter_plane(a[0], &Plane::of(a), b, b_shared)
 }
 
 /// The projections onto the three coordinate planes (xy, yz, zx).
@@ -357,7 +332,7 @@ impl Plane {
 }
 
 /// [`side_filter`] with `a`'s plane computed beforehand: orient3d of
-/// `(b_k, a₁, a₂, a₀)`, expanded along `b_k − a₀`.
+/// `(b_k, a₁, a₂, a₀)`, expanded along `b_k − a₀` (the first vector).
 fn side_filter_plane(a0: DVec3, plane: &Plane, b: [DVec3; 3], b_shared: [bool; 3]) -> Side {
     const BOUND: f64 = 7.771_561_172_376_103e-16;
     let mut side = 0i8;

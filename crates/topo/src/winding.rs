@@ -205,12 +205,8 @@ impl<'a> WindingField<'a> {
     /// (the triangles `p` lies on: their solid angle there is ±2π by side,
     /// which the caller adds).
     pub fn at_skipping(&self, p: DVec3, skip: &[usize]) -> f64 {
-        // The finest cells holding `skip` are always opened.
-        let skip_cells: Vec<usize> = skip
-            .iter()
-            .filter_map(|&s| self.cell.get(s))
-            .map(|&c| c as usize)
-            .collect();
+        // The finest cells holding `skip` are always opened (looked up
+        // where needed: no allocation per query, this runs per vertex).
         let mut total = 0.0;
         // (level, x, y, z)
         let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
@@ -222,7 +218,8 @@ impl<'a> WindingField<'a> {
                 continue;
             }
             let shift = self.depth - level;
-            let holds_skip = skip_cells.iter().any(|&k| {
+            let holds_skip = skip.iter().filter_map(|&t| self.cell.get(t)).any(|&k| {
+                let k = k as usize;
                 let fs = self.side;
                 let (kx, ky, kz) = (k / (fs * fs), (k / fs) % fs, k % fs);
                 (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)

@@ -9,7 +9,6 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use holey_testkit::Rng;
 use holey_topo::{Operation, Options, TriMesh, boolean_robust, difference, intersection};
 
 /// Checks the output of `op` on `a` and `b`: a closed, consistently
@@ -23,34 +22,7 @@ fn check(a: &TriMesh, b: &TriMesh, op: Operation, samples: usize, what: &str) ->
     well_formed(&out);
     assert!(closed_oriented(&out), "{what}: not closed and oriented");
     assert_eq!(self_intersecting_pairs(&out), 0, "{what}: crosses itself");
-    let (lo, hi) = used_bounds(&join(a, b));
-    let pad = (hi - lo) * 0.1;
-    let mut rng = Rng::new(14);
-    let mut decided = 0;
-    for _ in 0..samples {
-        let p = DVec3::new(
-            rng.range(lo.x - pad.x, hi.x + pad.x),
-            rng.range(lo.y - pad.y, hi.y + pad.y),
-            rng.range(lo.z - pad.z, hi.z + pad.z),
-        );
-        let (wa, wb, wo) = (winding(a, p), winding(b, p), winding(&out, p));
-        // A point within rounding of a surface is not a fair question.
-        let near = |w: f64| (w - w.round()).abs() > 1e-6;
-        if near(wa) || near(wb) || near(wo) {
-            continue;
-        }
-        decided += 1;
-        let want = op.contains(&[wa.round() >= 1.0, wb.round() >= 1.0]);
-        assert_eq!(
-            wo.round(),
-            f64::from(u8::from(want)),
-            "{what}: winding number {wo} at {p:?} (A {wa}, B {wb})"
-        );
-    }
-    assert!(
-        decided * 10 >= samples * 9,
-        "{what}: {decided} of {samples} decided"
-    );
+    assert_classifies_by_rule(&[a, b], op, &out, samples, 14, what);
     out
 }
 

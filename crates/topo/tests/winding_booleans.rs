@@ -72,39 +72,7 @@ fn check_crossing(
     if no_crossing {
         assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
     }
-    let all = inputs
-        .iter()
-        .fold(TriMesh::default(), |acc, m| join(&acc, m));
-    let (lo, hi) = used_bounds(&all);
-    let pad = (hi - lo) * 0.1;
-    let mut rng = Rng::new(140);
-    let mut decided = 0;
-    for _ in 0..samples {
-        let p = DVec3::new(
-            rng.range(lo.x - pad.x, hi.x + pad.x),
-            rng.range(lo.y - pad.y, hi.y + pad.y),
-            rng.range(lo.z - pad.z, hi.z + pad.z),
-        );
-        let w: Vec<f64> = inputs.iter().map(|m| winding(m, p)).collect();
-        let wo = winding(m, p);
-        // A point within rounding of a surface is not a fair question.
-        let unsure = |w: f64| (w - w.round()).abs() > 1e-6;
-        if w.iter().any(|&w| unsure(w)) || unsure(wo) {
-            continue;
-        }
-        decided += 1;
-        let inside: Vec<bool> = w.iter().map(|w| w.round() >= 1.0).collect();
-        let want = op.contains(&inside);
-        assert_eq!(
-            wo.round(),
-            f64::from(u8::from(want)),
-            "{what}: output winding number {wo} at {p:?} (inputs {w:?})"
-        );
-    }
-    assert!(
-        decided * 10 >= samples * 9,
-        "{what}: {decided} of {samples} decided"
-    );
+    assert_classifies_by_rule(inputs, op, m, samples, 140, what);
 }
 
 fn assert_volume(out: &WindingOutcome, want: f64, relative: f64, what: &str) {

@@ -554,3 +554,49 @@ pub fn winding(m: &TriMesh, p: DVec3) -> f64 {
     }
     sum / (4.0 * std::f64::consts::PI)
 }
+
+/// Asserts that `out` classifies `samples` random points of the inputs'
+/// box (padded by a tenth) as the Boolean `op` of the inputs does by the
+/// winding-number rule: its winding number ([`winding`]) is 1 where the
+/// rule says inside and 0 elsewhere. A point within rounding of a surface
+/// is not a fair question and is skipped; nine in ten must be decided.
+pub fn assert_classifies_by_rule(
+    inputs: &[&TriMesh],
+    op: holey_topo::Operation,
+    out: &TriMesh,
+    samples: usize,
+    seed: u64,
+    what: &str,
+) {
+    let all = inputs
+        .iter()
+        .fold(TriMesh::default(), |acc, m| join(&acc, m));
+    let (lo, hi) = used_bounds(&all);
+    let pad = (hi - lo) * 0.1;
+    let mut rng = Rng::new(seed);
+    let mut decided = 0;
+    for _ in 0..samples {
+        let p = DVec3::new(
+            rng.range(lo.x - pad.x, hi.x + pad.x),
+            rng.range(lo.y - pad.y, hi.y + pad.y),
+            rng.range(lo.z - pad.z, hi.z + pad.z),
+        );
+        let w: Vec<f64> = inputs.iter().map(|m| winding(m, p)).collect();
+        let wo = winding(out, p);
+        let unsure = |w: f64| (w - w.round()).abs() > 1e-6;
+        if w.iter().any(|&w| unsure(w)) || unsure(wo) {
+            continue;
+        }
+        decided += 1;
+        let inside: Vec<bool> = w.iter().map(|w| w.round() >= 1.0).collect();
+        assert_eq!(
+            wo.round(),
+            f64::from(u8::from(op.contains(&inside))),
+            "{what}: output winding number {wo} at {p:?} (inputs {w:?})"
+        );
+    }
+    assert!(
+        decided * 10 >= samples * 9,
+        "{what}: {decided} of {samples} decided"
+    );
+}
