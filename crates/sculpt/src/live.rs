@@ -50,6 +50,9 @@ pub struct LiveFrame<'a> {
     /// Whether the triangles differ from the previous frame's (a paint
     /// frame that changed topology); false means only positions moved.
     pub connectivity_changed: bool,
+    /// Whether the topology-change engine cut the surface this frame (a
+    /// collision or a crossing resolved), as opposed to remeshing alone.
+    pub topology_changed: bool,
     /// During a drag with preview on: the corrected parity per vertex of
     /// `mesh` (`true` = deleted at release).
     pub corrected_odd: Option<Vec<bool>>,
@@ -190,6 +193,7 @@ impl LiveStroke {
             strength,
         } = self.settings;
         let mut connectivity_changed = false;
+        let mut topology_changed = false;
         let mut corrected_odd = None;
         match &mut self.state {
             State::Paint { mesh } => {
@@ -202,10 +206,12 @@ impl LiveStroke {
                     remeshed: &mut self.remeshed,
                     diagnostics: &mut self.diagnostics,
                     connectivity_changed: false,
+                    topology_changed: false,
                 };
                 step.paint(mesh, brush, point, radius, strength, 0)
                     .map_err(|e| e.at_frame(index))?;
                 connectivity_changed = step.connectivity_changed;
+                topology_changed = step.topology_changed;
             }
             State::Drag {
                 start,
@@ -249,6 +255,7 @@ impl LiveStroke {
             index,
             mesh: self.mesh(),
             connectivity_changed,
+            topology_changed,
             corrected_odd,
             seconds: started.elapsed().as_secs_f64(),
         })
@@ -331,6 +338,7 @@ struct PaintStep<'a> {
     remeshed: &'a mut RemeshTally,
     diagnostics: &'a mut Option<Diagnostics>,
     connectivity_changed: bool,
+    topology_changed: bool,
 }
 
 /// An error of a paint frame, before it knows its frame number.
@@ -441,6 +449,7 @@ impl PaintStep<'_> {
                         intersection_curves: out.intersection_curves,
                     });
                     self.connectivity_changed |= !out.positions_only;
+                    self.topology_changed |= !out.positions_only;
                     if self.remesh.is_none() && out.new_vertices > 0 {
                         self.clean_up(mesh, out.new_vertices)?;
                     }

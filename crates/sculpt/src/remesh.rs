@@ -266,7 +266,12 @@ pub fn remesh_in_place_checked(
     options: &RemeshOptions,
 ) -> Result<RemeshReport, RemeshError> {
     // Everything a run can touch lies within two edge lengths of the
-    // active vertices' triangles (the work set is their ring).
+    // active vertices' triangles (the work set is their ring). An edge it
+    // makes is at most `max_edge` long, or, when that is no bound (a
+    // collapse-only cleanup: `f64::MAX`), at most a few old edges end to
+    // end; growing by `2 × f64::MAX` made the box the whole mesh, and the
+    // cleanup after a topology change counted every crossing pair of the
+    // surface twice (40 ms a time on the bunny).
     let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     let mut reach = 0.0f64;
     for t in &mesh.triangles {
@@ -286,14 +291,17 @@ pub fn remesh_in_place_checked(
     if !(lo.is_finite() && hi.is_finite()) {
         return remesh_in_place(mesh, active, options);
     }
-    let grow = DVec3::splat(2.0 * reach.max(options.max_edge));
+    let longest = reach.max(options.max_edge.min(4.0 * reach));
+    let grow = DVec3::splat(2.0 * longest);
     let region = (lo - grow, hi + grow);
-    let before = crossings_within(mesh, region);
-    let flat_before = flat_within(mesh, region);
     let saved = mesh.clone();
     let mut report = remesh_in_place(mesh, active, options)?;
+    // Counted only when the run changed something (most frames of a
+    // stroke over a remeshed surface change nothing).
+    let crossings = holey_topo::intersect::crossing_pairs_within;
     if report.splits + report.collapses + report.flips > 0
-        && (crossings_within(mesh, region) > before || flat_within(mesh, region) > flat_before)
+        && (crossings(mesh, region) > crossings(&saved, region)
+            || flat_within(mesh, region) > flat_within(&saved, region))
     {
         *mesh = saved;
         report.undone = true;
@@ -313,28 +321,6 @@ fn flat_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
                 && holey_topo::audit::is_degenerate(mesh, **t)
         })
         .count()
-}
-
-/// Intersecting triangle pairs among the triangles whose boxes meet the
-/// box `region` (exact; 0 when the test cannot run).
-fn crossings_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
-    let mut local = vec![u32::MAX; mesh.positions.len()];
-    let mut part = TriMesh::default();
-    for t in &mesh.triangles {
-        let p = t.map(|v| mesh.positions[v as usize]);
-        let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
-        if lo.cmpgt(region.1).any() || hi.cmplt(region.0).any() {
-            continue;
-        }
-        part.triangles.push(t.map(|v| {
-            if local[v as usize] == u32::MAX {
-                local[v as usize] = part.positions.len() as u32;
-                part.positions.push(mesh.positions[v as usize]);
-            }
-            local[v as usize]
-        }));
-    }
-    holey_topo::intersect::intersecting_pair_count(&part, usize::MAX).unwrap_or(0)
 }
 
 const NONE: u32 = u32::MAX;

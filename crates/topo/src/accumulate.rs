@@ -184,7 +184,10 @@ impl Accumulator {
         let release = if run.worse.is_empty() {
             Release {
                 vanishing: run.report.corrected_odd.clone(),
-                mesh: run.mesh,
+                mesh: run.mesh.unwrap_or_else(|| TriMesh {
+                    positions: self.current.clone(),
+                    triangles: self.mesh.triangles.clone(),
+                }),
                 report: run.report,
                 refused: Vec::new(),
             }

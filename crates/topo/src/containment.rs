@@ -416,18 +416,31 @@ fn fill_voids(
             sets.union(*t, *u);
         }
     }
-    let root_of = |sets: &mut UnionFind, t: usize| sets.find(t as u32);
-    // Per component: touched by a curve, closed (every kept edge twice).
-    let mut info: std::collections::HashMap<u32, (bool, Vec<usize>)> = Default::default();
-    for t in (0..arr.triangles.len()).filter(|&t| keep[t]) {
-        let r = root_of(&mut sets, t);
-        let e = info.entry(r).or_insert((false, Vec::new()));
-        e.0 |= touched[region[t] as usize];
-        e.1.push(t);
+    // Per component (by its root): touched by a curve, and open for sure
+    // (a side no other kept triangle has). Only the components left are
+    // gathered and checked for closedness edge by edge: the surface
+    // around the brush is one big open component, which this way costs
+    // no more than the sort above.
+    let n = arr.triangles.len();
+    let mut touched_root = vec![false; n];
+    let mut open_root = vec![false; n];
+    for run in sides.chunk_by(|x, y| x.0 == y.0) {
+        if let [(_, t)] = run {
+            let r = sets.find(*t) as usize;
+            open_root[r] = true;
+        }
     }
-    let candidates: Vec<Vec<usize>> = info
-        .into_values()
-        .filter(|(touched, members)| *touched && closed(arr, members))
+    let mut members_of: std::collections::HashMap<u32, Vec<usize>> = Default::default();
+    for t in (0..n).filter(|&t| keep[t]) {
+        let r = sets.find(t as u32);
+        touched_root[r as usize] |= touched[region[t] as usize];
+        if !open_root[r as usize] {
+            members_of.entry(r).or_default().push(t);
+        }
+    }
+    let candidates: Vec<Vec<usize>> = members_of
+        .into_iter()
+        .filter(|(r, members)| touched_root[*r as usize] && closed(arr, members))
         .map(|(_, members)| members)
         .collect();
     if candidates.is_empty() {

@@ -681,6 +681,28 @@ fn jitter(id: u32, k: usize) -> DVec3 {
 }
 
 /// [`topology_change`] without the retry.
+/// Whether `mesh` moving to `end` neither collides (no vertex with an
+/// odd number of collisions, §3.2) nor crosses itself at the end (no
+/// intersecting pair, §3.3): then the engine can only move it, and a
+/// frame needs nothing more. Both tests run at once; an error (too many
+/// pairs, say) answers no, leaving the full run to report it.
+pub(crate) fn moves_freely(mesh: &TriMesh, end: &[DVec3], options: &Options) -> bool {
+    let abort = AtomicBool::new(false);
+    let (ccd, geometry) = rayon::join(
+        || {
+            vertex_parities_cancellable(
+                &mesh.positions,
+                end,
+                &mesh.triangles,
+                &ccd_options(options, 0),
+                &abort,
+            )
+        },
+        || geometry_stage(mesh, end, options, &abort),
+    );
+    matches!((ccd, geometry), (Ok(c), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true))
+}
+
 fn topology_change_once(
     mesh: &TriMesh,
     end: &[DVec3],

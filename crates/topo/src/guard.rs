@@ -38,8 +38,10 @@ use glam::DVec3;
 
 use crate::audit::SurfaceAudit;
 use crate::containment::{Surroundings, by_containment};
-use crate::engine::{Options, Outcome, TopoError, check, finish, geometry, topology_change};
-use crate::intersect::{pair_count_at, pairs_intersect_at};
+use crate::engine::{
+    Options, Outcome, TopoError, check, finish, geometry, moves_freely, topology_change,
+};
+use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
 use crate::mesh::TriMesh;
 
@@ -103,8 +105,8 @@ pub fn topology_change_guarded_holding(
         attempts: 1,
         ..GuardedReport::default()
     };
-    let (run, held): (Run, Vec<bool>) = if first.worse.is_empty() {
-        (first, (0..n).map(already).collect())
+    let (run, held, moved_to): (Run, Vec<bool>, Option<Vec<DVec3>>) = if first.worse.is_empty() {
+        (first, (0..n).map(already).collect(), Some(target))
     } else {
         // Hold everything that moves: the frame becomes a no-op.
         report.refused = first.worse;
@@ -112,7 +114,7 @@ pub fn topology_change_guarded_holding(
         report.attempts += 1;
         let still = mesh.positions.clone();
         let run = run_once(mesh, &still, options, &Motion::Frame)?;
-        (run, vec![true; n])
+        (run, vec![true; n], None)
     };
     report.held_positions = (0..n)
         .filter(|&v| held[v] && mesh.positions[v] != end[v])
@@ -120,13 +122,20 @@ pub fn topology_change_guarded_holding(
         .collect();
     report.held_vertices = report.held_positions.len();
     report.local = run.report;
-    *mesh = run.mesh;
+    match (run.mesh, moved_to) {
+        (Some(result), _) => *mesh = result,
+        (None, Some(positions)) => mesh.positions = positions,
+        (None, None) => {}
+    }
     Ok(report)
 }
 
 /// One run of the frame and its audit.
 pub(crate) struct Run {
-    pub mesh: TriMesh,
+    /// The result; `None` when only positions changed: the mesh's own
+    /// triangles at the run's end positions (a frame on a million
+    /// triangles does not copy them to say so).
+    pub mesh: Option<TriMesh>,
     pub report: LocalReport,
     /// What got worse (empty: the result is clean).
     pub worse: Vec<String>,
@@ -179,25 +188,41 @@ fn run_with(
     let n = mesh.positions.len();
     let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
         return Ok(Run {
-            mesh: TriMesh {
-                positions: end.to_vec(),
-                triangles: mesh.triangles.clone(),
-            },
+            mesh: None,
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
         });
     };
+    // Most frames collide with nothing and cross nothing: that is settled
+    // on the triangles the motion's box meets, every one a moving
+    // triangle can touch, before the wider region the correction needs
+    // as context (the box grown by half its size: four times the
+    // triangles on a surface) is gathered at all.
+    if matches!(motion, Motion::Frame) {
+        let tight = Region::select(&mesh.triangles, &mesh.positions, end, bx);
+        if tight.worth_it() {
+            let sub = tight.submesh(&mesh.positions);
+            let moved = tight.submesh(end);
+            if moves_freely(&sub, &moved.positions, options) {
+                return Ok(Run {
+                    mesh: None,
+                    report: LocalReport {
+                        region_triangles: tight.count,
+                        ..LocalReport::no_motion(n)
+                    },
+                    worse: flat_growth(&sub, &moved).into_iter().collect(),
+                });
+            }
+        }
+    }
     let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
     if region.worth_it() {
         let sub = region.submesh(&mesh.positions);
         let out = resolve_frame(mesh, end, &region, &sub, options, motion, containment)?;
         let (report, spliced) = region.resolve(mesh, end, &out, options.solid_guard);
         let result = match spliced {
-            Spliced::PositionsOnly => Some(TriMesh {
-                positions: end.to_vec(),
-                triangles: mesh.triangles.clone(),
-            }),
-            Spliced::Mesh(m) => Some(m),
+            Spliced::PositionsOnly => Some(None),
+            Spliced::Mesh(m) => Some(Some(m)),
             Spliced::NotExact => None,
         };
         if let Some(result) = result {
@@ -223,7 +248,7 @@ fn run_with(
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
     let worse = audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
     Ok(Run {
-        mesh: result,
+        mesh: Some(result),
         report,
         worse,
     })
@@ -308,27 +333,35 @@ fn audit_region(
                 ));
             }
         }
-        let flat_before = sub
-            .triangles
-            .iter()
-            .filter(|t| crate::audit::is_degenerate(sub, **t))
-            .count();
-        let moved = region.submesh(end);
-        let flat_after = moved
-            .triangles
-            .iter()
-            .filter(|t| crate::audit::is_degenerate(&moved, **t))
-            .count();
-        if flat_after > flat_before {
-            worse.push(format!(
-                "degenerate triangles: {flat_before} -> {flat_after}"
-            ));
-        }
+        worse.extend(flat_growth(sub, &region.submesh(end)));
         worse
     } else {
         let (before, after) = neighbourhoods(mesh, end, region, out);
-        let b = SurfaceAudit::of(&before)?;
-        let mut a = SurfaceAudit::of(&after)?;
+        // Crossings: a triangle the cut made lies inside a triangle of a
+        // crossing pair at the end; every other output triangle is one of
+        // the region's, which crosses nothing at the end but what the
+        // pairs hold. So every pair the result can have lies in the box
+        // of the pairs' triangles at the end, and counting there, before
+        // and after, catches every growth of the whole count (a moved
+        // triangle's crossings at the start outside the box only make
+        // the start's count smaller). The start is counted only when the
+        // result has any; most frames that change topology leave none.
+        let mut a = SurfaceAudit::topology(&after);
+        let mut b = SurfaceAudit::topology(&before);
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for &(s, t) in pairs {
+            for v in sub.triangles[s as usize]
+                .iter()
+                .chain(&sub.triangles[t as usize])
+            {
+                let p = end[region.global[*v as usize] as usize];
+                (lo, hi) = (lo.min(p), hi.max(p));
+            }
+        }
+        a.intersecting_pairs = crossing_pairs_within(&after, (lo, hi));
+        if a.intersecting_pairs > 0 {
+            b.intersecting_pairs = crossing_pairs_within(&before, (lo, hi));
+        }
         if options.nonmanifold_joins {
             a.nonmanifold_curves = a.nonmanifold_curves.min(b.nonmanifold_curves);
             a.pinched_vertices = a.pinched_vertices.min(b.pinched_vertices);
@@ -336,6 +369,19 @@ fn audit_region(
         b.regressions(&a)
     };
     Ok(worse)
+}
+
+/// Whether the triangles of `start` squashed flat (exactly zero area) are
+/// more in `moved`, the same triangles at other positions, in words.
+fn flat_growth(start: &TriMesh, moved: &TriMesh) -> Option<String> {
+    let flat = |m: &TriMesh| {
+        m.triangles
+            .iter()
+            .filter(|t| crate::audit::is_degenerate(m, **t))
+            .count()
+    };
+    let (before, after) = (flat(start), flat(moved));
+    (after > before).then(|| format!("degenerate triangles: {before} -> {after}"))
 }
 
 /// The region with its ring of outside triangles, before (at the start)

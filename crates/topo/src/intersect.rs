@@ -686,6 +686,35 @@ pub fn intersecting_pair_count(mesh: &TriMesh, limit: usize) -> Result<usize, In
     pair_count_at(mesh, &mesh.positions, limit)
 }
 
+/// [`intersecting_pair_count`] of the triangles of `mesh` whose bounding
+/// boxes meet the box `region` (`(lo, hi)`), taken as a mesh of their
+/// own: every crossing pair with a triangle inside `region` is among
+/// them, since its partner's box meets that triangle's box. 0 when the
+/// count cannot be made (more than `usize::MAX` pairs cannot happen; an
+/// out-of-range index or non-finite position can).
+pub fn crossing_pairs_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
+    let mut local = vec![u32::MAX; mesh.positions.len()];
+    let mut part = TriMesh::default();
+    for t in &mesh.triangles {
+        if t.iter().any(|&v| v as usize >= mesh.positions.len()) {
+            continue;
+        }
+        let p = t.map(|v| mesh.positions[v as usize]);
+        let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+        if lo.cmpgt(region.1).any() || hi.cmplt(region.0).any() {
+            continue;
+        }
+        part.triangles.push(t.map(|v| {
+            if local[v as usize] == u32::MAX {
+                local[v as usize] = part.positions.len() as u32;
+                part.positions.push(mesh.positions[v as usize]);
+            }
+            local[v as usize]
+        }));
+    }
+    intersecting_pair_count(&part, usize::MAX).unwrap_or(0)
+}
+
 /// [`intersecting_pair_count`] of `mesh`'s triangles at `positions`
 /// (indices already checked).
 pub(crate) fn pair_count_at(

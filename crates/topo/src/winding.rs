@@ -88,12 +88,19 @@ impl<'a> WindingField<'a> {
         position: &'a (dyn Fn(u32) -> DVec3 + Sync),
     ) -> WindingField<'a> {
         let centroid = |t: &[u32; 3]| t.map(position).iter().sum::<DVec3>() / 3.0;
-        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for t in triangles {
-            let c = centroid(t);
-            lo = lo.min(c);
-            hi = hi.max(c);
-        }
+        // Rebuilt every frame a sculpting stroke changes topology, over
+        // the whole surface around the brush: each pass is parallel.
+        let centroids: Vec<DVec3> = triangles.par_iter().map(centroid).collect();
+        let (lo, hi) = centroids
+            .par_iter()
+            .fold(
+                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+                |(l, h), c| (l.min(*c), h.max(*c)),
+            )
+            .reduce(
+                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
+                |(l1, h1), (l2, h2)| (l1.min(l2), h1.max(h2)),
+            );
         // About eight triangles a finest cell, at most 64 cells a side.
         let wanted = ((triangles.len() as f64 / 8.0).cbrt().ceil() as usize).clamp(1, 64);
         let depth = wanted.next_power_of_two().trailing_zeros();
@@ -105,10 +112,7 @@ impl<'a> WindingField<'a> {
             let clamp = |x: f64| (x.max(0.0) as usize).min(side - 1);
             index(clamp(k.x), clamp(k.y), clamp(k.z), side)
         };
-        let cell: Vec<u32> = triangles
-            .iter()
-            .map(|t| cell_of(centroid(t)) as u32)
-            .collect();
+        let cell: Vec<u32> = centroids.par_iter().map(|&c| cell_of(c) as u32).collect();
         let n_cells = side * side * side;
         let mut start = vec![0u32; n_cells + 1];
         for &c in &cell {
@@ -124,8 +128,12 @@ impl<'a> WindingField<'a> {
             fill[c as usize] += 1;
         }
         let finest: Vec<Summary> = (0..n_cells)
+            .into_par_iter()
             .map(|c| {
                 let members = &order[start[c] as usize..start[c + 1] as usize];
+                if members.is_empty() {
+                    return Summary::default();
+                }
                 let (mut n, mut weighted, mut area) = (DVec3::ZERO, DVec3::ZERO, 0.0);
                 for &t in members {
                     let [a, b, d] = triangles[t as usize].map(position);
@@ -138,9 +146,7 @@ impl<'a> WindingField<'a> {
                 let centre = if area > 0.0 {
                     weighted / area
                 } else {
-                    members
-                        .first()
-                        .map_or(DVec3::ZERO, |&t| centroid(&triangles[t as usize]))
+                    centroids[members[0] as usize]
                 };
                 let radius = members
                     .iter()

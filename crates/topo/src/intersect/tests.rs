@@ -379,3 +379,34 @@ fn fan_neighbours_sharing_a_vertex_are_rejected_in_projection_exactly() {
         "{rejected} rejected, {kept} kept"
     );
 }
+
+/// Two pairs of crossing octahedra far apart: a box around one pair
+/// counts exactly that pair's crossings, the whole box all of them, an
+/// empty box none, and a mesh with an index out of range is no panic.
+#[test]
+fn crossings_within_a_box_are_those_of_the_triangles_meeting_it() {
+    let left = join(
+        &octahedron(DVec3::ZERO, 1.0),
+        &octahedron(DVec3::new(0.5, 0.3, 0.2), 1.0),
+    );
+    let right = join(
+        &octahedron(DVec3::new(10.0, 0.0, 0.0), 1.0),
+        &octahedron(DVec3::new(10.4, -0.2, 0.1), 0.7),
+    );
+    let both = join(&left, &right);
+    let (l, r) = (
+        intersecting_pair_count(&left, usize::MAX).unwrap(),
+        intersecting_pair_count(&right, usize::MAX).unwrap(),
+    );
+    assert!(l > 0 && r > 0);
+    assert_eq!(intersecting_pair_count(&both, usize::MAX).unwrap(), l + r);
+    let around_left = (DVec3::splat(-2.0), DVec3::splat(2.0));
+    assert_eq!(crossing_pairs_within(&both, around_left), l);
+    let everything = (DVec3::splat(-100.0), DVec3::splat(100.0));
+    assert_eq!(crossing_pairs_within(&both, everything), l + r);
+    let nothing = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    assert_eq!(crossing_pairs_within(&both, nothing), 0);
+    let mut broken = both.clone();
+    broken.triangles.push([0, 1, 9999]);
+    assert_eq!(crossing_pairs_within(&broken, everything), l + r);
+}
