@@ -308,7 +308,7 @@ fn settle_unsure(
         decided[r] = false;
     }
     // Each unsure piece's curve edges.
-    let mut curve_edges: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+    let mut curve_edges: rustc_hash::FxHashMap<usize, Vec<usize>> = Default::default();
     for e in 0..edges.len() {
         let around = edges.triangles(e);
         if around.len() > 2 {
@@ -430,7 +430,7 @@ fn fill_voids(
             open_root[r] = true;
         }
     }
-    let mut members_of: std::collections::HashMap<u32, Vec<usize>> = Default::default();
+    let mut members_of: rustc_hash::FxHashMap<u32, Vec<usize>> = Default::default();
     for t in (0..n).filter(|&t| keep[t]) {
         let r = sets.find(t as u32);
         touched_root[r as usize] |= touched[region[t] as usize];
@@ -483,7 +483,7 @@ fn fill_voids(
 /// Whether the triangles `members` of `mesh` use every edge of theirs
 /// exactly twice (a closed surface).
 fn closed(mesh: &TriMesh, members: &[usize]) -> bool {
-    let mut count: std::collections::HashMap<(u32, u32), u32> = Default::default();
+    let mut count: rustc_hash::FxHashMap<(u32, u32), u32> = Default::default();
     for &t in members {
         let tri = mesh.triangles[t];
         for k in 0..3 {

@@ -34,7 +34,7 @@
 //! deleted: the result is the mesh cut along all its self-intersections and
 //! glued there, the arrangement.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -613,7 +613,7 @@ pub fn cut(
         sub: Vec::new(),
     };
     let mut curve_edges: Vec<(u32, u32)> = Vec::new();
-    let mut alias: HashMap<u32, u32> = HashMap::new();
+    let mut alias: HashMap<u32, u32> = HashMap::default();
     for (t, &tri) in tris.iter().enumerate() {
         if whole[t] {
             continue;
@@ -621,8 +621,8 @@ pub fn cut(
         report.triangles_split += 1;
         let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
             ConstrainedDelaunayTriangulation::new();
-        let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::new();
-        let mut global_of_handle: HashMap<usize, u32> = HashMap::new();
+        let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::default();
+        let mut global_of_handle: HashMap<usize, u32> = HashMap::default();
         let mut inserted: Vec<ChartVertex> = Vec::new();
         let mut insert = |cdt: &mut ConstrainedDelaunayTriangulation<ChartVertex>,
                           global: u32,
@@ -773,7 +773,7 @@ pub fn cut(
     // curve, glued like the constructed points. Such a vertex lies on the
     // cut, so it has no side and does not vote in the labelling.
     if !shared_ids.is_empty() {
-        let mut first_of_id: HashMap<u32, u32> = HashMap::new();
+        let mut first_of_id: HashMap<u32, u32> = HashMap::default();
         for v in 0..n as u32 {
             let id = ids[v as usize];
             if shared_ids.binary_search(&id).is_ok() {

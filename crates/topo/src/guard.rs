@@ -452,7 +452,7 @@ fn compact_of(
     triangles: impl Iterator<Item = [u32; 3]>,
     position: &dyn Fn(u32) -> DVec3,
 ) -> TriMesh {
-    let mut index: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    let mut index: rustc_hash::FxHashMap<u32, u32> = rustc_hash::FxHashMap::default();
     let mut m = TriMesh::default();
     for t in triangles {
         let local = t.map(|v| {

@@ -22,8 +22,8 @@
 //! The pieces of intersection segments between consecutive points form the
 //! intersection curves; their connected components are the curves.
 
+use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
 
 use glam::{DVec2, DVec3};
@@ -482,7 +482,7 @@ impl Distinct {
             return None;
         }
         let mut triangles = Vec::new();
-        let mut copies = HashMap::new();
+        let mut copies = HashMap::default();
         for run in keyed.chunk_by(|a, b| a.0 == b.0) {
             let k = run[0].0;
             if k[0] == k[1] || k[1] == k[2] {

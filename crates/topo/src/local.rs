@@ -22,7 +22,7 @@
 //! the frame is recomputed on the whole mesh. Correctness never depends
 //! on the region; only speed does.
 
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
 
@@ -291,7 +291,7 @@ impl Region {
     /// that the region's triangles do not leave open.
     fn opens(&self, out: &TriMesh, origin: &[u32]) -> bool {
         let boundary = |tris: &mut dyn Iterator<Item = [u32; 3]>| {
-            let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+            let mut count: HashMap<(u32, u32), u32> = HashMap::default();
             for t in tris {
                 for k in 0..3 {
                     let (a, b) = (t[k], t[(k + 1) % 3]);
@@ -327,7 +327,7 @@ impl Region {
         out: &TriMesh,
         origin: &[u32],
     ) -> Option<TriMesh> {
-        let mut interface: HashSet<(u32, u32)> = HashSet::new();
+        let mut interface: HashSet<(u32, u32)> = HashSet::default();
         for (t, _) in mesh.triangles.iter().zip(&self.mask).filter(|(_, r)| !**r) {
             for k in 0..3 {
                 let (a, b) = (
@@ -339,7 +339,7 @@ impl Region {
                 }
             }
         }
-        let mut produced: HashSet<(u32, u32)> = HashSet::new();
+        let mut produced: HashSet<(u32, u32)> = HashSet::default();
         for t in &out.triangles {
             for k in 0..3 {
                 let (a, b) = (origin[t[k] as usize], origin[t[(k + 1) % 3] as usize]);
@@ -432,7 +432,7 @@ fn whole(mesh: &mut TriMesh, end: &[DVec3], options: &Options) -> Result<LocalRe
 /// is a copy made at a pinch). Both kinds are numbered after the
 /// surviving input vertices.
 pub(crate) fn new_vertex_count(origin: &[u32]) -> usize {
-    let mut seen = std::collections::HashSet::new();
+    let mut seen = rustc_hash::FxHashSet::default();
     origin
         .iter()
         .filter(|&&o| o == u32::MAX || !seen.insert(o))

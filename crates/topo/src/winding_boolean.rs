@@ -61,7 +61,7 @@
 //! result open there. The report counts both (`unpaired_edges`, and the
 //! CLI checks the result for crossings).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
@@ -488,7 +488,8 @@ fn join(inputs: &[&TriMesh]) -> Result<(TriMesh, Vec<u32>), WindingError> {
 /// counting as one) as many of its triangles run one way as the other, so
 /// that its winding number is an integer off the surface.
 fn closed_inputs(triangles: &[[u32; 3]], ids: &[u32], owner: &[u32], inputs: usize) -> Vec<bool> {
-    let mut balance: HashMap<(u32, u32, u32), i32> = HashMap::with_capacity(triangles.len() * 2);
+    let mut balance: HashMap<(u32, u32, u32), i32> =
+        HashMap::with_capacity_and_hasher(triangles.len() * 2, Default::default());
     for (t, tri) in triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (ids[tri[k] as usize], ids[tri[(k + 1) % 3] as usize]);
@@ -534,7 +535,7 @@ fn weld(
     let reach = SNAP_ULPS * scale * f64::EPSILON;
     if reach > 0.0 {
         let cell = |p: DVec3| (p / (2.0 * reach)).floor().as_i64vec3().to_array();
-        let mut anchors: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+        let mut anchors: HashMap<[i64; 3], Vec<u32>> = HashMap::default();
         for (v, p) in mesh.positions.iter().enumerate() {
             if origin.get(v).is_some_and(|&o| o != u32::MAX) && class[v] as usize == v {
                 anchors.entry(cell(*p)).or_default().push(v as u32);
@@ -589,7 +590,8 @@ fn weld(
 /// The directed edges of `faces` that no face runs the other way (with
 /// multiplicity: an edge run twice one way and once the other is one).
 fn unpaired_edges(faces: &[[u32; 3]]) -> Vec<(u32, u32)> {
-    let mut net: HashMap<(u32, u32), i32> = HashMap::with_capacity(faces.len() * 2);
+    let mut net: HashMap<(u32, u32), i32> =
+        HashMap::with_capacity_and_hasher(faces.len() * 2, Default::default());
     for f in faces {
         for k in 0..3 {
             let (a, b) = (f[k], f[(k + 1) % 3]);
@@ -630,7 +632,7 @@ fn repair_t_junctions(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
         if open.is_empty() {
             return repaired;
         }
-        let mut from: HashMap<u32, Vec<u32>> = HashMap::new();
+        let mut from: HashMap<u32, Vec<u32>> = HashMap::default();
         for &(a, b) in &open {
             from.entry(a).or_default().push(b);
         }
@@ -670,9 +672,9 @@ fn repair_t_junctions(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
             }
             None
         };
-        let open_set: std::collections::HashSet<(u32, u32)> = open.iter().copied().collect();
+        let open_set: rustc_hash::FxHashSet<(u32, u32)> = open.iter().copied().collect();
         let mut split_any = false;
-        let mut done: std::collections::HashSet<(u32, u32)> = Default::default();
+        let mut done: rustc_hash::FxHashSet<(u32, u32)> = Default::default();
         let mut out = Vec::with_capacity(faces.len());
         for &f in faces.iter() {
             let side = (0..3).find_map(|k| {
@@ -1085,7 +1087,7 @@ fn classify(
         .collect();
     order.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
 
-    let mut region_fate: HashMap<u32, Fate> = HashMap::new();
+    let mut region_fate: HashMap<u32, Fate> = HashMap::default();
     for run in order.chunk_by(|a, b| a.0 == b.0) {
         let mut decided = None;
         for &(_, _, t) in run.iter().take(SAMPLE_TRIES) {
@@ -1103,7 +1105,7 @@ fn classify(
     report.regions = order.chunk_by(|a, b| a.0 == b.0).count() + groups.len();
 
     let mut out: Vec<[u32; 3]> = Vec::new();
-    let mut unsampled: HashMap<u32, Vec<[u32; 3]>> = HashMap::new();
+    let mut unsampled: HashMap<u32, Vec<[u32; 3]>> = HashMap::default();
     for (t, tri) in tris.iter().enumerate() {
         if in_group[t] {
             continue;
@@ -1160,7 +1162,7 @@ fn close_unsampled(out: &mut Vec<[u32; 3]>, pieces: Vec<Vec<[u32; 3]>>) {
         return;
     }
     // Net direction count per undirected edge: + for min → max.
-    let mut net: HashMap<(u32, u32), i32> = HashMap::new();
+    let mut net: HashMap<(u32, u32), i32> = HashMap::default();
     let add = |net: &mut HashMap<(u32, u32), i32>, f: [u32; 3], sign: i32| {
         for k in 0..3 {
             let (a, b) = (f[k], f[(k + 1) % 3]);

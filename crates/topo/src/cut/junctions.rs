@@ -15,7 +15,7 @@
 //! kept half of each sheet. When the motion says both halves are even the
 //! edge is left as it is: the parity field then really has a T there.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
@@ -122,7 +122,7 @@ impl Junctions<'_> {
         if self.curve.is_empty() {
             return 0;
         }
-        let mut around: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        let mut around: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
         let mut on_curve = vec![false; self.positions.len()];
         for &(a, b) in self.curve {
             for v in [a, b] {
@@ -152,7 +152,7 @@ impl Junctions<'_> {
         // Deterministic order (the map's is not).
         junctions.sort_unstable_by_key(|(e, _)| *e);
         // Sub-triangles of each source triangle touched by a junction.
-        let mut by_source: HashMap<u32, Vec<usize>> = HashMap::new();
+        let mut by_source: HashMap<u32, Vec<usize>> = HashMap::default();
         for (_, ss) in &junctions {
             for &s in ss {
                 by_source.entry(self.source.triangle(s)).or_default();

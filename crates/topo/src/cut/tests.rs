@@ -27,7 +27,7 @@ fn volume(m: &TriMesh) -> f64 {
 
 /// Edge → number of triangle sides on it, by vertex pair.
 fn edge_degrees(m: &TriMesh) -> HashMap<(u32, u32), usize> {
-    let mut d = HashMap::new();
+    let mut d = HashMap::default();
     for t in &m.triangles {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
@@ -39,7 +39,7 @@ fn edge_degrees(m: &TriMesh) -> HashMap<(u32, u32), usize> {
 
 /// Directed edges each used once and their reverse once: closed and oriented.
 fn closed_oriented(m: &TriMesh) -> bool {
-    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::default();
     for t in &m.triangles {
         for k in 0..3 {
             *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;

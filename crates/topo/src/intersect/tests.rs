@@ -94,7 +94,7 @@ fn two_octahedra_meet_in_one_closed_curve() {
     let x = run(&m);
     assert_eq!(x.curve_count, 1);
     // A closed curve: every node has two pieces.
-    let mut degree: HashMap<Node, usize> = HashMap::new();
+    let mut degree: HashMap<Node, usize> = HashMap::default();
     for p in &x.pieces {
         for n in p.ends {
             *degree.entry(n).or_default() += 1;
