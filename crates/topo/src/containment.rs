@@ -40,7 +40,8 @@ use crate::engine::{Options, Outcome, Report, TopoError, geometry, old_curves, s
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::regions;
 use crate::union_find::UnionFind;
-use crate::winding::WindingField;
+use crate::winding::{WindingField, winding_numbers_at};
+use rayon::prelude::*;
 
 /// How far a winding number may be from an integer for its piece to be
 /// labelled by it: a quarter (holes far away shift it by the solid angle
@@ -63,8 +64,15 @@ pub(crate) struct Surroundings<'a> {
     mesh: &'a TriMesh,
     inside: &'a [bool],
     pub positions: &'a [DVec3],
-    gathered: std::sync::OnceLock<(Vec<[u32; 3]>, f64)>,
+    orientation: std::sync::OnceLock<f64>,
+    outside: std::sync::OnceLock<Vec<[u32; 3]>>,
 }
+
+/// Up to this many points, [`Surroundings::winding_numbers_at`] sums
+/// over the outside triangles once for all of them; for more it builds
+/// the octree field (about as costly as twenty such passes) and queries
+/// it.
+const FEW_POINTS: usize = 16;
 
 impl<'a> Surroundings<'a> {
     /// The triangles of `mesh` that `inside` does not flag, at `end`.
@@ -73,34 +81,46 @@ impl<'a> Surroundings<'a> {
             mesh,
             inside,
             positions: end,
-            gathered: std::sync::OnceLock::new(),
+            orientation: std::sync::OnceLock::new(),
+            outside: std::sync::OnceLock::new(),
         }
-    }
-
-    fn gathered(&self) -> &(Vec<[u32; 3]>, f64) {
-        self.gathered.get_or_init(|| {
-            let mut volume = 0.0;
-            let mut triangles = Vec::new();
-            for (t, &r) in self.mesh.triangles.iter().zip(self.inside) {
-                let [a, b, c] = t.map(|v| self.positions[v as usize]);
-                volume += a.dot(b.cross(c));
-                if !r {
-                    triangles.push(*t);
-                }
-            }
-            (triangles, if volume < 0.0 { -1.0 } else { 1.0 })
-        })
-    }
-
-    /// The outside triangles.
-    pub fn triangles(&self) -> &[[u32; 3]] {
-        &self.gathered().0
     }
 
     /// The sign of the whole surface's signed volume at the end: +1 when
     /// it faces outward (inside has winding number +1), −1 when inward.
     pub fn orientation(&self) -> f64 {
-        self.gathered().1
+        *self.orientation.get_or_init(|| {
+            let volume: f64 = self
+                .mesh
+                .triangles
+                .par_iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|v| self.positions[v as usize]);
+                    a.dot(b.cross(c))
+                })
+                .sum();
+            if volume < 0.0 { -1.0 } else { 1.0 }
+        })
+    }
+
+    /// The winding numbers of the outside triangles at `points`.
+    pub fn winding_numbers_at(&self, points: &[DVec3]) -> Vec<f64> {
+        let at = |v: u32| self.positions[v as usize];
+        if points.len() <= FEW_POINTS {
+            let keep = |t: usize| !self.inside[t];
+            return winding_numbers_at(&self.mesh.triangles, &keep, &at, points);
+        }
+        let outside = self.outside.get_or_init(|| {
+            self.mesh
+                .triangles
+                .iter()
+                .zip(self.inside)
+                .filter(|(_, inside)| !**inside)
+                .map(|(t, _)| *t)
+                .collect()
+        });
+        let field = WindingField::new(outside, &at);
+        points.iter().map(|&p| field.at(p, None)).collect()
     }
 }
 
@@ -180,9 +200,7 @@ pub(crate) fn by_containment(
     // counted with the surface's own orientation, is at least 1.
     let inside = |w: f64| surroundings.orientation() * w >= 0.5;
     let arr_at = |v: u32| arr.positions[v as usize];
-    let out_at = |v: u32| surroundings.positions[v as usize];
     let near = WindingField::new(&arr.triangles, &arr_at);
-    let far = WindingField::new(surroundings.triangles(), &out_at);
     let outward = surroundings.orientation() > 0.0;
     // Per region: keep, and flip (its inside lies on the other side of it
     // than the rest of the surface's does).
@@ -192,10 +210,22 @@ pub(crate) fn by_containment(
     // lies within rounding of another sheet: they are decided by their
     // neighbours below instead.
     let mut unsure: Vec<usize> = Vec::new();
-    for (r, s) in seed.iter().enumerate() {
-        let Some((_, t)) = *s else { continue };
-        let c = arr.triangles[t].map(arr_at).iter().sum::<DVec3>() / 3.0;
-        let w = near.at(c, Some(t)) + far.at(c, None);
+    let samples: Vec<(usize, usize, DVec3)> = seed
+        .iter()
+        .enumerate()
+        .filter_map(|(r, s)| {
+            let (_, t) = (*s)?;
+            Some((
+                r,
+                t,
+                arr.triangles[t].map(arr_at).iter().sum::<DVec3>() / 3.0,
+            ))
+        })
+        .collect();
+    let points: Vec<DVec3> = samples.iter().map(|s| s.2).collect();
+    let far = surroundings.winding_numbers_at(&points);
+    for (&(r, t, c), far) in samples.iter().zip(far) {
+        let w = near.at(c, Some(t)) + far;
         // The seed's own triangle adds ±1/2 on its two sides.
         let (behind, front) = (w + 0.5, w - 0.5);
         let off = (behind - behind.round()).abs();
@@ -223,7 +253,15 @@ pub(crate) fn by_containment(
             }
         })
         .collect();
-    fill_voids(arr, &output, &region, &touched, &mut keep, &far, &inside);
+    fill_voids(
+        arr,
+        &output,
+        &region,
+        &touched,
+        &mut keep,
+        surroundings,
+        &inside,
+    );
     let mut triangles = Vec::with_capacity(arr.triangles.len());
     let mut deleted = 0;
     for (t, tri) in output.iter().enumerate() {
@@ -394,7 +432,7 @@ fn fill_voids(
     region: &[u32],
     touched: &[bool],
     keep: &mut [bool],
-    far: &WindingField<'_>,
+    surroundings: &Surroundings<'_>,
     inside: &dyn Fn(f64) -> bool,
 ) {
     // Components of the kept triangles, through edges that exactly two
@@ -455,13 +493,17 @@ fn fill_voids(
     let kept_index: Vec<usize> = (0..arr.triangles.len()).filter(|&t| keep[t]).collect();
     let arr_at = |v: u32| arr.positions[v as usize];
     let near = WindingField::new(&kept, &arr_at);
-    for members in candidates {
-        // At a point of the shell's first triangle, the rest of the kept
-        // surface: everything kept but that triangle, less the rest of the
-        // shell, which a closed surface's own point sees as a half (of
-        // the sign of its orientation).
+    // At a point of each shell's first triangle, the rest of the kept
+    // surface: everything kept but that triangle, less the rest of the
+    // shell, which a closed surface's own point sees as a half (of the
+    // sign of its orientation).
+    let points: Vec<DVec3> = candidates
+        .iter()
+        .map(|members| output[members[0]].map(arr_at).iter().sum::<DVec3>() / 3.0)
+        .collect();
+    let far = surroundings.winding_numbers_at(&points);
+    for ((members, p), far) in candidates.into_iter().zip(points).zip(far) {
         let seed = members[0];
-        let p = output[seed].map(arr_at).iter().sum::<DVec3>() / 3.0;
         let own = kept_index.binary_search(&seed).ok();
         let volume: f64 = members
             .iter()
@@ -471,7 +513,7 @@ fn fill_voids(
             })
             .sum();
         let shell = if volume < 0.0 { -0.5 } else { 0.5 };
-        let w = near.at(p, own) - shell + far.at(p, None);
+        let w = near.at(p, own) - shell + far;
         if inside(w) {
             for t in members {
                 keep[t] = false;
