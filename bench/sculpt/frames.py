@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""Per-frame sculpting times on real meshes (issue 15).
+
+Writes the stroke files the sculpting scenarios use (the same paths as
+crates/sculpt/tests/real_meshes.rs: points of the surface nearest to
+fractions of its bounding box, radius a share of its diagonal, inflate
+strength 5% of the radius per frame at slider 1) and replays each with
+the frame_trace example, which times every frame and sums up the frames
+that only moved the surface apart from those where the engine cut it.
+
+    cargo build --release -p holey-sculpt --example frame_trace
+    cargo build --release -p holey-cli
+    python3 bench/sculpt/frames.py [--shared ../shared] [--out /tmp/holey-frames]
+
+Needs numpy. The shared meshes are read, never copied.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+
+def read_obj(path):
+    positions, triangles = [], []
+    with open(path) as f:
+        for line in f:
+            s = line.split()
+            if not s:
+                continue
+            if s[0] == "v":
+                positions.append([float(x) for x in s[1:4]])
+            elif s[0] == "f":
+                idx = [int(t.split("/")[0]) for t in s[1:]]
+                idx = [i - 1 if i > 0 else len(positions) + i for i in idx]
+                for k in range(1, len(idx) - 1):
+                    triangles.append([idx[0], idx[k], idx[k + 1]])
+    return np.array(positions), np.array(triangles)
+
+
+class Surface:
+    def __init__(self, path):
+        self.v, f = read_obj(path)
+        self.used = np.unique(f)
+        self.lo = self.v[self.used].min(0)
+        self.hi = self.v[self.used].max(0)
+        self.diagonal = float(np.linalg.norm(self.hi - self.lo))
+
+    def at(self, fraction):
+        """The vertex nearest to a point given as fractions of the box."""
+        p = self.lo + np.array(fraction) * (self.hi - self.lo)
+        j = self.used[np.argmin(np.linalg.norm(self.v[self.used] - p, axis=1))]
+        return self.v[j].tolist()
+
+    def walk(self, a, b, n):
+        return [self.at(np.array(a) + (np.array(b) - np.array(a)) * i / (n - 1)) for i in range(n)]
+
+
+def bunny_strokes(bunny):
+    r = 0.05 * bunny.diagonal
+    k = 0.05 * r
+    across = bunny.walk([0.55, 0.35, 1.0], [0.75, 0.45, 1.0], 40)
+    haunch = {"strokes": [
+        {"brush": "inflate", "radius": r, "strength": k, "path": across},
+        {"brush": "inflate", "radius": r, "strength": -k, "path": across[::-1]},
+    ]}
+    r8 = 0.08 * bunny.diagonal
+    spot = bunny.at([0.6, 0.4, 1.0])
+    dwell = {"strokes": [
+        {"brush": "inflate", "radius": r8, "strength": 0.05 * r8, "path": [spot] * 30},
+        {"brush": "smooth", "radius": r8, "strength": 0.5, "path": [spot] * 10},
+    ]}
+    return {"bunny-haunch": haunch, "bunny-dwell": dwell}
+
+
+def sphere_strokes():
+    # @sphere:8: the unit sphere, 1,310,720 triangles; a brush touching
+    # about 2,000 triangles and one of 5% of the bounding-box diagonal.
+    share = 2000 / 1310720
+    small = math.acos(1 - 2 * share)
+    big = 0.05 * 2 * math.sqrt(3)
+    path = [[math.sin(0.01 * i), 0.0, math.cos(0.01 * i)] for i in range(10)]
+    return {
+        "sphere8-2k-brush": {"strokes": [{"brush": "inflate", "radius": small, "strength": 0.002, "path": path}]},
+        "sphere8-5pct-brush": {"strokes": [{"brush": "inflate", "radius": big, "strength": 0.025 * big, "path": path}]},
+    }
+
+
+def replay(trace, mesh, strokes, extra):
+    out = subprocess.run([trace, mesh, strokes, "--no-audit", *extra], check=True,
+                         capture_output=True, text=True).stdout
+    return out.strip().splitlines()[-1]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
+    ap.add_argument("--out", default="/tmp/holey-frames")
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    trace = os.path.join(ROOT, "target", "release", "examples", "frame_trace")
+    holey = os.path.join(ROOT, "target", "release", "holey")
+    os.makedirs(args.out, exist_ok=True)
+    bunny_path = os.path.join(args.shared, "data", "meshes", "stanford-bunny.obj")
+    jobs = []
+    if os.path.exists(bunny_path):
+        for name, s in bunny_strokes(Surface(bunny_path)).items():
+            jobs.append((name, bunny_path, s))
+    else:
+        print(f"SKIP bunny: {bunny_path} absent", file=sys.stderr)
+    sphere = os.path.join(args.out, "sphere8.obj")
+    if not os.path.exists(sphere):
+        subprocess.run([holey, "convert", "@sphere:8", sphere], check=True)
+    for name, s in sphere_strokes().items():
+        jobs.append((name, sphere, s))
+    for name, mesh, s in jobs:
+        path = os.path.join(args.out, name + ".json")
+        with open(path, "w") as f:
+            json.dump(s, f)
+        for extra in ([], ["--no-remesh"]):
+            for run in range(args.runs):
+                print(f"{name} {' '.join(extra) or '(remeshing)'} run {run}: {replay(trace, mesh, path, extra)}")
+
+
+if __name__ == "__main__":
+    main()
