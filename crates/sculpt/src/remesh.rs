@@ -297,11 +297,14 @@ pub fn remesh_in_place_checked(
     let saved = mesh.clone();
     let mut report = remesh_in_place(mesh, active, options)?;
     // Counted only when the run changed something (most frames of a
-    // stroke over a remeshed surface change nothing).
+    // stroke over a remeshed surface change nothing), and the start only
+    // when the result has any: on a clean surface the second count is
+    // never needed.
     let crossings = holey_topo::intersect::crossing_pairs_within;
+    let grew = |after: usize, before: &dyn Fn() -> usize| after > 0 && after > before();
     if report.splits + report.collapses + report.flips > 0
-        && (crossings(mesh, region) > crossings(&saved, region)
-            || flat_within(mesh, region) > flat_within(&saved, region))
+        && (grew(crossings(mesh, region), &|| crossings(&saved, region))
+            || grew(flat_within(mesh, region), &|| flat_within(&saved, region)))
     {
         *mesh = saved;
         report.undone = true;
