@@ -1108,6 +1108,9 @@ fn union_of_two_spheres_is_one_closed_solid() {
     ]);
     let mm = info(s(&um), &[]);
     let motion: Value = serde_json::from_str(&std::fs::read_to_string(&rm).unwrap()).unwrap();
+    // The library's choice, named in the report.
+    assert_eq!(report["method"], "containment");
+    assert_eq!(motion["method"], "motion");
     assert!(motion["collisions"].as_u64().unwrap() > 0);
     assert_eq!(motion["containment_rays"], 0);
     assert_eq!(mm["faces"], m["faces"]);

@@ -1,6 +1,7 @@
-//! Unites solids and writes the result: by containment parity
-//! (Theorem 5.2) when both are clean closed solids, by the winding number
-//! when either is open or crosses itself.
+//! Unites two solids and writes the result, by the method
+//! [`holey::topo::solid_boolean`] chooses: containment parity
+//! (Theorem 5.2) when both are clean closed solids, the winding number
+//! when either is open, crosses itself or has nested shells.
 //!
 //! ```text
 //! cargo run --release -p holey --example unite -- [A B] [OUT.obj]
@@ -26,8 +27,8 @@ fn load(name: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (a, mut b, out) = match args.as_slice() {
-        [a, b, out] => (load(a)?, load(b)?, out.clone()),
+    let (a, mut b, path) = match args.as_slice() {
+        [a, b, path] => (load(a)?, load(b)?, path.clone()),
         [] => (
             load("@sphere:4")?,
             load("@sphere:4")?,
@@ -40,27 +41,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             *p += DVec3::new(0.9, 0.3, 0.2);
         }
     }
-    let options = topo::Options::default();
-    let mesh = if topo::needs_arrangement(&a, &b)? {
-        let out = topo::boolean_by_winding_robust(&[&a, &b], topo::Operation::Union, &options)?;
-        println!("by the winding number: {} cells", out.report.regions);
-        out.mesh
-    } else {
-        let out = topo::union_robust(&a, &b, &options)?;
-        println!(
-            "by containment parity: {} intersecting pairs, {} curves",
-            out.report.intersecting_pairs, out.report.intersection_curves
-        );
-        out.mesh
-    };
+    // The library chooses: containment parity for clean solids, the
+    // winding number for anything else.
+    let out = topo::solid_boolean(&[&a, &b], topo::Operation::Union, &Default::default())?;
+    println!(
+        "by {}: {:.3} s, {} nudges",
+        out.method.name(),
+        out.seconds,
+        out.perturbation_retries()
+    );
+    let mesh = out.into_mesh();
     let poly = PolyMesh::from_faces(mesh.positions.clone(), mesh.triangles.iter());
     io::write_poly(
-        std::path::Path::new(&out),
+        std::path::Path::new(&path),
         &poly,
         &io::WriteOptions::default(),
     )?;
     println!(
-        "{out}: {} triangles, closed: {}",
+        "{path}: {} triangles, closed: {}",
         mesh.triangles.len(),
         mesh.is_closed_manifold()
     );

@@ -15,6 +15,7 @@ pub mod local;
 pub mod mesh;
 pub mod orient;
 mod solid;
+pub mod solids;
 pub mod union;
 pub mod union_find;
 pub mod weights;
@@ -31,6 +32,7 @@ pub use engine::{
 pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_holding};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::TriMesh;
+pub use solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method, solid_boolean};
 pub use union::{
     Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,
     union_prepared, union_robust,

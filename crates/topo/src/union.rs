@@ -318,7 +318,7 @@ pub enum UnionError {
     /// (the union finds only intersections between A and B), and the
     /// result would crack there. The motion resolves them.
     #[error(
-        "solid {0} intersects itself where it meets the other; the motion (--via-motion) resolves that"
+        "solid {0} intersects itself where it meets the other; moving one into the other (the motion of Theorem 5.2) resolves that"
     )]
     SelfIntersecting(Solid),
     /// A ray could not leave the scene (coordinates near the largest

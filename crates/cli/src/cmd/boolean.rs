@@ -3,11 +3,10 @@
 //! path (no motion gives them: Theorem 5.2 is a union).
 
 use anyhow::Result;
-use holey_topo::union::nudge;
-use holey_topo::{Operation, UnionError};
+use holey_topo::solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method};
+use holey_topo::{Operation, TriMesh, UnionError};
 
 use crate::cmd::topo::{EngineArgs, write_outcome};
-use crate::cmd::union::joined;
 use crate::cmd::winding;
 use crate::error::bad_input;
 use crate::progress::Progress;
@@ -67,31 +66,60 @@ pub struct Args {
 pub fn run(args: Args, op: Operation) -> Result<()> {
     args.engine.check_outputs()?;
     let (a, b) = load_triangle_pair(&args.a, &args.b)?;
-    if a.positions.is_empty() || b.positions.is_empty() {
-        return Err(bad_input("both solids must have vertices"));
-    }
-    let _p = Progress::start(op.name());
-    let checked = std::time::Instant::now();
-    if args.winding || (!args.no_check && winding::needs_winding(&a, &b)?) {
-        let names = [args.a.as_str(), args.b.as_str()];
-        return winding::run(&[a, b], &names, op, &args.output, &args.engine, args.exact);
-    }
-    let options = args.engine.options();
-    let result = if args.exact {
-        holey_topo::boolean(&a, &b, op, &options)
-    } else {
-        holey_topo::boolean_robust(&a, &b, op, &options)
+    let names = [args.a.as_str(), args.b.as_str()];
+    let options = BooleanOptions {
+        engine: args.engine.options(),
+        exact: args.exact,
+        check: !args.no_check,
+        method: args.winding.then_some(Method::Winding),
+        direction: None,
     };
-    let mut out = result.map_err(|e| match e {
-        UnionError::NotClosed(_) | UnionError::SelfIntersecting(_) => {
+    let _p = Progress::start(op.name());
+    let out = solid_boolean(&[a, b], &names, op, &options)?;
+    write_boolean(out, &names, &args.output, &args.engine)
+}
+
+/// [`holey_topo::solid_boolean`] of `inputs` (named `names`), its errors
+/// as bad input in words that name the operation's needs.
+pub fn solid_boolean(
+    inputs: &[TriMesh],
+    names: &[&str],
+    op: Operation,
+    options: &BooleanOptions,
+) -> Result<BooleanOutcome> {
+    let refs: Vec<&TriMesh> = inputs.iter().collect();
+    holey_topo::solid_boolean(&refs, op, options).map_err(|e| match e {
+        BooleanError::Union(e @ (UnionError::NotClosed(_) | UnionError::SelfIntersecting(_))) => {
             bad_input(format!("{e} (the {} needs two closed solids)", op.name()))
         }
+        BooleanError::Empty(_) if names.len() == 2 => bad_input("both solids must have vertices"),
+        BooleanError::Empty(i) => bad_input(format!(
+            "{} has no vertices",
+            names.get(i).copied().unwrap_or("an input")
+        )),
         e => bad_input(e.to_string()),
-    })?;
-    // The engine's total includes the check that sent the pair here.
-    out.report.timings.total = checked.elapsed().as_secs_f64();
-    let retries = out.report.perturbation_retries;
-    write_outcome(&out, &args.output, &args.engine, || {
-        joined(&a, &b, nudge(&a, &b, retries))
     })
+}
+
+/// Writes what [`solid_boolean`] made: the result, and its report and
+/// parity picture where `engine` asks, in the form of its method.
+pub fn write_boolean(
+    out: BooleanOutcome,
+    names: &[&str],
+    output: &str,
+    engine: &EngineArgs,
+) -> Result<()> {
+    let seconds = out.seconds;
+    let method = out.method.name();
+    let at_end = out.at_end;
+    match out.computed {
+        Computed::Winding(w) => winding::write(&w, names, output, engine),
+        Computed::Parity(mut o) => {
+            // The total includes the check that chose the method.
+            o.report.timings.total = seconds;
+            write_outcome(&o, output, engine, Some(method), || {
+                at_end.unwrap_or_default()
+            })
+        }
+    }
 }

@@ -212,8 +212,11 @@ fn union_of(a: &str, b: &str, shift: DVec3) -> Result<Mesh> {
     for p in &mut b.positions {
         *p += shift;
     }
-    let (start, end) =
-        crate::cmd::union::synthesize(&a, &b, DVec3::new(1.0, 0.3127, 0.1731).normalize());
+    let (start, end) = holey_topo::solids::synthesize(
+        &a,
+        &b,
+        DVec3::from_array(holey_topo::solids::DEFAULT_DIRECTION).normalize(),
+    );
     let out = holey_topo::topology_change(&start, &end, &holey_topo::Options::default())?;
     Ok(to_dlfl(&crate::tri::compact(&out.mesh), ImportOptions::default())?.mesh)
 }

@@ -151,7 +151,7 @@ pub fn run_engine(
         let _p = Progress::start("changing topology");
         topology_change(mesh, end, &args.options()).map_err(|e| bad_input(e.to_string()))?
     };
-    write_outcome(&out, output, args, || TriMesh {
+    write_outcome(&out, output, args, None, || TriMesh {
         positions: end.to_vec(),
         triangles: mesh.triangles.clone(),
     })
@@ -163,11 +163,16 @@ pub fn write_outcome(
     out: &holey_topo::Outcome,
     output: &str,
     args: &EngineArgs,
+    method: Option<&str>,
     at_end: impl FnOnce() -> TriMesh,
 ) -> Result<()> {
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &args.report {
-        write_json(path, &report_json(&out.report))?;
+        let mut json = report_json(&out.report);
+        if let (Some(m), Some(fields)) = (method, json.as_object_mut()) {
+            fields.insert("method".into(), m.into());
+        }
+        write_json(path, &json)?;
     }
     if let Some(path) = &args.parity {
         let colors = out

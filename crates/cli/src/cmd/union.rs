@@ -4,21 +4,14 @@
 
 use anyhow::Result;
 use glam::DVec3;
-use holey_topo::union::{NUDGES, nudge};
-use holey_topo::{Operation, TriMesh, UnionError};
+use holey_topo::solids::{BooleanOptions, Method};
+use holey_topo::{Operation, TriMesh};
 
-use crate::cmd::topo::{EngineArgs, write_outcome};
-use crate::cmd::winding;
+use crate::cmd::boolean::{solid_boolean, write_boolean};
+use crate::cmd::topo::EngineArgs;
 use crate::error::bad_input;
 use crate::progress::Progress;
 use crate::tri::{load_triangle_pair, load_triangles};
-
-/// The default direction B arrives from: generic, so that B's vertices
-/// travel along lines that pass through none of the vertices and edges of
-/// a mesh built on an axis-aligned lattice (a union of two copies of one
-/// mesh shifted along an axis is the common case, and an axis-aligned
-/// approach would make every collision degenerate).
-const DEFAULT_DIRECTION: [f64; 3] = [1.0, 0.3127, 0.1731];
 
 #[derive(clap::Args)]
 #[command(after_help = "\
@@ -136,34 +129,15 @@ fn parse_direction(s: &str) -> Result<DVec3> {
     Ok(d / len)
 }
 
-/// The start positions of `a` joined with `b` moved away along `d`.
-pub fn synthesize(a: &TriMesh, b: &TriMesh, d: DVec3) -> (TriMesh, Vec<DVec3>) {
-    let shadow = |m: &TriMesh| {
-        m.positions
-            .iter()
-            .map(|p| p.dot(d))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                (lo.min(x), hi.max(x))
-            })
-    };
-    let (alo, ahi) = shadow(a);
-    let (blo, bhi) = shadow(b);
-    let (alen, blen) = ((ahi - alo).max(0.0), (bhi - blo).max(0.0));
-    let s = (ahi - blo).max(0.0) + 0.1 * (alen + blen) + f64::MIN_POSITIVE;
-    let start = joined(a, b, d * s);
-    let end: Vec<DVec3> = a.positions.iter().chain(&b.positions).copied().collect();
-    (start, end)
-}
-
-/// `a` and `b` as one mesh, `b` moved by `offset` (A's vertices first).
-pub(crate) fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
-    let n = a.positions.len() as u32;
-    let mut both = a.clone();
-    both.positions
-        .extend(b.positions.iter().map(|p| *p + offset));
-    both.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
-    both
+/// The inputs named on the command line, read once each (two at once).
+fn load_inputs(names: &[&str]) -> Result<Vec<TriMesh>> {
+    match names {
+        [a, b] => {
+            let (a, b) = load_triangle_pair(a, b)?;
+            Ok(vec![a, b])
+        }
+        _ => names.iter().map(|n| load_triangles(n)).collect(),
+    }
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -171,135 +145,28 @@ pub fn run(args: Args) -> Result<()> {
     let Some((output, others)) = args.rest.split_last() else {
         return Err(bad_input("union needs an output file"));
     };
-    if others.len() != 1 {
-        if args.via_motion {
-            return Err(bad_input("--via-motion unites exactly two solids"));
-        }
-        let names: Vec<&str> = std::iter::once(args.a.as_str())
-            .chain(others.iter().map(String::as_str))
-            .collect();
-        let inputs = names
-            .iter()
-            .map(|n| load_triangles(n))
-            .collect::<Result<Vec<_>>>()?;
-        let _p = Progress::start("uniting");
-        return winding::run(
-            &inputs,
-            &names,
-            Operation::Union,
-            output,
-            &args.engine,
-            args.exact,
-        );
+    let names: Vec<&str> = std::iter::once(args.a.as_str())
+        .chain(others.iter().map(String::as_str))
+        .collect();
+    if args.via_motion && names.len() != 2 {
+        return Err(bad_input("--via-motion unites exactly two solids"));
     }
-    let (a, b) = load_triangle_pair(&args.a, &others[0])?;
-    if a.positions.is_empty() || b.positions.is_empty() {
-        return Err(bad_input("both solids must have vertices"));
-    }
-    if a.positions.len() + b.positions.len() >= u32::MAX as usize / 2 {
-        return Err(bad_input("the two meshes together have too many vertices"));
-    }
-    let d = match &args.direction {
-        Some(s) => parse_direction(s)?,
-        None => DVec3::from_array(DEFAULT_DIRECTION).normalize(),
+    let direction = args.direction.as_deref().map(parse_direction).transpose()?;
+    let inputs = load_inputs(&names)?;
+    let options = BooleanOptions {
+        engine: args.engine.options(),
+        exact: args.exact,
+        check: !args.no_check,
+        method: if args.via_motion {
+            Some(Method::Motion)
+        } else if args.winding {
+            Some(Method::Winding)
+        } else {
+            None
+        },
+        direction,
     };
     let _p = Progress::start("uniting");
-    let checked = std::time::Instant::now();
-    if !args.via_motion && (args.winding || (!args.no_check && winding::needs_winding(&a, &b)?)) {
-        let names = [args.a.as_str(), others[0].as_str()];
-        return winding::run(
-            &[a, b],
-            &names,
-            Operation::Union,
-            output,
-            &args.engine,
-            args.exact,
-        );
-    }
-    let options = args.engine.options();
-    let direct = if args.via_motion {
-        None
-    } else {
-        let result = if args.exact {
-            holey_topo::union(&a, &b, &options)
-        } else {
-            holey_topo::union_robust(&a, &b, &options)
-        };
-        match result {
-            Ok(out) => Some(out),
-            Err(UnionError::NotClosed(_) | UnionError::SelfIntersecting(_)) => None,
-            Err(e) => return Err(bad_input(e.to_string())),
-        }
-    };
-    let (out, picture) = match direct {
-        Some(out) => {
-            let retries = out.report.perturbation_retries;
-            (out, Picture::Direct(retries))
-        }
-        None => via_motion(&a, &b, d, &args, &options)?,
-    };
-    let mut out = out;
-    // The engine's total includes the check that sent the pair here.
-    out.report.timings.total = checked.elapsed().as_secs_f64();
-    write_outcome(&out, output, &args.engine, || match picture {
-        Picture::Direct(retries) => joined(&a, &b, nudge(&a, &b, retries)),
-        Picture::Motion(start, end) => TriMesh {
-            positions: end,
-            triangles: start.triangles,
-        },
-    })
-}
-
-/// What the parity picture shows: A and B at their final positions.
-enum Picture {
-    /// The direct union, after this many nudges of B.
-    Direct(usize),
-    /// The motion: its start mesh and end positions.
-    Motion(TriMesh, Vec<DVec3>),
-}
-
-/// `b` translated by `d`.
-fn moved(b: &TriMesh, d: DVec3) -> TriMesh {
-    TriMesh {
-        positions: b.positions.iter().map(|p| *p + d).collect(),
-        triangles: b.triangles.clone(),
-    }
-}
-
-/// The synthesized motion through the whole pipeline, B nudged as
-/// [`holey_topo::union::NUDGES`] says from the first nonzero nudge on,
-/// while A and B are closed 2-manifolds and the result is not; with
-/// `--exact`, B unmoved only. The motion starts nudged, unlike the direct
-/// union: on lattice-aligned copies its vertex parity misses overlaps
-/// whose vertices all lie on the other's faces (§3.5 drops a curve
-/// between even vertices), leaving both solids whole, which is closed
-/// and so would not be retried.
-fn via_motion(
-    a: &TriMesh,
-    b: &TriMesh,
-    d: DVec3,
-    args: &Args,
-    options: &holey_topo::Options,
-) -> Result<(holey_topo::Outcome, Picture)> {
-    let both_closed = a.is_closed_manifold() && b.is_closed_manifold();
-    let attempts = if args.exact { 0..1 } else { 1..NUDGES.len() };
-    let mut last = None;
-    for k in attempts {
-        let b = moved(b, nudge(a, b, k));
-        let (start, end) = synthesize(a, &b, d);
-        if start.positions.iter().any(|p| !p.is_finite()) {
-            return Err(bad_input(
-                "B's start position overflows: the coordinates are too large",
-            ));
-        }
-        let mut out = holey_topo::topology_change(&start, &end, options)
-            .map_err(|e| bad_input(e.to_string()))?;
-        out.report.perturbation_retries = k;
-        let good = !both_closed || out.mesh.is_closed_manifold();
-        last = Some((out, Picture::Motion(start, end)));
-        if good {
-            break;
-        }
-    }
-    last.ok_or_else(|| bad_input("no attempt was made"))
+    let out = solid_boolean(&inputs, &names, Operation::Union, &options)?;
+    write_boolean(out, &names, output, &args.engine)
 }

@@ -1,40 +1,27 @@
-//! The winding-number Booleans behind `holey union`, `intersection` and
-//! `difference` when an input crosses itself, when there are more than
-//! two inputs or one, or with `--winding`: the library's
-//! [`holey_topo::boolean_by_winding`], its output checked for crossings
-//! (a result that crosses itself is written, but never silently).
+//! The output of the winding-number Booleans behind `holey union`,
+//! `intersection` and `difference` (the library's choice,
+//! [`holey_topo::solid_boolean`], when an input crosses itself, when there
+//! are more than two inputs or one, or with `--winding`), its result
+//! checked for crossings (a result that crosses itself is written, but
+//! never silently).
 
 use anyhow::Result;
-use holey_topo::{Operation, TriMesh, WindingOutcome};
+use holey_topo::WindingOutcome;
 use serde_json::{Value, json};
 
 use crate::cmd::topo::EngineArgs;
 use crate::error::bad_input;
 use crate::tri::{write_json, write_triangles};
 
-/// [`holey_topo::needs_arrangement`], its errors as bad input.
-pub fn needs_winding(a: &TriMesh, b: &TriMesh) -> Result<bool> {
-    holey_topo::needs_arrangement(a, b).map_err(|e| bad_input(e.to_string()))
-}
-
-/// Runs `op` on `inputs` (named `names` in errors) by the winding number
-/// and writes the result to `output`, the report where `engine` says.
-pub fn run(
-    inputs: &[TriMesh],
+/// Writes the winding-number Boolean `out` of the inputs `names` to
+/// `output`, the report where `engine` says, with a note for each open
+/// input and a warning for an open or self-crossing result.
+pub fn write(
+    out: &WindingOutcome,
     names: &[&str],
-    op: Operation,
     output: &str,
     engine: &EngineArgs,
-    exact: bool,
 ) -> Result<()> {
-    let refs: Vec<&TriMesh> = inputs.iter().collect();
-    let options = engine.options();
-    let out = if exact {
-        holey_topo::boolean_by_winding(&refs, op, &options)
-    } else {
-        holey_topo::boolean_by_winding_robust(&refs, op, &options)
-    }
-    .map_err(|e| bad_input(e.to_string()))?;
     for (name, closed) in names.iter().zip(&out.report.inputs_closed) {
         if !closed {
             eprintln!(
@@ -50,10 +37,10 @@ pub fn run(
     };
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &engine.report {
-        write_json(path, &report_json(&out, crossing))?;
+        write_json(path, &report_json(out, crossing))?;
     }
     if engine.verbose {
-        eprint!("{}", report_text(&out, crossing));
+        eprint!("{}", report_text(out, crossing));
     }
     if out.report.unpaired_edges > 0 && out.report.inputs_closed.iter().all(|&c| c) {
         eprintln!(

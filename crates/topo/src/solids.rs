@@ -1,0 +1,504 @@
+//! Booleans of solids behind one entry point, [`solid_boolean`], with the
+//! policy that picks how each is computed (issue 16: the policy lives in
+//! the engine; the CLI, the demo, the bindings and the benchmarks only
+//! call it):
+//!
+//! - **Containment** ([`crate::union`], Theorem 5.2 of Bernstein & Wojtan
+//!   2013 without the motion): two closed, consistently oriented
+//!   2-manifolds, neither crossing itself, no piece nested in another;
+//!   robust to coplanar contact by the scale-relative nudges of
+//!   [`crate::union::NUDGES`] unless `exact`.
+//! - **Winding** ([`crate::winding_boolean`]): anything else (open input,
+//!   self-crossing or nested shells, one input or more than two), by the
+//!   winding-number rule; nudged per piece unless `exact`.
+//! - **Motion** (Theorem 5.2 itself): B arrives from far away along a
+//!   direction in one frame and the whole pipeline (collisions,
+//!   intersections, correction, cut) deletes what ends up inside; only
+//!   for the union of two inputs, and the fallback of a union the
+//!   containment path cannot take when the check was skipped.
+//!
+//! The choice is exact: [`crate::needs_arrangement`] checks closedness,
+//! orientation, self-crossings and nesting (about one self-intersection
+//! pass over each input); `check: false` skips it for inputs known to be
+//! clean solids.
+
+use std::time::Instant;
+
+use glam::DVec3;
+
+use crate::engine::{Options, Outcome, TopoError, topology_change};
+use crate::mesh::TriMesh;
+use crate::union::{NUDGES, Operation, UnionError, boolean, boolean_robust, nudge};
+use crate::winding_boolean::{
+    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_robust, needs_arrangement,
+};
+
+/// The default direction B arrives from in the motion: generic, so that
+/// B's vertices travel along lines that pass through none of the
+/// vertices and edges of a mesh built on an axis-aligned lattice (a union
+/// of two copies of one mesh shifted along an axis is the common case,
+/// and an axis-aligned approach would make every collision degenerate).
+pub const DEFAULT_DIRECTION: [f64; 3] = [1.0, 0.3127, 0.1731];
+
+/// How a Boolean of solids is computed (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    Containment,
+    Winding,
+    Motion,
+}
+
+impl Method {
+    /// The name reports use: `containment`, `winding`, `motion`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Containment => "containment",
+            Method::Winding => "winding",
+            Method::Motion => "motion",
+        }
+    }
+}
+
+/// What [`solid_boolean`] may do.
+#[derive(Clone, Copy, Debug)]
+pub struct BooleanOptions {
+    /// The engine's options (the correction scheme, the solid guard, …).
+    pub engine: Options,
+    /// Keep the first attempt: no nudges where coplanar faces overlap.
+    pub exact: bool,
+    /// Check exactly whether two inputs are clean solids before choosing
+    /// the containment path; `false` trusts them (a solid that does cross
+    /// itself then keeps its crossings, or a union falls back to the
+    /// motion).
+    pub check: bool,
+    /// A method to use instead of the choice; [`Method::Motion`] only
+    /// unites two inputs.
+    pub method: Option<Method>,
+    /// The direction B arrives from in the motion (any length but zero);
+    /// `None`: [`DEFAULT_DIRECTION`].
+    pub direction: Option<DVec3>,
+}
+
+impl Default for BooleanOptions {
+    fn default() -> Self {
+        BooleanOptions {
+            engine: Options::default(),
+            exact: false,
+            check: true,
+            method: None,
+            direction: None,
+        }
+    }
+}
+
+/// The result of one of the two engines behind [`solid_boolean`].
+#[derive(Clone, Debug)]
+pub enum Computed {
+    /// Containment or motion: the engine's outcome, with its report,
+    /// parities and intersections.
+    Parity(Outcome),
+    /// The winding-number arrangement's outcome and report.
+    Winding(WindingOutcome),
+}
+
+/// What [`solid_boolean`] made, and how.
+#[derive(Clone, Debug)]
+pub struct BooleanOutcome {
+    /// The method that made the result.
+    pub method: Method,
+    pub computed: Computed,
+    /// For containment and motion: the inputs as one mesh where the
+    /// parity was computed (B nudged, or at the motion's end), whose
+    /// vertices the outcome's parities number: what a picture of the
+    /// parity shows.
+    pub at_end: Option<TriMesh>,
+    /// Wall-clock seconds, the choice included.
+    pub seconds: f64,
+}
+
+impl BooleanOutcome {
+    /// The resulting surface.
+    pub fn mesh(&self) -> &TriMesh {
+        match &self.computed {
+            Computed::Parity(o) => &o.mesh,
+            Computed::Winding(o) => &o.mesh,
+        }
+    }
+
+    /// The resulting surface, taken.
+    pub fn into_mesh(self) -> TriMesh {
+        match self.computed {
+            Computed::Parity(o) => o.mesh,
+            Computed::Winding(o) => o.mesh,
+        }
+    }
+
+    /// Nudges of B (or of pieces) before the result came out clean.
+    pub fn perturbation_retries(&self) -> usize {
+        match &self.computed {
+            Computed::Parity(o) => o.report.perturbation_retries,
+            Computed::Winding(o) => o.report.perturbation_retries,
+        }
+    }
+}
+
+/// Why [`solid_boolean`] could not run.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BooleanError {
+    #[error("a Boolean needs at least one input")]
+    NoInput,
+    #[error("input {0} has no vertices")]
+    Empty(usize),
+    #[error("the inputs together have too many vertices ({0})")]
+    TooManyVertices(usize),
+    /// The motion moves B into A: it unites exactly two solids.
+    #[error("the motion unites exactly two solids (given {inputs} inputs for a {op})")]
+    MotionNeedsTwo { inputs: usize, op: &'static str },
+    #[error("the direction B arrives from must be finite and not zero")]
+    BadDirection,
+    /// B's start position, far along the direction, is not finite.
+    #[error("B's start position overflows: the coordinates are too large")]
+    Overflow,
+    #[error(transparent)]
+    Union(#[from] UnionError),
+    #[error(transparent)]
+    Winding(#[from] WindingError),
+    #[error(transparent)]
+    Topo(#[from] TopoError),
+}
+
+/// The operation `op` on the solids `inputs` encloses (module
+/// documentation): the method chosen (or forced), the result, and for
+/// the parity methods the inputs where the parity was computed.
+///
+/// ```
+/// use holey_topo::{Operation, TriMesh};
+/// use holey_topo::solids::{BooleanOptions, Method, solid_boolean};
+/// use glam::DVec3;
+///
+/// // Two unit cubes, the second shifted by (0.5, 0.25, 0.125).
+/// let cube = |o: DVec3| TriMesh {
+///     positions: (0..8)
+///         .map(|i| o + DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+///         .collect(),
+///     triangles: vec![
+///         [0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4],
+///         [2, 6, 3], [3, 6, 7], [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5],
+///     ],
+/// };
+/// let (a, b) = (cube(DVec3::ZERO), cube(DVec3::new(0.5, 0.25, 0.125)));
+/// let out = solid_boolean(&[&a, &b], Operation::Difference, &BooleanOptions::default())?;
+/// assert_eq!(out.method, Method::Containment);
+/// let volume: f64 = out.mesh().triangles.iter().map(|t| {
+///     let [p, q, r] = t.map(|v| out.mesh().positions[v as usize]);
+///     p.dot(q.cross(r)) / 6.0
+/// }).sum();
+/// assert!((volume - (1.0 - 0.5 * 0.75 * 0.875)).abs() < 1e-12);
+/// # Ok::<(), holey_topo::solids::BooleanError>(())
+/// ```
+pub fn solid_boolean(
+    inputs: &[&TriMesh],
+    op: Operation,
+    options: &BooleanOptions,
+) -> Result<BooleanOutcome, BooleanError> {
+    let started = Instant::now();
+    if inputs.is_empty() {
+        return Err(BooleanError::NoInput);
+    }
+    if let Some(i) = inputs.iter().position(|m| m.positions.is_empty()) {
+        return Err(BooleanError::Empty(i));
+    }
+    let total: usize = inputs.iter().map(|m| m.positions.len()).sum();
+    if total >= u32::MAX as usize / 2 {
+        return Err(BooleanError::TooManyVertices(total));
+    }
+    let finish = |method, computed, at_end| BooleanOutcome {
+        method,
+        computed,
+        at_end,
+        seconds: started.elapsed().as_secs_f64(),
+    };
+    if options.method == Some(Method::Motion) {
+        let [a, b] = inputs else {
+            return Err(BooleanError::MotionNeedsTwo {
+                inputs: inputs.len(),
+                op: op.name(),
+            });
+        };
+        if op != Operation::Union {
+            return Err(BooleanError::MotionNeedsTwo {
+                inputs: inputs.len(),
+                op: op.name(),
+            });
+        }
+        let (out, at_end) = by_motion(a, b, options)?;
+        return Ok(finish(Method::Motion, Computed::Parity(out), Some(at_end)));
+    }
+    let winding = match (inputs, options.method) {
+        (_, Some(Method::Winding)) => true,
+        ([a, b], None) => options.check && needs_arrangement(a, b)?,
+        ([_, _], Some(_)) => false,
+        _ => true,
+    };
+    if winding {
+        let out = if options.exact {
+            boolean_by_winding(inputs, op, &options.engine)?
+        } else {
+            boolean_by_winding_robust(inputs, op, &options.engine)?
+        };
+        return Ok(finish(Method::Winding, Computed::Winding(out), None));
+    }
+    let &[a, b] = inputs else {
+        unreachable!("two inputs take the containment path")
+    };
+    let direct = if options.exact {
+        boolean(a, b, op, &options.engine)
+    } else {
+        boolean_robust(a, b, op, &options.engine)
+    };
+    match direct {
+        Ok(out) => {
+            let at_end = joined(a, b, nudge(a, b, out.report.perturbation_retries));
+            Ok(finish(
+                Method::Containment,
+                Computed::Parity(out),
+                Some(at_end),
+            ))
+        }
+        // Containment means nothing for a surface with boundary, and a
+        // solid crossing itself where it meets the other would crack;
+        // the motion takes both, and unites.
+        Err(UnionError::NotClosed(_) | UnionError::SelfIntersecting(_))
+            if op == Operation::Union && options.method.is_none() =>
+        {
+            let (out, at_end) = by_motion(a, b, options)?;
+            Ok(finish(Method::Motion, Computed::Parity(out), Some(at_end)))
+        }
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// The start positions of `a` joined with `b` moved away along `d` (a
+/// unit vector) far enough that they are apart, and the end positions:
+/// both where they are. One frame of this motion is Theorem 5.2's union.
+pub fn synthesize(a: &TriMesh, b: &TriMesh, d: DVec3) -> (TriMesh, Vec<DVec3>) {
+    let shadow = |m: &TriMesh| {
+        m.positions
+            .iter()
+            .map(|p| p.dot(d))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            })
+    };
+    let (alo, ahi) = shadow(a);
+    let (blo, bhi) = shadow(b);
+    let (alen, blen) = ((ahi - alo).max(0.0), (bhi - blo).max(0.0));
+    let s = (ahi - blo).max(0.0) + 0.1 * (alen + blen) + f64::MIN_POSITIVE;
+    let start = joined(a, b, d * s);
+    let end: Vec<DVec3> = a.positions.iter().chain(&b.positions).copied().collect();
+    (start, end)
+}
+
+/// `a` and `b` as one mesh, `b` moved by `offset` (A's vertices first).
+pub fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
+    let n = a.positions.len() as u32;
+    let mut both = a.clone();
+    both.positions
+        .extend(b.positions.iter().map(|p| *p + offset));
+    both.triangles
+        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    both
+}
+
+/// The synthesized motion through the whole pipeline, B nudged as
+/// [`NUDGES`] says from the first nonzero nudge on, while A and B are
+/// closed 2-manifolds and the result is not; with `exact`, B unmoved
+/// only. The motion starts nudged, unlike the direct union: on
+/// lattice-aligned copies its vertex parity misses overlaps whose
+/// vertices all lie on the other's faces (§3.5 drops a curve between even
+/// vertices), leaving both solids whole, which is closed and so would not
+/// be retried. Returns the outcome and the inputs at the motion's end.
+fn by_motion(
+    a: &TriMesh,
+    b: &TriMesh,
+    options: &BooleanOptions,
+) -> Result<(Outcome, TriMesh), BooleanError> {
+    let d = options
+        .direction
+        .unwrap_or(DVec3::from_array(DEFAULT_DIRECTION));
+    let len = d.length();
+    if !(len.is_finite() && len > 0.0) {
+        return Err(BooleanError::BadDirection);
+    }
+    let d = d / len;
+    let both_closed = a.is_closed_manifold() && b.is_closed_manifold();
+    let attempts = if options.exact { 0..1 } else { 1..NUDGES.len() };
+    let mut last = None;
+    for k in attempts {
+        let offset = nudge(a, b, k);
+        let b = TriMesh {
+            positions: b.positions.iter().map(|p| *p + offset).collect(),
+            triangles: b.triangles.clone(),
+        };
+        let (start, end) = synthesize(a, &b, d);
+        if start.positions.iter().any(|p| !p.is_finite()) {
+            return Err(BooleanError::Overflow);
+        }
+        let mut out = topology_change(&start, &end, &options.engine)?;
+        out.report.perturbation_retries = k;
+        let good = !both_closed || out.mesh.is_closed_manifold();
+        let at_end = TriMesh {
+            positions: end,
+            triangles: start.triangles,
+        };
+        last = Some((out, at_end));
+        if good {
+            break;
+        }
+    }
+    last.ok_or(BooleanError::Overflow)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube(o: DVec3, s: f64) -> TriMesh {
+        TriMesh {
+            positions: (0..8)
+                .map(|i| {
+                    o + s * DVec3::new(
+                        f64::from(i & 1),
+                        f64::from((i >> 1) & 1),
+                        f64::from((i >> 2) & 1),
+                    )
+                })
+                .collect(),
+            triangles: vec![
+                [0, 2, 1],
+                [1, 2, 3],
+                [4, 5, 6],
+                [5, 7, 6],
+                [0, 1, 4],
+                [1, 5, 4],
+                [2, 6, 3],
+                [3, 6, 7],
+                [0, 4, 2],
+                [2, 4, 6],
+                [1, 3, 5],
+                [3, 7, 5],
+            ],
+        }
+    }
+
+    fn volume(m: &TriMesh) -> f64 {
+        m.triangles
+            .iter()
+            .map(|t| {
+                let [p, q, r] = t.map(|v| m.positions[v as usize]);
+                p.dot(q.cross(r)) / 6.0
+            })
+            .sum()
+    }
+
+    /// The policy, case by case: clean solids take containment; a nested
+    /// piece, three inputs or one take the winding number; `check: false`
+    /// trusts; a forced motion unites and refuses anything else; an open
+    /// union without the check falls back to the motion; empty input and
+    /// a zero direction are errors, not panics. Every result's volume is
+    /// the closed form.
+    #[test]
+    fn the_policy_picks_the_method_and_every_method_gives_the_closed_form() {
+        let a = cube(DVec3::ZERO, 1.0);
+        let b = cube(DVec3::new(0.5, 0.25, 0.125), 1.0);
+        let overlap = 0.5 * 0.75 * 0.875;
+        let union = 2.0 - overlap;
+        let run = |inputs: &[&TriMesh], op, options: &BooleanOptions| {
+            solid_boolean(inputs, op, options).unwrap()
+        };
+        let default = BooleanOptions::default();
+        let out = run(&[&a, &b], Operation::Union, &default);
+        assert_eq!(out.method, Method::Containment);
+        assert!((volume(out.mesh()) - union).abs() < 1e-12);
+        assert_eq!(out.at_end.as_ref().map(|m| m.positions.len()), Some(16));
+
+        // A box inside A, facing the same way: nested, w = 2 inside it.
+        let mut nested = a.clone();
+        let inner = cube(DVec3::splat(0.25), 0.5);
+        let n = nested.positions.len() as u32;
+        nested.positions.extend(inner.positions);
+        nested
+            .triangles
+            .extend(inner.triangles.iter().map(|t| t.map(|v| v + n)));
+        let far = cube(DVec3::splat(5.0), 1.0);
+        let out = run(&[&nested, &far], Operation::Union, &default);
+        assert_eq!(out.method, Method::Winding);
+        assert!((volume(out.mesh()) - 2.0).abs() < 1e-12);
+
+        let c = cube(DVec3::new(-0.5, 0.5, 0.0), 1.0);
+        let out = run(&[&a, &b, &c], Operation::Intersection, &default);
+        assert_eq!(out.method, Method::Winding);
+        assert!((volume(out.mesh()) - 0.0).abs() < 1e-12);
+        let out = run(&[&a], Operation::Union, &default);
+        assert_eq!(out.method, Method::Winding);
+        assert!((volume(out.mesh()) - 1.0).abs() < 1e-12);
+
+        let forced = BooleanOptions {
+            method: Some(Method::Motion),
+            ..default
+        };
+        let out = run(&[&a, &b], Operation::Union, &forced);
+        assert_eq!(out.method, Method::Motion);
+        assert!(out.mesh().is_closed_manifold());
+        // Nudged by 2⁻³⁰ of the diagonal first: the volume moves by about
+        // that times the area it shifts.
+        let off = (volume(out.mesh()) - union).abs();
+        assert!(off < 1e-7, "{off}");
+        assert!(matches!(
+            solid_boolean(&[&a, &b], Operation::Difference, &forced),
+            Err(BooleanError::MotionNeedsTwo { .. })
+        ));
+        assert!(matches!(
+            solid_boolean(&[&a], Operation::Union, &forced),
+            Err(BooleanError::MotionNeedsTwo { .. })
+        ));
+
+        // An open A (one face gone) without the check: the union falls
+        // back to the motion; the difference is refused by name.
+        let mut open = a.clone();
+        open.triangles.pop();
+        let trusting = BooleanOptions {
+            check: false,
+            ..default
+        };
+        let out = run(&[&open, &b], Operation::Union, &trusting);
+        assert_eq!(out.method, Method::Motion);
+        assert!(matches!(
+            solid_boolean(&[&open, &b], Operation::Difference, &trusting),
+            Err(BooleanError::Union(UnionError::NotClosed(_)))
+        ));
+        // With the check, the open input takes the winding number.
+        assert_eq!(
+            run(&[&open, &b], Operation::Union, &default).method,
+            Method::Winding
+        );
+
+        assert_eq!(
+            solid_boolean(&[], Operation::Union, &default).unwrap_err(),
+            BooleanError::NoInput
+        );
+        let empty = TriMesh::default();
+        assert_eq!(
+            solid_boolean(&[&a, &empty], Operation::Union, &default).unwrap_err(),
+            BooleanError::Empty(1)
+        );
+        let zero = BooleanOptions {
+            direction: Some(DVec3::ZERO),
+            ..forced
+        };
+        assert_eq!(
+            solid_boolean(&[&a, &b], Operation::Union, &zero).unwrap_err(),
+            BooleanError::BadDirection
+        );
+    }
+}
