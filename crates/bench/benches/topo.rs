@@ -18,14 +18,8 @@ fn union_frame(level: u32) -> (TriMesh, Vec<DVec3>) {
     let a = holey_bench::icosphere(level);
     let shift = DVec3::new(0.5, 0.1, 0.05);
     let away = DVec3::new(1.0, 0.3127, 0.1731).normalize() * 4.0;
-    let n = a.positions.len() as u32;
     let mut start = a.clone();
-    start
-        .positions
-        .extend(a.positions.iter().map(|p| *p + shift + away));
-    start
-        .triangles
-        .extend(a.triangles.iter().map(|t| t.map(|v| v + n)));
+    start.append(&a.translated(shift + away));
     let end: Vec<DVec3> = a
         .positions
         .iter()

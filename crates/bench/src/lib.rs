@@ -71,9 +71,5 @@ pub fn tri_grid(n: u32) -> TriMesh {
 }
 
 fn tri_mesh(soup: PolyMesh) -> TriMesh {
-    let (triangles, _) = soup.fan_triangles();
-    TriMesh {
-        positions: soup.positions,
-        triangles,
-    }
+    soup.triangulated()
 }

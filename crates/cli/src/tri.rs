@@ -34,11 +34,7 @@ fn load_soup(arg: &str) -> Result<PolyMesh> {
 }
 
 fn triangles_of(arg: &str, soup: PolyMesh) -> Result<TriMesh> {
-    let (triangles, _) = soup.fan_triangles();
-    let mesh = TriMesh {
-        positions: soup.positions,
-        triangles,
-    };
+    let mesh = soup.triangulated();
     mesh.check().map_err(|e| bad_input(format!("{arg}: {e}")))?;
     Ok(mesh)
 }
@@ -56,18 +52,9 @@ pub fn load_triangle_pair(a: &str, b: &str) -> Result<(TriMesh, TriMesh)> {
     Ok((ra?, rb?))
 }
 
-/// A triangle mesh as a polygon soup, vertices as they are.
-fn to_poly(mesh: TriMesh) -> PolyMesh {
-    PolyMesh {
-        face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
-        face_indices: mesh.triangles.iter().flatten().copied().collect(),
-        positions: mesh.positions,
-    }
-}
-
 /// The mesh without unreferenced vertices, as a polygon soup.
 pub fn compact(mesh: &TriMesh) -> PolyMesh {
-    to_poly(mesh.clone().compacted())
+    PolyMesh::from(mesh.clone().compacted())
 }
 
 /// Writes a triangle mesh (unreferenced vertices dropped) atomically.
@@ -77,7 +64,7 @@ pub fn write_triangles(path: &str, mesh: &TriMesh) -> Result<()> {
 
 /// Writes `mesh` as a PLY with one colour per vertex.
 pub fn write_colored(path: &str, mesh: &TriMesh, colors: Vec<[u8; 3]>) -> Result<()> {
-    let poly = to_poly(mesh.clone());
+    let poly = PolyMesh::from(mesh);
     let opts = WriteOptions {
         ascii: false,
         vertex_colors: Some(colors),

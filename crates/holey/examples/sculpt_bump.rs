@@ -43,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let mesh = session.into_mesh();
-    let poly = PolyMesh::from_faces(mesh.positions.clone(), mesh.triangles.iter());
+    let poly = PolyMesh::from(&mesh);
     io::write_poly(
         std::path::Path::new(&out),
         &poly,

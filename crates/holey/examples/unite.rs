@@ -51,7 +51,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out.perturbation_retries()
     );
     let mesh = out.into_mesh();
-    let poly = PolyMesh::from_faces(mesh.positions.clone(), mesh.triangles.iter());
+    let poly = PolyMesh::from(&mesh);
     io::write_poly(
         std::path::Path::new(&path),
         &poly,

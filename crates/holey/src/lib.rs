@@ -132,10 +132,7 @@
 //! use holey::prelude::*;
 //!
 //! let a = triangles(&shapes::parse_primitive("@sphere:3")?);
-//! let mut b = triangles(&shapes::parse_primitive("@sphere:3")?);
-//! for p in &mut b.positions {
-//!     *p += DVec3::new(1.0, 0.2, 0.1);
-//! }
+//! let b = a.translated(DVec3::new(1.0, 0.2, 0.1));
 //! let out = topo::union(&a, &b, &topo::Options::default())?;
 //! assert!(out.mesh.is_closed_manifold());
 //! let volume = |m: &TriMesh| -> f64 {
@@ -159,10 +156,8 @@
 //! use holey::prelude::*;
 //!
 //! let cube = triangles(&shapes::parse_primitive("@cube:2")?);
-//! let n = cube.positions.len() as u32;
 //! let mut start = cube.clone();
-//! start.positions.extend(cube.positions.iter().map(|p| *p + DVec3::new(5.0, 0.3, 0.2)));
-//! start.triangles.extend(cube.triangles.iter().map(|t| t.map(|v| v + n)));
+//! start.append(&cube.translated(DVec3::new(5.0, 0.3, 0.2)));
 //! let end: Vec<DVec3> = cube
 //!     .positions
 //!     .iter()
@@ -234,9 +229,5 @@ pub fn to_dlfl(
 /// The triangle mesh of a polygon soup, every face fanned from its first
 /// corner (the form the topology engine, Booleans and sculpting take).
 pub fn triangles(soup: &holey_mesh::PolyMesh) -> holey_topo::TriMesh {
-    let (triangles, _) = soup.fan_triangles();
-    holey_topo::TriMesh {
-        positions: soup.positions.clone(),
-        triangles,
-    }
+    soup.triangulated()
 }

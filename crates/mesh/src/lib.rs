@@ -1,8 +1,11 @@
-//! # holey-mesh: polygon soups
+//! # holey-mesh: plain meshes
 //!
 //! [`PolyMesh`] is an indexed polygon mesh exactly as files store it:
 //! positions and faces of any size, with no connectivity and no promise of
 //! being manifold, closed, oriented, welded or free of self-intersections.
+//! [`TriMesh`] is the same for triangles, as the topology engine, the
+//! Booleans and sculpting take it ([`tri`]: checks, edge tables,
+//! closedness, pinches, compaction); the two convert into each other.
 //!
 //! - [`analysis`] measures any soup (`holey info`): counts, boundary,
 //!   non-manifold edges and vertices, orientation, Euler characteristic,
@@ -14,6 +17,8 @@
 pub mod analysis;
 pub mod convert;
 mod poly;
+pub mod tri;
 
 pub use glam::DVec3;
 pub use poly::{PolyMesh, PolyMeshError};
+pub use tri::{MeshError, TriMesh};

@@ -135,6 +135,16 @@ impl PolyMesh {
         (tris, origin)
     }
 
+    /// The triangle mesh of this soup: every face fanned from its first
+    /// corner ([`PolyMesh::fan_triangles`]), the positions as they are.
+    pub fn triangulated(&self) -> crate::TriMesh {
+        let (triangles, _) = self.fan_triangles();
+        crate::TriMesh {
+            positions: self.positions.clone(),
+            triangles,
+        }
+    }
+
     /// Axis-aligned bounds of the referenced vertices, or `None` if no face
     /// refers to any vertex.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
@@ -144,5 +154,31 @@ impl PolyMesh {
             .filter_map(|&i| self.positions.get(i as usize).copied());
         let first = it.next()?;
         Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+    }
+}
+
+impl From<&PolyMesh> for crate::TriMesh {
+    /// [`PolyMesh::triangulated`].
+    fn from(soup: &PolyMesh) -> crate::TriMesh {
+        soup.triangulated()
+    }
+}
+
+impl From<crate::TriMesh> for PolyMesh {
+    /// The triangles as faces of three corners, the positions as they are
+    /// (unreferenced ones included).
+    fn from(mesh: crate::TriMesh) -> PolyMesh {
+        PolyMesh {
+            face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
+            face_indices: mesh.triangles.iter().flatten().copied().collect(),
+            positions: mesh.positions,
+        }
+    }
+}
+
+impl From<&crate::TriMesh> for PolyMesh {
+    /// As `From<TriMesh>`, copying.
+    fn from(mesh: &crate::TriMesh) -> PolyMesh {
+        PolyMesh::from(mesh.clone())
     }
 }

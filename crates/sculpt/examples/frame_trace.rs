@@ -44,11 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let MeshFile::Poly(poly) = holey_io::read_path(Path::new(&args[1]))? else {
         return Err("a polygon mesh file, please".into());
     };
-    let (triangles, _) = poly.fan_triangles();
-    let mut mesh = TriMesh {
-        positions: poly.positions,
-        triangles,
-    };
+    let mut mesh = poly.triangulated();
     let file = parse_strokes(&std::fs::read_to_string(&args[2])?)?;
     let range = file.remesh.or_else(|| default_range(&mesh));
     let audit =

@@ -1143,11 +1143,7 @@ pub(crate) mod tests {
     use super::*;
 
     pub(crate) fn tri(p: holey_shapes::PolyMesh) -> TriMesh {
-        let (triangles, _) = p.fan_triangles();
-        TriMesh {
-            positions: p.positions,
-            triangles,
-        }
+        p.triangulated()
     }
 
     fn sphere(level: u32) -> TriMesh {
@@ -1210,10 +1206,7 @@ pub(crate) mod tests {
 
     fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
         let mut m = a.clone();
-        let n = m.positions.len() as u32;
-        m.positions.extend_from_slice(&b.positions);
-        m.triangles
-            .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+        m.append(b);
         m
     }
 

@@ -36,11 +36,7 @@ fn load(test: &str, file: &str) -> Option<TriMesh> {
     let holey_io::MeshFile::Poly(p) = holey_io::read_path(&dir.join(file)).unwrap() else {
         panic!("{file}: not a polygon mesh");
     };
-    let (triangles, _) = p.fan_triangles();
-    Some(TriMesh {
-        positions: p.positions,
-        triangles,
-    })
+    Some(p.triangulated())
 }
 
 /// What the tests measure of a surface.
@@ -540,11 +536,7 @@ fn bunny_oded_move_into_a_copy() {
     let (lo, hi) = bounds(&bunny);
     let shift = DVec3::new(1.2 * (hi.x - lo.x), 0.0, 0.0);
     let mut two = bunny.clone();
-    let n = two.positions.len() as u32;
-    two.positions
-        .extend(bunny.positions.iter().map(|&p| p + shift));
-    two.triangles
-        .extend(bunny.triangles.iter().map(|t| t.map(|v| v + n)));
+    two.append(&bunny.translated(shift));
     let centre = (lo + hi) * 0.5 + shift;
     let pick = closest_point(&two, centre + DVec3::new(0.0, hi.y - lo.y, 0.0))
         .unwrap()

@@ -16,19 +16,11 @@ use holey_topo::{Options, TriMesh, self_intersections};
 
 fn sphere(centre: DVec3) -> TriMesh {
     let p = holey_shapes::parse_primitive("@sphere:3").unwrap();
-    let (triangles, _) = p.fan_triangles();
-    TriMesh {
-        positions: p.positions.iter().map(|q| *q + centre).collect(),
-        triangles,
-    }
+    p.triangulated().translated(centre)
 }
 
 fn from_poly(p: holey_shapes::PolyMesh) -> TriMesh {
-    let (triangles, _) = p.fan_triangles();
-    TriMesh {
-        positions: p.positions,
-        triangles,
-    }
+    p.triangulated()
 }
 
 fn transformed(m: &TriMesh, scale: f64, offset: DVec3) -> TriMesh {
@@ -40,10 +32,7 @@ fn transformed(m: &TriMesh, scale: f64, offset: DVec3) -> TriMesh {
 
 fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
     let mut m = a.clone();
-    let n = m.positions.len() as u32;
-    m.positions.extend_from_slice(&b.positions);
-    m.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.append(b);
     m
 }
 

@@ -147,18 +147,14 @@ fn without_flag(e: &holey_mesh::convert::ImportError) -> String {
 
 /// A polygon soup's faces fan-triangulated.
 pub fn poly_to_tri(poly: &PolyMesh) -> Result<TriMesh, ServeError> {
-    let (triangles, _) = poly.fan_triangles();
-    let mesh = TriMesh {
-        positions: poly.positions.clone(),
-        triangles,
-    };
+    let mesh = poly.triangulated();
     mesh.check()
         .map_err(|e| ServeError::Refused(format!("the mesh cannot be sculpted: {e}")))?;
     Ok(mesh)
 }
 
 fn tri_to_poly(mesh: &TriMesh) -> PolyMesh {
-    PolyMesh::from_faces(mesh.positions.clone(), &mesh.triangles)
+    PolyMesh::from(mesh)
 }
 
 /// Dynamic remeshing's default detail: on, at the mesh's own resolution.

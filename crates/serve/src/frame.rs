@@ -305,11 +305,7 @@ mod tests {
     #[test]
     fn sparse_frames_carry_only_what_moved() {
         let soup = holey_shapes::parse_primitive("@sphere:2").unwrap();
-        let (triangles, _) = soup.fan_triangles();
-        let m = TriMesh {
-            positions: soup.positions,
-            triangles,
-        };
+        let m = soup.triangulated();
         let d = display_triangles(&m);
         let mut moved = m.positions.clone();
         moved[5].x += 0.25;

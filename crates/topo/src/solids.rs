@@ -301,12 +301,8 @@ pub fn synthesize(a: &TriMesh, b: &TriMesh, d: DVec3) -> (TriMesh, Vec<DVec3>) {
 
 /// `a` and `b` as one mesh, `b` moved by `offset` (A's vertices first).
 pub fn joined(a: &TriMesh, b: &TriMesh, offset: DVec3) -> TriMesh {
-    let n = a.positions.len() as u32;
     let mut both = a.clone();
-    both.positions
-        .extend(b.positions.iter().map(|p| *p + offset));
-    both.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    both.append(&b.translated(offset));
     both
 }
 
@@ -335,11 +331,7 @@ fn by_motion(
     let attempts = if options.exact { 0..1 } else { 1..NUDGES.len() };
     let mut last = None;
     for k in attempts {
-        let offset = nudge(a, b, k);
-        let b = TriMesh {
-            positions: b.positions.iter().map(|p| *p + offset).collect(),
-            triangles: b.triangles.clone(),
-        };
+        let b = b.translated(nudge(a, b, k));
         let (start, end) = synthesize(a, &b, d);
         if start.positions.iter().any(|p| !p.is_finite()) {
             return Err(BooleanError::Overflow);
@@ -424,12 +416,7 @@ mod tests {
 
         // A box inside A, facing the same way: nested, w = 2 inside it.
         let mut nested = a.clone();
-        let inner = cube(DVec3::splat(0.25), 0.5);
-        let n = nested.positions.len() as u32;
-        nested.positions.extend(inner.positions);
-        nested
-            .triangles
-            .extend(inner.triangles.iter().map(|t| t.map(|v| v + n)));
+        nested.append(&cube(DVec3::splat(0.25), 0.5));
         let far = cube(DVec3::splat(5.0), 1.0);
         let out = run(&[&nested, &far], Operation::Union, &default);
         assert_eq!(out.method, Method::Winding);

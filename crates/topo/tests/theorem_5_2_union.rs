@@ -133,11 +133,7 @@ fn two_bunnies_match_the_peers() {
     let Ok(holey_io::MeshFile::Poly(p)) = holey_io::read_path(&dir.join("bunny_oded.obj")) else {
         panic!("cannot read bunny_oded.obj")
     };
-    let (triangles, _) = p.fan_triangles();
-    let a = TriMesh {
-        positions: p.positions,
-        triangles,
-    };
+    let a = p.triangulated();
     let b = translate(&a, DVec3::new(0.620760, 0.0, 0.0));
     let u = union(&a, &b);
     assert!(closed_oriented(&u));

@@ -30,13 +30,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 fn load(path: &str) -> Result<TriMesh, String> {
     match holey_io::read_path(Path::new(path)).map_err(|e| e.to_string())? {
-        MeshFile::Poly(poly) => {
-            let (triangles, _) = poly.fan_triangles();
-            Ok(TriMesh {
-                positions: poly.positions,
-                triangles,
-            })
-        }
+        MeshFile::Poly(poly) => Ok(poly.triangulated()),
         MeshFile::Dlfl(_) => Err(format!("{path}: give a polygon file (OBJ, OFF, PLY, STL)")),
     }
 }

@@ -202,11 +202,7 @@ fn cup() -> Result<Mesh> {
 fn union_of(a: &str, b: &str, shift: DVec3) -> Result<Mesh> {
     let tri = |spec: &str| -> Result<holey_topo::TriMesh> {
         let soup = holey_shapes::parse_primitive(spec).map_err(|e| anyhow!("{spec}: {e}"))?;
-        let (triangles, _) = soup.fan_triangles();
-        Ok(holey_topo::TriMesh {
-            positions: soup.positions,
-            triangles,
-        })
+        Ok(soup.triangulated())
     };
     let (a, mut b) = (tri(a)?, tri(b)?);
     for p in &mut b.positions {

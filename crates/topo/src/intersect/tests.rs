@@ -57,10 +57,7 @@ pub(crate) fn octahedron(c: DVec3, r: f64) -> TriMesh {
 
 pub(crate) fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
     let mut m = a.clone();
-    let n = m.positions.len() as u32;
-    m.positions.extend_from_slice(&b.positions);
-    m.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.append(b);
     m
 }
 
@@ -231,11 +228,7 @@ fn read(path: &std::path::Path) -> TriMesh {
     let Ok(holey_io::MeshFile::Poly(p)) = holey_io::read_path(path) else {
         panic!("cannot read {path:?}")
     };
-    let (triangles, _) = p.fan_triangles();
-    TriMesh {
-        positions: p.positions,
-        triangles,
-    }
+    p.triangulated()
 }
 
 /// The number of intersecting triangle pairs of the shared meshes, against

@@ -11,11 +11,7 @@ use holey_topo::{Options, Outcome, TriMesh, self_intersections, topology_change}
 /// A primitive as a triangle mesh (polygons fan-triangulated).
 pub fn primitive(spec: &str) -> TriMesh {
     let p = holey_shapes::parse_primitive(spec).unwrap();
-    let (triangles, _) = p.fan_triangles();
-    TriMesh {
-        positions: p.positions,
-        triangles,
-    }
+    p.triangulated()
 }
 
 /// An axis-aligned box from `lo` to `hi`, outward, 12 triangles.
@@ -58,10 +54,7 @@ pub fn translate(m: &TriMesh, d: DVec3) -> TriMesh {
 
 pub fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
     let mut m = a.clone();
-    let n = m.positions.len() as u32;
-    m.positions.extend_from_slice(&b.positions);
-    m.triangles
-        .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+    m.append(b);
     m
 }
 
@@ -435,11 +428,7 @@ pub fn read_shared(dir: &std::path::Path, name: &str) -> TriMesh {
     let Ok(holey_io::MeshFile::Poly(p)) = holey_io::read_path(&dir.join(name)) else {
         panic!("cannot read {name}")
     };
-    let (triangles, _) = p.fan_triangles();
-    TriMesh {
-        positions: p.positions,
-        triangles,
-    }
+    p.triangulated()
 }
 
 /// Why a mesh is not closed and oriented: (boundary edges, edges with more

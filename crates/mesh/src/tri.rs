@@ -1,0 +1,741 @@
+//! Triangle meshes as the topology engine, the Booleans and sculpting take
+//! them ([`TriMesh`]), with their checks and their edge tables.
+//!
+//! The engine works on *any* list of triangles (§2.1 of the paper): edges of
+//! any degree, open, unoriented, disconnected, unwelded soups, duplicate and
+//! zero-area triangles. Edges are identified by vertex *indices*: two
+//! triangles of a soup that only touch at equal positions share no edge.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// A triangle mesh: positions and triangles as index triples.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    pub positions: Vec<DVec3>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Why a mesh or a motion cannot be used.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("{what}: vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFinite {
+        what: &'static str,
+        vertex: usize,
+        x: f64,
+        y: f64,
+        z: f64,
+    },
+    #[error("triangle {triangle} refers to vertex {index}, but there are only {count} vertices")]
+    IndexOutOfRange {
+        triangle: usize,
+        index: u32,
+        count: usize,
+    },
+    #[error("the end positions give {got} vertices, the mesh has {expected}")]
+    VertexCountMismatch { expected: usize, got: usize },
+    #[error("{0} vertices exceed 32-bit indices")]
+    TooLarge(usize),
+}
+
+impl TriMesh {
+    /// Appends `other`'s vertices and triangles (its indices shifted past
+    /// this mesh's vertices): the two as one mesh, apart as they were.
+    pub fn append(&mut self, other: &TriMesh) {
+        let n = self.positions.len() as u32;
+        self.positions.extend_from_slice(&other.positions);
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|v| v + n)));
+    }
+
+    /// The mesh moved by `offset`.
+    pub fn translated(&self, offset: DVec3) -> TriMesh {
+        self.transformed(|p| p + offset)
+    }
+
+    /// The mesh with every position mapped by `f` (an affine map, a
+    /// projection, anything), the triangles as they are.
+    pub fn transformed(&self, f: impl Fn(DVec3) -> DVec3) -> TriMesh {
+        TriMesh {
+            positions: self.positions.iter().map(|&p| f(p)).collect(),
+            triangles: self.triangles.clone(),
+        }
+    }
+
+    /// Every undirected edge used by exactly two triangles, in opposite
+    /// directions, and no triangle with a repeated vertex: a closed,
+    /// consistently oriented 2-manifold along its edges.
+    pub fn is_closed_manifold(&self) -> bool {
+        Edges::new(self).closed_oriented(&self.triangles)
+    }
+
+    /// Every undirected edge used by exactly two triangles and no triangle
+    /// with a repeated vertex, whatever the orientations: closed and
+    /// manifold along its edges.
+    pub fn is_closed(&self) -> bool {
+        Edges::new(self).closed(&self.triangles)
+    }
+
+    /// The mesh without the vertices no triangle uses, the others kept in
+    /// order (the engine's output is always compacted this way).
+    pub fn compacted(self) -> TriMesh {
+        self.compacted_with_origin().0
+    }
+
+    /// [`TriMesh::compacted`], also giving for every kept vertex its index
+    /// before compaction (increasing: the order is kept).
+    pub fn compacted_with_origin(self) -> (TriMesh, Vec<u32>) {
+        let mut index = vec![u32::MAX; self.positions.len()];
+        for t in &self.triangles {
+            for &v in t {
+                index[v as usize] = 0;
+            }
+        }
+        if index.iter().all(|&i| i == 0) {
+            let origin = (0..self.positions.len() as u32).collect();
+            return (self, origin);
+        }
+        let mut positions = Vec::with_capacity(self.positions.len());
+        let mut origin = Vec::with_capacity(self.positions.len());
+        for (k, (i, &p)) in index.iter_mut().zip(&self.positions).enumerate() {
+            if *i == 0 {
+                *i = positions.len() as u32;
+                positions.push(p);
+                origin.push(k as u32);
+            }
+        }
+        let triangles = self
+            .triangles
+            .par_iter()
+            .map(|t| t.map(|v| index[v as usize]))
+            .collect();
+        (
+            TriMesh {
+                positions,
+                triangles,
+            },
+            origin,
+        )
+    }
+
+    /// Calls `f(v, corners, fan)` for every vertex with two or more
+    /// corners: `corners` are its corner slots (`3t + k`), `fan[j]` the
+    /// fan of `corners[j]`, numbered from 0 in order of first corner.
+    /// Triangles around a vertex are in one fan when they are joined
+    /// through edges at that vertex.
+    fn for_each_fan(&self, mut f: impl FnMut(usize, &[u32], &[u32])) {
+        let n = self.positions.len();
+        let mut start = vec![0u32; n + 1];
+        for t in &self.triangles {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut corners = vec![0u32; 3 * self.triangles.len()];
+        for (i, t) in self.triangles.iter().enumerate() {
+            for (k, &v) in t.iter().enumerate() {
+                corners[fill[v as usize] as usize] = (3 * i + k) as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        // Scratch reused across vertices.
+        let mut parent: Vec<usize> = Vec::new();
+        let mut by_neighbour: Vec<(u32, usize)> = Vec::new();
+        let mut fan: Vec<u32> = Vec::new();
+        let mut number: Vec<u32> = Vec::new();
+        fn root(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for v in 0..n {
+            let around = &corners[start[v] as usize..start[v + 1] as usize];
+            if around.len() < 2 {
+                continue;
+            }
+            parent.clear();
+            parent.extend(0..around.len());
+            by_neighbour.clear();
+            for (j, &c) in around.iter().enumerate() {
+                let t = self.triangles[c as usize / 3];
+                let k = c as usize % 3;
+                for u in [t[(k + 1) % 3], t[(k + 2) % 3]] {
+                    if u as usize != v {
+                        by_neighbour.push((u, j));
+                    }
+                }
+            }
+            by_neighbour.sort_unstable();
+            for w in by_neighbour.windows(2) {
+                if w[0].0 == w[1].0 {
+                    let (a, b) = (root(&mut parent, w[0].1), root(&mut parent, w[1].1));
+                    parent[a.max(b)] = a.min(b);
+                }
+            }
+            number.clear();
+            number.resize(around.len(), u32::MAX);
+            fan.clear();
+            let mut fans = 0;
+            for j in 0..around.len() {
+                let r = root(&mut parent, j);
+                if number[r] == u32::MAX {
+                    number[r] = fans;
+                    fans += 1;
+                }
+                fan.push(number[r]);
+            }
+            f(v, around, &fan);
+        }
+    }
+
+    /// Per vertex: whether its triangles form more than one fan (sheets
+    /// that touch at a point: a pinch).
+    pub fn pinched_vertices(&self) -> Vec<bool> {
+        let mut pinched = vec![false; self.positions.len()];
+        self.for_each_fan(|v, _, fan| pinched[v] = fan.iter().any(|&f| f > 0));
+        pinched
+    }
+
+    /// Splits every pinched vertex `v` (see [`TriMesh::pinched_vertices`])
+    /// with `eligible(v)` into one vertex per fan, at the same position,
+    /// so that the surface is a 2-manifold there (a DLFL needs that). The
+    /// fan holding the vertex's first corner keeps it; each other fan
+    /// gets a new vertex, appended. Returns, for each new vertex in order,
+    /// the vertex it was split from. `eligible` is asked only about
+    /// pinched vertices (so it may be costly the first time, and is
+    /// never paid for on a mesh without pinches).
+    pub fn split_pinches_where(&mut self, mut eligible: impl FnMut(usize) -> bool) -> Vec<u32> {
+        // (corner, fan) of every corner that moves to a new vertex.
+        let mut moves: Vec<(u32, u32, u32)> = Vec::new();
+        self.for_each_fan(|v, corners, fan| {
+            if fan.iter().any(|&f| f > 0) && eligible(v) {
+                for (&c, &f) in corners.iter().zip(fan) {
+                    if f > 0 {
+                        moves.push((v as u32, f, c));
+                    }
+                }
+            }
+        });
+        moves.sort_unstable();
+        let mut split_from = Vec::new();
+        let mut last = (u32::MAX, u32::MAX, 0u32);
+        for (v, f, c) in moves {
+            if (v, f) != (last.0, last.1) {
+                let new = self.positions.len() as u32;
+                self.positions.push(self.positions[v as usize]);
+                split_from.push(v);
+                last = (v, f, new);
+            }
+            self.triangles[c as usize / 3][c as usize % 3] = last.2;
+        }
+        split_from
+    }
+
+    /// Checks indices and that every position is finite.
+    pub fn check(&self) -> Result<(), MeshError> {
+        check_positions("mesh", &self.positions)?;
+        let n = self.positions.len();
+        if n >= u32::MAX as usize {
+            return Err(MeshError::TooLarge(n));
+        }
+        for (t, tri) in self.triangles.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
+                return Err(MeshError::IndexOutOfRange {
+                    triangle: t,
+                    index,
+                    count: n,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The three corner positions of triangle `t`.
+    pub fn corners(&self, t: usize) -> [DVec3; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+}
+
+/// Checks that every position is finite; `what` names the array in errors.
+pub fn check_positions(what: &'static str, positions: &[DVec3]) -> Result<(), MeshError> {
+    match positions.iter().position(|p| !p.is_finite()) {
+        Some(vertex) => {
+            let p = positions[vertex];
+            Err(MeshError::NonFinite {
+                what,
+                vertex,
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            })
+        }
+        None => Ok(()),
+    }
+}
+
+/// Every triangle side `(key, 3·t + k)` (side `k` of triangle `t` runs
+/// from corner `k` to `k + 1`; `key` is `(smaller end << 32) | larger
+/// end`), ordered by key, then side: the order of a sort of all 3n sides,
+/// found by a counting sort on the smaller end and a sort of each bucket
+/// (a vertex's few edges to larger vertices).
+pub fn sides_by_edge(triangles: &[[u32; 3]]) -> Vec<(u64, u32)> {
+    let (start, bucketed) = bucketed_sides(triangles);
+    (0..start.len() - 1)
+        .flat_map(|a| {
+            bucketed[start[a] as usize..start[a + 1] as usize]
+                .iter()
+                .map(move |&(b, side)| (((a as u64) << 32) | u64::from(b), side))
+        })
+        .collect()
+}
+
+/// [`sides_by_edge`] before the keys are spelled out: `bucketed[start[a]
+/// .. start[a + 1]]` holds `(larger end, side)` of the sides whose smaller
+/// end is `a`, sorted.
+fn bucketed_sides(triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<(u32, u32)>) {
+    let vertices = triangles
+        .iter()
+        .flatten()
+        .max()
+        .map_or(0, |&v| v as usize + 1);
+    let mut start = vec![0u32; vertices + 1];
+    for tri in triangles {
+        for k in 0..3 {
+            start[tri[k].min(tri[(k + 1) % 3]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..vertices {
+        start[v + 1] += start[v];
+    }
+    let mut cursor = start.clone();
+    let mut bucketed = vec![(0u32, 0u32); 3 * triangles.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let slot = &mut cursor[a.min(b) as usize];
+            bucketed[*slot as usize] = (a.max(b), (t * 3 + k) as u32);
+            *slot += 1;
+        }
+    }
+    let mut buckets: Vec<&mut [(u32, u32)]> = Vec::with_capacity(vertices);
+    let mut rest = bucketed.as_mut_slice();
+    for v in 0..vertices {
+        let (head, tail) = rest.split_at_mut((start[v + 1] - start[v]) as usize);
+        buckets.push(head);
+        rest = tail;
+    }
+    buckets.par_iter_mut().for_each(|b| b.sort_unstable());
+    (start, bucketed)
+}
+
+/// The undirected edges of a triangle mesh, by vertex index, with the
+/// triangles around each (any number: boundary, manifold, non-manifold).
+#[derive(Clone, Debug, Default)]
+pub struct Edges {
+    /// Edge `e` joins `ends[e][0] < ends[e][1]` (or equal for a degenerate
+    /// triangle that repeats a vertex).
+    pub ends: Vec<[u32; 2]>,
+    /// The edge of each triangle side `k` (from corner `k` to `k + 1`).
+    pub of_triangle: Vec<[u32; 3]>,
+    /// Triangles of edge `e`: `tris[offsets[e]..offsets[e + 1]]`.
+    pub offsets: Vec<u32>,
+    pub tris: Vec<u32>,
+    /// What the construction saw of every edge, in the same pass.
+    pub summary: EdgeSummary,
+}
+
+/// The closedness and orientation of a mesh's edges, gathered while its
+/// edge table is built (a separate pass over the edges cost as much as a
+/// fifth of the table).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeSummary {
+    /// The first edge with an odd number of triangles.
+    pub first_odd: Option<u32>,
+    /// Every edge has exactly two triangles, running along it in opposite
+    /// directions ([`Edges::opposite`] of every edge).
+    pub all_opposite: bool,
+}
+
+impl Default for EdgeSummary {
+    /// The summary of no edges.
+    fn default() -> Self {
+        EdgeSummary {
+            first_odd: None,
+            all_opposite: true,
+        }
+    }
+}
+
+/// `a` then `b` with `shift` applied to each of `b`'s items (in parallel).
+fn glue<T: Copy + Send + Sync>(a: &[T], b: &[T], shift: impl Fn(T) -> T + Sync + Send) -> Vec<T> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    out.extend_from_slice(a);
+    out.par_extend(b.par_iter().map(|&x| shift(x)));
+    out
+}
+
+impl Edges {
+    /// Collects the edges of `mesh` (indices are assumed checked).
+    pub fn new(mesh: &TriMesh) -> Edges {
+        let nt = mesh.triangles.len();
+        let (start, sides) = bucketed_sides(&mesh.triangles);
+        let mut ends = Vec::with_capacity(sides.len() / 2 + 1);
+        let mut of_triangle = vec![[0u32; 3]; nt];
+        let mut offsets = Vec::with_capacity(sides.len() / 2 + 2);
+        offsets.push(0u32);
+        let mut tris = Vec::with_capacity(3 * nt);
+        let mut summary = EdgeSummary::default();
+        for a in 0..start.len() - 1 {
+            let bucket = &sides[start[a] as usize..start[a + 1] as usize];
+            let mut i = 0;
+            while i < bucket.len() {
+                let b = bucket[i].0;
+                let e = ends.len() as u32;
+                ends.push([a as u32, b]);
+                let first = tris.len();
+                // Sides along the edge from its first end, and against it.
+                let mut runs = [0u32; 2];
+                while i < bucket.len() && bucket[i].0 == b {
+                    let side = bucket[i].1 as usize;
+                    of_triangle[side / 3][side % 3] = e;
+                    let t = (side / 3) as u32;
+                    runs[usize::from(mesh.triangles[side / 3][side % 3] != a as u32)] += 1;
+                    // A triangle with a repeated vertex may use one edge twice.
+                    if tris.len() == first || tris.last() != Some(&t) {
+                        tris.push(t);
+                    }
+                    i += 1;
+                }
+                let count = tris.len() - first;
+                if count % 2 == 1 && summary.first_odd.is_none() {
+                    summary.first_odd = Some(e);
+                }
+                // Two triangles, one running each way (a degenerate edge,
+                // a == b, never qualifies: both its sides count as along).
+                summary.all_opposite &= count == 2 && runs == [1, 1] && a as u32 != b;
+                offsets.push(tris.len() as u32);
+            }
+        }
+        Edges {
+            ends,
+            of_triangle,
+            offsets,
+            tris,
+            summary,
+        }
+    }
+
+    /// The edges of two meshes side by side, `self`'s (of a mesh with
+    /// `vertices` vertices and `triangles` triangles) then `other`'s, its
+    /// vertices and triangles numbered after them: [`Edges::new`] of the
+    /// joined mesh, built from two independent halves.
+    pub fn joined(&self, other: &Edges, vertices: u32, triangles: u32) -> Edges {
+        let (edge_offset, tri_offset) = (self.ends.len() as u32, self.tris.len() as u32);
+        let ends = glue(&self.ends, &other.ends, |e| e.map(|v| v + vertices));
+        let of_triangle = glue(&self.of_triangle, &other.of_triangle, |s| {
+            s.map(|e| e + edge_offset)
+        });
+        // `other`'s offsets start with its own 0, which `self`'s last
+        // offset already stands for.
+        let other_offsets = other.offsets.get(1..).unwrap_or(&[]);
+        let offsets = glue(&self.offsets, other_offsets, |o| o + tri_offset);
+        let tris = glue(&self.tris, &other.tris, |t| t + triangles);
+        Edges {
+            ends,
+            of_triangle,
+            offsets,
+            tris,
+            summary: EdgeSummary {
+                first_odd: self
+                    .summary
+                    .first_odd
+                    .or(other.summary.first_odd.map(|e| e + edge_offset)),
+                all_opposite: self.summary.all_opposite && other.summary.all_opposite,
+            },
+        }
+    }
+
+    /// Number of edges.
+    pub fn len(&self) -> usize {
+        self.ends.len()
+    }
+
+    /// True when there are no edges.
+    pub fn is_empty(&self) -> bool {
+        self.ends.is_empty()
+    }
+
+    /// The triangles that have edge `e` as a side.
+    pub fn triangles(&self, e: usize) -> &[u32] {
+        &self.tris[self.offsets[e] as usize..self.offsets[e + 1] as usize]
+    }
+
+    /// [`TriMesh::is_closed`] of the mesh these edges were collected from
+    /// (`triangles`): no triangle repeats a vertex and every edge has
+    /// exactly two triangles.
+    pub fn closed(&self, triangles: &[[u32; 3]]) -> bool {
+        !triangles
+            .iter()
+            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            && (0..self.ends.len())
+                .into_par_iter()
+                .all(|e| self.triangles(e).len() == 2)
+    }
+
+    /// [`TriMesh::is_closed_manifold`] of the mesh these edges were
+    /// collected from (`triangles`), in one pass over the edges: closed,
+    /// and the two triangles of every edge run along it in opposite
+    /// directions.
+    pub fn closed_oriented(&self, triangles: &[[u32; 3]]) -> bool {
+        self.summary.all_opposite
+            && !triangles
+                .par_iter()
+                .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+    }
+
+    /// Whether triangle `t` (of `triangles`, the mesh these edges were
+    /// collected from) runs along edge `e` from its first end; `None` if
+    /// `e` is not one of its sides.
+    pub fn runs_forward(&self, triangles: &[[u32; 3]], t: u32, e: usize) -> Option<bool> {
+        (0..3)
+            .find(|&k| self.of_triangle[t as usize][k] as usize == e)
+            .map(|k| triangles[t as usize][k] == self.ends[e][0])
+    }
+
+    /// Whether edge `e` has exactly two triangles, running along it in
+    /// opposite directions (consistently oriented there).
+    pub fn opposite(&self, triangles: &[[u32; 3]], e: usize) -> bool {
+        match *self.triangles(e) {
+            [t, u] => matches!(
+                (self.runs_forward(triangles, t, e), self.runs_forward(triangles, u, e)),
+                (Some(a), Some(b)) if a != b
+            ),
+            _ => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad() -> TriMesh {
+        TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        }
+    }
+
+    #[test]
+    fn closed_manifold_check() {
+        let tet = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        };
+        assert!(tet.is_closed_manifold());
+        let mut open = tet.clone();
+        open.triangles.pop();
+        assert!(!open.is_closed_manifold());
+        let mut flipped = tet.clone();
+        flipped.triangles[0] = [0, 1, 2];
+        assert!(!flipped.is_closed_manifold());
+        let mut doubled = tet.clone();
+        doubled
+            .triangles
+            .extend(tet.triangles.iter().map(|t| [t[0], t[2], t[1]]));
+        assert!(!doubled.is_closed_manifold());
+        // The edge-table test and the unoriented one agree case by case.
+        let mut pinched = tet.clone();
+        pinched.triangles[0] = [0, 0, 1];
+        for (m, oriented, closed) in [
+            (&tet, true, true),
+            (&open, false, false),
+            (&flipped, false, true),
+            (&doubled, false, false),
+            (&pinched, false, false),
+        ] {
+            assert_eq!(m.is_closed_manifold(), oriented);
+            assert_eq!(Edges::new(m).closed_oriented(&m.triangles), oriented);
+            assert_eq!(m.is_closed(), closed);
+            // The summary is the per-edge tests, gathered while building.
+            let e = Edges::new(m);
+            assert_eq!(
+                e.summary.all_opposite,
+                (0..e.len()).all(|k| e.opposite(&m.triangles, k))
+            );
+            assert_eq!(
+                e.summary.first_odd,
+                (0..e.len() as u32).find(|&k| e.triangles(k as usize).len() % 2 == 1)
+            );
+        }
+    }
+
+    #[test]
+    fn split_pinches_gives_each_fan_its_own_vertex() {
+        // Two tetrahedra sharing only vertex 0: a pinch.
+        let tet = |o: DVec3, first: u32| {
+            let [a, b, c] = [first, first + 1, first + 2];
+            (
+                vec![o + DVec3::X, o + DVec3::Y, o + DVec3::Z],
+                vec![[0, b, a], [0, a, c], [a, b, c], [b, 0, c]],
+            )
+        };
+        let (p1, t1) = tet(DVec3::ZERO, 1);
+        let (p2, t2) = tet(DVec3::ZERO, 4);
+        let mut m = TriMesh {
+            positions: [vec![DVec3::ZERO], p1, p2.iter().map(|p| -*p).collect()].concat(),
+            triangles: [t1, t2].concat(),
+        };
+        let before = m.clone();
+        let split = m.split_pinches_where(|_| true);
+        assert_eq!(split, vec![0]);
+        assert_eq!(m.positions.len(), 8);
+        assert_eq!(m.positions[7], m.positions[0]);
+        // The first fan kept vertex 0, the second has the copy.
+        assert!(m.triangles[..4].iter().all(|t| !t.contains(&7)));
+        assert!(m.triangles[4..].iter().all(|t| !t.contains(&0)));
+        assert!(m.is_closed_manifold());
+        // Nothing else changed; a manifold is left alone.
+        for (a, b) in m.triangles.iter().zip(&before.triangles) {
+            assert_eq!(a.map(|v| if v == 7 { 0 } else { v }), *b);
+        }
+        let mut again = m.clone();
+        assert!(again.split_pinches_where(|_| true).is_empty());
+        assert_eq!(again.triangles, m.triangles);
+        // Only eligible vertices are split.
+        let mut kept = before.clone();
+        assert_eq!(before.pinched_vertices().iter().filter(|&&p| p).count(), 1);
+        assert!(before.pinched_vertices()[0]);
+        assert!(kept.split_pinches_where(|v| v != 0).is_empty());
+        assert_eq!(kept.triangles, before.triangles);
+    }
+
+    /// A polygon soup and its triangle mesh convert both ways; append,
+    /// translate and transform keep the triangles and move the points.
+    #[test]
+    fn conversions_and_placement() {
+        let square = crate::PolyMesh::from_faces(
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            [[0u32, 1, 2, 3]],
+        );
+        let t = TriMesh::from(&square);
+        assert_eq!(t.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(t, square.triangulated());
+        let back = crate::PolyMesh::from(&t);
+        assert_eq!(back.face_count(), 2);
+        assert_eq!(back.face(1), &[0, 2, 3]);
+        let mut two = t.clone();
+        two.append(&t.translated(DVec3::Z));
+        assert_eq!(two.positions.len(), 8);
+        assert_eq!(two.triangles[2], [4, 5, 6]);
+        assert_eq!(two.positions[6], DVec3::new(1.0, 1.0, 1.0));
+        let scaled = t.transformed(|p| 2.0 * p);
+        assert_eq!(scaled.positions[2], DVec3::new(2.0, 2.0, 0.0));
+        assert_eq!(scaled.triangles, t.triangles);
+    }
+
+    #[test]
+    fn compacted_drops_unused_vertices_in_order() {
+        let m = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::splat(9.0)],
+            triangles: vec![[1, 3, 2]],
+        };
+        let c = m.compacted();
+        assert_eq!(c.positions, vec![DVec3::X, DVec3::Y, DVec3::splat(9.0)]);
+        assert_eq!(c.triangles, vec![[0, 2, 1]]);
+    }
+
+    #[test]
+    fn edges_of_two_triangles() {
+        let e = Edges::new(&quad());
+        assert_eq!(e.len(), 5);
+        let diagonal = e.of_triangle[0][2];
+        assert_eq!(e.ends[diagonal as usize], [0, 2]);
+        assert_eq!(e.triangles(diagonal as usize), &[0, 1]);
+        assert_eq!(e.of_triangle[1][0], diagonal);
+        let boundary = e.of_triangle[0][0];
+        assert_eq!(e.triangles(boundary as usize), &[0]);
+    }
+
+    #[test]
+    fn non_manifold_and_degenerate_edges() {
+        let mut m = quad();
+        m.positions.push(DVec3::Z);
+        m.triangles.push([0, 2, 4]);
+        m.triangles.push([1, 1, 3]);
+        let e = Edges::new(&m);
+        let diagonal = e.of_triangle[0][2] as usize;
+        assert_eq!(e.triangles(diagonal), &[0, 1, 2]);
+        let degenerate = e.of_triangle[3][0] as usize;
+        assert_eq!(e.ends[degenerate], [1, 1]);
+        assert_eq!(e.triangles(degenerate), &[3]);
+    }
+
+    #[test]
+    fn joined_edges_are_those_of_the_joined_mesh() {
+        // A non-manifold, degenerate mesh with an unused last vertex, then
+        // the quad: numbering, triangle lists and degenerate edges carry
+        // over.
+        let mut a = quad();
+        a.positions.push(DVec3::Z);
+        a.positions.push(DVec3::splat(5.0));
+        a.triangles.push([0, 2, 4]);
+        a.triangles.push([1, 1, 3]);
+        let b = quad();
+        let n = a.positions.len() as u32;
+        let mut joined = a.clone();
+        joined.positions.extend_from_slice(&b.positions);
+        joined
+            .triangles
+            .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
+        let whole = Edges::new(&joined);
+        let parts = Edges::new(&a).joined(&Edges::new(&b), n, a.triangles.len() as u32);
+        assert_eq!(parts.ends, whole.ends);
+        assert_eq!(parts.of_triangle, whole.of_triangle);
+        assert_eq!(parts.offsets, whole.offsets);
+        assert_eq!(parts.tris, whole.tris);
+        assert_eq!(parts.summary, whole.summary);
+        assert!(whole.summary.first_odd.is_some());
+        // Two closed, oriented parts: so is the whole.
+        let tet = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        };
+        let two = Edges::new(&tet).joined(&Edges::new(&tet), 4, 4);
+        assert_eq!(two.summary, EdgeSummary::default());
+        // An empty first part.
+        let empty = TriMesh::default();
+        let alone = Edges::new(&empty).joined(&Edges::new(&b), 0, 0);
+        assert_eq!(alone.ends, Edges::new(&b).ends);
+        assert_eq!(alone.offsets, Edges::new(&b).offsets);
+    }
+
+    #[test]
+    fn check_names_the_problem() {
+        let mut m = quad();
+        m.triangles.push([0, 1, 9]);
+        assert_eq!(
+            m.check(),
+            Err(MeshError::IndexOutOfRange {
+                triangle: 2,
+                index: 9,
+                count: 4
+            })
+        );
+        let mut n = quad();
+        n.positions[2].y = f64::NAN;
+        assert!(n.check().unwrap_err().to_string().contains("vertex 2"));
+    }
+}
