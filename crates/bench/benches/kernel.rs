@@ -66,7 +66,7 @@ fn load_1m_face_obj_into_kernel(bencher: Bencher) {
         let Ok(holey_io::MeshFile::Poly(soup)) = parsed else {
             panic!("benchmark OBJ does not parse")
         };
-        let imported = holey_mesh::convert::to_dlfl(&soup, Default::default());
+        let imported = holey_dlfl::convert::to_dlfl(&soup, Default::default());
         black_box(imported.map(|i| i.mesh.face_count()).unwrap_or(0))
     });
 }
@@ -76,7 +76,7 @@ fn load_1m_face_obj_into_kernel(bencher: Bencher) {
 fn import_1m_face_soup(bencher: Bencher) {
     let soup = holey_bench::torus_soup(1000, 1000);
     bencher.bench(|| {
-        let imported = holey_mesh::convert::to_dlfl(&soup, Default::default());
+        let imported = holey_dlfl::convert::to_dlfl(&soup, Default::default());
         black_box(imported.map(|i| i.mesh.face_count()).unwrap_or(0))
     });
 }

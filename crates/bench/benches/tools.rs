@@ -5,7 +5,7 @@
 
 use divan::{Bencher, black_box};
 use holey_dlfl::Mesh;
-use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_model::handle::{HandleParams, create_handle};
 use holey_model::menger::{MengerParams, Thickness, menger};
 use holey_model::rind::Rind;

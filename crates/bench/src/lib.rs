@@ -2,8 +2,8 @@
 //! measures the same input.
 
 use holey_dlfl::Mesh;
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_mesh::PolyMesh;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 use holey_topo::TriMesh;
 
 /// An n×m quad torus soup (n·m faces), welded and oriented.

@@ -4,10 +4,10 @@
 use std::path::Path;
 
 use anyhow::Result;
+use holey_dlfl::convert::{ImportOptions, Imported, infer_edges, to_dlfl};
 use holey_dlfl::{CornerId, FaceId, Mesh, RawMesh};
 use holey_io::MeshFile;
 use holey_mesh::PolyMesh;
-use holey_mesh::convert::{ImportOptions, Imported, infer_edges, to_dlfl};
 
 use crate::error::{bad_input, from_io};
 use crate::progress::Progress;

@@ -4,14 +4,14 @@ use std::path::Path;
 
 use anyhow::Result;
 use holey_dlfl::Mesh;
+use holey_dlfl::convert::to_poly;
 use holey_io::{Format, WriteOptions};
 use holey_mesh::PolyMesh;
-use holey_mesh::convert::to_poly;
 
 use crate::error::from_io;
 
 /// Writes a DLFL: exactly as `.dlfl`, otherwise as a soup of its non-hole
-/// faces with self-loops dropped (see `holey_mesh::convert::to_poly`).
+/// faces with self-loops dropped (see `holey_dlfl::convert::to_poly`).
 pub fn write_kernel(path: &str, mesh: &Mesh, opts: &WriteOptions) -> Result<()> {
     let p = Path::new(path);
     match Format::from_path(p).map_err(from_io)? {
@@ -40,9 +40,9 @@ pub fn write_soup(
     let p = Path::new(path);
     match Format::from_path(p).map_err(from_io)? {
         Format::Dlfl => {
-            let imported = holey_mesh::convert::to_dlfl(
+            let imported = holey_dlfl::convert::to_dlfl(
                 soup,
-                holey_mesh::convert::ImportOptions { split_nonmanifold },
+                holey_dlfl::convert::ImportOptions { split_nonmanifold },
             )
             .map_err(|e| crate::error::bad_input(format!("cannot write {path} as a DLFL: {e}")))?;
             holey_io::write_dlfl(p, &imported.mesh.to_raw()).map_err(from_io)

@@ -28,7 +28,7 @@ fn load_soup(arg: &str) -> Result<PolyMesh> {
         Input::Soup(s) => s,
         Input::Dlfl(_) => {
             let kernel = loaded.into_kernel(false)?;
-            holey_mesh::convert::to_poly(&kernel.mesh).poly
+            holey_dlfl::convert::to_poly(&kernel.mesh).poly
         }
     })
 }

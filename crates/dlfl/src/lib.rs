@@ -35,8 +35,10 @@
 
 mod arena;
 mod build;
+pub mod convert;
 mod error;
 mod ids;
+pub mod info;
 mod mesh;
 pub mod ops;
 mod topology;
@@ -52,6 +54,7 @@ pub use build::{BuildError, RawMesh};
 pub use error::{Error, Result};
 pub use glam::DVec3;
 pub use ids::{CornerId, EdgeId, EntityKind, FaceId, VertexId};
+pub use info::dlfl_info;
 pub use mesh::{FaceCorners, Mesh, VertexCorners, VertexRotation};
 pub use topology::{ComponentTopology, Topology};
 pub use validate::ValidationError;

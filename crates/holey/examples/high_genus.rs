@@ -11,7 +11,7 @@ use holey::model::sierpinski::sierpinski;
 use holey::prelude::*;
 
 fn write(name: &str, m: &Mesh) -> Result<(), Box<dyn std::error::Error>> {
-    let poly = holey::mesh::convert::to_poly(m).poly;
+    let poly = holey::dlfl::convert::to_poly(m).poly;
     io::write_poly(
         std::path::Path::new(name),
         &poly,

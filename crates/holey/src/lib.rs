@@ -217,12 +217,12 @@ pub mod prelude {
 
 /// The kernel's mesh of a polygon soup (boundaries become hole faces);
 /// an error names the face or edge that does not fit a 2-manifold
-/// ([`holey_mesh::convert::to_dlfl`] with default options, which also
+/// ([`holey_dlfl::convert::to_dlfl`] with default options, which also
 /// says how to split non-manifold input).
 pub fn to_dlfl(
     soup: &holey_mesh::PolyMesh,
-) -> Result<holey_dlfl::Mesh, holey_mesh::convert::ImportError> {
-    holey_mesh::convert::to_dlfl(soup, holey_mesh::convert::ImportOptions::default())
+) -> Result<holey_dlfl::Mesh, holey_dlfl::convert::ImportError> {
+    holey_dlfl::convert::to_dlfl(soup, holey_dlfl::convert::ImportOptions::default())
         .map(|imported| imported.mesh)
 }
 

@@ -10,12 +10,11 @@
 //! - [`analysis`] measures any soup (`holey info`): counts, boundary,
 //!   non-manifold edges and vertices, orientation, Euler characteristic,
 //!   genus and volume.
-//! - [`convert`] turns a manifold soup into a DLFL [`holey_dlfl::Mesh`]
-//!   (boundary loops become hole faces; non-manifold input is an error
-//!   unless splitting is asked for) and back.
+//!
+//! Nothing here knows the DLFL kernel: `holey_dlfl::convert` builds a
+//! kernel mesh from a soup and back, on top of this crate.
 
 pub mod analysis;
-pub mod convert;
 mod poly;
 pub mod tri;
 

@@ -137,9 +137,9 @@ impl PolyMesh {
 
     /// The triangle mesh of this soup: every face fanned from its first
     /// corner ([`PolyMesh::fan_triangles`]), the positions as they are.
-    pub fn triangulated(&self) -> crate::TriMesh {
+    pub fn triangulated(&self) -> crate::tri::TriMesh {
         let (triangles, _) = self.fan_triangles();
-        crate::TriMesh {
+        crate::tri::TriMesh {
             positions: self.positions.clone(),
             triangles,
         }
@@ -157,17 +157,17 @@ impl PolyMesh {
     }
 }
 
-impl From<&PolyMesh> for crate::TriMesh {
+impl From<&PolyMesh> for crate::tri::TriMesh {
     /// [`PolyMesh::triangulated`].
-    fn from(soup: &PolyMesh) -> crate::TriMesh {
+    fn from(soup: &PolyMesh) -> crate::tri::TriMesh {
         soup.triangulated()
     }
 }
 
-impl From<crate::TriMesh> for PolyMesh {
+impl From<crate::tri::TriMesh> for PolyMesh {
     /// The triangles as faces of three corners, the positions as they are
     /// (unreferenced ones included).
-    fn from(mesh: crate::TriMesh) -> PolyMesh {
+    fn from(mesh: crate::tri::TriMesh) -> PolyMesh {
         PolyMesh {
             face_offsets: (0..=mesh.triangles.len() as u32).map(|f| 3 * f).collect(),
             face_indices: mesh.triangles.iter().flatten().copied().collect(),
@@ -176,9 +176,9 @@ impl From<crate::TriMesh> for PolyMesh {
     }
 }
 
-impl From<&crate::TriMesh> for PolyMesh {
+impl From<&crate::tri::TriMesh> for PolyMesh {
     /// As `From<TriMesh>`, copying.
-    fn from(mesh: &crate::TriMesh) -> PolyMesh {
+    fn from(mesh: &crate::tri::TriMesh) -> PolyMesh {
         PolyMesh::from(mesh.clone())
     }
 }

@@ -3,7 +3,7 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
 use holey_dlfl::Mesh;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_model::sierpinski::{SierpinskiError, sierpinski};
 
 fn primitive(spec: &str) -> Mesh {
@@ -36,7 +36,7 @@ fn figure_39a_sierpinski_tetrahedron() {
     }
     // The exported polygon soup drops the zero-length loops: every face is
     // a triangle, as figure 39A shows.
-    let poly = holey_mesh::convert::to_poly(&m).poly;
+    let poly = holey_dlfl::convert::to_poly(&m).poly;
     assert_eq!(poly.face_count(), 256);
     assert!(poly.faces().all(|f| f.len() == 3));
 }
@@ -53,7 +53,7 @@ fn figure_39b_sierpinski_cube() {
         (260, 1020, 512)
     );
     assert_eq!((m.genus(), loops(&m)), (125, 252));
-    let poly = holey_mesh::convert::to_poly(&m).poly;
+    let poly = holey_dlfl::convert::to_poly(&m).poly;
     assert!(poly.faces().all(|f| f.len() == 3));
 }
 

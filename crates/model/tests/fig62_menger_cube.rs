@@ -4,9 +4,10 @@
 //! against the shared level-3 mesh.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
+use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_dlfl::dlfl_info;
 use holey_dlfl::{DVec3, Mesh};
-use holey_mesh::analysis::{analyze, dlfl_info};
-use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_mesh::analysis::analyze;
 use holey_model::menger::{MengerParams, Thickness, exact_counts, menger};
 
 fn cube() -> Mesh {

@@ -4,8 +4,8 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
 use holey_dlfl::Mesh;
+use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_mesh::analysis::analyze;
-use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_model::menger::{MengerParams, Thickness, menger};
 
 fn primitive(spec: &str) -> Mesh {

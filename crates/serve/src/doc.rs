@@ -4,10 +4,11 @@
 //! the version, so requests made against an older picture are refused.
 
 use glam::DVec3;
+use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_dlfl::dlfl_info;
 use holey_dlfl::{CornerId, Mesh};
 use holey_mesh::PolyMesh;
-use holey_mesh::analysis::{MeshInfo, analyze, dlfl_info};
-use holey_mesh::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_mesh::analysis::{MeshInfo, analyze};
 use holey_model::rind::Rind;
 use holey_sculpt::LiveStroke;
 use holey_topo::TriMesh;
@@ -137,7 +138,7 @@ impl Content {
 
 /// An import error without the command line's advice at its end (the
 /// modeler's repair is a button).
-fn without_flag(e: &holey_mesh::convert::ImportError) -> String {
+fn without_flag(e: &holey_dlfl::convert::ImportError) -> String {
     let why = e.to_string();
     why.split("; split it with")
         .next()

@@ -271,7 +271,7 @@ mod tests {
     #[test]
     fn cube_frame_layout() {
         let soup = holey_shapes::parse_primitive("@cube").unwrap();
-        let mesh = holey_mesh::convert::to_dlfl(&soup, Default::default())
+        let mesh = holey_dlfl::convert::to_dlfl(&soup, Default::default())
             .unwrap()
             .mesh;
         let (d, index) = display_model(&mesh);

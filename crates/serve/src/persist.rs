@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Condvar, Mutex};
 
 use holey_dlfl::Mesh;
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_io::{MeshFile, WriteOptions};
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 use serde_json::{Value, json};
 
 use crate::ServeError;

@@ -19,7 +19,7 @@ fn spot() -> Option<Mesh> {
         return None;
     };
     Some(
-        holey_mesh::convert::to_dlfl(&poly, Default::default())
+        holey_dlfl::convert::to_dlfl(&poly, Default::default())
             .ok()?
             .mesh,
     )
@@ -27,7 +27,7 @@ fn spot() -> Option<Mesh> {
 
 fn cube() -> Mesh {
     let poly = holey_shapes::parse_primitive("@cube:4").expect("primitive");
-    holey_mesh::convert::to_dlfl(&poly, Default::default())
+    holey_dlfl::convert::to_dlfl(&poly, Default::default())
         .expect("imports")
         .mesh
 }

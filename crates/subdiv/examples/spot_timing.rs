@@ -28,7 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let holey_io::MeshFile::Poly(poly) = holey_io::read_path(&path)? else {
         return Err("expected a polygon file".into());
     };
-    let mesh = holey_mesh::convert::to_dlfl(&poly, Default::default())?.mesh;
+    let mesh = holey_dlfl::convert::to_dlfl(&poly, Default::default())?.mesh;
     // The output as `subdivide` lays it out (localized), for timing the
     // kernel build alone.
     let localized = holey_subdiv::subdivide(&mesh, scheme, levels)?.to_raw();

@@ -16,7 +16,7 @@
 //! mesh is never modified.
 //!
 //! ```
-//! use holey_mesh::convert::{ImportOptions, to_dlfl};
+//! use holey_dlfl::convert::{ImportOptions, to_dlfl};
 //!
 //! let cube = to_dlfl(&holey_shapes::cube(1)?, ImportOptions::default())?.mesh;
 //! let smooth = holey_subdiv::catmull_clark(&cube, 2)?;

@@ -5,9 +5,9 @@
 
 use std::collections::HashMap;
 
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{CornerId, DVec3, Mesh, VertexId};
 use holey_mesh::PolyMesh;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 use holey_testkit::Rng;
 
 use crate::{Scheme, SubdivError, catmull_clark, doo_sabin, predict, subdivide, subdivide_capped};

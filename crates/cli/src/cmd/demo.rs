@@ -9,9 +9,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, FaceId, Mesh};
 use holey_io::WriteOptions;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 use holey_model::handle::{HandleParams, create_handle};
 use holey_model::menger::{MengerParams, Thickness, menger};
 use holey_model::rind::Rind;

@@ -1,7 +1,8 @@
 //! `holey info`: measure a mesh.
 
 use anyhow::Result;
-use holey_mesh::analysis::{MeshInfo, analyze, dlfl_info, weld_exact};
+use holey_dlfl::dlfl_info;
+use holey_mesh::analysis::{MeshInfo, analyze, weld_exact};
 
 use crate::input::{Input, load};
 

@@ -4,8 +4,8 @@ use std::path::Path;
 
 use anyhow::Result;
 use holey_dlfl::Mesh;
+use holey_dlfl::convert::to_poly;
 use holey_mesh::PolyMesh;
-use holey_mesh::convert::to_poly;
 use holey_render::{RenderOptions, Up, View, parse_size, render};
 
 use crate::error::{bad_input, from_io};

@@ -12,7 +12,7 @@ impl Mesh {
     /// Genus rises by one when the faces are in one component; otherwise
     /// the two components join. When the faces have different numbers of
     /// corners, the longest edges of the smaller face are first subdivided
-    /// until they match (the thesis's preprocessing, after [3]); only
+    /// until they match (the thesis's preprocessing, after \[3\]); only
     /// edges that do not border the other face are split, so that the
     /// counts converge.
     ///

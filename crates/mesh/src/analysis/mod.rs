@@ -81,7 +81,6 @@
 //! counter-clockwise faces), given only when the mesh is closed, manifold
 //! and oriented and all its referenced positions are finite.
 
-mod dlfl;
 mod geometry;
 mod soup;
 mod topology;
@@ -96,7 +95,6 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::PolyMesh;
-pub use dlfl::dlfl_info;
 pub use weld::{WeldError, Welded, weld_by_distance, weld_exact};
 
 /// Measures of a whole mesh. See the [module documentation](self) for the

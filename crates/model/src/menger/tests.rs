@@ -4,10 +4,10 @@
 
 use std::f64::consts::PI;
 
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::dlfl_info;
 use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::PolyMesh;
-use holey_mesh::analysis::dlfl_info;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 
 use super::plan::{Decision, angle_tol, classify, interior_angle};
 use super::*;

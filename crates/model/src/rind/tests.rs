@@ -1,6 +1,6 @@
 use super::*;
 use glam::DVec3;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 
 fn prim(spec: &str) -> Mesh {
     let soup = holey_shapes::parse_primitive(spec).unwrap();

@@ -2,8 +2,8 @@
 //! numbers and the closed-form counts of the module documentation,
 //! `validate()` after every step.
 
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, Mesh, RawMesh};
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 
 use super::*;
 

@@ -3,9 +3,9 @@
 //! (independent of the code under test).
 #![allow(dead_code, clippy::unwrap_used)]
 
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 use holey_mesh::PolyMesh;
-use holey_mesh::convert::{ImportOptions, to_dlfl};
 
 pub fn poly(spec: &str) -> PolyMesh {
     holey_shapes::parse_primitive(spec).unwrap()

@@ -1,8 +1,8 @@
 //! Uploads and downloads.
 
 use holey_dlfl::Mesh;
+use holey_dlfl::convert::{ImportOptions, infer_edges, to_dlfl};
 use holey_io::{Format, MeshFile};
-use holey_mesh::convert::{ImportOptions, infer_edges, to_dlfl};
 
 use super::Shared;
 use crate::ServeError;

@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use holey_mesh::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_model::rind::{PunchOutcome, Rind};
 use serde_json::{Value, json};
 

@@ -1,5 +1,5 @@
+use crate::Mesh;
 use glam::DVec3;
-use holey_dlfl::Mesh;
 use holey_testkit::Rng;
 
 use super::*;

@@ -2,10 +2,10 @@
 
 use std::collections::BTreeMap;
 
+use crate::Mesh;
 use glam::DVec3;
-use holey_dlfl::Mesh;
 
-use super::MeshInfo;
+use holey_mesh::analysis::MeshInfo;
 
 /// Measures a DLFL mesh as `holey info` reports a `.dlfl` file: every edge
 /// record counts (self-loops and multiple edges included); faces are the
@@ -102,7 +102,7 @@ pub fn dlfl_info(mesh: &Mesh) -> MeshInfo {
 mod tests {
     use super::*;
     use crate::convert::{ImportOptions, to_dlfl};
-    use crate::{PolyMesh, analysis::analyze};
+    use holey_mesh::{PolyMesh, analysis::analyze};
 
     fn cube() -> PolyMesh {
         let p = (0..8)

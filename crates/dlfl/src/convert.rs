@@ -17,10 +17,10 @@
 //! fewer than three corners (two-gons, point-spheres) are omitted; the
 //! `.dlfl` format keeps all of them.
 
+use crate::{BuildError, FaceId, Mesh, RawMesh, VertexId};
 use glam::DVec3;
-use holey_dlfl::{BuildError, FaceId, Mesh, RawMesh, VertexId};
 
-use crate::{PolyMesh, PolyMeshError};
+use holey_mesh::{PolyMesh, PolyMeshError};
 
 const NONE: u32 = u32::MAX;
 
