@@ -53,35 +53,22 @@ impl Topology {
     }
 }
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        let p = parent[x as usize];
-        parent[x as usize] = parent[p as usize];
-        x = p;
-    }
-    x
-}
-
 impl Mesh {
     /// Labels each vertex slot with its component number (components are
     /// numbered by their smallest vertex slot); dead slots get `u32::MAX`.
     pub(crate) fn component_labels(&self) -> (Vec<u32>, usize) {
         let n = self.vertices.capacity_slots();
-        let mut parent: Vec<u32> = (0..n as u32).collect();
+        // Roots are the smallest slot of their set, which keeps the
+        // numbering deterministic.
+        let mut sets = holey_mesh::UnionFind::new(n);
         for e in self.edges.live_indices() {
             let [a, b] = self.e(e).corners;
-            let ra = find(&mut parent, self.c(a).vertex);
-            let rb = find(&mut parent, self.c(b).vertex);
-            if ra != rb {
-                // Union by smaller index keeps the numbering deterministic.
-                let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-                parent[hi as usize] = lo;
-            }
+            sets.union(self.c(a).vertex, self.c(b).vertex);
         }
         let mut label = vec![u32::MAX; n];
         let mut count = 0u32;
         for v in self.vertices.live_indices() {
-            let r = find(&mut parent, v);
+            let r = sets.find(v);
             if label[r as usize] == u32::MAX {
                 label[r as usize] = count;
                 count += 1;

@@ -17,7 +17,9 @@
 pub mod analysis;
 mod poly;
 pub mod tri;
+pub mod union_find;
 
 pub use glam::DVec3;
 pub use poly::{PolyMesh, PolyMeshError};
 pub use tri::{MeshError, TriMesh};
+pub use union_find::UnionFind;

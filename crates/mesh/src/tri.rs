@@ -144,24 +144,16 @@ impl TriMesh {
             }
         }
         // Scratch reused across vertices.
-        let mut parent: Vec<usize> = Vec::new();
+        let mut sets = crate::union_find::UnionFind::default();
         let mut by_neighbour: Vec<(u32, usize)> = Vec::new();
         let mut fan: Vec<u32> = Vec::new();
         let mut number: Vec<u32> = Vec::new();
-        fn root(p: &mut [usize], mut x: usize) -> usize {
-            while p[x] != x {
-                p[x] = p[p[x]];
-                x = p[x];
-            }
-            x
-        }
         for v in 0..n {
             let around = &corners[start[v] as usize..start[v + 1] as usize];
             if around.len() < 2 {
                 continue;
             }
-            parent.clear();
-            parent.extend(0..around.len());
+            sets.reset(around.len());
             by_neighbour.clear();
             for (j, &c) in around.iter().enumerate() {
                 let t = self.triangles[c as usize / 3];
@@ -175,8 +167,7 @@ impl TriMesh {
             by_neighbour.sort_unstable();
             for w in by_neighbour.windows(2) {
                 if w[0].0 == w[1].0 {
-                    let (a, b) = (root(&mut parent, w[0].1), root(&mut parent, w[1].1));
-                    parent[a.max(b)] = a.min(b);
+                    sets.union(w[0].1 as u32, w[1].1 as u32);
                 }
             }
             number.clear();
@@ -184,7 +175,7 @@ impl TriMesh {
             fan.clear();
             let mut fans = 0;
             for j in 0..around.len() {
-                let r = root(&mut parent, j);
+                let r = sets.find(j as u32) as usize;
                 if number[r] == u32::MAX {
                     number[r] = fans;
                     fans += 1;

@@ -47,14 +47,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut mesh = poly.triangulated();
     let file = parse_strokes(&std::fs::read_to_string(&args[2])?)?;
     let range = file.remesh.or_else(|| default_range(&mesh));
-    let audit =
-        |m: &TriMesh| -> Result<Option<SurfaceAudit>, holey_topo::intersect::IntersectError> {
-            if no_audit {
-                Ok(None)
-            } else {
-                SurfaceAudit::of(m).map(Some)
-            }
-        };
+    let audit = |m: &TriMesh| -> Result<Option<SurfaceAudit>, holey_topo::IntersectError> {
+        if no_audit {
+            Ok(None)
+        } else {
+            SurfaceAudit::of(m).map(Some)
+        }
+    };
     if let Some(a) = audit(&mesh)? {
         println!("input: {a}");
     }

@@ -323,31 +323,16 @@ pub fn grab_weights(mesh: &TriMesh, picked: DVec3, radius: f64) -> Vec<f64> {
 /// indices) that contains `triangle`: the rigid body the move brush holds.
 pub fn component_of(mesh: &TriMesh, triangle: usize) -> Vec<bool> {
     let n = mesh.positions.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            let up = parent[parent[x as usize] as usize];
-            parent[x as usize] = up;
-            x = up;
-        }
-        x
-    }
+    let mut sets = holey_topo::union_find::UnionFind::new(n);
     for t in &mesh.triangles {
-        let r0 = find(&mut parent, t[0]);
-        for &v in &t[1..] {
-            let r = find(&mut parent, v);
-            if r != r0 {
-                parent[r as usize] = r0;
-            }
-        }
+        sets.union(t[0], t[1]);
+        sets.union(t[0], t[2]);
     }
     let Some(tri) = mesh.triangles.get(triangle) else {
         return vec![false; n];
     };
-    let root = find(&mut parent, tri[0]);
-    (0..n as u32)
-        .map(|v| find(&mut parent, v) == root)
-        .collect()
+    let root = sets.find(tri[0]);
+    (0..n as u32).map(|v| sets.find(v) == root).collect()
 }
 
 #[cfg(test)]

@@ -525,14 +525,7 @@ impl Work {
         nb.sort_unstable();
         // One fan: the triangles joined through shared neighbours form
         // one group (union-find over the ring).
-        let mut parent: Vec<usize> = (0..ring.len()).collect();
-        fn find(p: &mut [usize], mut x: usize) -> usize {
-            while p[x] != x {
-                p[x] = p[p[x]];
-                x = p[x];
-            }
-            x
-        }
+        let mut sets = holey_topo::union_find::UnionFind::new(ring.len());
         let mut groups = ring.len();
         let mut boundary = 0;
         let mut valence = 0;
@@ -541,9 +534,7 @@ impl Work {
             match run.len() {
                 1 => boundary += 1,
                 2 => {
-                    let (a, b) = (find(&mut parent, run[0].1), find(&mut parent, run[1].1));
-                    if a != b {
-                        parent[a] = b;
+                    if sets.union(run[0].1 as u32, run[1].1 as u32) {
                         groups -= 1;
                     }
                 }

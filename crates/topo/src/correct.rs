@@ -36,6 +36,8 @@ use faer::Side;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 
+use crate::union_find::UnionFind;
+
 /// Which error-correction scheme to run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Scheme {
@@ -80,39 +82,15 @@ pub struct Correction {
 /// The authors' regulariser, in units where the total area is 1.
 pub const GAMMA: f64 = 1e-2;
 
-/// The root of `x` in the union-find forest `parent`, halving the path.
-pub(crate) fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        let p = parent[x as usize];
-        parent[x as usize] = parent[p as usize];
-        x = p;
-    }
-    x
-}
-
 /// Labels connected components; `skip_cut` leaves cut edges out.
 fn components(g: &Graph, skip_cut: bool) -> (Vec<u32>, usize) {
-    let mut parent: Vec<u32> = (0..g.vertices as u32).collect();
+    let mut sets = UnionFind::new(g.vertices);
     for (e, &[a, b]) in g.ends.iter().enumerate() {
-        if skip_cut && g.cut[e] {
-            continue;
-        }
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        if ra != rb {
-            parent[ra.max(rb) as usize] = ra.min(rb);
+        if !(skip_cut && g.cut[e]) {
+            sets.union(a, b);
         }
     }
-    let mut label = vec![u32::MAX; g.vertices];
-    let mut n = 0u32;
-    for v in 0..g.vertices as u32 {
-        let r = find(&mut parent, v);
-        if label[r as usize] == u32::MAX {
-            label[r as usize] = n;
-            n += 1;
-        }
-        label[v as usize] = label[r as usize];
-    }
-    (label, n as usize)
+    sets.labels()
 }
 
 /// Corrects the raw parity `raw_odd` (`true` = odd) on graph `g`.

@@ -979,29 +979,16 @@ pub(crate) fn intersections_among(
     nodes.sort_unstable();
     nodes.dedup();
     let index = |n: &Node| nodes.binary_search(n).unwrap_or(0);
-    let mut parent: Vec<usize> = (0..nodes.len()).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+    let mut sets = crate::union_find::UnionFind::new(nodes.len());
     for p in &pieces {
-        let (a, b) = (
-            find(&mut parent, index(&p.ends[0])),
-            find(&mut parent, index(&p.ends[1])),
-        );
-        if a != b {
-            parent[a.max(b)] = a.min(b);
-        }
+        sets.union(index(&p.ends[0]) as u32, index(&p.ends[1]) as u32);
     }
     let mut curve_id = vec![u32::MAX; nodes.len()];
     let mut curve_count = 0u32;
     let curve_of_piece = pieces
         .iter()
         .map(|p| {
-            let r = find(&mut parent, index(&p.ends[0]));
+            let r = sets.find(index(&p.ends[0]) as u32) as usize;
             if curve_id[r] == u32::MAX {
                 curve_id[r] = curve_count;
                 curve_count += 1;

@@ -25,13 +25,15 @@ pub mod winding_boolean;
 pub use accumulate::{Accumulator, Release};
 pub use audit::SurfaceAudit;
 pub use correct::Scheme;
+pub use cut::CutReport;
 pub use engine::{
-    Options, Outcome, Report, TopoError, crosses_itself, resolve, self_intersections,
+    Options, Outcome, Report, Timings, TopoError, crosses_itself, resolve, self_intersections,
     topology_change,
 };
 pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_holding};
+pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
-pub use mesh::TriMesh;
+pub use mesh::{MeshError, TriMesh};
 pub use solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method, solid_boolean};
 pub use union::{
     Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,

@@ -32,10 +32,10 @@ use glam::DVec3;
 use holey_geom::{Aabb, Bvh, SymPoint, position_classes, segment_triangle_intersect};
 use rayon::prelude::*;
 
-use crate::correct::find;
 use crate::cut::{Deletion, cut};
 use crate::intersect::Intersections;
 use crate::mesh::{Edges, TriMesh};
+use crate::union_find::UnionFind;
 
 /// For each triangle of `arrangement` (a closed surface cut and glued
 /// along all its self-intersections, triangles oriented as the solid
@@ -133,27 +133,13 @@ pub(crate) fn ray_crossings_odd(
 /// curves bound the regions).
 pub(crate) fn regions(mesh: &TriMesh) -> Vec<u32> {
     let edges = Edges::new(mesh);
-    let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+    let mut sets = UnionFind::new(mesh.triangles.len());
     for e in 0..edges.ends.len() {
         if let [t, u] = *edges.triangles(e) {
-            let (a, b) = (find(&mut parent, t), find(&mut parent, u));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-            }
+            sets.union(t, u);
         }
     }
-    let mut label = vec![u32::MAX; parent.len()];
-    let mut next = 0;
-    (0..parent.len() as u32)
-        .map(|t| {
-            let root = find(&mut parent, t) as usize;
-            if label[root] == u32::MAX {
-                label[root] = next;
-                next += 1;
-            }
-            label[root]
-        })
-        .collect()
+    sets.labels().0
 }
 
 /// Signed volume of a closed triangle mesh (positive when its triangles

@@ -61,7 +61,6 @@ use glam::DVec3;
 use holey_geom::{Bvh, SymPoint};
 use rayon::prelude::*;
 
-use crate::correct::find;
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
 use crate::intersect::{
@@ -70,6 +69,7 @@ use crate::intersect::{
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
 use crate::solid::{ray_crossings_odd, signed_volume};
+use crate::union_find::UnionFind;
 
 /// Which of the two solids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -546,13 +546,10 @@ fn unite(
     // Containment parity: one ray per component of uncut edges.
     let t = Instant::now();
     let n = pos.len();
-    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut sets = UnionFind::new(n);
     for (e, &[u, v]) in edges.ends.iter().enumerate() {
         if !x.cut_edges[e] {
-            let (ru, rv) = (find(&mut parent, u), find(&mut parent, v));
-            if ru != rv {
-                parent[ru.max(rv) as usize] = ru.min(rv);
-            }
+            sets.union(u, v);
         }
     }
     let far_id = u32::try_from(n).map_err(|_| MeshError::TooLarge(n))?;
@@ -569,7 +566,7 @@ fn unite(
     let mut odd = vec![false; n];
     let mut cast = 0usize;
     for v in 0..n as u32 {
-        let root = find(&mut parent, v);
+        let root = sets.find(v);
         odd[v as usize] = if root == v {
             let solid = pair.solid_of_vertex(v);
             let (tree, offset) = other(solid);

@@ -71,12 +71,12 @@ use holey_geom::sos::{Poly, sos_sign};
 use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
 use rayon::prelude::*;
 
-use crate::correct::find;
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::intersect::{default_pair_limit, intersections_limited};
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::union::Operation;
+use crate::union_find::UnionFind;
 use crate::winding::WindingField;
 
 /// Why [`boolean_by_winding`] cannot take its input.
@@ -352,27 +352,12 @@ pub fn boolean_by_winding_robust(
 /// The connected piece of each vertex of `m` (pieces numbered from 0 in
 /// order of their first vertex; a vertex no triangle uses is its own).
 fn vertex_components(m: &TriMesh) -> Vec<u32> {
-    let mut parent: Vec<u32> = (0..m.positions.len() as u32).collect();
+    let mut sets = UnionFind::new(m.positions.len());
     for t in &m.triangles {
-        for k in 0..2 {
-            let (a, b) = (find(&mut parent, t[k]), find(&mut parent, t[k + 1]));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-            }
-        }
+        sets.union(t[0], t[1]);
+        sets.union(t[1], t[2]);
     }
-    let mut label = vec![u32::MAX; parent.len()];
-    let mut next = 0;
-    (0..parent.len() as u32)
-        .map(|v| {
-            let r = find(&mut parent, v) as usize;
-            if label[r] == u32::MAX {
-                label[r] = next;
-                next += 1;
-            }
-            label[r]
-        })
-        .collect()
+    sets.labels().0
 }
 
 /// A unit direction for piece `j`, none for piece 0: points of a
@@ -1065,21 +1050,16 @@ fn classify(
     // directions.
     let edges = Edges::new(arr);
     let through = vertices_on_edges(arr, &edges);
-    let mut parent: Vec<u32> = (0..tris.len() as u32).collect();
+    let mut sets = UnionFind::new(tris.len());
     for (e, &t_junction) in through.iter().enumerate() {
         if !t_junction
             && edges.opposite(tris, e)
             && let [t, u] = *edges.triangles(e)
         {
-            let (a, b) = (find(&mut parent, t), find(&mut parent, u));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-            }
+            sets.union(t, u);
         }
     }
-    let root: Vec<u32> = (0..tris.len() as u32)
-        .map(|t| find(&mut parent, t))
-        .collect();
+    let root: Vec<u32> = (0..tris.len() as u32).map(|t| sets.find(t)).collect();
     // Each region's triangles, largest first.
     let mut order: Vec<(u32, f64, u32)> = (0..tris.len())
         .filter(|&t| !in_group[t])

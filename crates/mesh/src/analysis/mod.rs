@@ -84,7 +84,6 @@
 mod geometry;
 mod soup;
 mod topology;
-mod union_find;
 mod weld;
 
 #[cfg(test)]

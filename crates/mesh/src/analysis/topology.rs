@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 
 use super::soup::Soup;
-use super::union_find::UnionFind;
+use crate::union_find::UnionFind;
 
 /// Marks an unreferenced vertex in a component labelling.
 pub(crate) const NONE: u32 = u32::MAX;

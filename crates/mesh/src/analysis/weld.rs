@@ -123,27 +123,13 @@ pub fn weld_by_distance(mesh: &PolyMesh, distance: f64) -> Result<Welded, WeldEr
         }
     }
     // Union of the exact classes, then of pairs within the distance.
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            let up = p[p[x as usize] as usize];
-            p[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    fn join(p: &mut [u32], a: u32, b: u32) {
-        let (ra, rb) = (find(p, a), find(p, b));
-        if ra != rb {
-            p[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
+    let mut sets = crate::union_find::UnionFind::new(n);
     let mut first_of: std::collections::HashMap<[u64; 3], u32> = std::collections::HashMap::new();
     let key = |x: f64| if x == 0.0 { 0 } else { x.to_bits() };
     for (i, p) in mesh.positions.iter().enumerate() {
         let k = [key(p.x), key(p.y), key(p.z)];
         let f = *first_of.entry(k).or_insert(i as u32);
-        join(&mut parent, f, i as u32);
+        sets.union(f, i as u32);
     }
     if distance > 0.0 {
         let cell = |p: glam::DVec3| {
@@ -168,7 +154,7 @@ pub fn weld_by_distance(mesh: &PolyMesh, distance: f64) -> Result<Welded, WeldEr
                             if (j as usize) > i
                                 && p.distance_squared(mesh.positions[j as usize]) <= d2
                             {
-                                join(&mut parent, i as u32, j);
+                                sets.union(i as u32, j);
                             }
                         }
                     }
@@ -181,7 +167,7 @@ pub fn weld_by_distance(mesh: &PolyMesh, distance: f64) -> Result<Welded, WeldEr
     let mut new_index = vec![0u32; n];
     let mut positions = Vec::new();
     for (i, p) in mesh.positions.iter().enumerate() {
-        let r = find(&mut parent, i as u32) as usize;
+        let r = sets.find(i as u32) as usize;
         new_index[i] = if r == i {
             positions.push(*p);
             (positions.len() - 1) as u32

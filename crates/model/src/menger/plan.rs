@@ -4,6 +4,7 @@
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use holey_dlfl::{CornerId, DVec3, EdgeId, FaceId, Mesh};
+use holey_mesh::UnionFind;
 
 use super::{MengerError, Thickness};
 
@@ -164,7 +165,7 @@ impl Plan {
             }
         };
         // Edges: sides, dihedral angle, decision, trisection.
-        let mut parent: Vec<u32> = (0..plan.corners.len() as u32).collect();
+        let mut sets = UnionFind::new(plan.corners.len());
         for e in mesh.edges() {
             let [ca, cb] = mesh.edge_corners(e)?;
             let (a, b) = (find(ca)?, find(cb)?);
@@ -192,8 +193,8 @@ impl Plan {
             if decision == Decision::Collapse {
                 // The connecting edge at u joins f1's corner at u (a) and
                 // f2's corner at u (the one after b); at v, next(a) and b.
-                union(&mut parent, a, plan.next(b));
-                union(&mut parent, plan.next(a), b);
+                sets.union(a as u32, plan.next(b) as u32);
+                sets.union(plan.next(a) as u32, b as u32);
             }
             plan.edges.push(EdgePlan {
                 id: e,
@@ -204,7 +205,7 @@ impl Plan {
                 trisect: [u + d * t, v - d * t],
             });
         }
-        plan.merge_groups(&mut parent);
+        plan.merge_groups(&mut sets);
         plan.check_offsets(&positions, level)?;
         // Figure-61 vertices, now that the merged offset corners are known.
         for k in 0..plan.edges.len() {
@@ -363,18 +364,18 @@ impl Plan {
     }
 
     /// Centroids of the merge groups of offset corners.
-    fn merge_groups(&mut self, parent: &mut [u32]) {
-        let total = parent.len();
+    fn merge_groups(&mut self, sets: &mut UnionFind) {
+        let total = sets.len();
         let mut sum = vec![DVec3::ZERO; total];
         let mut count = vec![0u32; total];
         for g in 0..total {
-            let r = root(parent, g);
+            let r = sets.find(g as u32) as usize;
             sum[r] += self.offset[g];
             count[r] += 1;
         }
         self.merged = (0..total)
             .map(|g| {
-                let r = root(parent, g);
+                let r = sets.find(g as u32) as usize;
                 (count[r] > 1).then(|| sum[r] / f64::from(count[r]))
             })
             .collect();
@@ -489,21 +490,4 @@ pub(crate) fn signed_area(q: &[DVec3], normal: DVec3) -> f64 {
         s += (q[j] - q[0]).cross(q[j + 1] - q[0]);
     }
     0.5 * s.dot(normal)
-}
-
-fn root(parent: &mut [u32], mut x: usize) -> usize {
-    while parent[x] as usize != x {
-        let p = parent[x] as usize;
-        parent[x] = parent[p];
-        x = p;
-    }
-    x
-}
-
-fn union(parent: &mut [u32], a: usize, b: usize) {
-    let (ra, rb) = (root(parent, a), root(parent, b));
-    if ra != rb {
-        let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-        parent[hi] = lo as u32;
-    }
 }
