@@ -353,6 +353,14 @@ pub fn mixed_curves(tris: &[[u32; 3]], x: &Intersections, odd: &[bool]) -> Vec<b
 /// huge triangle). With `sample`, such a region gets one: the parity of a
 /// point inside it, computed as if a vertex had been placed there (the
 /// adaptive refinement §7 proposes). Without it the region is kept.
+///
+/// The phases of the module documentation, one function each: the curves
+/// to resolve ([`curves_to_resolve`]), their points as global vertices
+/// ([`place_points`]), what lies on each triangle and edge
+/// ([`OnMesh::gather`]), false vertices and edges
+/// ([`OnMesh::add_false_vertices`]), the subdivision ([`subdivide`]), the
+/// gluing of shared vertices and merged points ([`glue`]), and the
+/// labelling and deletion ([`trim`]).
 pub fn cut(
     mesh: &TriMesh,
     positions: &[DVec3],
@@ -362,21 +370,45 @@ pub fn cut(
     deletion: Deletion<'_>,
     sample: Option<&Sampler<'_>>,
 ) -> Cut {
-    let n = positions.len();
     let tris = &mesh.triangles;
     let mut report = CutReport::default();
-    let odd = deletion.odd();
+    let (kept_piece, active) = curves_to_resolve(tris, x, deletion, sample.is_some(), &mut report);
+    let mut globals = place_points(positions, x, &active, &mut report);
+    let mut on = OnMesh::gather(tris, edges, x, &active, &kept_piece, &globals.point);
+    // Vertices a kept curve passes through (module docs, step 3).
+    let shared_ids = shared_ids(
+        x.pieces
+            .iter()
+            .zip(&kept_piece)
+            .filter(|(_, k)| **k)
+            .map(|(piece, _)| piece),
+    );
+    if let Some(odd) = deletion.odd() {
+        let on_shared = |v: u32| shared_ids.binary_search(&ids[v as usize]).is_ok();
+        on.add_false_vertices(edges, positions, odd, &on_shared, &mut globals, &mut report);
+    }
+    let mut sub = subdivide(tris, positions, edges, ids, &on, &mut globals, &mut report);
+    glue(ids, &shared_ids, &mut globals, &mut sub, &mut report);
+    trim(tris, positions, globals, sub, deletion, sample, report)
+}
 
-    // 1. Curves to resolve.
+/// Step 1: which curves are resolved. Returns per curve piece whether its
+/// curve is kept, and per intersection point whether a kept piece ends
+/// there (an *active* point, which becomes a vertex).
+fn curves_to_resolve(
+    tris: &[[u32; 3]],
+    x: &Intersections,
+    deletion: Deletion<'_>,
+    sampling: bool,
+    report: &mut CutReport,
+) -> (Vec<bool>, Vec<bool>) {
     let keep_curve: Vec<bool> = match deletion {
         Deletion::Nothing | Deletion::OddExact(_) => vec![true; x.curve_count],
         Deletion::Odd(odd) => mixed_curves(tris, x, odd),
         Deletion::OddOneFrame { odd, new_curve } => mixed_curves(tris, x, odd)
             .iter()
             .enumerate()
-            .map(|(c, &mixed)| {
-                mixed || (sample.is_some() && new_curve.get(c).copied().unwrap_or(false))
-            })
+            .map(|(c, &mixed)| mixed || (sampling && new_curve.get(c).copied().unwrap_or(false)))
             .collect(),
     };
     report.curves_kept = keep_curve.iter().filter(|&&k| k).count();
@@ -396,17 +428,37 @@ pub fn cut(
             }
         }
     }
+    (kept_piece, active)
+}
 
-    // Global vertices: originals, then active points, then false vertices,
-    // then split vertices.
-    //
-    // Points that are distinct symbolically but constructed at exactly the
-    // same position (two edges crossing exactly, a curve through a vertex
-    // of the other sheet: the degenerate configurations of aligned meshes)
-    // are one vertex: the same position is the same point, so they are
-    // glued, and a zero-length curve piece between them vanishes. Keeping
-    // them apart would leave zero-area slivers whose side no vertex can
-    // decide.
+/// The cut's global vertices: the input's, then active points, then false
+/// vertices, then split vertices; each active point's global number, and
+/// per input vertex whether a kept curve passes through it.
+struct Globals {
+    positions: Vec<DVec3>,
+    point: Vec<u32>,
+    on_curve: Vec<bool>,
+    /// The input's vertex count: the first `inputs` globals are its
+    /// vertices, in order.
+    inputs: usize,
+}
+
+/// Numbers the active points as global vertices.
+///
+/// Points that are distinct symbolically but constructed at exactly the
+/// same position (two edges crossing exactly, a curve through a vertex
+/// of the other sheet: the degenerate configurations of aligned meshes)
+/// are one vertex: the same position is the same point, so they are
+/// glued, and a zero-length curve piece between them vanishes. Keeping
+/// them apart would leave zero-area slivers whose side no vertex can
+/// decide.
+fn place_points(
+    positions: &[DVec3],
+    x: &Intersections,
+    active: &[bool],
+    report: &mut CutReport,
+) -> Globals {
+    let n = positions.len();
     let mut out_positions: Vec<DVec3> = positions.to_vec();
     let mut point_global = vec![NONE; x.points.len()];
     let mut on_curve = vec![false; n];
@@ -417,14 +469,14 @@ pub fn cut(
     let mut at: HashMap<[u64; 3], u32> = x
         .points
         .iter()
-        .zip(&active)
+        .zip(active)
         .filter(|(_, a)| **a)
         .map(|(p, _)| (key(p.position), NONE))
         .collect();
     if !at.is_empty() {
         // Only vertices inside the active points' box can be at one: a
         // few comparisons reject the rest before any hashing.
-        let (lo, hi) = x.points.iter().zip(&active).filter(|(_, a)| **a).fold(
+        let (lo, hi) = x.points.iter().zip(active).filter(|(_, a)| **a).fold(
             (DVec3::INFINITY, DVec3::NEG_INFINITY),
             |(lo, hi), (p, _)| (lo.min(p.position), hi.max(p.position)),
         );
@@ -459,84 +511,124 @@ pub fn cut(
             point_global[i] = g;
         }
     }
+    Globals {
+        positions: out_positions,
+        point: point_global,
+        on_curve,
+        inputs: n,
+    }
+}
 
-    // Per-triangle lists of what lies on it.
-    let nt = tris.len();
-    let mut on_edge: Lists<(u32, f64)> = Lists::new(edges.len()); // (global, t along ends)
-    let mut interior: Lists<(u32, [f64; 3])> = Lists::new(nt);
-    let mut cut_edge = vec![false; edges.len()];
-    let mut touched = vec![false; nt];
-    for (i, p) in x.points.iter().enumerate() {
-        if !active[i] {
-            continue;
-        }
-        let g = point_global[i];
-        match p.kind {
-            PointKind::EdgeTri { edge, tri, t, bary } => {
-                on_edge.push(edge as usize, (g, t));
-                cut_edge[edge as usize] = true;
-                interior.push(tri as usize, (g, bary));
-                touched[tri as usize] = true;
-                for &u in edges.triangles(edge as usize) {
-                    touched[u as usize] = true;
-                }
-            }
-            PointKind::Triple { tris: ts, bary } => {
-                for k in 0..3 {
-                    interior.push(ts[k] as usize, (g, bary[k]));
-                    touched[ts[k] as usize] = true;
-                }
-            }
-        }
-    }
-    // A point inside a triangle symbolically but exactly on one of its edges
-    // numerically (two ridges touching, an edge crossing an edge exactly)
-    // lies on the neighbouring triangles' chart edge too: give it to the
-    // edge, or the neighbour would keep the edge whole while this triangle
-    // splits it, and the glued surface would crack there.
-    for t in interior.owners_in_order() {
-        for &(g, b) in interior.get(t) {
-            let Some((side, s)) = chart_side(from_bary(b)) else {
+/// What lies on each triangle and edge of the input: points on edges
+/// (global, parameter along the edge's ends), points inside triangles
+/// (global, barycentric), curve pieces and false edges per triangle; the
+/// edges a point cuts, the triangles anything touches, and the edges that
+/// got a false vertex.
+struct OnMesh {
+    on_edge: Lists<(u32, f64)>,
+    interior: Lists<(u32, [f64; 3])>,
+    constraints: Lists<[Node; 2]>,
+    false_edges: Lists<[u32; 2]>,
+    cut_edge: Vec<bool>,
+    touched: Vec<bool>,
+    false_vertex_edges: Vec<usize>,
+}
+
+impl OnMesh {
+    /// The points and kept curve pieces, placed on their triangles and
+    /// edges.
+    fn gather(
+        tris: &[[u32; 3]],
+        edges: &Edges,
+        x: &Intersections,
+        active: &[bool],
+        kept_piece: &[bool],
+        point_global: &[u32],
+    ) -> OnMesh {
+        let nt = tris.len();
+        let mut on = OnMesh {
+            on_edge: Lists::new(edges.len()),
+            interior: Lists::new(nt),
+            constraints: Lists::new(nt),
+            false_edges: Lists::new(nt),
+            cut_edge: vec![false; edges.len()],
+            touched: vec![false; nt],
+            false_vertex_edges: Vec::new(),
+        };
+        for (i, p) in x.points.iter().enumerate() {
+            if !active[i] {
                 continue;
-            };
-            let e = edges.of_triangle[t][side] as usize;
-            let forward = tris[t][side] == edges.ends[e][0];
-            if !on_edge.get(e).iter().any(|&(h, _)| h == g) {
-                on_edge.push(e, (g, if forward { s } else { 1.0 - s }));
-                cut_edge[e] = true;
-                for &u in edges.triangles(e) {
-                    touched[u as usize] = true;
+            }
+            let g = point_global[i];
+            match p.kind {
+                PointKind::EdgeTri { edge, tri, t, bary } => {
+                    on.on_edge.push(edge as usize, (g, t));
+                    on.cut_edge[edge as usize] = true;
+                    on.interior.push(tri as usize, (g, bary));
+                    on.touched[tri as usize] = true;
+                    for &u in edges.triangles(edge as usize) {
+                        on.touched[u as usize] = true;
+                    }
+                }
+                PointKind::Triple { tris: ts, bary } => {
+                    for k in 0..3 {
+                        on.interior.push(ts[k] as usize, (g, bary[k]));
+                        on.touched[ts[k] as usize] = true;
+                    }
                 }
             }
         }
-    }
-    let mut constraints: Lists<[Node; 2]> = Lists::new(nt);
-    for (p, piece) in x.pieces.iter().enumerate() {
-        if kept_piece[p] {
-            for &t in &piece.tris {
-                constraints.push(t as usize, piece.ends);
-                touched[t as usize] = true;
+        // A point inside a triangle symbolically but exactly on one of its
+        // edges numerically (two ridges touching, an edge crossing an edge
+        // exactly) lies on the neighbouring triangles' chart edge too: give
+        // it to the edge, or the neighbour would keep the edge whole while
+        // this triangle splits it, and the glued surface would crack there.
+        for t in on.interior.owners_in_order() {
+            for &(g, b) in on.interior.get(t) {
+                let Some((side, s)) = chart_side(from_bary(b)) else {
+                    continue;
+                };
+                let e = edges.of_triangle[t][side] as usize;
+                let forward = tris[t][side] == edges.ends[e][0];
+                if !on.on_edge.get(e).iter().any(|&(h, _)| h == g) {
+                    on.on_edge.push(e, (g, if forward { s } else { 1.0 - s }));
+                    on.cut_edge[e] = true;
+                    for &u in edges.triangles(e) {
+                        on.touched[u as usize] = true;
+                    }
+                }
             }
         }
+        for (p, piece) in x.pieces.iter().enumerate() {
+            if kept_piece[p] {
+                for &t in &piece.tris {
+                    on.constraints.push(t as usize, piece.ends);
+                    on.touched[t as usize] = true;
+                }
+            }
+        }
+        on
     }
-    // Vertices a kept curve passes through (module docs, step 3).
-    let shared_ids = shared_ids(
-        x.pieces
-            .iter()
-            .zip(&kept_piece)
-            .filter(|(_, k)| **k)
-            .map(|(piece, _)| piece),
-    );
-    let on_shared = |v: u32| shared_ids.binary_search(&ids[v as usize]).is_ok();
-    // False vertices and edges. A vertex on a curve has no side, so an
-    // edge to it never gets one: its parity says nothing.
-    let mut false_vertex = vec![NONE; edges.len()];
-    let mut false_vertex_edges: Vec<usize> = Vec::new();
-    let mut false_edges: Lists<[u32; 2]> = Lists::new(nt);
-    if let Some(odd) = odd {
+
+    /// False vertices and edges (step 1): a vertex at the midpoint of each
+    /// edge whose ends' parities disagree with no curve between them, and
+    /// an edge between the two such vertices of a triangle nothing else
+    /// touches. A vertex on a curve (`on_shared`) has no side, so an edge
+    /// to it never gets one: its parity says nothing.
+    fn add_false_vertices(
+        &mut self,
+        edges: &Edges,
+        positions: &[DVec3],
+        odd: &[bool],
+        on_shared: &(dyn Fn(u32) -> bool + Sync),
+        globals: &mut Globals,
+        report: &mut CutReport,
+    ) {
+        let mut false_vertex = vec![NONE; edges.len()];
         // The edges whose ends disagree with no curve between them, found
         // in parallel (few or none: a scan of every edge), then numbered in
         // order.
+        let cut_edge = &self.cut_edge;
         let disagree: Vec<usize> = edges
             .ends
             .par_iter()
@@ -548,18 +640,18 @@ pub fn cut(
             .collect();
         for e in disagree {
             let [a, b] = edges.ends[e];
-            {
-                false_vertex[e] = out_positions.len() as u32;
-                false_vertex_edges.push(e);
-                out_positions.push((positions[a as usize] + positions[b as usize]) * 0.5);
-                on_edge.push(e, (false_vertex[e], 0.5));
-                report.false_vertices += 1;
-            }
+            false_vertex[e] = globals.positions.len() as u32;
+            self.false_vertex_edges.push(e);
+            globals
+                .positions
+                .push((positions[a as usize] + positions[b as usize]) * 0.5);
+            self.on_edge.push(e, (false_vertex[e], 0.5));
+            report.false_vertices += 1;
         }
-        for (t, &touched) in touched.iter().enumerate() {
-            if report.false_vertices == 0 {
-                break;
-            }
+        if report.false_vertices == 0 {
+            return;
+        }
+        for (t, &touched) in self.touched.iter().enumerate() {
             if touched {
                 continue;
             }
@@ -569,27 +661,48 @@ pub fn cut(
                 .filter(|&g| g != NONE)
                 .collect();
             if fv.len() == 2 {
-                false_edges.push(t, [fv[0], fv[1]]);
+                self.false_edges.push(t, [fv[0], fv[1]]);
                 report.false_edges += 1;
             }
         }
     }
+}
 
-    // 2. Subdivide each affected triangle in its chart. The triangles no
-    // point, curve piece or false edge touches (nearly all of them) are
-    // copied first, in parallel; the split ones follow, in order.
-    // `touched` has every triangle a point, a curve piece or a false edge
-    // lies on, or whose side has a point; the sides with a false vertex
-    // remain.
+/// The subdivided mesh before gluing and deletion: its triangles, where
+/// each came from, the curve edges, and the global vertices that rounding
+/// made one (`alias`: a vertex to the one it is).
+struct Subdivided {
+    tris: Vec<[u32; 3]>,
+    source: Sources,
+    curve_edges: Vec<(u32, u32)>,
+    alias: HashMap<u32, u32>,
+}
+
+/// Step 2: every affected triangle re-triangulated in its chart
+/// ([`split_triangle`]). The triangles no point, curve piece or false edge
+/// touches (nearly all of them) are copied first, in parallel; the split
+/// ones follow, in order. `on.touched` has every triangle a point, a curve
+/// piece or a false edge lies on, or whose side has a point; the sides
+/// with a false vertex remain.
+fn subdivide(
+    tris: &[[u32; 3]],
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    on: &OnMesh,
+    globals: &mut Globals,
+    report: &mut CutReport,
+) -> Subdivided {
+    let nt = tris.len();
     let mut whole: Vec<bool> = tris
         .par_iter()
-        .zip(&touched)
+        .zip(&on.touched)
         .map(|(tri, &touched)| {
             let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
             degenerate || !touched
         })
         .collect();
-    for &e in &false_vertex_edges {
+    for &e in &on.false_vertex_edges {
         for &t in edges.triangles(e) {
             let tri = tris[t as usize];
             // A degenerate triangle stays whole: its chart has no area.
@@ -608,104 +721,200 @@ pub fn cut(
             whole_source.push(t as u32);
         }
     }
-    let mut source = Sources {
-        whole: whole_source,
-        sub: Vec::new(),
+    let mut sub = Subdivided {
+        tris: out_tris,
+        source: Sources {
+            whole: whole_source,
+            sub: Vec::new(),
+        },
+        curve_edges: Vec::new(),
+        alias: HashMap::default(),
     };
-    let mut curve_edges: Vec<(u32, u32)> = Vec::new();
-    let mut alias: HashMap<u32, u32> = HashMap::default();
+    let chart = Chart {
+        positions,
+        edges,
+        ids,
+        on,
+    };
     for (t, &tri) in tris.iter().enumerate() {
-        if whole[t] {
-            continue;
+        if !whole[t] {
+            report.triangles_split += 1;
+            chart.split_triangle(t, tri, globals, &mut sub, report);
         }
-        report.triangles_split += 1;
-        let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
-            ConstrainedDelaunayTriangulation::new();
-        let mut handle_of: HashMap<u32, spade::handles::FixedVertexHandle> = HashMap::default();
-        let mut global_of_handle: HashMap<usize, u32> = HashMap::default();
-        let mut inserted: Vec<ChartVertex> = Vec::new();
-        let mut insert = |cdt: &mut ConstrainedDelaunayTriangulation<ChartVertex>,
-                          global: u32,
-                          pos: [f64; 2],
-                          report: &mut CutReport,
-                          alias: &mut HashMap<u32, u32>| {
-            if handle_of.contains_key(&global) {
-                return;
-            }
-            let before = cdt.num_vertices();
-            let v = ChartVertex {
-                pos: Point2::new(pos[0], pos[1]),
-                global,
-            };
-            inserted.push(v);
-            let Ok(h) = cdt.insert(v) else {
-                return;
-            };
-            if cdt.num_vertices() == before {
-                // Rounded onto an existing point: the two are one.
-                if let Some(&g0) = global_of_handle.get(&h.index())
-                    && g0 != global
-                    && merge(alias, global, g0)
-                {
-                    report.merged_points += 1;
-                }
-            } else {
-                global_of_handle.insert(h.index(), global);
-            }
-            handle_of.insert(global, h);
-        };
+    }
+    sub
+}
+
+/// What re-triangulating one input triangle needs to know.
+struct Chart<'a> {
+    positions: &'a [DVec3],
+    edges: &'a Edges,
+    ids: &'a [u32],
+    on: &'a OnMesh,
+}
+
+impl Chart<'_> {
+    /// Re-triangulates triangle `t` (corners `tri`) in its chart with its
+    /// corners, the points on its sides and inside it, its curve pieces and
+    /// false edges as constraints (constrained Delaunay, spade), and appends
+    /// the sub-triangles, their sources and curve edges to `sub`.
+    fn split_triangle(
+        &self,
+        t: usize,
+        tri: [u32; 3],
+        globals: &mut Globals,
+        sub: &mut Subdivided,
+        report: &mut CutReport,
+    ) {
+        let (edges, on) = (self.edges, self.on);
+        let mut points = ChartPoints::default();
         for k in 0..3 {
-            insert(&mut cdt, tri[k], CHART[k], &mut report, &mut alias);
+            points.insert(tri[k], CHART[k], report, &mut sub.alias);
         }
         for (k, &corner) in tri.iter().enumerate() {
             let e = edges.of_triangle[t][k] as usize;
             let forward = corner == edges.ends[e][0];
-            for &(g, s) in on_edge.get(e) {
+            for &(g, s) in on.on_edge.get(e) {
                 let s = if forward { s } else { 1.0 - s };
-                insert(&mut cdt, g, on_side(k, s), &mut report, &mut alias);
+                points.insert(g, on_side(k, s), report, &mut sub.alias);
             }
         }
-        for &(g, b) in interior.get(t) {
-            insert(&mut cdt, g, from_bary(b), &mut report, &mut alias);
+        for &(g, b) in on.interior.get(t) {
+            points.insert(g, from_bary(b), report, &mut sub.alias);
         }
         let node_global = |node: Node| -> u32 {
             match node {
-                Node::Point(i) => point_global[i as usize],
+                Node::Point(i) => globals.point[i as usize],
                 Node::Shared(id) => tri
                     .iter()
                     .copied()
-                    .find(|&v| ids[v as usize] == id)
+                    .find(|&v| self.ids[v as usize] == id)
                     .unwrap_or(NONE),
             }
         };
-        let mut segs: Vec<[u32; 2]> = constraints
+        let mut segs: Vec<[u32; 2]> = on
+            .constraints
             .get(t)
             .iter()
             .map(|ends| [node_global(ends[0]), node_global(ends[1])])
             .collect();
-        segs.extend_from_slice(false_edges.get(t));
+        segs.extend_from_slice(on.false_edges.get(t));
+        points.constrain(&segs, report);
+        // Globals for split vertices; the corners' 3D frame for them.
+        let p = tri.map(|v| self.positions[v as usize]);
+        let mut global: Vec<u32> = Vec::with_capacity(points.cdt.num_vertices());
+        for v in points.cdt.vertices() {
+            let cv = *v.data();
+            let g = if cv.global == NONE {
+                report.constraint_splits += 1;
+                let g = globals.positions.len() as u32;
+                let (u, w) = (cv.pos.x, cv.pos.y);
+                globals
+                    .positions
+                    .push(p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * w);
+                g
+            } else {
+                points
+                    .global_of_handle
+                    .get(&v.fix().index())
+                    .copied()
+                    .unwrap_or(cv.global)
+            };
+            global.push(g);
+        }
+        for f in points.cdt.inner_faces() {
+            let vs = f.vertices().map(|v| global[v.fix().index()]);
+            sub.tris.push(vs);
+            let c = f.vertices().map(|v| v.position());
+            sub.source.sub.push((
+                t as u32,
+                [
+                    (c[0].x + c[1].x + c[2].x) / 3.0,
+                    (c[0].y + c[1].y + c[2].y) / 3.0,
+                ],
+            ));
+        }
+        for e in points.cdt.undirected_edges() {
+            if e.is_constraint_edge() {
+                let [a, b] = e.vertices().map(|v| global[v.fix().index()]);
+                sub.curve_edges.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+}
+
+/// One chart's constrained Delaunay triangulation with the global vertex
+/// of each of its points.
+#[derive(Default)]
+struct ChartPoints {
+    cdt: ConstrainedDelaunayTriangulation<ChartVertex>,
+    handle_of: HashMap<u32, spade::handles::FixedVertexHandle>,
+    global_of_handle: HashMap<usize, u32>,
+    inserted: Vec<ChartVertex>,
+}
+
+impl ChartPoints {
+    /// Inserts global vertex `global` at chart position `pos` (once); a
+    /// point that rounds onto an existing one is merged with it.
+    fn insert(
+        &mut self,
+        global: u32,
+        pos: [f64; 2],
+        report: &mut CutReport,
+        alias: &mut HashMap<u32, u32>,
+    ) {
+        if self.handle_of.contains_key(&global) {
+            return;
+        }
+        let before = self.cdt.num_vertices();
+        let v = ChartVertex {
+            pos: Point2::new(pos[0], pos[1]),
+            global,
+        };
+        self.inserted.push(v);
+        let Ok(h) = self.cdt.insert(v) else {
+            return;
+        };
+        if self.cdt.num_vertices() == before {
+            // Rounded onto an existing point: the two are one.
+            if let Some(&g0) = self.global_of_handle.get(&h.index())
+                && g0 != global
+                && merge(alias, global, g0)
+            {
+                report.merged_points += 1;
+            }
+        } else {
+            self.global_of_handle.insert(h.index(), global);
+        }
+        self.handle_of.insert(global, h);
+    }
+
+    /// Adds the segments between global vertices as constraints.
+    ///
+    /// Symbolically the curve pieces of one triangle meet only at their
+    /// shared points, so each goes in as a plain constraint. Only
+    /// rounding in the chart can make two cross; then the crossing is
+    /// split where the chart puts it. spade's splitting insertion can
+    /// fail on such near-degenerate input (it panics); the chart is then
+    /// rebuilt from its points and every constraint that fits is added
+    /// without splitting, the others counted as dropped.
+    fn constrain(&mut self, segs: &[[u32; 2]], report: &mut CutReport) {
         let split = |p: Point2<f64>| ChartVertex {
             pos: p,
             global: NONE,
         };
         let pairs: Vec<_> = segs
             .iter()
-            .filter_map(|[a, b]| Some((*handle_of.get(a)?, *handle_of.get(b)?)))
+            .filter_map(|[a, b]| Some((*self.handle_of.get(a)?, *self.handle_of.get(b)?)))
             .filter(|(ha, hb)| ha != hb)
             .collect();
-        // Symbolically the curve pieces of one triangle meet only at their
-        // shared points, so each goes in as a plain constraint. Only
-        // rounding in the chart can make two cross; then the crossing is
-        // split where the chart puts it. spade's splitting insertion can
-        // fail on such near-degenerate input (it panics); the chart is then
-        // rebuilt from its points and every constraint that fits is added
-        // without splitting, the others counted as dropped.
         let mut failed = false;
         for &(ha, hb) in &pairs {
-            if cdt.can_add_constraint(ha, hb) {
-                cdt.add_constraint(ha, hb);
+            if self.cdt.can_add_constraint(ha, hb) {
+                self.cdt.add_constraint(ha, hb);
                 continue;
             }
+            let cdt = &mut self.cdt;
             let attempt = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 cdt.add_constraint_and_split(ha, hb, split);
             }));
@@ -718,68 +927,42 @@ pub fn cut(
             // The same insertions in the same order give the same
             // vertices and handles (cloning every chart up front, for
             // this rare case, was a third of the subdivision's time).
-            cdt = ConstrainedDelaunayTriangulation::new();
-            for v in &inserted {
-                let _ = cdt.insert(*v);
+            self.cdt = ConstrainedDelaunayTriangulation::new();
+            for v in &self.inserted {
+                let _ = self.cdt.insert(*v);
             }
             for &(ha, hb) in &pairs {
-                if cdt.can_add_constraint(ha, hb) {
-                    cdt.add_constraint(ha, hb);
+                if self.cdt.can_add_constraint(ha, hb) {
+                    self.cdt.add_constraint(ha, hb);
                 } else {
                     report.dropped_constraints += 1;
                 }
             }
         }
-        // Globals for split vertices; the corners' 3D frame for them.
-        let p = tri.map(|v| positions[v as usize]);
-        let mut global: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
-        for v in cdt.vertices() {
-            let cv = *v.data();
-            let g = if cv.global == NONE {
-                report.constraint_splits += 1;
-                let g = out_positions.len() as u32;
-                let (u, w) = (cv.pos.x, cv.pos.y);
-                out_positions.push(p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * w);
-                g
-            } else {
-                global_of_handle
-                    .get(&v.fix().index())
-                    .copied()
-                    .unwrap_or(cv.global)
-            };
-            global.push(g);
-        }
-        for f in cdt.inner_faces() {
-            let vs = f.vertices().map(|v| global[v.fix().index()]);
-            out_tris.push(vs);
-            let c = f.vertices().map(|v| v.position());
-            source.sub.push((
-                t as u32,
-                [
-                    (c[0].x + c[1].x + c[2].x) / 3.0,
-                    (c[0].y + c[1].y + c[2].y) / 3.0,
-                ],
-            ));
-        }
-        for e in cdt.undirected_edges() {
-            if e.is_constraint_edge() {
-                let [a, b] = e.vertices().map(|v| global[v.fix().index()]);
-                curve_edges.push((a.min(b), a.max(b)));
-            }
-        }
     }
-    // 3. A curve through a vertex shared by both sheets (equal positions,
-    // one identity): the sheets' copies of that vertex are one point of the
-    // curve, glued like the constructed points. Such a vertex lies on the
-    // cut, so it has no side and does not vote in the labelling.
+}
+
+/// Step 3: a curve through a vertex shared by both sheets (equal
+/// positions, one identity): the sheets' copies of that vertex are one
+/// point of the curve, glued like the constructed points. Such a vertex
+/// lies on the cut, so it has no side and does not vote in the labelling.
+/// Then every merged vertex is replaced by the one it is.
+fn glue(
+    ids: &[u32],
+    shared_ids: &[u32],
+    globals: &mut Globals,
+    sub: &mut Subdivided,
+    report: &mut CutReport,
+) {
+    let alias = &mut sub.alias;
     if !shared_ids.is_empty() {
         let mut first_of_id: HashMap<u32, u32> = HashMap::default();
-        for v in 0..n as u32 {
+        for v in 0..globals.inputs as u32 {
             let id = ids[v as usize];
             if shared_ids.binary_search(&id).is_ok() {
-                on_curve[v as usize] = true;
+                globals.on_curve[v as usize] = true;
                 let f = *first_of_id.entry(id).or_insert(v);
-                if f != v && merge(&mut alias, f, v) {
+                if f != v && merge(alias, f, v) {
                     report.merged_points += 1;
                 }
             }
@@ -787,51 +970,63 @@ pub fn cut(
     }
     // Only the few merged vertices have aliases: flag them so the
     // triangles' other corners skip the lookup.
-    let mut aliased = vec![false; out_positions.len()];
+    let mut aliased = vec![false; globals.positions.len()];
     for &g in alias.keys() {
         if let Some(f) = aliased.get_mut(g as usize) {
             *f = true;
         }
     }
-    for t in &mut out_tris {
+    for t in &mut sub.tris {
         for v in t.iter_mut() {
             if aliased.get(*v as usize).copied().unwrap_or(true) {
-                *v = resolve(&alias, *v);
+                *v = resolve(alias, *v);
             }
         }
     }
-    for e in &mut curve_edges {
+    for e in &mut sub.curve_edges {
         *e = (
-            resolve(&alias, e.0).min(resolve(&alias, e.1)),
-            resolve(&alias, e.0).max(resolve(&alias, e.1)),
+            resolve(alias, e.0).min(resolve(alias, e.1)),
+            resolve(alias, e.0).max(resolve(alias, e.1)),
         );
     }
+}
 
-    // 4. Labels and deletion.
-    let keep: Vec<bool> = match odd {
-        None => vec![true; out_tris.len()],
+/// Step 4: labels and deletion, then the result compacted to the
+/// vertices its triangles use.
+fn trim(
+    input_tris: &[[u32; 3]],
+    input_positions: &[DVec3],
+    globals: Globals,
+    sub: Subdivided,
+    deletion: Deletion<'_>,
+    sample: Option<&Sampler<'_>>,
+    mut report: CutReport,
+) -> Cut {
+    let n = globals.inputs;
+    let keep: Vec<bool> = match deletion.odd() {
+        None => vec![true; sub.tris.len()],
         Some(odd) => {
             let labels = label(
-                &out_tris,
+                &sub.tris,
                 n,
-                &on_curve,
+                &globals.on_curve,
                 odd,
-                &curve_edges,
+                &sub.curve_edges,
                 &mut report,
-                &source,
+                &sub.source,
                 sample,
             );
             let mut keep: Vec<bool> = labels.iter().map(|&o| !o).collect();
             if let (Deletion::OddOneFrame { .. }, Some(sample)) = (deletion, sample) {
-                let mut curve = curve_edges.clone();
+                let mut curve = sub.curve_edges.clone();
                 curve.sort_unstable();
                 curve.dedup();
                 report.junctions_repaired = junctions::Junctions {
-                    tris: &out_tris,
-                    source: &source,
-                    positions: &out_positions,
-                    input_tris: tris,
-                    input_positions: positions,
+                    tris: &sub.tris,
+                    source: &sub.source,
+                    positions: &globals.positions,
+                    input_tris,
+                    input_positions,
                     curve: &curve,
                 }
                 .repair(&mut keep, sample, MAX_SAMPLED_REGIONS as u32);
@@ -840,16 +1035,17 @@ pub fn cut(
         }
     };
     report.triangles_deleted = keep.iter().filter(|&&k| !k).count();
-    let (kept, kept_source): (Vec<[u32; 3]>, Vec<SourcePoint>) = out_tris
+    let (kept, kept_source): (Vec<[u32; 3]>, Vec<SourcePoint>) = sub
+        .tris
         .par_iter()
         .enumerate()
         .zip(&keep)
         .filter(|(_, k)| **k)
-        .map(|((i, t), _)| (*t, source.get(i)))
+        .map(|((i, t), _)| (*t, sub.source.get(i)))
         .filter(|(t, _)| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
         .unzip();
     let (mesh, origin) = TriMesh {
-        positions: out_positions,
+        positions: globals.positions,
         triangles: kept,
     }
     .compacted_with_origin();
