@@ -18,12 +18,17 @@ use crate::validate::ValidationError;
 /// the vertex of the next corner of its face.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RawMesh {
+    /// Vertex positions, indexed by vertex number.
     pub positions: Vec<DVec3>,
     /// `faces + 1` offsets into `face_vertices`, starting at 0.
     pub face_offsets: Vec<u32>,
+    /// The vertex index (into `positions`) of every corner, face after face
+    /// in walk order; its positions are the global corner indices.
     pub face_vertices: Vec<u32>,
     /// One flag per face; an empty vector means no face is a hole.
     pub holes: Vec<bool>,
+    /// One entry per edge: the global indices of the two corners at which
+    /// it originates, one on each of its sides.
     pub edges: Vec<[u32; 2]>,
 }
 
@@ -45,55 +50,106 @@ impl RawMesh {
 /// Why raw parts do not form a valid DLFL.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BuildError {
+    /// `face_offsets` is malformed: it does not start at 0, does not end at
+    /// the number of corners, or decreases; the text says which.
     #[error("face offsets are malformed: {0}")]
     Offsets(String),
+    /// There are this many vertices, corners or edges, too many for the
+    /// kernel's 32-bit slot indices.
     #[error("{0} entities exceed the kernel's 32-bit indices")]
     TooLarge(usize),
+    /// `holes` is neither empty nor one flag per face.
     #[error("hole flags: {flags} given for {faces} faces")]
-    HoleCount { flags: usize, faces: usize },
+    HoleCount {
+        /// Number of hole flags given (length of `holes`).
+        flags: usize,
+        /// Number of faces, as `face_offsets` defines them.
+        faces: usize,
+    },
+    /// A face has no corners (two equal consecutive offsets).
     #[error("face {face} has no corners")]
-    EmptyFace { face: usize },
+    EmptyFace {
+        /// Index of the empty face.
+        face: usize,
+    },
+    /// A face refers to a vertex index past the end of `positions`.
     #[error("face {face} refers to vertex {vertex}, but there are only {count} vertices")]
     VertexOutOfRange {
+        /// Index of the face holding the bad reference.
         face: usize,
+        /// The out-of-range vertex index it refers to.
         vertex: u32,
+        /// Number of vertices (length of `positions`).
         count: usize,
     },
+    /// A vertex position has a NaN or infinite coordinate.
     #[error("vertex {vertex} has a non-finite position ({x}, {y}, {z})")]
     NonFinite {
+        /// Index of the vertex in `positions`.
         vertex: usize,
+        /// Its x coordinate as given.
         x: f64,
+        /// Its y coordinate as given.
         y: f64,
+        /// Its z coordinate as given.
         z: f64,
     },
+    /// A vertex is not referred to by any face's corners.
     #[error("vertex {vertex} is not used by any face")]
-    UnusedVertex { vertex: usize },
+    UnusedVertex {
+        /// Index of the unused vertex (the first one found).
+        vertex: usize,
+    },
+    /// An edge names a global corner index past the last corner.
     #[error("edge {edge} names corner {corner}, but there are only {count} corners")]
     CornerOutOfRange {
+        /// Index of the edge in `edges`.
         edge: usize,
+        /// The out-of-range global corner index it names.
         corner: u32,
+        /// Number of corners (length of `face_vertices`).
         count: usize,
     },
+    /// A corner is named by two edges, or twice by one edge; each corner
+    /// starts at most one edge.
     #[error(
         "corner {corner} (face {face}, corner {k}) starts more than one edge (edges {first} and {second})"
     )]
     CornerTwice {
+        /// Global index of the corner named more than once.
         corner: usize,
+        /// Index of the face the corner belongs to.
         face: usize,
+        /// Position of the corner within that face, from 0.
         k: usize,
+        /// Index of the edge that named the corner first.
         first: usize,
+        /// Index of the edge that named it again (equal to `first` when one
+        /// edge names the same corner for both its sides).
         second: usize,
     },
+    /// A corner of a face with more than one corner starts no edge; only the
+    /// single corner of a point-sphere may be edgeless.
     #[error(
         "corner {corner} (face {face}, corner {k}) starts no edge, but only a point-sphere's corner may"
     )]
     CornerWithoutEdge {
+        /// Global index of the edgeless corner.
         corner: usize,
+        /// Index of the face the corner belongs to.
         face: usize,
+        /// Position of the corner within that face, from 0.
         k: usize,
     },
+    /// An edge's two corners are not opposite sides of one edge: the vertex
+    /// after one of them in its face is not the other corner's vertex.
     #[error("edge {edge}: its sides do not run oppositely between the same two vertices")]
-    Mismatched { edge: usize },
+    Mismatched {
+        /// Index of the edge in `edges`.
+        edge: usize,
+    },
+    /// The arrays are well formed but the result fails
+    /// [`Mesh::validate`] (a vertex's rotation is not one cycle, say).
     #[error("not a valid 2-manifold: {0}")]
     Invalid(#[from] ValidationError),
 }

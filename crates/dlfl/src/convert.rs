@@ -35,40 +35,92 @@ pub struct ImportOptions {
 /// Why a soup cannot be imported into the kernel.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ImportError {
+    /// The soup itself is malformed (an index out of range, say), as its own
+    /// check reports.
     #[error(transparent)]
     Soup(#[from] PolyMeshError),
+    /// A face has fewer than two corners.
     #[error("face {face} has {len} corner(s); the kernel imports faces of 2 or more corners")]
-    ShortFace { face: usize, len: usize },
+    ShortFace {
+        /// Index of the face in the soup.
+        face: usize,
+        /// Its number of corners (0 or 1).
+        len: usize,
+    },
+    /// A face names the same vertex at two consecutive corners (cyclically),
+    /// which would make a zero-length edge.
     #[error("face {face} repeats vertex {vertex} at consecutive corners (a zero-length edge)")]
-    DegenerateFace { face: usize, vertex: u32 },
+    DegenerateFace {
+        /// Index of the face in the soup.
+        face: usize,
+        /// Soup index of the repeated vertex.
+        vertex: u32,
+    },
+    /// An edge has more than two face sides (half-edges, in either
+    /// direction), so no single pairing of its sides exists.
     #[error(
         "non-manifold edge between vertices {u} and {v}: it is used by {count} face sides (faces {faces:?}); \
          split it with --split-nonmanifold"
     )]
     NonManifoldEdge {
+        /// One end of the edge: where its half-edge with the smallest corner
+        /// index starts. In [`to_dlfl`] vertices are numbered among the
+        /// referenced ones only, which is the soup index unless an unused
+        /// vertex comes before it.
         u: u32,
+        /// The other end of the edge, numbered as `u` is.
         v: u32,
+        /// Number of half-edges along the edge, both directions counted.
         count: usize,
+        /// The face of each of those half-edges, sorted (a face appears
+        /// once per side it contributes).
         faces: Vec<usize>,
     },
+    /// Two face sides run along an edge in the same direction, so the faces
+    /// around it are not consistently oriented.
     #[error(
         "faces {faces:?} all use edge {u}→{v} in the same direction, so the surface is not consistently oriented; \
          split it with --split-nonmanifold"
     )]
-    Misoriented { u: u32, v: u32, faces: Vec<usize> },
+    Misoriented {
+        /// Start of the doubled half-edge u→v, numbered as the `u` of
+        /// `NonManifoldEdge` is.
+        u: u32,
+        /// End of the doubled half-edge u→v, numbered like `u`.
+        v: u32,
+        /// The faces of the two half-edges, sorted.
+        faces: Vec<usize>,
+    },
+    /// The faces around a vertex form several separate fans (they touch only
+    /// at the vertex), so it has no single disk neighbourhood.
     #[error(
         "non-manifold vertex {vertex} at ({x}, {y}, {z}): its faces form {fans} separate fans; \
          split it with --split-nonmanifold"
     )]
     NonManifoldVertex {
+        /// Soup index of the vertex.
         vertex: u32,
+        /// Number of separate fans of faces around it (2 or more).
         fans: usize,
+        /// x coordinate of the vertex.
         x: f64,
+        /// y coordinate of the vertex.
         y: f64,
+        /// z coordinate of the vertex.
         z: f64,
     },
+    /// From [`infer_edges`]: a half-edge has no partner running the other
+    /// way (`.dlfl` files make boundaries explicit with hole faces).
     #[error("corner {corner} of face {face} has no partner edge running the other way")]
-    Unpaired { face: usize, corner: usize },
+    Unpaired {
+        /// Index of the face holding the unpaired half-edge.
+        face: usize,
+        /// Position within that face, from 0, of the corner the half-edge
+        /// starts at.
+        corner: usize,
+    },
+    /// The paired arrays failed [`Mesh::from_raw`]; a bug in the importer
+    /// rather than a property of the input.
     #[error("internal: the paired soup did not build a valid DLFL: {0}")]
     Build(#[from] BuildError),
 }
@@ -91,12 +143,14 @@ pub struct ImportReport {
 /// A soup imported into the kernel.
 #[derive(Clone, Debug)]
 pub struct Imported {
+    /// The imported mesh, boundary loops closed by hole faces.
     pub mesh: Mesh,
     /// The DLFL face of each soup face, in file order (`None` if dropped).
     pub faces: Vec<Option<FaceId>>,
     /// The DLFL vertex of each soup vertex (`None` if unreferenced). A
     /// split vertex maps to its first copy.
     pub vertices: Vec<Option<VertexId>>,
+    /// Counts of what the import cut, split, closed or dropped.
     pub report: ImportReport,
 }
 
@@ -484,6 +538,8 @@ pub fn infer_edges(raw: &mut RawMesh) -> Result<(), ImportError> {
 /// What [`to_poly`] left out.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Exported {
+    /// The written soup: the non-hole faces with self-loops removed, over
+    /// the vertices they use.
     pub poly: PolyMesh,
     /// The DLFL face each written face came from, in output order.
     pub faces: Vec<FaceId>,

@@ -66,9 +66,13 @@ id_type!(
 /// The kind of entity a handle names, for error messages.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EntityKind {
+    /// A vertex, named by a [`VertexId`].
     Vertex,
+    /// An edge, named by an [`EdgeId`].
     Edge,
+    /// A face, named by a [`FaceId`].
     Face,
+    /// A corner, named by a [`CornerId`].
     Corner,
 }
 

@@ -33,6 +33,8 @@
 //! carried, interpolated where an operator places a new vertex, and
 //! otherwise left to the caller.
 
+#![warn(missing_docs)]
+
 mod arena;
 mod build;
 pub mod convert;

@@ -6,7 +6,9 @@ use crate::mesh::Mesh;
 /// Counts of one connected component of the surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ComponentTopology {
+    /// Live vertices in the component.
     pub vertices: usize,
+    /// Edges in the component, including those that border hole faces.
     pub edges: usize,
     /// Faces that are not holes.
     pub faces: usize,

@@ -43,7 +43,11 @@ pub const PARALLEL_THRESHOLD: usize = 8192;
 /// A closed axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// The corner with the smallest coordinates (`+∞` in every axis for
+    /// [`Aabb::EMPTY`]).
     pub min: DVec3,
+    /// The corner with the largest coordinates (`−∞` in every axis for
+    /// [`Aabb::EMPTY`]).
     pub max: DVec3,
 }
 
@@ -54,6 +58,8 @@ impl Aabb {
         max: DVec3::splat(f64::NEG_INFINITY),
     };
 
+    /// The box with corners `min` and `max`, as given (neither checked nor
+    /// reordered).
     pub fn new(min: DVec3, max: DVec3) -> Self {
         Aabb { min, max }
     }
@@ -63,6 +69,7 @@ impl Aabb {
         pts.iter().fold(Aabb::EMPTY, |b, &p| b.grow(p))
     }
 
+    /// The smallest box containing this box and the point `p`.
     #[inline]
     pub fn grow(&self, p: DVec3) -> Aabb {
         Aabb {
@@ -71,6 +78,7 @@ impl Aabb {
         }
     }
 
+    /// The smallest box containing both boxes.
     #[inline]
     pub fn union(&self, o: &Aabb) -> Aabb {
         Aabb {
@@ -90,11 +98,14 @@ impl Aabb {
             && o.min.z <= self.max.z
     }
 
+    /// The centre of the box, halfway between its corners.
     #[inline]
     pub fn centroid(&self) -> DVec3 {
         (self.min + self.max) * 0.5
     }
 
+    /// Whether every coordinate of both corners is finite (not so for
+    /// [`Aabb::EMPTY`]).
     pub fn is_finite(&self) -> bool {
         self.min.is_finite() && self.max.is_finite()
     }
@@ -321,6 +332,7 @@ impl Bvh {
         self.prims.len()
     }
 
+    /// Whether the tree holds no primitives.
     pub fn is_empty(&self) -> bool {
         self.prims.is_empty()
     }

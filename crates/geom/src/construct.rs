@@ -314,6 +314,7 @@ fn edge_side<T: Ring>(u: &V3<T>, v: &V3<T>, n: &V3<T>, xh: &V3<T>, w: &T) -> T {
 /// The common point of the planes of three triangles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TriplePoint {
+    /// The point's coordinates, each correctly rounded from its exact value.
     pub pos: DVec3,
     /// `bary[i]` = barycentric coordinates in triangle `i` (weights of its
     /// corners in the order given).

@@ -34,8 +34,12 @@ const TINY: f64 = f64::MIN_POSITIVE;
 /// A double-double with an absolute error bound.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dd {
+    /// The leading double: `hi + lo` rounded to nearest.
     pub hi: f64,
+    /// The trailing double: what `hi` leaves of the sum (at most half an ulp of
+    /// `hi`).
     pub lo: f64,
+    /// Bound on the absolute error: `|hi + lo − exact|` is at most `err`.
     pub err: f64,
 }
 

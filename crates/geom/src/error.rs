@@ -9,19 +9,32 @@ use thiserror::Error;
 pub enum GeomError {
     /// A coordinate is NaN or infinite.
     #[error("non-finite coordinate at point {index}")]
-    NonFinite { index: usize },
+    NonFinite {
+        /// Index of the first point (or box) found with a non-finite
+        /// coordinate, in the array checked.
+        index: usize,
+    },
     /// A triangle refers to a vertex index past the end of the positions.
     #[error("triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices")]
     VertexOutOfRange {
+        /// Index of the first triangle found with such a corner.
         triangle: usize,
+        /// The out-of-range vertex index it holds.
         vertex: u32,
+        /// Number of positions there are.
         count: usize,
     },
     /// Two arrays that must have the same length do not.
     #[error("length mismatch: {what} has {got} entries, expected {expected}")]
     LengthMismatch {
+        /// Names the array whose length is wrong (or, for a BVH refit,
+        /// `"changed primitive id"`).
         what: &'static str,
+        /// The length it has (for a changed primitive id: that id, which is out
+        /// of range).
         got: usize,
+        /// The length it must have (the number of vertices, points or
+        /// primitives).
         expected: usize,
     },
     /// A construction was asked for a point that does not exist in the

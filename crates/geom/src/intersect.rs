@@ -88,8 +88,11 @@ pub fn segment_triangle_intersect(
 pub enum SegEnd {
     /// Where edge `p q` crosses triangle `tri`.
     Edge {
+        /// One end of the crossing edge, an edge of one of the two triangles.
         p: SymPoint,
+        /// The other end of the crossing edge.
         q: SymPoint,
+        /// The corners of the crossed triangle, the other of the two.
         tri: [SymPoint; 3],
     },
     /// A vertex shared by the two triangles.

@@ -37,6 +37,8 @@
 //! [`GeomError::NonFinite`]; single predicates given NaN answer arbitrarily
 //! but never panic).
 
+#![warn(missing_docs)]
+
 pub mod bvh;
 pub mod ccd;
 pub mod construct;

@@ -75,8 +75,12 @@ use robust::{Coord, Coord3D};
 /// The sign of an exact (unperturbed) predicate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Sign {
+    /// The exact value is below zero.
     Negative,
+    /// The exact value is zero: the points are degenerate for the predicate
+    /// (coplanar for [`orient3d`], collinear for [`orient2d`]).
     Zero,
+    /// The exact value is above zero.
     Positive,
 }
 
@@ -129,11 +133,15 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 /// A 2-D point with a symbolic identity.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SymPoint2 {
+    /// Its unperturbed coordinates.
     pub pos: DVec2,
+    /// Its symbolic identity: equal ids are one point, and a smaller id is
+    /// perturbed more ([`crate::sos`]).
     pub id: u32,
 }
 
 impl SymPoint2 {
+    /// The point at `pos` with identity `id`.
     pub fn new(pos: DVec2, id: u32) -> Self {
         SymPoint2 { pos, id }
     }

@@ -19,9 +19,16 @@ use crate::expansion::Expansion;
 pub trait Ring: Clone {
     /// The exact value of a double.
     fn cst(x: f64) -> Self;
+    /// The sum `self + o`: exact, except for [`Interval`] (an enclosure)
+    /// and [`Dd`](crate::dd::Dd) (with a bounded error).
     fn add(&self, o: &Self) -> Self;
+    /// The difference `self − o`: exact, except for [`Interval`] (an enclosure)
+    /// and [`Dd`](crate::dd::Dd) (with a bounded error).
     fn sub(&self, o: &Self) -> Self;
+    /// The product `self × o`: exact, except for [`Interval`] (an enclosure)
+    /// and [`Dd`](crate::dd::Dd) (with a bounded error).
     fn mul(&self, o: &Self) -> Self;
+    /// The negation `−self`; by default `0 − self`.
     fn neg(&self) -> Self {
         Self::cst(0.0).sub(self)
     }
@@ -30,7 +37,9 @@ pub trait Ring: Clone {
 /// A closed interval `[lo, hi]` known to contain an exact real.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interval {
+    /// Lower bound: at most the exact value.
     pub lo: f64,
+    /// Upper bound: at least the exact value.
     pub hi: f64,
 }
 
@@ -114,26 +123,31 @@ impl Ring for Expansion {
 /// A point with ring coordinates.
 pub type V3<T> = [T; 3];
 
+/// The componentwise difference `a − b`.
 #[inline]
 pub fn sub3<T: Ring>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [a[0].sub(&b[0]), a[1].sub(&b[1]), a[2].sub(&b[2])]
 }
 
+/// The componentwise sum `a + b`.
 #[inline]
 pub fn add3<T: Ring>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [a[0].add(&b[0]), a[1].add(&b[1]), a[2].add(&b[2])]
 }
 
+/// The vector `a` scaled by `s`.
 #[inline]
 pub fn scale3<T: Ring>(s: &T, a: &V3<T>) -> V3<T> {
     [s.mul(&a[0]), s.mul(&a[1]), s.mul(&a[2])]
 }
 
+/// The dot product `a · b`.
 #[inline]
 pub fn dot<T: Ring>(a: &V3<T>, b: &V3<T>) -> T {
     a[0].mul(&b[0]).add(&a[1].mul(&b[1])).add(&a[2].mul(&b[2]))
 }
 
+/// The cross product `a × b`.
 #[inline]
 pub fn cross<T: Ring>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     [

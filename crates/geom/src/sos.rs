@@ -71,11 +71,15 @@ use std::cmp::Ordering;
 /// A point together with its symbolic identity (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SymPoint {
+    /// Its unperturbed coordinates.
     pub pos: DVec3,
+    /// Its symbolic identity: equal ids are one point, and a smaller id is
+    /// perturbed more.
     pub id: u32,
 }
 
 impl SymPoint {
+    /// The point at `pos` with identity `id`.
     pub fn new(pos: DVec3, id: u32) -> Self {
         SymPoint { pos, id }
     }
@@ -84,7 +88,9 @@ impl SymPoint {
 /// The sign of a predicate in the perturbed world.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SosSign {
+    /// The perturbed polynomial is negative as ε → 0⁺.
     Negative,
+    /// The perturbed polynomial is positive as ε → 0⁺.
     Positive,
     /// The perturbed polynomial is identically zero: only possible when
     /// arguments share identities (the same symbolic point occurs twice in a
@@ -225,6 +231,7 @@ impl EpsPoly {
         self.terms.len()
     }
 
+    /// Whether it has no terms: the zero polynomial.
     pub fn is_empty(&self) -> bool {
         self.terms.is_empty()
     }
@@ -304,8 +311,13 @@ pub const MAX_POINTS: usize = 21;
 /// reports; relaxed atomics, negligible cost).
 pub mod stats {
     use std::sync::atomic::{AtomicU64, Ordering};
+    /// Calls of [`sos_sign`](super::sos_sign) with at most
+    /// [`MAX_POINTS`](super::MAX_POINTS) points.
     pub static CALLS: AtomicU64 = AtomicU64::new(0);
+    /// Calls the interval filter left undecided, which went on to exact
+    /// arithmetic.
     pub static EXACT: AtomicU64 = AtomicU64::new(0);
+    /// Calls whose exact value was zero, which went on to the perturbed stage.
     pub static PERTURBED: AtomicU64 = AtomicU64::new(0);
 
     /// `(calls, exact-stage calls, perturbed-stage calls)` of the generic
@@ -318,6 +330,7 @@ pub mod stats {
         )
     }
 
+    /// Sets the three counters back to zero.
     pub fn reset() {
         CALLS.store(0, Ordering::Relaxed);
         EXACT.store(0, Ordering::Relaxed);

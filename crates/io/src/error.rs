@@ -15,34 +15,59 @@ pub enum IoError {
     /// Malformed text at a line (1-based) of a text file or text section.
     #[error("{file}:{line}: {message}")]
     Line {
+        /// The file name (or source label) given to the reader.
         file: String,
+        /// The 1-based number, counted from the start of the file, of the offending line.
         line: usize,
+        /// What is wrong on that line.
         message: String,
     },
     /// Malformed binary data at a byte offset (0-based) from the start of
     /// the file.
     #[error("{file}: byte {offset}: {message}")]
     Byte {
+        /// The file name (or source label) given to the reader.
         file: String,
+        /// The 0-based byte offset of the offending data from the start of the file.
         offset: u64,
+        /// What is wrong with the data there.
         message: String,
     },
     /// Malformed content that has no better location (an empty file, say).
     #[error("{file}: {message}")]
-    Content { file: String, message: String },
+    Content {
+        /// The file name (or source label) given to the reader.
+        file: String,
+        /// What is wrong with the content.
+        message: String,
+    },
     /// The file name's extension names no supported format.
     #[error("{file}: {message}")]
-    UnknownFormat { file: String, message: String },
+    UnknownFormat {
+        /// The path as given, whose extension was not recognised.
+        file: String,
+        /// The unknown extension (or its absence) and the list of known ones.
+        message: String,
+    },
     /// A writer was handed a mesh it cannot write (indices out of range,
     /// non-finite positions, colours that do not match the vertices, or a
     /// format that cannot hold it).
     #[error("{file}: cannot write this mesh: {message}")]
-    InvalidMesh { file: String, message: String },
+    InvalidMesh {
+        /// The destination path that was not written.
+        file: String,
+        /// What makes the mesh unwritable, e.g. which face or vertex is at fault.
+        message: String,
+    },
     /// The operating system failed to read, create, write or rename a file.
     #[error("{file}: {action}: {source}")]
     Io {
+        /// The path being read or written (for writes, the destination,
+        /// not the temporary file).
         file: String,
+        /// What was being attempted, e.g. `"cannot read the file"`.
         action: &'static str,
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },

@@ -27,6 +27,8 @@
 //! # Ok::<(), holey_io::IoError>(())
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod dlfl;
 mod error;
 pub mod obj;
@@ -51,10 +53,16 @@ pub(crate) const CHUNK: usize = 1 << 16;
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
+    /// Wavefront OBJ (`.obj`), text: positions and polygon faces.
     Obj,
+    /// Object File Format (`.off`), text form only.
     Off,
+    /// Stanford PLY (`.ply`), ascii or binary of either byte order.
     Ply,
+    /// STL (`.stl`), ascii or binary: separate facets, welded on reading
+    /// only where positions are bit-identical.
     Stl,
+    /// holey's native DLFL text format (`.dlfl`): faces, hole faces and edges.
     Dlfl,
 }
 
@@ -124,7 +132,9 @@ impl fmt::Display for Format {
 /// form (`.dlfl`).
 #[derive(Clone, Debug, PartialEq)]
 pub enum MeshFile {
+    /// The vertices and faces of an OBJ, OFF, PLY or STL file, as stored.
     Poly(PolyMesh),
+    /// The contents of a `.dlfl` file, ready for [`holey_dlfl::Mesh::from_raw`].
     Dlfl(RawMesh),
 }
 

@@ -14,6 +14,8 @@
 //! Nothing here knows the DLFL kernel: `holey_dlfl::convert` builds a
 //! kernel mesh from a soup and back, on top of this crate.
 
+#![warn(missing_docs)]
+
 pub mod analysis;
 mod poly;
 pub mod tri;

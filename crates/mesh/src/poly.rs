@@ -5,29 +5,47 @@ use glam::DVec3;
 /// face plus a final one). Nothing about its topology is assumed.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PolyMesh {
+    /// Vertex positions, which faces refer to by index (some may be unused).
     pub positions: Vec<DVec3>,
+    /// Where each face starts in `face_indices`, then where the last one ends:
+    /// face `f` is `face_indices[face_offsets[f]..face_offsets[f + 1]]`.
     pub face_offsets: Vec<u32>,
+    /// The corners of all faces, concatenated face after face, as indices
+    /// into `positions`.
     pub face_indices: Vec<u32>,
 }
 
 /// A structural problem in a [`PolyMesh`].
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PolyMeshError {
+    /// A face refers to a vertex index at or past the number of positions.
     #[error("face {face} refers to vertex {index}, but there are only {count} vertices")]
     IndexOutOfRange {
+        /// Index of the first face found with such a corner.
         face: usize,
+        /// The out-of-range vertex index it holds.
         index: u32,
+        /// Number of positions the mesh has.
         count: usize,
     },
+    /// A position has a NaN or infinite coordinate.
     #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
     NonFinite {
+        /// Index of the first non-finite position.
         vertex: usize,
+        /// Its x coordinate.
         x: f64,
+        /// Its y coordinate.
         y: f64,
+        /// Its z coordinate.
         z: f64,
     },
+    /// `face_offsets` does not start at 0, does not end at
+    /// `face_indices.len()`, or decreases somewhere.
     #[error("face offsets are malformed")]
     Offsets,
+    /// The mesh has this many positions, too many for 32-bit indices (at
+    /// least `u32::MAX`).
     #[error("{0} entries exceed 32-bit indices")]
     TooLarge(usize),
 }

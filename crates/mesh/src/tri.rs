@@ -12,29 +12,51 @@ use rayon::prelude::*;
 /// A triangle mesh: positions and triangles as index triples.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriMesh {
+    /// Vertex positions; triangles refer to them by index.
     pub positions: Vec<DVec3>,
+    /// Each triangle's three corners as indices into `positions`, in the order
+    /// that sets its orientation.
     pub triangles: Vec<[u32; 3]>,
 }
 
 /// Why a mesh or a motion cannot be used.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MeshError {
+    /// A position has a NaN or infinite coordinate.
     #[error("{what}: vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
     NonFinite {
+        /// Names the position array that holds it (`"mesh"` for a mesh's own
+        /// positions; otherwise as given to [`check_positions`]).
         what: &'static str,
+        /// Index of the first non-finite position in that array.
         vertex: usize,
+        /// Its x coordinate.
         x: f64,
+        /// Its y coordinate.
         y: f64,
+        /// Its z coordinate.
         z: f64,
     },
+    /// A triangle refers to a vertex index at or past the number of positions.
     #[error("triangle {triangle} refers to vertex {index}, but there are only {count} vertices")]
     IndexOutOfRange {
+        /// Index of the first triangle found with such a corner.
         triangle: usize,
+        /// The out-of-range vertex index it holds.
         index: u32,
+        /// Number of positions the mesh has.
         count: usize,
     },
+    /// A motion's end positions are not one per vertex of the mesh.
     #[error("the end positions give {got} vertices, the mesh has {expected}")]
-    VertexCountMismatch { expected: usize, got: usize },
+    VertexCountMismatch {
+        /// Number of vertices the mesh has.
+        expected: usize,
+        /// Number of end positions given.
+        got: usize,
+    },
+    /// The mesh has this many positions, too many for 32-bit indices (at
+    /// least `u32::MAX`).
     #[error("{0} vertices exceed 32-bit indices")]
     TooLarge(usize),
 }
@@ -342,6 +364,8 @@ pub struct Edges {
     pub of_triangle: Vec<[u32; 3]>,
     /// Triangles of edge `e`: `tris[offsets[e]..offsets[e + 1]]`.
     pub offsets: Vec<u32>,
+    /// The triangles of every edge, concatenated edge by edge, each triangle
+    /// listed once per edge (even one that uses the edge on two sides).
     pub tris: Vec<u32>,
     /// What the construction saw of every edge, in the same pass.
     pub summary: EdgeSummary,

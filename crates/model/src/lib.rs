@@ -7,6 +7,8 @@
 //! - [`sierpinski`]: generalized Sierpinski polyhedra (chapter VI);
 //! - [`menger`]: generalized Menger sponges (chapter VII).
 
+#![warn(missing_docs)]
+
 pub mod handle;
 pub mod menger;
 pub mod rind;

@@ -81,16 +81,26 @@ pub const MAX_FACES: usize = 20_000_000;
 /// Why [`sierpinski`] refused. The mesh is unchanged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SierpinskiError {
+    /// The mesh has hole faces; the scheme of §VI.5 needs a closed surface.
     #[error(
         "the mesh has {holes} hole face(s); Sierpinski subdivision (§VI.5) is defined for closed polyhedra, close the boundary first"
     )]
-    OpenSurface { holes: usize },
+    OpenSurface {
+        /// How many hole faces the mesh has.
+        holes: usize,
+    },
+    /// The requested iterations could make more faces than the cap
+    /// ([`MAX_FACES`] or the one given to [`sierpinski_capped`]).
     #[error(
         "{iterations} Sierpinski iteration(s) could produce up to {bound} faces, above the cap of {cap}"
     )]
     TooManyFaces {
+        /// The number of iterations asked for.
         iterations: usize,
+        /// An upper bound on the face count after them (computed only until
+        /// it first passes the cap, so possibly lower than the final bound).
         bound: u128,
+        /// The cap that `bound` exceeds.
         cap: usize,
     },
     /// A kernel operation failed on handles this module made itself: a bug.
@@ -107,14 +117,18 @@ pub struct SierpinskiStep {
     pub corner_cuts: usize,
     /// Self-loops inserted in step 3.
     pub loops: usize,
+    /// Vertices of the mesh after this iteration.
     pub vertices: usize,
+    /// Edges of the mesh after this iteration, self-loops included.
     pub edges: usize,
+    /// Faces of the mesh after this iteration.
     pub faces: usize,
 }
 
 /// The steps of a [`sierpinski`] call, one per iteration.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct SierpinskiReport {
+    /// What each iteration did, in order; empty for zero iterations.
     pub steps: Vec<SierpinskiStep>,
 }
 

@@ -35,10 +35,12 @@ impl Image {
         }
     }
 
+    /// The picture's width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// The picture's height in pixels (the number of rows).
     pub fn height(&self) -> u32 {
         self.height
     }

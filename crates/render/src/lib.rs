@@ -91,6 +91,8 @@
 //! frames use `supersample: 2` and freeze the camera with [`frame`] and
 //! [`Framing::Fixed`] so the picture does not jump as the model changes.
 
+#![warn(missing_docs)]
+
 pub mod camera;
 pub mod image;
 pub mod prep;
@@ -124,43 +126,93 @@ pub const MAX_SUPERSAMPLE: u32 = 8;
 /// Everything that can go wrong while rendering.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RenderError {
+    /// The requested width or height is 0.
     #[error("the picture must be at least 1×1 pixels, not {width}×{height}")]
-    ZeroSize { width: u32, height: u32 },
+    ZeroSize {
+        /// The requested width in pixels.
+        width: u32,
+        /// The requested height in pixels.
+        height: u32,
+    },
+    /// A side exceeds [`MAX_SIDE`] or the picture exceeds [`MAX_PIXELS`].
     #[error(
         "a {width}×{height} picture is too large: each side may be at most {max_side} pixels \
          and the picture at most {max_pixels} pixels"
     )]
     TooLarge {
+        /// The requested width in pixels.
         width: u32,
+        /// The requested height in pixels.
         height: u32,
+        /// The largest accepted side in pixels ([`MAX_SIDE`]).
         max_side: u32,
+        /// The largest accepted width × height in pixels ([`MAX_PIXELS`]).
         max_pixels: u64,
     },
+    /// [`parse_size`] could not read a `WIDTHxHEIGHT` size.
     #[error("bad size {text:?}: {reason} (expected WIDTHxHEIGHT, e.g. 800x600)")]
-    Size { text: String, reason: String },
+    Size {
+        /// The text as given.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A view is neither a known name nor a usable `x,y,z` direction
+    /// ([`View::parse`], [`View::direction`]).
     #[error(
         "bad view {text:?}: {reason} (expected iso, front, back, left, right, top, bottom or a \
          direction x,y,z toward the camera, e.g. 1,-1,0.5)"
     )]
-    View { text: String, reason: String },
+    View {
+        /// The text as given, or the direction's components written as `x,y,z`.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// [`Up::parse`] got something other than `z`, `+z`, `y` or `+y`.
     #[error("bad up axis {text:?} (expected z or y)")]
-    Up { text: String },
+    Up {
+        /// The text as given.
+        text: String,
+    },
+    /// A field of [`RenderOptions`] is out of its range.
     #[error("bad option {name}: {reason}")]
-    Option { name: &'static str, reason: String },
+    Option {
+        /// The field's name, e.g. `"edge_width"`.
+        name: &'static str,
+        /// The value given and the range it misses.
+        reason: String,
+    },
+    /// No camera can be set up: a fixed [`Camera`] has non-finite or
+    /// out-of-range values, or the line of sight is degenerate; the text says which.
     #[error("bad camera: {0}")]
     Camera(String),
+    /// The mesh's face offsets or vertex indices are inconsistent; the text
+    /// says where.
     #[error("the mesh is malformed: {0}")]
     Mesh(String),
+    /// [`render_with_colors`] got a colour list whose length differs from
+    /// the mesh's number of faces or vertices.
     #[error("{kind} colours: the mesh has {expected} {kind}s but {got} colours were given")]
     ColorCount {
+        /// What the colours are for: `"face"` or `"vertex"`.
         kind: &'static str,
+        /// How many faces or vertices the mesh has.
         expected: usize,
+        /// How many colours were given.
         got: usize,
     },
+    /// The PNG encoder failed; the text is its message.
     #[error("PNG encoding failed: {0}")]
     Png(String),
+    /// Writing the PNG file failed.
     #[error("cannot write {path}: {message}")]
-    Io { path: String, message: String },
+    Io {
+        /// The file that could not be written.
+        path: String,
+        /// The operating system's error message.
+        message: String,
+    },
 }
 
 /// The picture's background.
@@ -169,7 +221,12 @@ pub enum Background {
     /// One colour; `Solid([0, 0, 0, 0])` is transparent.
     Solid(Rgba),
     /// A vertical gradient, opaque.
-    Gradient { top: Rgb, bottom: Rgb },
+    Gradient {
+        /// Colour of the top row.
+        top: Rgb,
+        /// Colour of the bottom row; rows in between blend linearly in sRGB.
+        bottom: Rgb,
+    },
 }
 
 impl Background {

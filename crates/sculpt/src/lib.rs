@@ -10,7 +10,7 @@
 //!   topology change (every frame for inflate and smooth, once at release
 //!   for grab and move), undo and redo of whole strokes, diagnostics.
 //! - [`strokes`]: the JSON stroke files `holey sculpt` replays.
-//! - [`remesh`]: dynamic remeshing (split, collapse, flip) of the region
+//! - [`remesh`](mod@remesh): dynamic remeshing (split, collapse, flip) of the region
 //!   around given vertices, never changing topology; strokes run it after
 //!   every inflate/smooth frame and after a grab's release, in a range
 //!   given by the stroke file or derived from the mean edge length.
@@ -41,6 +41,8 @@
 //! assert_eq!(session.mesh().positions[0], DVec3::ZERO);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+
+#![warn(missing_docs)]
 
 pub mod brush;
 pub mod live;

@@ -32,6 +32,7 @@ pub const MOVE_PICK_FRACTION: f64 = 0.1;
 /// The brush settings of a stroke, without its path.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BrushSettings {
+    /// The brush the stroke uses.
     pub brush: Brush,
     /// World-space radius (unused by move).
     pub radius: f64,
@@ -164,6 +165,7 @@ impl LiveStroke {
         self.remeshed
     }
 
+    /// The brush settings the stroke was begun with.
     pub fn settings(&self) -> BrushSettings {
         self.settings
     }
@@ -529,8 +531,14 @@ fn substeps(mesh: &TriMesh, end: &[DVec3]) -> usize {
 /// The result of [`LiveStroke::finish`].
 #[derive(Debug)]
 pub struct FinishedStroke {
+    /// The surface at the end of the stroke: after the last paint frame, or
+    /// after a drag's release and the remeshing that follows it.
     pub mesh: TriMesh,
+    /// The diagnostics of the stroke's last topology change; `None` when no
+    /// change ran (no frame moved the surface).
     pub diagnostics: Option<Diagnostics>,
+    /// What the stroke did, its frame count, final triangle count and time
+    /// filled in.
     pub report: StrokeReport,
 }
 
@@ -617,8 +625,12 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
 /// Remeshing operations counted over a stroke.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RemeshTally {
+    /// Edge splits made so far in the stroke.
     pub splits: usize,
+    /// Edge collapses made so far in the stroke, those of the cleanup after a
+    /// topology change (when remeshing is off) included.
     pub collapses: usize,
+    /// Edge flips made so far in the stroke.
     pub flips: usize,
 }
 
@@ -631,6 +643,7 @@ impl RemeshTally {
         r.splits + r.collapses + r.flips > 0
     }
 
+    /// Splits, collapses and flips together.
     pub fn operations(&self) -> usize {
         self.splits + self.collapses + self.flips
     }

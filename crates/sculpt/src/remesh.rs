@@ -50,6 +50,8 @@ pub struct RemeshOptions {
     pub max_edge: f64,
     /// Angle bounds in degrees for triangles made by collapses and flips.
     pub min_angle: f64,
+    /// The largest angle, in degrees, a collapse or flip may make (unless the
+    /// triangles it replaces were already worse).
     pub max_angle: f64,
     /// The largest turn, in degrees, of a changed triangle's normal.
     pub max_normal_change: f64,
@@ -105,13 +107,19 @@ impl From<Remesh> for RemeshOptions {
 /// What a remeshing did, and how vertex numbers changed.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RemeshReport {
+    /// Edges split at their midpoint (each with all its triangles).
     pub splits: usize,
+    /// Edges collapsed, each merging its two ends into one vertex.
     pub collapses: usize,
+    /// Edges flipped: the shared edge of two triangles swapped for the
+    /// other diagonal of their quad.
     pub flips: usize,
     /// Passes run.
     pub passes: usize,
     /// Triangles with an active vertex, and the work set around them.
     pub active_triangles: usize,
+    /// Triangles of the work set: those around any vertex of an active
+    /// triangle, the active ones included.
     pub loaded_triangles: usize,
     /// True when [`RemeshOptions::max_splits`] stopped the splitting.
     pub split_budget_exhausted: bool,
@@ -170,20 +178,39 @@ pub fn default_range(mesh: &TriMesh) -> Option<Remesh> {
 /// Why a remeshing was refused. The mesh is unchanged.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RemeshError {
+    /// The mesh failed its checks (an index out of range, a non-finite
+    /// position, too many vertices).
     #[error("remesh: {0}")]
     Mesh(MeshError),
+    /// The `active` mask does not hold one flag per vertex.
     #[error("remesh: the active mask has {got} entries, the mesh has {expected} vertices")]
-    ActiveLength { expected: usize, got: usize },
+    ActiveLength {
+        /// Number of vertices the mesh has.
+        expected: usize,
+        /// Number of flags in the mask.
+        got: usize,
+    },
+    /// The edge-length range is not finite with 0 < `min_edge` < `max_edge`.
     #[error(
         "remesh: need 0 < min_edge < max_edge, got min_edge {min_edge} and max_edge {max_edge}"
     )]
-    Range { min_edge: f64, max_edge: f64 },
+    Range {
+        /// The [`RemeshOptions::min_edge`] given.
+        min_edge: f64,
+        /// The [`RemeshOptions::max_edge`] given.
+        max_edge: f64,
+    },
+    /// An angle bound is out of range (in degrees, 0 ≤ `min_angle` < 60 <
+    /// `max_angle` ≤ 180 and 0 < `max_normal_change` ≤ 180).
     #[error(
         "remesh: need 0 <= min_angle < 60 < max_angle <= 180 and 0 < max_normal_change <= 180 (degrees), got {min_angle}, {max_angle}, {max_normal_change}"
     )]
     Angles {
+        /// The [`RemeshOptions::min_angle`] given, in degrees.
         min_angle: f64,
+        /// The [`RemeshOptions::max_angle`] given, in degrees.
         max_angle: f64,
+        /// The [`RemeshOptions::max_normal_change`] given, in degrees.
         max_normal_change: f64,
     },
 }

@@ -13,34 +13,69 @@ pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
 /// Why a stroke was refused. The session is left as it was.
 #[derive(Debug, thiserror::Error)]
 pub enum SculptError {
+    /// The mesh a session was started on failed its checks (an index out of
+    /// range, a non-finite position, too many vertices).
     #[error("the mesh: {0}")]
     Mesh(MeshError),
+    /// A grab or move had nothing to pick: the mesh has no triangles.
     #[error("{brush}: nothing to pick, the mesh has no triangles")]
-    NoSurface { brush: Brush },
+    NoSurface {
+        /// The stroke's brush (grab or move).
+        brush: Brush,
+    },
+    /// The first path point of a grab or move lies too far from the surface
+    /// to pick it.
     #[error(
         "{brush}: the first path point {point} is {distance:.6} from the surface, farther than {limit:.6} ({why})"
     )]
     PickTooFar {
+        /// The stroke's brush (grab or move).
         brush: Brush,
+        /// The first path point, where the pick was tried.
         point: DVec3,
+        /// Its distance to the closest point of the surface, in world units.
         distance: f64,
+        /// The largest distance allowed: the brush radius for a grab,
+        /// [`MOVE_PICK_FRACTION`](crate::live::MOVE_PICK_FRACTION) of the
+        /// bounding-box diagonal for a move.
         limit: f64,
+        /// Which of those two limits applied, in words (for the message).
         why: &'static str,
     },
+    /// The topology-change engine (§3) failed on a frame.
     #[error("frame {frame}: topology change failed: {source}")]
-    Topo { frame: usize, source: TopoError },
+    Topo {
+        /// The frame within its stroke, from 0 (0 also when the drag's collision
+        /// tally could not start; a drag's release counts as its last frame).
+        frame: usize,
+        /// The engine's error.
+        source: TopoError,
+    },
+    /// The observer returned an error for a frame it was shown.
     #[error("frame {frame}: {source}")]
-    Observer { frame: usize, source: ObserverError },
+    Observer {
+        /// The frame within its stroke, from 0, that the observer was shown.
+        frame: usize,
+        /// The observer's error.
+        source: ObserverError,
+    },
+    /// Dynamic remeshing (§4) refused the mesh after a frame.
     #[error("frame {frame}: {source}")]
     Remesh {
+        /// The frame within its stroke, from 0 (a grab's release counts as its
+        /// last frame).
         frame: usize,
+        /// Why remeshing refused.
         source: crate::remesh::RemeshError,
     },
     /// An error of a stroke of a replayed file; `index` counts from 0.
     #[error("stroke {index} ({brush}): {source}")]
     Stroke {
+        /// Position of the failing stroke in the file's `strokes`.
         index: usize,
+        /// That stroke's brush.
         brush: Brush,
+        /// The error that stroke met.
         source: Box<SculptError>,
     },
 }
@@ -48,6 +83,8 @@ pub enum SculptError {
 /// What one stroke did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct StrokeReport {
+    /// The stroke's brush; `None` only in a report no stroke filled in (the
+    /// default).
     pub brush: Option<Brush>,
     /// Path points replayed.
     pub frames: usize,
@@ -59,8 +96,12 @@ pub struct StrokeReport {
     pub changes: usize,
     /// Odd vertices over all engine runs, before and after correction.
     pub raw_odd_vertices: usize,
+    /// Vertices left odd by error correction (§3.4), summed over all engine
+    /// runs.
     pub corrected_odd_vertices: usize,
+    /// Triangles of the mesh the stroke started from.
     pub triangles_before: usize,
+    /// Triangles of the mesh the stroke ended with, after any remeshing.
     pub triangles_after: usize,
     /// Splits, collapses and flips of dynamic remeshing.
     pub remesh_operations: usize,
@@ -80,6 +121,8 @@ pub struct StrokeReport {
     /// Frames split in two because the engine found the motion crumpled
     /// the surface too much for one frame (each split counts once).
     pub subframes: usize,
+    /// Wall-clock seconds from the start of the stroke to its finish, any
+    /// pauses between frames included.
     pub seconds: f64,
 }
 

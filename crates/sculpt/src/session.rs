@@ -119,10 +119,12 @@ impl Session {
         }
     }
 
+    /// Whether there is a stroke to undo.
     pub fn can_undo(&self) -> bool {
         !self.undo.is_empty()
     }
 
+    /// Whether there is an undone stroke to redo (a new stroke clears them).
     pub fn can_redo(&self) -> bool {
         !self.redo.is_empty()
     }

@@ -32,6 +32,7 @@ use crate::brush::Brush;
 /// One stroke: a brush, its parameters and its path (one point per frame).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Stroke {
+    /// The brush the stroke uses.
     pub brush: Brush,
     /// World-space radius of the brush (move: 0 moves the whole piece).
     pub radius: f64,
@@ -39,6 +40,9 @@ pub struct Stroke {
     /// Smooth: fraction of a Laplacian step, in `[0, 1]`. Grab: scale of
     /// the drag (1 follows the pointer). Move: unused.
     pub strength: f64,
+    /// The brush positions in world space, one per frame (never empty in a
+    /// parsed file): inflate and smooth centre the brush there; grab and
+    /// move pick at the first point and then follow the later ones.
     pub path: Vec<DVec3>,
 }
 
@@ -46,14 +50,19 @@ pub struct Stroke {
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Remesh {
+    /// Edges shorter than this, in world units, are collapsed (positive).
     pub min_edge: f64,
+    /// Edges longer than this, in world units, are split (above `min_edge`).
     pub max_edge: f64,
 }
 
 /// A parsed stroke file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StrokeFile {
+    /// The file's `remesh` range; `None` lets the session derive one from
+    /// the mesh ([`crate::remesh::default_range`]).
     pub remesh: Option<Remesh>,
+    /// The strokes in file order; replaying makes each one undo step.
     pub strokes: Vec<Stroke>,
 }
 
@@ -63,11 +72,19 @@ pub enum StrokeFileError {
     /// Not JSON, or the top level is not `{"remesh"?, "strokes"}`.
     #[error("stroke file: {0}")]
     Json(#[source] serde_json::Error),
+    /// The `remesh` range is not finite with 0 < `min_edge` < `max_edge`;
+    /// the message gives the values found.
     #[error("stroke file: remesh: {0}")]
     Remesh(String),
     /// A stroke is malformed; `index` counts from 0.
     #[error("stroke {index}: {reason}")]
-    Stroke { index: usize, reason: String },
+    Stroke {
+        /// Position of the stroke in the file's `strokes` array.
+        index: usize,
+        /// What is wrong with it, in words: the JSON decoder's message or the
+        /// check that failed.
+        reason: String,
+    },
 }
 
 #[derive(Deserialize)]

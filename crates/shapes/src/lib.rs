@@ -64,6 +64,8 @@
 //! faces in order of their centres by the same rule, so face 0 is the
 //! lowest. Each face starts at its lowest-numbered vertex.
 
+#![warn(missing_docs)]
+
 mod error;
 mod grid;
 mod round;

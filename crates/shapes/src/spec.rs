@@ -13,13 +13,23 @@ pub enum ParamKind {
     /// A decimal integer in `min..=max`. `capped` says that `max` comes
     /// from [`MAX_FACES`] rather than from geometry.
     Int {
+        /// The value used when the parameter is left out or empty.
         default: u32,
+        /// The smallest accepted value.
         min: u32,
+        /// The largest accepted value.
         max: u32,
+        /// Whether `max` is set by the face limit; out-of-range messages
+        /// then say so.
         capped: bool,
     },
     /// A finite decimal number greater than 0 and at most `max`.
-    Real { default: f64, max: f64 },
+    Real {
+        /// The value used when the parameter is left out or empty.
+        default: f64,
+        /// The largest accepted value.
+        max: f64,
+    },
 }
 
 impl ParamKind {
@@ -54,6 +64,7 @@ impl ParamKind {
 pub struct Param {
     /// Short name used in usage lines and error messages.
     pub name: &'static str,
+    /// Its type, default and accepted range.
     pub kind: ParamKind,
     /// What the parameter means.
     pub doc: &'static str,

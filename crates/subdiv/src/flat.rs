@@ -259,6 +259,7 @@ impl Flat {
 pub struct Counts {
     /// All vertices, point-sphere vertices included.
     pub vertices: u128,
+    /// All edges, those bordering holes included.
     pub edges: u128,
     /// Faces that are neither holes nor point-spheres.
     pub normal_faces: u128,

@@ -47,6 +47,8 @@
 //! entities than the kernel's 32-bit indices hold) is a
 //! [`SubdivError::TooLarge`] error. [`subdivide_capped`] takes another cap.
 
+#![warn(missing_docs)]
+
 mod catmull_clark;
 mod doo_sabin;
 mod flat;
@@ -86,30 +88,56 @@ impl fmt::Display for Scheme {
 /// Why a mesh could not be subdivided. The input is never changed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SubdivError {
+    /// The predicted output of some level has more faces than the cap, or
+    /// more vertices, edges or corners than the kernel's 32-bit indices
+    /// hold; found from the counts before anything is allocated.
     #[error(
         "{levels} level(s) of {scheme} subdivision would make {faces} faces and {corners} corners \
          at level {level}, over the cap of {cap} faces (and the kernel's 32-bit indices)"
     )]
     TooLarge {
+        /// The scheme that was asked for.
         scheme: Scheme,
+        /// The number of levels that was asked for.
         levels: usize,
         /// The first level that is too large.
         level: usize,
+        /// Predicted number of faces at `level`, holes and point-spheres
+        /// included.
         faces: u128,
+        /// Predicted number of corners at `level`.
         corners: u128,
+        /// The cap on output faces in force ([`MAX_FACES`] unless a
+        /// `_capped` function was given another).
         cap: usize,
     },
+    /// An input vertex has a NaN or infinite coordinate.
     #[error("vertex {vertex} has a non-finite position ({x}, {y}, {z})")]
     NonFinite {
+        /// Index of the vertex among the input's live vertices, in slot
+        /// order (the numbering of [`Mesh::to_raw`]).
         vertex: usize,
+        /// x coordinate of that vertex.
         x: f64,
+        /// y coordinate of that vertex.
         y: f64,
+        /// z coordinate of that vertex.
         z: f64,
     },
+    /// The input was finite but an output position is not: with coordinates
+    /// this large, the sums taken while averaging overflowed `f64`.
     #[error(
         "{scheme} subdivision overflowed: output vertex {vertex} is not finite (coordinates too large)"
     )]
-    Overflow { scheme: Scheme, vertex: usize },
+    Overflow {
+        /// The scheme that was run.
+        scheme: Scheme,
+        /// Index of the first non-finite output vertex, in the output's
+        /// vertex numbering.
+        vertex: usize,
+    },
+    /// A consistency check inside a scheme failed; a bug, described by the
+    /// text, not a property of the input.
     #[error("internal error in subdivision (please report): {0}")]
     Internal(String),
 }

@@ -23,9 +23,12 @@ use crate::union_find::UnionFind;
 /// The exact properties of a triangle mesh.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SurfaceAudit {
+    /// Triangles in the list, degenerate ones included.
     pub triangles: usize,
     /// Vertices some triangle uses.
     pub vertices: usize,
+    /// Distinct edges: unordered pairs of vertex indices that a triangle side
+    /// joins.
     pub edges: usize,
     /// Components joined through shared vertices.
     pub components: usize,

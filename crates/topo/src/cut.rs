@@ -46,9 +46,17 @@ use crate::mesh::{Edges, TriMesh};
 /// What the subdivision did.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct CutReport {
+    /// Intersection curves resolved, cut along and glued (kept by step 1 of
+    /// §3.5; every curve in resolve mode).
     pub curves_kept: usize,
+    /// Intersection curves left uncut because every vertex of their triangles
+    /// has one parity (§3.5 step 1).
     pub curves_dropped: usize,
+    /// False intersection vertices (§3.5 step 1): one at the midpoint of each
+    /// edge whose ends have opposite parity and that no kept curve crosses.
     pub false_vertices: usize,
+    /// False intersection edges (§3.5 step 1): one between the two false
+    /// vertices of each mixed-parity triangle no kept curve touches.
     pub false_edges: usize,
     /// Triangles re-triangulated.
     pub triangles_split: usize,
@@ -235,7 +243,10 @@ pub type SourcePoint = (u32, [f64; 2]);
 
 /// The subdivided (and, with a parity field, trimmed) mesh.
 pub struct Cut {
+    /// The subdivided mesh, glued along the kept curves, without its deleted
+    /// (odd) sub-triangles.
     pub mesh: TriMesh,
+    /// Counts of what the subdivision, gluing and deletion did.
     pub report: CutReport,
     /// Per output vertex: the input vertex it is, or `u32::MAX` for a new
     /// point (an intersection point or a split's vertex).
@@ -308,7 +319,11 @@ pub enum Deletion<'a> {
     /// whole, the surface would come out crossing itself where it did not
     /// before.
     OddOneFrame {
+        /// Parity per input vertex (`true` = odd), as in [`Deletion::Odd`].
         odd: &'a [bool],
+        /// Per intersection curve (numbered as in
+        /// [`Intersections::curve_of_piece`]): whether this frame made it; a
+        /// curve past the end of the slice counts as not new.
         new_curve: &'a [bool],
     },
     /// The odd part of an exact parity field (containment numbers, in the
@@ -354,13 +369,13 @@ pub fn mixed_curves(tris: &[[u32; 3]], x: &Intersections, odd: &[bool]) -> Vec<b
 /// point inside it, computed as if a vertex had been placed there (the
 /// adaptive refinement §7 proposes). Without it the region is kept.
 ///
-/// The phases of the module documentation, one function each: the curves
-/// to resolve ([`curves_to_resolve`]), their points as global vertices
-/// ([`place_points`]), what lies on each triangle and edge
-/// ([`OnMesh::gather`]), false vertices and edges
-/// ([`OnMesh::add_false_vertices`]), the subdivision ([`subdivide`]), the
-/// gluing of shared vertices and merged points ([`glue`]), and the
-/// labelling and deletion ([`trim`]).
+/// The phases of the module documentation, one private function each:
+/// the curves to resolve (`curves_to_resolve`), their points as global
+/// vertices (`place_points`), what lies on each triangle and edge
+/// (`OnMesh::gather`), false vertices and edges
+/// (`OnMesh::add_false_vertices`), the subdivision (`subdivide`), the
+/// gluing of shared vertices and merged points (`glue`), and the
+/// labelling and deletion (`trim`).
 pub fn cut(
     mesh: &TriMesh,
     positions: &[DVec3],

@@ -47,14 +47,14 @@ pub struct Options {
     /// When a solid (closed, consistently oriented) input comes out not
     /// closed — a motion that folds the surface makes collision parity
     /// inconsistent — label the arrangement by containment number instead
-    /// (Lemma 8.1's interpretation; [`crate::solid`]). For one frame it
+    /// (Lemma 8.1's interpretation; `crate::solid`). For one frame it
     /// also redoes a frame whose exact coincidences broke the solid
     /// ([`topology_change`]). Off reproduces the paper.
     pub solid_guard: bool,
     /// Most intersecting triangle pairs plus candidate triple points a
     /// frame may have at its end before the engine gives up with an error
     /// ([`IntersectError::TooManyPairs`](crate::intersect::IntersectError));
-    /// `None` is [`default_pair_limit`](crate::intersect::default_pair_limit)
+    /// `None` is [`default_pair_limit`]
     /// of the mesh's triangle count, `Some(usize::MAX)` no limit.
     pub max_intersecting_pairs: Option<usize>,
     /// Let a sculpting frame or drag ([`crate::guard`]) leave new
@@ -83,10 +83,18 @@ impl Default for Options {
 /// Why the engine refused its input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum TopoError {
+    /// The mesh or its end positions failed validation; the [`MeshError`] says
+    /// which check.
     #[error(transparent)]
     Mesh(#[from] MeshError),
+    /// The geometry kernel refused the positions (a non-finite coordinate, more
+    /// points than its 32-bit identities address) while numbering them or
+    /// detecting collisions (§3.2).
     #[error("collision detection: {0}")]
     Geometry(#[from] holey_geom::GeomError),
+    /// Finding the static intersections at the end positions (§3.3) failed, or
+    /// found more intersecting pairs than [`Options::max_intersecting_pairs`]
+    /// allows.
     #[error("static intersections: {0}")]
     Intersections(#[from] crate::intersect::IntersectError),
 }
@@ -96,13 +104,19 @@ pub enum TopoError {
 /// overlap and `total` is less than the sum.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timings {
+    /// Continuous collision detection for the raw parity field (§3.2); 0 when
+    /// the parity comes from containment instead.
     pub collisions: f64,
+    /// Static intersections at the end positions (§3.3).
     pub intersections: f64,
     /// Error correction (§3.4); in a union by containment
     /// ([`crate::union()`]), which has nothing to correct, the rays that
     /// compute its exact parity.
     pub correction: f64,
+    /// Subdivision, gluing and deletion (§3.5), with the solid guard, pinch
+    /// splitting and reorientation that follow it.
     pub cut: f64,
+    /// The whole call, from the input checks to the output.
     pub total: f64,
 }
 
@@ -116,13 +130,24 @@ pub struct Report {
     /// Rays cast to decide containment parity (the union of two solids,
     /// [`crate::union()`], computes the motion's parity this way).
     pub containment_rays: usize,
+    /// Input vertices whose raw parity is odd: an odd number of collisions
+    /// (§3.2).
     pub raw_odd_vertices: usize,
+    /// Input vertices whose parity is odd after error correction (§3.4).
     pub corrected_odd_vertices: usize,
+    /// Intersection points at the end positions (§3.3): edge × triangle
+    /// crossings and triple points.
     pub intersection_points: usize,
+    /// Of those, the triple points, where three triangles meet.
     pub triple_points: usize,
+    /// Curve pieces: segments of intersection curves between consecutive
+    /// intersection points (or shared vertices).
     pub intersection_edges: usize,
+    /// Intersection curves: connected components of the curve pieces.
     pub intersection_curves: usize,
+    /// Triangle pairs that intersect along a segment at the end positions.
     pub intersecting_pairs: usize,
+    /// What subdivision, gluing and deletion did (§3.5).
     pub cut: CutReport,
     /// Components whose correction system was solved.
     pub solved_components: usize,
@@ -138,14 +163,19 @@ pub struct Report {
     /// The input was a closed, consistently oriented 2-manifold (a
     /// solid's surface): the solid guard and the coplanar retry apply.
     pub solid_input: bool,
+    /// Output triangles flipped to agree in orientation with their neighbours
+    /// ([`Options::orient`]); 0 when that is off.
     pub orientation_flips: usize,
+    /// Wall-clock seconds per stage.
     pub timings: Timings,
 }
 
 /// The result of a topology change.
 #[derive(Clone, Debug, Default)]
 pub struct Outcome {
+    /// The surface after the topology change, at the end positions.
     pub mesh: TriMesh,
+    /// What the run did: counts per stage and timings.
     pub report: Report,
     /// Raw parity per input vertex (`true` = odd).
     pub raw_odd: Vec<bool>,

@@ -53,19 +53,34 @@ pub enum PointKind {
     /// the edge from `ends[0]` to `ends[1]`; `bary` are the barycentric
     /// coordinates in `tri`.
     EdgeTri {
+        /// The crossing mesh edge: index into [`Edges`], whose `ends` give its
+        /// two vertices.
         edge: u32,
+        /// The crossed triangle: index into the mesh's triangles.
         tri: u32,
+        /// Position along the edge, 0 at `ends[0]` and 1 at `ends[1]`
+        /// (correctly rounded).
         t: f64,
+        /// Barycentric coordinates of the point in `tri`, the weights of its
+        /// corners in order (correctly rounded).
         bary: [f64; 3],
     },
     /// Three triangles meet; `bary[k]` are the coordinates in `tris[k]`.
-    Triple { tris: [u32; 3], bary: [[f64; 3]; 3] },
+    Triple {
+        /// The three triangles, by index in increasing order.
+        tris: [u32; 3],
+        /// `bary[k]`: barycentric coordinates of the point in `tris[k]`.
+        bary: [[f64; 3]; 3],
+    },
 }
 
 /// An intersection point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IPoint {
+    /// What generates the point, with its coordinates on the triangles it lies
+    /// on.
     pub kind: PointKind,
+    /// Its position, rounded once from the exact intersection.
     pub position: DVec3,
 }
 
@@ -73,17 +88,26 @@ pub struct IPoint {
 /// nodes on the intersection of two triangles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Piece {
+    /// The nodes the piece joins, in their order along the intersection
+    /// segment.
     pub ends: [Node; 2],
+    /// The two triangles whose intersection segment the piece lies on, lower
+    /// index first.
     pub tris: [u32; 2],
 }
 
 /// The self-intersections of a mesh at one set of positions.
 #[derive(Clone, Debug, Default)]
 pub struct Intersections {
+    /// Every intersection point, once; [`Node::Point`] indexes this list.
     pub points: Vec<IPoint>,
+    /// The curve pieces, grouped by intersecting pair in the order of
+    /// [`Intersections::pairs`].
     pub pieces: Vec<Piece>,
     /// Curve (connected component of pieces) of each piece.
     pub curve_of_piece: Vec<u32>,
+    /// Number of curves; [`Intersections::curve_of_piece`] numbers them
+    /// `0..curve_count`.
     pub curve_count: usize,
     /// Triangle pairs that intersect along a segment, `t1 < t2`, sorted.
     pub pairs: Vec<(u32, u32)>,
@@ -94,6 +118,8 @@ pub struct Intersections {
     /// Candidate pairs from the bounding-box pass, and how many the exact
     /// plane-side filter rejected.
     pub candidates: usize,
+    /// Of the candidates, those that gave no intersection segment (`candidates`
+    /// minus the segments found).
     pub filtered: usize,
 }
 
@@ -110,14 +136,27 @@ impl Intersections {
 /// Why the static intersection stage failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum IntersectError {
+    /// The geometry kernel refused the positions: a non-finite coordinate, or
+    /// more points or triangles than 32-bit indices address.
     #[error("geometry: {0}")]
     Geometry(#[from] holey_geom::GeomError),
+    /// The mesh failed validation; the [`MeshError`](crate::mesh::MeshError)
+    /// says which check.
     #[error(transparent)]
     Mesh(#[from] crate::mesh::MeshError),
+    /// The exact predicates found an intersection point whose coordinates could
+    /// not then be constructed.
     #[error(
         "the intersection point of edge {edge} and triangle {tri} could not be constructed: {reason}"
     )]
-    Construction { edge: u32, tri: u32, reason: String },
+    Construction {
+        /// The crossing mesh edge, or `u32::MAX` for a triple point.
+        edge: u32,
+        /// The crossed triangle, or for a triple point the first of its three.
+        tri: u32,
+        /// What the construction reported, in words.
+        reason: String,
+    },
     /// More intersecting triangle pairs, plus candidate triples (three
     /// pairwise intersecting triangles), than the caller allows: every
     /// pair makes a curve piece and every triple an exact test, so such a
@@ -128,7 +167,12 @@ pub enum IntersectError {
          ({triangles} triangles); the motion crumples it too much for one frame: \
          move less per frame or remesh first"
     )]
-    TooManyPairs { limit: usize, triangles: usize },
+    TooManyPairs {
+        /// The limit exceeded, on intersecting pairs plus candidate triples.
+        limit: usize,
+        /// Number of triangles of the mesh tested.
+        triangles: usize,
+    },
 }
 
 /// The default limit on intersecting triangle pairs plus candidate

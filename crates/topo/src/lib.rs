@@ -3,6 +3,8 @@
 //! Bernstein & Wojtan, *Putting Holes in Holey Geometry* (SIGGRAPH 2013),
 //! section 3 and appendices A–C.
 
+#![warn(missing_docs)]
+
 pub mod accumulate;
 pub mod audit;
 mod containment;

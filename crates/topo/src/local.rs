@@ -34,10 +34,14 @@ use crate::mesh::TriMesh;
 /// [`Accumulator::release_local`](crate::Accumulator::release_local) did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LocalReport {
+    /// The engine's report of its run on the region, or on the whole mesh after
+    /// a fallback.
     pub report: Report,
     /// Raw and corrected parity per input vertex (`true` = odd); vertices
     /// outside the region are even.
     pub raw_odd: Vec<bool>,
+    /// Corrected parity per input vertex (`true` = odd, §3.4); vertices outside
+    /// the region are even.
     pub corrected_odd: Vec<bool>,
     /// Intersection curves the frame found.
     pub intersection_curves: usize,
@@ -391,7 +395,7 @@ impl Region {
     }
 }
 
-/// [`topology_change`](crate::topology_change) of `mesh` moving to `end`,
+/// [`topology_change`] of `mesh` moving to `end`,
 /// run only on the triangles the motion can reach, written into `mesh`
 /// (left as it was on error). Same contract; see the module documentation
 /// for why the result matches.

@@ -3,7 +3,7 @@
 //! the engine; the CLI, the demo, the bindings and the benchmarks only
 //! call it):
 //!
-//! - **Containment** ([`crate::union`], Theorem 5.2 of Bernstein & Wojtan
+//! - **Containment** ([`crate::union()`], Theorem 5.2 of Bernstein & Wojtan
 //!   2013 without the motion): two closed, consistently oriented
 //!   2-manifolds, neither crossing itself, no piece nested in another;
 //!   robust to coplanar contact by the scale-relative nudges of
@@ -43,8 +43,14 @@ pub const DEFAULT_DIRECTION: [f64; 3] = [1.0, 0.3127, 0.1731];
 /// How a Boolean of solids is computed (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
+    /// Each vertex's containment parity in the other solid, without the motion
+    /// ([`crate::union()`]).
     Containment,
+    /// The winding-number rule on the arrangement of all the inputs
+    /// ([`crate::winding_boolean`]).
     Winding,
+    /// B moved in from far away in one frame, through the whole pipeline
+    /// (Theorem 5.2).
     Motion,
 }
 
@@ -106,6 +112,7 @@ pub enum Computed {
 pub struct BooleanOutcome {
     /// The method that made the result.
     pub method: Method,
+    /// The result of the engine that computed it: the surface and its report.
     pub computed: Computed,
     /// For containment and motion: the inputs as one mesh where the
     /// parity was computed (B nudged, or at the motion's end), whose
@@ -145,24 +152,38 @@ impl BooleanOutcome {
 /// Why [`solid_boolean`] could not run.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum BooleanError {
+    /// No input mesh was given.
     #[error("a Boolean needs at least one input")]
     NoInput,
+    /// An input has no vertices; the field is the index of the first such input
+    /// in the list (from 0).
     #[error("input {0} has no vertices")]
     Empty(usize),
+    /// The inputs hold too many vertices for 32-bit indices (at least
+    /// `u32::MAX / 2`); the field is their total.
     #[error("the inputs together have too many vertices ({0})")]
     TooManyVertices(usize),
     /// The motion moves B into A: it unites exactly two solids.
     #[error("the motion unites exactly two solids (given {inputs} inputs for a {op})")]
-    MotionNeedsTwo { inputs: usize, op: &'static str },
+    MotionNeedsTwo {
+        /// Number of inputs given.
+        inputs: usize,
+        /// Name of the operation asked for ([`Operation::name`]).
+        op: &'static str,
+    },
+    /// The direction B arrives from is zero or not finite.
     #[error("the direction B arrives from must be finite and not zero")]
     BadDirection,
     /// B's start position, far along the direction, is not finite.
     #[error("B's start position overflows: the coordinates are too large")]
     Overflow,
+    /// The containment path refused its input ([`UnionError`] says why).
     #[error(transparent)]
     Union(#[from] UnionError),
+    /// The winding-number path refused its input ([`WindingError`] says why).
     #[error(transparent)]
     Winding(#[from] WindingError),
+    /// The engine failed on the motion's frame ([`TopoError`] says why).
     #[error(transparent)]
     Topo(#[from] TopoError),
 }

@@ -74,7 +74,10 @@ use crate::union_find::UnionFind;
 /// Which of the two solids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Solid {
+    /// The first solid: the one that stays in place in the motion of Theorem
+    /// 5.2.
     A,
+    /// The second solid: the one that arrives from far away in the motion.
     B,
 }
 
@@ -306,6 +309,8 @@ impl Rays<'_> {
 /// Why [`union`] cannot take its input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum UnionError {
+    /// A solid failed mesh validation, or the geometry kernel or the static
+    /// intersections between A and B failed ([`TopoError`] says which).
     #[error(transparent)]
     Topo(#[from] TopoError),
     /// Containment in a surface with boundary (or an edge an odd number

@@ -41,7 +41,7 @@
 //!    add: of opposite ones nothing or one is kept, of equal ones one.
 //! 5. Where coplanar sheets meet along an edge, a constructed point can
 //!    land on a kept triangle's side without being its vertex (a
-//!    T-junction); the side is split there ([`repair_t_junctions`]).
+//!    T-junction); the side is split there (`repair_t_junctions`).
 //!
 //! **Open inputs.** The winding number of a surface with holes is not an
 //! integer; it is the generalized winding number (Jacobson, Kavan &
@@ -82,10 +82,14 @@ use crate::winding::WindingField;
 /// Why [`boolean_by_winding`] cannot take its input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum WindingError {
+    /// An input failed mesh validation, or the geometry kernel or the static
+    /// intersections failed ([`TopoError`] says which).
     #[error(transparent)]
     Topo(#[from] TopoError),
+    /// No input mesh was given.
     #[error("an operation needs at least one input mesh")]
     NoInput,
+    /// A difference was asked of a single input.
     #[error("a difference needs at least two input meshes")]
     DifferenceNeedsTwo,
     /// A ray could not leave the scene (coordinates near the largest
@@ -108,12 +112,18 @@ pub struct WindingReport {
     pub inputs_closed: Vec<bool>,
     /// Triangle pairs (of any inputs, or of one) that intersect.
     pub intersecting_pairs: usize,
+    /// Intersection points among all the inputs' triangles: edge × triangle
+    /// crossings and triple points.
     pub intersection_points: usize,
+    /// Of those, the triple points, where three triangles meet.
     pub triple_points: usize,
+    /// Intersection curves: connected components of the curve pieces.
     pub intersection_curves: usize,
     /// Triangles of the arrangement, and its regions (cells of the
     /// surface between curves).
     pub arrangement_triangles: usize,
+    /// Regions of the arrangement; each group of coincident cells counts as
+    /// one.
     pub regions: usize,
     /// Groups of identical coincident cells, treated as one sheet.
     pub coincident_groups: usize,
@@ -124,10 +134,10 @@ pub struct WindingReport {
     /// were equal.
     pub welded_points: usize,
     /// Regions no sample point could classify (slivers of no area), given
-    /// the fate that leaves the result closed ([`close_unsampled`]).
+    /// the fate that leaves the result closed (`close_unsampled`).
     pub unsampled_regions: usize,
     /// Sides of result triangles split where a vertex of the other side
-    /// lies on them ([`repair_t_junctions`]).
+    /// lies on them (`repair_t_junctions`).
     pub t_junctions_repaired: usize,
     /// Directed edges of the result without a partner running the other
     /// way: 0 for a closed, consistently oriented result.
@@ -138,23 +148,35 @@ pub struct WindingReport {
     /// How many nudges of the inputs after the first the result took
     /// ([`boolean_by_winding_robust`]).
     pub perturbation_retries: usize,
+    /// What cutting and gluing along every curve did (resolve mode: nothing
+    /// deleted).
     pub cut: CutReport,
+    /// Wall-clock seconds per stage.
     pub seconds: WindingTimings,
 }
 
 /// Seconds spent in each stage.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct WindingTimings {
+    /// From the start of the call through the static intersections (joining the
+    /// inputs included).
     pub intersections: f64,
+    /// Cutting and gluing the arrangement, and welding its equal points.
     pub cut: f64,
+    /// Casting the rays that classify the regions, choosing the kept triangles
+    /// and repairing T-junctions.
     pub classify: f64,
+    /// The whole call (for [`boolean_by_winding_robust`]: every attempt and
+    /// check).
     pub total: f64,
 }
 
 /// The result of [`boolean_by_winding`].
 #[derive(Clone, Debug)]
 pub struct WindingOutcome {
+    /// The resulting surface, holding only the vertices its triangles use.
     pub mesh: TriMesh,
+    /// What the operation did.
     pub report: WindingReport,
 }
 

@@ -35,7 +35,10 @@ use glam::DVec3;
 /// Collisions found by [`collisions_float`]: count and times (ascending).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FloatCollisions {
+    /// Number of collisions found, 0 to 3.
     pub count: u8,
+    /// Collision times in `[0, 1)`, ascending; only the first `count` entries
+    /// hold times (the rest are 0).
     pub times: [f64; 3],
 }
 

@@ -15,7 +15,7 @@
 //! box of its six keyframe corners) streamed over it in parallel; a triangle
 //! skips the vertices it contains *by index*. When the motion is a few
 //! rigid translations (a solid sliding into another, Theorem 5.2), a
-//! specialised broad phase ([`groups`]) streams each vertex's needle over
+//! specialised broad phase (`groups`) streams each vertex's needle over
 //! the shadows of the other parts' triangles instead. Pairs with exactly
 //! equal displacements have no relative motion and are not tested. Output
 //! is deterministic: the odd (vertex, triangle) pairs sorted, and per
@@ -73,14 +73,20 @@ pub enum Narrow {
 /// How keyframe positions get their symbolic identities (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Identities {
+    /// Each vertex's keyframe positions get identities from its index
+    /// ([`frame_ids`]): coincident vertices stay distinct symbolic points.
     ByIndex,
+    /// Identities `2·class + parity` from each keyframe's position classes:
+    /// vertices coincident there are one symbolic point, as if welded.
     ByPosition,
 }
 
 /// Options of [`vertex_parities`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CcdOptions {
+    /// The narrow-phase test run on each candidate vertex–triangle pair.
     pub narrow: Narrow,
+    /// How keyframe positions get their symbolic identities.
     pub identities: Identities,
     /// Index `k` of the frame (keyframes `k → k+1`): only its parity matters.
     pub frame: u64,

@@ -96,7 +96,11 @@ use crate::sos::{Poly, SosSign, SymPoint, sos_sign};
 /// The outcome of [`vertex_triangle_parity`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum CcdParity {
+    /// The point hits the triangle an even number of times (possibly none) over
+    /// the frame, in the perturbed world.
     Even,
+    /// The point hits the triangle an odd number of times over the frame, in
+    /// the perturbed world.
     Odd,
     /// Two of the eight keyframe points share an identity.
     Degenerate,
@@ -106,7 +110,9 @@ pub enum CcdParity {
 /// keyframe position a symbolic point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MovingPoint {
+    /// Position and symbolic identity at `t = 0`.
     pub start: SymPoint,
+    /// Position and symbolic identity at `t = 1`.
     pub end: SymPoint,
 }
 

@@ -162,25 +162,41 @@ pub struct MeshInfo {
 /// [`MeshInfo`] restricted to it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ComponentInfo {
+    /// Vertices of this component (its V).
     pub vertices: usize,
+    /// Distinct undirected edges of this component, self-loops included (its E).
     pub edges: usize,
+    /// Valid faces of this component, of every size (its F).
     pub faces: usize,
+    /// Edges of this component with exactly one side.
     pub boundary_edges: usize,
+    /// Connected pieces of this component's boundary-edge graph (its b).
     pub boundary_loops: usize,
+    /// Edges of this component with three or more sides.
     pub nonmanifold_edges: usize,
+    /// Vertices of this component with more than one fan.
     pub nonmanifold_vertices: usize,
+    /// Two-sided edges of this component whose two sides run the same way.
     pub misoriented_edges: usize,
+    /// Faces of this component that use some vertex more than once.
     pub degenerate_faces: usize,
+    /// Edges of this component whose two ends are the same vertex.
     pub self_loops: usize,
+    /// This component has no boundary edge.
     pub closed: bool,
+    /// This component has no non-manifold edge or vertex and no degenerate
+    /// face.
     pub manifold: bool,
+    /// This component has no misoriented edge.
     pub oriented: bool,
+    /// χ = V − E + F of this component.
     pub euler: i64,
     /// (2 − χ − b)/2; `None` unless this component is manifold and oriented.
     pub genus: Option<i64>,
     /// Signed volume; `None` unless this component is closed, manifold,
     /// oriented and finite.
     pub volume: Option<f64>,
+    /// Total area of this component's fan triangles with finite corners.
     pub area: f64,
 }
 

@@ -70,6 +70,9 @@ pub fn weld_exact(mesh: &PolyMesh) -> PolyMesh {
 /// What [`weld_by_distance`] did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Welded {
+    /// The welded mesh: one position per merged group, faces renumbered to
+    /// them, repeated consecutive corners merged, and faces left with fewer
+    /// than three distinct corners removed.
     pub mesh: PolyMesh,
     /// Vertices merged into another.
     pub merged_vertices: usize,
@@ -80,14 +83,20 @@ pub struct Welded {
 /// Why [`weld_by_distance`] refused its input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum WeldError {
+    /// The weld distance given (this value) is NaN, infinite or negative.
     #[error("the weld distance must be finite and not negative, got {0}")]
     Distance(f64),
+    /// The position at this index has a NaN or infinite coordinate.
     #[error("vertex {0} has a non-finite coordinate")]
     NonFinite(usize),
+    /// A face refers to a vertex index at or past the number of positions.
     #[error("face {face} refers to vertex {index}, but there are only {count} vertices")]
     IndexOutOfRange {
+        /// Index of the first face found with such a corner.
         face: usize,
+        /// The out-of-range vertex index it holds.
         index: u32,
+        /// Number of positions the mesh has.
         count: usize,
     },
 }

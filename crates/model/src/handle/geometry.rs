@@ -50,7 +50,9 @@ pub fn hermite_basis_derivative(t: f64) -> [f64; 4] {
 /// surface, which makes a tunnel (a hole) instead of a handle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HermiteCurve {
+    /// `H(0)`: the centroid of the first face, where the curve starts.
     pub p1: DVec3,
+    /// `H(1)`: the centroid of the second face, where the curve ends.
     pub p2: DVec3,
     /// `w1·n1`: the velocity at `t = 0`.
     pub start_velocity: DVec3,

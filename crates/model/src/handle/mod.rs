@@ -83,34 +83,69 @@ use matching::{Matching, plan_matching};
 /// Why a handle was refused. The mesh is unchanged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum HandleError {
+    /// [`HandleParams::segments`] was 0; a handle has at least one segment.
     #[error("a handle needs at least one segment (got 0)")]
     NoSegments,
+    /// A weight of eq. 4.1 is NaN or infinite.
     #[error("weight {name} is {value}; the weights must be finite")]
-    NonFiniteWeight { name: &'static str, value: f64 },
+    NonFiniteWeight {
+        /// Which weight is bad: `"w1"` or `"w2"`.
+        name: &'static str,
+        /// The offending value (NaN or ±∞).
+        value: f64,
+    },
+    /// Both corners belong to this one face; a handle needs two different faces.
     #[error("both corners lie in face {0}; a handle joins two different faces")]
     SameFace(FaceId),
+    /// This end face is a point-sphere (one corner, no edge), so no pipe
+    /// can start from it.
     #[error("face {0} is a point-sphere: it has no edges for a handle to start from")]
     PointSphere(FaceId),
+    /// This end face is flagged as a hole (a boundary loop), not surface.
     #[error(
         "face {0} is a hole (a boundary loop), not surface; clear its hole flag first to attach a handle to it"
     )]
     HoleFace(FaceId),
+    /// The faces have different corner counts and the preprocessing cannot
+    /// even them: every edge of the smaller face borders one of the two end
+    /// faces, and such edges are never subdivided.
     #[error(
         "cannot match the corner counts of faces {small} and {large}: every edge of the smaller face borders one of the two faces, so none can be subdivided"
     )]
-    Unmatchable { small: FaceId, large: FaceId },
+    Unmatchable {
+        /// The end face with fewer corners, the one that needed subdividing.
+        small: FaceId,
+        /// The end face with more corners.
+        large: FaceId,
+    },
+    /// This end face has zero area and so no normal for the curve to leave
+    /// or enter along (only refused for two or more segments).
     #[error(
         "face {0} has zero area, so it has no normal for the handle's curve to leave along; use one segment (a plain pipe) or another face"
     )]
     DegenerateFace(FaceId),
+    /// An intermediate section came out with a NaN or infinite coordinate,
+    /// because the weights are too large for the mesh's scale.
     #[error(
         "section {section} of the handle has non-finite coordinates; the weights are too large for the mesh's scale"
     )]
-    NonFinite { section: usize },
+    NonFinite {
+        /// The failing section's number, from 1 (nearest `f1`) to `k − 1`.
+        section: usize,
+    },
+    /// The handle would add more corners than the kernel's 32-bit ids can
+    /// number.
     #[error(
         "a handle of {segments} segments between {corners}-corner faces needs more entities than the kernel's 32-bit indices hold"
     )]
-    TooLarge { segments: usize, corners: usize },
+    TooLarge {
+        /// The requested number of segments `k`.
+        segments: usize,
+        /// Corners per face after matching (`N`), i.e. per section.
+        corners: usize,
+    },
+    /// A kernel call failed: a corner or face id not in the mesh, or (once
+    /// planning has passed) a kernel bug.
     #[error(transparent)]
     Kernel(#[from] holey_dlfl::Error),
 }
@@ -188,6 +223,8 @@ pub struct HandlePlan {
     pub corners: usize,
     /// Vertices the preprocessing inserts, and into which face.
     pub subdivisions: usize,
+    /// The face that preprocessing subdivides (the one with fewer corners),
+    /// or `None` when both faces already have `N` corners.
     pub subdivided_face: Option<FaceId>,
     /// The curve (eq. 4.1); `None` for one segment, which needs no geometry.
     pub curve: Option<HermiteCurve>,
@@ -208,15 +245,25 @@ pub struct HandlePlan {
 #[derive(Clone, Debug, PartialEq)]
 pub enum HandleStep {
     /// Preprocessing inserted this vertex into an edge of the smaller face.
-    Subdivided { vertex: VertexId },
+    Subdivided {
+        /// The new vertex, placed where the plan put it on the split edge.
+        vertex: VertexId,
+    },
     /// Section `index` (from 1) was made by `CreateFaceManifold`.
     Section {
+        /// The section's number along the handle, from 1 (next to `f1`) to `k − 1`.
         index: usize,
+        /// The section's front face (normal `σ` times the curve's unit tangent);
+        /// the pipe towards `f2` starts from it.
         front: FaceId,
+        /// The section's back face, where the pipe from `f1`'s side ends.
         back: FaceId,
     },
     /// Pipe `index` (from 0: `f1` to section 1) was made by `CreatePipe`.
-    Pipe { index: usize },
+    Pipe {
+        /// The pipe's number, from 0 (`f1` to section 1) to `k − 1` (last section to `f2`).
+        index: usize,
+    },
 }
 
 /// What [`create_handle`] built.

@@ -192,6 +192,8 @@ pub enum Thickness {
 pub struct MengerParams {
     /// Number of levels.
     pub iterations: usize,
+    /// The wall thickness `D` (§VII.3), in model units or relative to the
+    /// mean edge length.
     pub thickness: Thickness,
     /// Case 3 of §VII.4 (90° < φ < 180°): the connecting edges of an
     /// original edge are collapsed when its interior angle φ is below this
@@ -215,41 +217,102 @@ impl Default for MengerParams {
 /// Why [`menger`] refused. The mesh is unchanged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MengerError {
+    /// The thickness is not a finite positive number, either as given or
+    /// once a ratio is multiplied by the mean edge length.
     #[error("thickness must be a finite number greater than 0, got {value}")]
-    InvalidThickness { value: f64 },
+    InvalidThickness {
+        /// The rejected value: the given `D` or ratio, or the computed `D`.
+        value: f64,
+    },
+    /// [`MengerParams::collapse_angle_deg`] is outside [90, 180] (or NaN).
     #[error("the collapse angle must be a number of degrees in [90, 180], got {value}")]
-    InvalidCollapseAngle { value: f64 },
+    InvalidCollapseAngle {
+        /// The rejected angle, in degrees.
+        value: f64,
+    },
+    /// The mesh has no faces (or no edges to take a mean length from).
     #[error("the mesh has no faces")]
     Empty,
+    /// The mesh has hole faces, so it is not a closed surface.
     #[error(
         "the mesh has {holes} hole face(s); the Menger sponge algorithm needs a closed surface"
     )]
-    OpenSurface { holes: usize },
+    OpenSurface {
+        /// How many hole faces the mesh has.
+        holes: usize,
+    },
+    /// A face has fewer than 3 corners.
     #[error("face {face} has {len} corner(s); the Menger sponge algorithm needs at least 3")]
-    ShortFace { face: FaceId, len: usize },
-    #[error("edge {edge} is a self-loop; the Menger sponge algorithm needs plain edges")]
-    SelfLoop { edge: EdgeId },
-    #[error("edge {edge} has face {face} on both sides; its dihedral angle is undefined")]
-    SameFaceBothSides { edge: EdgeId, face: FaceId },
-    #[error("face {face} is degenerate: {reason}")]
-    DegenerateFace { face: FaceId, reason: String },
-    #[error("edge {edge} is degenerate: {reason}")]
-    DegenerateEdge { edge: EdgeId, reason: String },
-    #[error("thickness {thickness} is too large for face {face} at level {level}: {reason}")]
-    ThicknessTooLarge {
+    ShortFace {
+        /// The face refused.
         face: FaceId,
-        level: usize,
-        thickness: f64,
+        /// Its number of corners.
+        len: usize,
+    },
+    /// An edge joins a vertex to itself.
+    #[error("edge {edge} is a self-loop; the Menger sponge algorithm needs plain edges")]
+    SelfLoop {
+        /// The self-loop edge.
+        edge: EdgeId,
+    },
+    /// An edge has the same face on both of its sides, so it has no
+    /// dihedral angle (§VII.4).
+    #[error("edge {edge} has face {face} on both sides; its dihedral angle is undefined")]
+    SameFaceBothSides {
+        /// The edge refused.
+        edge: EdgeId,
+        /// The face lying on both of its sides.
+        face: FaceId,
+    },
+    /// A face has no usable geometry: a zero-length edge, no area, or a
+    /// corner folded back to 0° or 360°.
+    #[error("face {face} is degenerate: {reason}")]
+    DegenerateFace {
+        /// The degenerate face.
+        face: FaceId,
+        /// What is wrong with it, in words.
         reason: String,
     },
+    /// An edge has no usable geometry: its ends coincide, or its two faces
+    /// fold back onto each other where a bend is needed.
+    #[error("edge {edge} is degenerate: {reason}")]
+    DegenerateEdge {
+        /// The degenerate edge.
+        edge: EdgeId,
+        /// What is wrong with it, in words.
+        reason: String,
+    },
+    /// The thickness `D` does not fit in a face: an edge not longer than
+    /// `2D`, or a remeshing or offset polygon that would reverse or vanish.
+    #[error("thickness {thickness} is too large for face {face} at level {level}: {reason}")]
+    ThicknessTooLarge {
+        /// The face the thickness does not fit.
+        face: FaceId,
+        /// The level being planned, from 1.
+        level: usize,
+        /// The thickness `D` used at that level, in model units.
+        thickness: f64,
+        /// Which check failed, in words.
+        reason: String,
+    },
+    /// A level could produce more faces than the cap ([`MAX_FACES`] or the
+    /// one given to [`menger_capped`]).
     #[error("level {level} could produce up to {bound} faces, above the cap of {cap}")]
     TooManyFaces {
+        /// The level refused, from 1 (in exact mode, the level asked for).
         level: usize,
+        /// The upper bound on its faces: `8E + V` of the mesh before the level,
+        /// or in exact mode the sponge's face count (`u128::MAX` on overflow).
         bound: u128,
+        /// The cap that `bound` exceeds.
         cap: usize,
     },
+    /// Exact mode was asked for but the mesh is not a parallelepiped.
     #[error("exact mode needs a parallelepiped (a cube up to an affine map): {reason}")]
-    NotAParallelepiped { reason: String },
+    NotAParallelepiped {
+        /// Why the mesh is not one, in words.
+        reason: String,
+    },
     /// A kernel operation failed on handles this module made itself: a bug.
     #[error("internal error in the Menger sponge algorithm (please report): {0}")]
     Kernel(#[from] holey_dlfl::Error),
@@ -282,8 +345,11 @@ pub struct MengerLevel {
     pub zipped_vertices: usize,
     /// Edges deleted by the two-gon cleanup.
     pub two_gons_removed: usize,
+    /// Vertices of the mesh after this level.
     pub vertices: usize,
+    /// Edges of the mesh after this level.
     pub edges: usize,
+    /// Faces of the mesh after this level.
     pub faces: usize,
 }
 

@@ -85,28 +85,67 @@ use holey_dlfl::{BuildError, CornerId, EdgeId, FaceId, Mesh, VertexId};
 /// Why a rind could not be made or an operation was refused. Nothing was changed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum RindError {
+    /// The thickness given (the value held) is zero, negative, NaN or infinite.
     #[error("the rind thickness must be positive and finite, got {0}")]
     InvalidThickness(f64),
+    /// The input mesh has no faces.
     #[error("the mesh is empty; there is nothing to make a rind of")]
     Empty,
+    /// A vertex has no offset direction: the unit normals of its faces
+    /// cancel out, or are undefined because the faces have no area (§V.3.1 step 1).
     #[error(
         "vertex {vertex} (on face {face}) has no normal: the unit normals of its faces cancel out (or its faces have no area), so it has no offset direction"
     )]
-    NoVertexNormal { vertex: usize, face: usize },
+    NoVertexNormal {
+        /// The vertex's slot index in the input mesh.
+        vertex: usize,
+        /// The slot index in the input mesh of one face around that vertex
+        /// (a non-hole one if there is any); `usize::MAX` if it has none.
+        face: usize,
+    },
+    /// A face's inner copy is turned over: it faces the other way from the
+    /// outer face, or one of its edges runs backwards.
     #[error(
         "face {face}: at thickness {thickness} its offset copy turns over (its normal flips relative to the outer face); the thickness is too large for the local feature size"
     )]
-    Inverted { face: usize, thickness: f64 },
+    Inverted {
+        /// The face's slot index in the input mesh.
+        face: usize,
+        /// The thickness that was asked for, in model units.
+        thickness: f64,
+    },
+    /// A face's inner copy shrinks to (nearly) zero area, or one of its
+    /// edges to (nearly) zero length.
     #[error(
         "face {face}: at thickness {thickness} its offset copy collapses to zero area; the thickness is too large for the local feature size"
     )]
-    Collapsed { face: usize, thickness: f64 },
+    Collapsed {
+        /// The face's slot index in the input mesh.
+        face: usize,
+        /// The thickness that was asked for, in model units.
+        thickness: f64,
+    },
+    /// A vertex's inner copy would have a NaN or infinite coordinate.
     #[error("vertex {vertex}: the offset position is not finite")]
-    NonFinite { vertex: usize },
+    NonFinite {
+        /// The vertex's slot index in the input mesh.
+        vertex: usize,
+    },
+    /// A face index given to [`Rind::punch_index`] and its kin names no live
+    /// face of the input mesh.
     #[error("there is no face {index}: the input had {count} face slots")]
-    NoSuchFace { index: usize, count: usize },
+    NoSuchFace {
+        /// The index asked for.
+        index: usize,
+        /// The number of face slots of the input mesh (one past its last live face).
+        count: usize,
+    },
+    /// The kernel rejected the two shells' arrays when building the rind
+    /// mesh; a bug in this module, not an input error.
     #[error("internal: the two shells do not form a valid mesh: {0}")]
     Build(#[from] BuildError),
+    /// A kernel operation on the rind mesh failed (closing a rim, a pipe, or
+    /// peeling); not expected on meshes this module built.
     #[error(transparent)]
     Kernel(#[from] holey_dlfl::Error),
 }
@@ -118,12 +157,14 @@ pub struct RindMatch {
     pub index: usize,
     /// The outer face and its inner copy.
     pub outer: FaceId,
+    /// The inner copy of `outer` on the offset shell, with reversed orientation.
     pub inner: FaceId,
     /// Matching corners: the inner face read backwards from
     /// `inner_corner` visits the copies of the vertices that the outer
     /// face visits read forwards from `outer_corner` (the order
     /// `CreatePipe(outer_corner, inner_corner)` pairs them in).
     pub outer_corner: CornerId,
+    /// The corner of `inner` at the copy of `outer_corner`'s vertex.
     pub inner_corner: CornerId,
 }
 
@@ -131,16 +172,35 @@ pub struct RindMatch {
 /// created by a previously punched hole does not have any effect").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum NotPunchable {
+    /// The outer face made from this input face was already punched or peeled.
     #[error("face {index} has already been punched")]
-    AlreadyPunched { index: usize },
+    AlreadyPunched {
+        /// The input face's slot index.
+        index: usize,
+    },
+    /// This input face was a hole; the rind closed it with a rim instead of
+    /// making an outer face of it.
     #[error("face {index} was a hole of the input (a boundary loop), closed by the rind's rim")]
-    HoleFace { index: usize },
+    HoleFace {
+        /// The input face's slot index.
+        index: usize,
+    },
+    /// The face is in the mesh but not in the correspondence table: it was
+    /// made by a punch, lies on the inner shell, or was already punched.
     #[error(
         "face {face} is not an unpunched outer face (it was made by an earlier punch, or is on the inner shell)"
     )]
-    NotInTable { face: FaceId },
+    NotInTable {
+        /// The face selected.
+        face: FaceId,
+    },
+    /// The face id names no face of the current mesh (an earlier punch or
+    /// peel deleted it).
     #[error("face {face} no longer exists")]
-    Stale { face: FaceId },
+    Stale {
+        /// The face id selected.
+        face: FaceId,
+    },
 }
 
 /// What one punch or peel did.
@@ -168,9 +228,11 @@ pub struct PunchReport {
 /// The outcome of selecting a face.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum PunchOutcome {
+    /// The face was punched (and peeled, if asked); the report says what changed.
     Punched(PunchReport),
     /// Nothing changed.
     NotPunchable {
+        /// Why the face was ignored.
         reason: NotPunchable,
     },
 }

@@ -7,31 +7,30 @@
 //! ("busy"), and a cancelled result is dropped when the worker ends.
 //!
 //! This file holds the connections (`Hub`), the shared state and the
-//! dispatch; one file per kind of request: `model` (the thesis's edits),
-//! `sculpt` (strokes), `long` (long operations), `files` (uploads and
-//! downloads), and `fields` (reading a request).
+//! dispatch; one file per kind of request: `document` (primitives,
+//! workspaces, undo and redo, repairs, settings), `model` (the thesis's
+//! edits), `rind` (rind modeling), `sculpt` (strokes), `long` (long
+//! operations), `files` (uploads and downloads), and `fields` (reading a
+//! request).
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
-use holey_model::rind::{PunchOutcome, Rind};
 use serde_json::{Value, json};
 
-use crate::doc::{Content, Document, RindMode};
-use crate::frame::{FLAG_PREVIEW, display_model, encode};
+use crate::doc::{Content, Document};
+use crate::frame::encode;
 use crate::persist::Saver;
 use crate::{Config, ConnId, ServeError};
 
+mod document;
 mod fields;
 mod files;
 mod long;
 mod model;
+mod rind;
 mod sculpt;
-
-use fields::{index_field, num_field, str_field};
-use model::{delete_edge, handle, insert_edge};
 
 /// A message queued for one connection.
 #[derive(Clone, Debug)]
@@ -209,197 +208,20 @@ impl Shared {
                 "busy: a stroke is in progress; release the mouse first".into(),
             ));
         }
+        let doc = &mut *doc;
         match op {
-            "primitive" => {
-                let spec = str_field(req, "spec")?;
-                let soup = holey_shapes::parse_primitive(spec)
-                    .map_err(|e| ServeError::Refused(format!("{spec}: {e}")))?;
-                if soup.face_count() > self.config.max_faces {
-                    return Err(ServeError::Refused(format!(
-                        "{spec} has {} faces; the modeler's limit is {}",
-                        soup.face_count(),
-                        self.config.max_faces
-                    )));
-                }
-                let mesh = to_dlfl(&soup, ImportOptions::default())
-                    .map_err(|e| ServeError::Refused(format!("{spec}: {e}")))?
-                    .mesh;
-                let content = keep_workspace(&doc, Content::Model(mesh))?;
-                doc.rind = None;
-                doc.commit(content);
-                self.publish(&doc);
-                Ok(json!({"message": format!("created {spec}")}))
-            }
-            "workspace" => {
-                let to = str_field(req, "workspace")?;
-                if doc.content().workspace() == to {
-                    return Ok(json!({}));
-                }
-                doc.rind = None;
-                let content = doc.content().clone();
-                let next = match to {
-                    "model" => content.into_model()?,
-                    "sculpt" => content.into_sculpt()?,
-                    _ => {
-                        return Err(ServeError::BadRequest(format!(
-                            "unknown workspace {to:?} (model or sculpt)"
-                        )));
-                    }
-                };
-                doc.commit(next);
-                self.publish(&doc);
-                Ok(json!({}))
-            }
-            "undo" | "redo" => {
-                if doc.rind.is_some() {
-                    return Err(ServeError::Refused(
-                        "finish or cancel the rind first".into(),
-                    ));
-                }
-                let done = if op == "undo" { doc.undo() } else { doc.redo() };
-                if !done {
-                    return Err(ServeError::Refused(format!("nothing to {op}")));
-                }
-                self.publish(&doc);
-                Ok(json!({}))
-            }
-            "insert_edge" | "delete_edge" | "handle" => {
-                doc.check_version(req)?;
-                if doc.rind.is_some() {
-                    return Err(ServeError::Refused(
-                        "finish or cancel the rind first".into(),
-                    ));
-                }
-                let mut mesh = doc.model(op)?.clone();
-                let preview =
-                    op == "handle" && req.get("preview").and_then(Value::as_bool) == Some(true);
-                let message = match op {
-                    "insert_edge" => insert_edge(&doc, &mut mesh, req)?,
-                    "delete_edge" => delete_edge(&doc, &mut mesh, req)?,
-                    _ => handle(&doc, &mut mesh, req)?,
-                };
-                if preview {
-                    let (display, _) = display_model(&mesh);
-                    self.hub.send(
-                        conn,
-                        Out::Binary(encode(&display, FLAG_PREVIEW, doc.version(), None)),
-                    );
-                    return Ok(json!({"message": message, "preview": true}));
-                }
-                doc.commit(Content::Model(mesh));
-                self.publish(&doc);
-                Ok(json!({"message": message}))
-            }
-            "rind_begin" => {
-                let thickness = num_field(req, "thickness")?;
-                if doc.rind.is_some() {
-                    return Err(ServeError::Refused("already in rind mode".into()));
-                }
-                let rind = Rind::from_mesh(doc.model("rind")?, thickness)
-                    .map_err(|e| ServeError::Refused(format!("rind: {e}")))?;
-                doc.rind = Some(RindMode { rind, thickness });
-                doc.touch();
-                self.publish(&doc);
-                Ok(json!({"message": "click faces to punch (shift: peel)"}))
-            }
-            "rind_punch" => {
-                doc.check_version(req)?;
-                let face = index_field(req, "face")?;
-                let peel = req.get("peel").and_then(Value::as_bool) == Some(true);
-                let f =
-                    *doc.index().faces.get(face).ok_or_else(|| {
-                        ServeError::Refused(format!("face {face} does not exist"))
-                    })?;
-                let Some(mode) = doc.rind.as_mut() else {
-                    return Err(ServeError::Refused("not in rind mode".into()));
-                };
-                let outcome = if peel {
-                    mode.rind.peel(f)
-                } else {
-                    mode.rind.punch(f)
-                }
-                .map_err(|e| ServeError::Refused(format!("rind: {e}")))?;
-                if let PunchOutcome::NotPunchable { reason } = outcome {
-                    return Err(ServeError::Refused(format!(
-                        "that face cannot be {}: {reason}",
-                        if peel { "peeled" } else { "punched" }
-                    )));
-                }
-                doc.touch();
-                self.publish(&doc);
-                Ok(json!({}))
-            }
-            "rind_end" => {
-                let Some(mode) = doc.rind.take() else {
-                    return Err(ServeError::Refused("not in rind mode".into()));
-                };
-                if req.get("commit").and_then(Value::as_bool) == Some(true) {
-                    let t = mode.thickness;
-                    doc.commit(Content::Model(mode.rind.into_mesh()));
-                    self.publish(&doc);
-                    Ok(json!({"message": format!("rind of thickness {t} committed")}))
-                } else {
-                    doc.touch();
-                    self.publish(&doc);
-                    Ok(json!({"message": "rind cancelled"}))
-                }
-            }
-            "weld" | "make_manifold" => {
-                if doc.rind.is_some() {
-                    return Err(ServeError::Refused(
-                        "finish or cancel the rind first".into(),
-                    ));
-                }
-                let (content, message) = if op == "weld" {
-                    doc.content().welded(num_field(req, "distance")?)?
-                } else {
-                    (
-                        doc.content().made_manifold()?,
-                        "split the non-manifold edges and vertices".to_owned(),
-                    )
-                };
-                doc.commit(content);
-                self.publish(&doc);
-                Ok(json!({"message": message}))
-            }
-            "set_remesh" => {
-                let detail = num_field(req, "detail")?;
-                doc.remesh_detail = detail.clamp(0.0, 1.0);
-                self.publish_state(&doc);
-                Ok(json!({}))
-            }
-            "stroke_begin" => self.stroke_begin(conn, &mut doc, req),
-            "stroke_frame" => self.stroke_frame(&mut doc, req),
-            "stroke_end" => {
-                let Some(stroke) = doc.stroke.take() else {
-                    return Err(ServeError::Refused("no stroke in progress".into()));
-                };
-                let done = stroke.live.finish()?;
-                let r = done.report;
-                let changed = done.mesh != *doc.sculpt_mesh("sculpting")?;
-                if changed {
-                    doc.commit(Content::Sculpt(done.mesh));
-                }
-                self.publish(&doc);
-                let mut reply = json!({
-                    "changes": r.changes,
-                    "engine_runs": r.engine_runs,
-                    "frames": r.frames,
-                    "ms": r.seconds * 1e3,
-                });
-                if !r.refused.is_empty() {
-                    let why: Vec<&str> = r
-                        .refused
-                        .iter()
-                        .map(|w| holey_topo::audit::in_plain_words(w))
-                        .collect();
-                    reply["message"] = json!(format!(
-                        "The drag was undone: releasing it here would {}.",
-                        why.join(" and ")
-                    ));
-                }
-                Ok(reply)
-            }
+            "primitive" => self.create_primitive(doc, req),
+            "workspace" => self.switch_workspace(doc, req),
+            "undo" | "redo" => self.undo_redo(doc, op),
+            "insert_edge" | "delete_edge" | "handle" => self.model_edit(conn, doc, op, req),
+            "rind_begin" => self.rind_begin(doc, req),
+            "rind_punch" => self.rind_punch(doc, req),
+            "rind_end" => self.rind_end(doc, req),
+            "weld" | "make_manifold" => self.repair(doc, op, req),
+            "set_remesh" => self.set_remesh(doc, req),
+            "stroke_begin" => self.stroke_begin(conn, doc, req),
+            "stroke_frame" => self.stroke_frame(doc, req),
+            "stroke_end" => self.stroke_end(doc),
             "" => Err(ServeError::BadRequest("the request has no \"op\"".into())),
             _ => Err(ServeError::BadRequest(format!("unknown op {op:?}"))),
         }

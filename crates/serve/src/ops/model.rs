@@ -5,8 +5,46 @@ use holey_model::handle::{HandleParams, create_handle};
 use serde_json::{Value, json};
 
 use super::fields::{index_field, num_field, pair};
-use crate::ServeError;
-use crate::doc::Document;
+use super::{Out, Reply, Shared};
+use crate::doc::{Content, Document};
+use crate::frame::{FLAG_PREVIEW, display_model, encode};
+use crate::{ConnId, ServeError};
+
+impl Shared {
+    /// `insert_edge`, `delete_edge` or `handle` (`op`) on the model; a handle with `preview` is sent to this tab only and not committed.
+    pub(super) fn model_edit(
+        &self,
+        conn: ConnId,
+        doc: &mut Document,
+        op: &str,
+        req: &Value,
+    ) -> Reply {
+        doc.check_version(req)?;
+        if doc.rind.is_some() {
+            return Err(ServeError::Refused(
+                "finish or cancel the rind first".into(),
+            ));
+        }
+        let mut mesh = doc.model(op)?.clone();
+        let preview = op == "handle" && req.get("preview").and_then(Value::as_bool) == Some(true);
+        let message = match op {
+            "insert_edge" => insert_edge(doc, &mut mesh, req)?,
+            "delete_edge" => delete_edge(doc, &mut mesh, req)?,
+            _ => handle(doc, &mut mesh, req)?,
+        };
+        if preview {
+            let (display, _) = display_model(&mesh);
+            self.hub.send(
+                conn,
+                Out::Binary(encode(&display, FLAG_PREVIEW, doc.version(), None)),
+            );
+            return Ok(json!({"message": message, "preview": true}));
+        }
+        doc.commit(Content::Model(mesh));
+        self.publish(doc);
+        Ok(json!({"message": message}))
+    }
+}
 
 pub(super) fn insert_edge(
     doc: &Document,

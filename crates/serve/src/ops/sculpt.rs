@@ -6,7 +6,7 @@ use serde_json::{Value, json};
 
 use super::fields::{num_field, point_field, str_field};
 use super::{Out, Reply, Shared};
-use crate::doc::{ActiveStroke, Document};
+use crate::doc::{ActiveStroke, Content, Document};
 use crate::frame::{FLAG_PREVIEW, display_triangles, encode, encode_positions, encode_sparse};
 use crate::{ConnId, ServeError};
 
@@ -63,6 +63,38 @@ impl Shared {
             sent,
         });
         self.stroke_frame(doc, req)
+    }
+
+    /// `stroke_end`: the stroke finished and committed if it changed the mesh; a release the guard refused says why in plain words.
+    pub(super) fn stroke_end(&self, doc: &mut Document) -> Reply {
+        let Some(stroke) = doc.stroke.take() else {
+            return Err(ServeError::Refused("no stroke in progress".into()));
+        };
+        let done = stroke.live.finish()?;
+        let r = done.report;
+        let changed = done.mesh != *doc.sculpt_mesh("sculpting")?;
+        if changed {
+            doc.commit(Content::Sculpt(done.mesh));
+        }
+        self.publish(doc);
+        let mut reply = json!({
+            "changes": r.changes,
+            "engine_runs": r.engine_runs,
+            "frames": r.frames,
+            "ms": r.seconds * 1e3,
+        });
+        if !r.refused.is_empty() {
+            let why: Vec<&str> = r
+                .refused
+                .iter()
+                .map(|w| holey_topo::audit::in_plain_words(w))
+                .collect();
+            reply["message"] = json!(format!(
+                "The drag was undone: releasing it here would {}.",
+                why.join(" and ")
+            ));
+        }
+        Ok(reply)
     }
 
     pub(super) fn stroke_frame(&self, doc: &mut Document, req: &Value) -> Reply {
