@@ -266,6 +266,33 @@ fn pair_half_edges(
     Ok(Pairing { twin, cut_edges })
 }
 
+impl Mesh {
+    /// The kernel mesh of the polygons `faces` (vertex indices, any size,
+    /// counter-clockwise seen from outside) over `positions`: boundary
+    /// loops become hole faces, and input that is not an orientable
+    /// 2-manifold is refused naming the face or edge ([`to_dlfl`] with
+    /// default options).
+    ///
+    /// ```
+    /// use holey_dlfl::{DVec3, Mesh};
+    ///
+    /// // A tetrahedron: V − E + F = 4 − 6 + 4 = 2, genus 0.
+    /// let p = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    /// let m = Mesh::from_polygons(p.to_vec(), [[0u32, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// assert_eq!((m.vertex_count(), m.edge_count(), m.face_count(), m.genus()), (4, 6, 4, 0));
+    /// // An edge used twice the same way is refused, not guessed.
+    /// assert!(Mesh::from_polygons(p.to_vec(), [[0u32, 1, 2], [0, 1, 3]]).is_err());
+    /// # Ok::<(), holey_dlfl::convert::ImportError>(())
+    /// ```
+    pub fn from_polygons<F: AsRef<[u32]>>(
+        positions: Vec<DVec3>,
+        faces: impl IntoIterator<Item = F>,
+    ) -> Result<Mesh, ImportError> {
+        let soup = PolyMesh::from_faces(positions, faces);
+        to_dlfl(&soup, ImportOptions::default()).map(|imported| imported.mesh)
+    }
+}
+
 /// Imports a soup into the kernel. See the module documentation.
 ///
 /// Faces keep file order: soup face `i` becomes `imported.faces[i]`, which
@@ -277,6 +304,71 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
     let mut report = ImportReport::default();
 
     // Faces to import: validate, or clean up in split mode.
+    let FacesToImport {
+        offsets,
+        mut indices,
+        kept,
+    } = faces_to_import(soup, split, &mut report)?;
+
+    // Compact referenced vertices, keeping index order.
+    let (mut positions, mut original) = compact_vertices(soup, &mut indices, &mut report);
+
+    let next = next_corners(&offsets);
+    let nc = indices.len();
+    let mut prev = vec![0u32; nc];
+    for (c, &n) in next.iter().enumerate() {
+        prev[n as usize] = c as u32;
+    }
+    let pairing = pair_half_edges(&offsets, &indices, &next, positions.len(), split)?;
+    report.cut_edges = pairing.cut_edges;
+    let twin = pairing.twin;
+
+    // Fans, and one vertex per fan.
+    let mut fans = find_fans(&indices, &next, &prev, &twin);
+    split_fans(&mut fans, &mut positions, &mut original, split, &mut report)?;
+    for (u, &fan) in indices.iter_mut().zip(&fans.fan) {
+        *u = fans.target[fan as usize];
+    }
+
+    // Hole corners.
+    let raw = close_holes(
+        positions,
+        offsets,
+        indices,
+        &twin,
+        &prev,
+        &fans,
+        &mut report,
+    );
+
+    let mesh = Mesh::from_raw(&raw)?;
+    Ok(imported(
+        mesh,
+        &kept,
+        &original,
+        soup.positions.len(),
+        report,
+    ))
+}
+
+/// The faces of a soup to import, in compressed rows.
+struct FacesToImport {
+    /// Where each face's corners start in `indices`, then their end.
+    offsets: Vec<u32>,
+    /// The soup vertex of each corner.
+    indices: Vec<u32>,
+    /// Whether each soup face was kept.
+    kept: Vec<bool>,
+}
+
+/// The faces of `soup` to import: each face is validated, or with
+/// `split` cleaned up (repeated vertices merged) or dropped (counted in
+/// `report`).
+fn faces_to_import(
+    soup: &PolyMesh,
+    split: bool,
+    report: &mut ImportReport,
+) -> Result<FacesToImport, ImportError> {
     let mut offsets = vec![0u32];
     let mut indices: Vec<u32> = Vec::with_capacity(soup.face_indices.len());
     let mut kept = Vec::with_capacity(soup.face_count());
@@ -313,11 +405,24 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
         offsets.push(indices.len() as u32);
         kept.push(true);
     }
+    Ok(FacesToImport {
+        offsets,
+        indices,
+        kept,
+    })
+}
 
-    // Compact referenced vertices, keeping index order.
+/// Renumbers `indices` to the soup vertices they refer to, keeping index
+/// order; returns those vertices' positions and soup indices, and counts
+/// the others in `report`.
+fn compact_vertices(
+    soup: &PolyMesh,
+    indices: &mut [u32],
+    report: &mut ImportReport,
+) -> (Vec<DVec3>, Vec<u32>) {
     let nv_soup = soup.positions.len();
     let mut compact = vec![NONE; nv_soup];
-    for &u in &indices {
+    for &u in indices.iter() {
         compact[u as usize] = 0;
     }
     let mut positions = Vec::new();
@@ -330,23 +435,30 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
         }
     }
     report.unreferenced_vertices = nv_soup - positions.len();
-    for u in &mut indices {
+    for u in indices.iter_mut() {
         *u = compact[*u as usize];
     }
+    (positions, original)
+}
 
-    let next = next_corners(&offsets);
+/// The fans of corners around the vertices, and the vertex each becomes.
+struct Fans {
+    /// The fan of each corner.
+    fan: Vec<u32>,
+    /// The vertex of each fan.
+    vertex: Vec<u32>,
+    /// (start, end) corners of each open fan, in fan order.
+    end_of_start: Vec<(u32, u32)>,
+    /// The output vertex of each fan (filled by [`split_fans`]).
+    target: Vec<u32>,
+}
+
+/// Groups the corners into fans. rot(c) = next(twin(c)) is the rotation
+/// successor of corner c around its vertex; it is undefined where c's
+/// half-edge is boundary. A fan starts at a corner whose incoming
+/// half-edge is boundary; the open fans come first, then the closed ones.
+fn find_fans(indices: &[u32], next: &[u32], prev: &[u32], twin: &[u32]) -> Fans {
     let nc = indices.len();
-    let mut prev = vec![0u32; nc];
-    for (c, &n) in next.iter().enumerate() {
-        prev[n as usize] = c as u32;
-    }
-    let pairing = pair_half_edges(&offsets, &indices, &next, positions.len(), split)?;
-    report.cut_edges = pairing.cut_edges;
-    let twin = pairing.twin;
-
-    // Fans. rot(c) = next(twin(c)) is the rotation successor of corner c
-    // around its vertex; it is undefined where c's half-edge is boundary.
-    // A fan starts at a corner whose incoming half-edge is boundary.
     let mut fan = vec![NONE; nc];
     let mut fan_vertex: Vec<u32> = Vec::new(); // fan id -> vertex
     let mut fan_end_of_start: Vec<(u32, u32)> = Vec::new(); // (start, end) of open fans
@@ -379,9 +491,26 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
             c = next[twin[c as usize] as usize];
         }
     }
+    Fans {
+        fan,
+        vertex: fan_vertex,
+        end_of_start: fan_end_of_start,
+        target: Vec::new(),
+    }
+}
 
-    // One vertex per fan: the first fan of a vertex keeps it, later fans
-    // are non-manifold and get copies (or fail).
+/// One vertex per fan: the first fan of a vertex keeps it, later fans
+/// are non-manifold and get copies (appended to `positions` and
+/// `original`, counted in `report`) with `split`, or fail. Sets
+/// `fans.target`.
+fn split_fans(
+    fans: &mut Fans,
+    positions: &mut Vec<DVec3>,
+    original: &mut Vec<u32>,
+    split: bool,
+    report: &mut ImportReport,
+) -> Result<(), ImportError> {
+    let fan_vertex = &fans.vertex;
     let mut fans_per_vertex = vec![0u32; positions.len()];
     let mut fan_target = vec![NONE; fan_vertex.len()];
     for (id, &v) in fan_vertex.iter().enumerate() {
@@ -408,14 +537,28 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
             report.split_vertices += 1;
         }
     }
-    for c in 0..nc {
-        indices[c] = fan_target[fan[c] as usize];
-    }
+    fans.target = fan_target;
+    Ok(())
+}
 
-    // Hole corners: one per open fan, at the fan's vertex, keyed by the
-    // boundary corner that ends the fan. The hole runs u→w against the
-    // boundary half-edge w→u that enters the fan's start s (from prev(s)),
-    // pairs with it, and continues at the hole corner of prev(s)'s fan.
+/// The mesh to build: the faces, their paired edges, and a hole face
+/// closing each boundary loop (counted in `report`).
+///
+/// Hole corners: one per open fan, at the fan's vertex, keyed by the
+/// boundary corner that ends the fan. The hole runs u→w against the
+/// boundary half-edge w→u that enters the fan's start s (from prev(s)),
+/// pairs with it, and continues at the hole corner of prev(s)'s fan.
+fn close_holes(
+    positions: Vec<DVec3>,
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    twin: &[u32],
+    prev: &[u32],
+    fans: &Fans,
+    report: &mut ImportReport,
+) -> RawMesh {
+    let nc = indices.len();
+    let fan_end_of_start = &fans.end_of_start;
     let mut hole_of_end = vec![NONE; nc];
     for (k, &(_, end)) in fan_end_of_start.iter().enumerate() {
         hole_of_end[end as usize] = k as u32;
@@ -453,7 +596,7 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
             placed[k] = corner;
             let end = fan_end_of_start[k].1;
             raw.face_vertices
-                .push(fan_target[fan[end as usize] as usize]);
+                .push(fans.target[fans.fan[end as usize] as usize]);
             k = hole_next[k] as usize;
         }
         raw.face_offsets.push(raw.face_vertices.len() as u32);
@@ -466,11 +609,22 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
         raw.holes = vec![false; raw.face_count()];
         raw.holes[nfaces..].fill(true);
     }
+    raw
+}
 
-    let mesh = Mesh::from_raw(&raw)?;
+/// The import's result: `mesh`, with the DLFL face of each soup face
+/// (`kept` says which were) and the DLFL vertex of each of the `nv_soup`
+/// soup vertices (its first copy, from `original`).
+fn imported(
+    mesh: Mesh,
+    kept: &[bool],
+    original: &[u32],
+    nv_soup: usize,
+    report: ImportReport,
+) -> Imported {
     let mut face_ids = Vec::with_capacity(kept.len());
     let mut next_face = 0usize;
-    for &k in &kept {
+    for &k in kept {
         if k {
             face_ids.push(mesh.face_at(next_face));
             next_face += 1;
@@ -484,12 +638,12 @@ pub fn to_dlfl(soup: &PolyMesh, options: ImportOptions) -> Result<Imported, Impo
             vertices[o as usize] = mesh.vertex_at(i);
         }
     }
-    Ok(Imported {
+    Imported {
         mesh,
         faces: face_ids,
         vertices,
         report,
-    })
+    }
 }
 
 /// Fills in `raw.edges` by pairing half-edges, for a `.dlfl` file written

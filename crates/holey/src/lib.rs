@@ -28,9 +28,12 @@
 //! ```
 //! use holey::prelude::*;
 //!
-//! let cube = shapes::parse_primitive("@cube")?;
-//! let mut m = to_dlfl(&cube)?;
+//! // A cube: eight corners, six quads counter-clockwise seen from outside.
+//! let corner = |i: u32| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64);
+//! let quads = [[0u32, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+//! let mut m = Mesh::from_polygons((0..8).map(corner).collect(), quads)?;
 //! let (v, e, f) = (m.vertex_count(), m.edge_count(), m.face_count());
+//! assert_eq!((v, e, f), (8, 12, 6));
 //! let face = m.faces().next().expect("a cube has faces");
 //! let c1 = m.face_corner(face)?;
 //! let c2 = m.corner_next(m.corner_next(c1)?)?;

@@ -31,8 +31,44 @@ const NONE: u32 = u32::MAX;
 
 /// Parses a `.dlfl` file. `source` names the file in error messages.
 pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
-    let err = |line: usize, m: String| IoError::line(source, line, m);
     let mut c = Cursor::new(bytes, false, true);
+    header(&mut c, source)?;
+    let Statements {
+        mut raw,
+        vertex_lines,
+        face_lines,
+        edges,
+    } = statements(&mut c, source)?;
+    check_vertices_used(&raw, &vertex_lines, &face_lines, source)?;
+    // Resolve edges to global corners, checking each against its line.
+    let edge_of = resolve_edges(&mut raw, &edges, source)?;
+    if !edges.is_empty() {
+        check_corners_start_edges(&raw, &face_lines, &edge_of, source)?;
+    }
+    Ok(raw)
+}
+
+/// An `e` line as written: its two (face, corner) pairs and its line.
+type WrittenEdge = ([u64; 2], [u64; 2], usize);
+
+/// The statements of a `.dlfl` file after its header.
+struct Statements {
+    /// The vertices and faces (hole flags empty when there is no hole),
+    /// edges not yet resolved.
+    raw: RawMesh,
+    /// The line of each vertex.
+    vertex_lines: Vec<usize>,
+    /// The line of each face.
+    face_lines: Vec<usize>,
+    /// Edges as written, (face, corner) pairs, with their lines; resolved
+    /// once every face is known.
+    edges: Vec<WrittenEdge>,
+}
+
+/// Reads the header `dlfl 1` (after any blank or comment lines) and moves
+/// past its line.
+fn header(c: &mut Cursor<'_>, source: &str) -> Result<(), IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
     c.skip_empty_lines();
     match (c.token(), c.token()) {
         (Some(b"dlfl"), Some(b"1")) => {}
@@ -54,7 +90,13 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
         ));
     }
     c.next_line();
+    Ok(())
+}
 
+/// Reads every statement up to the end of the file, checking each line
+/// on its own.
+fn statements(c: &mut Cursor<'_>, source: &str) -> Result<Statements, IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
     let mut raw = RawMesh {
         face_offsets: vec![0],
         ..RawMesh::default()
@@ -62,9 +104,7 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
     let mut any_hole = false;
     let mut vertex_lines: Vec<usize> = Vec::new();
     let mut face_lines: Vec<usize> = Vec::new();
-    // Edges as written, (face, corner) pairs, with their lines; resolved
-    // once every face is known.
-    let mut edges: Vec<([u64; 2], [u64; 2], usize)> = Vec::new();
+    let mut edges: Vec<WrittenEdge> = Vec::new();
     loop {
         c.skip_empty_lines();
         if c.eof() {
@@ -74,65 +114,18 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
         let Some(keyword) = c.token() else { break };
         match keyword {
             b"v" => {
-                let mut xyz = [0.0; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let Some(tok) = c.token() else {
-                        return Err(err(
-                            line,
-                            format!("vertex has {k} coordinate(s), but 3 are needed"),
-                        ));
-                    };
-                    *slot = parse_finite(tok).map_err(|m| err(line, m))?;
-                }
-                raw.positions.push(DVec3::from_array(xyz));
+                raw.positions.push(vertex_statement(c, line, source)?);
                 vertex_lines.push(line);
             }
             b"f" | b"h" => {
-                let start = raw.face_vertices.len();
-                while let Some(tok) = c.token() {
-                    match parse_u64(tok) {
-                        Some(i) if i < u64::from(NONE) => raw.face_vertices.push(i as u32),
-                        Some(i) => {
-                            return Err(err(line, format!("vertex number {i} is too large")));
-                        }
-                        None => {
-                            return Err(err(line, format!("bad vertex number \"{}\"", show(tok))));
-                        }
-                    }
-                }
-                if raw.face_vertices.len() == start {
-                    return Err(err(line, "a face needs at least one corner".into()));
-                }
-                let end = u32::try_from(raw.face_vertices.len())
-                    .ok()
-                    .filter(|&e| e < NONE)
-                    .ok_or_else(|| err(line, "too many corners for 32-bit indices".into()))?;
-                raw.face_offsets.push(end);
+                face_statement(c, line, source, &mut raw)?;
                 let hole = keyword == b"h";
                 any_hole |= hole;
                 raw.holes.push(hole);
                 face_lines.push(line);
             }
             b"e" => {
-                let mut ends = [[0u64; 2]; 2];
-                for end in &mut ends {
-                    let Some(tok) = c.token() else {
-                        return Err(err(
-                            line,
-                            "an edge needs two corners, written face:corner".into(),
-                        ));
-                    };
-                    let parsed = tok
-                        .iter()
-                        .position(|&b| b == b':')
-                        .and_then(|k| Some([parse_u64(&tok[..k])?, parse_u64(&tok[k + 1..])?]));
-                    *end = parsed.ok_or_else(|| {
-                        err(
-                            line,
-                            format!("bad corner \"{}\" (expected face:corner)", show(tok)),
-                        )
-                    })?;
-                }
+                let ends = edge_statement(c, line, source)?;
                 edges.push((ends[0], ends[1], line));
             }
             other => return Err(err(line, format!("unknown statement \"{}\"", show(other)))),
@@ -148,7 +141,97 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
     if !any_hole {
         raw.holes.clear();
     }
+    Ok(Statements {
+        raw,
+        vertex_lines,
+        face_lines,
+        edges,
+    })
+}
 
+/// The position of a `v` statement on line `line`, after its keyword.
+fn vertex_statement(c: &mut Cursor<'_>, line: usize, source: &str) -> Result<DVec3, IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
+    let mut xyz = [0.0; 3];
+    for (k, slot) in xyz.iter_mut().enumerate() {
+        let Some(tok) = c.token() else {
+            return Err(err(
+                line,
+                format!("vertex has {k} coordinate(s), but 3 are needed"),
+            ));
+        };
+        *slot = parse_finite(tok).map_err(|m| err(line, m))?;
+    }
+    Ok(DVec3::from_array(xyz))
+}
+
+/// Appends the corners of an `f` or `h` statement on line `line`, after
+/// its keyword, to `raw` as a new face (its hole flag is the caller's).
+fn face_statement(
+    c: &mut Cursor<'_>,
+    line: usize,
+    source: &str,
+    raw: &mut RawMesh,
+) -> Result<(), IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
+    let start = raw.face_vertices.len();
+    while let Some(tok) = c.token() {
+        match parse_u64(tok) {
+            Some(i) if i < u64::from(NONE) => raw.face_vertices.push(i as u32),
+            Some(i) => {
+                return Err(err(line, format!("vertex number {i} is too large")));
+            }
+            None => {
+                return Err(err(line, format!("bad vertex number \"{}\"", show(tok))));
+            }
+        }
+    }
+    if raw.face_vertices.len() == start {
+        return Err(err(line, "a face needs at least one corner".into()));
+    }
+    let end = u32::try_from(raw.face_vertices.len())
+        .ok()
+        .filter(|&e| e < NONE)
+        .ok_or_else(|| err(line, "too many corners for 32-bit indices".into()))?;
+    raw.face_offsets.push(end);
+    Ok(())
+}
+
+/// The two `face:corner` pairs of an `e` statement on line `line`, after
+/// its keyword.
+fn edge_statement(c: &mut Cursor<'_>, line: usize, source: &str) -> Result<[[u64; 2]; 2], IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
+    let mut ends = [[0u64; 2]; 2];
+    for end in &mut ends {
+        let Some(tok) = c.token() else {
+            return Err(err(
+                line,
+                "an edge needs two corners, written face:corner".into(),
+            ));
+        };
+        let parsed = tok
+            .iter()
+            .position(|&b| b == b':')
+            .and_then(|k| Some([parse_u64(&tok[..k])?, parse_u64(&tok[k + 1..])?]));
+        *end = parsed.ok_or_else(|| {
+            err(
+                line,
+                format!("bad corner \"{}\" (expected face:corner)", show(tok)),
+            )
+        })?;
+    }
+    Ok(ends)
+}
+
+/// Checks that the vertices fit 32-bit indices, that every face refers
+/// to defined vertices only, and that every vertex is used by a face.
+fn check_vertices_used(
+    raw: &RawMesh,
+    vertex_lines: &[usize],
+    face_lines: &[usize],
+    source: &str,
+) -> Result<(), IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
     let nv = raw.positions.len();
     if nv >= NONE as usize {
         return Err(IoError::content(
@@ -176,8 +259,18 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
             format!("vertex {v} is not used by any face"),
         ));
     }
+    Ok(())
+}
 
-    // Resolve edges to global corners, checking each against its line.
+/// Resolves the written `edges` to global corners in `raw.edges`,
+/// checking each against its line; returns the edge each corner starts
+/// (`NONE` for none; empty when there are no edges).
+fn resolve_edges(
+    raw: &mut RawMesh,
+    edges: &[WrittenEdge],
+    source: &str,
+) -> Result<Vec<u32>, IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
     let nf = raw.face_count();
     let nc = raw.face_vertices.len();
     let mut edge_of = vec![NONE; if edges.is_empty() { 0 } else { nc }];
@@ -210,17 +303,7 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
             edge_of[g as usize] = ei as u32;
             *slot = g;
         }
-        // Each side runs from its corner's vertex to the next corner's.
-        let side = |g: u32| {
-            let f = raw.face_offsets.partition_point(|&o| o <= g) - 1;
-            let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
-            let next = if g + 1 == hi { lo } else { g + 1 };
-            (
-                raw.face_vertices[g as usize],
-                raw.face_vertices[next as usize],
-            )
-        };
-        let ((u0, v0), (u1, v1)) = (side(corners[0]), side(corners[1]));
+        let ((u0, v0), (u1, v1)) = (side(raw, corners[0]), side(raw, corners[1]));
         if u0 != v1 || v0 != u1 {
             return Err(err(
                 line,
@@ -233,24 +316,46 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
         raw.edges.push(corners);
         edge_lines.push(line);
     }
-    if !edges.is_empty() {
-        for (f, &line) in face_lines.iter().enumerate() {
-            let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
-            if hi - lo == 1 {
-                continue; // a point-sphere's lone corner may start no edge
-            }
-            if let Some(g) = (lo..hi).find(|&g| edge_of[g as usize] == NONE) {
-                return Err(err(
-                    line,
-                    format!(
-                        "corner {f}:{} starts no edge (no \"e\" line names it)",
-                        g - lo
-                    ),
-                ));
-            }
+    Ok(edge_of)
+}
+
+/// The side starting at global corner `g` of `raw`: from its corner's
+/// vertex to the next corner's.
+fn side(raw: &RawMesh, g: u32) -> (u32, u32) {
+    let f = raw.face_offsets.partition_point(|&o| o <= g) - 1;
+    let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+    let next = if g + 1 == hi { lo } else { g + 1 };
+    (
+        raw.face_vertices[g as usize],
+        raw.face_vertices[next as usize],
+    )
+}
+
+/// Checks that every corner starts an edge (`edge_of`, from
+/// [`resolve_edges`]), except a point-sphere's lone corner.
+fn check_corners_start_edges(
+    raw: &RawMesh,
+    face_lines: &[usize],
+    edge_of: &[u32],
+    source: &str,
+) -> Result<(), IoError> {
+    let err = |line: usize, m: String| IoError::line(source, line, m);
+    for (f, &line) in face_lines.iter().enumerate() {
+        let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+        if hi - lo == 1 {
+            continue; // a point-sphere's lone corner may start no edge
+        }
+        if let Some(g) = (lo..hi).find(|&g| edge_of[g as usize] == NONE) {
+            return Err(err(
+                line,
+                format!(
+                    "corner {f}:{} starts no edge (no \"e\" line names it)",
+                    g - lo
+                ),
+            ));
         }
     }
-    Ok(raw)
+    Ok(())
 }
 
 /// Checks that a [`RawMesh`] can be written: well-formed offsets, no empty

@@ -40,11 +40,43 @@ pub(crate) fn step(
     s: &mut Scratch,
     links: bool,
 ) -> Result<(), SubdivError> {
+    // Pass 1, faces: kinds and where each face's output goes.
+    let sizes = plan_faces(src, s);
+    crate::check_index(sizes.out_v)?;
+    crate::check_index(sizes.oc)?;
+    crate::check_index(sizes.out_e)?;
+
+    // Pass 2, face points (centroids).
+    face_points(src, &mut dst.pos, s, sizes.out_v);
+
+    // Pass 3, vertex points: accumulate over corners, then apply the rule.
+    vertex_points(src, &mut dst.pos, s);
+
+    // Pass 4, edge points.
+    edge_points(src, &mut dst.pos, s);
+
+    // Pass 5, connectivity.
+    connectivity(src, dst, s, links, &sizes)
+}
+
+/// The sizes of one level's output, from pass 1.
+struct Sizes {
+    /// Output corners.
+    oc: usize,
+    /// Output faces.
+    of: usize,
+    /// Output vertices: vertex points, edge points, face points.
+    out_v: usize,
+    /// Output edges.
+    out_e: usize,
+}
+
+/// Pass 1: records each face's kind, first output corner, first output
+/// face and face point in `s`, and returns the output's sizes.
+fn plan_faces(src: &Flat, s: &mut Scratch) -> Sizes {
     let nv = src.pos.len();
     let ne = src.edges.len();
     let nf = src.face_count();
-
-    // Pass 1, faces: kinds and where each face's output goes.
     s.kind.clear();
     s.obase.clear();
     s.ofbase.clear();
@@ -76,26 +108,37 @@ pub(crate) fn step(
             }
         }
     }
-    let out_v = nv + ne + nfp;
-    let out_e = 2 * ne + ncn;
-    crate::check_index(out_v)?;
-    crate::check_index(oc)?;
-    crate::check_index(out_e)?;
+    Sizes {
+        oc,
+        of,
+        out_v: nv + ne + nfp,
+        out_e: 2 * ne + ncn,
+    }
+}
 
-    // Pass 2, face points (centroids).
+/// Pass 2: sizes `out` to `out_v` zeroed positions and writes each
+/// ordinary face's point, the centroid of its corners.
+fn face_points(src: &Flat, out: &mut Vec<DVec3>, s: &Scratch, out_v: usize) {
     let pos = &src.pos;
-    dst.pos.clear();
-    dst.pos.resize(out_v, DVec3::ZERO);
-    for f in 0..nf {
+    out.clear();
+    out.resize(out_v, DVec3::ZERO);
+    for f in 0..src.face_count() {
         if s.kind[f] != Kind::Normal {
             continue;
         }
         let (lo, hi) = (src.off[f] as usize, src.off[f + 1] as usize);
         let sum: DVec3 = src.cv[lo..hi].iter().map(|&v| pos[v as usize]).sum();
-        dst.pos[s.fp[f] as usize] = sum / (hi - lo) as f64;
+        out[s.fp[f] as usize] = sum / (hi - lo) as f64;
     }
+}
 
-    // Pass 3, vertex points: accumulate over corners, then apply the rule.
+/// Pass 3: the vertex points, written to the first `V` entries of `out`
+/// (whose face points pass 2 has written), accumulating each vertex's
+/// neighbourhood over the corners before applying the rule.
+fn vertex_points(src: &Flat, out: &mut [DVec3], s: &mut Scratch) {
+    let nv = src.pos.len();
+    let ne = src.edges.len();
+    let pos = &src.pos;
     s.n.clear();
     s.n.resize(nv, 0);
     s.nh.clear();
@@ -105,81 +148,92 @@ pub(crate) fn step(
         s.bsum.clear();
         s.bsum.resize(nv, DVec3::ZERO);
     }
-    {
-        let (vpts, rest) = dst.pos.split_at_mut(nv);
-        let fpts = &rest[ne..];
-        for f in 0..nf {
-            let (lo, hi) = (src.off[f] as usize, src.off[f + 1] as usize);
-            match s.kind[f] {
-                Kind::Normal => {
-                    let fpos = fpts[(s.fp[f] as usize) - nv - ne];
-                    for c in lo..hi {
-                        let v = src.cv[c] as usize;
-                        let w = src.cv[if c + 1 == hi { lo } else { c + 1 }] as usize;
-                        vpts[v] += fpos + pos[w];
-                        s.n[v] += 1;
-                    }
+    let (vpts, rest) = out.split_at_mut(nv);
+    let fpts = &rest[ne..];
+    for f in 0..src.face_count() {
+        let (lo, hi) = (src.off[f] as usize, src.off[f + 1] as usize);
+        match s.kind[f] {
+            Kind::Normal => {
+                let fpos = fpts[(s.fp[f] as usize) - nv - ne];
+                for c in lo..hi {
+                    let v = src.cv[c] as usize;
+                    let w = src.cv[if c + 1 == hi { lo } else { c + 1 }] as usize;
+                    vpts[v] += fpos + pos[w];
+                    s.n[v] += 1;
                 }
-                Kind::Hole => {
-                    for c in lo..hi {
-                        let v = src.cv[c] as usize;
-                        let w = src.cv[if c + 1 == hi { lo } else { c + 1 }] as usize;
-                        let u = src.cv[if c == lo { hi - 1 } else { c - 1 }] as usize;
-                        s.bsum[v] += pos[u] + pos[w];
-                        s.nh[v] += 1;
-                    }
-                }
-                Kind::PointSphere => {}
             }
-        }
-        for v in 0..nv {
-            let (n, nh) = (s.n[v], s.nh[v]);
-            let p = pos[v];
-            vpts[v] = if nh == 0 && n >= 2 {
-                let nf64 = f64::from(n);
-                vpts[v] / (nf64 * nf64) + p * ((nf64 - 2.0) / nf64)
-            } else if nh == 1 && n + nh >= 3 {
-                (s.bsum[v] + 6.0 * p) / 8.0
-            } else {
-                p
-            };
+            Kind::Hole => {
+                for c in lo..hi {
+                    let v = src.cv[c] as usize;
+                    let w = src.cv[if c + 1 == hi { lo } else { c + 1 }] as usize;
+                    let u = src.cv[if c == lo { hi - 1 } else { c - 1 }] as usize;
+                    s.bsum[v] += pos[u] + pos[w];
+                    s.nh[v] += 1;
+                }
+            }
+            Kind::PointSphere => {}
         }
     }
+    for v in 0..nv {
+        let (n, nh) = (s.n[v], s.nh[v]);
+        let p = pos[v];
+        vpts[v] = if nh == 0 && n >= 2 {
+            let nf64 = f64::from(n);
+            vpts[v] / (nf64 * nf64) + p * ((nf64 - 2.0) / nf64)
+        } else if nh == 1 && n + nh >= 3 {
+            (s.bsum[v] + 6.0 * p) / 8.0
+        } else {
+            p
+        };
+    }
+}
 
-    // Pass 4, edge points.
+/// Pass 4: the edge points, written to `out` after the vertex points
+/// (reading the face points pass 2 wrote there).
+fn edge_points(src: &Flat, out: &mut [DVec3], s: &Scratch) {
+    let nv = src.pos.len();
+    let pos = &src.pos;
     for (e, &[a, b]) in src.edges.iter().enumerate() {
         let (a, b) = (a as usize, b as usize);
         let (fa, fb) = (src.cf[a] as usize, src.cf[b] as usize);
         let (p0, p1) = (pos[src.cv[a] as usize], pos[src.cv[b] as usize]);
-        dst.pos[nv + e] = if s.kind[fa] == Kind::Normal && s.kind[fb] == Kind::Normal {
-            (p0 + p1 + dst.pos[s.fp[fa] as usize] + dst.pos[s.fp[fb] as usize]) * 0.25
+        out[nv + e] = if s.kind[fa] == Kind::Normal && s.kind[fb] == Kind::Normal {
+            (p0 + p1 + out[s.fp[fa] as usize] + out[s.fp[fb] as usize]) * 0.25
         } else {
             (p0 + p1) * 0.5
         };
     }
+}
 
-    // Pass 5, connectivity. `first(c)` is the output corner from v(c) to
-    // the point of c's edge, `second(c)` the one from that point on to
-    // v(next c); the two halves of an edge (a, b) pair first(a) with
-    // second(b) and second(a) with first(b).
-    let first = |c: usize| -> u32 {
-        let f = src.cf[c] as usize;
-        let j = (c - src.off[f] as usize) as u32;
-        match s.kind[f] {
-            Kind::Hole => s.obase[f] + 2 * j,
-            _ => s.obase[f] + 4 * j,
-        }
-    };
-    let second = |c: usize| -> u32 {
-        let f = src.cf[c] as usize;
-        let lo = src.off[f] as usize;
-        let k = src.off[f + 1] as usize - lo;
-        let j = c - lo;
-        match s.kind[f] {
-            Kind::Hole => s.obase[f] + 2 * j as u32 + 1,
-            _ => s.obase[f] + 4 * ((j + 1) % k) as u32 + 3,
-        }
-    };
+/// `first(c)`: the output corner from v(c) to the point of c's edge.
+#[inline]
+fn first_corner(src: &Flat, s: &Scratch, c: usize) -> u32 {
+    let f = src.cf[c] as usize;
+    let j = (c - src.off[f] as usize) as u32;
+    match s.kind[f] {
+        Kind::Hole => s.obase[f] + 2 * j,
+        _ => s.obase[f] + 4 * j,
+    }
+}
+
+/// `second(c)`: the output corner from the point of c's edge on to
+/// v(next c).
+#[inline]
+fn second_corner(src: &Flat, s: &Scratch, c: usize) -> u32 {
+    let f = src.cf[c] as usize;
+    let lo = src.off[f] as usize;
+    let k = src.off[f + 1] as usize - lo;
+    let j = c - lo;
+    match s.kind[f] {
+        Kind::Hole => s.obase[f] + 2 * j as u32 + 1,
+        _ => s.obase[f] + 4 * ((j + 1) % k) as u32 + 3,
+    }
+}
+
+/// Empties `dst`'s connectivity and reserves room for `sizes`; with
+/// `links`, `dst.cedge` is sized to every output corner, unset.
+fn reset_connectivity(dst: &mut Flat, sizes: &Sizes, links: bool) {
+    let (oc, of) = (sizes.oc, sizes.of);
     dst.off.clear();
     dst.cv.clear();
     dst.cf.clear();
@@ -191,11 +245,28 @@ pub(crate) fn step(
     }
     dst.hole.reserve(of);
     dst.edges.clear();
-    dst.edges.reserve(out_e);
+    dst.edges.reserve(sizes.out_e);
     dst.cedge.clear();
     if links {
         dst.cedge.resize(oc, NONE);
     }
+}
+
+/// Pass 5: the output faces and edges. `first(c)` is the output corner
+/// from v(c) to the point of c's edge, `second(c)` the one from that
+/// point on to v(next c); the two halves of an edge (a, b) pair first(a)
+/// with second(b) and second(a) with first(b).
+fn connectivity(
+    src: &Flat,
+    dst: &mut Flat,
+    s: &Scratch,
+    links: bool,
+    sizes: &Sizes,
+) -> Result<(), SubdivError> {
+    let nv = src.pos.len();
+    let first = |c: usize| first_corner(src, s, c);
+    let second = |c: usize| second_corner(src, s, c);
+    reset_connectivity(dst, sizes, links);
     // Edges are numbered in the order of their first corner, as each
     // output corner is written: what is near on the surface then stays
     // near in memory (edge points of the next level included), which
@@ -213,7 +284,7 @@ pub(crate) fn step(
         }
     };
     let ep = |e: u32| nv as u32 + e;
-    for f in 0..nf {
+    for f in 0..src.face_count() {
         let (lo, hi) = (src.off[f] as usize, src.off[f + 1] as usize);
         let k = hi - lo;
         let ob = s.obase[f];
@@ -269,11 +340,12 @@ pub(crate) fn step(
             }
         }
     }
-    dst.off.push(oc as u32);
-    if dst.edges.len() != out_e {
+    dst.off.push(sizes.oc as u32);
+    if dst.edges.len() != sizes.out_e {
         return Err(SubdivError::Internal(format!(
-            "{} edges made, {out_e} expected",
-            dst.edges.len()
+            "{} edges made, {} expected",
+            dst.edges.len(),
+            sizes.out_e
         )));
     }
     Ok(())

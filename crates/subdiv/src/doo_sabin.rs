@@ -75,17 +75,55 @@ pub(crate) fn corner_points(p: &[DVec3], out: &mut [DVec3], trig: &mut Vec<(f64,
 /// and the V-faces in vertex order (point-sphere vertices have none). The
 /// F-faces' corners are numbered like the vertices they stand at.
 pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), SubdivError> {
-    let nv = src.pos.len();
-    let ne = src.edges.len();
-    let nf = src.face_count();
     let nc = src.corner_count();
 
     // Pass 1: kinds and each corner's points.
+    let nvo = number_corner_points(src, s);
+
+    // Per vertex: corner counts and a first corner.
+    let sizes = count_vertex_corners(src, s, nvo);
+    crate::check_index(sizes.out_c)?;
+    crate::check_index(sizes.out_f)?;
+    crate::check_index(sizes.out_e)?;
+    crate::check_index(nc)?;
+
+    // Pass 2: positions.
+    positions(src, &mut dst.pos, s, nvo);
+
+    // Pass 3: F-faces. Their corners are numbered like their vertices.
+    f_faces(src, dst, s, &sizes);
+
+    // Pass 4: E-faces, and the edges they share with the F-faces.
+    e_faces(src, dst, s, &sizes);
+
+    // Pass 5: V-faces.
+    v_faces(src, dst, s, &sizes)?;
+
+    link_corners(dst, sizes.out_c)
+}
+
+/// Where one level's output goes, and its sizes.
+struct Sizes {
+    /// First corner of the E-faces (after the F-faces').
+    base_e: usize,
+    /// First corner of the V-faces (after the E-faces').
+    base_v: usize,
+    /// Output corners.
+    out_c: usize,
+    /// Output faces.
+    out_f: usize,
+    /// Output edges.
+    out_e: usize,
+}
+
+/// Pass 1: records each face's kind and each corner's points (`B` and
+/// `A`) in `s`, and returns the number of output vertices.
+fn number_corner_points(src: &Flat, s: &mut Scratch) -> usize {
     s.kind.clear();
     s.pb.clear();
     s.pa.clear();
     let mut nvo = 0u32;
-    for f in 0..nf {
+    for f in 0..src.face_count() {
         let kind = src.kind(f);
         s.kind.push(kind);
         for _ in src.off[f]..src.off[f + 1] {
@@ -99,9 +137,16 @@ pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), Su
             }
         }
     }
-    let nvo = nvo as usize;
+    nvo as usize
+}
 
-    // Per vertex: corner counts and a first corner.
+/// Counts each vertex's corners and hole corners and finds its first
+/// corner (point-sphere corners excluded), in `s`; returns the output's
+/// layout given its `nvo` vertices.
+fn count_vertex_corners(src: &Flat, s: &mut Scratch, nvo: usize) -> Sizes {
+    let nv = src.pos.len();
+    let ne = src.edges.len();
+    let nf = src.face_count();
     s.count.clear();
     s.count.resize(nv, 0);
     s.nh.clear();
@@ -134,26 +179,28 @@ pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), Su
     let hole_corners: usize = s.nh.iter().map(|&h| h as usize).sum();
     let base_e = nvo;
     let base_v = base_e + 4 * ne;
-    let out_c = base_v + vcorners;
-    let out_f = nf + ne + vfaces;
-    let out_e = 4 * ne + hole_corners;
-    crate::check_index(out_c)?;
-    crate::check_index(out_f)?;
-    crate::check_index(out_e)?;
-    crate::check_index(nc)?;
+    Sizes {
+        base_e,
+        base_v,
+        out_c: base_v + vcorners,
+        out_f: nf + ne + vfaces,
+        out_e: 4 * ne + hole_corners,
+    }
+}
 
-    // Pass 2: positions.
-    dst.pos.clear();
-    dst.pos.resize(nvo, DVec3::ZERO);
+/// Pass 2: the `nvo` output positions, each face's corner points.
+fn positions(src: &Flat, out: &mut Vec<DVec3>, s: &mut Scratch, nvo: usize) {
+    out.clear();
+    out.resize(nvo, DVec3::ZERO);
     let mut face_pos: Vec<DVec3> = Vec::new();
-    for f in 0..nf {
+    for f in 0..src.face_count() {
         let (lo, hi) = (src.off[f] as usize, src.off[f + 1] as usize);
         let ob = s.pb[lo] as usize;
         match s.kind[f] {
             Kind::Normal => {
                 face_pos.clear();
                 face_pos.extend(src.cv[lo..hi].iter().map(|&v| src.pos[v as usize]));
-                corner_points(&face_pos, &mut dst.pos[ob..ob + (hi - lo)], &mut s.trig);
+                corner_points(&face_pos, &mut out[ob..ob + (hi - lo)], &mut s.trig);
             }
             Kind::Hole => {
                 for c in lo..hi {
@@ -161,24 +208,28 @@ pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), Su
                     let u = src.pos[src.cv[if c == lo { hi - 1 } else { c - 1 }] as usize];
                     let w = src.pos[src.cv[if c + 1 == hi { lo } else { c + 1 }] as usize];
                     let o = ob + 2 * (c - lo);
-                    dst.pos[o] = 0.75 * v + 0.25 * u;
-                    dst.pos[o + 1] = 0.75 * v + 0.25 * w;
+                    out[o] = 0.75 * v + 0.25 * u;
+                    out[o + 1] = 0.75 * v + 0.25 * w;
                 }
             }
-            Kind::PointSphere => dst.pos[ob] = src.pos[src.cv[lo] as usize],
+            Kind::PointSphere => out[ob] = src.pos[src.cv[lo] as usize],
         }
     }
+}
 
-    // Pass 3: F-faces. Their corners are numbered like their vertices.
+/// Pass 3: empties `dst`'s faces, reserves room for the whole output,
+/// and writes the F-faces, whose corners are numbered like their
+/// vertices.
+fn f_faces(src: &Flat, dst: &mut Flat, s: &Scratch, sizes: &Sizes) {
     dst.off.clear();
     dst.cv.clear();
     dst.cf.clear();
     dst.hole.clear();
-    dst.off.reserve(out_f + 1);
-    dst.cv.reserve(out_c);
-    dst.cf.reserve(out_c);
-    dst.hole.reserve(out_f);
-    for f in 0..nf {
+    dst.off.reserve(sizes.out_f + 1);
+    dst.cv.reserve(sizes.out_c);
+    dst.cf.reserve(sizes.out_c);
+    dst.hole.reserve(sizes.out_f);
+    for f in 0..src.face_count() {
         let (lo, hi) = (src.off[f] as usize, src.off[f + 1] as usize);
         let (b, e) = (s.pb[lo], s.pa[hi - 1] + 1);
         dst.off.push(b);
@@ -187,15 +238,19 @@ pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), Su
             .extend(std::iter::repeat_n(f as u32, (e - b) as usize));
         dst.hole.push(src.hole[f]);
     }
+}
 
-    // Pass 4: E-faces [A(a), B(next b), A(b), B(next a)] for edge (a, b),
-    // and the edges they share with the F-faces.
+/// Pass 4: E-faces [A(a), B(next b), A(b), B(next a)] for edge (a, b),
+/// and the edges they share with the F-faces; sizes `dst.edges` to every
+/// output edge, the V-face sides left unset.
+fn e_faces(src: &Flat, dst: &mut Flat, s: &Scratch, sizes: &Sizes) {
+    let nf = src.face_count();
     dst.edges.clear();
-    dst.edges.resize(out_e, [NONE, NONE]);
+    dst.edges.resize(sizes.out_e, [NONE, NONE]);
     for (e, &[a, b]) in src.edges.iter().enumerate() {
         let (a, b) = (a as usize, b as usize);
         let (na, nb) = (src.next(a), src.next(b));
-        let q = (base_e + 4 * e) as u32;
+        let q = (sizes.base_e + 4 * e) as u32;
         dst.off.push(q);
         dst.cv
             .extend_from_slice(&[s.pa[a], s.pb[nb], s.pa[b], s.pb[na]]);
@@ -208,14 +263,21 @@ pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), Su
         dst.edges[4 * e + 2][0] = q;
         dst.edges[4 * e + 3][0] = q + 2;
     }
+}
 
-    // Pass 5: V-faces, walking each vertex's rotation backwards
-    // (c → twin(prev c)) from its first corner. At corner c the V-face
-    // reads A(c) (then B(c) at a hole corner) and goes on to the next
-    // corner's A across the E-face of edge(prev c).
-    let mut cur = base_v as u32;
+/// Pass 5: V-faces, walking each vertex's rotation backwards
+/// (c → twin(prev c)) from its first corner. At corner c the V-face
+/// reads A(c) (then B(c) at a hole corner) and goes on to the next
+/// corner's A across the E-face of edge(prev c). Closes `dst.off`;
+/// an error when a rotation does not match its vertex's corner count or
+/// the totals do not match `sizes`.
+fn v_faces(src: &Flat, dst: &mut Flat, s: &Scratch, sizes: &Sizes) -> Result<(), SubdivError> {
+    let nv = src.pos.len();
+    let ne = src.edges.len();
+    let (out_c, out_e) = (sizes.out_c, sizes.out_e);
+    let mut cur = sizes.base_v as u32;
     let mut hole_edge = 4 * ne;
-    let mut face = (nf + ne) as u32;
+    let mut face = (src.face_count() + ne) as u32;
     for v in 0..nv {
         let n = s.count[v];
         if n == 0 {
@@ -273,7 +335,12 @@ pub(crate) fn step(src: &Flat, dst: &mut Flat, s: &mut Scratch) -> Result<(), Su
             "V-faces hold {cur} corners and {hole_edge} edges, {out_c} and {out_e} expected"
         )));
     }
+    Ok(())
+}
 
+/// Sizes `dst.cedge` to the `out_c` output corners and sets each
+/// corner's edge; an error for an edge pass 4 or 5 left unpaired.
+fn link_corners(dst: &mut Flat, out_c: usize) -> Result<(), SubdivError> {
     dst.cedge.clear();
     dst.cedge.resize(out_c, NONE);
     for (i, &[x, y]) in dst.edges.iter().enumerate() {

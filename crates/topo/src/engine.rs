@@ -710,42 +710,22 @@ fn jitter(id: u32, k: usize) -> DVec3 {
     DVec3::new(next(), next(), next())
 }
 
-/// [`topology_change`] without the retry.
-/// Whether `mesh` moving to `end` neither collides (no vertex with an
-/// odd number of collisions, §3.2) nor crosses itself at the end (no
-/// intersecting pair, §3.3): then the engine can only move it, and a
-/// frame needs nothing more. Both tests run at once; an error (too many
-/// pairs, say) answers no, leaving the full run to report it.
-pub(crate) fn moves_freely(mesh: &TriMesh, end: &[DVec3], options: &Options) -> bool {
-    let abort = AtomicBool::new(false);
-    let (ccd, geometry) = rayon::join(
-        || {
-            vertex_parities_cancellable(
-                &mesh.positions,
-                end,
-                &mesh.triangles,
-                &ccd_options(options, 0),
-                &abort,
-            )
-        },
-        || geometry_stage(mesh, end, options, &abort),
-    );
-    matches!((ccd, geometry), (Ok(c), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true))
-}
-
-fn topology_change_once(
+/// The collision parity (§3.2) of `mesh` moving to `end`, with the
+/// seconds it took, and the static intersections at the end (§3.3), both
+/// at once: collisions need the motion, intersections only the end, and
+/// each is parallel inside but has sequential stretches. A frame with too
+/// many intersections stops the collision half too; its error is the one
+/// to report.
+fn collisions_and_geometry(
     mesh: &TriMesh,
     end: &[DVec3],
     options: &Options,
-) -> Result<Outcome, TopoError> {
-    let started = Instant::now();
-    check(mesh, end)?;
-    // Collisions need the motion, intersections only the end: both at
-    // once (each is parallel inside, but has sequential stretches).
-    // A frame with too many intersections raises `abort` so that the
-    // collision half stops too; its error is the one reported.
+) -> (
+    Result<(holey_geom::ccd::CcdReport, f64), holey_geom::GeomError>,
+    Result<Geometry, TopoError>,
+) {
     let abort = AtomicBool::new(false);
-    let (ccd, geometry) = rayon::join(
+    rayon::join(
         || {
             let t = Instant::now();
             vertex_parities_cancellable(
@@ -758,7 +738,30 @@ fn topology_change_once(
             .map(|c| (c, t.elapsed().as_secs_f64()))
         },
         || geometry_stage(mesh, end, options, &abort),
-    );
+    )
+}
+
+/// Whether `mesh` moving to `end` neither collides (no vertex with an
+/// odd number of collisions, §3.2) nor crosses itself at the end (no
+/// intersecting pair, §3.3): then the engine can only move it, and a
+/// frame needs nothing more. An error (too many pairs, say) answers no,
+/// leaving the full run to report it.
+pub(crate) fn moves_freely(mesh: &TriMesh, end: &[DVec3], options: &Options) -> bool {
+    matches!(
+        collisions_and_geometry(mesh, end, options),
+        (Ok((c, _)), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true)
+    )
+}
+
+/// [`topology_change`] without the retry.
+fn topology_change_once(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+) -> Result<Outcome, TopoError> {
+    let started = Instant::now();
+    check(mesh, end)?;
+    let (ccd, geometry) = collisions_and_geometry(mesh, end, options);
     let geometry = geometry?;
     let (ccd, t_ccd) = ccd?;
     let collisions = (ccd.odd_pairs.len(), ccd.candidates, t_ccd);

@@ -827,35 +827,98 @@ pub(crate) fn intersections_among(
 ) -> Result<Intersections, IntersectError> {
     let tris = &mesh.triangles;
     let sym = Symbolic { positions, ids };
-    let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
     let (mut segs, candidates) = segments(mesh, positions, ids, candidates, limit, abort)?;
     let filtered = candidates - segs.len();
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));
 
     // Edge × triangle points, keyed by (mesh edge, crossed triangle).
-    let key_of_end = |t1: u32, t2: u32, end: &SegEnd| -> Option<(u32, u32)> {
-        let SegEnd::Edge { p, q, tri } = end else {
-            return None;
-        };
-        // The edge belongs to whichever triangle is not `tri`.
-        let (owner, other) = if tri.map(|s| s.id) == tid(t2) {
-            (t1, t2)
-        } else {
-            (t2, t1)
-        };
-        let t = tris[owner as usize];
-        let k = (0..3).find(|&k| {
-            let (a, b) = (ids[t[k] as usize], ids[t[(k + 1) % 3] as usize]);
-            (a == p.id && b == q.id) || (a == q.id && b == p.id)
-        })?;
-        Some((edges.of_triangle[owner as usize][k], other))
+    let EdgeTriPoints {
+        mut points,
+        seg_nodes,
+        point_of,
+    } = edge_triangle_points(tris, &sym, edges, &segs)?;
+
+    // Triple points: three pairwise-intersecting triangles meeting in a point.
+    let triples = candidate_triples(tris.len(), &segs, limit, abort)?;
+    let on_seg = triple_points(tris, &sym, &segs, &triples, &mut points)?;
+
+    // Pieces: consecutive nodes along each segment.
+    let pieces = segment_pieces(&segs, &seg_nodes, &point_of, on_seg, &points);
+
+    // Curves: connected components of the pieces.
+    let (curve_of_piece, curve_count) = curves(&pieces);
+
+    let cut_edges = cut_edge_flags(&points, &pieces, edges, ids);
+    Ok(Intersections {
+        points,
+        pieces,
+        curve_of_piece,
+        curve_count: curve_count as usize,
+        pairs: segs.iter().map(|s| (s.0, s.1)).collect(),
+        cut_edges,
+        candidates,
+        filtered,
+    })
+}
+
+/// The edge × triangle points of a set of intersection segments, and
+/// which segment ends they are.
+struct EdgeTriPoints {
+    /// One point per distinct `(mesh edge, crossed triangle)` key, in key
+    /// order.
+    points: Vec<IPoint>,
+    /// Per segment, the key of each of its two ends (`None` for a shared
+    /// vertex).
+    seg_nodes: Vec<[Option<(u32, u32)>; 2]>,
+    /// The index in `points` of each key.
+    point_of: HashMap<(u32, u32), u32>,
+}
+
+/// The `(mesh edge, crossed triangle)` key of `end`, an end of the
+/// intersection segment of triangles `t1` and `t2`: `None` when the end
+/// is a shared vertex, or an edge matching no edge of its triangle.
+fn key_of_end(
+    tris: &[[u32; 3]],
+    ids: &[u32],
+    edges: &Edges,
+    t1: u32,
+    t2: u32,
+    end: &SegEnd,
+) -> Option<(u32, u32)> {
+    let tid = |t: u32| tris[t as usize].map(|v| ids[v as usize]);
+    let SegEnd::Edge { p, q, tri } = end else {
+        return None;
     };
+    // The edge belongs to whichever triangle is not `tri`.
+    let (owner, other) = if tri.map(|s| s.id) == tid(t2) {
+        (t1, t2)
+    } else {
+        (t2, t1)
+    };
+    let t = tris[owner as usize];
+    let k = (0..3).find(|&k| {
+        let (a, b) = (ids[t[k] as usize], ids[t[(k + 1) % 3] as usize]);
+        (a == p.id && b == q.id) || (a == q.id && b == p.id)
+    })?;
+    Some((edges.of_triangle[owner as usize][k], other))
+}
+
+/// Constructs every edge × triangle point that ends one of `segs`, once
+/// per key, in parallel; the first construction failure in key order is
+/// the error.
+fn edge_triangle_points(
+    tris: &[[u32; 3]],
+    sym: &Symbolic<'_>,
+    edges: &Edges,
+    segs: &[Segment],
+) -> Result<EdgeTriPoints, IntersectError> {
+    let ids = sym.ids;
     let mut keys: Vec<(u32, u32)> = Vec::new();
     let mut seg_nodes: Vec<[Option<(u32, u32)>; 2]> = Vec::with_capacity(segs.len());
-    for (t1, t2, ends) in &segs {
-        let a = key_of_end(*t1, *t2, &ends[0]);
-        let b = key_of_end(*t1, *t2, &ends[1]);
+    for (t1, t2, ends) in segs {
+        let a = key_of_end(tris, ids, edges, *t1, *t2, &ends[0]);
+        let b = key_of_end(tris, ids, edges, *t1, *t2, &ends[1]);
         keys.extend(a.iter().chain(b.iter()).copied());
         seg_nodes.push([a, b]);
     }
@@ -898,32 +961,45 @@ pub(crate) fn intersections_among(
         .enumerate()
         .map(|(i, &k)| (k, i as u32))
         .collect();
-    let node_of = |key: Option<(u32, u32)>, end: &SegEnd| -> Node {
-        match (key, end) {
-            (Some(k), _) => Node::Point(point_of[&k]),
-            (None, SegEnd::Vertex(v)) => Node::Shared(v.id),
-            // An edge end whose edge could not be matched (cannot happen
-            // for a consistent mesh): treat as its first point's identity.
-            (None, SegEnd::Edge { p, .. }) => Node::Shared(p.id),
-        }
-    };
+    Ok(EdgeTriPoints {
+        points,
+        seg_nodes,
+        point_of,
+    })
+}
 
-    // Triple points: three pairwise-intersecting triangles meeting in a point.
-    let mut partners: Vec<Vec<u32>> = vec![Vec::new(); tris.len()];
-    for (t1, t2, _) in &segs {
+/// The curve node at segment end `end`, whose edge × triangle key (from
+/// [`EdgeTriPoints::seg_nodes`]) is `key`.
+fn node_of(point_of: &HashMap<(u32, u32), u32>, key: Option<(u32, u32)>, end: &SegEnd) -> Node {
+    match (key, end) {
+        (Some(k), _) => Node::Point(point_of[&k]),
+        (None, SegEnd::Vertex(v)) => Node::Shared(v.id),
+        // An edge end whose edge could not be matched (cannot happen
+        // for a consistent mesh): treat as its first point's identity.
+        (None, SegEnd::Edge { p, .. }) => Node::Shared(p.id),
+    }
+}
+
+/// The triples `[t1, t2, t3]` (increasing) of triangles that pairwise
+/// intersect along one of `segs`, in the order of `segs`;
+/// [`IntersectError::TooManyPairs`] (raising `abort`) once pairs and
+/// triples together exceed `limit`.
+fn candidate_triples(
+    triangles: usize,
+    segs: &[Segment],
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<Vec<[u32; 3]>, IntersectError> {
+    let mut partners: Vec<Vec<u32>> = vec![Vec::new(); triangles];
+    for (t1, t2, _) in segs {
         partners[*t1 as usize].push(*t2);
         partners[*t2 as usize].push(*t1);
     }
     for p in &mut partners {
         p.sort_unstable();
     }
-    let seg_index: HashMap<(u32, u32), usize> = segs
-        .iter()
-        .enumerate()
-        .map(|(i, s)| ((s.0, s.1), i))
-        .collect();
     let mut triples: Vec<[u32; 3]> = Vec::new();
-    for (t1, t2, _) in &segs {
+    for (t1, t2, _) in segs {
         let (a, b) = (&partners[*t1 as usize], &partners[*t2 as usize]);
         let (mut i, mut j) = (0, 0);
         while i < a.len() && j < b.len() {
@@ -939,10 +1015,7 @@ pub(crate) fn intersections_among(
                         // against the same limit as the pairs.
                         if segs.len().saturating_add(triples.len()) > limit {
                             abort.store(true, AtomicOrdering::Relaxed);
-                            return Err(IntersectError::TooManyPairs {
-                                limit,
-                                triangles: tris.len(),
-                            });
+                            return Err(IntersectError::TooManyPairs { limit, triangles });
                         }
                     }
                     i += 1;
@@ -951,6 +1024,25 @@ pub(crate) fn intersections_among(
             }
         }
     }
+    Ok(triples)
+}
+
+/// Tests `triples` exactly (in parallel) and appends the triple points
+/// found to `points`, in the order of `triples`; returns, per segment of
+/// `segs`, the triple points on its interior as `(point, third
+/// triangle)`.
+fn triple_points(
+    tris: &[[u32; 3]],
+    sym: &Symbolic<'_>,
+    segs: &[Segment],
+    triples: &[[u32; 3]],
+    points: &mut Vec<IPoint>,
+) -> Result<Vec<Vec<(u32, u32)>>, IntersectError> {
+    let seg_index: HashMap<(u32, u32), usize> = segs
+        .iter()
+        .enumerate()
+        .map(|(i, s)| ((s.0, s.1), i))
+        .collect();
     let triple_found: Vec<Option<Result<IPoint, IntersectError>>> = triples
         .par_iter()
         .map(|&t| {
@@ -990,13 +1082,24 @@ pub(crate) fn intersections_among(
             }
         }
     }
+    Ok(on_seg)
+}
 
-    // Pieces: consecutive nodes along each segment.
+/// The curve pieces: per segment of `segs`, in order, the pieces between
+/// consecutive nodes along it — its two ends (keyed by `seg_nodes`, see
+/// [`node_of`]) with the triple points `on_seg` on its interior between.
+fn segment_pieces(
+    segs: &[Segment],
+    seg_nodes: &[[Option<(u32, u32)>; 2]],
+    point_of: &HashMap<(u32, u32), u32>,
+    mut on_seg: Vec<Vec<(u32, u32)>>,
+    points: &[IPoint],
+) -> Vec<Piece> {
     let mut pieces = Vec::new();
     for (s, (t1, t2, ends)) in segs.iter().enumerate() {
         let mut interior = std::mem::take(&mut on_seg[s]);
-        let first = node_of(seg_nodes[s][0], &ends[0]);
-        let last = node_of(seg_nodes[s][1], &ends[1]);
+        let first = node_of(point_of, seg_nodes[s][0], &ends[0]);
+        let last = node_of(point_of, seg_nodes[s][1], &ends[1]);
         if interior.len() > 1 {
             let at = |node: Node, end: &SegEnd| match (node, end) {
                 (Node::Point(p), _) => points[p as usize].position,
@@ -1017,14 +1120,18 @@ pub(crate) fn intersections_among(
             });
         }
     }
+    pieces
+}
 
-    // Curves: connected components of the pieces.
+/// The curve of each piece (connected components of `pieces`, numbered
+/// in order of their first piece) and the number of curves.
+fn curves(pieces: &[Piece]) -> (Vec<u32>, u32) {
     let mut nodes: Vec<Node> = pieces.iter().flat_map(|p| p.ends).collect();
     nodes.sort_unstable();
     nodes.dedup();
     let index = |n: &Node| nodes.binary_search(n).unwrap_or(0);
     let mut sets = crate::union_find::UnionFind::new(nodes.len());
-    for p in &pieces {
+    for p in pieces {
         sets.union(index(&p.ends[0]) as u32, index(&p.ends[1]) as u32);
     }
     let mut curve_id = vec![u32::MAX; nodes.len()];
@@ -1040,9 +1147,15 @@ pub(crate) fn intersections_among(
             curve_id[r]
         })
         .collect();
+    (curve_of_piece, curve_count)
+}
 
+/// [`Intersections::cut_edges`]: the mesh edges crossed by a triangle at
+/// one of `points`, and the edges at vertices whose identity (in `ids`)
+/// a piece passes through.
+fn cut_edge_flags(points: &[IPoint], pieces: &[Piece], edges: &Edges, ids: &[u32]) -> Vec<bool> {
     let mut cut_edges = vec![false; edges.len()];
-    for p in &points {
+    for p in points {
         if let PointKind::EdgeTri { edge, .. } = p.kind {
             cut_edges[edge as usize] = true;
         }
@@ -1051,7 +1164,7 @@ pub(crate) fn intersections_among(
     // point, or sheets meeting at a welded vertex) puts that vertex on the
     // curve even after perturbation: it has no side, so its edges carry no
     // coupling either.
-    let shared = shared_ids(&pieces);
+    let shared = shared_ids(pieces);
     if !shared.is_empty() {
         for (e, ends) in edges.ends.iter().enumerate() {
             if ends
@@ -1062,16 +1175,7 @@ pub(crate) fn intersections_among(
             }
         }
     }
-    Ok(Intersections {
-        points,
-        pieces,
-        curve_of_piece,
-        curve_count: curve_count as usize,
-        pairs: segs.iter().map(|s| (s.0, s.1)).collect(),
-        cut_edges,
-        candidates,
-        filtered,
-    })
+    cut_edges
 }
 
 /// The identities of the vertices that curve pieces pass through

@@ -361,24 +361,9 @@ mod tests {
         )
     }
 
-    #[test]
-    fn inside_is_one_outside_is_zero() {
-        let (p, t) = tetra();
-        let at = |v: u32| p[v as usize];
-        let w = |q: DVec3| winding_number(&t, &at, q, None);
-        assert!((w(DVec3::ZERO) - 1.0).abs() < 1e-12);
-        assert!(w(DVec3::new(0.1, -0.2, 0.05)) > 0.999_999);
-        assert!(w(DVec3::new(3.0, 0.0, 0.0)).abs() < 1e-12);
-        // Flipped orientation: −1 inside.
-        let flipped: Vec<[u32; 3]> = t.iter().map(|f| [f[0], f[2], f[1]]).collect();
-        assert!((winding_number(&flipped, &at, DVec3::ZERO, None) + 1.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn the_grid_field_agrees_with_the_exact_sum() {
-        // A finely triangulated sphere (UV), queried inside, outside and
-        // close to the surface.
-        let (rings, segs) = (40u32, 60u32);
+    /// A unit sphere of `rings` rings and `segs` segments (poles first),
+    /// outward: positions, triangles, and `segs`.
+    fn uv_sphere(rings: u32, segs: u32) -> (Vec<DVec3>, Vec<[u32; 3]>, u32) {
         let mut pos = vec![DVec3::Z, -DVec3::Z];
         for i in 1..rings {
             let th = std::f64::consts::PI * f64::from(i) / f64::from(rings);
@@ -403,6 +388,27 @@ mod tests {
                 tris.push([at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)]);
             }
         }
+        (pos, tris, segs)
+    }
+
+    #[test]
+    fn inside_is_one_outside_is_zero() {
+        let (p, t) = tetra();
+        let at = |v: u32| p[v as usize];
+        let w = |q: DVec3| winding_number(&t, &at, q, None);
+        assert!((w(DVec3::ZERO) - 1.0).abs() < 1e-12);
+        assert!(w(DVec3::new(0.1, -0.2, 0.05)) > 0.999_999);
+        assert!(w(DVec3::new(3.0, 0.0, 0.0)).abs() < 1e-12);
+        // Flipped orientation: −1 inside.
+        let flipped: Vec<[u32; 3]> = t.iter().map(|f| [f[0], f[2], f[1]]).collect();
+        assert!((winding_number(&flipped, &at, DVec3::ZERO, None) + 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_grid_field_agrees_with_the_exact_sum() {
+        // A finely triangulated sphere (UV), queried inside, outside and
+        // close to the surface.
+        let (pos, tris, _) = uv_sphere(40, 60);
         let p = |v: u32| pos[v as usize];
         let field = WindingField::new(&tris, &p);
         for q in [
@@ -426,31 +432,7 @@ mod tests {
     /// surface: fractional winding numbers).
     #[test]
     fn the_one_pass_sum_agrees_with_the_exact_sum() {
-        let (rings, segs) = (60u32, 90u32);
-        let mut pos = vec![DVec3::Z, -DVec3::Z];
-        for i in 1..rings {
-            let th = std::f64::consts::PI * f64::from(i) / f64::from(rings);
-            for j in 0..segs {
-                let ph = std::f64::consts::TAU * f64::from(j) / f64::from(segs);
-                pos.push(DVec3::new(
-                    th.sin() * ph.cos(),
-                    th.sin() * ph.sin(),
-                    th.cos(),
-                ));
-            }
-        }
-        let at = |i: u32, j: u32| 2 + (i - 1) * segs + (j % segs);
-        let mut tris = Vec::new();
-        for j in 0..segs {
-            tris.push([0, at(1, j), at(1, j + 1)]);
-            tris.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);
-        }
-        for i in 1..rings - 1 {
-            for j in 0..segs {
-                tris.push([at(i, j), at(i + 1, j), at(i, j + 1)]);
-                tris.push([at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)]);
-            }
-        }
+        let (pos, tris, segs) = uv_sphere(60, 90);
         let p = |v: u32| pos[v as usize];
         let points = [
             DVec3::ZERO,
