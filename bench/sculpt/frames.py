@@ -25,23 +25,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-
-
-def read_obj(path):
-    positions, triangles = [], []
-    with open(path) as f:
-        for line in f:
-            s = line.split()
-            if not s:
-                continue
-            if s[0] == "v":
-                positions.append([float(x) for x in s[1:4]])
-            elif s[0] == "f":
-                idx = [int(t.split("/")[0]) for t in s[1:]]
-                idx = [i - 1 if i > 0 else len(positions) + i for i in idx]
-                for k in range(1, len(idx) - 1):
-                    triangles.append([idx[0], idx[k], idx[k + 1]])
-    return np.array(positions), np.array(triangles)
+sys.path.insert(0, os.path.join(ROOT, "bench", "peers"))
+from peer_io import read_obj  # noqa: E402  (one OBJ reader for the bench scripts)
 
 
 class Surface:
