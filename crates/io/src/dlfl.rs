@@ -25,7 +25,7 @@ use holey_mesh::DVec3;
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, parse_finite, parse_u64, push_f64, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_point, push_u64};
 
 const NONE: u32 = u32::MAX;
 
@@ -398,56 +398,41 @@ pub fn check_raw(raw: &RawMesh) -> Result<(), String> {
 
 /// Writes a [`RawMesh`] as `.dlfl`. Fails with
 /// [`io::ErrorKind::InvalidInput`] if [`check_raw`] rejects it.
-pub fn write<W: Write>(mut w: W, raw: &RawMesh) -> io::Result<()> {
+pub fn write<W: Write>(w: W, raw: &RawMesh) -> io::Result<()> {
     check_raw(raw).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    let mut buf = Vec::with_capacity(crate::CHUNK + 256);
-    buf.extend_from_slice(b"# written by holey\ndlfl 1\n");
-    for p in &raw.positions {
-        buf.extend_from_slice(b"v ");
-        push_f64(&mut buf, p.x);
-        buf.push(b' ');
-        push_f64(&mut buf, p.y);
-        buf.push(b' ');
-        push_f64(&mut buf, p.z);
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+    let mut out = Lines::new(w, b"# written by holey\ndlfl 1\n");
+    for &p in &raw.positions {
+        out.line(|b| {
+            b.extend_from_slice(b"v ");
+            push_point(b, p);
+        })?;
     }
     for f in 0..raw.face_count() {
-        buf.push(if raw.is_hole(f) { b'h' } else { b'f' });
-        for &v in raw.face(f) {
-            buf.push(b' ');
-            push_u64(&mut buf, u64::from(v));
-        }
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+        out.line(|b| {
+            b.push(if raw.is_hole(f) { b'h' } else { b'f' });
+            for &v in raw.face(f) {
+                b.push(b' ');
+                push_u64(b, u64::from(v));
+            }
+        })?;
     }
     for &[a, b] in &raw.edges {
-        buf.push(b'e');
-        for g in [a, b] {
-            // check_raw guarantees g is a corner, so some face holds it.
-            let f = raw
-                .face_offsets
-                .partition_point(|&o| o <= g)
-                .saturating_sub(1);
-            buf.push(b' ');
-            push_u64(&mut buf, f as u64);
-            buf.push(b':');
-            push_u64(&mut buf, u64::from(g - raw.face_offsets[f]));
-        }
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+        out.line(|buf| {
+            buf.push(b'e');
+            for g in [a, b] {
+                // check_raw guarantees g is a corner, so some face holds it.
+                let f = raw
+                    .face_offsets
+                    .partition_point(|&o| o <= g)
+                    .saturating_sub(1);
+                buf.push(b' ');
+                push_u64(buf, f as u64);
+                buf.push(b':');
+                push_u64(buf, u64::from(g - raw.face_offsets[f]));
+            }
+        })?;
     }
-    w.write_all(&buf)?;
-    w.flush()
+    out.finish()
 }
 
 #[cfg(test)]

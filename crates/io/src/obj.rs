@@ -26,7 +26,7 @@ use std::io::{self, Write};
 use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
-use crate::text::{Cursor, push_f64, push_u64};
+use crate::text::{Cursor, Lines, push_point, push_u64};
 
 /// The statements of the OBJ format (Wavefront's Appendix B1): geometry,
 /// free-form curves and surfaces, grouping, display and rendering. Only
@@ -231,37 +231,25 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
 /// Writes `mesh` as OBJ. Faces are written as given, whatever their size.
 /// Fails with [`io::ErrorKind::InvalidInput`] if the mesh is malformed
 /// (see [`crate::check_poly`]).
-pub fn write<W: Write>(mut w: W, mesh: &PolyMesh) -> io::Result<()> {
+pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
     crate::check_poly(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    let mut buf = Vec::with_capacity(crate::CHUNK + 256);
-    buf.extend_from_slice(b"# written by holey\n");
-    for p in &mesh.positions {
-        buf.extend_from_slice(b"v ");
-        push_f64(&mut buf, p.x);
-        buf.push(b' ');
-        push_f64(&mut buf, p.y);
-        buf.push(b' ');
-        push_f64(&mut buf, p.z);
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+    let mut out = Lines::new(w, b"# written by holey\n");
+    for &p in &mesh.positions {
+        out.line(|b| {
+            b.extend_from_slice(b"v ");
+            push_point(b, p);
+        })?;
     }
     for face in mesh.faces() {
-        buf.push(b'f');
-        for &i in face {
-            buf.push(b' ');
-            push_u64(&mut buf, u64::from(i) + 1);
-        }
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+        out.line(|b| {
+            b.push(b'f');
+            for &i in face {
+                b.push(b' ');
+                push_u64(b, u64::from(i) + 1);
+            }
+        })?;
     }
-    w.write_all(&buf)?;
-    w.flush()
+    out.finish()
 }
 
 #[cfg(test)]

@@ -19,7 +19,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, parse_finite, parse_u64, push_f64, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_point, push_u64};
 
 /// True for a header keyword this reader handles.
 fn is_off_keyword(word: &[u8]) -> bool {
@@ -212,40 +212,28 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
 
 /// Writes `mesh` as OFF. Faces are written as given, whatever their size.
 /// Fails with [`io::ErrorKind::InvalidInput`] if the mesh is malformed.
-pub fn write<W: Write>(mut w: W, mesh: &PolyMesh) -> io::Result<()> {
+pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
     crate::check_poly(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    let mut buf = Vec::with_capacity(crate::CHUNK + 256);
-    buf.extend_from_slice(b"OFF\n# written by holey\n");
-    push_u64(&mut buf, mesh.positions.len() as u64);
-    buf.push(b' ');
-    push_u64(&mut buf, mesh.face_count() as u64);
-    buf.extend_from_slice(b" 0\n");
-    for p in &mesh.positions {
-        push_f64(&mut buf, p.x);
-        buf.push(b' ');
-        push_f64(&mut buf, p.y);
-        buf.push(b' ');
-        push_f64(&mut buf, p.z);
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+    let mut out = Lines::new(w, b"OFF\n# written by holey\n");
+    out.line(|b| {
+        push_u64(b, mesh.positions.len() as u64);
+        b.push(b' ');
+        push_u64(b, mesh.face_count() as u64);
+        b.extend_from_slice(b" 0");
+    })?;
+    for &p in &mesh.positions {
+        out.line(|b| push_point(b, p))?;
     }
     for face in mesh.faces() {
-        push_u64(&mut buf, face.len() as u64);
-        for &i in face {
-            buf.push(b' ');
-            push_u64(&mut buf, u64::from(i));
-        }
-        buf.push(b'\n');
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+        out.line(|b| {
+            push_u64(b, face.len() as u64);
+            for &i in face {
+                b.push(b' ');
+                push_u64(b, u64::from(i));
+            }
+        })?;
     }
-    w.write_all(&buf)?;
-    w.flush()
+    out.finish()
 }
 
 #[cfg(test)]

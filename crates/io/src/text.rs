@@ -372,6 +372,49 @@ pub(crate) fn parse_u64(tok: &[u8]) -> Option<u64> {
     Some(v)
 }
 
+/// The one writer loop of the text formats: lines built in one buffer
+/// and handed to the writer a chunk ([`crate::CHUNK`]) at a time.
+pub(crate) struct Lines<W: std::io::Write> {
+    out: W,
+    buf: Vec<u8>,
+}
+
+impl<W: std::io::Write> Lines<W> {
+    /// Starts with the file's `head` (its first lines, newlines included).
+    pub(crate) fn new(out: W, head: &[u8]) -> Self {
+        let mut buf = Vec::with_capacity(crate::CHUNK + 256);
+        buf.extend_from_slice(head);
+        Lines { out, buf }
+    }
+
+    /// One line: `fill` appends its text, the newline follows.
+    pub(crate) fn line(&mut self, fill: impl FnOnce(&mut Vec<u8>)) -> std::io::Result<()> {
+        fill(&mut self.buf);
+        self.buf.push(b'\n');
+        if self.buf.len() >= crate::CHUNK {
+            self.out.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    /// Writes what is left and flushes.
+    pub(crate) fn finish(mut self) -> std::io::Result<()> {
+        self.out.write_all(&self.buf)?;
+        self.out.flush()
+    }
+}
+
+/// Appends the three coordinates of `p`, each as [`push_f64`] writes it,
+/// separated by spaces.
+pub(crate) fn push_point(out: &mut Vec<u8>, p: holey_mesh::DVec3) {
+    push_f64(out, p.x);
+    out.push(b' ');
+    push_f64(out, p.y);
+    out.push(b' ');
+    push_f64(out, p.z);
+}
+
 /// Appends `x` as the shortest decimal that reads back to the same `f64`,
 /// with no trailing `.0` on integers (`1`, `-0.5`, `1e-7`, `1.5e300`).
 pub(crate) fn push_f64(out: &mut Vec<u8>, x: f64) {
