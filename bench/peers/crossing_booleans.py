@@ -13,22 +13,17 @@ timed too.
     cargo build --release -p holey-cli
     python3 bench/peers/crossing_booleans.py [--holey target/release/holey] [--runs 3]
 """
-import argparse, json, os, subprocess, tempfile, time
+import json, os, subprocess, tempfile, time
 
 import numpy as np
 import manifold3d as m3d
 import trueform as tf
 
-from peer_io import best, read_obj, volume
+from peer_io import bench_args, best, read_obj, volume
 
 
 def main():
-    here = os.path.dirname(__file__)
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--holey", default="target/release/holey")
-    ap.add_argument("--shared", default=os.path.join(here, "../../../shared/data"))
-    ap.add_argument("--runs", type=int, default=3)
-    args = ap.parse_args()
+    args = bench_args().parse_args()
     holey = os.path.abspath(args.holey)
     pairs = [
         ("self_intersectA", "self_intersectB", "meshes"),

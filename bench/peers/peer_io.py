@@ -1,6 +1,8 @@
 """Reading meshes and timing for the peer scripts in this folder: one home
 for what they all need (OBJ and STL as float64 arrays, volumes, best-of-n
 timing)."""
+import argparse
+import os
 import time
 
 import numpy as np
@@ -54,3 +56,14 @@ def best(fn, runs):
         out = fn()
         times.append(time.perf_counter() - t)
     return min(times), out
+
+
+def bench_args(description=None):
+    """The options every peer script takes: the holey binary (made
+    absolute), the shared data folder, and the number of runs."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--holey", default="target/release/holey")
+    ap.add_argument("--shared", default=os.path.join(here, "../../../shared/data"))
+    ap.add_argument("--runs", type=int, default=3)
+    return ap

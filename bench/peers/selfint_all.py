@@ -10,21 +10,16 @@ figure is its own `seconds` from `--json` (no file reading), best of
     cargo build --release -p holey-cli
     python3 bench/peers/selfint_all.py [--holey target/release/holey] [--runs 3]
 """
-import argparse, glob, json, os, subprocess, time
+import glob, json, os, subprocess, time
 
 import numpy as np
 import trueform as tf
 
-from peer_io import read_obj, read_stl
+from peer_io import bench_args, read_obj, read_stl
 
 
 def main():
-    here = os.path.dirname(__file__)
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--holey", default="target/release/holey")
-    ap.add_argument("--shared", default=os.path.join(here, "../../../shared/data"))
-    ap.add_argument("--runs", type=int, default=3)
-    args = ap.parse_args()
+    args = bench_args().parse_args()
     holey = os.path.abspath(args.holey)
     paths = sorted(glob.glob(os.path.join(args.shared, "meshes", "*.obj")))
     paths += sorted(glob.glob(os.path.join(args.shared, "corpus", "*.obj")))

@@ -114,13 +114,11 @@ pub struct BooleanOutcome {
     pub method: Method,
     /// The result of the engine that computed it: the surface and its report.
     pub computed: Computed,
-    /// For containment and motion: the inputs as one mesh where the
-    /// parity was computed (B nudged, or at the motion's end), whose
-    /// vertices the outcome's parities number: what a picture of the
-    /// parity shows.
-    pub at_end: Option<TriMesh>,
     /// Wall-clock seconds, the choice included.
     pub seconds: f64,
+    /// The motion's inputs at its end (built by the motion anyway); see
+    /// [`BooleanOutcome::at_end`].
+    motion_end: Option<TriMesh>,
 }
 
 impl BooleanOutcome {
@@ -137,6 +135,21 @@ impl BooleanOutcome {
         match self.computed {
             Computed::Parity(o) => o.mesh,
             Computed::Winding(o) => o.mesh,
+        }
+    }
+
+    /// For containment and motion: the inputs as one mesh where the parity
+    /// was computed (B nudged, or at the motion's end), whose vertices the
+    /// outcome's parities number: what a picture of the parity shows.
+    /// `inputs` are those given to [`solid_boolean`]. Made only when asked
+    /// for: it copies both inputs.
+    pub fn at_end(&self, inputs: &[&TriMesh]) -> Option<TriMesh> {
+        match (&self.computed, inputs) {
+            (Computed::Parity(_), _) if self.motion_end.is_some() => self.motion_end.clone(),
+            (Computed::Parity(o), [a, b]) => {
+                Some(joined(a, b, nudge(a, b, o.report.perturbation_retries)))
+            }
+            _ => None,
         }
     }
 
@@ -233,25 +246,19 @@ pub fn solid_boolean(
     if total >= u32::MAX as usize / 2 {
         return Err(BooleanError::TooManyVertices(total));
     }
-    let finish = |method, computed, at_end| BooleanOutcome {
+    let finish = |method, computed, motion_end| BooleanOutcome {
         method,
         computed,
-        at_end,
         seconds: started.elapsed().as_secs_f64(),
+        motion_end,
     };
     if options.method == Some(Method::Motion) {
-        let [a, b] = inputs else {
+        let ([a, b], Operation::Union) = (inputs, op) else {
             return Err(BooleanError::MotionNeedsTwo {
                 inputs: inputs.len(),
                 op: op.name(),
             });
         };
-        if op != Operation::Union {
-            return Err(BooleanError::MotionNeedsTwo {
-                inputs: inputs.len(),
-                op: op.name(),
-            });
-        }
         let (out, at_end) = by_motion(a, b, options)?;
         return Ok(finish(Method::Motion, Computed::Parity(out), Some(at_end)));
     }
@@ -278,14 +285,7 @@ pub fn solid_boolean(
         boolean_robust(a, b, op, &options.engine)
     };
     match direct {
-        Ok(out) => {
-            let at_end = joined(a, b, nudge(a, b, out.report.perturbation_retries));
-            Ok(finish(
-                Method::Containment,
-                Computed::Parity(out),
-                Some(at_end),
-            ))
-        }
+        Ok(out) => Ok(finish(Method::Containment, Computed::Parity(out), None)),
         // Containment means nothing for a surface with boundary, and a
         // solid crossing itself where it meets the other would crack;
         // the motion takes both, and unites.
@@ -376,32 +376,12 @@ fn by_motion(
 mod tests {
     use super::*;
 
+    /// The cube `[o, o + s]³`, from the built-in primitive (`[−1, 1]³`).
     fn cube(o: DVec3, s: f64) -> TriMesh {
-        TriMesh {
-            positions: (0..8)
-                .map(|i| {
-                    o + s * DVec3::new(
-                        f64::from(i & 1),
-                        f64::from((i >> 1) & 1),
-                        f64::from((i >> 2) & 1),
-                    )
-                })
-                .collect(),
-            triangles: vec![
-                [0, 2, 1],
-                [1, 2, 3],
-                [4, 5, 6],
-                [5, 7, 6],
-                [0, 1, 4],
-                [1, 5, 4],
-                [2, 6, 3],
-                [3, 6, 7],
-                [0, 4, 2],
-                [2, 4, 6],
-                [1, 3, 5],
-                [3, 7, 5],
-            ],
-        }
+        holey_shapes::parse_primitive("@cube")
+            .unwrap()
+            .triangulated()
+            .transformed(|p| o + s * 0.5 * (p + DVec3::ONE))
     }
 
     fn volume(m: &TriMesh) -> f64 {
@@ -433,7 +413,7 @@ mod tests {
         let out = run(&[&a, &b], Operation::Union, &default);
         assert_eq!(out.method, Method::Containment);
         assert!((volume(out.mesh()) - union).abs() < 1e-12);
-        assert_eq!(out.at_end.as_ref().map(|m| m.positions.len()), Some(16));
+        assert_eq!(out.at_end(&[&a, &b]).map(|m| m.positions.len()), Some(16));
 
         // A box inside A, facing the same way: nested, w = 2 inside it.
         let mut nested = a.clone();

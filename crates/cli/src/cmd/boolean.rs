@@ -75,8 +75,9 @@ pub fn run(args: Args, op: Operation) -> Result<()> {
         direction: None,
     };
     let _p = Progress::start(op.name());
-    let out = solid_boolean(&[a, b], &names, op, &options)?;
-    write_boolean(out, &names, &args.output, &args.engine)
+    let inputs = [a, b];
+    let out = solid_boolean(&inputs, &names, op, &options)?;
+    write_boolean(out, &inputs, &names, &args.output, &args.engine)
 }
 
 /// [`holey_topo::solid_boolean`] of `inputs` (named `names`), its errors
@@ -105,20 +106,25 @@ pub fn solid_boolean(
 /// parity picture where `engine` asks, in the form of its method.
 pub fn write_boolean(
     out: BooleanOutcome,
+    inputs: &[TriMesh],
     names: &[&str],
     output: &str,
     engine: &EngineArgs,
 ) -> Result<()> {
     let seconds = out.seconds;
     let method = out.method.name();
-    let at_end = out.at_end;
+    // The parity picture copies both inputs: made only when asked for.
+    let picture = match &engine.parity {
+        Some(_) => out.at_end(&inputs.iter().collect::<Vec<_>>()),
+        None => None,
+    };
     match out.computed {
         Computed::Winding(w) => winding::write(&w, names, output, engine),
         Computed::Parity(mut o) => {
             // The total includes the check that chose the method.
             o.report.timings.total = seconds;
             write_outcome(&o, output, engine, Some(method), || {
-                at_end.unwrap_or_default()
+                picture.unwrap_or_default()
             })
         }
     }

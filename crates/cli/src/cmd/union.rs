@@ -168,5 +168,5 @@ pub fn run(args: Args) -> Result<()> {
     };
     let _p = Progress::start("uniting");
     let out = solid_boolean(&inputs, &names, Operation::Union, &options)?;
-    write_boolean(out, &names, output, &args.engine)
+    write_boolean(out, &inputs, &names, output, &args.engine)
 }
