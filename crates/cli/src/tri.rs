@@ -5,7 +5,7 @@ use anyhow::Result;
 use holey_io::WriteOptions;
 use holey_mesh::PolyMesh;
 use holey_topo::{Report, TriMesh};
-use serde_json::{Value, json};
+use serde_json::Value;
 
 use crate::error::bad_input;
 use crate::input::{Input, WeldDistance, load, weld};
@@ -83,50 +83,6 @@ pub fn check_parity_path(path: &str) -> Result<()> {
             "{path}: the parity picture must be a .ply file"
         )))
     }
-}
-
-/// The engine's report as JSON.
-pub fn report_json(r: &Report) -> Value {
-    json!({
-        "collisions": r.collisions,
-        "collision_tests": r.collision_tests,
-        "containment_rays": r.containment_rays,
-        "raw_odd_vertices": r.raw_odd_vertices,
-        "corrected_odd_vertices": r.corrected_odd_vertices,
-        "intersecting_pairs": r.intersecting_pairs,
-        "intersection_points": r.intersection_points,
-        "triple_points": r.triple_points,
-        "intersection_edges": r.intersection_edges,
-        "intersection_curves": r.intersection_curves,
-        "curves_kept": r.cut.curves_kept,
-        "curves_dropped": r.cut.curves_dropped,
-        "false_vertices": r.cut.false_vertices,
-        "false_edges": r.cut.false_edges,
-        "triangles_split": r.cut.triangles_split,
-        "triangles_deleted": r.cut.triangles_deleted,
-        "diffused_triangles": r.cut.diffused,
-        "undecided_triangles": r.cut.undecided,
-        "dropped_constraints": r.cut.dropped_constraints,
-        "sampled_regions": r.cut.sampled_regions,
-        "junctions_repaired": r.cut.junctions_repaired,
-        "pinches_split": r.cut.pinches_split,
-        "solid_relabelled": r.cut.solid_relabelled,
-        "conflicting_triangles": r.cut.conflicting,
-        "constraint_splits": r.cut.constraint_splits,
-        "merged_points": r.cut.merged_points,
-        "solved_components": r.solved_components,
-        "unsolved_components": r.unsolved_components,
-        "perturbation_retries": r.perturbation_retries,
-        "solid_input": r.solid_input,
-        "orientation_flips": r.orientation_flips,
-        "seconds": {
-            "collisions": r.timings.collisions,
-            "intersections": r.timings.intersections,
-            "correction": r.timings.correction,
-            "cut": r.timings.cut,
-            "total": r.timings.total,
-        },
-    })
 }
 
 /// A one-paragraph summary of a report for the terminal.

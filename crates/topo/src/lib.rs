@@ -16,6 +16,7 @@ pub mod intersect;
 pub mod local;
 pub mod mesh;
 pub mod orient;
+mod report_json;
 mod solid;
 pub mod solids;
 pub mod union;

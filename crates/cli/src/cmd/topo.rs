@@ -6,9 +6,7 @@ use holey_topo::{Options, Scheme, TriMesh, topology_change};
 
 use crate::error::bad_input;
 use crate::progress::Progress;
-use crate::tri::{
-    load_triangle_pair, report_json, report_text, write_colored, write_json, write_triangles,
-};
+use crate::tri::{load_triangle_pair, report_text, write_colored, write_json, write_triangles};
 
 /// The error-correction scheme (§3.4).
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -168,7 +166,7 @@ pub fn write_outcome(
 ) -> Result<()> {
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &args.report {
-        let mut json = report_json(&out.report);
+        let mut json = out.report.to_json();
         if let (Some(m), Some(fields)) = (method, json.as_object_mut()) {
             fields.insert("method".into(), m.into());
         }

@@ -7,7 +7,6 @@
 
 use anyhow::Result;
 use holey_topo::WindingOutcome;
-use serde_json::{Value, json};
 
 use crate::cmd::topo::EngineArgs;
 use crate::error::bad_input;
@@ -37,7 +36,7 @@ pub fn write(
     };
     write_triangles(output, &out.mesh)?;
     if let Some(path) = &engine.report {
-        write_json(path, &report_json(out, crossing))?;
+        write_json(path, &out.report_json(crossing))?;
     }
     if engine.verbose {
         eprint!("{}", report_text(out, crossing));
@@ -54,35 +53,6 @@ pub fn write(
         );
     }
     Ok(())
-}
-
-fn report_json(out: &WindingOutcome, crossing: usize) -> Value {
-    let r = &out.report;
-    json!({
-        "method": "winding",
-        "inputs_closed": r.inputs_closed,
-        "intersecting_pairs": r.intersecting_pairs,
-        "intersection_points": r.intersection_points,
-        "triple_points": r.triple_points,
-        "intersection_curves": r.intersection_curves,
-        "arrangement_triangles": r.arrangement_triangles,
-        "cells": r.regions,
-        "coincident_groups": r.coincident_groups,
-        "rays": r.rays,
-        "snapped_points": r.welded_points,
-        "t_junctions_repaired": r.t_junctions_repaired,
-        "unsampled_regions": r.unsampled_regions,
-        "perturbation_retries": r.perturbation_retries,
-        "unpaired_edges": r.unpaired_edges,
-        "output_triangles": out.mesh.triangles.len(),
-        "output_intersecting_pairs": crossing,
-        "seconds": {
-            "intersections": r.seconds.intersections,
-            "cut": r.seconds.cut,
-            "classify": r.seconds.classify,
-            "total": r.seconds.total,
-        },
-    })
 }
 
 fn report_text(out: &WindingOutcome, crossing: usize) -> String {

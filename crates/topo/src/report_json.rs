@@ -1,0 +1,120 @@
+//! The engine's reports as JSON objects: one shape for every front end
+//! (the CLI's `--report` files, the Python package's report dicts), so a
+//! key means the same thing wherever it is read.
+
+use serde_json::{Value, json};
+
+use crate::engine::Report;
+use crate::solids::{BooleanOutcome, Computed};
+use crate::winding_boolean::WindingOutcome;
+
+impl Report {
+    /// The report as one JSON object: the counts of every stage (keys as
+    /// the fields, the cut's flattened in) and `seconds` per stage.
+    pub fn to_json(&self) -> Value {
+        let (r, c) = (self, &self.cut);
+        json!({
+            "collisions": r.collisions,
+            "collision_tests": r.collision_tests,
+            "containment_rays": r.containment_rays,
+            "raw_odd_vertices": r.raw_odd_vertices,
+            "corrected_odd_vertices": r.corrected_odd_vertices,
+            "intersecting_pairs": r.intersecting_pairs,
+            "intersection_points": r.intersection_points,
+            "triple_points": r.triple_points,
+            "intersection_edges": r.intersection_edges,
+            "intersection_curves": r.intersection_curves,
+            "curves_kept": c.curves_kept,
+            "curves_dropped": c.curves_dropped,
+            "false_vertices": c.false_vertices,
+            "false_edges": c.false_edges,
+            "triangles_split": c.triangles_split,
+            "triangles_deleted": c.triangles_deleted,
+            "diffused_triangles": c.diffused,
+            "undecided_triangles": c.undecided,
+            "dropped_constraints": c.dropped_constraints,
+            "sampled_regions": c.sampled_regions,
+            "junctions_repaired": c.junctions_repaired,
+            "pinches_split": c.pinches_split,
+            "solid_relabelled": c.solid_relabelled,
+            "conflicting_triangles": c.conflicting,
+            "constraint_splits": c.constraint_splits,
+            "merged_points": c.merged_points,
+            "solved_components": r.solved_components,
+            "unsolved_components": r.unsolved_components,
+            "perturbation_retries": r.perturbation_retries,
+            "solid_input": r.solid_input,
+            "orientation_flips": r.orientation_flips,
+            "seconds": {
+                "collisions": r.timings.collisions,
+                "intersections": r.timings.intersections,
+                "correction": r.timings.correction,
+                "cut": r.timings.cut,
+                "total": r.timings.total,
+            },
+        })
+    }
+}
+
+impl WindingOutcome {
+    /// The winding-number Boolean's report as one JSON object, with
+    /// `crossing`, the triangle pairs of the result that cross (the
+    /// report's own count where it has one).
+    pub fn report_json(&self, crossing: usize) -> Value {
+        let r = &self.report;
+        json!({
+            "method": "winding",
+            "inputs_closed": r.inputs_closed,
+            "intersecting_pairs": r.intersecting_pairs,
+            "intersection_points": r.intersection_points,
+            "triple_points": r.triple_points,
+            "intersection_curves": r.intersection_curves,
+            "arrangement_triangles": r.arrangement_triangles,
+            "cells": r.regions,
+            "coincident_groups": r.coincident_groups,
+            "rays": r.rays,
+            "snapped_points": r.welded_points,
+            "t_junctions_repaired": r.t_junctions_repaired,
+            "unsampled_regions": r.unsampled_regions,
+            "perturbation_retries": r.perturbation_retries,
+            "unpaired_edges": r.unpaired_edges,
+            "output_triangles": self.mesh.triangles.len(),
+            "output_intersecting_pairs": crossing,
+            "seconds": {
+                "intersections": r.seconds.intersections,
+                "cut": r.seconds.cut,
+                "classify": r.seconds.classify,
+                "total": r.seconds.total,
+            },
+        })
+    }
+}
+
+impl BooleanOutcome {
+    /// The report of whichever engine computed the result, with the
+    /// `method` that did and the `seconds` of the whole call (the check
+    /// that chose the method included) as `seconds.total`. A
+    /// winding-number result whose crossings were not counted (the exact
+    /// path) has them counted here, exactly; an error in that count
+    /// leaves `output_intersecting_pairs` null.
+    pub fn report_json(&self) -> Value {
+        let mut json = match &self.computed {
+            Computed::Parity(o) => o.report.to_json(),
+            Computed::Winding(w) => {
+                let crossing = w.report.output_intersecting_pairs.or_else(|| {
+                    crate::engine::self_intersections(&w.mesh)
+                        .ok()
+                        .map(|x| x.pairs.len())
+                });
+                let mut json = w.report_json(crossing.unwrap_or(0));
+                if crossing.is_none() {
+                    json["output_intersecting_pairs"] = Value::Null;
+                }
+                json
+            }
+        };
+        json["method"] = self.method.name().into();
+        json["seconds"]["total"] = self.seconds.into();
+        json
+    }
+}
