@@ -7,6 +7,12 @@
 // `--mock` runs against e2e/mock-server.mjs instead (front-end development
 // only; several scenarios need the real server). `--only N,M` picks scenarios.
 //
+// The real server prints its URL with the access token it made at start
+// (`http://127.0.0.1:PORT/?token=HEX`); the tests open exactly that URL, as
+// a user would, so the page load sets the token cookie the front end's
+// requests then carry. Before the scenarios, the run checks that the server
+// refuses a request without the token.
+//
 // Screenshots and perf.json go to web/e2e/artifacts/ (CI's artifact folder).
 // Every scenario prints PASS/FAIL/SKIP; the exit code is non-zero on any FAIL.
 
@@ -66,6 +72,21 @@ function startServer() {
     });
   });
   return { child, url, stateDir, log: () => log };
+}
+
+/**
+ * The real server admits nothing without its token (issue 17): the printed
+ * URL must carry one, the API must refuse a request without it and accept
+ * the same request with it.
+ */
+async function checkAccess(url) {
+  const token = new URL(url).searchParams.get('token');
+  if (!token) throw new Error(`the printed URL carries no ?token=: ${url}`);
+  const health = new URL('api/health', url);
+  const without = await fetch(health);
+  if (without.status !== 403) throw new Error(`GET /api/health without the token answered ${without.status}, not 403`);
+  const withHeader = await fetch(health, { headers: { Authorization: `token ${token}` } });
+  if (withHeader.status !== 200) throw new Error(`GET /api/health with the token answered ${withHeader.status}, not 200`);
 }
 
 // ---- helpers ------------------------------------------------------------------
@@ -551,7 +572,8 @@ let browser;
 let failed = 0, passed = 0, skipped = 0;
 try {
   const url = await server.url;
-  console.log(`server: ${url}${useMock ? ' (mock)' : ''}`);
+  console.log(`server: ${url.replace(/token=[^&]+/, 'token=…')}${useMock ? ' (mock)' : ''}`);
+  if (!useMock) await checkAccess(url);
   browser = await chromium.launch({
     executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
     args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',

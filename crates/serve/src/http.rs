@@ -2,9 +2,12 @@
 //! upload, download, health) or a WebSocket upgrade. Every answer closes
 //! the connection, which keeps the reader simple and bounded.
 //!
-//! Requests that change the document (uploads, the WebSocket) must come
-//! from a page of this server: a foreign `Origin` is refused, so another
-//! web site open in the same browser cannot drive the modeler.
+//! Every request first passes [`crate::auth::Gate`]: its `Host` must name
+//! this server and it must carry the access token (see [`crate::auth`] for
+//! why both). Requests that change the document (uploads, the WebSocket)
+//! must also come from a page of this server: a foreign `Origin` is
+//! refused, so another web site open in the same browser cannot drive the
+//! modeler.
 
 use std::io::{self, Read, Write};
 use std::net::TcpStream;
@@ -14,6 +17,7 @@ use std::time::Duration;
 
 use serde_json::json;
 
+use crate::auth::{Admitted, Refusal};
 use crate::ops::Shared;
 
 /// The largest request head accepted.
@@ -24,6 +28,9 @@ const MAX_HEAD: usize = 32 << 10;
 pub struct Request {
     pub method: String,
     pub path: String,
+    /// The protocol of the request line (`HTTP/1.1`), which decides
+    /// whether a `Host` header is required.
+    pub version: String,
     pub query: Vec<(String, String)>,
     pub headers: Vec<(String, String)>,
 }
@@ -80,6 +87,7 @@ pub fn read_head(stream: &mut TcpStream) -> io::Result<Option<(Request, Vec<u8>,
     let mut first = lines.next().unwrap_or("").split(' ');
     let method = first.next().unwrap_or("").to_owned();
     let target = first.next().unwrap_or("/");
+    let version = first.next().unwrap_or("").to_owned();
     let (path, query) = target.split_once('?').unwrap_or((target, ""));
     let query = query
         .split('&')
@@ -97,6 +105,7 @@ pub fn read_head(stream: &mut TcpStream) -> io::Result<Option<(Request, Vec<u8>,
         Request {
             method,
             path: percent_decode(path),
+            version,
             query,
             headers,
         },
@@ -144,8 +153,10 @@ pub fn respond(stream: &mut TcpStream, status: u16, content_type: &str, extra: &
         413 => "Payload Too Large",
         _ => "Error",
     };
+    // The page's URL carries the access token: no-referrer keeps it out of
+    // the Referer of anything the page links to.
     let head = format!(
-        "HTTP/1.1 {status} {reason}\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\n{extra}Connection: close\r\n\r\n",
+        "HTTP/1.1 {status} {reason}\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nX-Content-Type-Options: nosniff\r\nReferrer-Policy: no-referrer\r\n{extra}Connection: close\r\n\r\n",
         body.len()
     );
     // A browser that went away is not an error worth reporting.
@@ -175,6 +186,10 @@ pub fn handle_connection(shared: &Arc<Shared>, mut stream: TcpStream) {
     let Ok(Some((request, buf, head_end))) = read_head(&mut stream) else {
         return;
     };
+    let admitted = match shared.gate.admit(&request) {
+        Ok(admitted) => admitted,
+        Err(refusal) => return refuse(&mut stream, &request, &refusal, buf.len() - head_end),
+    };
     let upgrade = request
         .header("upgrade")
         .is_some_and(|u| u.eq_ignore_ascii_case("websocket"));
@@ -189,8 +204,34 @@ pub fn handle_connection(shared: &Arc<Shared>, mut stream: TcpStream) {
         ("GET", "/api/health") => respond_json(&mut stream, 200, &json!({"ok": true})),
         ("GET", "/api/export") => export(shared, &mut stream, &request),
         ("POST", "/api/import") => import(shared, &mut stream, &request, &buf[head_end..]),
-        ("GET" | "HEAD", _) => static_file(shared, &mut stream, &request),
+        ("GET" | "HEAD", _) => static_file(shared, &mut stream, &request, &admitted),
         _ => error(&mut stream, 405, "method not allowed"),
+    }
+}
+
+/// Answers a request the gate turned away: JSON for the API and the
+/// WebSocket (what their callers parse), plain text for a page a person
+/// opened. A body the client is still sending is drained (see [`linger`]).
+fn refuse(stream: &mut TcpStream, request: &Request, refusal: &Refusal, body_read: usize) {
+    let message = refusal.to_string();
+    if request.path.starts_with("/api/") || request.path == "/ws" {
+        error(stream, refusal.status(), &message);
+    } else {
+        let text = format!("holey serve: {message}\n");
+        respond(
+            stream,
+            refusal.status(),
+            "text/plain; charset=utf-8",
+            "",
+            text.as_bytes(),
+        );
+    }
+    let length = request
+        .header("content-length")
+        .and_then(|l| l.parse::<usize>().ok())
+        .unwrap_or(0);
+    if length > body_read {
+        linger(stream, length - body_read);
     }
 }
 
@@ -282,7 +323,16 @@ fn content_type(path: &Path) -> &'static str {
 }
 
 /// A file of the built front end. Paths never leave the web directory.
-fn static_file(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) {
+///
+/// A page opened with the token in its URL gets the token back as a
+/// cookie, so its scripts, assets and WebSocket carry it.
+fn static_file(
+    shared: &Arc<Shared>,
+    stream: &mut TcpStream,
+    request: &Request,
+    admitted: &Admitted,
+) {
+    let cookie = admitted.set_cookie.as_deref().unwrap_or("");
     let relative = request.path.trim_start_matches('/');
     let relative = if relative.is_empty() {
         "index.html"
@@ -299,7 +349,7 @@ fn static_file(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) 
                 stream,
                 200,
                 "text/html; charset=utf-8",
-                "",
+                cookie,
                 NOT_BUILT.as_bytes(),
             );
         }
@@ -317,7 +367,7 @@ fn static_file(shared: &Arc<Shared>, stream: &mut TcpStream, request: &Request) 
             } else {
                 &bytes
             };
-            respond(stream, 200, content_type(&path), "", body)
+            respond(stream, 200, content_type(&path), cookie, body)
         }
         Err(_) => error(stream, 404, &format!("{relative}: not found")),
     }

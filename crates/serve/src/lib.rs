@@ -6,6 +6,8 @@
 //!
 //! - [`http`]: a small HTTP/1.1 reader for static files, uploads, downloads
 //!   and the WebSocket upgrade. Loopback by default.
+//! - [`auth`]: what every request must show: a `Host` naming this server
+//!   (against DNS rebinding) and the access token made at every start.
 //! - [`frame`]: binary mesh frames (display indices and the kernel handles
 //!   behind them).
 //! - [`doc`]: the document, workspaces and undo.
@@ -19,6 +21,7 @@
 //! cannot corrupt the session: the second of two conflicting requests is
 //! refused with a message, never applied to the wrong faces.
 
+pub mod auth;
 pub mod doc;
 pub mod frame;
 pub mod http;
@@ -34,7 +37,7 @@ use std::sync::Arc;
 pub type ConnId = u64;
 
 /// How the server runs.
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Config {
     pub host: IpAddr,
     /// 0 picks a free port.
@@ -48,6 +51,11 @@ pub struct Config {
     pub max_upload: usize,
     /// Largest number of faces a tool may produce.
     pub max_faces: usize,
+    /// The access token every request must carry (see [`auth`]); `None`
+    /// makes a random one at every start, which is what users want. A
+    /// fixed one is for tests and tools that must know it in advance; it
+    /// must pass [`auth::check_token`].
+    pub token: Option<String>,
 }
 
 impl Default for Config {
@@ -59,7 +67,24 @@ impl Default for Config {
             web_dir: None,
             max_upload: 256 << 20,
             max_faces: 4_000_000,
+            token: None,
         }
+    }
+}
+
+impl std::fmt::Debug for Config {
+    /// Says whether a token is fixed but never prints it, so that logging
+    /// a configuration does not leak the key to the session.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Config")
+            .field("host", &self.host)
+            .field("port", &self.port)
+            .field("state_dir", &self.state_dir)
+            .field("web_dir", &self.web_dir)
+            .field("max_upload", &self.max_upload)
+            .field("max_faces", &self.max_faces)
+            .field("token", &self.token.as_ref().map(|_| "(fixed, not shown)"))
+            .finish()
     }
 }
 
@@ -103,11 +128,23 @@ impl Server {
     /// directory (a fresh cube when there is none). Returns the server and
     /// a note about the restore for the terminal.
     pub fn bind(config: Config) -> Result<(Server, String), ServeError> {
+        let token = match &config.token {
+            Some(token) => {
+                auth::check_token(token).map_err(ServeError::BadRequest)?;
+                token.clone()
+            }
+            None => auth::random_token()?,
+        };
         let (doc, note) = persist::restore(&config.state_dir)?;
         let addr = SocketAddr::new(config.host, config.port);
         let listener = TcpListener::bind(addr)
             .map_err(|e| ServeError::io(format!("cannot bind {addr}"), e))?;
-        let shared = ops::Shared::new(config, doc);
+        // The gate needs the port really bound (config.port may be 0).
+        let bound = listener
+            .local_addr()
+            .map_err(|e| ServeError::io("cannot read the bound address", e))?;
+        let gate = auth::Gate::new(token, bound);
+        let shared = ops::Shared::new(config, gate, doc);
         Ok((Server { listener, shared }, note))
     }
 
@@ -116,6 +153,25 @@ impl Server {
         self.listener
             .local_addr()
             .map_err(|e| ServeError::io("cannot read the bound address", e))
+    }
+
+    /// The access token requests must carry.
+    pub fn token(&self) -> &str {
+        self.shared.gate.token()
+    }
+
+    /// The URL to open: the page with the token, which the page load turns
+    /// into a cookie. A server bound to every address (`0.0.0.0`, `::`) is
+    /// given its loopback address, which is certain to reach it from here.
+    pub fn url(&self) -> Result<String, ServeError> {
+        let mut addr = self.local_addr()?;
+        if addr.ip().is_unspecified() {
+            addr.set_ip(match addr.ip() {
+                IpAddr::V4(_) => IpAddr::from([127, 0, 0, 1]),
+                IpAddr::V6(_) => IpAddr::from(std::net::Ipv6Addr::LOCALHOST),
+            });
+        }
+        Ok(format!("http://{addr}/?token={}", self.token()))
     }
 
     /// Serves until the process ends: one thread per connection.

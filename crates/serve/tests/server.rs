@@ -7,17 +7,26 @@ use std::time::{Duration, Instant};
 
 use holey_serve::{Config, Server};
 use serde_json::{Value, json};
+use tungstenite::client::IntoClientRequest;
 use tungstenite::{Message, WebSocket, stream::MaybeTlsStream};
 
 type Socket = WebSocket<MaybeTlsStream<TcpStream>>;
 
+/// The token the tests' servers are given (`Config::token`), so that their
+/// requests can carry it.
+const TOKEN: &str = "test-token-0123456789abcdef";
+
 fn start(dir: &std::path::Path, max_upload: usize) -> SocketAddr {
-    let config = Config {
+    start_with(Config {
         port: 0,
         state_dir: dir.to_path_buf(),
         max_upload,
+        token: Some(TOKEN.into()),
         ..Config::default()
-    };
+    })
+}
+
+fn start_with(config: Config) -> SocketAddr {
     let (server, _) = Server::bind(config).expect("bind");
     let addr = server.local_addr().expect("addr");
     std::thread::spawn(move || server.run());
@@ -34,7 +43,8 @@ struct Tab {
 
 impl Tab {
     fn open(addr: SocketAddr) -> Tab {
-        let (socket, _) = tungstenite::connect(format!("ws://{addr}/ws")).expect("connect");
+        let (socket, _) =
+            tungstenite::connect(format!("ws://{addr}/ws?token={TOKEN}")).expect("connect");
         let mut tab = Tab {
             socket,
             next: 0,
@@ -99,7 +109,8 @@ impl Tab {
     }
 }
 
-fn http(addr: SocketAddr, head: &str, body: &[u8]) -> (u16, Vec<u8>) {
+/// Sends a request and reads the whole answer: status, head, body.
+fn exchange(addr: SocketAddr, head: &str, body: &[u8]) -> (u16, String, Vec<u8>) {
     let mut s = TcpStream::connect(addr).expect("connect");
     s.write_all(head.as_bytes()).expect("write");
     let _ = s.write_all(body);
@@ -115,12 +126,24 @@ fn http(addr: SocketAddr, head: &str, body: &[u8]) -> (u16, Vec<u8>) {
         .windows(4)
         .position(|w| w == b"\r\n\r\n")
         .map_or(out.len(), |p| p + 4);
-    (status, out[body_at..].to_vec())
+    let head = String::from_utf8_lossy(&out[..body_at]).into_owned();
+    (status, head, out[body_at..].to_vec())
+}
+
+fn http(addr: SocketAddr, head: &str, body: &[u8]) -> (u16, Vec<u8>) {
+    let (status, _, body) = exchange(addr, head, body);
+    (status, body)
+}
+
+/// The header that carries the token for a script.
+fn auth() -> String {
+    format!("Authorization: token {TOKEN}\r\n")
 }
 
 fn upload(addr: SocketAddr, name: &str, body: &[u8]) -> (u16, Value) {
     let head = format!(
-        "POST /api/import?name={name} HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\n\r\n",
+        "POST /api/import?name={name} HTTP/1.1\r\nHost: {addr}\r\n{}Content-Length: {}\r\n\r\n",
+        auth(),
         body.len()
     );
     let (status, body) = http(addr, &head, body);
@@ -318,7 +341,10 @@ fn uploads_downloads_limits_and_restart() {
     let stats = a.state["stats"].clone();
     let (status, obj) = http(
         addr,
-        &format!("GET /api/export?format=obj HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &format!(
+            "GET /api/export?format=obj HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
+            auth()
+        ),
         &[],
     );
     assert_eq!(status, 200);
@@ -331,7 +357,10 @@ fn uploads_downloads_limits_and_restart() {
     // The same through the DLFL format.
     let (status, dlfl) = http(
         addr,
-        &format!("GET /api/export?format=dlfl HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &format!(
+            "GET /api/export?format=dlfl HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
+            auth()
+        ),
         &[],
     );
     assert_eq!(status, 200);
@@ -355,14 +384,18 @@ fn uploads_downloads_limits_and_restart() {
     let (status, _) = http(
         addr,
         &format!(
-            "POST /api/import?name=x.obj HTTP/1.1\r\nHost: {addr}\r\nOrigin: http://evil.example\r\nContent-Length: 0\r\n\r\n"
+            "POST /api/import?name=x.obj HTTP/1.1\r\nHost: {addr}\r\n{}Origin: http://evil.example\r\nContent-Length: 0\r\n\r\n",
+            auth()
         ),
         &[],
     );
     assert_eq!(status, 403);
     let (status, _) = http(
         addr,
-        &format!("GET /../../etc/passwd HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &format!(
+            "GET /../../etc/passwd HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
+            auth()
+        ),
         &[],
     );
     assert_ne!(status, 200);
@@ -493,4 +526,348 @@ fn weld_and_make_manifold_repair_what_the_model_refuses() {
     a.ok(json!({"op": "undo"}));
     a.ok(json!({"op": "undo"}));
     assert_eq!(a.state["stats"]["components"], 1, "the bow tie is back");
+}
+
+// ---- issue 17: DNS rebinding and the access token ---------------------------
+
+/// A tetrahedron: a valid upload that replaces the session's cube.
+const TETRAHEDRON: &[u8] =
+    b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
+/// The document as OBJ, asked for properly: what "the model" is.
+fn model(addr: SocketAddr) -> Vec<u8> {
+    let (status, body) = http(
+        addr,
+        &format!(
+            "GET /api/export?format=obj HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
+            auth()
+        ),
+        &[],
+    );
+    assert_eq!(status, 200);
+    body
+}
+
+/// Sends a WebSocket upgrade and reads only the answer's head: an accepted
+/// upgrade keeps the connection open, so reading to the end would wait
+/// for ever.
+fn upgrade(addr: SocketAddr, host: &str, extra: &str) -> String {
+    let mut s = TcpStream::connect(addr).expect("connect");
+    let head = format!(
+        "GET /ws HTTP/1.1\r\nHost: {host}\r\nOrigin: http://{host}\r\nUpgrade: websocket\r\n\
+         Connection: Upgrade\r\nSec-WebSocket-Version: 13\r\n\
+         Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n{extra}\r\n"
+    );
+    s.write_all(head.as_bytes()).expect("write");
+    let mut out = Vec::new();
+    let mut byte = [0u8; 1];
+    while !out.ends_with(b"\r\n\r\n") {
+        match s.read(&mut byte) {
+            Ok(1) => out.push(byte[0]),
+            _ => break,
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn import_head(host: &str, extra: &str) -> String {
+    format!(
+        "POST /api/import?name=t.obj HTTP/1.1\r\nHost: {host}\r\nOrigin: http://{host}\r\n{extra}\
+         Content-Length: {}\r\n\r\n",
+        TETRAHEDRON.len()
+    )
+}
+
+/// A page whose domain was pointed at 127.0.0.1 after it loaded sends its
+/// own name as Host and a matching Origin. Every request of it is refused:
+/// the page, the WebSocket (no 101) and an upload (the model is unchanged).
+/// The requests carry the token, which such a page would not have, so that
+/// only the Host check can refuse them.
+#[test]
+fn dns_rebinding_host_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let port = addr.port();
+    let evil = format!("evil.example:{port}");
+    let before = model(addr);
+
+    let (status, _, body) = exchange(
+        addr,
+        &format!(
+            "GET / HTTP/1.1\r\nHost: {evil}\r\nOrigin: http://{evil}\r\n{}\r\n",
+            auth()
+        ),
+        &[],
+    );
+    let text = String::from_utf8_lossy(&body);
+    assert_eq!(status, 403, "{text}");
+    assert!(
+        text.contains("evil.example") && text.contains("DNS rebinding"),
+        "{text}"
+    );
+
+    let answer = upgrade(addr, &evil, &auth());
+    assert!(answer.starts_with("HTTP/1.1 403"), "{answer}");
+
+    let (status, body) = http(addr, &import_head(&evil, &auth()), TETRAHEDRON);
+    assert_eq!(status, 403, "{}", String::from_utf8_lossy(&body));
+    assert_eq!(model(addr), before, "the refused upload changed the model");
+
+    // HTTP/1.1 without a Host is malformed; HTTP/1.0 predates Host.
+    let (status, _) = http(
+        addr,
+        &format!("GET /api/health HTTP/1.1\r\n{}\r\n", auth()),
+        &[],
+    );
+    assert_eq!(status, 400);
+    let (status, _) = http(
+        addr,
+        &format!("GET /api/health HTTP/1.0\r\n{}\r\n", auth()),
+        &[],
+    );
+    assert_eq!(status, 200);
+    // The loopback names with this port or none are this server; another
+    // port, or the loopback name under another domain, is not.
+    for (host, expected) in [
+        (format!("localhost:{port}"), 200),
+        (format!("127.0.0.1:{port}"), 200),
+        (format!("[::1]:{port}"), 200),
+        ("localhost".to_owned(), 200),
+        (format!("localhost:{}", port.wrapping_add(1)), 403),
+        (format!("localhost.evil.example:{port}"), 403),
+    ] {
+        let (status, _) = http(
+            addr,
+            &format!("GET /api/health HTTP/1.1\r\nHost: {host}\r\n{}\r\n", auth()),
+            &[],
+        );
+        assert_eq!(status, expected, "Host: {host}");
+    }
+
+    // The same upload with this server's Host goes through: the refusal
+    // above was the Host's doing, not the body's.
+    let host = addr.to_string();
+    let (status, _) = http(addr, &import_head(&host, &auth()), TETRAHEDRON);
+    assert_eq!(status, 200);
+    assert_ne!(model(addr), before);
+}
+
+/// With the right Host but no token (or a wrong one), the API and the
+/// WebSocket are refused; the token as a query parameter, a cookie or an
+/// `Authorization` header lets them through.
+#[test]
+fn api_and_socket_need_the_token() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let host = addr.to_string();
+    let port = addr.port();
+    let before = model(addr);
+
+    for path in ["/api/export?format=obj", "/api/health", "/"] {
+        let (status, body) = http(
+            addr,
+            &format!("GET {path} HTTP/1.1\r\nHost: {host}\r\n\r\n"),
+            &[],
+        );
+        let text = String::from_utf8_lossy(&body);
+        assert_eq!(status, 403, "{path}: {text}");
+        assert!(text.contains("token"), "{path}: {text}");
+    }
+    let answer = upgrade(addr, &host, "");
+    assert!(answer.starts_with("HTTP/1.1 403"), "{answer}");
+    let (status, _) = http(addr, &import_head(&host, ""), TETRAHEDRON);
+    assert_eq!(status, 403);
+    assert_eq!(model(addr), before, "the refused upload changed the model");
+
+    // A wrong token, one character off, by each way it can come.
+    let wrong = format!("{}X", &TOKEN[..TOKEN.len() - 1]);
+    for (query, extra) in [
+        (format!("&token={wrong}"), String::new()),
+        (String::new(), format!("Authorization: token {wrong}\r\n")),
+        (
+            String::new(),
+            format!("Cookie: holey-token-{port}={wrong}\r\n"),
+        ),
+        // The right token under another server's cookie name.
+        (String::new(), format!("Cookie: holey-token-1={TOKEN}\r\n")),
+    ] {
+        let (status, _) = http(
+            addr,
+            &format!("GET /api/export?format=obj{query} HTTP/1.1\r\nHost: {host}\r\n{extra}\r\n"),
+            &[],
+        );
+        assert_eq!(status, 403, "{query}{extra}");
+        if query.is_empty() {
+            let answer = upgrade(addr, &host, &extra);
+            assert!(answer.starts_with("HTTP/1.1 403"), "{extra}: {answer}");
+        }
+    }
+
+    // The right token, by each way it can come.
+    for (query, extra) in [
+        (format!("&token={TOKEN}"), String::new()),
+        (String::new(), auth()),
+        (
+            String::new(),
+            format!("Cookie: a=b; holey-token-{port}={TOKEN}\r\n"),
+        ),
+    ] {
+        let (status, body) = http(
+            addr,
+            &format!("GET /api/export?format=obj{query} HTTP/1.1\r\nHost: {host}\r\n{extra}\r\n"),
+            &[],
+        );
+        assert_eq!(status, 200, "{query}{extra}");
+        assert_eq!(body, before);
+    }
+    let (_, response) = tungstenite::connect(format!("ws://{addr}/ws?token={TOKEN}")).expect("ws");
+    assert_eq!(response.status(), 101);
+    for (name, value) in [
+        ("Authorization", format!("token {TOKEN}")),
+        ("Cookie", format!("holey-token-{port}={TOKEN}")),
+    ] {
+        let mut request = format!("ws://{addr}/ws")
+            .into_client_request()
+            .expect("request");
+        request
+            .headers_mut()
+            .insert(name, value.parse().expect("header value"));
+        let (_, response) = tungstenite::connect(request).expect("ws");
+        assert_eq!(response.status(), 101, "{name}");
+    }
+    let (status, _) = http(addr, &import_head(&host, &auth()), TETRAHEDRON);
+    assert_eq!(status, 200);
+    assert_ne!(model(addr), before);
+}
+
+/// Opening the URL `holey serve` prints sets the cookie (HttpOnly,
+/// SameSite=Strict, Path=/), and that cookie alone then carries the
+/// page's assets, API calls and WebSocket, as a browser would send it.
+#[test]
+fn the_page_load_sets_the_cookie() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let web = tempfile::tempdir().expect("tempdir");
+    std::fs::write(web.path().join("index.html"), "<!doctype html>page").expect("write");
+    std::fs::create_dir(web.path().join("assets")).expect("mkdir");
+    std::fs::write(web.path().join("assets/app.js"), "app()").expect("write");
+    let addr = start_with(Config {
+        port: 0,
+        state_dir: dir.path().to_path_buf(),
+        web_dir: Some(web.path().to_path_buf()),
+        token: Some(TOKEN.into()),
+        ..Config::default()
+    });
+    let port = addr.port();
+
+    let (status, head, body) = exchange(
+        addr,
+        &format!("GET /?token={TOKEN} HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+        &[],
+    );
+    assert_eq!(status, 200, "{head}");
+    assert_eq!(body, b"<!doctype html>page");
+    let set_cookie = head
+        .lines()
+        .find_map(|l| l.strip_prefix("Set-Cookie: "))
+        .unwrap_or_else(|| panic!("no cookie set: {head}"));
+    let mut parts = set_cookie.split("; ");
+    let pair = parts.next().unwrap_or("");
+    assert_eq!(pair, format!("holey-token-{port}={TOKEN}"));
+    let attributes: Vec<&str> = parts.collect();
+    for attribute in ["HttpOnly", "SameSite=Strict", "Path=/"] {
+        assert!(attributes.contains(&attribute), "{set_cookie}");
+    }
+    // The URL carries the token: keep it out of Referer headers.
+    assert!(head.contains("Referrer-Policy: no-referrer"), "{head}");
+
+    // The cookie alone, as the browser sends it with the page's requests.
+    let cookie = format!("Cookie: {pair}\r\n");
+    for path in ["/assets/app.js", "/api/health", "/api/export?format=off"] {
+        let (status, _) = http(
+            addr,
+            &format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\n{cookie}\r\n"),
+            &[],
+        );
+        assert_eq!(status, 200, "{path}");
+        let (status, _) = http(
+            addr,
+            &format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+            &[],
+        );
+        assert_eq!(status, 403, "{path} without the cookie");
+    }
+    let mut request = format!("ws://{addr}/ws")
+        .into_client_request()
+        .expect("request");
+    request
+        .headers_mut()
+        .insert("Cookie", pair.parse().expect("header value"));
+    let (_, response) = tungstenite::connect(request).expect("ws");
+    assert_eq!(response.status(), 101);
+
+    // Requests that did not bring the token in the URL set no cookie.
+    let (status, head, _) = exchange(
+        addr,
+        &format!("GET / HTTP/1.1\r\nHost: {addr}\r\n{cookie}\r\n"),
+        &[],
+    );
+    assert_eq!(status, 200);
+    assert!(!head.contains("Set-Cookie"), "{head}");
+}
+
+/// Without a fixed token every start makes its own from the OS random
+/// source (at least 128 bits), the printed URL carries it, and one
+/// server's token opens nothing on another. A fixed token must be text a
+/// URL and a cookie carry unchanged.
+#[test]
+fn a_random_token_at_every_start() {
+    let dirs = [(); 2].map(|_| tempfile::tempdir().expect("tempdir"));
+    let servers = dirs.each_ref().map(|dir| {
+        let (server, _) = Server::bind(Config {
+            port: 0,
+            state_dir: dir.path().to_path_buf(),
+            ..Config::default()
+        })
+        .expect("bind");
+        server
+    });
+    let tokens = servers.each_ref().map(|s| s.token().to_owned());
+    for (server, token) in servers.iter().zip(&tokens) {
+        assert!(token.len() >= 32, "{token}");
+        assert!(token.bytes().all(|b| b.is_ascii_hexdigit()), "{token}");
+        let addr = server.local_addr().expect("addr");
+        assert_eq!(
+            server.url().expect("url"),
+            format!("http://{addr}/?token={token}")
+        );
+    }
+    assert_ne!(tokens[0], tokens[1]);
+    let addrs = servers.map(|server| {
+        let addr = server.local_addr().expect("addr");
+        std::thread::spawn(move || server.run());
+        addr
+    });
+    for (addr, token, expected) in [
+        (addrs[0], &tokens[0], 200),
+        (addrs[0], &tokens[1], 403),
+        (addrs[1], &tokens[1], 200),
+        (addrs[1], &tokens[0], 403),
+    ] {
+        let (status, _) = http(
+            addr,
+            &format!("GET /api/health?token={token} HTTP/1.1\r\nHost: {addr}\r\n\r\n"),
+            &[],
+        );
+        assert_eq!(status, expected);
+    }
+
+    for bad in ["", "two words", "a;b"] {
+        let refused = Server::bind(Config {
+            port: 0,
+            state_dir: dirs[0].path().to_path_buf(),
+            token: Some(bad.into()),
+            ..Config::default()
+        });
+        assert!(refused.is_err(), "{bad:?}");
+    }
 }

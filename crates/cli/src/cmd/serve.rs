@@ -11,9 +11,22 @@ use crate::error::bad_input;
 
 #[derive(clap::Args)]
 #[command(after_help = "\
-Serves the modeler on http://127.0.0.1:PORT/ and prints the address. One
-session is shared by every tab; it is saved after every change in the
-state directory and restored at the next start.
+Serves the modeler and prints its address with an access token:
+  holey serve: listening on http://127.0.0.1:PORT/?token=HEX
+Open that URL. One session is shared by every tab; it is saved after every
+change in the state directory and restored at the next start.
+
+Access: every request must name this server in its Host header (localhost,
+127.0.0.1, [::1] or the --host address, with this port or none; any IP
+address when bound to 0.0.0.0 or ::); any other Host is refused (403), so a
+web site whose domain name is pointed at this machine (DNS rebinding)
+cannot drive the modeler. Every request must also carry the token, which
+is new at every start (192 bits from the operating system's random
+source): the page opened with ?token= keeps it in a cookie (HttpOnly,
+SameSite=Strict) for its later requests, and scripts send the header
+`Authorization: token HEX` or add ?token=HEX. Without it: 403. --token or
+HOLEY_TOKEN fixes the token (for tests and tools); the environment
+variable keeps it out of the process list other users can read.
 
 The browser front end is built once from the repository with
   npm --prefix web ci && npm --prefix web run build
@@ -21,7 +34,9 @@ and found in web/dist next to the binary's repository, or with --web.
 
 Examples:
   holey serve
-  holey serve --port 0 --state-dir /tmp/holey-session --open")]
+  holey serve --port 0 --state-dir /tmp/holey-session --open
+  HOLEY_TOKEN=fixed-token-for-my-tests holey serve --port 0
+  curl -H 'Authorization: token HEX' 'http://127.0.0.1:PORT/api/export?format=obj'")]
 pub struct Args {
     /// Port to listen on; 0 picks a free one.
     #[arg(long, default_value_t = 8080)]
@@ -30,9 +45,13 @@ pub struct Args {
     /// the files it can write) to the network.
     #[arg(long, default_value = "127.0.0.1")]
     pub host: IpAddr,
-    /// Open the modeler in the default browser.
+    /// Open the modeler (the URL with the token) in the default browser.
     #[arg(long)]
     pub open: bool,
+    /// Fixed access token instead of a random one, for tests and tools
+    /// (letters, digits, - . _ ~) [env: HOLEY_TOKEN].
+    #[arg(long, value_name = "TOKEN")]
+    pub token: Option<String>,
     /// Where the session is saved [default: $XDG_STATE_HOME/holey or ~/.local/state/holey].
     #[arg(long)]
     pub state_dir: Option<PathBuf>,
@@ -85,7 +104,7 @@ pub fn run(args: Args) -> Result<()> {
     };
     if !args.host.is_loopback() {
         eprintln!(
-            "warning: binding {} makes the modeler reachable from the network; anyone who can reach it can edit the session",
+            "warning: binding {} makes the modeler reachable from the network over plain HTTP; the access token keeps out whoever lacks it, but anyone who can see the traffic can read it and edit the session",
             args.host
         );
     }
@@ -94,17 +113,35 @@ pub fn run(args: Args) -> Result<()> {
             "note: the front end is not built; run `npm --prefix web ci && npm --prefix web run build` in the repository"
         );
     }
+    // clap's env feature is not enabled for the workspace, so the variable
+    // is read here; the flag wins over it.
+    let (token, source) = match args.token {
+        Some(t) => (Some(t), "--token"),
+        None => (
+            std::env::var("HOLEY_TOKEN").ok().filter(|t| !t.is_empty()),
+            "HOLEY_TOKEN",
+        ),
+    };
+    if let Some(t) = &token {
+        holey_serve::auth::check_token(t).map_err(|e| bad_input(format!("{source}: {e}")))?;
+        if t.len() < 16 {
+            eprintln!(
+                "warning: {source} is {} characters long and can be guessed; without it a random 48-character token is made",
+                t.len()
+            );
+        }
+    }
     let config = Config {
         host: args.host,
         port: args.port,
         state_dir: args.state_dir.unwrap_or_else(default_state_dir),
         web_dir,
         max_upload: args.max_upload.saturating_mul(1 << 20),
+        token,
         ..Config::default()
     };
     let (server, note) = Server::bind(config).context("holey serve")?;
-    let addr = server.local_addr()?;
-    let url = format!("http://{addr}/");
+    let url = server.url()?;
     eprintln!("{note}");
     println!("holey serve: listening on {url}");
     std::io::stdout().flush()?;

@@ -19,6 +19,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 use serde_json::{Value, json};
 
+use crate::auth::Gate;
 use crate::doc::{Content, Document};
 use crate::frame::encode;
 use crate::persist::Saver;
@@ -80,6 +81,8 @@ impl Hub {
 /// What every connection thread shares.
 pub struct Shared {
     pub config: Config,
+    /// The `Host` check and the access token every request passes.
+    pub gate: Gate,
     pub hub: Hub,
     doc: Mutex<Document>,
     saver: Saver,
@@ -89,10 +92,11 @@ pub struct Shared {
 type Reply = Result<Value, ServeError>;
 
 impl Shared {
-    pub fn new(config: Config, doc: Document) -> Arc<Shared> {
+    pub fn new(config: Config, gate: Gate, doc: Document) -> Arc<Shared> {
         let saver = Saver::start(config.state_dir.clone());
         Arc::new(Shared {
             config,
+            gate,
             hub: Hub::default(),
             doc: Mutex::new(doc),
             saver,
