@@ -22,6 +22,17 @@ echo "== cargo test (release: the geometry tests are heavy)"
 # --show-output makes the SKIP lines of tests that skip visible.
 cargo test --workspace --release --locked -- --show-output
 
+echo "== Python package (pip install . into a fresh virtualenv, then pytest)"
+# Proves the install step a user takes: maturin (fetched by pip's build
+# isolation) builds the abi3 extension from crates/python, and the suite
+# in python/tests runs against the installed package, not the source tree.
+venv="$(pwd)/target/python-venv"
+rm -rf "$venv"
+python3 -m venv "$venv"
+"$venv/bin/python" -m pip install --quiet --upgrade pip
+"$venv/bin/python" -m pip install --quiet ".[test]"
+(cd python/tests && "$venv/bin/python" -m pytest -q -rs -p no:cacheprovider)
+
 echo "== browser tests (web/: npm ci, vite build, Chromium via playwright-core)"
 # The front end is built from npm packages (three, vite, playwright-core)
 # and tested in Debian's Chromium against the holey binary just built.

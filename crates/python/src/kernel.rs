@@ -1,0 +1,234 @@
+//! `holey.Mesh`: the doubly linked face list of Srinivasan's thesis and
+//! its high-genus tools. Every operator returns a new mesh and leaves
+//! this one as it was, so a Python value never changes under the caller.
+//!
+//! Faces are numbered as [`Mesh::to_arrays`] lists them (the non-hole
+//! faces in slot order; for a mesh made by `from_polygons`, the order of
+//! the polygons given), and a face's corners from the corner its list
+//! starts at.
+
+use std::path::Path;
+
+use holey::dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+use holey::dlfl::{CornerId, FaceId, dlfl_info};
+use holey::model::handle::{HandleParams, create_handle};
+use holey::model::menger::{MengerParams, Thickness, menger};
+use holey::model::rind::{PunchOutcome, Rind};
+use holey::model::sierpinski::sierpinski;
+use pyo3::prelude::*;
+
+use crate::arrays::poly_mesh;
+use crate::errors::{bad, io};
+use crate::files::{PolyArrays, kernel_of_raw, poly_arrays};
+
+/// A DLFL mesh: every vertex, edge, face and corner of an orientable
+/// 2-manifold with boundary (holes are faces too), and the thesis's
+/// operators on it.
+#[pyclass(module = "holey._holey", name = "Mesh", frozen)]
+#[derive(Clone)]
+pub struct Mesh {
+    mesh: holey::dlfl::Mesh,
+}
+
+impl Mesh {
+    fn wrap(mesh: holey::dlfl::Mesh) -> Mesh {
+        Mesh { mesh }
+    }
+
+    /// The face numbered `index` as `to_arrays` lists the faces.
+    fn face(&self, index: usize) -> PyResult<FaceId> {
+        let faces = to_poly(&self.mesh).faces;
+        faces.get(index).copied().ok_or_else(|| {
+            bad(format!(
+                "face {index} does not exist: the mesh has {} faces",
+                faces.len()
+            ))
+        })
+    }
+
+    /// Corner `corner` of face `face`.
+    fn corner(&self, face: usize, corner: usize) -> PyResult<CornerId> {
+        let f = self.face(face)?;
+        let corners: Vec<CornerId> = self.mesh.face_corners(f).map_err(bad)?.collect();
+        corners.get(corner).copied().ok_or_else(|| {
+            bad(format!(
+                "face {face} has {} corners; there is no corner {corner}",
+                corners.len()
+            ))
+        })
+    }
+}
+
+#[pymethods]
+impl Mesh {
+    /// A built-in primitive, as `holey primitive` names it (`@cube:3`).
+    #[staticmethod]
+    fn primitive(spec: &str) -> PyResult<Mesh> {
+        let soup = holey::shapes::parse_primitive(spec).map_err(|e| bad(format!("{spec}: {e}")))?;
+        Mesh::from_soup(&soup, spec)
+    }
+
+    /// The mesh of polygons given as positions, flat indices and offsets.
+    #[staticmethod]
+    fn from_arrays(v: &[u8], flat: &[u8], offsets: &[u8]) -> PyResult<Mesh> {
+        Mesh::from_soup(&poly_mesh(v, flat, offsets, "polygons")?, "polygons")
+    }
+
+    /// Reads a mesh file (a `.dlfl` file as the DLFL it stores).
+    #[staticmethod]
+    fn read(path: &str) -> PyResult<Mesh> {
+        match holey::io::read_path(Path::new(path)).map_err(io)? {
+            holey::io::MeshFile::Poly(soup) => Mesh::from_soup(&soup, path),
+            holey::io::MeshFile::Dlfl(raw) => Ok(Mesh::wrap(kernel_of_raw(raw, path)?)),
+        }
+    }
+
+    /// Writes the mesh atomically, its format from the extension.
+    fn write(&self, path: &str) -> PyResult<()> {
+        let target = Path::new(path);
+        if holey::io::Format::from_path(target).map_err(io)? == holey::io::Format::Dlfl {
+            return holey::io::write_dlfl(target, &self.mesh.to_raw()).map_err(io);
+        }
+        holey::io::write_poly(target, &to_poly(&self.mesh).poly, &Default::default()).map_err(io)
+    }
+
+    /// The non-hole faces as positions, flat indices and offsets.
+    fn to_arrays<'py>(&self, py: Python<'py>) -> PolyArrays<'py> {
+        poly_arrays(py, &to_poly(&self.mesh).poly)
+    }
+
+    /// The measurements `holey info --json` prints for a `.dlfl` file.
+    fn info(&self) -> PyResult<String> {
+        serde_json::to_string(&dlfl_info(&self.mesh)).map_err(bad)
+    }
+
+    /// The Sierpinski polyhedron of `iterations` levels (thesis ch. VI).
+    fn sierpinski(&self, py: Python<'_>, iterations: usize) -> PyResult<Mesh> {
+        let mut m = self.mesh.clone();
+        py.detach(|| sierpinski(&mut m, iterations)).map_err(bad)?;
+        Ok(Mesh::wrap(m))
+    }
+
+    /// The Menger sponge of `iterations` levels (thesis ch. VII): `exact`
+    /// for the true sponge of a parallelepiped; the wall thickness is
+    /// `thickness` in model units, or else `ratio` times the mean edge.
+    #[pyo3(signature = (iterations, *, exact=false, thickness=None, ratio=None, collapse_angle=90.0))]
+    fn menger(
+        &self,
+        py: Python<'_>,
+        iterations: usize,
+        exact: bool,
+        thickness: Option<f64>,
+        ratio: Option<f64>,
+        collapse_angle: f64,
+    ) -> PyResult<Mesh> {
+        let thickness = match (thickness, ratio) {
+            (Some(_), Some(_)) => return Err(bad("give thickness or ratio, not both")),
+            (Some(d), None) => Thickness::Absolute(d),
+            (None, Some(r)) => Thickness::RatioOfMeanEdge(r),
+            (None, None) => MengerParams::default().thickness,
+        };
+        let params = MengerParams {
+            iterations,
+            thickness,
+            collapse_angle_deg: collapse_angle,
+            exact,
+        };
+        let mut m = self.mesh.clone();
+        py.detach(|| menger(&mut m, &params)).map_err(bad)?;
+        Ok(Mesh::wrap(m))
+    }
+
+    /// `levels` of Catmull–Clark (`catmull-clark`) or Doo–Sabin
+    /// (`doo-sabin`) subdivision.
+    fn subdivide(&self, py: Python<'_>, scheme: &str, levels: usize) -> PyResult<Mesh> {
+        let run = match scheme {
+            "catmull-clark" => holey::subdiv::catmull_clark,
+            "doo-sabin" => holey::subdiv::doo_sabin,
+            other => {
+                return Err(bad(format!(
+                    "scheme {other:?} is not known: use \"catmull-clark\" or \"doo-sabin\""
+                )));
+            }
+        };
+        py.detach(|| run(&self.mesh, levels))
+            .map(Mesh::wrap)
+            .map_err(bad)
+    }
+
+    /// A handle of `segments` segments from corner `corners[0]` of face
+    /// `faces[0]` to corner `corners[1]` of face `faces[1]` along a
+    /// Hermite curve with weights `w1`, `w2` (thesis ch. IV); negative
+    /// weights make a tunnel through the mesh.
+    #[pyo3(signature = (faces, corners=(0, 0), *, segments=4, w1=1.0, w2=1.0))]
+    fn handle(
+        &self,
+        faces: (usize, usize),
+        corners: (usize, usize),
+        segments: usize,
+        w1: f64,
+        w2: f64,
+    ) -> PyResult<Mesh> {
+        let a = self.corner(faces.0, corners.0)?;
+        let b = self.corner(faces.1, corners.1)?;
+        let mut m = self.mesh.clone();
+        create_handle(&mut m, a, b, &HandleParams::new(segments, w1, w2)).map_err(bad)?;
+        Ok(Mesh::wrap(m))
+    }
+
+    /// A rind of `thickness` (thesis ch. V): the outer faces made from
+    /// faces `punch` get a pipe to their inner copies, those of `peel`
+    /// also lose the thin walls between neighbouring holes. Returns the
+    /// new mesh and a note for each face that could not be punched.
+    #[pyo3(signature = (thickness, *, punch=Vec::new(), peel=Vec::new()))]
+    fn rind(
+        &self,
+        thickness: f64,
+        punch: Vec<usize>,
+        peel: Vec<usize>,
+    ) -> PyResult<(Mesh, Vec<String>)> {
+        let slot = |i: usize| self.face(i).map(|f| f.index());
+        let punch: Vec<usize> = punch.into_iter().map(slot).collect::<PyResult<_>>()?;
+        let peel: Vec<usize> = peel.into_iter().map(slot).collect::<PyResult<_>>()?;
+        let mut rind = Rind::from_mesh(&self.mesh, thickness).map_err(bad)?;
+        let mut notes = Vec::new();
+        for (list, peeling) in [(&punch, false), (&peel, true)] {
+            let outcomes = if peeling {
+                rind.peel_indices(list)
+            } else {
+                rind.punch_indices(list)
+            }
+            .map_err(bad)?;
+            for (slot, outcome) in list.iter().zip(outcomes) {
+                if let PunchOutcome::NotPunchable { reason } = outcome {
+                    let verb = if peeling { "peeled" } else { "punched" };
+                    notes.push(format!("the face in slot {slot} was not {verb}: {reason}"));
+                }
+            }
+        }
+        Ok((Mesh::wrap(rind.into_mesh()), notes))
+    }
+
+    /// Checks every invariant of the DLFL (for tests).
+    fn validate(&self) -> PyResult<()> {
+        self.mesh.validate().map_err(bad)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "holey.Mesh(vertices={}, edges={}, faces={}, genus={})",
+            self.mesh.vertex_count(),
+            self.mesh.edge_count(),
+            self.mesh.face_count(),
+            self.mesh.genus()
+        )
+    }
+}
+
+impl Mesh {
+    fn from_soup(soup: &holey::mesh::PolyMesh, what: &str) -> PyResult<Mesh> {
+        let imported =
+            to_dlfl(soup, ImportOptions::default()).map_err(|e| bad(format!("{what}: {e}")))?;
+        Ok(Mesh::wrap(imported.mesh))
+    }
+}
