@@ -51,9 +51,11 @@ function startServer() {
   } else {
     cmd = process.env.HOLEY_BIN || path.join(repo, 'target/release/holey');
     if (!fs.existsSync(cmd)) throw new Error(`${cmd} not found: build it with \`cargo build --release\` (or set HOLEY_BIN)`);
-    args = ['serve', '--port', '0', '--state-dir', stateDir, '--web', dist];
+    // No --web, and started outside the repository: the page must come
+    // from the front end embedded in the binary, as for an installed one.
+    args = ['serve', '--port', '0', '--state-dir', stateDir];
   }
-  const child = spawn(cmd, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  const child = spawn(cmd, args, { cwd: stateDir, stdio: ['ignore', 'pipe', 'pipe'] });
   let log = '';
   child.stderr.on('data', (d) => { log += d; });
   const url = new Promise((resolve, reject) => {

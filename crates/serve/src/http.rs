@@ -322,7 +322,9 @@ fn content_type(path: &Path) -> &'static str {
     }
 }
 
-/// A file of the built front end. Paths never leave the web directory.
+/// A file of the built front end: from `--web DIR` when given (front-end
+/// development), else the copy embedded at build time. Paths never leave
+/// the web directory.
 ///
 /// A page opened with the token in its URL gets the token back as a
 /// cookie, so its scripts, assets and WebSocket carry it.
@@ -344,6 +346,10 @@ fn static_file(
         return error(stream, 400, "bad path");
     }
     let Some(root) = shared.config.web_dir.as_ref() else {
+        if let Some(bytes) = crate::embedded::file(relative) {
+            let body: &[u8] = if request.method == "HEAD" { &[] } else { bytes };
+            return respond(stream, 200, content_type(rel), cookie, body);
+        }
         if relative == "index.html" {
             return respond(
                 stream,
@@ -376,7 +382,7 @@ fn static_file(
 const NOT_BUILT: &str = "<!doctype html><meta charset=utf-8><title>holey</title>\
 <h1>holey serve</h1><p>The server is running, but the browser front end is not built.\
  From the repository, run:</p><pre>npm --prefix web ci\nnpm --prefix web run build</pre>\
-<p>then restart <code>holey serve</code> (or pass <code>--web DIR</code>).</p>";
+<p>then rebuild holey (<code>cargo build --release</code> embeds it) or pass <code>--web web/dist</code>.</p>";
 
 #[cfg(test)]
 mod tests {

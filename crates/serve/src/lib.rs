@@ -23,6 +23,7 @@
 
 pub mod auth;
 pub mod doc;
+pub mod embedded;
 pub mod frame;
 pub mod http;
 pub mod ops;

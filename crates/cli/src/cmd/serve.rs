@@ -28,9 +28,11 @@ SameSite=Strict) for its later requests, and scripts send the header
 HOLEY_TOKEN fixes the token (for tests and tools); the environment
 variable keeps it out of the process list other users can read.
 
-The browser front end is built once from the repository with
-  npm --prefix web ci && npm --prefix web run build
-and found in web/dist next to the binary's repository, or with --web.
+The browser front end is built into the binary: `cargo build` runs npm
+(web/) when web/dist is missing or older than its sources, and embeds
+it, so the modeler is served from any directory and from an installed
+or copied binary. --web DIR serves a front end from disk instead, for
+front-end development (`npm --prefix web run dev` rebuilds it).
 
 Examples:
   holey serve
@@ -55,7 +57,8 @@ pub struct Args {
     /// Where the session is saved [default: $XDG_STATE_HOME/holey or ~/.local/state/holey].
     #[arg(long)]
     pub state_dir: Option<PathBuf>,
-    /// The built front end [default: web/dist of the repository].
+    /// Serve the front end from this folder (a built web/dist) instead of
+    /// the copy embedded in the binary: for front-end development.
     #[arg(long)]
     pub web: Option<PathBuf>,
     /// Largest upload in MiB.
@@ -73,21 +76,6 @@ fn default_state_dir() -> PathBuf {
     PathBuf::from(".holey-session")
 }
 
-/// web/dist of the repository the binary was built in (target/*/holey),
-/// else of the working directory.
-fn default_web_dir() -> Option<PathBuf> {
-    let mut candidates = Vec::new();
-    if let Ok(exe) = std::env::current_exe() {
-        for up in exe.ancestors().skip(1).take(4) {
-            candidates.push(up.join("web/dist"));
-        }
-    }
-    candidates.push(PathBuf::from("web/dist"));
-    candidates
-        .into_iter()
-        .find(|d| d.join("index.html").is_file())
-}
-
 pub fn run(args: Args) -> Result<()> {
     if args.max_upload == 0 {
         return Err(bad_input("--max-upload must be at least 1 MiB"));
@@ -100,7 +88,7 @@ pub fn run(args: Args) -> Result<()> {
                 d.display()
             )));
         }
-        None => default_web_dir(),
+        None => None,
     };
     if !args.host.is_loopback() {
         eprintln!(
@@ -108,9 +96,9 @@ pub fn run(args: Args) -> Result<()> {
             args.host
         );
     }
-    if web_dir.is_none() {
+    if web_dir.is_none() && !holey_serve::embedded::is_present() {
         eprintln!(
-            "note: the front end is not built; run `npm --prefix web ci && npm --prefix web run build` in the repository"
+            "note: this binary was built without the front end (npm was missing); install Node.js with npm and rebuild, or pass --web DIR"
         );
     }
     // clap's env feature is not enabled for the workspace, so the variable
