@@ -323,7 +323,7 @@ pub fn grab_weights(mesh: &TriMesh, picked: DVec3, radius: f64) -> Vec<f64> {
 /// indices) that contains `triangle`: the rigid body the move brush holds.
 pub fn component_of(mesh: &TriMesh, triangle: usize) -> Vec<bool> {
     let n = mesh.positions.len();
-    let mut sets = holey_topo::union_find::UnionFind::new(n);
+    let mut sets = holey_mesh::UnionFind::new(n);
     for t in &mesh.triangles {
         sets.union(t[0], t[1]);
         sets.union(t[0], t[2]);

@@ -552,7 +552,7 @@ impl Work {
         nb.sort_unstable();
         // One fan: the triangles joined through shared neighbours form
         // one group (union-find over the ring).
-        let mut sets = holey_topo::union_find::UnionFind::new(ring.len());
+        let mut sets = holey_mesh::UnionFind::new(ring.len());
         let mut groups = ring.len();
         let mut boundary = 0;
         let mut valence = 0;

@@ -108,7 +108,7 @@ pub struct StrokeReport {
     /// Frames whose first result would have left the surface worse (a
     /// new hole, non-manifold curve, pinch, degenerate triangle or
     /// intersection) and that held some vertices still instead
-    /// ([`holey_topo::guard`]).
+    /// ([`holey_topo::topology_change_guarded`]).
     pub guarded_frames: usize,
     /// Vertex-frames held still by the guard, over the stroke.
     pub held_vertices: usize,

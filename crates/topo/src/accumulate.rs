@@ -1,7 +1,7 @@
 //! The drag of §4: raw collision parity accumulated over the frames of a
 //! stroke, the corrected parity on demand for the live preview, and one
 //! topology change at release, each on the region the motion reached
-//! (see [`crate::local`]).
+//! (see [`crate::topology_change_local`]).
 
 use std::time::Instant;
 
@@ -76,7 +76,7 @@ impl Accumulator {
 
     /// Moves every vertex linearly from its current position to `next`,
     /// accumulating collision parity. Only the triangles the motion can
-    /// reach are tested (see [`crate::local`]), so a frame costs what
+    /// reach are tested (see [`crate::topology_change_local`]), so a frame costs what
     /// moves, plus a linear scan.
     pub fn advance(&mut self, next: &[DVec3]) -> Result<(), TopoError> {
         check(&self.mesh, next)?;
@@ -163,7 +163,7 @@ impl Accumulator {
     /// computes it (so the preview of §4 shows exactly that): by
     /// containment number where the dragged region is a piece of a solid,
     /// by the accumulated parity elsewhere, guarded like a sculpting frame
-    /// ([`crate::guard`]). A release that would leave the surface worse
+    /// ([`crate::topology_change_guarded`]). A release that would leave the surface worse
     /// is refused: the drag is undone and nothing vanishes.
     pub fn preview(&mut self) -> Result<std::sync::Arc<Release>, TopoError> {
         if let Some((frame, r)) = &self.last_release
@@ -216,7 +216,7 @@ impl Accumulator {
     /// [`Accumulator::release`] run on the region everything moved
     /// through (with a margin) and spliced into the rest of the mesh; the
     /// whole mesh when the region is large or the splice would not be
-    /// exact (see [`crate::local`]).
+    /// exact (see [`crate::topology_change_local`]).
     pub fn release_local(self) -> Result<(TriMesh, LocalReport), TopoError> {
         let started = Instant::now();
         let n = self.raw.len();

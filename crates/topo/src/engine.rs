@@ -57,7 +57,7 @@ pub struct Options {
     /// `None` is [`default_pair_limit`]
     /// of the mesh's triangle count, `Some(usize::MAX)` no limit.
     pub max_intersecting_pairs: Option<usize>,
-    /// Let a sculpting frame or drag ([`crate::guard`]) leave new
+    /// Let a sculpting frame or drag ([`crate::topology_change_guarded`]) leave new
     /// non-manifold curves and pinched vertices: an open sheet glued to a
     /// surface along a curve (the T-junctions of Figures 9 and 11, part
     /// assembly and paper mâché). Off by default: the guard then refuses

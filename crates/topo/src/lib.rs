@@ -5,23 +5,24 @@
 
 #![warn(missing_docs)]
 
-pub mod accumulate;
+mod accumulate;
 pub mod audit;
 mod containment;
-pub mod correct;
-pub mod cut;
-pub mod engine;
-pub mod guard;
+mod correct;
+mod cut;
+mod engine;
+mod guard;
+pub mod internals;
 pub mod intersect;
-pub mod local;
+mod local;
 pub mod mesh;
-pub mod orient;
+mod orient;
 mod report_json;
 mod solid;
 pub mod solids;
 pub mod union;
-pub mod union_find;
-pub mod weights;
+mod union_find;
+mod weights;
 pub mod winding;
 pub mod winding_boolean;
 

@@ -31,7 +31,7 @@
 //!   intersections).
 //! - The field is exact, so error correction has nothing to correct, and
 //!   every A × B curve separates inside from outside: the cut keeps every
-//!   curve ([`Deletion::OddExact`]), and a region that holds no vertex
+//!   curve (`Deletion::OddExact`), and a region that holds no vertex
 //!   (two ridges crossing) gets its parity from one more ray.
 //!
 //! The result is the one the motion gives when the collision parity is

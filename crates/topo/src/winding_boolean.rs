@@ -15,7 +15,7 @@
 //!
 //! 1. All triangles of all inputs are intersected exactly, each with each
 //!    (the inputs with each other and each with itself), and cut and
-//!    glued along the curves ([`crate::cut`], the paper's §3.3 with
+//!    glued along the curves (the cut stage, the paper's §3.3 with
 //!    nothing deleted): the arrangement. Its vertices are welded where
 //!    their rounded positions are equal.
 //! 2. Its *regions* are the triangles joined across edges that exactly two

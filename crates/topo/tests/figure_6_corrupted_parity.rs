@@ -10,9 +10,7 @@ mod common;
 use common::*;
 use glam::DVec3;
 use holey_testkit::Rng;
-use holey_topo::correct::{Graph, correct};
-use holey_topo::mesh::Edges;
-use holey_topo::weights::Weights;
+use holey_topo::internals::{Edges, Graph, Weights, correct};
 use holey_topo::{Options, Scheme, TriMesh, self_intersections};
 
 fn two_spheres() -> (TriMesh, TriMesh, TriMesh) {
