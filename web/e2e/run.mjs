@@ -285,6 +285,26 @@ const scenarios = [
     }
   }],
 
+  ['export GLB and import it again: same V and genus, the faces as triangles', async (page) => {
+    if (useMock) return 'SKIP'; // the mock server exports OBJ only
+    const before = await page.evaluate(() => window.__holey.stats);
+    await page.selectOption(tid('export-format'), 'glb');
+    const [download] = await Promise.all([page.waitForEvent('download', { timeout: 30000 }), page.click(tid('export'))]);
+    if (download.suggestedFilename() !== 'holey.glb') throw new Error(`downloaded as ${download.suggestedFilename()}, not holey.glb`);
+    const saved = path.join(artifacts, 'export-roundtrip.glb');
+    await download.saveAs(saved);
+    const magic = fs.readFileSync(saved).subarray(0, 4).toString('latin1');
+    if (magic !== 'glTF') throw new Error(`the exported file starts with ${JSON.stringify(magic)}, not the GLB magic "glTF"`);
+    const v = await version(page);
+    await page.setInputFiles(tid('import-input'), saved);
+    await waitVersionAbove(page, v);
+    // glTF holds triangles: every polygon comes back as its triangles, the
+    // vertices and the genus unchanged.
+    const want = [before.vertices, before.triangles, before.genus];
+    await waitFor(page, `V, F, genus ${JSON.stringify(want)} after importing the GLB`,
+      (w) => { const s = window.__holey.stats; return !!s && s.vertices === w[0] && s.faces === w[1] && s.genus === w[2]; }, want);
+  }],
+
   ['performance: orbit fps at ~1M triangles, sculpt latency at ~100k', async (page) => {
     // @sphere:L has 20·4^L triangles: L=8 → 1.31M, L=6 → 82k.
     await setWorkspace(page, 'model');

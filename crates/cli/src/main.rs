@@ -77,6 +77,8 @@ enum Command {
     Sculpt(cmd::sculpt::Args),
     /// The interactive modeler in the browser (model and sculpt workspaces).
     Serve(cmd::serve::Args),
+    /// Run one command on many files at once: folders, glob patterns, lists.
+    Batch(cmd::batch::Args),
 }
 
 /// holey-topo catches the rare panic of spade's splitting constraint
@@ -117,6 +119,7 @@ fn main() {
         Command::Resolve(a) => cmd::resolve::run(a),
         Command::Sculpt(a) => cmd::sculpt::run(a),
         Command::Serve(a) => cmd::serve::run(a),
+        Command::Batch(a) => cmd::batch::run(a),
         Command::Primitives => {
             print!("{}", holey_shapes::primitive_help());
             Ok(())

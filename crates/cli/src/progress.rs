@@ -2,9 +2,20 @@
 //! shown only when stderr is a terminal.
 
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// Set once spinners must stay hidden for the rest of the run.
+static QUIET: AtomicBool = AtomicBool::new(false);
+
+/// Hides every spinner from now on: `holey batch` draws one bar for the
+/// whole run, which the spinners of the files it runs on at once would
+/// draw over (and each would cost a thread sleeping for a second).
+pub fn quiet() {
+    QUIET.store(true, Ordering::Relaxed);
+}
 
 /// A spinner that appears after one second if the work is still running.
 pub struct Progress {
@@ -18,7 +29,7 @@ impl Progress {
         if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} ({elapsed})") {
             bar.set_style(style);
         }
-        if std::io::stderr().is_terminal() {
+        if !QUIET.load(Ordering::Relaxed) && std::io::stderr().is_terminal() {
             let shown = bar.clone();
             std::thread::spawn(move || {
                 std::thread::sleep(Duration::from_secs(1));

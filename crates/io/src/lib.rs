@@ -1,12 +1,14 @@
 //! # holey-io: mesh files
 //!
 //! Readers and writers for OBJ ([`obj`]), OFF ([`off`]), PLY ([`ply`],
-//! ascii and binary), STL ([`stl`], ascii and binary) and holey's native
+//! ascii and binary), STL ([`stl`], ascii and binary), glTF 2.0
+//! ([`gltf`], `.gltf` and `.glb`), 3MF ([`threemf`]) and holey's native
 //! `.dlfl` ([`dlfl`]). Each module documents exactly what it accepts.
 //!
 //! - The polygon formats read into a [`PolyMesh`] holding the file's
 //!   vertices and faces as stored (STL: welded only where positions are
-//!   bit-identical); `.dlfl` reads into a [`RawMesh`] for
+//!   bit-identical; glTF and 3MF: the meshes of the scene or build, each
+//!   placed by its transforms); `.dlfl` reads into a [`RawMesh`] for
 //!   [`holey_dlfl::Mesh::from_raw`].
 //! - Readers never panic on any input and never allocate by a declared
 //!   count beyond what the file's size can hold. Every error says what is
@@ -31,11 +33,13 @@
 
 pub mod dlfl;
 mod error;
+pub mod gltf;
 pub mod obj;
 pub mod off;
 pub mod ply;
 pub mod stl;
 mod text;
+pub mod threemf;
 
 use std::fmt;
 use std::fs;
@@ -50,6 +54,13 @@ pub use holey_mesh::PolyMesh;
 /// many bytes.
 pub(crate) const CHUNK: usize = 1 << 16;
 
+/// The most vertices plus face corners a glTF or 3MF reader builds. Both
+/// formats place one stored mesh any number of times (glTF nodes, 3MF
+/// build items and components), so a file of a few kilobytes could ask
+/// for more copies than memory holds; past this the reader stops with an
+/// error instead. It is far above any mesh holey can work on.
+pub(crate) const MAX_ELEMENTS: usize = 1 << 28;
+
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
@@ -62,34 +73,58 @@ pub enum Format {
     /// STL (`.stl`), ascii or binary: separate facets, welded on reading
     /// only where positions are bit-identical.
     Stl,
+    /// glTF 2.0 as JSON (`.gltf`); holey writes its buffer as a base64 data
+    /// URI so the one file is self-contained. Positions are `f32`.
+    Gltf,
+    /// glTF 2.0 in its binary container (`.glb`). Positions are `f32`.
+    Glb,
+    /// 3MF (`.3mf`): a ZIP package of XML; decimal coordinates, exact.
+    ThreeMf,
     /// holey's native DLFL text format (`.dlfl`): faces, hole faces and edges.
     Dlfl,
 }
 
 impl Format {
     /// Every format, in a fixed order.
-    pub const ALL: [Format; 5] = [
+    pub const ALL: [Format; 8] = [
         Format::Obj,
         Format::Off,
         Format::Ply,
         Format::Stl,
+        Format::Gltf,
+        Format::Glb,
+        Format::ThreeMf,
         Format::Dlfl,
     ];
 
+    /// The known extensions for messages: `.obj, .off, …, .dlfl`.
+    pub fn known_extensions() -> String {
+        Format::ALL
+            .iter()
+            .map(|f| format!(".{}", f.extension()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// The format named by a path's extension (`.obj`, `.off`, `.ply`,
-    /// `.stl`, `.dlfl`, in any case).
+    /// `.stl`, `.gltf`, `.glb`, `.3mf`, `.dlfl`, in any case).
     pub fn from_path(path: &Path) -> Result<Format, IoError> {
         let ext = path.extension().and_then(|e| e.to_str());
-        ext.and_then(Format::from_extension).ok_or_else(|| IoError::UnknownFormat {
-            file: path.display().to_string(),
-            message: match path.extension() {
-                Some(e) => format!(
-                    "unknown mesh file extension \".{}\" (known: .obj, .off, .ply, .stl, .dlfl)",
-                    e.to_string_lossy()
-                ),
-                None => "no file extension to tell the mesh format (known: .obj, .off, .ply, .stl, .dlfl)".into(),
-            },
-        })
+        ext.and_then(Format::from_extension)
+            .ok_or_else(|| IoError::UnknownFormat {
+                file: path.display().to_string(),
+                message: match path.extension() {
+                    Some(e) => format!(
+                        "unknown mesh file extension \".{}\" (known: {})",
+                        e.to_string_lossy(),
+                        Format::known_extensions()
+                    ),
+                    None => format!(
+                        "no file extension to tell the mesh format (known: {})",
+                        Format::known_extensions()
+                    ),
+                },
+            })
     }
 
     /// The format with this extension (without the dot, any case).
@@ -99,13 +134,17 @@ impl Format {
             .find(|f| f.extension().eq_ignore_ascii_case(ext))
     }
 
-    /// The format's name for messages: `OBJ`, `OFF`, `PLY`, `STL`, `DLFL`.
+    /// The format's name for messages: `OBJ`, `OFF`, `PLY`, `STL`, `glTF`,
+    /// `GLB`, `3MF`, `DLFL`.
     pub fn name(self) -> &'static str {
         match self {
             Format::Obj => "OBJ",
             Format::Off => "OFF",
             Format::Ply => "PLY",
             Format::Stl => "STL",
+            Format::Gltf => "glTF",
+            Format::Glb => "GLB",
+            Format::ThreeMf => "3MF",
             Format::Dlfl => "DLFL",
         }
     }
@@ -117,6 +156,9 @@ impl Format {
             Format::Off => "off",
             Format::Ply => "ply",
             Format::Stl => "stl",
+            Format::Gltf => "gltf",
+            Format::Glb => "glb",
+            Format::ThreeMf => "3mf",
             Format::Dlfl => "dlfl",
         }
     }
@@ -128,33 +170,49 @@ impl fmt::Display for Format {
     }
 }
 
-/// What a file holds: a polygon mesh (OBJ, OFF, PLY, STL) or a DLFL in raw
-/// form (`.dlfl`).
+/// What a file holds: a polygon mesh (OBJ, OFF, PLY, STL, glTF, 3MF) or a
+/// DLFL in raw form (`.dlfl`).
 #[derive(Clone, Debug, PartialEq)]
 pub enum MeshFile {
-    /// The vertices and faces of an OBJ, OFF, PLY or STL file, as stored.
+    /// The vertices and faces of an OBJ, OFF, PLY, STL, glTF or 3MF file,
+    /// as stored (glTF and 3MF: placed by their transforms).
     Poly(PolyMesh),
     /// The contents of a `.dlfl` file, ready for [`holey_dlfl::Mesh::from_raw`].
     Dlfl(RawMesh),
 }
 
 /// Reads a mesh file, choosing the format by the extension. Errors name the
-/// path as given.
+/// path as given. A `.gltf` may keep its buffers in files beside it; they
+/// are read relative to its directory.
 pub fn read_path(path: &Path) -> Result<MeshFile, IoError> {
     let format = Format::from_path(path)?;
     let name = path.display().to_string();
     let bytes = fs::read(path).map_err(|e| IoError::io(&name, "cannot read the file", e))?;
+    if let Format::Gltf | Format::Glb = format {
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let glb = format == Format::Glb;
+        return Ok(MeshFile::Poly(gltf::parse_with_files(
+            &bytes, &name, dir, glb,
+        )?));
+    }
     parse(format, &bytes, &name)
 }
 
 /// Parses the bytes of a file in `format`; `source` is the file name used in
-/// error messages.
+/// error messages. Nothing but `bytes` is read: a glTF whose buffers are in
+/// separate files is refused (use [`read_path`]).
 pub fn parse(format: Format, bytes: &[u8], source: &str) -> Result<MeshFile, IoError> {
     Ok(match format {
         Format::Obj => MeshFile::Poly(obj::parse(bytes, source)?),
         Format::Off => MeshFile::Poly(off::parse(bytes, source)?),
         Format::Ply => MeshFile::Poly(ply::parse(bytes, source)?),
         Format::Stl => MeshFile::Poly(stl::parse(bytes, source)?),
+        Format::Gltf => MeshFile::Poly(gltf::parse(bytes, source)?),
+        Format::Glb => MeshFile::Poly(gltf::parse_glb(bytes, source)?),
+        Format::ThreeMf => MeshFile::Poly(threemf::parse(bytes, source)?),
         Format::Dlfl => MeshFile::Dlfl(dlfl::parse(bytes, source)?),
     })
 }
@@ -194,9 +252,12 @@ pub fn check_poly(mesh: &PolyMesh) -> Result<(), String> {
     Ok(())
 }
 
-/// Writes a polygon mesh as OBJ, OFF, PLY or STL, chosen by the extension,
-/// atomically (see the crate docs). `.dlfl` is refused: it stores a DLFL,
-/// so convert the mesh and use [`write_dlfl`].
+/// Writes a polygon mesh as OBJ, OFF, PLY, STL, glTF (`.gltf`, `.glb`) or
+/// 3MF, chosen by the extension, atomically (see the crate docs). `.dlfl`
+/// is refused: it stores a DLFL, so convert the mesh and use
+/// [`write_dlfl`]. glTF and 3MF are encoded in memory first, so a mesh they
+/// cannot hold (a coordinate beyond `f32` for glTF) is refused before
+/// anything is written.
 pub fn write_poly(path: &Path, mesh: &PolyMesh, opts: &WriteOptions) -> Result<(), IoError> {
     let format = Format::from_path(path)?;
     let name = path.display().to_string();
@@ -220,6 +281,15 @@ pub fn write_poly(path: &Path, mesh: &PolyMesh, opts: &WriteOptions) -> Result<(
         Format::Off => write_atomic(path, |w| off::write(w, mesh)),
         Format::Ply => write_atomic(path, |w| ply::write(w, mesh, opts.ascii, colors)),
         Format::Stl => write_atomic(path, |w| stl::write(w, mesh, opts.ascii)),
+        Format::Gltf | Format::Glb | Format::ThreeMf => {
+            let bytes = match format {
+                Format::Gltf => gltf::encode_gltf(mesh),
+                Format::Glb => gltf::encode_glb(mesh),
+                _ => threemf::encode(mesh),
+            }
+            .map_err(|m| IoError::invalid_mesh(&name, m))?;
+            write_atomic(path, |w| w.write_all(&bytes))
+        }
         Format::Dlfl => Err(IoError::invalid_mesh(
             &name,
             "a .dlfl file stores a DLFL mesh, not a polygon soup; convert the mesh first and write it with write_dlfl",
@@ -318,7 +388,16 @@ mod tests {
         assert!(e.is_bad_input());
         assert_eq!(
             e.to_string(),
-            "dir/mesh.3ds: unknown mesh file extension \".3ds\" (known: .obj, .off, .ply, .stl, .dlfl)"
+            "dir/mesh.3ds: unknown mesh file extension \".3ds\" (known: .obj, .off, .ply, .stl, .gltf, .glb, .3mf, .dlfl)"
+        );
+        assert_eq!(Format::from_path(Path::new("a.GLB")).unwrap(), Format::Glb);
+        assert_eq!(
+            Format::from_path(Path::new("a.gltf")).unwrap(),
+            Format::Gltf
+        );
+        assert_eq!(
+            Format::from_path(Path::new("a.3MF")).unwrap(),
+            Format::ThreeMf
         );
         let e = Format::from_path(Path::new("README")).unwrap_err();
         assert!(e.to_string().starts_with("README: no file extension"));
@@ -334,7 +413,9 @@ mod tests {
     fn every_format_round_trips_through_files() {
         let dir = tempfile::tempdir().unwrap();
         let m = tetra();
-        for ext in ["obj", "off", "ply", "stl"] {
+        // The tetrahedron is triangles at coordinates f32 holds exactly, so
+        // glTF and 3MF give it back unchanged too.
+        for ext in ["obj", "off", "ply", "stl", "gltf", "glb", "3mf"] {
             for ascii in [false, true] {
                 let path = dir.path().join(format!("t.{ext}"));
                 write_poly(
@@ -366,7 +447,7 @@ mod tests {
             .unwrap()
             .map(|e| e.unwrap().file_name().into_string().unwrap())
             .collect();
-        assert_eq!(names.len(), 4, "no temporary files left behind: {names:?}");
+        assert_eq!(names.len(), 7, "no temporary files left behind: {names:?}");
     }
 
     #[test]

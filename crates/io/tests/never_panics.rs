@@ -68,7 +68,53 @@ fn seeds() -> Vec<(Format, Vec<u8>)> {
     let mut buf = Vec::new();
     holey_io::dlfl::write(&mut buf, &dlfl_sample()).unwrap();
     out.push((Format::Dlfl, buf));
+    out.push((Format::Glb, holey_io::gltf::encode_glb(&m).unwrap()));
+    out.push((Format::Gltf, holey_io::gltf::encode_gltf(&m).unwrap()));
+    out.push((Format::Gltf, gltf_with_nodes()));
+    out.push((Format::ThreeMf, holey_io::threemf::encode(&m).unwrap()));
     out
+}
+
+/// A .gltf with a node hierarchy, transforms, u16 indices, a strip and a
+/// strided view: the paths the writer's own output does not take.
+fn gltf_with_nodes() -> Vec<u8> {
+    let mut bin = Vec::new();
+    for p in [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]] {
+        for x in p {
+            bin.extend_from_slice(&x.to_le_bytes());
+        }
+        bin.extend_from_slice(&[0; 4]);
+    }
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        bin.extend_from_slice(&i.to_le_bytes());
+    }
+    let data: String = {
+        use std::fmt::Write;
+        // Hex is not base64: encode by hand with the standard alphabet.
+        const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut s = String::new();
+        for c in bin.chunks(3) {
+            let n = (u32::from(c[0]) << 16)
+                | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+                | u32::from(*c.get(2).unwrap_or(&0));
+            for k in 0..=c.len() {
+                let _ = s.write_char(char::from(A[(n >> (18 - 6 * k)) as usize & 63]));
+            }
+        }
+        s
+    };
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0,2]}}],
+        "nodes":[{{"translation":[1,2,3],"rotation":[0,0.6,0,0.8],"children":[1]}},{{"scale":[2,-1,2],"mesh":0}},
+                 {{"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,5,5,5,1],"mesh":0}}],
+        "buffers":[{{"byteLength":76,"uri":"data:application/octet-stream;base64,{data}"}}],
+        "bufferViews":[{{"buffer":0,"byteLength":64,"byteStride":16}},{{"buffer":0,"byteOffset":64,"byteLength":12}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"}},
+                     {{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}},
+                                  {{"attributes":{{"POSITION":0}},"indices":1,"mode":5}}]}}]}}"#
+    )
+    .into_bytes()
 }
 
 /// The mesh as big-endian PLY with float coordinates and ushort counts.
@@ -122,6 +168,12 @@ const INTERESTING: &[&[u8]] = &[
     b"property list uint uint vertex_indices\n",
     b"\xff\xff\xff\xff",
     b"\0",
+    b"glTF",
+    b"\"count\":4294967295",
+    b"\"byteOffset\":999,",
+    b"\"children\":[0],",
+    b"<vertex x=\"1\" y=\"2\" z=\"3\"/>",
+    b"<triangle v1=\"9\" v2=\"0\" v3=\"1\"/>",
 ];
 
 fn mutate(rng: &mut Rng, bytes: &mut Vec<u8>) {

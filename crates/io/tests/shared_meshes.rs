@@ -1,8 +1,8 @@
 //! Reads the real meshes of the shared data folder (`../shared/data/meshes`,
 //! made by others; see its README). Skipped, visibly, when the folder is
 //! absent. Checks each file's face count and referenced-vertex count
-//! against the README's table, then converts it to every other format and
-//! back and checks that the faces survive.
+//! against the README's table, then converts it to every other format
+//! (glTF and 3MF included) and back and checks that the faces survive.
 
 // Test helpers may unwrap: a panic is a failed test.
 #![allow(clippy::unwrap_used)]
@@ -147,6 +147,28 @@ fn check_conversions(name: &str, m: &PolyMesh, tmp: &Path) {
             corner_positions(&back, |x| x) == want,
             "{name} via STL (ascii {ascii})"
         );
+    }
+    // glTF and 3MF hold triangles over all the stored vertices: the fan
+    // triangles come back with the same vertex numbers, and the positions
+    // bit for bit (3MF's decimals) or rounded to f32 (glTF).
+    let (tris, _) = m.fan_triangles();
+    let fan: Vec<Vec<u32>> = tris.iter().map(|t| t.to_vec()).collect();
+    for ext in ["3mf", "glb", "gltf"] {
+        let path = tmp.join(format!("{name}.{ext}"));
+        write_poly(&path, m, &WriteOptions::default()).unwrap();
+        let back = poly(read_path(&path).unwrap());
+        let faces: Vec<Vec<u32>> = back.faces().map(<[u32]>::to_vec).collect();
+        assert!(faces == fan, "{name} via {ext}: faces differ");
+        let want: Vec<[u64; 3]> = m
+            .positions
+            .iter()
+            .map(|p| match ext {
+                "3mf" => bits(*p),
+                _ => bits(p.to_array().map(|x| f64::from(x as f32)).into()),
+            })
+            .collect();
+        let got: Vec<[u64; 3]> = back.positions.iter().map(|&p| bits(p)).collect();
+        assert!(got == want, "{name} via {ext}: positions differ");
     }
     // .dlfl without edge lines keeps faces and positions exactly.
     let path = tmp.join(format!("{name}.dlfl"));

@@ -6,10 +6,29 @@
 //! - [`rind`]: rind modeling, the improved algorithm (chapter V);
 //! - [`sierpinski`]: generalized Sierpinski polyhedra (chapter VI);
 //! - [`menger`]: generalized Menger sponges (chapter VII).
+//!
+//! And TopMod's other modeling tools (issue 18):
+//! - [`extrude`]: plain, multi-face, Doo–Sabin, cubical, octahedral,
+//!   dodecahedral and icosahedral extrusions, stellations and domes;
+//! - [`wireframe`]: wireframe and column modeling (a tube along every edge);
+//! - [`cut`] and [`truncate`]: the conical tools (cut by vertex, edge or
+//!   face; truncation of vertices and edges);
+//! - [`tools`]: planarize, make spherical, two-gon and valence-2 cleanup;
+//! - [`select`]: face loops, edge loops and rings, grow, shrink, invert,
+//!   similar, checkerboard.
 
 #![warn(missing_docs)]
 
+pub mod cut;
+pub mod extrude;
 pub mod handle;
 pub mod menger;
+mod polygon;
+#[cfg(test)]
+mod properties;
 pub mod rind;
+pub mod select;
 pub mod sierpinski;
+pub mod tools;
+pub mod truncate;
+pub mod wireframe;

@@ -330,6 +330,78 @@ fn bad_requests_get_clear_errors() {
     a.ok(json!({"op": "primitives"}));
 }
 
+/// The document exported as glTF (both forms), 3MF and STL, which hold
+/// triangles: each comes back with the torus's vertices and genus, its
+/// quads split in two.
+#[test]
+fn exports_and_imports_gltf_3mf_and_stl() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@torus"}));
+    let torus = a.state["stats"].clone();
+    let triangles = torus["triangles"].clone();
+    assert_eq!(
+        triangles,
+        json!(2 * torus["faces"].as_u64().expect("faces"))
+    );
+    for (format, magic) in [
+        ("glb", &b"glTF"[..]),
+        ("gltf", b"{"),
+        ("3mf", b"PK\x03\x04"),
+        ("stl", b""),
+    ] {
+        let (status, head, body) = exchange(
+            addr,
+            &format!(
+                "GET /api/export?format={format} HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
+                auth()
+            ),
+            &[],
+        );
+        assert_eq!(status, 200, "{format}");
+        assert!(
+            head.contains(&format!("filename=\"holey.{format}\"")),
+            "{head}"
+        );
+        assert!(body.starts_with(magic), "{format}");
+        a.ok(json!({"op": "primitive", "spec": "@cube"}));
+        let (status, r) = upload(addr, &format!("back.{format}"), &body);
+        assert_eq!(status, 200, "{format}: {r}");
+        while a.state["stats"]["faces"] != triangles {
+            a.pump_one();
+        }
+        let back = &a.state["stats"];
+        assert_eq!(back["vertices"], torus["vertices"], "{format}");
+        assert_eq!(back["genus"], json!(1), "{format}");
+        assert_eq!(back["closed"], json!(true), "{format}");
+    }
+    // A malformed file is refused with what is wrong with it.
+    let (status, r) = upload(addr, "bad.glb", b"GLTF and more");
+    assert_eq!(status, 400);
+    let error = r["error"].as_str().unwrap_or("");
+    assert!(error.starts_with("bad.glb: byte 0: not a GLB file"), "{r}");
+    let (status, r) = upload(addr, "bad.3mf", b"not a zip");
+    assert_eq!(status, 400);
+    assert!(
+        r["error"]
+            .as_str()
+            .unwrap_or("")
+            .contains("not a readable ZIP archive"),
+        "{r}"
+    );
+    let (status, body) = http(
+        addr,
+        &format!(
+            "GET /api/export?format=fbx HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
+            auth()
+        ),
+        &[],
+    );
+    assert_eq!(status, 400);
+    assert!(String::from_utf8_lossy(&body).contains("glb"));
+}
+
 #[test]
 fn uploads_downloads_limits_and_restart() {
     let dir = tempfile::tempdir().expect("tempdir");

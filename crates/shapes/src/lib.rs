@@ -56,7 +56,11 @@
 //! circumsphere of the cube `[-1, 1]³`; the tetrahedron's corners are
 //! alternate corners of that cube and the dodecahedron contains all eight.
 //! Round primitives have unit radius (spheres, torus major radius,
-//! cylinder and cone), and heights and planes span `[-1, 1]`.
+//! cylinder and cone), and heights and planes span `[-1, 1]`. The soccer
+//! ball (`@soccerball`, the truncated icosahedron) is inscribed in the
+//! platonic solids' sphere of radius √3; the geodesic spheres
+//! (`@geodesic:n`, the icosahedron's faces cut into `n²` triangles and
+//! projected) have unit radius.
 //!
 //! ## Face order of the platonic solids and cubes
 //!
@@ -67,6 +71,7 @@
 #![warn(missing_docs)]
 
 mod error;
+mod geodesic;
 mod grid;
 mod round;
 mod solids;
@@ -76,6 +81,7 @@ mod spec;
 mod tests;
 
 pub use error::ShapeError;
+pub use geodesic::{geodesic, soccer_ball};
 pub use grid::{cube, plane, quad_sphere, tri_plane};
 pub use holey_mesh::PolyMesh;
 pub use round::{cone, cylinder, icosphere, torus, uv_sphere};

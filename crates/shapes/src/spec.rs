@@ -840,6 +840,58 @@ pub(crate) const TRI_PLANE: Primitive = Primitive {
     build: |a| crate::tri_plane(int(a, 0), int(a, 1)),
 };
 
+pub(crate) const SOCCER_BALL: Primitive = Primitive {
+    name: "soccerball",
+    summary: "truncated icosahedron: 12 pentagons, 20 hexagons",
+    aliases: &["truncated-icosahedron", "buckyball"],
+    params: &[],
+    description: "The soccer ball (truncated icosahedron): @icosahedron with every vertex \
+                  cut off a third of the way along its edges, leaving 12 regular pentagons \
+                  and 20 regular hexagons with all edges equal; circumradius sqrt(3).",
+    counts: "V 60, E 90, F 32 (12 pentagons, 20 hexagons).",
+    order: "Vertex 5a+j lies a third of the way from icosahedron vertex a to its j-th \
+            neighbour (neighbours counter-clockwise seen from outside, starting at the \
+            lowest-numbered), moved out to radius sqrt(3). Faces 0 to 11 are the \
+            pentagons, face a = (5a, ..., 5a+4) around icosahedron vertex a; face 12+t is \
+            the hexagon of icosahedron face t = (a,b,c): (ab, ba, bc, cb, ca, ac), where xy \
+            is the vertex near x on the edge towards y.",
+    face_count: |_| 32,
+    conflict: |_| None,
+    build: |_| crate::geodesic::soccer_ball_checked(),
+};
+
+/// Upper bound for the geodesic frequency: 20·707² = 9 996 980 faces.
+const GEODESIC_MAX: u32 = 707;
+
+pub(crate) const GEODESIC: Primitive = Primitive {
+    name: "geodesic",
+    summary: "unit geodesic sphere, 20*n^2 triangles",
+    aliases: &["geosphere", "geodesic-sphere"],
+    params: &[capped_param(
+        "n",
+        "frequency: each icosahedron edge is cut into n",
+        4,
+        1,
+        GEODESIC_MAX,
+    )],
+    description: "Unit geodesic sphere of frequency n (class I): each face of the \
+                  icosahedron cut into n^2 triangles by a triangular grid, the grid points \
+                  projected from the centre onto the unit sphere. This is the triangulated \
+                  sphere, not its dual of pentagons and hexagons; n = 1 is the unit \
+                  icosahedron.",
+    counts: "V = 10n^2+2, E = 30n^2, F = 20n^2 triangles (n = 4: 162, 480, 320).",
+    order: "The 12 icosahedron vertices first (as @icosahedron), then the n-1 inner points \
+            of each icosahedron edge (edges in order of first use, visiting faces in order \
+            and each face's edges a-b, b-c, c-a; points from the lower-numbered end), then \
+            the inner points of each face. Faces t*n^2 .. (t+1)*n^2-1 cover icosahedron \
+            face t = (a,b,c): with grid point (u,v) at a + u(b-a)/n + v(c-a)/n, row by row \
+            (v from 0, u from 0), the triangle ((u,v), (u+1,v), (u,v+1)) followed, where \
+            it exists, by ((u+1,v), (u+1,v+1), (u,v+1)).",
+    face_count: |a| 20 * wide(a, 0) * wide(a, 0),
+    conflict: |_| None,
+    build: |a| crate::geodesic(int(a, 0)),
+};
+
 /// Every built-in primitive, in the order the help lists them.
 pub static PRIMITIVES: &[Primitive] = &[
     TETRAHEDRON,
@@ -855,4 +907,6 @@ pub static PRIMITIVES: &[Primitive] = &[
     CONE,
     PLANE,
     TRI_PLANE,
+    SOCCER_BALL,
+    GEODESIC,
 ];

@@ -763,6 +763,84 @@ fn quarter_turns_are_exact() {
 }
 
 // ---------------------------------------------------------------------
+// The soccer ball and the geodesic spheres (issue 18).
+
+#[test]
+fn soccer_ball_is_a_truncated_icosahedron() {
+    let m = soccer_ball();
+    // Worked out from the icosahedron (12/30/20), every vertex cut:
+    // V = 2E = 60, E = 3E = 90, F = F + V = 32; χ = 2.
+    closed(&m, 60, 90, 32, 0);
+    let sizes: Vec<usize> = m.faces().map(|f| f.len()).collect();
+    assert_eq!(sizes.iter().filter(|&&s| s == 5).count(), 12);
+    assert_eq!(sizes.iter().filter(|&&s| s == 6).count(), 20);
+    assert!(sizes[..12].iter().all(|&s| s == 5) && sizes[12..].iter().all(|&s| s == 6));
+    // Truncation at a third: all edges equal (a third of the
+    // icosahedron's, scaled); regular planar faces on the sphere of √3.
+    let lengths = edge_lengths(&m);
+    assert!(lengths.iter().all(|&l| rel(l, lengths[0]) < 1e-12));
+    assert!(m.positions.iter().all(|p| rel(p.length(), SQRT3) < 1e-14));
+    assert!(max_non_planarity(&m) < 1e-12);
+    // Each pentagon surrounds its icosahedron vertex's direction.
+    let ico = icosahedron();
+    for (a, face) in m.faces().take(12).enumerate() {
+        assert!(points(centre(&m, face), ico.positions[a].normalize()));
+    }
+    assert_eq!(parse_primitive("@soccerball").unwrap(), m);
+    assert_eq!(parse_primitive("@buckyball").unwrap(), m);
+}
+
+#[test]
+fn geodesic_spheres() {
+    for n in [1u32, 2, 3, 4, 7] {
+        let m = geodesic(n).unwrap();
+        let n2 = (n * n) as usize;
+        // V = 10n² + 2, E = 30n², F = 20n²: χ = 2.
+        closed(&m, 10 * n2 + 2, 30 * n2, 20 * n2, 0);
+        assert!(m.faces().all(|f| f.len() == 3));
+        for p in &m.positions {
+            assert!((p.length() - 1.0).abs() < 1e-14);
+        }
+        // Edges shrink like 1/n: the flat grid's edges are the
+        // icosahedron's chord over n (1.0515/n). The central projection
+        // x/|x| of a face plane at distance r0 = 0.7947 (the unit
+        // icosahedron's inradius) changes lengths near x by a factor
+        // between r0 (the plane meets the rays at cosine ≥ r0/|x|) and
+        // 1/|x| ≤ 1/r0.
+        let chord = 4.0 / (10.0 + 2.0 * 5f64.sqrt()).sqrt();
+        let flat = chord / f64::from(n);
+        for l in edge_lengths(&m) {
+            assert!(
+                l <= flat / 0.7946 && l >= flat * 0.7946,
+                "n {n}: {l} vs {flat}"
+            );
+        }
+        // Faces of icosahedron face t lie around its direction.
+        let ico = icosahedron();
+        for (t, tri) in ico.faces().enumerate() {
+            let dir = centre(&ico, tri).normalize();
+            for k in 0..n2 {
+                let f = m.face(t * n2 + k);
+                assert!(centre(&m, f).normalize().dot(dir) > 0.7, "n {n}, face {t}");
+            }
+        }
+    }
+    // Frequency 1 is the unit icosahedron, in the same order.
+    let one = geodesic(1).unwrap();
+    let ico = icosphere(0).unwrap();
+    assert_eq!(one, ico);
+    // The spec's default and its canonical form.
+    assert_eq!(parse_spec("@geodesic").unwrap().to_string(), "@geodesic:4");
+    assert_eq!(
+        parse_primitive("@geosphere:3").unwrap(),
+        geodesic(3).unwrap()
+    );
+    assert!(err("@geodesic:0").contains("from 1 to 707"));
+    assert!(err("@geodesic:708").contains("708 or more would give over 10000000 faces"));
+    assert!(geodesic(0).is_err() && geodesic(708).is_err());
+}
+
+// ---------------------------------------------------------------------
 // Every primitive through the parser.
 
 #[test]
@@ -1029,6 +1107,7 @@ fn largest_primitives_build() {
         "@plane:10000000:1",
         "@plane:1:10000000",
         "@tri-plane:5000000:1",
+        "@geodesic:707",
     ] {
         let start = std::time::Instant::now();
         let parsed = parse_spec(spec).unwrap();

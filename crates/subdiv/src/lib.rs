@@ -15,6 +15,11 @@
 //! components themselves (point-spheres are copied unchanged). The input
 //! mesh is never modified.
 //!
+//! TopMod's remeshing schemes (dual, √3, Loop, root-4, truncations,
+//! stellations, corner cutting, honeycomb, pentagonal, checkerboard,
+//! extrusions, …) are in [`mod@remesh`], one entry point [`remesh()`] over a
+//! [`RemeshScheme`].
+//!
 //! ```
 //! use holey_dlfl::convert::{ImportOptions, to_dlfl};
 //!
@@ -52,6 +57,7 @@
 mod catmull_clark;
 mod doo_sabin;
 mod flat;
+pub mod remesh;
 
 #[cfg(test)]
 mod tests;
@@ -62,6 +68,7 @@ use holey_dlfl::{BuildError, Mesh, RawMesh};
 
 pub use flat::Counts;
 use flat::Flat;
+pub use remesh::{MAX_LEVELS, RemeshParams, RemeshScheme, remesh, remesh_capped, remesh_to_raw};
 
 /// The most faces a subdivision may produce by default: fifty million,
 /// about 10 GB as a kernel mesh.
@@ -140,6 +147,84 @@ pub enum SubdivError {
     /// text, not a property of the input.
     #[error("internal error in subdivision (please report): {0}")]
     Internal(String),
+    /// The remeshing scheme needs a closed surface (it is built from the
+    /// dual, see [`RemeshScheme::needs_closed_surface`]) and the mesh has
+    /// hole faces.
+    #[error(
+        "remeshing scheme {scheme} is not defined on meshes with boundary: the mesh has \
+         {holes} hole face(s); close the boundary first"
+    )]
+    Boundary {
+        /// The scheme that was asked for.
+        scheme: RemeshScheme,
+        /// How many hole faces (boundary loops) the mesh has.
+        holes: usize,
+    },
+    /// A step of the remeshing would have more faces than the cap, or more
+    /// vertices, edges or corners than the kernel's 32-bit indices hold;
+    /// found from the step's input before its output is allocated.
+    #[error(
+        "{levels} level(s) of {scheme} remeshing would make {faces} faces and {corners} corners \
+         at level {level}, over the cap of {cap} faces (and the kernel's 32-bit indices)"
+    )]
+    RemeshTooLarge {
+        /// The scheme that was asked for.
+        scheme: RemeshScheme,
+        /// The number of levels that was asked for.
+        levels: usize,
+        /// The first level that is too large.
+        level: usize,
+        /// Faces of the refused step, holes and point-spheres included.
+        faces: u128,
+        /// Corners of the refused step.
+        corners: u128,
+        /// The cap on faces in force ([`MAX_FACES`] unless
+        /// [`remesh_capped`] was given another).
+        cap: usize,
+    },
+    /// More levels than [`MAX_LEVELS`] were asked for.
+    #[error("{levels} levels of {scheme} remeshing asked for; at most {max} are allowed")]
+    TooManyLevels {
+        /// The scheme that was asked for.
+        scheme: RemeshScheme,
+        /// The number of levels that was asked for.
+        levels: usize,
+        /// [`MAX_LEVELS`].
+        max: usize,
+    },
+    /// The input was finite but an output position of the remeshing is
+    /// not: the coordinates (or the parameters) are too large.
+    #[error(
+        "{scheme} remeshing overflowed: output vertex {vertex} is not finite (coordinates or \
+         parameters too large)"
+    )]
+    RemeshOverflow {
+        /// The scheme that was run.
+        scheme: RemeshScheme,
+        /// Index of the first non-finite output vertex.
+        vertex: usize,
+    },
+    /// A parameter the scheme reads is not finite or out of its range.
+    #[error("{scheme} remeshing: parameter {name} is {value}, it must be {expected}")]
+    InvalidParameter {
+        /// The scheme that was asked for.
+        scheme: RemeshScheme,
+        /// The field of [`RemeshParams`].
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
+    /// A name that is no [`RemeshScheme`]'s.
+    #[error(
+        "unknown remeshing scheme {name:?}; the schemes are: {}",
+        RemeshScheme::ALL.iter().map(|s| s.name()).collect::<Vec<_>>().join(", ")
+    )]
+    UnknownScheme {
+        /// The name given.
+        name: String,
+    },
 }
 
 /// `levels` levels of Catmull–Clark subdivision of `mesh`, as a new mesh

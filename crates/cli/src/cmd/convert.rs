@@ -8,15 +8,22 @@ use crate::output::{write_kernel, write_soup};
 
 #[derive(clap::Args)]
 #[command(after_help = "\
-The output format is the output file's extension: .obj, .off, .ply, .stl
-or .dlfl. Converting between soup formats keeps the mesh as it is
-(non-manifold, open or unwelded meshes included). Writing .dlfl imports
-the mesh into the DLFL kernel, which needs an orientable 2-manifold;
-boundary loops become hole faces. Writing a .dlfl mesh to another format
-drops self-loops from face lists and omits two-gons and point-spheres.
+The output format is the output file's extension: .obj, .off, .ply, .stl,
+.gltf, .glb (glTF 2.0), .3mf or .dlfl. Converting between soup formats
+keeps the mesh as it is (non-manifold, open or unwelded meshes included).
+STL, glTF and 3MF hold triangles, so polygons are split into triangles;
+STL (binary) and glTF store f32 coordinates, 3MF exact decimals. A .gltf
+is written self-contained (its buffer embedded). Reading glTF or 3MF
+gives the meshes of the default scene or of the build as one mesh, each
+placed by its transforms. Writing .dlfl imports the mesh into the DLFL
+kernel, which needs an orientable 2-manifold; boundary loops become hole
+faces. Writing a .dlfl mesh to another format drops self-loops from face
+lists and omits two-gons and point-spheres.
 
 Examples:
   holey convert bunny.obj bunny.ply
+  holey convert bunny.obj bunny.glb
+  holey convert bracket.3mf bracket.obj --weld 0
   holey convert part.stl part.dlfl --split-nonmanifold
   holey convert sierpinski.dlfl sierpinski.obj
   holey convert teapot.obj teapot.ply --weld 0.01%")]
@@ -25,6 +32,13 @@ pub struct Args {
     pub input: String,
     /// Output file; its extension names the format.
     pub output: String,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the two files, which `holey batch convert` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// Write PLY or STL as text instead of binary.
     #[arg(long)]
     pub ascii: bool,
@@ -40,19 +54,24 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    run_file(&args.input, &args.output, &args.options)
+}
+
+/// Converts the mesh `input` names into the file `output`.
+pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
     let opts = WriteOptions {
-        ascii: args.ascii,
+        ascii: options.ascii,
         ..WriteOptions::default()
     };
-    let mut loaded = load(&args.input)?;
-    if let (Some(d), Input::Soup(soup)) = (args.weld, &loaded.input) {
-        loaded.input = Input::Soup(weld(&args.input, soup, d)?);
+    let mut loaded = load(input)?;
+    if let (Some(d), Input::Soup(soup)) = (options.weld, &loaded.input) {
+        loaded.input = Input::Soup(weld(input, soup, d)?);
     }
     match loaded.input {
-        Input::Soup(ref soup) => write_soup(&args.output, soup, &opts, args.split_nonmanifold),
+        Input::Soup(ref soup) => write_soup(output, soup, &opts, options.split_nonmanifold),
         Input::Dlfl(_) => {
             let kernel = loaded.into_kernel(false)?;
-            write_kernel(&args.output, &kernel.mesh, &opts)
+            write_kernel(output, &kernel.mesh, &opts)
         }
     }
 }

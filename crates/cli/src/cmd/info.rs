@@ -18,11 +18,20 @@ manifold, consistently oriented mesh; volume only for a closed one.
 
 Examples:
   holey info bunny.obj
+  holey info scene.glb            # the default scene's meshes, placed
   holey info --json @torus
   holey info --weld soup.stl      # measure after merging identical positions")]
 pub struct Args {
-    /// The mesh: a file (OBJ, OFF, PLY, STL, .dlfl) or a primitive such as @cube.
+    /// The mesh: a file (OBJ, OFF, PLY, STL, glTF .gltf/.glb, 3MF, .dlfl)
+    /// or a primitive such as @cube.
     pub mesh: String,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the mesh, which `holey batch info` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
@@ -32,21 +41,8 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let loaded = load(&args.mesh)?;
-    let info = match loaded.input {
-        Input::Soup(soup) => {
-            if args.weld {
-                analyze(&weld_exact(&soup))
-            } else {
-                analyze(&soup)
-            }
-        }
-        Input::Dlfl(_) => {
-            let kernel = loaded_kernel(&args.mesh)?;
-            dlfl_info(&kernel)
-        }
-    };
-    if args.json {
+    let info = measure(&args.mesh, &args.options)?;
+    if args.options.json {
         println!("{}", serde_json::to_string_pretty(&info)?);
     } else {
         print!("{}", render_text(&args.mesh, &info));
@@ -54,8 +50,14 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
-fn loaded_kernel(name: &str) -> Result<holey_dlfl::Mesh> {
-    Ok(load(name)?.into_kernel(false)?.mesh)
+/// What `holey info` prints of the mesh `mesh` names.
+pub fn measure(mesh: &str, options: &Options) -> Result<MeshInfo> {
+    let loaded = load(mesh)?;
+    Ok(match &loaded.input {
+        Input::Soup(soup) if options.weld => analyze(&weld_exact(soup)),
+        Input::Soup(soup) => analyze(soup),
+        Input::Dlfl(_) => dlfl_info(&loaded.into_kernel(false)?.mesh),
+    })
 }
 
 fn yes(b: bool) -> &'static str {

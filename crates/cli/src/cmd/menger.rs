@@ -33,6 +33,13 @@ pub struct Args {
     pub input: String,
     /// Output file; its extension names the format.
     pub output: String,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the two files, which `holey batch menger` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// Number of levels.
     #[arg(short = 'n', long = "iterations", default_value_t = 1)]
     pub iterations: usize,
@@ -51,6 +58,11 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    run_file(&args.input, &args.output, &args.options)
+}
+
+/// The Menger sponge of the mesh `input` names, into the file `output`.
+pub fn run_file(input: &str, output: &str, args: &Options) -> Result<()> {
     let thickness = match (args.thickness, args.thickness_ratio) {
         (Some(d), _) => Thickness::Absolute(d),
         (None, Some(r)) => Thickness::RatioOfMeanEdge(r),
@@ -62,8 +74,8 @@ pub fn run(args: Args) -> Result<()> {
         collapse_angle_deg: args.collapse_angle,
         exact: args.exact,
     };
-    let mut kernel = load(&args.input)?.into_kernel(false)?;
+    let mut kernel = load(input)?.into_kernel(false)?;
     let _p = Progress::start(format!("Menger sponge, {} level(s)", args.iterations));
-    menger(&mut kernel.mesh, &params).map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
-    write_kernel(&args.output, &kernel.mesh, &WriteOptions::default())
+    menger(&mut kernel.mesh, &params).map_err(|e| bad_input(format!("{input}: {e}")))?;
+    write_kernel(output, &kernel.mesh, &WriteOptions::default())
 }

@@ -1,5 +1,6 @@
 //! One module per command.
 
+pub mod batch;
 pub mod boolean;
 pub mod convert;
 pub mod demo;

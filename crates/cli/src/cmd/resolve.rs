@@ -27,20 +27,28 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let mesh = load_triangles(&args.mesh)?;
-    let (out, x, report) = {
-        let _p = Progress::start("resolving self-intersections");
-        resolve(&mesh).map_err(|e| bad_input(format!("{}: {e}", args.mesh)))?
-    };
-    crate::tri::write_triangles(&args.output, &out)?;
+    let done = run_file(&args.mesh, &args.output)?;
     if args.verbose {
-        eprintln!(
-            "{} intersecting pairs, {} curves; {} triangles split into {} triangles total",
-            x.pairs.len(),
-            x.curve_count,
-            report.triangles_split,
-            out.triangles.len()
-        );
+        eprintln!("{done}");
     }
     Ok(())
+}
+
+/// Resolves the mesh `input` names into the file `output`, and says what
+/// was done in one line (what `-v` prints; `holey batch resolve` does not
+/// print it, as it would not say which file it is about).
+pub fn run_file(input: &str, output: &str) -> Result<String> {
+    let mesh = load_triangles(input)?;
+    let (out, x, report) = {
+        let _p = Progress::start("resolving self-intersections");
+        resolve(&mesh).map_err(|e| bad_input(format!("{input}: {e}")))?
+    };
+    crate::tri::write_triangles(output, &out)?;
+    Ok(format!(
+        "{} intersecting pairs, {} curves; {} triangles split into {} triangles total",
+        x.pairs.len(),
+        x.curve_count,
+        report.triangles_split,
+        out.triangles.len()
+    ))
 }

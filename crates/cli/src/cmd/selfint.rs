@@ -26,6 +26,13 @@ Examples:
 pub struct Args {
     /// The mesh.
     pub mesh: String,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the mesh, which `holey batch selfint` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// Print one JSON object instead of text; with --pairs, list the pairs.
     #[arg(long)]
     pub json: bool,
@@ -40,37 +47,21 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    if let Some(path) = &args.curves
+    let options = &args.options;
+    if let Some(path) = &options.curves
         && !path.to_ascii_lowercase().ends_with(".obj")
     {
         return Err(bad_input(format!("{path}: the curves are written as .obj")));
     }
-    let mesh = load_triangles(&args.mesh)?;
-    let t = std::time::Instant::now();
-    let x = {
-        let _p = Progress::start("finding self-intersections");
-        self_intersections(&mesh).map_err(|e| bad_input(format!("{}: {e}", args.mesh)))?
-    };
-    let seconds = t.elapsed().as_secs_f64();
-    if let Some(path) = &args.curves {
-        holey_io::write_bytes_atomic(std::path::Path::new(path), curves_obj(&mesh, &x).as_bytes())
+    let found = find(&args.mesh)?;
+    let Found { mesh, x, .. } = &found;
+    if let Some(path) = &options.curves {
+        holey_io::write_bytes_atomic(std::path::Path::new(path), curves_obj(mesh, x).as_bytes())
             .map_err(crate::error::from_io)?;
     }
     let triple = x.triple_points();
-    if args.json {
-        let mut v = json!({
-            "mesh": args.mesh,
-            "triangles": mesh.triangles.len(),
-            "intersecting_pairs": x.pairs.len(),
-            "intersection_points": x.points.len(),
-            "triple_points": triple,
-            "intersection_edges": x.pieces.len(),
-            "intersection_curves": x.curve_count,
-            "seconds": seconds,
-        });
-        if args.pairs {
-            v["pairs"] = json!(x.pairs);
-        }
+    if options.json {
+        let v = report_json(&args.mesh, &found, options.pairs);
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!("mesh                {}", args.mesh);
@@ -79,13 +70,51 @@ pub fn run(args: Args) -> Result<()> {
         println!("points              {} ({} triple)", x.points.len(), triple);
         println!("edges               {}", x.pieces.len());
         println!("curves              {}", x.curve_count);
-        if args.pairs {
+        if options.pairs {
             for (a, b) in &x.pairs {
                 println!("pair {a} {b}");
             }
         }
     }
     Ok(())
+}
+
+/// A mesh's self-intersections, and the seconds finding them took.
+pub struct Found {
+    pub mesh: holey_topo::TriMesh,
+    pub x: holey_topo::intersect::Intersections,
+    pub seconds: f64,
+}
+
+/// The self-intersections of the mesh `name` names (read as triangles).
+pub fn find(name: &str) -> Result<Found> {
+    let mesh = load_triangles(name)?;
+    let t = std::time::Instant::now();
+    let x = {
+        let _p = Progress::start("finding self-intersections");
+        self_intersections(&mesh).map_err(|e| bad_input(format!("{name}: {e}")))?
+    };
+    let seconds = t.elapsed().as_secs_f64();
+    Ok(Found { mesh, x, seconds })
+}
+
+/// The JSON object `--json` prints, with the pairs listed when `pairs`.
+pub fn report_json(name: &str, found: &Found, pairs: bool) -> serde_json::Value {
+    let Found { mesh, x, seconds } = found;
+    let mut v = json!({
+        "mesh": name,
+        "triangles": mesh.triangles.len(),
+        "intersecting_pairs": x.pairs.len(),
+        "intersection_points": x.points.len(),
+        "triple_points": x.triple_points(),
+        "intersection_edges": x.pieces.len(),
+        "intersection_curves": x.curve_count,
+        "seconds": seconds,
+    });
+    if pairs {
+        v["pairs"] = json!(x.pairs);
+    }
+    v
 }
 
 /// The curves as OBJ text: every intersection point and every vertex a

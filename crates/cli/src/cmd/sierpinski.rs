@@ -29,6 +29,13 @@ pub struct Args {
     pub input: String,
     /// Output file; its extension names the format.
     pub output: String,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the two files, which `holey batch sierpinski` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// Number of iterations.
     #[arg(short = 'n', long = "iterations", default_value_t = 1)]
     pub iterations: usize,
@@ -38,10 +45,15 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let mut kernel = load(&args.input)?.into_kernel(args.split_nonmanifold)?;
-    let _p = Progress::start(format!("Sierpinski, {} iteration(s)", args.iterations));
-    let report = sierpinski(&mut kernel.mesh, args.iterations)
-        .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
+    run_file(&args.input, &args.output, &args.options)
+}
+
+/// The Sierpinski polyhedron of the mesh `input` names, into the file `output`.
+pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
+    let mut kernel = load(input)?.into_kernel(options.split_nonmanifold)?;
+    let _p = Progress::start(format!("Sierpinski, {} iteration(s)", options.iterations));
+    let report = sierpinski(&mut kernel.mesh, options.iterations)
+        .map_err(|e| bad_input(format!("{input}: {e}")))?;
     drop(report);
-    write_kernel(&args.output, &kernel.mesh, &WriteOptions::default())
+    write_kernel(output, &kernel.mesh, &WriteOptions::default())
 }

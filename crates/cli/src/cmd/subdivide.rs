@@ -33,6 +33,13 @@ pub struct Args {
     pub input: String,
     /// Output file; its extension names the format.
     pub output: String,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the two files, which `holey batch subdivide` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// The scheme.
     #[arg(long, value_enum)]
     pub scheme: SchemeArg,
@@ -45,13 +52,18 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let scheme = match args.scheme {
+    run_file(&args.input, &args.output, &args.options)
+}
+
+/// Subdivides the mesh `input` names into the file `output`.
+pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
+    let scheme = match options.scheme {
         SchemeArg::CatmullClark => Scheme::CatmullClark,
         SchemeArg::DooSabin => Scheme::DooSabin,
     };
-    let kernel = load(&args.input)?.into_kernel(args.split_nonmanifold)?;
-    let _p = Progress::start(format!("subdividing, {} level(s)", args.levels));
-    let out = subdivide(&kernel.mesh, scheme, args.levels)
-        .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
-    write_kernel(&args.output, &out, &WriteOptions::default())
+    let kernel = load(input)?.into_kernel(options.split_nonmanifold)?;
+    let _p = Progress::start(format!("subdividing, {} level(s)", options.levels));
+    let out = subdivide(&kernel.mesh, scheme, options.levels)
+        .map_err(|e| bad_input(format!("{input}: {e}")))?;
+    write_kernel(output, &out, &WriteOptions::default())
 }

@@ -84,6 +84,13 @@ pub struct Args {
     /// extension names the format.
     #[arg(required = true, num_args = 1.., value_name = "B... OUT")]
     pub rest: Vec<String>,
+    #[command(flatten)]
+    pub options: Options,
+}
+
+/// The options besides the files, which `holey batch union` shares.
+#[derive(clap::Args)]
+pub struct Options {
     /// Use the winding-number arrangement even for two solids that do
     /// not cross themselves (see below).
     #[arg(long, conflicts_with = "via_motion")]
@@ -141,18 +148,23 @@ fn load_inputs(names: &[&str]) -> Result<Vec<TriMesh>> {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    args.engine.check_outputs()?;
     let Some((output, others)) = args.rest.split_last() else {
         return Err(bad_input("union needs an output file"));
     };
     let names: Vec<&str> = std::iter::once(args.a.as_str())
         .chain(others.iter().map(String::as_str))
         .collect();
+    unite(&names, output, &args.options)
+}
+
+/// The union of the meshes `names` names, written to the file `output`.
+pub fn unite(names: &[&str], output: &str, args: &Options) -> Result<()> {
+    args.engine.check_outputs()?;
     if args.via_motion && names.len() != 2 {
         return Err(bad_input("--via-motion unites exactly two solids"));
     }
     let direction = args.direction.as_deref().map(parse_direction).transpose()?;
-    let inputs = load_inputs(&names)?;
+    let inputs = load_inputs(names)?;
     let options = BooleanOptions {
         engine: args.engine.options(),
         exact: args.exact,
@@ -167,6 +179,6 @@ pub fn run(args: Args) -> Result<()> {
         direction,
     };
     let _p = Progress::start("uniting");
-    let out = solid_boolean(&inputs, &names, Operation::Union, &options)?;
-    write_boolean(out, &inputs, &names, output, &args.engine)
+    let out = solid_boolean(&inputs, names, Operation::Union, &options)?;
+    write_boolean(out, &inputs, names, output, &args.engine)
 }

@@ -17,7 +17,8 @@ impl Shared {
             .and_then(Format::from_extension)
             .ok_or_else(|| {
                 ServeError::Refused(format!(
-                    "{name}: unknown format (obj, off, ply, stl or dlfl)"
+                    "{name}: unknown format (known: {})",
+                    Format::known_extensions()
                 ))
             })?;
         let file =
@@ -77,11 +78,16 @@ impl Shared {
         Ok(format!("imported {name}{note}"))
     }
 
-    /// The document as a file: bytes and a file name.
+    /// The document as a file: bytes and a file name. `format` is an
+    /// extension without the dot: obj, ply, off, stl, glb, gltf, 3mf or
+    /// dlfl (GLB, glTF and STL store `f32` positions; the rest are exact).
     pub fn export(&self, format: &str) -> Result<(Vec<u8>, String), ServeError> {
         let content = self.doc().content().clone();
         let mut bytes = Vec::new();
         let io = |e| ServeError::io("export", e);
+        // The encoders say why a mesh does not fit their format (a
+        // coordinate beyond f32 in glTF): the user's to hear.
+        let refused = |m: String| ServeError::Refused(format!("cannot export as {format}: {m}"));
         match format {
             "obj" => holey_io::obj::write(&mut bytes, &content.to_poly()).map_err(io)?,
             "ply" => {
@@ -89,6 +95,9 @@ impl Shared {
             }
             "off" => holey_io::off::write(&mut bytes, &content.to_poly()).map_err(io)?,
             "stl" => holey_io::stl::write(&mut bytes, &content.to_poly(), false).map_err(io)?,
+            "glb" => bytes = holey_io::gltf::encode_glb(&content.to_poly()).map_err(refused)?,
+            "gltf" => bytes = holey_io::gltf::encode_gltf(&content.to_poly()).map_err(refused)?,
+            "3mf" => bytes = holey_io::threemf::encode(&content.to_poly()).map_err(refused)?,
             "dlfl" => {
                 let Content::Model(mesh) = content.into_model()? else {
                     return Err(ServeError::Refused("no DLFL to export".into()));
@@ -97,7 +106,7 @@ impl Shared {
             }
             other => {
                 return Err(ServeError::BadRequest(format!(
-                    "unknown export format {other:?} (obj, ply, off, stl, dlfl)"
+                    "unknown export format {other:?} (obj, ply, off, stl, glb, gltf, 3mf, dlfl)"
                 )));
             }
         }

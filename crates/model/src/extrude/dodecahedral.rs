@@ -1,0 +1,94 @@
+//! Dodecahedral extrusion (TopMod's `extrudeFaceDodeca`): a plain
+//! extrusion, a dual extrusion of its top and a plain extrusion of that,
+//! after which the edges of the two intermediate tops are deleted, so the
+//! walls are two rings of pentagons: a regular pentagon grows a regular
+//! dodecahedron.
+
+use holey_dlfl::{DVec3, EdgeId, FaceId, Mesh};
+
+use super::octahedral::dual_extrude_at;
+use super::plain::extrude_to;
+use super::{
+    ExtrudeError, Extruded, base_face, check_param, check_points, faces_around, half_step,
+};
+
+/// The golden ratio.
+pub(crate) const PHI: f64 = 1.618_033_988_749_895;
+
+/// Dodecahedral extrusion of `face`.
+///
+/// For a `d`-gon with centroid `c`, unit normal `n`, corners `p_i` and
+/// mean circumradius `R`, with `h = height_factor·R`: ring 1 at
+/// `c + φ(p_i − c) + h·n`; ring 2 over the edge midpoints at
+/// `c + φ·m_i + φh·n`; the top at `c + m_i + φ²h·n`, where `m_i` is the
+/// midpoint direction of edge `i` scaled to the circumradius (the corner
+/// of the base turned half a step). For a regular pentagon and
+/// `height_factor = 1` these are the vertices of the regular dodecahedron
+/// on that face (its layers, seen along a 5-fold axis, lie at heights
+/// `0, R, φR, φ²R` with radii `R, φR, φR, R`).
+///
+/// Counts: a `d`-gon adds `3d` vertices, `5d` edges and `2d` faces (two
+/// rings of `d` pentagons; the top `d`-gon replaces the base). A pentagon
+/// of a dodecahedron: 20/30/12 → 35/55/22.
+pub fn extrude_face_dodecahedral(
+    mesh: &mut Mesh,
+    face: FaceId,
+    height_factor: f64,
+) -> Result<Extruded, ExtrudeError> {
+    check_param(
+        "height_factor",
+        height_factor,
+        "finite and greater than 0",
+        |h| h > 0.0,
+    )?;
+    let (corners, points, frame) = base_face(mesh, face)?;
+    let (c, n) = (frame.centroid, frame.normal);
+    let h = height_factor * frame.radius;
+    let d = points.len();
+    let ring1: Vec<DVec3> = points.iter().map(|&p| c + (p - c) * PHI + n * h).collect();
+    let mids: Vec<DVec3> = (0..d)
+        .map(|i| c + half_step(&points, c, i) * PHI + n * (PHI * h))
+        .collect();
+    let ring3: Vec<DVec3> = (0..d)
+        .map(|i| c + half_step(&points, c, i) + n * (PHI * PHI * h))
+        .collect();
+    for ring in [&ring1, &mids, &ring3] {
+        check_points(face, ring)?;
+    }
+    let first = extrude_to(mesh, face, corners[0], &ring1)?;
+    let first_top = face_edges(mesh, first.top)?;
+    let second = dual_extrude_at(mesh, first.top_start, &mids)?;
+    // Each old top edge lies between a quad of ring 1 and the triangle on
+    // that edge: deleting it makes the lower pentagons.
+    for e in first_top {
+        mesh.delete_edge(e)?;
+    }
+    let second_top = face_edges(mesh, second.top)?;
+    let third = extrude_to(mesh, second.top, second.top_start, &ring3)?;
+    // Each edge of the dual top lies between a corner triangle and a quad
+    // of the last ring: deleting it makes the upper pentagons.
+    for e in second_top {
+        mesh.delete_edge(e)?;
+    }
+    let mut vertices = first.vertices;
+    vertices.extend(second.vertices);
+    vertices.extend(third.vertices);
+    let sides = faces_around(mesh, &vertices, third.top)?;
+    Ok(Extruded {
+        top: third.top,
+        top_start: third.top_start,
+        sides,
+        vertices,
+    })
+}
+
+/// The edges of a face in walk order.
+pub(crate) fn face_edges(mesh: &Mesh, face: FaceId) -> Result<Vec<EdgeId>, ExtrudeError> {
+    let mut edges = Vec::new();
+    for c in mesh.face_corners(face)? {
+        if let Some(e) = mesh.corner_edge(c)? {
+            edges.push(e);
+        }
+    }
+    Ok(edges)
+}

@@ -1,0 +1,640 @@
+//! Tests of the extrusions: counts worked out from the definitions (and
+//! checked against Euler's formula), `validate()` after every call,
+//! geometry where a kind promises a regular solid, refusals that leave the
+//! mesh unchanged, faces of different sizes and meshes with holes.
+
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
+
+use super::*;
+use crate::polygon;
+
+fn prim(spec: &str) -> Mesh {
+    let poly = holey_shapes::parse_primitive(spec).unwrap();
+    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
+}
+
+/// (V, E, F, components, genus).
+fn state(m: &Mesh) -> (i64, i64, i64, usize, i64) {
+    let t = m.topology();
+    (
+        m.vertex_count() as i64,
+        m.edge_count() as i64,
+        m.face_count() as i64,
+        t.component_count(),
+        t.genus(),
+    )
+}
+
+fn face(m: &Mesh, i: usize) -> FaceId {
+    m.face_at(i).unwrap()
+}
+
+/// Checks the mesh and that V − E + F (holes counted as faces) still
+/// equals 2·components − 2·genus: Euler's formula for the closed DLFL.
+fn check(m: &Mesh) {
+    m.validate().unwrap();
+    let (v, e, f, c, g) = state(m);
+    assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
+}
+
+/// Applies `op` and asserts the change (ΔV, ΔE, ΔF), and that genus and
+/// components did not change.
+fn expect_delta(m: &mut Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)) {
+    let before = state(m);
+    op(m);
+    check(m);
+    let after = state(m);
+    assert_eq!(
+        (after.0 - before.0, after.1 - before.1, after.2 - before.2),
+        delta,
+        "ΔV, ΔE, ΔF"
+    );
+    assert_eq!(
+        (after.3, after.4),
+        (before.3, before.4),
+        "components, genus"
+    );
+}
+
+fn unchanged(m: &Mesh, before: &Mesh) {
+    assert_eq!(m.to_raw(), before.to_raw());
+}
+
+fn signed_volume(m: &Mesh) -> f64 {
+    let mut vol = 0.0;
+    for f in m.faces() {
+        if m.is_hole(f).unwrap() {
+            continue;
+        }
+        let p = m.face_positions(f).unwrap();
+        for k in 1..p.len().saturating_sub(1) {
+            vol += p[0].dot(p[k].cross(p[k + 1]));
+        }
+    }
+    vol / 6.0
+}
+
+fn edge_lengths(m: &Mesh) -> Vec<f64> {
+    m.edges()
+        .map(|e| {
+            let [a, b] = m.edge_vertices(e).unwrap();
+            m.position(a).unwrap().distance(m.position(b).unwrap())
+        })
+        .collect()
+}
+
+fn max_non_planarity(m: &Mesh, f: FaceId) -> f64 {
+    let p = m.face_positions(f).unwrap();
+    let (c, n) = polygon::best_fit_plane(&p).unwrap();
+    p.iter().map(|q| (*q - c).dot(n).abs()).fold(0.0, f64::max)
+}
+
+// ---------------------------------------------------------------------
+// Plain extrusion.
+
+#[test]
+fn one_extrusion_of_a_quad_adds_4_8_4() {
+    let mut m = prim("@cube");
+    let f = face(&m, 5);
+    let d = m.face_len(f).unwrap() as i64;
+    // Definition: each of the d corners gets a new vertex, each of the d
+    // edges a wall quad whose top edge is new, plus the d vertical edges.
+    expect_delta(&mut m, (d, 2 * d, d), |m| {
+        let out = extrude_face(m, f, &ExtrudeParams::new(1.0, 1)).unwrap();
+        assert_eq!(m.face_len(out.top).unwrap(), 4);
+        assert_eq!(out.sides.len(), 4);
+        for s in &out.sides {
+            assert_eq!(m.face_len(*s).unwrap(), 4);
+        }
+        assert_eq!(out.vertices.len(), 4);
+    });
+    assert_eq!(state(&m).0, 12);
+    // The cube [-1,1]^3 with a unit-high box on top: 8 + 2·2·1.
+    assert!((signed_volume(&m) - 12.0).abs() < 1e-12);
+}
+
+#[test]
+fn repeated_extrusion_adds_one_ring_per_repetition() {
+    for (spec, k) in [("@cube", 3usize), ("@tetrahedron", 2), ("@dodecahedron", 4)] {
+        let mut m = prim(spec);
+        let f = face(&m, 0);
+        let d = m.face_len(f).unwrap() as i64;
+        let k64 = k as i64;
+        expect_delta(&mut m, (k64 * d, 2 * k64 * d, k64 * d), |m| {
+            let params = ExtrudeParams {
+                distance: 0.3,
+                rotation_deg: 10.0,
+                scale: 0.9,
+                count: k,
+            };
+            let out = extrude_face(m, f, &params).unwrap();
+            assert_eq!(out.sides.len(), k * d as usize);
+            assert_eq!(m.face_len(out.top).unwrap() as i64, d);
+        });
+    }
+}
+
+#[test]
+fn extrusion_moves_turns_and_scales_the_top() {
+    let mut m = prim("@cube");
+    let f = face(&m, 5); // the +z side
+    let base = m.face_positions(f).unwrap();
+    let params = ExtrudeParams {
+        distance: 2.0,
+        rotation_deg: 90.0,
+        scale: 0.5,
+        count: 1,
+    };
+    let out = extrude_face(&mut m, f, &params).unwrap();
+    check(&m);
+    let top: Vec<DVec3> = m
+        .face_corners_from(out.top_start)
+        .unwrap()
+        .map(|c| m.position(m.corner_vertex(c).unwrap()).unwrap())
+        .collect();
+    // +z face of [-1,1]^3, centroid (0,0,1): halve, turn 90° about +z,
+    // lift by 2.
+    for (p, q) in base.iter().zip(&top) {
+        let expect = DVec3::new(-p.y * 0.5, p.x * 0.5, 3.0);
+        assert!((expect - *q).length() < 1e-12, "{q} vs {expect}");
+    }
+}
+
+#[test]
+fn zero_distance_extrusion_is_valid() {
+    let mut m = prim("@cube");
+    let f = face(&m, 0);
+    expect_delta(&mut m, (4, 8, 4), |m| {
+        extrude_face(m, f, &ExtrudeParams::new(0.0, 1)).unwrap();
+    });
+}
+
+#[test]
+fn degenerate_parameters_are_refused_and_change_nothing() {
+    let m0 = prim("@cube");
+    let f = face(&m0, 0);
+    for params in [
+        ExtrudeParams::new(f64::NAN, 1),
+        ExtrudeParams::new(f64::INFINITY, 1),
+        ExtrudeParams::new(1.0, 0),
+        ExtrudeParams {
+            scale: 0.0,
+            ..ExtrudeParams::default()
+        },
+        ExtrudeParams {
+            scale: -1.0,
+            ..ExtrudeParams::default()
+        },
+        ExtrudeParams {
+            rotation_deg: f64::NAN,
+            ..ExtrudeParams::default()
+        },
+        ExtrudeParams::new(1e308, 3),
+    ] {
+        let mut m = m0.clone();
+        let err = extrude_face(&mut m, f, &params).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                ExtrudeError::InvalidParameter { .. } | ExtrudeError::NonFinite { .. }
+            ),
+            "{params:?}: {err}"
+        );
+        unchanged(&m, &m0);
+    }
+    let mut m = m0.clone();
+    let err = extrude_face(&mut m, f, &ExtrudeParams::new(1.0, usize::MAX)).unwrap_err();
+    assert!(matches!(err, ExtrudeError::TooLarge { .. }), "{err}");
+    unchanged(&m, &m0);
+}
+
+#[test]
+fn stale_hole_and_degenerate_faces_are_refused() {
+    // A stale id.
+    let mut m = prim("@cube");
+    let f = face(&m, 0);
+    extrude_face(&mut m, f, &ExtrudeParams::default()).unwrap();
+    let before = m.clone();
+    if !m.contains_face(f) {
+        let err = extrude_face(&mut m, f, &ExtrudeParams::default()).unwrap_err();
+        assert!(matches!(err, ExtrudeError::Kernel(_)), "{err}");
+        unchanged(&m, &before);
+    }
+    // The hole of an open plane.
+    let mut m = prim("@plane:2:2");
+    let hole = m.faces().find(|&f| m.is_hole(f).unwrap()).unwrap();
+    let before = m.clone();
+    let err = extrude_face(&mut m, hole, &ExtrudeParams::default()).unwrap_err();
+    assert_eq!(err, ExtrudeError::HoleFace(hole));
+    unchanged(&m, &before);
+    // A point-sphere and a two-gon (no area, no normal).
+    let mut m = Mesh::new();
+    let (_, ps, c0) = m.create_vertex(DVec3::ZERO).unwrap();
+    let err = extrude_face(&mut m, ps, &ExtrudeParams::default()).unwrap_err();
+    assert_eq!(err, ExtrudeError::PointSphere(ps));
+    let (_, _, c1) = m.create_vertex(DVec3::X).unwrap();
+    m.insert_edge(c0, c1).unwrap();
+    let two = m.corner_face(c0).unwrap();
+    // A segment's single face has corners v0, v1: zero area.
+    let before = m.clone();
+    let err = extrude_face(&mut m, two, &ExtrudeParams::default()).unwrap_err();
+    assert_eq!(err, ExtrudeError::DegenerateFace(two));
+    unchanged(&m, &before);
+}
+
+#[test]
+fn faces_of_different_sizes_and_open_meshes() {
+    // Triangles, quads, pentagons, a cylinder's 16-gon cap, and a plane
+    // with a boundary: each extrusion adds d/2d/d and keeps the holes.
+    for (spec, idx) in [
+        ("@tetrahedron", 1),
+        ("@octahedron", 3),
+        ("@dodecahedron", 7),
+        ("@cylinder", 0),
+        ("@cone:7", 0),
+        ("@plane:3:3", 4),
+        ("@torus:8:6", 5),
+    ] {
+        let mut m = prim(spec);
+        let f = face(&m, idx);
+        let d = m.face_len(f).unwrap() as i64;
+        let holes = m.hole_count();
+        expect_delta(&mut m, (d, 2 * d, d), |m| {
+            extrude_face(m, f, &ExtrudeParams::new(0.25, 1)).unwrap();
+        });
+        assert_eq!(m.hole_count(), holes, "{spec}");
+    }
+}
+
+#[test]
+fn extruding_a_face_next_to_a_hole() {
+    // A corner quad of an open grid touches the boundary loop on two edges.
+    let mut m = prim("@plane:2:2");
+    let f = face(&m, 0);
+    expect_delta(&mut m, (8, 16, 8), |m| {
+        extrude_face(m, f, &ExtrudeParams::new(0.5, 2)).unwrap();
+    });
+}
+
+#[test]
+fn a_face_with_a_dangling_edge_extrudes() {
+    // A dangling edge inside the top face: its loose end moves with the
+    // face and the edge stays inside the lifted face.
+    let mut m = prim("@cube");
+    let f = face(&m, 5);
+    let c = m.face_corner(f).unwrap();
+    let (x, _, s) = m.create_vertex(DVec3::new(0.0, 0.0, 1.0)).unwrap();
+    m.insert_edge(c, s).unwrap();
+    check(&m);
+    let f = m.corner_face(s).unwrap();
+    let d = m.face_len(f).unwrap() as i64; // 4 corners + 2 for the dangling edge
+    assert_eq!(d, 6);
+    // Fans: the 3 plain corners, and at the attachment vertex one fan of
+    // two corners (the dangling edge is inside the selection) — 4 fans,
+    // as many as boundary edges. The loose end is interior and moves.
+    expect_delta(&mut m, (4, 8, 4), |m| {
+        extrude_face(m, f, &ExtrudeParams::new(1.0, 1)).unwrap();
+    });
+    assert!((m.position(x).unwrap().z - 2.0).abs() < 1e-12);
+}
+
+// ---------------------------------------------------------------------
+// Multi-face extrusion.
+
+#[test]
+fn two_adjacent_quads_share_their_walls() {
+    // Two neighbouring quads of a 2×1 grid region of @cube:2's bottom:
+    // b = 6 boundary sides, so +6/+12/+6 (one by one would be 8/16/8).
+    let mut m = prim("@cube:2");
+    let (a, b) = (face(&m, 0), face(&m, 1));
+    assert!(shares_edge(&m, a, b));
+    expect_delta(&mut m, (6, 12, 6), |m| {
+        let out = extrude_faces(m, &[a, b], &MultiExtrudeParams::default()).unwrap();
+        assert_eq!(out.tops.len(), 2);
+        assert_eq!(out.walls.len(), 6);
+        assert!(shares_edge(m, out.tops[0], out.tops[1]));
+    });
+}
+
+fn shares_edge(m: &Mesh, a: FaceId, b: FaceId) -> bool {
+    m.edges().any(|e| {
+        let [x, y] = m.edge_faces(e).unwrap();
+        (x == a && y == b) || (x == b && y == a)
+    })
+}
+
+/// Boundary sides of a selection, counted from the definition: edges
+/// with a selected face on exactly one side.
+fn boundary_sides(m: &Mesh, faces: &[FaceId]) -> i64 {
+    m.edges()
+        .filter(|&e| {
+            let [x, y] = m.edge_faces(e).unwrap();
+            faces.contains(&x) != faces.contains(&y)
+        })
+        .count() as i64
+}
+
+#[test]
+fn multi_face_counts_follow_the_boundary() {
+    let mut rng = holey_testkit::Rng::new(18);
+    for spec in [
+        "@cube:3",
+        "@torus:8:6",
+        "@sphere:1",
+        "@plane:4:4",
+        "@quad-sphere:3",
+    ] {
+        for _ in 0..6 {
+            let mut m = prim(spec);
+            let all: Vec<FaceId> = m.faces().filter(|&f| !m.is_hole(f).unwrap()).collect();
+            let mut sel: Vec<FaceId> = all.iter().copied().filter(|_| rng.chance(0.3)).collect();
+            if sel.is_empty() {
+                sel.push(all[0]);
+            }
+            let b = boundary_sides(&m, &sel);
+            let params = MultiExtrudeParams {
+                distance: 0.1,
+                direction: if rng.chance(0.5) {
+                    RegionDirection::Average
+                } else {
+                    RegionDirection::VertexNormals
+                },
+                count: 1,
+            };
+            let before = m.clone();
+            match extrude_faces(&mut m, &sel, &params) {
+                Ok(out) => {
+                    check(&m);
+                    let (v0, e0, f0, c0, g0) = state(&before);
+                    assert_eq!(state(&m), (v0 + b, e0 + 2 * b, f0 + b, c0, g0), "{spec}");
+                    assert_eq!(out.tops.len(), sel.len(), "{spec}");
+                    assert_eq!(out.walls.len() as i64, b);
+                }
+                Err(ExtrudeError::NoDirection { .. }) => unchanged(&m, &before),
+                Err(e) => panic!("{spec}: {e}"),
+            }
+        }
+    }
+}
+
+#[test]
+fn multi_face_repeats_and_refusals() {
+    let mut m = prim("@cube:2");
+    let sel: Vec<FaceId> = (0..4).map(|i| face(&m, i)).collect(); // the whole -z side
+    let b = boundary_sides(&m, &sel);
+    assert_eq!(b, 8);
+    expect_delta(&mut m, (3 * b, 6 * b, 3 * b), |m| {
+        let p = MultiExtrudeParams {
+            distance: 0.2,
+            count: 3,
+            ..MultiExtrudeParams::default()
+        };
+        let out = extrude_faces(m, &sel, &p).unwrap();
+        assert_eq!(out.tops.len(), 4);
+        // The lifted side is 0.6 below the cube's bottom.
+        for t in out.tops {
+            for p in m.face_positions(t).unwrap() {
+                assert!((p.z + 1.6).abs() < 1e-12);
+            }
+        }
+    });
+    // Every face of a closed cube: the normals cancel.
+    let m0 = prim("@cube");
+    let mut m = m0.clone();
+    let all: Vec<FaceId> = m.faces().collect();
+    let err = extrude_faces(&mut m, &all, &MultiExtrudeParams::default()).unwrap_err();
+    assert!(matches!(err, ExtrudeError::NoDirection { .. }), "{err}");
+    unchanged(&m, &m0);
+    // Empty, hole, NaN.
+    let err = extrude_faces(&mut m, &[], &MultiExtrudeParams::default()).unwrap_err();
+    assert_eq!(err, ExtrudeError::EmptySelection);
+    let mut p = prim("@plane:2:2");
+    let p0 = p.clone();
+    let hole = p.faces().find(|&f| p.is_hole(f).unwrap()).unwrap();
+    let f0 = face(&p, 0);
+    let err = extrude_faces(&mut p, &[f0, hole], &MultiExtrudeParams::default()).unwrap_err();
+    assert_eq!(err, ExtrudeError::HoleFace(hole));
+    unchanged(&p, &p0);
+    let nan = MultiExtrudeParams {
+        distance: f64::NAN,
+        ..MultiExtrudeParams::default()
+    };
+    assert!(matches!(
+        extrude_faces(&mut p, &[f0], &nan),
+        Err(ExtrudeError::InvalidParameter { .. })
+    ));
+    unchanged(&p, &p0);
+}
+
+#[test]
+fn faces_meeting_at_a_vertex_only_get_two_fans_there() {
+    // Two diagonal quads of a 2×2 grid meet at the centre vertex only:
+    // it has two fans, so it splits in two; b = 8.
+    let mut m = prim("@plane:2:2");
+    let sel = [face(&m, 0), face(&m, 3)];
+    assert_eq!(boundary_sides(&m, &sel), 8);
+    expect_delta(&mut m, (8, 16, 8), |m| {
+        extrude_faces(m, &sel, &MultiExtrudeParams::default()).unwrap();
+    });
+}
+
+// ---------------------------------------------------------------------
+// The polyhedral extrusions.
+
+#[test]
+fn doo_sabin_counts_and_shrink() {
+    let mut m = prim("@cube");
+    let f = face(&m, 5);
+    expect_delta(&mut m, (8, 16, 8), |m| {
+        let p = DooSabinParams {
+            distance: 1.0,
+            twist: 0.0,
+            scale: 1.0,
+            count: 2,
+        };
+        let out = extrude_face_doo_sabin(m, f, &p).unwrap();
+        // The first Fourier mode of the Doo–Sabin mask has eigenvalue 1/2:
+        // each ring is half as wide; two rings: a quarter of √2.
+        let top = m.face_positions(out.top).unwrap();
+        let c = polygon::centroid(&top);
+        for p in &top {
+            assert!(((*p - c).length() - 2f64.sqrt() / 4.0).abs() < 1e-12);
+        }
+        assert!((c - DVec3::new(0.0, 0.0, 3.0)).length() < 1e-12);
+    });
+}
+
+#[test]
+fn cubical_extrusion_grows_cubes() {
+    let mut m = prim("@cube");
+    let f = face(&m, 5);
+    expect_delta(&mut m, (8, 16, 8), |m| {
+        extrude_face_cubical(m, f, 1.0, 2).unwrap();
+    });
+    // The cube [-1,1]^3 and two more cubes of edge 2.
+    assert!((signed_volume(&m) - 24.0).abs() < 1e-9);
+}
+
+#[test]
+fn octahedral_extrusion_of_a_regular_triangle_is_a_regular_octahedron() {
+    let mut m = prim("@tetrahedron");
+    let f = face(&m, 3);
+    let a = edge_lengths(&m)[0];
+    let before = m.clone();
+    expect_delta(&mut m, (3, 9, 6), |m| {
+        let out = extrude_face_octahedral(m, f, 1.0).unwrap();
+        assert_eq!(m.face_len(out.top).unwrap(), 3);
+        assert_eq!(out.sides.len(), 6);
+    });
+    // Every new edge has the tetrahedron's edge length.
+    let _ = before;
+    for l in edge_lengths(&m) {
+        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
+    }
+}
+
+#[test]
+fn dodecahedral_extrusion_of_a_regular_pentagon_is_a_regular_dodecahedron() {
+    let mut m = prim("@dodecahedron");
+    let f = face(&m, 11);
+    let a = edge_lengths(&m)[0];
+    expect_delta(&mut m, (15, 25, 10), |m| {
+        let out = extrude_face_dodecahedral(m, f, 1.0).unwrap();
+        assert_eq!(m.face_len(out.top).unwrap(), 5);
+        assert_eq!(out.sides.len(), 10);
+        for s in &out.sides {
+            assert_eq!(m.face_len(*s).unwrap(), 5);
+            assert!(max_non_planarity(m, *s) < 1e-9);
+        }
+    });
+    for l in edge_lengths(&m) {
+        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
+    }
+    // Two dodecahedra glued on a face: volume twice the solid's.
+    let one = signed_volume(&prim("@dodecahedron"));
+    assert!((signed_volume(&m) - 2.0 * one).abs() < 1e-9);
+}
+
+#[test]
+fn icosahedral_extrusion_of_a_regular_triangle_is_a_regular_icosahedron() {
+    let mut m = prim("@icosahedron");
+    let f = face(&m, 19);
+    let a = edge_lengths(&m)[0];
+    expect_delta(&mut m, (9, 27, 18), |m| {
+        let out = extrude_face_icosahedral(m, f, 1.0).unwrap();
+        assert_eq!(m.face_len(out.top).unwrap(), 3);
+        assert_eq!(out.sides.len(), 18);
+        for s in &out.sides {
+            assert_eq!(m.face_len(*s).unwrap(), 3);
+        }
+    });
+    for l in edge_lengths(&m) {
+        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
+    }
+    let one = signed_volume(&prim("@icosahedron"));
+    assert!((signed_volume(&m) - 2.0 * one).abs() < 1e-9);
+}
+
+#[test]
+fn polyhedral_extrusions_on_other_face_sizes() {
+    // The counts hold for any d, whatever the shapes look like.
+    for (spec, idx) in [
+        ("@cube", 2),
+        ("@cylinder:7", 1),
+        ("@plane:2:2", 3),
+        ("@tetrahedron", 0),
+    ] {
+        let m0 = prim(spec);
+        let f = face(&m0, idx);
+        let d = m0.face_len(f).unwrap() as i64;
+        let mut m = m0.clone();
+        expect_delta(&mut m, (d, 3 * d, 2 * d), |m| {
+            extrude_face_octahedral(m, f, 0.7).unwrap();
+        });
+        let mut m = m0.clone();
+        expect_delta(&mut m, (3 * d, 5 * d, 2 * d), |m| {
+            extrude_face_dodecahedral(m, f, 0.7).unwrap();
+        });
+        let mut m = m0.clone();
+        expect_delta(&mut m, (3 * d, 9 * d, 6 * d), |m| {
+            extrude_face_icosahedral(m, f, 0.7).unwrap();
+        });
+        let mut m = m0.clone();
+        expect_delta(&mut m, (1, d, d - 1), |m| {
+            stellate_face(m, f, 0.5).unwrap();
+        });
+        let mut m = m0.clone();
+        expect_delta(&mut m, (d + 1, 4 * d, 3 * d - 1), |m| {
+            double_stellate_face(m, f, 0.5).unwrap();
+        });
+        for k in [1usize, 3, 5] {
+            let mut m = m0.clone();
+            let k64 = k as i64;
+            expect_delta(
+                &mut m,
+                (k64 * d + 1, 2 * k64 * d + d, k64 * d + d - 1),
+                |m| {
+                    let p = DomeParams {
+                        height_factor: 1.0,
+                        rings: k,
+                    };
+                    extrude_face_dome(m, f, &p).unwrap();
+                },
+            );
+        }
+    }
+}
+
+#[test]
+fn stellation_apex_and_refusals() {
+    let mut m = prim("@cube");
+    let f = face(&m, 5);
+    let out = stellate_face(&mut m, f, 0.5).unwrap();
+    check(&m);
+    let apex: VertexId = out.vertices[0];
+    assert!((m.position(apex).unwrap() - DVec3::new(0.0, 0.0, 1.5)).length() < 1e-12);
+    assert_eq!(m.valence(apex).unwrap(), 4);
+    let m0 = prim("@cube");
+    for h in [f64::NAN, f64::INFINITY] {
+        let mut m = m0.clone();
+        assert!(stellate_face(&mut m, face(&m0, 0), h).is_err());
+        assert!(double_stellate_face(&mut m, face(&m0, 0), h).is_err());
+        unchanged(&m, &m0);
+    }
+    for hf in [0.0, -1.0, f64::NAN] {
+        let mut m = m0.clone();
+        let f = face(&m0, 0);
+        assert!(extrude_face_octahedral(&mut m, f, hf).is_err());
+        assert!(extrude_face_dodecahedral(&mut m, f, hf).is_err());
+        assert!(extrude_face_icosahedral(&mut m, f, hf).is_err());
+        assert!(extrude_face_cubical(&mut m, f, hf, 1).is_err());
+        let dome = DomeParams {
+            height_factor: hf,
+            rings: 2,
+        };
+        assert!(extrude_face_dome(&mut m, f, &dome).is_err());
+        unchanged(&m, &m0);
+    }
+    let mut m = m0.clone();
+    let zero_rings = DomeParams {
+        height_factor: 1.0,
+        rings: 0,
+    };
+    assert!(extrude_face_dome(&mut m, face(&m0, 0), &zero_rings).is_err());
+    unchanged(&m, &m0);
+}
+
+#[test]
+fn dome_lies_on_a_half_sphere() {
+    let mut m = prim("@cube");
+    let f = face(&m, 5);
+    let out = extrude_face_dome(&mut m, f, &DomeParams::default()).unwrap();
+    check(&m);
+    // Over the +z square (circumradius √2, centre (0,0,1)) every new
+    // vertex is at distance √2 from the centre.
+    for v in out.vertices {
+        let d = m.position(v).unwrap().distance(DVec3::new(0.0, 0.0, 1.0));
+        assert!((d - 2f64.sqrt()).abs() < 1e-12, "{d}");
+    }
+}

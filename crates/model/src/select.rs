@@ -1,0 +1,402 @@
+//! # Selection (TopMod's selection menu, issue 18)
+//!
+//! Functions that compute sets of faces, edges or vertices from a seed
+//! or a current selection, without changing the mesh:
+//! - [`face_loop`]: the strip of quadrilaterals crossed by walking
+//!   straight across opposite edges;
+//! - [`edge_loop`]: the edges continued straight through vertices of
+//!   valence 4; [`edge_ring`]: the opposite edges of consecutive quads;
+//! - [`grow_faces`], [`shrink_faces`], [`invert_faces`] and their vertex
+//!   versions;
+//! - [`similar_faces`] (same number of corners), [`similar_vertices`]
+//!   (same valence);
+//! - [`checkerboard`]: a 2-colouring of the faces, or the face where none
+//!   exists.
+//!
+//! Hole faces are never selected, and stop loops and rings. Results are
+//! sorted by slot (loops and rings are in walking order) and free of
+//! repeats.
+
+use std::collections::{BTreeSet, HashMap, HashSet, VecDeque};
+
+use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, VertexId};
+
+/// Why a selection could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SelectError {
+    /// The face given to start a face loop is not a quadrilateral (or is
+    /// a hole), so it has no opposite edge.
+    #[error("face {0} is not a quadrilateral, so a face loop cannot pass through it")]
+    NotAQuad(FaceId),
+    /// The edge given to a face loop is not an edge of the face.
+    #[error("edge {edge} is not an edge of face {face}")]
+    NotOnFace {
+        /// The face.
+        face: FaceId,
+        /// The edge.
+        edge: EdgeId,
+    },
+    /// No 2-colouring of the faces exists: the two faces beside this edge
+    /// would need the same colour (an odd cycle of faces passes through it).
+    #[error(
+        "the faces cannot be 2-coloured: faces {face} and {other} beside edge {edge} would both need one colour"
+    )]
+    NotBipartite {
+        /// A face on the odd cycle.
+        face: FaceId,
+        /// The face across `edge` (equal to `face` when the edge has it on both sides).
+        other: FaceId,
+        /// The edge whose two sides conflict.
+        edge: EdgeId,
+    },
+    /// A kernel accessor failed: an id not in the mesh.
+    #[error(transparent)]
+    Kernel(#[from] holey_dlfl::Error),
+}
+
+/// The corner of `face` at which `edge` starts, if the edge borders it.
+fn corner_on(mesh: &Mesh, face: FaceId, edge: EdgeId) -> Result<Option<CornerId>, SelectError> {
+    for c in mesh.edge_corners(edge)? {
+        if mesh.corner_face(c)? == face {
+            return Ok(Some(c));
+        }
+    }
+    Ok(None)
+}
+
+/// The other side of the edge leaving corner `c`.
+fn across(mesh: &Mesh, c: CornerId) -> Result<Option<CornerId>, SelectError> {
+    let Some(e) = mesh.corner_edge(c)? else {
+        return Ok(None);
+    };
+    let [a, b] = mesh.edge_corners(e)?;
+    Ok(Some(if a == c { b } else { a }))
+}
+
+fn is_quad(mesh: &Mesh, f: FaceId) -> Result<bool, SelectError> {
+    Ok(mesh.face_len(f)? == 4 && !mesh.is_hole(f)?)
+}
+
+/// The face loop through quad `face` across its edge `edge`: from `face`
+/// walk across `edge` and, in every quad reached, on across the edge
+/// opposite the one entered by; then the same from `face` across the
+/// edge opposite `edge`. The walk stops at a face that is not a quad, a
+/// hole, or one already in the loop (a closed loop). Returns the quads in
+/// walking order, from one end to the other.
+pub fn face_loop(mesh: &Mesh, face: FaceId, edge: EdgeId) -> Result<Vec<FaceId>, SelectError> {
+    if !is_quad(mesh, face)? {
+        return Err(SelectError::NotAQuad(face));
+    }
+    let start = corner_on(mesh, face, edge)?.ok_or(SelectError::NotOnFace { face, edge })?;
+    let opposite = mesh.corner_next(mesh.corner_next(start)?)?;
+    let mut seen = HashSet::from([face]);
+    let forward = walk_strip(mesh, start, &mut seen)?;
+    let backward = walk_strip(mesh, opposite, &mut seen)?;
+    let mut out: Vec<FaceId> = backward.into_iter().rev().collect();
+    out.push(face);
+    out.extend(forward);
+    Ok(out)
+}
+
+/// Crosses the edge leaving `c` and keeps going straight through quads.
+fn walk_strip(
+    mesh: &Mesh,
+    mut c: CornerId,
+    seen: &mut HashSet<FaceId>,
+) -> Result<Vec<FaceId>, SelectError> {
+    let mut out = Vec::new();
+    while let Some(entry) = across(mesh, c)? {
+        let f = mesh.corner_face(entry)?;
+        if !is_quad(mesh, f)? || !seen.insert(f) {
+            break;
+        }
+        out.push(f);
+        c = mesh.corner_next(mesh.corner_next(entry)?)?;
+    }
+    Ok(out)
+}
+
+/// The edge ring through `edge`: on each side of it, while the face is a
+/// quad, the edge opposite in that quad, then on across that edge. Stops
+/// at non-quads and holes, and when the ring closes. In walking order.
+pub fn edge_ring(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> {
+    let [a, b] = mesh.edge_corners(edge)?;
+    let mut seen = HashSet::from([edge]);
+    let one = walk_ring(mesh, a, &mut seen)?;
+    let two = walk_ring(mesh, b, &mut seen)?;
+    let mut out: Vec<EdgeId> = two.into_iter().rev().collect();
+    out.push(edge);
+    out.extend(one);
+    Ok(out)
+}
+
+fn walk_ring(
+    mesh: &Mesh,
+    mut c: CornerId,
+    seen: &mut HashSet<EdgeId>,
+) -> Result<Vec<EdgeId>, SelectError> {
+    let mut out = Vec::new();
+    loop {
+        let f = mesh.corner_face(c)?;
+        if !is_quad(mesh, f)? {
+            break;
+        }
+        let opposite = mesh.corner_next(mesh.corner_next(c)?)?;
+        let Some(e) = mesh.corner_edge(opposite)? else {
+            break;
+        };
+        if !seen.insert(e) {
+            break;
+        }
+        out.push(e);
+        match across(mesh, opposite)? {
+            Some(next) => c = next,
+            None => break,
+        }
+    }
+    Ok(out)
+}
+
+/// The edge loop through `edge`: from each end of valence 4, on along
+/// the edge opposite in the vertex's rotation (two steps round), until a
+/// vertex of another valence, a self-loop, or the start again. In walking
+/// order.
+pub fn edge_loop(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> {
+    let [a, b] = mesh.edge_corners(edge)?;
+    let mut seen = HashSet::from([edge]);
+    // Corner a starts the edge at its first end; the walk beyond the
+    // second end starts from b, the corner where the edge leaves that end.
+    let one = walk_loop(mesh, b, &mut seen)?;
+    let two = walk_loop(mesh, a, &mut seen)?;
+    let mut out: Vec<EdgeId> = two.into_iter().rev().collect();
+    out.push(edge);
+    out.extend(one);
+    Ok(out)
+}
+
+/// `c` is the corner at which the current edge leaves the vertex to walk
+/// through (going back along the edge); continues beyond that vertex.
+fn walk_loop(
+    mesh: &Mesh,
+    mut c: CornerId,
+    seen: &mut HashSet<EdgeId>,
+) -> Result<Vec<EdgeId>, SelectError> {
+    let mut out = Vec::new();
+    loop {
+        let v = mesh.corner_vertex(c)?;
+        if mesh.valence(v)? != 4 {
+            break;
+        }
+        let straight = mesh.corner_rotation_next(mesh.corner_rotation_next(c)?)?;
+        let Some(e) = mesh.corner_edge(straight)? else {
+            break;
+        };
+        if mesh.is_self_loop(e)? || !seen.insert(e) {
+            break;
+        }
+        out.push(e);
+        // Beyond e: the corner where e leaves its far end, back towards v.
+        match across(mesh, straight)? {
+            Some(back) => c = back,
+            None => break,
+        }
+    }
+    Ok(out)
+}
+
+/// Surface faces (not holes) in slot order.
+fn surface_faces(mesh: &Mesh) -> Result<Vec<FaceId>, SelectError> {
+    let mut out = Vec::new();
+    for f in mesh.faces() {
+        if !mesh.is_hole(f)? {
+            out.push(f);
+        }
+    }
+    Ok(out)
+}
+
+/// The selection with every surface face that shares a vertex with it.
+pub fn grow_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
+    let mut out: BTreeSet<FaceId> = BTreeSet::new();
+    for &f in faces {
+        for v in mesh.face_vertices(f)? {
+            for c in mesh.vertex_corners(v)? {
+                let g = mesh.corner_face(c)?;
+                if !mesh.is_hole(g)? {
+                    out.insert(g);
+                }
+            }
+        }
+        if !mesh.is_hole(f)? {
+            out.insert(f);
+        }
+    }
+    Ok(out.into_iter().collect())
+}
+
+/// The selection without the faces on its border: those with a vertex
+/// that also touches an unselected face (or a hole).
+pub fn shrink_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
+    let selected: HashSet<FaceId> = faces.iter().copied().collect();
+    let mut out = BTreeSet::new();
+    'faces: for &f in &selected {
+        for v in mesh.face_vertices(f)? {
+            for c in mesh.vertex_corners(v)? {
+                if !selected.contains(&mesh.corner_face(c)?) {
+                    continue 'faces;
+                }
+            }
+        }
+        if !mesh.is_hole(f)? {
+            out.insert(f);
+        }
+    }
+    Ok(out.into_iter().collect())
+}
+
+/// Every surface face not in the selection.
+pub fn invert_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
+    let selected: HashSet<FaceId> = faces.iter().copied().collect();
+    Ok(surface_faces(mesh)?
+        .into_iter()
+        .filter(|f| !selected.contains(f))
+        .collect())
+}
+
+/// The selection with every vertex joined to it by an edge.
+pub fn grow_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
+    let mut out: BTreeSet<VertexId> = vertices.iter().copied().collect();
+    for &v in vertices {
+        for c in mesh.vertex_corners(v)? {
+            out.insert(mesh.corner_vertex(mesh.corner_next(c)?)?);
+        }
+    }
+    Ok(out.into_iter().collect())
+}
+
+/// The selection without the vertices joined by an edge to an
+/// unselected vertex.
+pub fn shrink_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
+    let selected: HashSet<VertexId> = vertices.iter().copied().collect();
+    let mut out = BTreeSet::new();
+    'vertices: for &v in &selected {
+        for c in mesh.vertex_corners(v)? {
+            if !selected.contains(&mesh.corner_vertex(mesh.corner_next(c)?)?) {
+                continue 'vertices;
+            }
+        }
+        out.insert(v);
+    }
+    Ok(out.into_iter().collect())
+}
+
+/// Every vertex not in the selection.
+pub fn invert_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Vec<VertexId> {
+    let selected: HashSet<VertexId> = vertices.iter().copied().collect();
+    mesh.vertices().filter(|v| !selected.contains(v)).collect()
+}
+
+/// Every edge not in the selection.
+pub fn invert_edges(mesh: &Mesh, edges: &[EdgeId]) -> Vec<EdgeId> {
+    let selected: HashSet<EdgeId> = edges.iter().copied().collect();
+    mesh.edges().filter(|e| !selected.contains(e)).collect()
+}
+
+/// Every surface face with as many corners as some face of the selection.
+pub fn similar_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
+    let mut sizes = HashSet::new();
+    for &f in faces {
+        sizes.insert(mesh.face_len(f)?);
+    }
+    let mut out = Vec::new();
+    for f in surface_faces(mesh)? {
+        if sizes.contains(&mesh.face_len(f)?) {
+            out.push(f);
+        }
+    }
+    Ok(out)
+}
+
+/// Every vertex with the valence of some vertex of the selection.
+pub fn similar_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
+    let mut valences = HashSet::new();
+    for &v in vertices {
+        valences.insert(mesh.valence(v)?);
+    }
+    let mut out = Vec::new();
+    for v in mesh.vertices() {
+        if valences.contains(&mesh.valence(v)?) {
+            out.push(v);
+        }
+    }
+    Ok(out)
+}
+
+/// A 2-colouring of the faces.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Checkerboard {
+    /// The faces of the first colour (each component's first face in slot
+    /// order is of this colour), in slot order.
+    pub first: Vec<FaceId>,
+    /// The faces of the second colour, in slot order.
+    pub second: Vec<FaceId>,
+}
+
+/// Colours the surface faces with two colours so that faces sharing an
+/// edge differ (edges to holes do not count), if that is possible: it is
+/// exactly when every cycle of faces around the surface is even (a cube:
+/// no, three faces meet at each corner; an even quad torus or grid: yes).
+/// Otherwise names the edge where the breadth-first colouring first
+/// meets a conflict, and a face beside it.
+pub fn checkerboard(mesh: &Mesh) -> Result<Checkerboard, SelectError> {
+    let faces = surface_faces(mesh)?;
+    let mut colour: HashMap<FaceId, bool> = HashMap::with_capacity(faces.len());
+    for &seed in &faces {
+        if colour.contains_key(&seed) {
+            continue;
+        }
+        colour.insert(seed, false);
+        let mut queue = VecDeque::from([seed]);
+        while let Some(f) = queue.pop_front() {
+            let mine = colour.get(&f).copied().unwrap_or(false);
+            for c in mesh.face_corners(f)? {
+                let Some(e) = mesh.corner_edge(c)? else {
+                    continue;
+                };
+                let Some(o) = across(mesh, c)? else {
+                    continue;
+                };
+                let g = mesh.corner_face(o)?;
+                if mesh.is_hole(g)? {
+                    continue;
+                }
+                match colour.get(&g) {
+                    Some(&theirs) if theirs == mine => {
+                        return Err(SelectError::NotBipartite {
+                            face: f,
+                            other: g,
+                            edge: e,
+                        });
+                    }
+                    Some(_) => {}
+                    None => {
+                        colour.insert(g, !mine);
+                        queue.push_back(g);
+                    }
+                }
+            }
+        }
+    }
+    let (mut first, mut second) = (Vec::new(), Vec::new());
+    for f in faces {
+        if colour.get(&f).copied().unwrap_or(false) {
+            second.push(f);
+        } else {
+            first.push(f);
+        }
+    }
+    Ok(Checkerboard { first, second })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,335 @@
+//! Wireframe and column tests: counts from the module's formulas (worked
+//! out here from the input's V, E, valences), genus `E − V + C` of the
+//! input's edge graph, validity, outward orientation, refusals.
+
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::{DVec3, Mesh};
+use holey_mesh::PolyMesh;
+
+use super::*;
+
+fn poly(spec: &str) -> PolyMesh {
+    holey_shapes::parse_primitive(spec).unwrap()
+}
+
+fn mesh(p: &PolyMesh) -> Mesh {
+    to_dlfl(p, ImportOptions::default()).unwrap().mesh
+}
+
+fn prim(spec: &str) -> Mesh {
+    mesh(&poly(spec))
+}
+
+/// `a` and `b` (moved by `offset`) as one soup: two components.
+fn union(a: &PolyMesh, b: &PolyMesh, offset: DVec3) -> PolyMesh {
+    let nv = a.positions.len() as u32;
+    let mut out = a.clone();
+    out.positions
+        .extend(b.positions.iter().map(|&p| p + offset));
+    for f in b.faces() {
+        let shifted: Vec<u32> = f.iter().map(|v| v + nv).collect();
+        out.push_face(&shifted);
+    }
+    out
+}
+
+/// The cycle rank of the edge graph: E − V + C.
+fn graph_genus(m: &Mesh) -> i64 {
+    m.edge_count() as i64 - m.vertex_count() as i64 + m.topology().component_count() as i64
+}
+
+fn valences(m: &Mesh) -> Vec<usize> {
+    m.vertices().map(|v| m.valence(v).unwrap()).collect()
+}
+
+fn signed_volume(m: &Mesh) -> f64 {
+    let mut vol = 0.0;
+    for f in m.faces() {
+        let p = m.face_positions(f).unwrap();
+        for k in 1..p.len().saturating_sub(1) {
+            vol += p[0].dot(p[k].cross(p[k + 1]));
+        }
+    }
+    vol / 6.0
+}
+
+fn counts(m: &Mesh) -> (usize, usize, usize) {
+    (m.vertex_count(), m.edge_count(), m.face_count())
+}
+
+/// The wireframe counts of the module documentation from V and E:
+/// (4E, 10E, 4E + 2V) for a mesh with no point-spheres.
+fn wire_counts(m: &Mesh) -> (usize, usize, usize) {
+    let (v, e) = (m.vertex_count(), m.edge_count());
+    (4 * e, 10 * e, 4 * e + 2 * v)
+}
+
+/// The column counts of the module documentation from E and the valences.
+fn column_counts(m: &Mesh, n: usize) -> (usize, usize, usize) {
+    let e = m.edge_count();
+    let (mut extra_e, mut extra_f) = (0, 0);
+    for k in valences(m) {
+        match k {
+            0 => {}
+            1 => extra_f += 1,
+            2 => {
+                extra_e += 2;
+                extra_f += 2;
+            }
+            k => {
+                extra_e += 2 * k;
+                extra_f += k + 2;
+            }
+        }
+    }
+    (2 * n * e, 3 * n * e + extra_e, n * e + extra_f)
+}
+
+#[test]
+fn wireframe_of_a_cube() {
+    let m = prim("@cube");
+    let w = wireframe(&m, 0.1).unwrap();
+    w.validate().unwrap();
+    // Worked out: E = 12, V = 8: 48 vertices, 120 edges, 48 + 16 faces,
+    // genus 12 − 8 + 1 = 5 (χ = 48 − 120 + 64 = −8).
+    assert_eq!(counts(&w), (48, 120, 64));
+    assert_eq!(counts(&w), wire_counts(&m));
+    assert_eq!(w.genus(), 5);
+    assert_eq!(w.topology().component_count(), 1);
+    assert_eq!(w.hole_count(), 0);
+    let (v0, v1) = (signed_volume(&m), signed_volume(&w));
+    assert!(v1 > 0.0 && v1 < v0, "volume {v1} vs {v0}");
+    // The input is untouched.
+    assert_eq!(m.to_raw(), prim("@cube").to_raw());
+}
+
+#[test]
+fn wireframe_genus_is_the_cycle_rank_of_the_edge_graph() {
+    let two = mesh(&union(
+        &poly("@tetrahedron"),
+        &poly("@torus:6:4"),
+        DVec3::new(10.0, 0.0, 0.0),
+    ));
+    for m in [
+        prim("@tetrahedron"),
+        prim("@octahedron"),
+        prim("@dodecahedron"),
+        prim("@torus:8:5"),
+        prim("@cylinder:5"),
+        prim("@plane:3:2"),
+        prim("@sphere:1"),
+        two,
+    ] {
+        let w = wireframe(&m, 0.02).unwrap();
+        w.validate().unwrap();
+        assert_eq!(w.genus(), graph_genus(&m));
+        assert_eq!(
+            w.topology().component_count(),
+            m.topology().component_count()
+        );
+        assert_eq!(counts(&w), wire_counts(&m));
+        assert!(signed_volume(&w) > 0.0);
+    }
+}
+
+#[test]
+fn wireframe_of_a_closed_genus_zero_mesh_has_genus_f_minus_one() {
+    for spec in ["@cube", "@icosahedron", "@cone:6"] {
+        let m = prim(spec);
+        let w = wireframe(&m, 0.01).unwrap();
+        assert_eq!(w.genus(), m.face_count() as i64 - 1, "{spec}");
+    }
+}
+
+#[test]
+fn wireframe_handles_dangling_edges_and_point_spheres() {
+    let mut m = prim("@cube");
+    let f = m.face_at(5).unwrap();
+    let c = m.face_corner(f).unwrap();
+    let (_, _, s) = m.create_vertex(DVec3::new(0.0, 0.0, 1.0)).unwrap();
+    m.insert_edge(c, s).unwrap();
+    m.create_vertex(DVec3::new(5.0, 5.0, 5.0)).unwrap();
+    m.validate().unwrap();
+    // Straight corners arise on both sides of the dangling edge; the
+    // point-sphere is copied as a point-sphere.
+    let w = wireframe(&m, 0.05).unwrap();
+    w.validate().unwrap();
+    let (v, e, f) = wire_counts(&m);
+    // The point-sphere: one vertex and one face more, no edge; its
+    // vertex has no edge, so it makes no joint (−2 faces from 2V).
+    assert_eq!(counts(&w), (v + 1, e, f - 2 + 1));
+    assert_eq!(w.genus(), graph_genus(&m));
+}
+
+#[test]
+fn wireframe_refusals() {
+    let m = prim("@cube");
+    for t in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            wireframe(&m, t),
+            Err(WireframeError::InvalidThickness(_))
+        ));
+    }
+    // Sides of length 2: an inset of 1.5 turns every face over.
+    assert!(matches!(
+        wireframe(&m, 1.5),
+        Err(WireframeError::ThicknessTooLarge { .. })
+    ));
+}
+
+#[test]
+fn columns_of_a_cube() {
+    let m = prim("@cube");
+    for n in [3usize, 4, 6] {
+        let c = columns(
+            &m,
+            &ColumnParams {
+                sides: n,
+                radius: 0.1,
+            },
+        )
+        .unwrap();
+        c.validate().unwrap();
+        // Worked out for n = 4: 2·4·12 = 96 vertices, 3·4·12 + 8·(2·3) =
+        // 192 edges, 4·12 + 8·(3 + 2) = 88 faces; genus 5.
+        if n == 4 {
+            assert_eq!(counts(&c), (96, 192, 88));
+        }
+        assert_eq!(counts(&c), column_counts(&m, n));
+        assert_eq!(c.genus(), 5);
+        assert!(signed_volume(&c) > 0.0, "n = {n}");
+    }
+}
+
+#[test]
+fn columns_genus_and_counts_on_many_meshes() {
+    let two = mesh(&union(
+        &poly("@cube"),
+        &poly("@octahedron"),
+        DVec3::new(10.0, 0.0, 0.0),
+    ));
+    for m in [
+        prim("@tetrahedron"),
+        prim("@dodecahedron"),
+        prim("@torus:8:5"),
+        prim("@plane:2:2"),
+        prim("@sphere:1"),
+        two,
+    ] {
+        for n in [3usize, 5] {
+            let c = columns(
+                &m,
+                &ColumnParams {
+                    sides: n,
+                    radius: 0.02,
+                },
+            )
+            .unwrap();
+            c.validate().unwrap();
+            assert_eq!(counts(&c), column_counts(&m, n));
+            assert_eq!(c.genus(), graph_genus(&m));
+            assert!(signed_volume(&c) > 0.0);
+        }
+    }
+}
+
+#[test]
+fn columns_at_valence_one_and_two() {
+    // A lone segment: one column closed at both ends, a prism: 2n, 3n, n + 2.
+    let mut m = Mesh::new();
+    let (_, _, a) = m.create_vertex(DVec3::ZERO).unwrap();
+    let (_, _, b) = m.create_vertex(DVec3::new(3.0, 0.0, 0.0)).unwrap();
+    m.insert_edge(a, b).unwrap();
+    let c = columns(
+        &m,
+        &ColumnParams {
+            sides: 5,
+            radius: 0.2,
+        },
+    )
+    .unwrap();
+    c.validate().unwrap();
+    assert_eq!(counts(&c), (10, 15, 7));
+    assert_eq!(c.genus(), 0);
+    // A triangle "sphere" (two triangles back to back): three vertices of
+    // valence 2, a ring of three columns: genus 3 − 3 + 1 = 1.
+    let mut m = Mesh::new();
+    m.create_face_manifold(&[
+        DVec3::ZERO,
+        DVec3::new(4.0, 0.0, 0.0),
+        DVec3::new(0.0, 4.0, 0.0),
+    ])
+    .unwrap();
+    let c = columns(
+        &m,
+        &ColumnParams {
+            sides: 4,
+            radius: 0.2,
+        },
+    )
+    .unwrap();
+    c.validate().unwrap();
+    assert_eq!(counts(&c), column_counts(&m, 4));
+    assert_eq!(c.genus(), 1);
+}
+
+#[test]
+fn column_refusals() {
+    let m = prim("@cube");
+    assert_eq!(
+        columns(
+            &m,
+            &ColumnParams {
+                sides: 2,
+                radius: 0.1
+            }
+        )
+        .unwrap_err(),
+        WireframeError::TooFewSides(2)
+    );
+    for r in [0.0, -1.0, f64::NAN] {
+        assert!(matches!(
+            columns(
+                &m,
+                &ColumnParams {
+                    sides: 4,
+                    radius: r
+                }
+            ),
+            Err(WireframeError::InvalidThickness(_))
+        ));
+    }
+    // Edges of length 2 with right angles: ports sit r/sin 45° from each
+    // vertex, so r = 0.8 makes them overlap.
+    assert!(matches!(
+        columns(
+            &m,
+            &ColumnParams {
+                sides: 4,
+                radius: 0.8
+            }
+        ),
+        Err(WireframeError::EdgeTooShort { .. })
+    ));
+}
+
+#[test]
+fn wireframe_of_an_open_grid_straddles_its_boundary() {
+    // @plane:2:2 covers [-1,1]²: the tubes along its boundary reach out to
+    // the thickness beyond it and no further; no vertex folds back.
+    let m = prim("@plane:2:2");
+    let w = wireframe(&m, 0.1).unwrap();
+    w.validate().unwrap();
+    assert_eq!(w.genus(), graph_genus(&m));
+    assert_eq!(w.genus(), 12 - 9 + 1);
+    let mut outside = 0;
+    for v in w.vertices() {
+        let p = w.position(v).unwrap();
+        assert!(p.x.abs() <= 1.1 + 1e-12 && p.y.abs() <= 1.1 + 1e-12, "{p}");
+        if p.x.abs() > 1.0 + 1e-12 || p.y.abs() > 1.0 + 1e-12 {
+            outside += 1;
+        }
+    }
+    // The hole's 8 corners, each with an outer and an inner copy.
+    assert_eq!(outside, 16);
+}

@@ -1,0 +1,147 @@
+//! Root-4 remeshing (TopMod's `root4Subdivide`, also its "hexagon
+//! preserving" entry): every normal face shrinks to a copy joined to it
+//! corner by corner (an extrusion without length), then every old edge
+//! between two faces is deleted, merging the two quads beside it into a
+//! hexagon.
+//!
+//! Copy vertex `I(c)` (normal corner `k`) is joined to `v(c)` by edge
+//! `J(c)` (side 0 runs `v → I`); the copy's edge from `I(c)` to
+//! `I(next c)` is `L(c)` (side 0 in the copy). Edge `(a, b)` between faces
+//! becomes the hexagon `[v(a), I(next b), I(b), v(b), I(next a), I(a)]`.
+//! An edge next to a hole is kept, and its normal side keeps the quad
+//! `[v(a), v(next a), I(next a), I(a)]`.
+
+use glam::DVec3;
+
+use super::map::{Budget, Builder, Map, Sizes, honeycomb_alpha, lab, tension_mask};
+use crate::SubdivError;
+use crate::flat::{Flat, Kind};
+
+/// One level. Output vertices: the input's, then `I(c)` by normal corner.
+/// Edges: the kept old edges, then `L`, then `J`, each by normal corner.
+pub(super) fn step(
+    src: &Flat,
+    budget: &Budget,
+    weight: f64,
+    twist: f64,
+) -> Result<Flat, SubdivError> {
+    let m = Map::new(src);
+    let st = m.st;
+    let kept_count = st.e - st.e_nn;
+    let sizes = Sizes {
+        v: st.v + st.nc,
+        e: kept_count + 2 * st.nc,
+        f: st.nf + st.e_nn + st.b_sides + st.hf + st.ps,
+        c: st.nc + 6 * st.e_nn + 4 * st.b_sides + st.hc + st.ps,
+    };
+    budget.check(sizes)?;
+    let pos = positions(&m, sizes.v, weight, twist);
+    let mut kept = vec![0u32; st.e];
+    let mut next = 0u32;
+    for (e, k) in kept.iter_mut().enumerate() {
+        if !m.interior(e) {
+            *k = next;
+            next += 1;
+        }
+    }
+    let old = |c: usize| lab(kept[m.edge(c)] as usize, m.side(c));
+    let inner = |c: usize| (st.v + m.nidx(c)) as u32;
+    let l = |c: usize, side: u32| lab(kept_count + m.nidx(c), side);
+    let j = |c: usize, side: u32| lab(kept_count + st.nc + m.nidx(c), side);
+    let mut b = Builder::new(pos, sizes);
+    let mut poly = Vec::new();
+    for face in 0..src.face_count() {
+        let (lo, hi) = m.range(face);
+        match m.kind[face] {
+            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
+            Kind::Hole => {
+                poly.clear();
+                poly.extend((lo..hi).map(|c| (src.cv[c], old(c))));
+                b.face(true, &poly);
+            }
+            Kind::Normal => {
+                poly.clear();
+                poly.extend((lo..hi).map(|c| (inner(c), l(c, 0))));
+                b.face(false, &poly);
+                for c in lo..hi {
+                    if m.interior(m.edge(c)) {
+                        continue;
+                    }
+                    let d = src.next(c);
+                    b.face(
+                        false,
+                        &[
+                            (src.cv[c], old(c)),
+                            (src.cv[d], j(d, 0)),
+                            (inner(d), l(c, 1)),
+                            (inner(c), j(c, 1)),
+                        ],
+                    );
+                }
+            }
+        }
+    }
+    for (e, &[a, bb]) in src.edges.iter().enumerate() {
+        if !m.interior(e) {
+            continue;
+        }
+        let (a, bb) = (a as usize, bb as usize);
+        let (na, nb) = (src.next(a), src.next(bb));
+        b.face(
+            false,
+            &[
+                (src.cv[a], j(nb, 0)),
+                (inner(nb), l(bb, 1)),
+                (inner(bb), j(bb, 1)),
+                (src.cv[bb], j(na, 0)),
+                (inner(na), l(a, 1)),
+                (inner(a), j(a, 1)),
+            ],
+        );
+    }
+    b.finish()
+}
+
+/// The copies: TopMod's mask (α = 1/√2 − 1/4 + 5/(4n)) of the points at
+/// `twist` along each edge; then each interior old vertex moved by
+/// `weight` towards the average of the copy vertices joined to it (TopMod
+/// moves it towards the midpoints of its edges after the old edges are
+/// gone, which are these). Boundary vertices stay.
+fn positions(m: &Map, nv: usize, weight: f64, twist: f64) -> Vec<DVec3> {
+    let src = m.f;
+    let mut pos = Vec::with_capacity(nv);
+    pos.extend_from_slice(&src.pos);
+    let mut pts = Vec::new();
+    let mut out = Vec::new();
+    for face in 0..src.face_count() {
+        if m.kind[face] != Kind::Normal {
+            continue;
+        }
+        let (lo, hi) = m.range(face);
+        pts.clear();
+        pts.extend((lo..hi).map(|c| (1.0 - twist) * m.p(c) + twist * m.p(src.next(c))));
+        out.clear();
+        out.resize(hi - lo, DVec3::ZERO);
+        tension_mask(&pts, honeycomb_alpha, &mut out);
+        pos.extend_from_slice(&out);
+    }
+    if weight != 0.0 {
+        let (n, h) = m.corner_counts();
+        let mut sum = vec![DVec3::ZERO; src.pos.len()];
+        for face in 0..src.face_count() {
+            if m.kind[face] != Kind::Normal {
+                continue;
+            }
+            let (lo, hi) = m.range(face);
+            for c in lo..hi {
+                sum[src.cv[c] as usize] += pos[src.pos.len() + m.nidx(c)];
+            }
+        }
+        for v in 0..src.pos.len() {
+            if h[v] == 0 && n[v] > 0 {
+                pos[v] = (1.0 - weight) * pos[v] + weight * sum[v] / f64::from(n[v]);
+            }
+        }
+    }
+    pos
+}

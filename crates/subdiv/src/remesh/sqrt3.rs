@@ -1,0 +1,125 @@
+//! √3 subdivision (Kobbelt 2000) and TopMod's "dual vertex truncation"
+//! (`sqrt3Subdivide`), which share the connectivity: stellate every face,
+//! then flip every old edge between two faces so that it joins their
+//! centres.
+//!
+//! Edge `(a, b)` between faces `f ∋ a` and `g ∋ b`, with centres `z_f`,
+//! `z_g`, becomes the triangles `[v(a), z_g, z_f]` and `[z_g, v(b), z_f]`
+//! around the flipped edge, which keeps the old edge's number (side 0 runs
+//! `z_g → z_f`). Spoke `k` (normal corner `k` at `v`) runs `v → z` on side 0.
+//! An edge next to a hole is not flipped: its normal side keeps the
+//! stellation triangle and the hole keeps its corners.
+
+use glam::DVec3;
+
+use super::map::{Budget, Builder, Map, Sizes, lab};
+use crate::SubdivError;
+use crate::flat::{Flat, Kind};
+
+/// One level. Output vertices: the input's, then the centres in
+/// normal-face order; edges: the old ones (flipped or kept), then one spoke
+/// per normal corner. With `smooth`, interior old vertices move by
+/// Kobbelt's rule; otherwise they stay (TopMod's dual vertex truncation).
+pub(super) fn step(src: &Flat, budget: &Budget, smooth: bool) -> Result<Flat, SubdivError> {
+    let m = Map::new(src);
+    let st = m.st;
+    let sizes = Sizes {
+        v: st.v + st.nf,
+        e: st.e + st.nc,
+        f: 2 * st.e_nn + st.b_sides + st.hf + st.ps,
+        c: 6 * st.e_nn + 3 * st.b_sides + st.hc + st.ps,
+    };
+    budget.check(sizes)?;
+    let pos = positions(&m, sizes.v, smooth);
+    let zc = |c: usize| st.v as u32 + m.nrank[src.cf[c] as usize];
+    let spoke = |c: usize, side: u32| lab(st.e + m.nidx(c), side);
+    let mut b = Builder::new(pos, sizes);
+    let mut copy = Vec::new();
+    for face in 0..src.face_count() {
+        let (lo, hi) = m.range(face);
+        match m.kind[face] {
+            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
+            Kind::Hole => {
+                copy.clear();
+                copy.extend((lo..hi).map(|c| (src.cv[c], lab(m.edge(c), m.side(c)))));
+                b.face(true, &copy);
+            }
+            Kind::Normal => {
+                for c in lo..hi {
+                    if m.interior(m.edge(c)) {
+                        continue;
+                    }
+                    let d = src.next(c);
+                    b.face(
+                        false,
+                        &[
+                            (src.cv[c], lab(m.edge(c), m.side(c))),
+                            (src.cv[d], spoke(d, 0)),
+                            (zc(c), spoke(c, 1)),
+                        ],
+                    );
+                }
+            }
+        }
+    }
+    for (e, &[a, bb]) in src.edges.iter().enumerate() {
+        if !m.interior(e) {
+            continue;
+        }
+        let (a, bb) = (a as usize, bb as usize);
+        let (na, nb) = (src.next(a), src.next(bb));
+        b.face(
+            false,
+            &[
+                (src.cv[a], spoke(nb, 0)),
+                (zc(bb), lab(e, 0)),
+                (zc(a), spoke(a, 1)),
+            ],
+        );
+        b.face(
+            false,
+            &[
+                (zc(bb), spoke(bb, 1)),
+                (src.cv[bb], spoke(na, 0)),
+                (zc(a), lab(e, 1)),
+            ],
+        );
+    }
+    b.finish()
+}
+
+/// The input's positions (smoothed by Kobbelt's rule with `smooth`: an
+/// interior vertex with `n` corners, all in normal faces, moves to
+/// `(1 − αₙ)p + αₙ/n Σ p(next c)`, `αₙ = (4 − 2 cos(2π/n))/9`; boundary
+/// vertices stay), then the face centroids.
+fn positions(m: &Map, nv: usize, smooth: bool) -> Vec<DVec3> {
+    let src = m.f;
+    let mut pos = Vec::with_capacity(nv);
+    pos.extend_from_slice(&src.pos);
+    if smooth {
+        let (n, h) = m.corner_counts();
+        let mut sum = vec![DVec3::ZERO; src.pos.len()];
+        for face in 0..src.face_count() {
+            if m.kind[face] != Kind::Normal {
+                continue;
+            }
+            let (lo, hi) = m.range(face);
+            for c in lo..hi {
+                sum[src.cv[c] as usize] += m.p(src.next(c));
+            }
+        }
+        for (v, p) in pos.iter_mut().enumerate() {
+            if h[v] == 0 && n[v] > 0 {
+                let k = f64::from(n[v]);
+                let alpha = (4.0 - 2.0 * (std::f64::consts::TAU / k).cos()) / 9.0;
+                *p = (1.0 - alpha) * *p + alpha * sum[v] / k;
+            }
+        }
+    }
+    for face in 0..src.face_count() {
+        if m.kind[face] == Kind::Normal {
+            pos.push(m.centroid(face));
+        }
+    }
+    pos
+}
