@@ -20,7 +20,7 @@ const ABOUT: &str = "holey changes the topology of meshes: it punches holes, joi
 
 const AFTER_HELP: &str = "\
 Meshes: every argument naming an input mesh takes a file (.obj, .off, .ply,
-.stl, .dlfl) or a built-in primitive written @name, e.g. @cube, @torus,
+.stl, .gltf, .glb, .3mf, .dlfl) or a built-in primitive written @name, e.g. @cube, @torus,
 @sphere:3 (run `holey primitives` for the list and their parameters).
 Outputs are written in the format their file extension names, atomically.
 

@@ -175,7 +175,8 @@
 //!
 //! ## Files
 //!
-//! OBJ, OFF, PLY, STL and `.dlfl` by extension; writes are atomic.
+//! OBJ, OFF, PLY, STL, glTF (`.gltf`, `.glb`), 3MF and `.dlfl` by
+//! extension; writes are atomic.
 //!
 //! ```
 //! use holey::prelude::*;
