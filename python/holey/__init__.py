@@ -374,7 +374,8 @@ def volume(V: ArrayLike, F: ArrayLike) -> float:
 
 
 def read(path: Union[str, "os.PathLike[str]"], triangulate: bool = True):
-    """Reads a mesh file: OBJ, OFF, PLY, STL or ``.dlfl``, by extension.
+    """Reads a mesh file: OBJ, OFF, PLY, STL, glTF (``.gltf``, ``.glb``), 3MF
+    or ``.dlfl``, by extension.
 
     Returns ``(V, F)``. Polygons are fan-triangulated from their first
     corner unless ``triangulate=False``, which gives ``F`` as an ``(m, k)``

@@ -4,16 +4,12 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failed unwrap is a failed test
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
-fn holey(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_holey"))
-        .args(args)
-        .output()
-        .expect("the holey binary runs")
-}
+mod common;
+use common::holey;
 
 fn stdout(out: &Output) -> String {
     String::from_utf8(out.stdout.clone()).expect("utf-8 output")

@@ -4,26 +4,11 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failed unwrap is a failed test
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use serde_json::Value;
 
-fn holey(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_holey"))
-        .args(args)
-        .output()
-        .expect("the holey binary runs")
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = holey(args);
-    assert!(
-        out.status.success(),
-        "holey {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("utf-8 output")
-}
+mod common;
+use common::{holey, ok};
 
 fn info(mesh: &str, extra: &[&str]) -> Value {
     let mut args = vec!["info", "--json", mesh];

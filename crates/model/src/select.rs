@@ -121,9 +121,24 @@ fn walk_strip(
 /// at non-quads and holes, and when the ring closes. In walking order.
 pub fn edge_ring(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> {
     let [a, b] = mesh.edge_corners(edge)?;
+    both_ways(mesh, edge, [a, b], walk_ring)
+}
+
+/// A walk from a corner, taking each edge at most once (`seen`).
+type Walk = fn(&Mesh, CornerId, &mut HashSet<EdgeId>) -> Result<Vec<EdgeId>, SelectError>;
+
+/// The walks of `walk` from the corners `[ahead, behind]` of `edge`,
+/// joined through it in walking order: the walk from `behind` reversed,
+/// `edge`, then the walk from `ahead`. Each edge is taken once.
+fn both_ways(
+    mesh: &Mesh,
+    edge: EdgeId,
+    [ahead, behind]: [CornerId; 2],
+    walk: Walk,
+) -> Result<Vec<EdgeId>, SelectError> {
     let mut seen = HashSet::from([edge]);
-    let one = walk_ring(mesh, a, &mut seen)?;
-    let two = walk_ring(mesh, b, &mut seen)?;
+    let one = walk(mesh, ahead, &mut seen)?;
+    let two = walk(mesh, behind, &mut seen)?;
     let mut out: Vec<EdgeId> = two.into_iter().rev().collect();
     out.push(edge);
     out.extend(one);
@@ -163,15 +178,9 @@ fn walk_ring(
 /// order.
 pub fn edge_loop(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> {
     let [a, b] = mesh.edge_corners(edge)?;
-    let mut seen = HashSet::from([edge]);
     // Corner a starts the edge at its first end; the walk beyond the
     // second end starts from b, the corner where the edge leaves that end.
-    let one = walk_loop(mesh, b, &mut seen)?;
-    let two = walk_loop(mesh, a, &mut seen)?;
-    let mut out: Vec<EdgeId> = two.into_iter().rev().collect();
-    out.push(edge);
-    out.extend(one);
-    Ok(out)
+    both_ways(mesh, edge, [b, a], walk_loop)
 }
 
 /// `c` is the corner at which the current edge leaves the vertex to walk

@@ -1,4 +1,4 @@
-//! Mesh files: OBJ, OFF, PLY, STL and `.dlfl`, by extension (holey's
+//! Mesh files: OBJ, OFF, PLY, STL, glTF, 3MF and `.dlfl`, by extension (holey's
 //! readers and atomic writers).
 
 use std::path::Path;

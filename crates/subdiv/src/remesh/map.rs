@@ -184,6 +184,22 @@ impl<'a> Map<'a> {
         self.corner_kind(a as usize) == Kind::Normal && self.corner_kind(b as usize) == Kind::Normal
     }
 
+    /// The edges with a normal face on both sides, each as
+    /// `(e, a, b, next(a), next(b))`: its index, its two corners (one per
+    /// side) and the corners after them in their faces, which is what the
+    /// schemes that build a face across every interior edge need.
+    pub fn interior_edges(&self) -> impl Iterator<Item = (usize, usize, usize, usize, usize)> + '_ {
+        self.f
+            .edges
+            .iter()
+            .enumerate()
+            .filter(|&(e, _)| self.interior(e))
+            .map(|(e, &[a, b])| {
+                let (a, b) = (a as usize, b as usize);
+                (e, a, b, self.f.next(a), self.f.next(b))
+            })
+    }
+
     /// The centroid of face `face`'s corners.
     pub fn centroid(&self, face: usize) -> DVec3 {
         let (lo, hi) = self.range(face);

@@ -62,12 +62,7 @@ pub(super) fn step(src: &Flat, budget: &Budget, smooth: bool) -> Result<Flat, Su
             }
         }
     }
-    for (e, &[a, bb]) in src.edges.iter().enumerate() {
-        if !m.interior(e) {
-            continue;
-        }
-        let (a, bb) = (a as usize, bb as usize);
-        let (na, nb) = (src.next(a), src.next(bb));
+    for (e, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,
             &[

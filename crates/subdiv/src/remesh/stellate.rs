@@ -165,12 +165,7 @@ pub(super) fn edge_removal(src: &Flat, budget: &Budget, height: f64) -> Result<F
             }
         }
     }
-    for (e, &[a, bb]) in src.edges.iter().enumerate() {
-        if !m.interior(e) {
-            continue;
-        }
-        let (a, bb) = (a as usize, bb as usize);
-        let (na, nb) = (src.next(a), src.next(bb));
+    for (_, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,
             &[
