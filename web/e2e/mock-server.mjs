@@ -205,6 +205,19 @@ function handle(ws, msg) {
       commit(m);
       return ok();
     }
+    case 'remesh_schemes':
+      // Two of the real server's list, so that the Remesh panel fills in;
+      // remeshing itself is not mocked.
+      return ok({
+        max_levels: 8,
+        schemes: [
+          { name: 'dual', title: 'Dual', closed_only: true, params: [] },
+          {
+            name: 'corner-cutting', title: 'Corner cutting', closed_only: false,
+            params: [{ name: 'corner_cutting_alpha', label: 'tension α', type: 'number', default: 0.5625, min: null, max: null }],
+          },
+        ],
+      });
     case 'cancel':
       return ok();
     default:

@@ -585,6 +585,237 @@ const scenarios = [
       await other.close();
     }
   }],
+
+  // ---- TopMod's toolbox (issue 18) ----------------------------------------------
+  // Expected counts are worked out here from each operation's definition
+  // and the counts the stats bar showed before it, never read from a result.
+
+  ['Remesh panel: every scheme listed; dual and corner cutting of a cube; undo restores it', async (page) => {
+    if (useMock) return 'SKIP'; // the mock server has no remeshing
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@cube');
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    const cube = parseStats(await statsText(page));
+    const C = 2 * cube.E; // corners of a closed mesh
+    // The panel offers what the server lists, the issue's schemes among them.
+    const offered = await page.$$eval(`${tid('remesh-scheme')} option`, (os) => os.map((o) => o.value));
+    const listed = await page.evaluate(() => window.__holey.request('remesh_schemes').then((r) => r.schemes.map((x) => x.name)));
+    if (JSON.stringify(offered) !== JSON.stringify(listed)) throw new Error(`the panel offers ${offered.join(' ')}; the server lists ${listed.join(' ')}`);
+    for (const name of ['dual', 'sqrt3', 'triangulate', 'loop', 'root4', 'linear-vertex-insertion', 'vertex-truncation',
+      'dual-vertex-truncation', 'stellate', 'double-stellate', 'corner-cutting', 'modified-corner-cutting', 'simplest',
+      'honeycomb', '12.6.4', 'dual-12.6.4', 'pentagonalization', 'dual-pentagonalization', 'checkerboard',
+      'dual-checkerboard', 'global-extrude', 'dual-global-extrude', 'dome', 'fractal']) {
+      if (!offered.includes(name)) throw new Error(`the Remesh panel lacks ${name}`);
+    }
+    const apply = async (scheme, want, params = {}) => {
+      await page.selectOption(tid('remesh-scheme'), scheme);
+      for (const [name, value] of Object.entries(params)) await page.fill(tid(`remesh-param-${name}`), String(value));
+      const v = await version(page);
+      await page.click(tid('op-remesh'));
+      await waitVersionAbove(page, v);
+      await waitStats(page, new RegExp(`\\bV ${want[0]} · E ${want[1]} · F ${want[2]}\\b.*genus 0(?!\\d)`));
+    };
+    const undo = async () => {
+      const v = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, v);
+      await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    };
+    // Dual: a vertex per face, a face per vertex, an edge across each edge.
+    await apply('dual', [cube.F, cube.E, cube.V]);
+    await page.screenshot({ path: path.join(artifacts, '14-remesh-dual.png') });
+    await undo();
+    // Corner cutting has a tension α: its input shows TopMod's 9/16.
+    await page.selectOption(tid('remesh-scheme'), 'corner-cutting');
+    const alpha = Number(await page.inputValue(tid('remesh-param-corner_cutting_alpha')));
+    if (Math.abs(alpha - 9 / 16) > 1e-12) throw new Error(`corner cutting's α shows ${alpha}, not 9/16`);
+    // Doo–Sabin's connectivity: a vertex per corner, two edges per corner,
+    // a face per face, edge and vertex.
+    await apply('corner-cutting', [C, 2 * C, cube.F + cube.E + cube.V], { corner_cutting_alpha: 0.7 });
+    await page.screenshot({ path: path.join(artifacts, '14-remesh-corner-cutting.png') });
+    await undo();
+    // Vertex truncation: every corner cut off (2E, E + C, F + V).
+    await apply('vertex-truncation', [2 * cube.E, cube.E + C, cube.F + cube.V]);
+    await undo();
+    // The dual is not defined with a boundary: the page says why.
+    await createPrimitive(page, '@plane');
+    await page.selectOption(tid('remesh-scheme'), 'dual');
+    const note = await page.textContent(tid('remesh-note'));
+    if (!/closed/.test(note)) throw new Error(`the dual's note says "${note}", not that it needs a closed surface`);
+    await page.click(tid('op-remesh'));
+    await waitFor(page, 'an error toast about the boundary', () =>
+      [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /boundary/.test(t.textContent)));
+  }],
+
+  ['Extrude a selected face twice, then undo both', async (page) => {
+    if (useMock) return 'SKIP';
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@cube');
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    const cube = parseStats(await statsText(page));
+    await page.check('[name=pick][value=face]');
+    await page.evaluate(() => window.__holey.setView([0.3, 0.4, 1]));
+    await page.waitForTimeout(100);
+    // Click the middle of the +z side.
+    const at = await page.evaluate(() => window.__holey.project([0, 0, 1]));
+    await page.mouse.click(at[0], at[1]);
+    await waitFor(page, 'one selected face', () => window.__holey.selection.faces.length === 1);
+    await page.selectOption(tid('extrude-kind'), 'plain');
+    await page.fill(tid('extrude-distance'), '0.8');
+    await page.fill(tid('extrude-scale'), '0.7');
+    await page.fill(tid('extrude-rotation'), '15');
+    await page.fill(tid('extrude-count'), '1');
+    // One plain extrusion of a d-gon adds d vertices, 2d edges, d faces.
+    const d = 4;
+    let v = await version(page);
+    await page.click(tid('op-extrude'));
+    await waitVersionAbove(page, v);
+    await waitStats(page, new RegExp(`\\bV ${cube.V + d} · E ${cube.E + 2 * d} · F ${cube.F + d}\\b.*genus 0(?!\\d)`));
+    // The new top is selected, on the new version: extrude it again.
+    await waitFor(page, 'the new top selected', () => {
+      const s = window.__holey.selection;
+      return s.faces.length === 1 && s.version === window.__holey.version;
+    });
+    v = await version(page);
+    await page.click(tid('op-extrude'));
+    await waitVersionAbove(page, v);
+    await waitStats(page, new RegExp(`\\bV ${cube.V + 2 * d} · E ${cube.E + 4 * d} · F ${cube.F + 2 * d}\\b`));
+    await page.evaluate(() => window.__holey.setView([0.3, 0.4, 1]));
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(artifacts, '15-extrude.png') });
+    for (let i = 0; i < 2; i++) {
+      v = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, v);
+    }
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    // Nothing selected: the page says so instead of sending a request.
+    await page.click(tid('op-extrude'));
+    await waitFor(page, 'an error toast asking for faces', () =>
+      [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /Select the faces/.test(t.textContent)));
+  }],
+
+  ['Wireframe and columns of a cube: genus E − V + 1', async (page) => {
+    if (useMock) return 'SKIP';
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@cube');
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    const { V, E } = parseStats(await statsText(page));
+    await page.fill(tid('wireframe-thickness'), '0.25');
+    let v = await version(page);
+    await page.click(tid('op-wireframe'));
+    await waitVersionAbove(page, v);
+    // TopMod's wireframe: two vertices per corner (4E), ten edges per edge,
+    // 4E + 2V faces; a tube per edge gives genus E − V + 1.
+    await waitStats(page, new RegExp(`\\bV ${4 * E} · E ${10 * E} · F ${4 * E + 2 * V}\\b.*genus ${E - V + 1}(?!\\d)`));
+    await page.evaluate(() => window.__holey.setView());
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(artifacts, '16-wireframe.png') });
+    v = await version(page);
+    await page.click(tid('undo'));
+    await waitVersionAbove(page, v);
+    await page.fill(tid('columns-sides'), '6');
+    v = await version(page);
+    await page.click(tid('op-columns'));
+    await waitVersionAbove(page, v);
+    // Columns of n sides: 2nE vertices, the same genus.
+    await waitStats(page, new RegExp(`\\bV ${2 * 6 * E} · .*genus ${E - V + 1}(?!\\d)`));
+    await page.screenshot({ path: path.join(artifacts, '16-columns.png') });
+  }],
+
+  ['Cut a selected corner of a cube, then undo', async (page) => {
+    if (useMock) return 'SKIP';
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@cube');
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    const { V, E, F } = parseStats(await statsText(page));
+    await page.evaluate(() => window.__holey.setView([1, 0.8, 1.2]));
+    await page.waitForTimeout(100);
+    // Shift-click on the +z side just inside its (1, 1, 1) corner picks
+    // that corner (Shift picks corners in any mode).
+    const at = await page.evaluate(() => window.__holey.project([0.9, 0.9, 1]));
+    await page.keyboard.down('Shift');
+    await page.mouse.click(at[0], at[1]);
+    await page.keyboard.up('Shift');
+    await waitFor(page, 'one selected corner', () => window.__holey.selection.corners.length === 1);
+    await page.fill(tid('cut-distance'), '0.5');
+    const v = await version(page);
+    await page.click(tid('op-cut'));
+    await waitVersionAbove(page, v);
+    // A vertex of valence k becomes a k-gon: +(k − 1) vertices, +k edges,
+    // +1 face; a cube's corners have valence 3.
+    const k = 3;
+    await waitStats(page, new RegExp(`\\bV ${V + k - 1} · E ${E + k} · F ${F + 1}\\b`));
+    await waitFor(page, 'the new triangle selected', () => window.__holey.selection.faces.length === 1);
+    await page.screenshot({ path: path.join(artifacts, '17-cut-corner.png') });
+    const u = await version(page);
+    await page.click(tid('undo'));
+    await waitVersionAbove(page, u);
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+  }],
+
+  ['Truncate every vertex of an icosahedron by a third: the soccer ball', async (page) => {
+    if (useMock) return 'SKIP';
+    await setWorkspace(page, 'model');
+    await createPrimitive(page, '@icosahedron');
+    await waitStats(page, /\bV 12 · E 30 · F 20\b/);
+    const { V, E, F } = parseStats(await statsText(page));
+    await page.fill(tid('truncate-fraction'), String(1 / 3));
+    const v = await version(page);
+    await page.click(tid('op-truncate-all'));
+    await waitVersionAbove(page, v);
+    // Every vertex becomes a face: 2E vertices, 3E edges, F + V faces.
+    await waitStats(page, new RegExp(`\\bV ${2 * E} · E ${3 * E} · F ${F + V}\\b`));
+    // The twelve new pentagons are the selection.
+    await waitFor(page, 'the new faces selected', () => window.__holey.selection.faces.length === 12);
+    await page.screenshot({ path: path.join(artifacts, '18-truncate-soccer-ball.png') });
+  }],
+
+  ['Selection tools on @cube:2: face loop, grow, shrink, invert, edge ring', async (page) => {
+    if (useMock) return 'SKIP';
+    await setWorkspace(page, 'model');
+    const v0 = await version(page);
+    await page.evaluate(() => window.__holey.request('primitive', { spec: '@cube:2' }));
+    await waitVersionAbove(page, v0);
+    await waitStats(page, /\bF 24\b/);
+    await page.check('[name=pick][value=face]');
+    await page.evaluate(() => window.__holey.setView([0.3, 0.4, 1]));
+    await page.waitForTimeout(100);
+    // A quad of the +z side, away from the side's middle vertex.
+    const at = await page.evaluate(() => window.__holey.project([0.5, 0.5, 1]));
+    await page.mouse.click(at[0], at[1]);
+    await waitFor(page, 'one selected face', () => window.__holey.selection.faces.length === 1);
+    const seed = await page.evaluate(() => window.__holey.selection.faces[0]);
+    const sel = () => page.evaluate(() => ({ faces: [...window.__holey.selection.faces], edges: [...window.__holey.selection.edges] }));
+    const run = async (id, what, check) => {
+      await page.click(tid(id));
+      await waitFor(page, what, check);
+    };
+    // A 2×2-per-side cube: a face loop runs once around, 4 sides × 2 quads.
+    await run('sel-face-loop', 'a loop of 8 faces', () => window.__holey.selection.faces.length === 8);
+    await page.screenshot({ path: path.join(artifacts, '19-face-loop.png') });
+    // Grow adds the faces sharing a vertex with the seed, a corner quad of
+    // the +z side: the other 3 quads of its side (all meet at the side's
+    // middle vertex) and, across its two outer edges, 2 quads of the +x
+    // side and 2 of the +y side (the corner vertex adds none more):
+    // 1 + 3 + 2 + 2 = 8.
+    await page.evaluate((f) => { window.__holey.selection.faces.splice(0, Infinity, f); }, seed);
+    await run('sel-grow', 'a grown selection of 8 faces', () => window.__holey.selection.faces.length === 8);
+    const grown = (await sel()).faces;
+    if (!grown.includes(seed)) throw new Error(`grow dropped the seed ${seed}: ${grown}`);
+    await run('sel-shrink', 'the seed back', () => window.__holey.selection.faces.length === 1);
+    const back = (await sel()).faces;
+    if (back[0] !== seed) throw new Error(`shrink of grow gave ${back}, not ${seed}`);
+    await run('sel-invert', 'the other 23 faces', () => window.__holey.selection.faces.length === 23);
+    // An edge ring around the cube: 8 edges.
+    await page.check('[name=pick][value=edge]');
+    await page.keyboard.press('Escape');
+    await waitFor(page, 'nothing selected', () => !window.__holey.selection.faces.length);
+    await page.mouse.click(at[0], at[1]);
+    await waitFor(page, 'one selected edge', () => window.__holey.selection.edges.length === 1);
+    await run('sel-edge-ring', 'a ring of 8 edges', () => window.__holey.selection.edges.length === 8);
+    await page.screenshot({ path: path.join(artifacts, '19-edge-ring.png') });
+  }],
 ];
 
 // ---- run --------------------------------------------------------------------------

@@ -38,7 +38,7 @@ window.addEventListener('unhandledrejection', (e) => toast(`Unexpected error: ${
 const app = {
   state: null, // latest `state` message
   frame: null, // latest parsed frame (what is on screen)
-  sel: { version: -1, faces: [], corners: [], edge: null },
+  sel: { version: -1, faces: [], corners: [], edges: [] },
   tool: 'inflate',
   stroke: null,
   fitNext: true, // frame the camera on the next mesh frame
@@ -60,6 +60,7 @@ const hook = {
     return s && { brush: s.brush, ending: s.ending, inflight: !!s.inflight, queued: !!s.queued };
   },
   get pending() { return [...conn.pending.values()].map((p) => p.op); },
+  get selection() { return app.sel; },
   frames: 0,
   positionsOnlyFrames: 0,
   sparseFrames: 0,
@@ -131,6 +132,7 @@ const conn = new Connection(wsUrl.href, {
     app.lostConnection = false;
     call('hello');
     loadPrimitives();
+    loadRemeshSchemes();
   },
   close(delay) {
     const el = $('connection');
@@ -435,15 +437,15 @@ window.addEventListener('keydown', (e) => {
     viewer?.setView();
   } else if (!mod && k === 'escape') {
     clearSelection();
-  } else if (!mod && app.state?.workspace === 'sculpt' && '12345'.includes(k) && k) {
-    setTool(['inflate', 'smooth', 'grab', 'move', 'move-piece'][Number(k) - 1]);
+  } else if (!mod && app.state?.workspace === 'sculpt' && '123456'.includes(k) && k) {
+    setTool(['inflate', 'smooth', 'grab', 'move', 'move-piece', 'snake_hook'][Number(k) - 1]);
   }
 });
 
 // ---- model workspace: selection and operations ------------------------------
 
 function clearSelection() {
-  app.sel = { version: app.frame?.version ?? -1, faces: [], corners: [], edge: null };
+  app.sel = { version: app.frame?.version ?? -1, faces: [], corners: [], edges: [] };
   applySelection();
 }
 
@@ -452,9 +454,11 @@ function applySelection() {
   // Highlights are drawn on the committed mesh only, not on a preview.
   viewer?.setSelection(app.frame?.preview ? {} : s);
   const parts = [];
-  if (s.faces.length) parts.push(`faces ${s.faces.join(', ')}`);
-  if (s.corners.length) parts.push(`corners ${s.corners.map(([f, v]) => `${v}@${f}`).join(', ')}`);
-  if (s.edge != null) parts.push(`edge ${s.edge}`);
+  // Long lists (a loop, an inverted selection) are counted, not listed.
+  const list = (what, xs) => (xs.length > 12 ? `${xs.length} ${what}s` : `${what}${xs.length > 1 ? 's' : ''} ${xs.join(', ')}`);
+  if (s.faces.length) parts.push(list('face', s.faces));
+  if (s.corners.length) parts.push(list('corner', s.corners.map(([f, v]) => `${v}@${f}`)));
+  if (s.edges.length) parts.push(list('edge', s.edges));
   $('selection').textContent = parts.length ? parts.join(' · ') : 'nothing selected';
 }
 
@@ -489,7 +493,11 @@ async function modelClick(e) {
     else s.corners.push([hit.face, v]);
   } else {
     const ed = viewer.nearestEdge(hit.face, hit.point);
-    s.edge = ed === s.edge || ed < 0 ? null : ed;
+    if (ed >= 0) {
+      const i = s.edges.indexOf(ed);
+      if (i >= 0) s.edges.splice(i, 1);
+      else s.edges.push(ed);
+    }
   }
   applySelection();
 }
@@ -502,8 +510,9 @@ $('op-insert-edge').onclick = () => {
   call('insert_edge', { version: app.frame.version, corners: [a, b] });
 };
 $('op-delete-edge').onclick = () => {
-  if (app.sel.edge == null) return toast('Select an edge first (Edges mode, click next to it).', 'error');
-  call('delete_edge', { version: app.frame.version, edge: app.sel.edge });
+  const edges = app.sel.edges;
+  if (!edges.length) return toast('Select an edge first (Edges mode, click next to it).', 'error');
+  call('delete_edge', { version: app.frame.version, edge: edges[edges.length - 1] });
 };
 
 function handleFields(preview) {
@@ -540,6 +549,154 @@ $('op-menger').onclick = () =>
   long('menger', { level: num('menger-level'), exact: $('menger-exact').checked }, 'Menger');
 $('op-subdivide').onclick = () =>
   long('subdivide', { scheme: $('subdivide-scheme').value, levels: num('subdivide-levels') }, 'subdividing');
+
+// ---- TopMod's toolbox: selection tools, remeshing, extrusion, cuts, wireframe ---
+
+/** The selection as request fields, display indices of the picture shown
+ * (corners stand for their vertices). */
+function selectionFields() {
+  const s = app.sel;
+  if (s.version !== app.frame?.version) return { version: app.frame?.version, faces: [], edges: [], vertices: [] };
+  return { version: s.version, faces: [...s.faces], edges: [...s.edges], vertices: [...new Set(s.corners.map(([, v]) => v))] };
+}
+
+/** The faces or edges an answer names become the selection (of the
+ * version the answer names: a new mesh's frame may still be on its way,
+ * and onFrame shows the selection when it comes). */
+function selectFromReply(ok) {
+  if (!ok || (!ok.faces && !ok.edges)) return;
+  app.sel = { version: ok.version ?? app.frame?.version ?? -1, faces: ok.faces ?? [], corners: [], edges: ok.edges ?? [] };
+  if (app.frame?.version === app.sel.version) applySelection();
+}
+
+for (const b of document.querySelectorAll('[data-query]')) {
+  b.onclick = async () => {
+    const s = selectionFields();
+    const ok = await call('select', { query: b.dataset.query, version: s.version, faces: s.faces, edges: s.edges });
+    selectFromReply(ok);
+  };
+}
+
+// Remesh: the schemes and their parameters come from the server.
+const remeshing = { schemes: [] };
+
+async function loadRemeshSchemes() {
+  const ok = await call('remesh_schemes');
+  if (!ok?.schemes) return;
+  remeshing.schemes = ok.schemes;
+  const sel = $('remesh-scheme');
+  const keep = sel.value;
+  sel.replaceChildren(...ok.schemes.map((s) => {
+    const o = document.createElement('option');
+    o.value = s.name;
+    o.textContent = s.title;
+    o.title = s.closed_only ? `${s.name}: closed surfaces only` : s.name;
+    return o;
+  }));
+  if (keep && ok.schemes.some((s) => s.name === keep)) sel.value = keep;
+  if (ok.max_levels) $('remesh-levels').max = ok.max_levels;
+  showRemeshParams();
+}
+
+function showRemeshParams() {
+  const scheme = remeshing.schemes.find((s) => s.name === $('remesh-scheme').value);
+  const params = scheme?.params ?? [];
+  const box = $('remesh-params');
+  box.replaceChildren(...params.map((p) => {
+    const label = document.createElement('label');
+    label.title = p.name;
+    const input = document.createElement('input');
+    input.dataset.testid = `remesh-param-${p.name}`;
+    input.dataset.param = p.name;
+    if (p.type === 'bool') {
+      input.type = 'checkbox';
+      input.checked = !!p.default;
+      label.className = 'check';
+      label.append(input, ` ${p.label}`);
+    } else {
+      input.type = 'number';
+      input.step = '0.01';
+      input.value = String(p.default);
+      if (p.min != null) input.min = String(p.min);
+      if (p.max != null) input.max = String(p.max);
+      label.append(`${p.label} `, input);
+    }
+    return label;
+  }));
+  box.hidden = !params.length;
+  $('remesh-note').textContent = scheme?.closed_only ? 'closed surfaces only' : '';
+}
+$('remesh-scheme').onchange = showRemeshParams;
+
+$('op-remesh').onclick = () => {
+  const scheme = $('remesh-scheme').value;
+  if (!scheme) return toast('The remeshing schemes have not arrived from the server yet.', 'error');
+  const params = {};
+  for (const input of $('remesh-params').querySelectorAll('input[data-param]')) {
+    params[input.dataset.param] = input.type === 'checkbox' ? input.checked : Number(input.value);
+  }
+  const title = $('remesh-scheme').selectedOptions[0]?.textContent || scheme;
+  long('remesh', { scheme, levels: num('remesh-levels'), params }, `remeshing: ${title}`);
+};
+
+// Extrude: the inputs each kind reads.
+const EXTRUDE_INPUTS = {
+  plain: ['distance', 'scale', 'rotation', 'count'],
+  together: ['distance', 'count', 'direction'],
+  'doo-sabin': ['distance', 'scale', 'twist', 'count'],
+  cubical: ['height', 'count'],
+  dodecahedral: ['height'],
+  icosahedral: ['height'],
+  octahedral: ['height'],
+  stellate: ['distance'],
+  'double-stellate': ['distance'],
+  dome: ['height', 'count'],
+};
+function showExtrudeInputs() {
+  const kind = $('extrude-kind').value;
+  const use = EXTRUDE_INPUTS[kind] ?? [];
+  for (const l of document.querySelectorAll('[data-for]')) l.hidden = !use.includes(l.dataset.for);
+  // A dome's count is its rings: TopMod's half sphere has five.
+  if (kind === 'dome' && num('extrude-count') === 1) $('extrude-count').value = '5';
+}
+$('extrude-kind').onchange = showExtrudeInputs;
+showExtrudeInputs();
+
+$('op-extrude').onclick = async () => {
+  const s = selectionFields();
+  if (!s.faces.length) return toast('Select the faces to extrude first (Faces mode).', 'error');
+  const kind = $('extrude-kind').value;
+  const fields = { version: s.version, faces: s.faces, kind };
+  for (const k of EXTRUDE_INPUTS[kind] ?? []) fields[k] = k === 'direction' ? $('extrude-direction').value : num(`extrude-${k}`);
+  const ok = await call('extrude', fields);
+  if (ok?.message) toast(ok.message);
+  selectFromReply(ok); // the new tops, ready to extrude again
+};
+
+async function cutOp(op, fields, all = false) {
+  const s = selectionFields();
+  if (!all && !s.faces.length && !s.edges.length && !s.vertices.length) {
+    return toast(`Select what to ${op} first: corners (for their vertices), edges or faces.`, 'error');
+  }
+  const ok = await call(op, all ? { all: true, ...fields } : { ...s, ...fields });
+  if (ok?.message) toast(ok.message);
+  selectFromReply(ok); // the new faces
+}
+$('op-cut').onclick = () => cutOp('cut', { distance: num('cut-distance') });
+$('op-truncate').onclick = () => cutOp('truncate', { fraction: num('truncate-fraction') });
+$('op-truncate-all').onclick = () => cutOp('truncate', { fraction: num('truncate-fraction') }, true);
+
+$('op-wireframe').onclick = () => long('wireframe', { thickness: num('wireframe-thickness') }, 'wireframe');
+$('op-columns').onclick = () =>
+  long('wireframe', { thickness: num('wireframe-thickness'), columns: num('columns-sides') }, 'columns');
+
+for (const b of document.querySelectorAll('[data-tool-op]')) {
+  b.onclick = async () => {
+    const s = selectionFields();
+    const ok = await long('tool', { tool: b.dataset.toolOp, version: s.version, faces: s.faces, vertices: s.vertices }, b.textContent);
+    if (ok?.message) toast(ok.message);
+  };
+}
 
 // ---- sculpt workspace ---------------------------------------------------------
 
@@ -596,7 +753,8 @@ function beginStroke(hit, e) {
   viewer.beginMotion('stroke'); // cheaper pictures until the stroke ends
   viewer.showBrush(hit.point, hit.normal, stroke.radius);
   // The server's strength is in world units for inflate (displacement per
-  // frame) and a step fraction for smooth; grab and move follow the pointer.
+  // frame) and a step fraction for smooth; grab, move and the snake hook
+  // follow the pointer.
   // Inflate is scaled to the brush so that one frame moves the surface by a
   // few percent of the radius: a frame that pushes farther than the edges
   // are long folds the surface over itself many times at once.
@@ -646,7 +804,9 @@ function strokeAnswered(stroke) {
 function strokeMove(e) {
   const s = app.stroke;
   let point, normal = s.normal;
-  if (s.brush === 'grab' || s.brush === 'move') {
+  // Grab, move and the snake hook follow the pointer in the view plane
+  // through the picked point (the snake hook pulls off the surface).
+  if (s.brush === 'grab' || s.brush === 'move' || s.brush === 'snake_hook') {
     point = viewer.planePoint(e.clientX, e.clientY, s.anchor);
   } else {
     const hit = viewer.pick(e.clientX, e.clientY);

@@ -783,7 +783,7 @@ export class Viewer {
 
   // ---- selection overlays -----------------------------------------------
 
-  setSelection({ faces = [], corners = [], edge = null } = {}) {
+  setSelection({ faces = [], corners = [], edges = [], edge = null } = {}) {
     const f = this.frame;
     if (!f || !this.selMesh) return;
     const want = new Set(faces);
@@ -801,12 +801,15 @@ export class Viewer {
     this.cornerPoints.geometry = new THREE.BufferGeometry();
     this.cornerPoints.geometry.setAttribute('position', new THREE.BufferAttribute(cp, 3));
 
-    const ep = new Float32Array(edge == null ? 0 : 6);
-    if (edge != null) {
-      const a = f.edges[2 * edge], b = f.edges[2 * edge + 1];
-      ep.set(f.positions.subarray(3 * a, 3 * a + 3), 0);
-      ep.set(f.positions.subarray(3 * b, 3 * b + 3), 3);
-    }
+    // Selected edges (a loop or ring has many) as line segments.
+    const list = edge != null ? [...edges, edge] : edges;
+    const shown = list.filter((i) => i >= 0 && i < f.ne);
+    const ep = new Float32Array(6 * shown.length);
+    shown.forEach((i, k) => {
+      const a = f.edges[2 * i], b = f.edges[2 * i + 1];
+      ep.set(f.positions.subarray(3 * a, 3 * a + 3), 6 * k);
+      ep.set(f.positions.subarray(3 * b, 3 * b + 3), 6 * k + 3);
+    });
     this.edgeLine.geometry.dispose();
     this.edgeLine.geometry = new THREE.BufferGeometry();
     this.edgeLine.geometry.setAttribute('position', new THREE.BufferAttribute(ep, 3));

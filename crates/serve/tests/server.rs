@@ -943,3 +943,291 @@ fn a_random_token_at_every_start() {
         assert!(refused.is_err(), "{bad:?}");
     }
 }
+
+/// V, E, F of the stats a tab last received.
+fn vef(tab: &Tab) -> [u64; 3] {
+    let s = &tab.state["stats"];
+    [
+        s["vertices"].as_u64().unwrap_or(u64::MAX),
+        s["edges"].as_u64().unwrap_or(u64::MAX),
+        s["faces"].as_u64().unwrap_or(u64::MAX),
+    ]
+}
+
+/// TopMod's toolbox over the socket (issue 18): remeshing schemes,
+/// extrusion, wireframe and columns, cuts and truncation, the tools and
+/// the selection queries, each checked against counts worked out from
+/// its definition, and undone.
+#[test]
+fn toolbox_requests_change_the_counts_their_definitions_give() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    let listed = a.ok(json!({"op": "remesh_schemes"}));
+    assert_eq!(
+        listed["schemes"].as_array().map(Vec::len),
+        Some(holey_subdiv::RemeshScheme::ALL.len())
+    );
+
+    // The cube, V E F = 8 12 6, C = 24 corners, every vertex of valence 3.
+    let (v, e, f, c) = (8u64, 12u64, 6u64, 24u64);
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    assert_eq!(vef(&a), [v, e, f]);
+    for (scheme, params, want) in [
+        // The dual swaps vertices and faces.
+        ("dual", json!({}), [f, e, v]),
+        // Every corner cut off: V' = 2E, E' = E + C, F' = F + V.
+        ("vertex-truncation", json!({}), [2 * e, e + c, f + v]),
+        // A centroid per face joined to its corners: V + F, E + C, C.
+        ("stellate", json!({}), [v + f, e + c, c]),
+        // Doo–Sabin's connectivity: V' = C, E' = 2C, F' = F + E + V.
+        (
+            "corner-cutting",
+            json!({"corner_cutting_alpha": 0.7}),
+            [c, 2 * c, f + e + v],
+        ),
+        // Each face shrunk to a copy, each vertex a 2d-gon: C, E + C, F + V.
+        ("honeycomb", json!({}), [c, e + c, f + v]),
+    ] {
+        a.ok(json!({"op": "remesh", "scheme": scheme, "params": params}));
+        assert_eq!(vef(&a), want, "{scheme}");
+        assert_eq!(a.genus(), 0, "{scheme}");
+        a.ok(json!({"op": "undo"}));
+        assert_eq!(vef(&a), [v, e, f], "undo of {scheme}");
+    }
+    // Two levels of the dual give the cube back.
+    a.ok(json!({"op": "remesh", "scheme": "dual", "levels": 2}));
+    assert_eq!(vef(&a), [v, e, f]);
+
+    // √3 and Loop of a tetrahedron (4 6 4): 8 18 12, and V+E, 2E+3F, 4F.
+    a.ok(json!({"op": "primitive", "spec": "@tetrahedron"}));
+    a.ok(json!({"op": "remesh", "scheme": "sqrt3"}));
+    assert_eq!(vef(&a), [8, 18, 12]);
+    a.ok(json!({"op": "undo"}));
+    a.ok(json!({"op": "remesh", "scheme": "loop"}));
+    assert_eq!(vef(&a), [4 + 6, 2 * 6 + 3 * 4, 4 * 4]);
+
+    // A plain extrusion of one quad adds 4/8/4 and answers the new top;
+    // extruding that top again adds 4/8/4 more.
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let version = a.state["version"].clone();
+    let r = a.ok(json!({"op": "extrude", "version": version, "faces": [0],
+                        "kind": "plain", "distance": 0.5, "scale": 0.8, "rotation": 10}));
+    assert_eq!(vef(&a), [v + 4, e + 8, f + 4]);
+    let top = r["faces"].as_array().expect("faces").clone();
+    assert_eq!(top.len(), 1, "{r}");
+    assert_eq!(r["version"], a.state["version"]);
+    a.ok(json!({"op": "extrude", "version": r["version"], "faces": top, "count": 2}));
+    assert_eq!(vef(&a), [v + 12, e + 24, f + 12]);
+    // Two neighbouring quads together: b = 6 boundary sides, +6/+12/+6.
+    a.ok(json!({"op": "primitive", "spec": "@cube:2"}));
+    let [v2, e2, f2] = vef(&a);
+    let grown = a.ok(json!({"op": "select", "query": "face-loop", "faces": [0]}));
+    let strip = grown["faces"].as_array().expect("faces").clone();
+    assert_eq!(strip.len(), 8, "a face loop around @cube:2: {grown}");
+    let pair = a.ok(json!({"op": "select", "query": "face-loop", "faces": [0]}))["faces"]
+        .as_array()
+        .map(|s| vec![s[0].clone(), s[1].clone()])
+        .expect("faces");
+    a.ok(json!({"op": "extrude", "faces": pair, "kind": "together", "distance": 0.3}));
+    assert_eq!(vef(&a), [v2 + 6, e2 + 12, f2 + 6]);
+
+    // The wireframe of the cube: V' = 4E, E' = 10E, F' = 4E + 2V, genus
+    // E − V + 1; columns of 4 sides have the same genus.
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    a.ok(json!({"op": "wireframe", "thickness": 0.1}));
+    assert_eq!(vef(&a), [4 * e, 10 * e, 4 * e + 2 * v]);
+    assert_eq!(a.genus(), json!(e - v + 1));
+    a.ok(json!({"op": "undo"}));
+    a.ok(json!({"op": "wireframe", "thickness": 0.1, "columns": 4}));
+    assert_eq!(a.genus(), json!(e - v + 1));
+    a.ok(json!({"op": "undo"}));
+
+    // A cube corner cut off: +2/+3/+1; every vertex truncated: the
+    // truncated cube 24/36/14.
+    let version = a.state["version"].clone();
+    let r = a.ok(json!({"op": "cut", "version": version, "vertices": [0], "distance": 0.3}));
+    assert_eq!(vef(&a), [v + 2, e + 3, f + 1]);
+    assert_eq!(r["faces"].as_array().map(Vec::len), Some(1), "{r}");
+    a.ok(json!({"op": "undo"}));
+    a.ok(json!({"op": "truncate", "all": true, "fraction": 0.25}));
+    assert_eq!(vef(&a), [24, 36, 14]);
+    a.ok(json!({"op": "undo"}));
+    // An edge of the cube (valences 3 and 3): +2/+3/+1.
+    a.ok(json!({"op": "truncate", "edges": [0], "fraction": 0.25}));
+    assert_eq!(vef(&a), [v + 2, e + 3, f + 1]);
+    a.ok(json!({"op": "undo"}));
+
+    // Tools move vertices or merge, counts as documented.
+    a.ok(json!({"op": "tool", "tool": "spherical"}));
+    assert_eq!(vef(&a), [v, e, f]);
+    a.ok(json!({"op": "tool", "tool": "planarize"}));
+    let r = a.ok(json!({"op": "tool", "tool": "cleanup"}));
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("0 two-gons"),
+        "{r}"
+    );
+
+    // Selection queries on a 2×2-per-side cube (24 quads).
+    a.ok(json!({"op": "primitive", "spec": "@cube:2"}));
+    let faces = |r: &Value| r["faces"].as_array().map(Vec::len).unwrap_or(0);
+    let edges = |r: &Value| r["edges"].as_array().map(Vec::len).unwrap_or(0);
+    let r = a.ok(json!({"op": "select", "query": "invert", "faces": [0]}));
+    assert_eq!(faces(&r), 23);
+    let r = a.ok(json!({"op": "select", "query": "similar", "faces": [0]}));
+    assert_eq!(faces(&r), 24);
+    let r = a.ok(json!({"op": "select", "query": "edge-ring", "edges": [0]}));
+    assert_eq!(edges(&r), 8, "{r}");
+    let r = a.ok(json!({"op": "select", "query": "grow", "faces": [0]}));
+    let g = r["faces"].clone();
+    let r = a.ok(json!({"op": "select", "query": "shrink", "faces": g}));
+    assert_eq!(r["faces"], json!([0]));
+    assert_eq!(vef(&a), [26, 48, 24], "queries change nothing");
+    // Valence-3 corners make an odd cycle of faces; a torus of 8 × 6
+    // quads has none, and half its faces take each colour.
+    let r = a.call(json!({"op": "select", "query": "checkerboard"}));
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("2-coloured"),
+        "{r}"
+    );
+    a.ok(json!({"op": "primitive", "spec": "@torus:8:6"}));
+    let r = a.ok(json!({"op": "select", "query": "checkerboard"}));
+    assert_eq!(faces(&r), 24, "{r}");
+}
+
+#[test]
+fn toolbox_refusals_are_clear_and_change_nothing() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@plane"}));
+    let open = vef(&a);
+    for (req, says) in [
+        (json!({"op": "remesh", "scheme": "dual"}), "boundary"),
+        (
+            json!({"op": "remesh", "scheme": "nope"}),
+            "unknown remeshing scheme",
+        ),
+        (json!({"op": "remesh"}), "\"scheme\""),
+        (
+            json!({"op": "remesh", "scheme": "corner-cutting", "params": {"alpha": 1}}),
+            "corner_cutting_alpha",
+        ),
+        (
+            json!({"op": "remesh", "scheme": "vertex-truncation",
+                   "params": {"vertex_truncation_offset": 0.9}}),
+            "(0, 0.5]",
+        ),
+        (
+            json!({"op": "remesh", "scheme": "loop", "levels": 9}),
+            "levels",
+        ),
+        (json!({"op": "extrude", "faces": []}), "select the faces"),
+        (json!({"op": "extrude", "faces": [99999]}), "does not exist"),
+        (
+            json!({"op": "extrude", "faces": [0], "kind": "sideways"}),
+            "unknown kind",
+        ),
+        (json!({"op": "extrude", "faces": [0], "scale": 0}), "scale"),
+        (json!({"op": "extrude", "faces": "all"}), "list"),
+        (json!({"op": "wireframe", "thickness": -1}), "thickness"),
+        (json!({"op": "wireframe"}), "\"thickness\""),
+        (
+            json!({"op": "wireframe", "thickness": 0.1, "columns": 2}),
+            "columns",
+        ),
+        (json!({"op": "cut", "distance": 0.1}), "select the vertices"),
+        (
+            json!({"op": "cut", "vertices": [0], "distance": 99}),
+            "middle of edge",
+        ),
+        (json!({"op": "cut", "vertices": [0]}), "\"distance\""),
+        (
+            json!({"op": "truncate", "edges": [99999], "fraction": 0.2}),
+            "does not exist",
+        ),
+        (json!({"op": "tool", "tool": "melt"}), "unknown tool"),
+        (
+            json!({"op": "tool", "tool": "split-valence-2", "distance": -1}),
+            "distance",
+        ),
+        (
+            json!({"op": "select", "query": "edge-loop"}),
+            "select one or more edges",
+        ),
+        (json!({"op": "select", "query": "zigzag"}), "unknown query"),
+        (
+            json!({"op": "select", "query": "grow", "version": 1}),
+            "changed since",
+        ),
+    ] {
+        let r = a.call(req.clone());
+        assert_eq!(r["type"], "error", "{req} -> {r}");
+        let m = r["message"].as_str().unwrap_or("");
+        assert!(m.contains(says), "{req}: {m:?} does not say {says:?}");
+        assert_eq!(vef(&a), open, "{req} changed the mesh");
+    }
+    // An error naming a face names it by the number the page shows: face
+    // 1 of a tetrahedron is a triangle, so no face loop passes through it.
+    a.ok(json!({"op": "primitive", "spec": "@tetrahedron"}));
+    let r = a.call(json!({"op": "select", "query": "face-loop", "faces": [1]}));
+    assert_eq!(
+        r["message"],
+        "face-loop: face 1 is not a quadrilateral, so a face loop cannot pass through it",
+        "{r}"
+    );
+    // The sculpt workspace has no toolbox.
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    let r = a.call(json!({"op": "extrude", "faces": [0]}));
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("model workspace"),
+        "{r}"
+    );
+    let r = a.call(json!({"op": "remesh", "scheme": "loop"}));
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("model workspace"),
+        "{r}"
+    );
+}
+
+#[test]
+fn a_long_remesh_reports_progress_and_cancels() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    a.next += 1;
+    let id = a.next;
+    a.socket
+        .send(Message::text(
+            json!({"id": id, "op": "remesh", "scheme": "loop", "levels": 8}).to_string(),
+        ))
+        .expect("send");
+    a.next += 1;
+    a.socket
+        .send(Message::text(
+            json!({"id": a.next, "op": "cancel"}).to_string(),
+        ))
+        .expect("send");
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let mut answer = None;
+    while Instant::now() < deadline && answer.is_none() {
+        if let Some(v) = a.pump_one()
+            && v["id"] == json!(id)
+        {
+            answer = Some(v);
+        }
+    }
+    let v = answer.expect("an answer to the remesh");
+    assert_eq!(v["type"], "error", "{v}");
+    assert_eq!(v["cancelled"], true, "{v}");
+    assert_eq!(vef(&a), [8, 12, 6], "a cancelled remesh changes nothing");
+    let r = a.ok(json!({"op": "remesh", "scheme": "loop", "levels": 2}));
+    assert!(r["message"].as_str().unwrap_or("").contains("faces"), "{r}");
+}

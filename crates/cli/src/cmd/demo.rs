@@ -1,8 +1,10 @@
 //! `holey demo`: the main job on built-in defaults. It recreates the kinds
 //! of models the thesis shows — Sierpinski polyhedra, Menger sponges,
 //! rinds with punched and peeled holes, curved and twisted handles, a cup,
-//! and their smoothed versions — from the built-in primitives only, writes
-//! each as `.obj`, `.dlfl` and `.png`, and an `index.html` gallery.
+//! and their smoothed versions — and a row of TopMod's toolbox (issue 18:
+//! a smoothed wireframe dodecahedron, extruded stellations, a honeycomb
+//! sphere) from the built-in primitives only, writes each as `.obj`,
+//! `.dlfl` and `.png`, and an `index.html` gallery.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -12,12 +14,14 @@ use anyhow::{Context, Result, anyhow};
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, FaceId, Mesh};
 use holey_io::WriteOptions;
+use holey_model::extrude::{ExtrudeParams, extrude_face, stellate_face};
 use holey_model::handle::{HandleParams, create_handle};
 use holey_model::menger::{MengerParams, Thickness, menger};
 use holey_model::rind::Rind;
 use holey_model::sierpinski::sierpinski;
+use holey_model::wireframe::wireframe;
 use holey_render::{RenderOptions, View};
-use holey_subdiv::{catmull_clark, doo_sabin};
+use holey_subdiv::{RemeshParams, RemeshScheme, catmull_clark, doo_sabin, remesh};
 
 use crate::cmd::render::write_kernel_picture;
 use crate::output::write_kernel;
@@ -217,6 +221,40 @@ fn union_of(a: &str, b: &str, shift: DVec3) -> Result<Mesh> {
     Ok(to_dlfl(&crate::tri::compact(&out.mesh), ImportOptions::default())?.mesh)
 }
 
+/// TopMod's wireframe of the dodecahedron (every edge a tube of square
+/// section: genus E − V + 1 = 11), smoothed by Catmull–Clark.
+fn wireframe_dodecahedron(levels: usize) -> Result<Mesh> {
+    let frame = wireframe(&primitive("@dodecahedron")?, 0.22)?;
+    Ok(catmull_clark(&frame, levels)?)
+}
+
+/// Every face of `spec` extruded (moved out and shrunk) and its top
+/// stellated into a spike.
+fn extruded_stellations(spec: &str, distance: f64, scale: f64, spike: f64) -> Result<Mesh> {
+    let mut m = primitive(spec)?;
+    let faces: Vec<FaceId> = m.faces().collect();
+    let params = ExtrudeParams {
+        distance,
+        scale,
+        ..ExtrudeParams::default()
+    };
+    for f in faces {
+        let top = extrude_face(&mut m, f, &params)?.top;
+        stellate_face(&mut m, top, spike)?;
+    }
+    Ok(m)
+}
+
+/// A honeycomb on a sphere: the dual of a geodesic sphere (hexagons and
+/// twelve pentagons, every vertex of valence 3) remeshed by TopMod's
+/// honeycomb scheme, which shrinks every face to a copy and makes every
+/// vertex a `2·3`-gon: hexagons everywhere but the twelve pentagons.
+fn honeycomb_sphere() -> Result<Mesh> {
+    let params = RemeshParams::default();
+    let dual = remesh(&primitive("@geodesic:3")?, RemeshScheme::Dual, &params, 1)?;
+    Ok(remesh(&dual, RemeshScheme::Honeycomb, &params, 1)?)
+}
+
 fn models() -> Vec<Model> {
     let iso = View::Iso;
     let tetra_view = View::Direction(DVec3::new(1.0, 0.25, 0.35));
@@ -355,6 +393,56 @@ fn models() -> Vec<Model> {
             view: View::Direction(DVec3::new(0.3, -1.0, 0.6)),
             edges: false,
             smooth: true,
+        },
+        Model {
+            name: "wireframe-dodecahedron",
+            title: "Wireframe dodecahedron",
+            recipe: "@dodecahedron, TopMod's wireframe 0.22 thick: every edge a tube, genus E − V + 1 = 11",
+            build: || wireframe_dodecahedron(0),
+            view: iso,
+            edges: true,
+            smooth: false,
+        },
+        Model {
+            name: "wireframe-dodecahedron-smoothed",
+            title: "Smoothed wireframe dodecahedron",
+            recipe: "the wireframe dodecahedron, 2 Catmull–Clark levels",
+            build: || wireframe_dodecahedron(2),
+            view: iso,
+            edges: false,
+            smooth: true,
+        },
+        Model {
+            name: "extruded-stellations",
+            title: "Extruded stellations",
+            recipe: "@dodecahedron, every face extruded 0.3 (scaled 0.55) and its top stellated 1.1 high",
+            build: || extruded_stellations("@dodecahedron", 0.3, 0.55, 1.1),
+            view: iso,
+            edges: true,
+            smooth: false,
+        },
+        Model {
+            name: "extruded-stellations-smoothed",
+            title: "Smoothed extruded stellations",
+            recipe: "@icosahedron, every face extruded 0.6 (scaled 0.45) and its top stellated 0.8 high, then 2 Catmull–Clark levels",
+            build: || {
+                Ok(catmull_clark(
+                    &extruded_stellations("@icosahedron", 0.6, 0.45, 0.8)?,
+                    2,
+                )?)
+            },
+            view: iso,
+            edges: false,
+            smooth: true,
+        },
+        Model {
+            name: "honeycomb-sphere",
+            title: "Honeycomb sphere",
+            recipe: "@geodesic:3, its dual (hexagons and 12 pentagons), then TopMod's honeycomb remeshing",
+            build: honeycomb_sphere,
+            view: iso,
+            edges: true,
+            smooth: false,
         },
         Model {
             name: "union-two-tori",

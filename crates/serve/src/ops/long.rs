@@ -5,16 +5,27 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use holey_dlfl::Mesh;
+use holey_dlfl::{FaceId, Mesh, VertexId};
 use holey_model::menger::{MengerParams, menger_capped};
 use holey_model::sierpinski::sierpinski_capped;
-use holey_subdiv::{Scheme, subdivide_capped};
+use holey_model::tools::{
+    PlanarizeParams, cleanup_two_gons, make_spherical, planarize_faces,
+    remove_valence_two_vertices, split_valence_two_vertices,
+};
+use holey_model::wireframe::{ColumnParams, columns, wireframe};
+use holey_subdiv::{RemeshParams, RemeshScheme, Scheme, remesh_capped, subdivide_capped};
 use serde_json::{Value, json};
 
-use super::fields::index_field;
+use super::fields::{index_field, num_field, str_field};
+use super::remesh::read_request;
+use super::toolbox::{counts, faces_of, plain_ids, vertices_of};
 use super::{Out, Shared};
-use crate::doc::Content;
+use crate::doc::{Content, Document};
+use crate::frame::ModelIndex;
 use crate::{ConnId, ServeError};
+
+/// The most sides a column may have.
+pub(super) const MAX_COLUMN_SIDES: usize = 64;
 
 impl Shared {
     /// Starts a long operation on a worker thread.
@@ -25,7 +36,7 @@ impl Shared {
         op: &str,
         req: &Value,
     ) {
-        let started = (|| -> Result<(Mesh, Job, String), ServeError> {
+        let started = (|| -> Result<Started, ServeError> {
             let mut doc = self.doc();
             if let Some((_, what)) = &doc.busy {
                 return Err(ServeError::Refused(format!("busy: {what} is running")));
@@ -36,6 +47,9 @@ impl Shared {
                 ));
             }
             let mesh = doc.model(op)?.clone();
+            // The ids in the library's messages are named as the picture
+            // the request was made on names them.
+            let index = doc.index().clone();
             let level = |name: &str, max: usize| -> Result<usize, ServeError> {
                 let v = index_field(req, name)?;
                 if v > max {
@@ -62,6 +76,17 @@ impl Shared {
                     };
                     (Job::Menger(n, exact), what)
                 }
+                "remesh" => {
+                    let (scheme, params, n) = read_request(req)?;
+                    let what = if n == 1 {
+                        format!("{scheme} remeshing")
+                    } else {
+                        format!("{scheme} remeshing ×{n}")
+                    };
+                    (Job::Remesh(scheme, Box::new(params), n), what)
+                }
+                "wireframe" => wireframe_job(&mesh, req, self.config.max_faces)?,
+                "tool" => tool_job(&doc, req)?,
                 _ => {
                     let n = level("levels", 8)?;
                     let scheme = match req.get("scheme").and_then(Value::as_str) {
@@ -78,36 +103,44 @@ impl Shared {
             };
             doc.busy = Some((conn, what.clone()));
             self.publish_state(&doc);
-            Ok((mesh, job, what))
+            Ok(Started {
+                mesh,
+                job,
+                what,
+                index,
+            })
         })();
-        let (mesh, job, what) = match started {
+        let started = match started {
             Ok(s) => s,
             Err(e) => return self.reply(conn, id.as_ref(), Err(e)),
         };
         let flag = Arc::new(AtomicBool::new(false));
         *self.cancel.lock().unwrap_or_else(|p| p.into_inner()) = Some(Arc::clone(&flag));
         let shared = Arc::clone(self);
-        std::thread::spawn(move || shared.run_long(conn, id, mesh, job, what, flag));
+        std::thread::spawn(move || shared.run_long(conn, id, started, flag));
     }
 
-    fn run_long(
-        &self,
-        conn: ConnId,
-        id: Option<Value>,
-        mesh: Mesh,
-        job: Job,
-        what: String,
-        flag: Arc<AtomicBool>,
-    ) {
+    fn run_long(&self, conn: ConnId, id: Option<Value>, started: Started, flag: Arc<AtomicBool>) {
+        let Started {
+            mesh,
+            job,
+            what,
+            index,
+        } = started;
         let max_faces = self.config.max_faces;
         let (tx, rx) = mpsc::channel();
         let progress = tx.clone();
         // The worker owns its copy; if cancelled, its result is dropped
         // when it finishes.
         std::thread::spawn(move || {
-            let result = job.run(mesh, max_faces, &|fraction, stage: String| {
-                let _ = progress.send(Step::Progress(fraction, stage));
-            });
+            let result = job
+                .run(mesh, max_faces, &|fraction, stage: String| {
+                    let _ = progress.send(Step::Progress(fraction, stage));
+                })
+                .map_err(|e| match e {
+                    ServeError::Refused(m) => ServeError::Refused(plain_ids(&m, &index)),
+                    other => other,
+                });
             let _ = tx.send(Step::Done(Box::new(result)));
         });
         let start = Instant::now();
@@ -140,12 +173,12 @@ impl Shared {
         let mut doc = self.doc();
         doc.busy = None;
         let reply = match result {
-            Ok(mesh) => {
-                let faces = mesh.face_count();
+            Ok((mesh, note)) => {
+                let faces = mesh.face_count() - mesh.hole_count();
                 doc.commit(Content::Model(mesh));
                 self.publish(&doc);
                 Ok(
-                    json!({"message": format!("{what}: {faces} faces in {:.2} s", start.elapsed().as_secs_f64())}),
+                    json!({"message": format!("{what}: {faces} faces{note} in {:.2} s", start.elapsed().as_secs_f64())}),
                 )
             }
             Err(e) => {
@@ -163,9 +196,19 @@ impl Shared {
     }
 }
 
+/// A long operation about to run: a copy of the model, the job, its
+/// name, and the display indices of the picture it was asked on (for the
+/// library's messages).
+struct Started {
+    mesh: Mesh,
+    job: Job,
+    what: String,
+    index: ModelIndex,
+}
+
 enum Step {
     Progress(Option<f64>, String),
-    Done(Box<Result<Mesh, ServeError>>),
+    Done(Box<Result<(Mesh, String), ServeError>>),
 }
 
 /// A long operation.
@@ -173,6 +216,106 @@ pub(super) enum Job {
     Sierpinski(usize),
     Menger(usize, bool),
     Subdivide(Scheme, usize),
+    /// A remeshing scheme, its parameters, levels.
+    Remesh(RemeshScheme, Box<RemeshParams>, usize),
+    /// TopMod's wireframe, tubes this thick.
+    Wireframe(f64),
+    /// Columns of these sides and radius.
+    Columns(ColumnParams),
+    /// A clean-up tool.
+    Tool(Tool),
+}
+
+/// The tools of TopMod's Tools menu.
+pub(super) enum Tool {
+    /// Planarize these faces (all when empty).
+    Planarize(Vec<FaceId>),
+    /// Project these vertices (all when empty) onto their sphere.
+    Spherical(Vec<VertexId>),
+    /// Merge every two-gon's edges.
+    CleanupTwoGons,
+    /// Remove the vertices of valence 2.
+    RemoveValenceTwo,
+    /// Split the vertices of valence 2, this far apart.
+    SplitValenceTwo(f64),
+}
+
+/// `wireframe`: `thickness`, and `columns` (sides, 0 or absent for the
+/// wireframe) whose radius is the thickness. The output's faces are
+/// known from the counts (wireframe.rs) and checked against the cap
+/// before anything is built.
+fn wireframe_job(mesh: &Mesh, req: &Value, max_faces: usize) -> Result<(Job, String), ServeError> {
+    let thickness = num_field(req, "thickness")?;
+    let sides = match req.get("columns") {
+        None | Some(Value::Null) => 0,
+        Some(v) => v
+            .as_u64()
+            .and_then(|n| usize::try_from(n).ok())
+            .filter(|n| *n == 0 || (3..=MAX_COLUMN_SIDES).contains(n))
+            .ok_or_else(|| {
+                ServeError::BadRequest(format!(
+                    "\"columns\" must be 0 (the wireframe) or the sides of each column, 3 to {MAX_COLUMN_SIDES}"
+                ))
+            })?,
+    };
+    let [v, e, _] = counts(mesh).map(|n| n as usize);
+    // Wireframe: F' = 4E + 2V. Columns: F' ≤ nE + 2E + 2V (Σ(k + 2) over
+    // the vertices is at most 2E + 2V).
+    let faces = if sides == 0 {
+        4 * e + 2 * v
+    } else {
+        sides * e + 2 * e + 2 * v
+    };
+    if faces > max_faces {
+        return Err(ServeError::Refused(format!(
+            "that would make about {faces} faces; the modeler's limit is {max_faces}"
+        )));
+    }
+    Ok(if sides == 0 {
+        (Job::Wireframe(thickness), format!("wireframe {thickness}"))
+    } else {
+        (
+            Job::Columns(ColumnParams {
+                sides,
+                radius: thickness,
+            }),
+            format!("{sides}-sided columns {thickness}"),
+        )
+    })
+}
+
+/// `tool`: `tool` and what it acts on (`faces` for planarize, `faces` or
+/// `vertices` for spherical, `distance` for splitting valence 2).
+fn tool_job(doc: &Document, req: &Value) -> Result<(Job, String), ServeError> {
+    doc.check_version(req)?;
+    let name = str_field(req, "tool")?;
+    let tool = match name {
+        "planarize" => Tool::Planarize(faces_of(doc, req, "faces")?),
+        "spherical" => {
+            let mut vs = vertices_of(doc, req, "vertices")?;
+            let mesh = doc.model("spherical")?;
+            for f in faces_of(doc, req, "faces")? {
+                let ring = mesh
+                    .face_vertices(f)
+                    .map_err(|e| ServeError::Refused(e.to_string()))?;
+                for v in ring {
+                    if !vs.contains(&v) {
+                        vs.push(v);
+                    }
+                }
+            }
+            Tool::Spherical(vs)
+        }
+        "cleanup" => Tool::CleanupTwoGons,
+        "remove-valence-2" => Tool::RemoveValenceTwo,
+        "split-valence-2" => Tool::SplitValenceTwo(num_field(req, "distance")?),
+        other => {
+            return Err(ServeError::BadRequest(format!(
+                "unknown tool {other:?} (planarize, spherical, cleanup, remove-valence-2, split-valence-2)"
+            )));
+        }
+    };
+    Ok((Job::Tool(tool), name.replace('-', " ")))
 }
 
 impl Job {
@@ -181,13 +324,14 @@ impl Job {
         mut mesh: Mesh,
         max_faces: usize,
         progress: &dyn Fn(Option<f64>, String),
-    ) -> Result<Mesh, ServeError> {
+    ) -> Result<(Mesh, String), ServeError> {
         let refused = |e: String| ServeError::Refused(e);
+        let done = |mesh: Mesh| Ok((mesh, String::new()));
         match self {
             Job::Sierpinski(n) => {
                 progress(None, format!("Sierpinski level {n}"));
                 sierpinski_capped(&mut mesh, n, max_faces).map_err(|e| refused(e.to_string()))?;
-                Ok(mesh)
+                done(mesh)
             }
             Job::Menger(n, exact) => {
                 progress(None, format!("Menger level {n}"));
@@ -197,7 +341,7 @@ impl Job {
                     ..MengerParams::default()
                 };
                 menger_capped(&mut mesh, &params, max_faces).map_err(|e| refused(e.to_string()))?;
-                Ok(mesh)
+                done(mesh)
             }
             Job::Subdivide(scheme, n) => {
                 // Level by level: each costs about four times the last.
@@ -212,8 +356,86 @@ impl Job {
                         .map_err(|e| refused(e.to_string()))?;
                     done += 4f64.powi(k as i32);
                 }
-                Ok(mesh)
+                Ok((mesh, String::new()))
             }
+            Job::Remesh(scheme, params, n) => {
+                // Level by level, so that progress and cancel work between
+                // them; the cost of a level is about its output, which
+                // grows about fourfold per level for most schemes.
+                let total: f64 = (0..n).map(|k| 4f64.powi(k as i32)).sum();
+                let mut finished = 0.0;
+                for k in 0..n {
+                    progress(
+                        Some(finished / total.max(1.0)),
+                        format!("{scheme}: level {} of {n}", k + 1),
+                    );
+                    mesh = remesh_capped(&mesh, scheme, &params, 1, max_faces).map_err(|e| {
+                        refused(if n == 1 {
+                            e.to_string()
+                        } else {
+                            format!("level {} of {n}: {e}", k + 1)
+                        })
+                    })?;
+                    finished += 4f64.powi(k as i32);
+                }
+                done(mesh)
+            }
+            Job::Wireframe(thickness) => {
+                progress(None, "wireframe".into());
+                let out = wireframe(&mesh, thickness).map_err(|e| refused(e.to_string()))?;
+                done(out)
+            }
+            Job::Columns(params) => {
+                progress(None, format!("{}-sided columns", params.sides));
+                let out = columns(&mesh, &params).map_err(|e| refused(e.to_string()))?;
+                done(out)
+            }
+            Job::Tool(tool) => tool.run(mesh, progress),
         }
+    }
+}
+
+impl Tool {
+    fn run(
+        self,
+        mut mesh: Mesh,
+        progress: &dyn Fn(Option<f64>, String),
+    ) -> Result<(Mesh, String), ServeError> {
+        let refused = |e: &dyn std::fmt::Display| ServeError::Refused(e.to_string());
+        let note = match self {
+            Tool::Planarize(faces) => {
+                progress(None, "planarizing".into());
+                let r = planarize_faces(&mut mesh, &faces, &PlanarizeParams::default())
+                    .map_err(|e| refused(&e))?;
+                format!(
+                    " ({} faces off their planes by {:.2e} → {:.2e} of the edge length after {} iterations{})",
+                    r.faces,
+                    r.before,
+                    r.after,
+                    r.iterations,
+                    if r.converged { "" } else { ", not converged" }
+                )
+            }
+            Tool::Spherical(vertices) => {
+                let fit = make_spherical(&mut mesh, &vertices).map_err(|e| refused(&e))?;
+                format!(
+                    " (on the sphere of radius {:.4} about ({:.3}, {:.3}, {:.3}))",
+                    fit.radius, fit.centre.x, fit.centre.y, fit.centre.z
+                )
+            }
+            Tool::CleanupTwoGons => {
+                let n = cleanup_two_gons(&mut mesh);
+                format!(" ({n} two-gons removed)")
+            }
+            Tool::RemoveValenceTwo => {
+                let n = remove_valence_two_vertices(&mut mesh).map_err(|e| refused(&e))?;
+                format!(" ({n} vertices of valence 2 removed)")
+            }
+            Tool::SplitValenceTwo(d) => {
+                let n = split_valence_two_vertices(&mut mesh, d).map_err(|e| refused(&e))?;
+                format!(" ({n} vertices of valence 2 split)")
+            }
+        };
+        Ok((mesh, note))
     }
 }

@@ -10,8 +10,11 @@
 //! dispatch; one file per kind of request: `document` (primitives,
 //! workspaces, undo and redo, repairs, settings), `model` (the thesis's
 //! edits), `rind` (rind modeling), `sculpt` (strokes), `long` (long
-//! operations), `files` (uploads and downloads), and `fields` (reading a
-//! request).
+//! operations: the fractals, subdivision, remeshing, wireframe and the
+//! clean-up tools), `remesh` (TopMod's remeshing schemes and their
+//! parameters), `toolbox` (extrusions, cuts and truncation of the
+//! selection), `select` (selection queries), `files` (uploads and
+//! downloads), and `fields` (reading a request).
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -30,8 +33,11 @@ mod fields;
 mod files;
 mod long;
 mod model;
+mod remesh;
 mod rind;
 mod sculpt;
+mod select;
+mod toolbox;
 
 /// A message queued for one connection.
 #[derive(Clone, Debug)]
@@ -175,7 +181,7 @@ impl Shared {
         let id = req.get("id").cloned();
         let op = req.get("op").and_then(Value::as_str).unwrap_or("");
         let result = match op {
-            "sierpinski" | "menger" | "subdivide" => {
+            "sierpinski" | "menger" | "subdivide" | "remesh" | "wireframe" | "tool" => {
                 return self.start_long(conn, id, op, &req);
             }
             "cancel" => self.cancel(),
@@ -184,6 +190,7 @@ impl Shared {
                 Ok(json!({}))
             }
             "primitives" => Ok(primitives()),
+            "remesh_schemes" => Ok(remesh::schemes_json()),
             _ => self.edit(conn, op, &req),
         };
         self.reply(conn, id.as_ref(), result);
@@ -218,6 +225,9 @@ impl Shared {
             "workspace" => self.switch_workspace(doc, req),
             "undo" | "redo" => self.undo_redo(doc, op),
             "insert_edge" | "delete_edge" | "handle" => self.model_edit(conn, doc, op, req),
+            "extrude" => self.extrude(doc, req),
+            "cut" | "truncate" => self.cut_or_truncate(doc, op, req),
+            "select" => self.select(doc, req),
             "rind_begin" => self.rind_begin(doc, req),
             "rind_punch" => self.rind_punch(doc, req),
             "rind_end" => self.rind_end(doc, req),
