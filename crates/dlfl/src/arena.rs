@@ -5,6 +5,9 @@
 //! freed slots are kept on a stack for reuse. Iteration visits live slots in
 //! index order, so it is deterministic.
 
+use crate::error::{Error, Result};
+use crate::ids::EntityKind;
+
 #[derive(Clone, Debug)]
 pub(crate) struct Arena<T> {
     values: Vec<T>,
@@ -84,6 +87,21 @@ impl<T: Copy> Arena<T> {
     #[inline]
     pub(crate) fn matches(&self, i: u32, generation: u32) -> bool {
         generation & 1 == 1 && self.generations.get(i as usize) == Some(&generation)
+    }
+
+    /// Slot `index` when it is live with generation `generation` (a handle
+    /// to a `kind` entity); otherwise the handle is stale.
+    #[inline]
+    pub(crate) fn check(&self, kind: EntityKind, index: u32, generation: u32) -> Result<u32> {
+        if self.matches(index, generation) {
+            Ok(index)
+        } else {
+            Err(Error::Stale {
+                kind,
+                index,
+                generation,
+            })
+        }
     }
 
     #[inline]

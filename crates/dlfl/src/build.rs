@@ -5,6 +5,7 @@
 //! arrays out directly (no operator calls), then validates.
 
 use glam::DVec3;
+use holey_mesh::NonFinite;
 
 use crate::arena::Arena;
 use crate::mesh::{Corner, Edge, Face, Mesh, NONE, Vertex};
@@ -82,18 +83,10 @@ pub enum BuildError {
         /// Number of vertices (length of `positions`).
         count: usize,
     },
-    /// A vertex position has a NaN or infinite coordinate.
-    #[error("vertex {vertex} has a non-finite position ({x}, {y}, {z})")]
-    NonFinite {
-        /// Index of the vertex in `positions`.
-        vertex: usize,
-        /// Its x coordinate as given.
-        x: f64,
-        /// Its y coordinate as given.
-        y: f64,
-        /// Its z coordinate as given.
-        z: f64,
-    },
+    /// A vertex position has a NaN or infinite coordinate (the first such
+    /// vertex, by its index in `positions`).
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// A vertex is not referred to by any face's corners.
     #[error("vertex {vertex} is not used by any face")]
     UnusedVertex {
@@ -224,15 +217,8 @@ impl Mesh {
         }
 
         let mut vertices = Vec::with_capacity(nv);
-        for (i, p) in raw.positions.iter().enumerate() {
-            if !p.is_finite() {
-                return Err(BuildError::NonFinite {
-                    vertex: i,
-                    x: p.x,
-                    y: p.y,
-                    z: p.z,
-                });
-            }
+        NonFinite::check("vertex", &raw.positions)?;
+        for p in &raw.positions {
             vertices.push(Vertex {
                 position: *p,
                 corner: NONE,

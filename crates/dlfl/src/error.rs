@@ -1,5 +1,7 @@
 //! Typed errors of the kernel. Every failing operation leaves the mesh unchanged.
 
+use holey_mesh::NonFinite;
+
 use crate::ids::{CornerId, EdgeId, EntityKind, FaceId, VertexId};
 
 /// Why a kernel operation refused its operands. The mesh is unchanged.
@@ -43,16 +45,10 @@ pub enum Error {
     #[error("both half-edges belong to edge {0}")]
     SameEdge(EdgeId),
     /// A vertex position has a NaN or infinite coordinate, whether given (a
-    /// new or moved vertex) or computed (a point placed along an edge).
-    #[error("position ({x}, {y}, {z}) is not finite")]
-    NonFinite {
-        /// x coordinate of the refused position.
-        x: f64,
-        /// y coordinate of the refused position.
-        y: f64,
-        /// z coordinate of the refused position.
-        z: f64,
-    },
+    /// new or moved vertex) or computed (a point placed along an edge); it
+    /// has no index, only its coordinates.
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// The faces given to reverse are not whole components: the named face
     /// of the set shares an edge with a face outside it.
     #[error("face set is not a union of whole components: face {0} borders a face outside the set")]

@@ -55,6 +55,7 @@ mod properties;
 pub use build::{BuildError, RawMesh};
 pub use error::{Error, Result};
 pub use glam::DVec3;
+pub use holey_mesh::NonFinite;
 pub use ids::{CornerId, EdgeId, EntityKind, FaceId, VertexId};
 pub use info::dlfl_info;
 pub use mesh::{FaceCorners, Mesh, VertexCorners, VertexRotation};

@@ -1,6 +1,7 @@
 //! The DLFL entities, their accessors, and the four fundamental operators.
 
 use glam::DVec3;
+use holey_mesh::NonFinite;
 
 use crate::arena::Arena;
 use crate::error::{Error, Result};
@@ -97,51 +98,21 @@ impl Mesh {
 
     #[inline]
     pub(crate) fn check_vertex(&self, v: VertexId) -> Result<u32> {
-        if self.vertices.matches(v.index, v.generation) {
-            Ok(v.index)
-        } else {
-            Err(Error::Stale {
-                kind: EntityKind::Vertex,
-                index: v.index,
-                generation: v.generation,
-            })
-        }
+        self.vertices
+            .check(EntityKind::Vertex, v.index, v.generation)
     }
     #[inline]
     pub(crate) fn check_edge(&self, e: EdgeId) -> Result<u32> {
-        if self.edges.matches(e.index, e.generation) {
-            Ok(e.index)
-        } else {
-            Err(Error::Stale {
-                kind: EntityKind::Edge,
-                index: e.index,
-                generation: e.generation,
-            })
-        }
+        self.edges.check(EntityKind::Edge, e.index, e.generation)
     }
     #[inline]
     pub(crate) fn check_face(&self, f: FaceId) -> Result<u32> {
-        if self.faces.matches(f.index, f.generation) {
-            Ok(f.index)
-        } else {
-            Err(Error::Stale {
-                kind: EntityKind::Face,
-                index: f.index,
-                generation: f.generation,
-            })
-        }
+        self.faces.check(EntityKind::Face, f.index, f.generation)
     }
     #[inline]
     pub(crate) fn check_corner(&self, c: CornerId) -> Result<u32> {
-        if self.corners.matches(c.index, c.generation) {
-            Ok(c.index)
-        } else {
-            Err(Error::Stale {
-                kind: EntityKind::Corner,
-                index: c.index,
-                generation: c.generation,
-            })
-        }
+        self.corners
+            .check(EntityKind::Corner, c.index, c.generation)
     }
 
     #[inline]
@@ -536,11 +507,7 @@ pub(crate) fn check_finite(p: DVec3) -> Result<()> {
     if p.is_finite() {
         Ok(())
     } else {
-        Err(Error::NonFinite {
-            x: p.x,
-            y: p.y,
-            z: p.z,
-        })
+        Err(Error::NonFinite(NonFinite::position(p)))
     }
 }
 

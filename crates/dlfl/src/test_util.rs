@@ -47,27 +47,11 @@ pub(crate) fn tetrahedron() -> Mesh {
     )
 }
 
+/// The unit cube of [`holey_testkit::unit_cube`].
 pub(crate) fn cube() -> Mesh {
-    from_polygons(
-        &[
-            [0., 0., 0.],
-            [1., 0., 0.],
-            [1., 1., 0.],
-            [0., 1., 0.],
-            [0., 0., 1.],
-            [1., 0., 1.],
-            [1., 1., 1.],
-            [0., 1., 1.],
-        ],
-        &[
-            &[0, 3, 2, 1],
-            &[4, 5, 6, 7],
-            &[0, 1, 5, 4],
-            &[2, 3, 7, 6],
-            &[1, 2, 6, 5],
-            &[0, 4, 7, 3],
-        ],
-    )
+    let (p, quads) = holey_testkit::unit_cube();
+    let refs: Vec<&[u32]> = quads.iter().map(|q| q.as_slice()).collect();
+    from_polygons(&p, &refs)
 }
 
 /// An n×m quad torus.

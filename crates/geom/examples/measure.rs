@@ -9,52 +9,11 @@ use holey_geom::{
     Sign, SymPoint, edge_triangle_point, order_on_segment, orient3d, orient3d_sos,
     segment_triangle_intersect, triangle_triangle_segment, triangle_triangle_triangle_point,
 };
+use holey_testkit::Rng;
 use std::time::Instant;
 
-struct Lcg(u64);
-impl Lcg {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-fn uv_sphere(nu: usize, nv: usize, c: DVec3, r: f64, base: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-    let mut pos = vec![c + DVec3::Z * r];
-    for j in 1..nv - 1 {
-        let th = std::f64::consts::PI * j as f64 / (nv - 1) as f64;
-        for i in 0..nu {
-            let ph = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
-            pos.push(c + DVec3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()) * r);
-        }
-    }
-    pos.push(c - DVec3::Z * r);
-    let south = base + (pos.len() - 1) as u32;
-    let ring = |j: usize, i: usize| base + (1 + (j - 1) * nu + (i % nu)) as u32;
-    let mut tris = Vec::new();
-    for i in 0..nu {
-        tris.push([base, ring(1, i), ring(1, i + 1)]);
-    }
-    for j in 1..nv - 2 {
-        for i in 0..nu {
-            let (a, b, c2, d) = (
-                ring(j, i),
-                ring(j + 1, i),
-                ring(j + 1, i + 1),
-                ring(j, i + 1),
-            );
-            tris.push([a, b, c2]);
-            tris.push([a, c2, d]);
-        }
-    }
-    for i in 0..nu {
-        tris.push([ring(nv - 2, i), south, ring(nv - 2, i + 1)]);
-    }
-    (pos, tris)
-}
+#[path = "../benches/scenes/mod.rs"]
+mod scenes;
 
 fn best_of<T>(n: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     let mut best = f64::INFINITY;
@@ -70,7 +29,7 @@ fn best_of<T>(n: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 
 fn main() {
     // Orientation throughput and fallback rates.
-    let mut r = Lcg(1);
+    let mut r = Rng::new(1);
     let n = 4_000_000;
     let rnd: Vec<DVec3> = (0..n)
         .map(|_| DVec3::new(r.unit(), r.unit(), r.unit()))
@@ -217,14 +176,8 @@ fn main() {
     );
 
     // Two spheres of 262,144 triangles each.
-    let (mut p, mut tr) = uv_sphere(512, 258, DVec3::ZERO, 1.0, 0);
-    let (p2, t2) = uv_sphere(512, 258, DVec3::new(1.2, 0.1, 0.05), 1.0, p.len() as u32);
-    p.extend(p2);
-    tr.extend(t2);
-    let tb: Vec<Aabb> = tr
-        .iter()
-        .map(|x| Aabb::from_points(&[p[x[0] as usize], p[x[1] as usize], p[x[2] as usize]]))
-        .collect();
+    let (p, tr) = scenes::two_spheres();
+    let tb = scenes::triangle_boxes(&p, &tr);
     let (tbuild, bvh) = best_of(5, || Bvh::build(&tb).expect("finite"));
     let (tq, pairs) = best_of(5, || bvh.self_overlaps().len());
     println!(
@@ -235,16 +188,7 @@ fn main() {
     );
 
     // CCD union: sphere B sweeps into sphere A.
-    let (mut p, mut tr) = uv_sphere(512, 258, DVec3::ZERO, 1.0, 0);
-    let (p2, t2) = uv_sphere(512, 258, DVec3::new(2.5, 0.1, 0.05), 1.0, p.len() as u32);
-    let na = p.len();
-    p.extend(p2);
-    tr.extend(t2);
-    let end: Vec<DVec3> = p
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| if i >= na { x - DVec3::X * 1.3 } else { x })
-        .collect();
+    let (p, end, tr) = scenes::sphere_sweep();
     stats::reset();
     let (t, rep) = best_of(3, || {
         vertex_parities(&p, &end, &tr, &CcdOptions::default()).expect("valid")

@@ -30,7 +30,7 @@
 //! edits such as a sculpting brush. Refitting keeps the topology, so the
 //! tree degrades if primitives move far; rebuild then.
 
-use crate::error::GeomError;
+use crate::error::{GeomError, NonFinite};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -262,7 +262,7 @@ impl Bvh {
             return Err(GeomError::TooMany(n));
         }
         if let Some(index) = boxes.iter().position(|b| !b.is_finite()) {
-            return Err(GeomError::NonFinite { index });
+            return Err(NonFinite::at("box", index).into());
         }
         if n == 0 {
             return Ok(Bvh {
@@ -575,7 +575,7 @@ impl Bvh {
             });
         }
         if let Some(index) = boxes.iter().position(|b| !b.is_finite()) {
-            return Err(GeomError::NonFinite { index });
+            return Err(NonFinite::at("box", index).into());
         }
         Ok(())
     }
@@ -876,7 +876,7 @@ mod tests {
         let bad = vec![Aabb::new(DVec3::ZERO, DVec3::new(f64::NAN, 0.0, 0.0))];
         assert_eq!(
             Bvh::build(&bad).err(),
-            Some(GeomError::NonFinite { index: 0 })
+            Some(GeomError::NonFinite(NonFinite::at("box", 0)))
         );
     }
 

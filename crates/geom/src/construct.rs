@@ -31,7 +31,7 @@
 //! result scaled back, both exact, so any input magnitude works.
 
 use crate::dd::{Dd, certified_div};
-use crate::error::GeomError;
+use crate::error::{GeomError, NonFinite};
 use crate::expansion::{Expansion, pow2};
 use crate::ring::{Ring, V3, cross, dot, normal, orient3, scale3, sub3};
 use crate::sos::{EpsPoly, Poly, SymPoint, scale_exponent};
@@ -493,7 +493,7 @@ fn triple_point_dd(pts: &[SymPoint; 9]) -> Option<TriplePoint> {
 
 fn check_finite(pts: &[SymPoint]) -> Result<(), GeomError> {
     match pts.iter().position(|p| !p.pos.is_finite()) {
-        Some(index) => Err(GeomError::NonFinite { index }),
+        Some(index) => Err(NonFinite::new("point", index, pts[index].pos).into()),
         None => Ok(()),
     }
 }

@@ -1,5 +1,6 @@
 //! Errors of the geometry crate.
 
+pub use holey_mesh::NonFinite;
 use thiserror::Error;
 
 /// What can go wrong with input to this crate's constructions, BVHs and
@@ -7,13 +8,10 @@ use thiserror::Error;
 /// world); constructions and bulk queries check their input.
 #[derive(Clone, Debug, Error, PartialEq)]
 pub enum GeomError {
-    /// A coordinate is NaN or infinite.
-    #[error("non-finite coordinate at point {index}")]
-    NonFinite {
-        /// Index of the first point (or box) found with a non-finite
-        /// coordinate, in the array checked.
-        index: usize,
-    },
+    /// A coordinate is NaN or infinite: the first point (or box) found with
+    /// one, by its index in the array checked.
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// A triangle refers to a vertex index past the end of the positions.
     #[error("triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices")]
     VertexOutOfRange {

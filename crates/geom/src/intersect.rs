@@ -345,7 +345,7 @@ pub fn seg_end_ids(end: &SegEnd) -> Vec<u32> {
 mod tests {
     use super::*;
     use glam::DVec3;
-    use holey_testkit::Rng;
+    use holey_testkit::{Rng, octahedron};
 
     fn sp(x: f64, y: f64, z: f64, id: u32) -> SymPoint {
         SymPoint::new(DVec3::new(x, y, z), id)
@@ -408,24 +408,11 @@ mod tests {
     /// planes) — checked on a lattice where all of these happen.
     #[test]
     fn segment_crossing_parity_is_topological_on_a_closed_surface() {
-        let v = [
-            sp(1.0, 0.0, 0.0, 0),
-            sp(-1.0, 0.0, 0.0, 1),
-            sp(0.0, 1.0, 0.0, 2),
-            sp(0.0, -1.0, 0.0, 3),
-            sp(0.0, 0.0, 1.0, 4),
-            sp(0.0, 0.0, -1.0, 5),
-        ];
-        let f = [
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ];
+        let (o, f) = octahedron();
+        let v: Vec<SymPoint> = (0..6)
+            .map(|i| SymPoint::new(DVec3::from_array(o[i]), i as u32))
+            .collect();
+        let f = f.map(|t| t.map(|i| i as usize));
         let inside = |p: DVec3| p.x.abs() + p.y.abs() + p.z.abs() < 1.0;
         let on = |p: DVec3| p.x.abs() + p.y.abs() + p.z.abs() == 1.0;
         let mut rng = Rng::new(4);

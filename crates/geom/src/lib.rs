@@ -56,7 +56,7 @@ pub(crate) mod testutil;
 
 pub use bvh::{Aabb, Bvh};
 pub use construct::{EdgeTrianglePoint, TriplePoint, edge_triangle_point, triple_point};
-pub use error::GeomError;
+pub use error::{GeomError, NonFinite};
 pub use identity::{index_identities, motion_classes, position_classes, position_key};
 pub use intersect::{
     SegEnd, end_side, order_on_segment, segment_triangle_intersect, triangle_triangle_segment,

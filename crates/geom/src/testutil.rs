@@ -1,7 +1,6 @@
 //! Test-only reference arithmetic, written independently of the library's
 //! expansions: arbitrary-precision integers (sign and magnitude in base
-//! 2³²), polynomials in a symbolic ε with big-integer coefficients, and a
-//! UV-sphere generator.
+//! 2³²) and polynomials in a symbolic ε with big-integer coefficients.
 
 use std::cmp::Ordering;
 
@@ -287,44 +286,4 @@ impl EpsPolyRef {
     pub fn sign(&self) -> i8 {
         self.terms.first().map_or(0, |t| t.1.sign())
     }
-}
-
-/// A UV sphere of `2·nu·(nv-2)` triangles: `nu` meridians, `nv` parallels
-/// (poles included), welded, outward-oriented, centre `c`, radius `r`.
-pub fn uv_sphere(nu: usize, nv: usize, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let mut pos = vec![[c[0], c[1], c[2] + r]];
-    for j in 1..nv - 1 {
-        let th = std::f64::consts::PI * j as f64 / (nv - 1) as f64;
-        for i in 0..nu {
-            let ph = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
-            pos.push([
-                c[0] + r * th.sin() * ph.cos(),
-                c[1] + r * th.sin() * ph.sin(),
-                c[2] + r * th.cos(),
-            ]);
-        }
-    }
-    pos.push([c[0], c[1], c[2] - r]);
-    let south = (pos.len() - 1) as u32;
-    let ring = |j: usize, i: usize| (1 + (j - 1) * nu + (i % nu)) as u32;
-    let mut tris = Vec::new();
-    for i in 0..nu {
-        tris.push([0, ring(1, i), ring(1, i + 1)]);
-    }
-    for j in 1..nv - 2 {
-        for i in 0..nu {
-            let (a, b, c2, d) = (
-                ring(j, i),
-                ring(j + 1, i),
-                ring(j + 1, i + 1),
-                ring(j, i + 1),
-            );
-            tris.push([a, b, c2]);
-            tris.push([a, c2, d]);
-        }
-    }
-    for i in 0..nu {
-        tris.push([ring(nv - 2, i), south, ring(nv - 2, i + 1)]);
-    }
-    (pos, tris)
 }

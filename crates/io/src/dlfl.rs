@@ -21,7 +21,7 @@
 use std::io::{self, Write};
 
 use holey_dlfl::RawMesh;
-use holey_mesh::DVec3;
+use holey_mesh::{DVec3, NonFinite};
 
 use crate::IoError;
 use crate::error::show;
@@ -378,9 +378,7 @@ pub fn check_raw(raw: &RawMesh) -> Result<(), String> {
         return Err(format!("{} hole flags for {nf} faces", raw.holes.len()));
     }
     let nv = raw.positions.len();
-    if let Some(v) = raw.positions.iter().position(|p| !p.is_finite()) {
-        return Err(format!("vertex {v} has a non-finite position"));
-    }
+    NonFinite::check("vertex", &raw.positions).map_err(|e| e.to_string())?;
     if let Some(&v) = raw.face_vertices.iter().find(|&&v| v as usize >= nv) {
         return Err(format!(
             "a face refers to vertex {v}, but there are only {nv} vertices"

@@ -46,6 +46,8 @@ use std::fs;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
+use holey_mesh::NonFinite;
+
 pub use error::IoError;
 pub use holey_dlfl::RawMesh;
 pub use holey_mesh::PolyMesh;
@@ -240,10 +242,7 @@ pub fn check_poly(mesh: &PolyMesh) -> Result<(), String> {
                 mesh.positions.len()
             ));
         }
-        return match mesh.positions.iter().position(|p| !p.is_finite()) {
-            Some(v) => Err(format!("vertex {v} has a non-finite position")),
-            None => Ok(()),
-        };
+        return NonFinite::check("vertex", &mesh.positions).map_err(|e| e.to_string());
     }
     mesh.check().map_err(|e| e.to_string())?;
     if let Some(f) = mesh.face_offsets.windows(2).position(|w| w[1] == w[0]) {

@@ -26,7 +26,7 @@ use std::io::{self, Write};
 use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
-use crate::text::{Cursor, Lines, push_point, push_u64};
+use crate::text::{Cursor, Lines, push_indices, push_point};
 
 /// The statements of the OBJ format (Wavefront's Appendix B1): geometry,
 /// free-form curves and surfaces, grouping, display and rendering. Only
@@ -243,10 +243,7 @@ pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
     for face in mesh.faces() {
         out.line(|b| {
             b.push(b'f');
-            for &i in face {
-                b.push(b' ');
-                push_u64(b, u64::from(i) + 1);
-            }
+            push_indices(b, face, 1);
         })?;
     }
     out.finish()

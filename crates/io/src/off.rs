@@ -19,7 +19,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_point, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_indices, push_point, push_u64};
 
 /// True for a header keyword this reader handles.
 fn is_off_keyword(word: &[u8]) -> bool {
@@ -227,10 +227,7 @@ pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
     for face in mesh.faces() {
         out.line(|b| {
             push_u64(b, face.len() as u64);
-            for &i in face {
-                b.push(b' ');
-                push_u64(b, u64::from(i));
-            }
+            push_indices(b, face, 0);
         })?;
     }
     out.finish()

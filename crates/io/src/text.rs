@@ -429,6 +429,15 @@ pub(crate) fn push_f64(out: &mut Vec<u8>, x: f64) {
     }
 }
 
+/// Appends ` i` for every vertex index `i` of `face`, plus `base` (1 for
+/// OBJ's numbering from one).
+pub(crate) fn push_indices(out: &mut Vec<u8>, face: &[u32], base: u64) {
+    for &i in face {
+        out.push(b' ');
+        push_u64(out, u64::from(i) + base);
+    }
+}
+
 /// Appends a decimal unsigned integer.
 #[inline]
 pub(crate) fn push_u64(out: &mut Vec<u8>, mut n: u64) {

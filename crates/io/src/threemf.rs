@@ -39,7 +39,7 @@ use std::collections::HashMap;
 use std::io::{self, Cursor, Read, Write};
 
 use glam::{DMat3, DMat4, DVec3};
-use holey_mesh::PolyMesh;
+use holey_mesh::{NonFinite, PolyMesh};
 use quick_xml::NsReader;
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::name::{Namespace, ResolveResult};
@@ -604,10 +604,8 @@ fn model_xml(mesh: &PolyMesh) -> Result<Vec<u8>, String> {
           <metadata name=\"Application\">holey</metadata>\n\
           <resources>\n<object id=\"1\" type=\"model\">\n<mesh>\n<vertices>\n",
     );
-    for (v, p) in mesh.positions.iter().enumerate() {
-        if !p.is_finite() {
-            return Err(format!("vertex {v} has a non-finite position"));
-        }
+    NonFinite::check("vertex", &mesh.positions).map_err(|e| e.to_string())?;
+    for p in &mesh.positions {
         for (k, c) in [b"<vertex x=\"" as &[u8], b"\" y=\"", b"\" z=\""]
             .iter()
             .zip(p.to_array())
@@ -1044,7 +1042,7 @@ mod tests {
         );
         assert_eq!(
             encode(&m).unwrap_err(),
-            "vertex 1 has a non-finite position"
+            "vertex 1 has a non-finite coordinate (1, inf, 0)"
         );
         assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 0);
     }

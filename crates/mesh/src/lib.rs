@@ -17,10 +17,12 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+mod finite;
 mod poly;
 pub mod tri;
 pub mod union_find;
 
+pub use finite::NonFinite;
 pub use glam::DVec3;
 pub use poly::{PolyMesh, PolyMeshError};
 pub use tri::{MeshError, TriMesh};

@@ -1,5 +1,7 @@
 use glam::DVec3;
 
+use crate::NonFinite;
+
 /// An indexed polygon mesh: positions, and faces as lists of vertex
 /// indices stored in compressed rows (`face_offsets` has one entry per
 /// face plus a final one). Nothing about its topology is assumed.
@@ -28,18 +30,9 @@ pub enum PolyMeshError {
         /// Number of positions the mesh has.
         count: usize,
     },
-    /// A position has a NaN or infinite coordinate.
-    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
-    NonFinite {
-        /// Index of the first non-finite position.
-        vertex: usize,
-        /// Its x coordinate.
-        x: f64,
-        /// Its y coordinate.
-        y: f64,
-        /// Its z coordinate.
-        z: f64,
-    },
+    /// A position has a NaN or infinite coordinate (the first such vertex).
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// `face_offsets` does not start at 0, does not end at
     /// `face_indices.len()`, or decreases somewhere.
     #[error("face offsets are malformed")]
@@ -104,6 +97,28 @@ impl PolyMesh {
         self.face_offsets.push(self.face_indices.len() as u32);
     }
 
+    /// Appends `other`'s vertices and faces (its indices shifted past this
+    /// mesh's vertices): the two as one mesh, apart as they were.
+    pub fn append(&mut self, other: &PolyMesh) {
+        let n = self.positions.len() as u32;
+        self.positions.extend_from_slice(&other.positions);
+        for f in other.faces() {
+            if self.face_offsets.is_empty() {
+                self.face_offsets.push(0);
+            }
+            self.face_indices.extend(f.iter().map(|v| v + n));
+            self.face_offsets.push(self.face_indices.len() as u32);
+        }
+    }
+
+    /// The mesh moved by `offset`, its faces as they are.
+    pub fn translated(&self, offset: DVec3) -> PolyMesh {
+        PolyMesh {
+            positions: self.positions.iter().map(|&p| p + offset).collect(),
+            ..self.clone()
+        }
+    }
+
     /// Checks offsets, index ranges and finiteness of positions.
     pub fn check(&self) -> Result<(), PolyMeshError> {
         if self.positions.len() >= u32::MAX as usize {
@@ -115,16 +130,7 @@ impl PolyMesh {
         {
             return Err(PolyMeshError::Offsets);
         }
-        for (i, p) in self.positions.iter().enumerate() {
-            if !p.is_finite() {
-                return Err(PolyMeshError::NonFinite {
-                    vertex: i,
-                    x: p.x,
-                    y: p.y,
-                    z: p.z,
-                });
-            }
-        }
+        NonFinite::check("vertex", &self.positions)?;
         let n = self.positions.len();
         for f in 0..self.face_count() {
             if let Some(&index) = self.face(f).iter().find(|&&i| i as usize >= n) {
@@ -198,5 +204,35 @@ impl From<&crate::tri::TriMesh> for PolyMesh {
     /// As `From<TriMesh>`, copying.
     fn from(mesh: &crate::tri::TriMesh) -> PolyMesh {
         PolyMesh::from(mesh.clone())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::PolyMesh;
+
+    #[test]
+    fn append_and_translated_join_two_soups_apart() {
+        let quad = PolyMesh::from_faces(
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            [[0u32, 1, 2, 3]],
+        );
+        let tri = PolyMesh::from_faces(vec![DVec3::ZERO, DVec3::X, DVec3::Y], [[0u32, 2, 1]]);
+        let mut both = quad.clone();
+        both.append(&tri.translated(DVec3::Z));
+        assert_eq!(both.face_count(), 2);
+        assert_eq!(both.face(0), quad.face(0));
+        assert_eq!(both.face(1), &[4, 6, 5]);
+        assert_eq!(both.positions[5], DVec3::new(1.0, 0.0, 1.0));
+        assert_eq!(both.check(), Ok(()));
+        // Into an empty soup with no offsets yet.
+        let mut empty = PolyMesh::default();
+        empty.append(&tri);
+        assert_eq!(
+            empty,
+            PolyMesh::from_faces(tri.positions.clone(), [[0u32, 2, 1]])
+        );
     }
 }

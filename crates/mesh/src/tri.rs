@@ -9,6 +9,8 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::NonFinite;
+
 /// A triangle mesh: positions and triangles as index triples.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriMesh {
@@ -22,21 +24,11 @@ pub struct TriMesh {
 /// Why a mesh or a motion cannot be used.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MeshError {
-    /// A position has a NaN or infinite coordinate.
-    #[error("{what}: vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
-    NonFinite {
-        /// Names the position array that holds it (`"mesh"` for a mesh's own
-        /// positions; otherwise as given to [`check_positions`]).
-        what: &'static str,
-        /// Index of the first non-finite position in that array.
-        vertex: usize,
-        /// Its x coordinate.
-        x: f64,
-        /// Its y coordinate.
-        y: f64,
-        /// Its z coordinate.
-        z: f64,
-    },
+    /// A position has a NaN or infinite coordinate: the first such vertex
+    /// of the array its `input` names (`"mesh"` for a mesh's own positions;
+    /// otherwise as given to [`check_positions`]).
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// A triangle refers to a vertex index at or past the number of positions.
     #[error("triangle {triangle} refers to vertex {index}, but there are only {count} vertices")]
     IndexOutOfRange {
@@ -283,19 +275,7 @@ impl TriMesh {
 
 /// Checks that every position is finite; `what` names the array in errors.
 pub fn check_positions(what: &'static str, positions: &[DVec3]) -> Result<(), MeshError> {
-    match positions.iter().position(|p| !p.is_finite()) {
-        Some(vertex) => {
-            let p = positions[vertex];
-            Err(MeshError::NonFinite {
-                what,
-                vertex,
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            })
-        }
-        None => Ok(()),
-    }
+    NonFinite::check("vertex", positions).map_err(|e| MeshError::NonFinite(e.in_input(what)))
 }
 
 /// Every triangle side `(key, 3·t + k)` (side `k` of triangle `t` runs

@@ -3,11 +3,11 @@
 //! instead of a handle; zero weights give a straight handle.
 #![allow(clippy::unwrap_used)]
 
-mod common45;
+mod soups_and_oracles;
 
-use common45::*;
 use holey_dlfl::DVec3;
 use holey_model::handle::{HandleParams, Orientation, create_handle};
+use soups_and_oracles::*;
 
 /// The corner of face `f` whose vertex has the given x and y.
 fn corner_at_xy(m: &holey_dlfl::Mesh, f: usize, x: f64, y: f64) -> holey_dlfl::CornerId {

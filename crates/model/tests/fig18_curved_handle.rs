@@ -4,11 +4,11 @@
 //! the Hermite curve of eq. 4.1 with normals along its tangent.
 #![allow(clippy::unwrap_used)]
 
-mod common45;
+mod soups_and_oracles;
 
-use common45::*;
 use holey_dlfl::DVec3;
 use holey_model::handle::{HandleParams, Orientation, create_handle, create_handle_observed};
+use soups_and_oracles::*;
 
 #[test]
 fn a_handle_of_s_segments_between_d_gons_adds_d_s_minus_1_vertices() {

@@ -4,11 +4,11 @@
 //! built between two faces of the larger size.
 #![allow(clippy::unwrap_used)]
 
-mod common45;
+mod soups_and_oracles;
 
-use common45::*;
 use holey_dlfl::DVec3;
 use holey_model::handle::{HandleParams, create_handle};
+use soups_and_oracles::*;
 
 #[test]
 fn triangle_to_quad_in_one_component() {

@@ -3,11 +3,11 @@
 //! sections differs.
 #![allow(clippy::unwrap_used)]
 
-mod common45;
+mod soups_and_oracles;
 
-use common45::*;
 use holey_dlfl::DVec3;
 use holey_model::handle::{HandleParams, create_handle};
+use soups_and_oracles::*;
 
 #[test]
 fn each_corner_choice_gives_the_same_counts_and_a_different_twist() {

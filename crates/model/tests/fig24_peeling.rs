@@ -8,13 +8,13 @@
 //! vertices: `V' = 2V − 2x`, `E' = 2E + Σn_i − 4w`, `F' = 2F + Σ(n_i − 2) − 2w`.
 #![allow(clippy::unwrap_used)]
 
-mod common45;
+mod soups_and_oracles;
 
-use common45::*;
 use holey_dlfl::Mesh;
 use holey_mesh::PolyMesh;
 use holey_model::rind::{PunchOutcome, Rind};
 use holey_testkit::Rng;
+use soups_and_oracles::*;
 
 fn no_two_gons(m: &Mesh) -> bool {
     m.faces().all(|f| m.face_len(f).unwrap() != 2)

@@ -3,12 +3,12 @@
 //! handle between two outer side faces.
 #![allow(clippy::unwrap_used)]
 
-mod common45;
+mod soups_and_oracles;
 
-use common45::*;
 use holey_dlfl::DVec3;
 use holey_model::handle::{HandleParams, create_handle};
 use holey_model::rind::Rind;
+use soups_and_oracles::*;
 
 #[test]
 fn a_cube_cup_with_a_handle() {

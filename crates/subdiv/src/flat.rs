@@ -16,7 +16,7 @@
 //! face with no edge) are outside the map, and the schemes copy them.
 
 use glam::DVec3;
-use holey_dlfl::{Mesh, RawMesh};
+use holey_dlfl::{BuildError, Mesh, NonFinite, RawMesh};
 
 use crate::SubdivError;
 
@@ -115,16 +115,7 @@ impl Flat {
     /// panic.
     pub(crate) fn from_mesh(mesh: &Mesh) -> Result<Flat, SubdivError> {
         let raw = mesh.to_raw();
-        for (i, p) in raw.positions.iter().enumerate() {
-            if !p.is_finite() {
-                return Err(SubdivError::NonFinite {
-                    vertex: i,
-                    x: p.x,
-                    y: p.y,
-                    z: p.z,
-                });
-            }
-        }
+        NonFinite::check("vertex", &raw.positions)?;
         let nf = raw.face_count();
         let nc = raw.face_vertices.len();
         let nv = raw.positions.len();
@@ -178,6 +169,21 @@ impl Flat {
             }
         }
         Ok(flat)
+    }
+
+    /// The kernel mesh of a step's output, its vertices first renumbered
+    /// in the order the faces use them ([`Flat::localize_vertices`]): a
+    /// non-finite position is an overflow, `overflow(vertex)`, and anything
+    /// else the builder refuses a bug.
+    pub(crate) fn into_mesh(
+        mut self,
+        overflow: impl FnOnce(usize) -> SubdivError,
+    ) -> Result<Mesh, SubdivError> {
+        self.localize_vertices();
+        Mesh::from_raw_trusted(&self.into_raw()).map_err(|e| match e {
+            BuildError::NonFinite(e) => overflow(e.index.unwrap_or_default()),
+            other => SubdivError::Internal(format!("the output is not a valid DLFL: {other}")),
+        })
     }
 
     /// The flat arrays as the kernel's [`RawMesh`], moving them.

@@ -64,7 +64,7 @@ mod tests;
 
 use std::fmt;
 
-use holey_dlfl::{BuildError, Mesh, RawMesh};
+use holey_dlfl::{Mesh, NonFinite, RawMesh};
 
 pub use flat::Counts;
 use flat::Flat;
@@ -118,19 +118,11 @@ pub enum SubdivError {
         /// `_capped` function was given another).
         cap: usize,
     },
-    /// An input vertex has a NaN or infinite coordinate.
-    #[error("vertex {vertex} has a non-finite position ({x}, {y}, {z})")]
-    NonFinite {
-        /// Index of the vertex among the input's live vertices, in slot
-        /// order (the numbering of [`Mesh::to_raw`]).
-        vertex: usize,
-        /// x coordinate of that vertex.
-        x: f64,
-        /// y coordinate of that vertex.
-        y: f64,
-        /// z coordinate of that vertex.
-        z: f64,
-    },
+    /// An input vertex has a NaN or infinite coordinate: the first such
+    /// vertex, by its index among the input's live vertices in slot order
+    /// (the numbering of [`Mesh::to_raw`]).
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// The input was finite but an output position is not: with coordinates
     /// this large, the sums taken while averaging overflowed `f64`.
     #[error(
@@ -382,12 +374,8 @@ pub fn subdivide_capped(
     if levels == 0 {
         return Ok(mesh.clone());
     }
-    let mut flat = run(mesh, scheme, levels, max_faces)?;
-    flat.localize_vertices();
-    Mesh::from_raw_trusted(&flat.into_raw()).map_err(|e| match e {
-        BuildError::NonFinite { vertex, .. } => SubdivError::Overflow { scheme, vertex },
-        other => SubdivError::Internal(format!("the output is not a valid DLFL: {other}")),
-    })
+    run(mesh, scheme, levels, max_faces)?
+        .into_mesh(|vertex| SubdivError::Overflow { scheme, vertex })
 }
 
 /// The subdivided mesh as flat arrays, ready for [`Mesh::from_raw`] or a

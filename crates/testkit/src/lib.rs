@@ -1,8 +1,15 @@
 //! Test support shared by holey's crates: a small seeded PRNG, so seeded
 //! property tests give the same sequence on every platform and version,
-//! and the location of the shared real-mesh data.
+//! small meshes as plain arrays ([`meshes`]), oracles on triangle index
+//! lists ([`oracles`]), and the location of the shared real-mesh data.
 
 use std::path::PathBuf;
+
+pub mod meshes;
+pub mod oracles;
+
+pub use meshes::{octahedron, unit_cube, uv_sphere, uv_spheres};
+pub use oracles::{Groups, boundary, components, edge_degrees, pieces};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and fully
 /// determined by its seed.

@@ -4,28 +4,22 @@ use holey_testkit::Rng;
 
 use super::*;
 
-fn cube_soup() -> PolyMesh {
-    let p = [
-        [0., 0., 0.],
-        [1., 0., 0.],
-        [1., 1., 0.],
-        [0., 1., 0.],
-        [0., 0., 1.],
-        [1., 0., 1.],
-        [1., 1., 1.],
-        [0., 1., 1.],
-    ];
-    PolyMesh::from_faces(
-        p.iter().map(|q| DVec3::from_array(*q)).collect(),
-        [
-            [0u32, 3, 2, 1],
-            [4, 5, 6, 7],
-            [0, 1, 5, 4],
-            [2, 3, 7, 6],
-            [1, 2, 6, 5],
-            [0, 4, 7, 3],
-        ],
+/// Imports `soup` splitting what is not manifold, and validates the mesh.
+fn split(soup: &PolyMesh) -> Imported {
+    let imp = to_dlfl(
+        soup,
+        ImportOptions {
+            split_nonmanifold: true,
+        },
     )
+    .unwrap();
+    imp.mesh.validate().unwrap();
+    imp
+}
+
+fn cube_soup() -> PolyMesh {
+    let (p, quads) = holey_testkit::unit_cube();
+    PolyMesh::from_faces(p.map(DVec3::from_array).to_vec(), quads)
 }
 
 /// An n×n quad grid in the plane, with the quads for which `skip` is true left out.
@@ -119,14 +113,7 @@ fn holes_touching_at_a_vertex_make_a_non_manifold_vertex() {
         }
         other => panic!("expected a non-manifold vertex, got {other:?}"),
     }
-    let imp = to_dlfl(
-        &soup,
-        ImportOptions {
-            split_nonmanifold: true,
-        },
-    )
-    .unwrap();
-    imp.mesh.validate().unwrap();
+    let imp = split(&soup);
     assert_eq!(imp.report.split_vertices, 1);
     assert_eq!(imp.mesh.vertex_count(), 26);
 }
@@ -143,14 +130,7 @@ fn bowtie_is_refused_or_split_into_two_components() {
     let soup = PolyMesh::from_faces(pos, [[0u32, 1, 2], [0, 3, 4]]);
     let err = to_dlfl(&soup, ImportOptions::default()).unwrap_err();
     assert!(err.to_string().contains("non-manifold vertex 0"), "{err}");
-    let imp = to_dlfl(
-        &soup,
-        ImportOptions {
-            split_nonmanifold: true,
-        },
-    )
-    .unwrap();
-    imp.mesh.validate().unwrap();
+    let imp = split(&soup);
     assert_eq!(summary(&imp.mesh), (6, 6, 2, 2, 2, 0));
 }
 
@@ -171,14 +151,7 @@ fn three_faces_on_one_edge() {
         }
         other => panic!("expected a non-manifold edge, got {other:?}"),
     }
-    let imp = to_dlfl(
-        &soup,
-        ImportOptions {
-            split_nonmanifold: true,
-        },
-    )
-    .unwrap();
-    imp.mesh.validate().unwrap();
+    let imp = split(&soup);
     assert_eq!(imp.report.cut_edges, 1);
     // Cut apart, the three triangles share only vertices 0 and 1, each of
     // which is split into one copy per triangle.
@@ -194,14 +167,7 @@ fn a_flipped_face_is_misoriented() {
     let err = to_dlfl(&soup, ImportOptions::default()).unwrap_err();
     assert!(matches!(err, ImportError::Misoriented { .. }), "{err}");
     assert!(err.to_string().contains("same direction"));
-    let imp = to_dlfl(
-        &soup,
-        ImportOptions {
-            split_nonmanifold: true,
-        },
-    )
-    .unwrap();
-    imp.mesh.validate().unwrap();
+    let imp = split(&soup);
     assert_eq!(imp.report.cut_edges, 4);
 }
 
@@ -333,14 +299,7 @@ fn random_patches_never_panic_and_split_always_imports() {
                 "round {round}"
             );
         }
-        let imp = to_dlfl(
-            &soup,
-            ImportOptions {
-                split_nonmanifold: true,
-            },
-        )
-        .unwrap();
-        imp.mesh.validate().unwrap();
+        let imp = split(&soup);
         let faces = imp.mesh.face_count() - imp.mesh.hole_count();
         assert_eq!(faces, soup.face_count(), "round {round}");
     }

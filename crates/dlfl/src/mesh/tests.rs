@@ -27,7 +27,7 @@ fn create_vertex_refuses_non_finite_points() {
         DVec3::new(f64::NAN, 0.0, 0.0),
         DVec3::new(0.0, f64::INFINITY, 0.0),
     ] {
-        assert!(matches!(m.create_vertex(p), Err(Error::NonFinite { .. })));
+        assert!(matches!(m.create_vertex(p), Err(Error::NonFinite(_))));
     }
     assert_eq!(canonical(&m), before);
     assert_eq!(m.vertex_count(), 8);

@@ -52,7 +52,7 @@ pub use cubic::{FloatCollisions, collisions_float, coplanarity_cubic};
 pub use parity::{CcdParity, MovingPoint, vertex_triangle_parity};
 
 use crate::bvh::{Aabb, Bvh};
-use crate::error::GeomError;
+use crate::error::{GeomError, NonFinite};
 use crate::identity::position_classes;
 use crate::sos::SymPoint;
 use glam::DVec3;
@@ -142,9 +142,8 @@ fn check_input(start: &[DVec3], end: &[DVec3], tris: &[[u32; 3]]) -> Result<(), 
     if n >= (1usize << 31) || tris.len() >= (1usize << 31) {
         return Err(GeomError::TooMany(n.max(tris.len())));
     }
-    if let Some(index) = start.iter().chain(end.iter()).position(|p| !p.is_finite()) {
-        return Err(GeomError::NonFinite { index: index % n });
-    }
+    NonFinite::check("vertex", start).map_err(|e| e.in_input("start positions"))?;
+    NonFinite::check("vertex", end).map_err(|e| e.in_input("end positions"))?;
     for (t, tri) in tris.iter().enumerate() {
         for &v in tri {
             if v as usize >= n {
@@ -335,7 +334,7 @@ pub fn vertex_parities_cancellable(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testutil::uv_sphere;
+    use holey_testkit::uv_sphere;
 
     fn grid(n: usize, lo: f64, z: f64, base: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
         let idx = |i: usize, j: usize| base + (i * (n + 1) + j) as u32;
@@ -519,7 +518,7 @@ mod tests {
         q[1].y = f64::NAN;
         assert!(matches!(
             vertex_parities(&q, &p, &[], &CcdOptions::default()),
-            Err(GeomError::NonFinite { index: 1 })
+            Err(GeomError::NonFinite(e)) if e.index == Some(1) && e.input == "start positions"
         ));
         assert_eq!(frame_ids(2, 0), Ok((vec![0, 2], vec![1, 3])));
         assert_eq!(frame_ids(2, 1), Ok((vec![1, 3], vec![0, 2])));

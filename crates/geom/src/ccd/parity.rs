@@ -386,7 +386,7 @@ mod tests {
     use crate::ccd::cubic::{collisions_float, inside_triangle};
     use crate::testutil::BigInt;
     use glam::DVec3;
-    use holey_testkit::Rng;
+    use holey_testkit::{Rng, octahedron};
 
     const S: i32 = 1100;
 
@@ -611,24 +611,8 @@ mod tests {
     /// `inside(start) != inside(end)` (topology), whatever the degeneracy.
     /// The surface is static or translates by a lattice vector.
     fn octahedron_case(rng: &mut Rng, moving: bool) -> (Vec<Motion>, bool) {
-        let v = [
-            DVec3::X,
-            DVec3::NEG_X,
-            DVec3::Y,
-            DVec3::NEG_Y,
-            DVec3::Z,
-            DVec3::NEG_Z,
-        ];
-        let f = [
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ];
+        let (v, f) = octahedron();
+        let (v, f) = (v.map(DVec3::from_array), f.map(|t| t.map(|i| i as usize)));
         let lattice = |rng: &mut Rng| {
             DVec3::new(
                 rng.below(9) as f64 * 0.5 - 2.0,

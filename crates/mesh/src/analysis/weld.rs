@@ -1,6 +1,6 @@
 //! Welding of bit-identical positions, and by distance.
 
-use crate::PolyMesh;
+use crate::{NonFinite, PolyMesh};
 
 /// Merges vertices whose positions are exactly identical.
 ///
@@ -86,9 +86,9 @@ pub enum WeldError {
     /// The weld distance given (this value) is NaN, infinite or negative.
     #[error("the weld distance must be finite and not negative, got {0}")]
     Distance(f64),
-    /// The position at this index has a NaN or infinite coordinate.
-    #[error("vertex {0} has a non-finite coordinate")]
-    NonFinite(usize),
+    /// A position has a NaN or infinite coordinate (the first such vertex).
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// A face refers to a vertex index at or past the number of positions.
     #[error("face {face} refers to vertex {index}, but there are only {count} vertices")]
     IndexOutOfRange {
@@ -119,9 +119,7 @@ pub fn weld_by_distance(mesh: &PolyMesh, distance: f64) -> Result<Welded, WeldEr
         return Err(WeldError::Distance(distance));
     }
     let n = mesh.positions.len();
-    if let Some(v) = mesh.positions.iter().position(|p| !p.is_finite()) {
-        return Err(WeldError::NonFinite(v));
-    }
+    NonFinite::check("vertex", &mesh.positions)?;
     for (face, f) in mesh.faces().enumerate() {
         if let Some(&index) = f.iter().find(|&&i| i as usize >= n) {
             return Err(WeldError::IndexOutOfRange {
@@ -267,7 +265,10 @@ mod distance_tests {
         ));
         let mut bad = m.clone();
         bad.positions[3].x = f64::INFINITY;
-        assert_eq!(weld_by_distance(&bad, 0.1), Err(WeldError::NonFinite(3)));
+        assert_eq!(
+            weld_by_distance(&bad, 0.1),
+            Err(WeldError::NonFinite(NonFinite::vertex(3, bad.positions[3])))
+        );
         let mut out = m;
         out.face_indices[2] = 99;
         assert!(matches!(

@@ -4,7 +4,7 @@
 
 use holey_dlfl::{FaceId, Mesh};
 
-use super::{ExtrudeError, ExtrudeParams, Extruded, base_face, check_param, extrude_face};
+use super::{ExtrudeError, ExtrudeParams, Extruded, extrude_face, solid_base};
 
 /// Extrudes `face` `count` times, each time by `height_factor` times the
 /// face's mean edge length (1 makes a square face grow cubes), without
@@ -19,13 +19,7 @@ pub fn extrude_face_cubical(
     height_factor: f64,
     count: usize,
 ) -> Result<Extruded, ExtrudeError> {
-    check_param(
-        "height_factor",
-        height_factor,
-        "finite and greater than 0",
-        |h| h > 0.0,
-    )?;
-    let (_, _, frame) = base_face(mesh, face)?;
+    let (_, _, frame) = solid_base(mesh, face, height_factor)?;
     let params = ExtrudeParams::new(frame.edge * height_factor, count);
     extrude_face(mesh, face, &params)
 }

@@ -10,9 +10,7 @@ use super::dodecahedral::{PHI, face_edges};
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
 use super::stellate::stellate_at;
-use super::{
-    ExtrudeError, Extruded, base_face, check_param, check_points, faces_around, half_step,
-};
+use super::{ExtrudeError, Extruded, check_points, faces_around, half_step, solid_base};
 
 /// Icosahedral extrusion of `face`.
 ///
@@ -33,13 +31,7 @@ pub fn extrude_face_icosahedral(
     face: FaceId,
     height_factor: f64,
 ) -> Result<Extruded, ExtrudeError> {
-    check_param(
-        "height_factor",
-        height_factor,
-        "finite and greater than 0",
-        |h| h > 0.0,
-    )?;
-    let (corners, points, frame) = base_face(mesh, face)?;
+    let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
     let (c, n) = (frame.centroid, frame.normal);
     let h = height_factor * frame.radius;
     let d = points.len();

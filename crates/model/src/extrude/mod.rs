@@ -182,6 +182,22 @@ pub(crate) fn check_param(
     }
 }
 
+/// [`base_face`] for the extrusions shaped like a solid, after refusing a
+/// `height_factor` that is not finite and positive.
+pub(crate) fn solid_base(
+    mesh: &Mesh,
+    face: FaceId,
+    height_factor: f64,
+) -> Result<(Vec<CornerId>, Vec<DVec3>, Frame), ExtrudeError> {
+    check_param(
+        "height_factor",
+        height_factor,
+        "finite and greater than 0",
+        |h| h > 0.0,
+    )?;
+    base_face(mesh, face)
+}
+
 /// The checks shared by every single-face extrusion: a live surface face
 /// with edges, no self-loops and a normal. Returns its corners from
 /// [`Mesh::face_corner`], their positions and its frame.

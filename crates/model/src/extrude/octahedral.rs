@@ -5,9 +5,7 @@
 
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 
-use super::{
-    ExtrudeError, Extruded, base_face, check_param, check_points, faces_around, half_step,
-};
+use super::{ExtrudeError, Extruded, check_points, faces_around, half_step, solid_base};
 
 /// Octahedral extrusion of `face`: new vertex `m_i` over the midpoint of
 /// edge `i` (from corner `i` to `i + 1`), at the position of a regular
@@ -24,13 +22,7 @@ pub fn extrude_face_octahedral(
     face: FaceId,
     height_factor: f64,
 ) -> Result<Extruded, ExtrudeError> {
-    check_param(
-        "height_factor",
-        height_factor,
-        "finite and greater than 0",
-        |h| h > 0.0,
-    )?;
-    let (corners, points, frame) = base_face(mesh, face)?;
+    let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
     let lift = frame.normal * (height_factor * std::f64::consts::SQRT_2 * frame.radius);
     let mids: Vec<DVec3> = (0..points.len())
         .map(|i| frame.centroid + half_step(&points, frame.centroid, i) + lift)

@@ -74,7 +74,7 @@ pub mod geometry;
 mod matching;
 
 use glam::DVec3;
-use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, VertexId};
+use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, VertexId};
 
 pub use geometry::HermiteCurve;
 use geometry::{Morph, centroid, rotation_between, vector_area};
@@ -125,14 +125,11 @@ pub enum HandleError {
     )]
     DegenerateFace(FaceId),
     /// An intermediate section came out with a NaN or infinite coordinate,
-    /// because the weights are too large for the mesh's scale.
-    #[error(
-        "section {section} of the handle has non-finite coordinates; the weights are too large for the mesh's scale"
-    )]
-    NonFinite {
-        /// The failing section's number, from 1 (nearest `f1`) to `k − 1`.
-        section: usize,
-    },
+    /// because the weights are too large for the mesh's scale: the failing
+    /// section's number, from 1 (nearest `f1`) to `k − 1`, and its first
+    /// non-finite point.
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// The handle would add more corners than the kernel's 32-bit ids can
     /// number.
     #[error(
@@ -414,8 +411,13 @@ pub fn plan_handle(
         let turn = rotation_between(morph.u, normal, morph.x);
         let centre = curve.point(t);
         let points: Vec<DVec3> = morph.at(t).into_iter().map(|q| centre + turn * q).collect();
-        if !centre.is_finite() || points.iter().any(|p| !p.is_finite()) {
-            return Err(HandleError::NonFinite { section: i });
+        if let Some(&bad) = std::iter::once(&centre)
+            .chain(&points)
+            .find(|p| !p.is_finite())
+        {
+            return Err(NonFinite::new("handle section", i, bad)
+                .with_hint("the weights are too large for the mesh's scale")
+                .into());
         }
         sections.push(HandleSection {
             t,

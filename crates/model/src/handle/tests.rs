@@ -250,7 +250,11 @@ fn huge_weights_fail_cleanly_or_stay_finite() {
             m.validate().unwrap();
             assert!(m.vertices().all(|v| m.position(v).unwrap().is_finite()));
         }
-        Err(HandleError::NonFinite { .. }) => assert_eq!(m.to_raw(), before),
+        Err(HandleError::NonFinite(e)) => {
+            assert_eq!((e.what, e.input), ("handle section", ""));
+            assert!(e.to_string().contains("the weights are too large"), "{e}");
+            assert_eq!(m.to_raw(), before);
+        }
         Err(e) => panic!("unexpected {e}"),
     }
 }

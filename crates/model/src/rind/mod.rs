@@ -80,7 +80,7 @@
 
 mod offset;
 
-use holey_dlfl::{BuildError, CornerId, EdgeId, FaceId, Mesh, VertexId};
+use holey_dlfl::{BuildError, CornerId, EdgeId, FaceId, Mesh, NonFinite, VertexId};
 
 /// Why a rind could not be made or an operation was refused. Nothing was changed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -125,12 +125,10 @@ pub enum RindError {
         /// The thickness that was asked for, in model units.
         thickness: f64,
     },
-    /// A vertex's inner copy would have a NaN or infinite coordinate.
-    #[error("vertex {vertex}: the offset position is not finite")]
-    NonFinite {
-        /// The vertex's slot index in the input mesh.
-        vertex: usize,
-    },
+    /// A vertex's inner copy would have a NaN or infinite coordinate: the
+    /// offset copy of the vertex with this slot index in the input mesh.
+    #[error(transparent)]
+    NonFinite(#[from] NonFinite),
     /// A face index given to [`Rind::punch_index`] and its kin names no live
     /// face of the input mesh.
     #[error("there is no face {index}: the input had {count} face slots")]

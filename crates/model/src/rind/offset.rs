@@ -7,7 +7,7 @@
 //! is linear in the size of the mesh.
 
 use glam::DVec3;
-use holey_dlfl::RawMesh;
+use holey_dlfl::{NonFinite, RawMesh};
 
 use super::RindError;
 use crate::handle::geometry::vector_area;
@@ -141,9 +141,11 @@ pub(crate) fn build_shells(
         }
         let p = raw.positions[v] - n.normalize() * thickness;
         if !p.is_finite() {
-            return Err(RindError::NonFinite {
-                vertex: vertex_slot[v],
-            });
+            return Err(
+                NonFinite::new("the offset copy of vertex", vertex_slot[v], p)
+                    .with_hint("the thickness is too large for the model's coordinates")
+                    .into(),
+            );
         }
         positions.push(p);
     }

@@ -13,9 +13,10 @@
 //! from `I(c)` to `I(next c)`), `A` (`a(c)` to `I(c)`) and `B` (`I(c)` to
 //! `b(prev c)`), side 0 in those directions.
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab};
 use crate::SubdivError;
-use crate::flat::{Flat, Kind};
+use crate::flat::Flat;
 
 /// One level with thickness `t ∈ [0, ½]`. Output vertices: the input's,
 /// the cut points `V + 2e + k` (at `t` from the vertex of corner
@@ -31,79 +32,49 @@ pub(super) fn step(src: &Flat, budget: &Budget, t: f64) -> Result<Flat, SubdivEr
         c: 9 * st.nc + 3 * st.hc + st.ps,
     };
     budget.check(sizes)?;
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
-    for &[a, b] in &src.edges {
-        let (pa, pb) = (m.p(a as usize), m.p(b as usize));
-        pos.push(pa + t * (pb - pa));
-        pos.push(pb + t * (pa - pb));
-    }
-    for face in 0..src.face_count() {
-        if m.kind[face] != Kind::Normal {
-            continue;
-        }
+    let mut pos = m.kept_positions(sizes.v);
+    pos.extend(m.cut_points(t));
+    for face in m.normal_faces() {
         let (lo, hi) = m.range(face);
         pos.extend(
             (lo..hi).map(|c| (1.0 - 2.0 * t) * m.p(c) + t * (m.p(src.prev(c)) + m.p(src.next(c)))),
         );
     }
     let (nv, ne, nc) = (st.v, st.e, st.nc);
-    let near = |c: usize| (nv + 2 * m.edge(c) + m.side(c) as usize) as u32;
-    let far = |c: usize| (nv + 2 * m.edge(c) + 1 - m.side(c) as usize) as u32;
+    let near = |c: usize| (nv + m.cut_point(c, false)) as u32;
+    let far = |c: usize| (nv + m.cut_point(c, true)) as u32;
     let inner = |c: usize| (nv + 2 * ne + m.nidx(c)) as u32;
-    let seg = |c: usize, k: usize| {
-        let (e, s) = (m.edge(c), m.side(c));
-        // k: 0 first, 1 middle, 2 last along the walk.
-        let along = if s == 0 { k } else { 2 - k };
-        lab(3 * e + along, s)
-    };
     let l = |c: usize, side: u32| lab(3 * ne + m.nidx(c), side);
     let a_edge = |c: usize, side: u32| lab(3 * ne + nc + m.nidx(c), side);
     let b_edge = |c: usize, side: u32| lab(3 * ne + 2 * nc + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                poly.clear();
-                for c in lo..hi {
-                    poly.extend_from_slice(&[
-                        (src.cv[c], seg(c, 0)),
-                        (near(c), seg(c, 1)),
-                        (far(c), seg(c, 2)),
-                    ]);
-                }
-                b.face(true, &poly);
+    b.kept_faces(
+        &m,
+        |c, hole| m.push_thirds(c, nv, hole),
+        |b, _, lo, hi| {
+            b.walk(false, lo..hi, |c, w| w.push((inner(c), l(c, 0))));
+            for c in lo..hi {
+                let (p, d) = (src.prev(c), src.next(c));
+                b.face(
+                    false,
+                    &[
+                        (far(p), m.third(p, 2)),
+                        (src.cv[c], m.third(c, 0)),
+                        (near(c), a_edge(c, 0)),
+                        (inner(c), b_edge(c, 0)),
+                    ],
+                );
+                b.face(
+                    false,
+                    &[
+                        (near(c), m.third(c, 1)),
+                        (far(c), b_edge(d, 1)),
+                        (inner(d), l(c, 1)),
+                        (inner(c), a_edge(c, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                poly.clear();
-                poly.extend((lo..hi).map(|c| (inner(c), l(c, 0))));
-                b.face(false, &poly);
-                for c in lo..hi {
-                    let (p, d) = (src.prev(c), src.next(c));
-                    b.face(
-                        false,
-                        &[
-                            (far(p), seg(p, 2)),
-                            (src.cv[c], seg(c, 0)),
-                            (near(c), a_edge(c, 0)),
-                            (inner(c), b_edge(c, 0)),
-                        ],
-                    );
-                    b.face(
-                        false,
-                        &[
-                            (near(c), seg(c, 1)),
-                            (far(c), b_edge(d, 1)),
-                            (inner(d), l(c, 1)),
-                            (inner(c), a_edge(c, 1)),
-                        ],
-                    );
-                }
-            }
-        }
-    }
+        },
+    );
     b.finish()
 }

@@ -13,7 +13,8 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab, tension_mask};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, tension_mask};
 use crate::flat::{Flat, Kind, NONE};
 use crate::{Scheme, SubdivError, next_counts};
 
@@ -162,29 +163,14 @@ fn midpoint_split(m: &Map, budget: &Budget) -> Result<Flat, SubdivError> {
         c: 2 * (st.nc + st.hc) + st.ps,
     };
     budget.check(sizes)?;
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
-    pos.extend(
-        src.edges
-            .iter()
-            .map(|&[a, b]| 0.5 * (m.p(a as usize) + m.p(b as usize))),
-    );
+    let mut pos = m.kept_positions(sizes.v);
+    pos.extend(m.midpoints());
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        if m.kind[face] == Kind::PointSphere {
-            b.point_sphere(src.cv[lo], src.hole[face]);
-            continue;
-        }
-        poly.clear();
-        for c in lo..hi {
-            let (e, s) = (m.edge(c), m.side(c));
-            poly.push((src.cv[c], lab(2 * e + s as usize, s)));
-            poly.push(((st.v + e) as u32, lab(2 * e + 1 - s as usize, s)));
-        }
-        b.face(m.kind[face] == Kind::Hole, &poly);
-    }
+    b.walked_faces(
+        m,
+        |face| src.cv[m.range(face).0],
+        |c, w| m.push_halves(c, st.v, w),
+    );
     b.finish()
 }
 

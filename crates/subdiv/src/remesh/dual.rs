@@ -12,7 +12,8 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::Map;
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -41,15 +42,7 @@ pub(super) fn step(src: &Flat, budget: &Budget) -> Result<Flat, SubdivError> {
         })
         .collect();
     let mut b = Builder::new(pos, sizes);
-    let mut corners = Vec::new();
-    m.for_each_ring(|_, ring| {
-        corners.clear();
-        corners.extend(ring.iter().map(|&c| {
-            let p = src.prev(c);
-            (src.cf[c], lab(m.edge(p), m.side(p)))
-        }));
-        b.face(false, &corners);
-    })?;
+    b.vertex_faces(&m, |c, w| w.push((src.cf[c], m.own(src.prev(c)))))?;
     for face in 0..src.face_count() {
         if m.kind[face] == Kind::PointSphere {
             b.point_sphere(face as u32, src.hole[face]);

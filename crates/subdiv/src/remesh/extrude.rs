@@ -13,10 +13,11 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab, scale_about_centroid};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab, scale_about_centroid};
 use crate::SubdivError;
 use crate::doo_sabin::corner_points;
-use crate::flat::{Flat, Kind};
+use crate::flat::Flat;
 
 /// Global extrude. Output vertices: the input's, then ring 1 by normal
 /// corner: `centroid + scale (v − centroid) + length n̂`. Edges: the old
@@ -37,12 +38,8 @@ pub(super) fn global(
         c: 5 * st.nc + st.hc + st.ps,
     };
     budget.check(sizes)?;
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
-    for face in 0..src.face_count() {
-        if m.kind[face] != Kind::Normal {
-            continue;
-        }
+    let mut pos = m.kept_positions(sizes.v);
+    for face in m.normal_faces() {
         let (lo, hi) = m.range(face);
         let (z, n) = (m.centroid(face), m.normal(face));
         pos.extend((lo..hi).map(|c| z + scale * (m.p(c) - z) + length * n));
@@ -52,35 +49,25 @@ pub(super) fn global(
     let ring = |c: usize, side: u32| lab(ne + m.nidx(c), side);
     let up = |c: usize, side: u32| lab(ne + nc + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                poly.clear();
-                poly.extend((lo..hi).map(|c| (src.cv[c], lab(m.edge(c), m.side(c)))));
-                b.face(true, &poly);
+    b.kept_faces(
+        &m,
+        |c, hole| hole.push((src.cv[c], m.own(c))),
+        |b, _, lo, hi| {
+            for c in lo..hi {
+                let d = src.next(c);
+                b.face(
+                    false,
+                    &[
+                        (src.cv[c], m.own(c)),
+                        (src.cv[d], up(d, 0)),
+                        (top(d), ring(c, 1)),
+                        (top(c), up(c, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                for c in lo..hi {
-                    let d = src.next(c);
-                    b.face(
-                        false,
-                        &[
-                            (src.cv[c], lab(m.edge(c), m.side(c))),
-                            (src.cv[d], up(d, 0)),
-                            (top(d), ring(c, 1)),
-                            (top(c), up(c, 1)),
-                        ],
-                    );
-                }
-                poly.clear();
-                poly.extend((lo..hi).map(|c| (top(c), ring(c, 0))));
-                b.face(false, &poly);
-            }
-        }
-    }
+            b.walk(false, lo..hi, |c, w| w.push((top(c), ring(c, 0))));
+        },
+    );
     b.finish()
 }
 
@@ -120,8 +107,7 @@ pub(super) fn dome(
     };
     budget.check(sizes)?;
     let (nv, ne) = (st.v, st.e);
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
+    let mut pos = m.kept_positions(sizes.v);
     for &[a, b] in &src.edges {
         let (pa, pb) = (m.p(a as usize), m.p(b as usize));
         pos.extend((1..4).map(|k| pa + 0.25 * k as f64 * (pb - pa)));
@@ -141,10 +127,7 @@ pub(super) fn dome(
     let mut pts = Vec::new();
     let mut next = Vec::new();
     let mut trig = Vec::new();
-    for face in 0..src.face_count() {
-        if m.kind[face] != Kind::Normal {
-            continue;
-        }
+    for face in m.normal_faces() {
         let (lo, hi) = m.range(face);
         r0.clear();
         for c in lo..hi {
@@ -170,62 +153,45 @@ pub(super) fn dome(
         }
     }
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                poly.clear();
-                for c in lo..hi {
-                    ring0(c, &mut poly);
-                }
-                b.face(true, &poly);
+    b.kept_faces(&m, ring0, |b, face, lo, hi| {
+        r0.clear();
+        for c in lo..hi {
+            ring0(c, &mut r0);
+        }
+        let w = r0.len();
+        let k = m.nbase[face] as usize;
+        let vbase = nv + 3 * ne + per * k;
+        let ebase = 4 * ne + 2 * per * k;
+        let vert = |r: usize, i: usize| -> u32 {
+            if r == 0 {
+                r0[i % w].0
+            } else {
+                (vbase + (r - 1) * w + i % w) as u32
             }
-            Kind::Normal => {
-                r0.clear();
-                for c in lo..hi {
-                    ring0(c, &mut r0);
-                }
-                let w = r0.len();
-                let k = m.nbase[face] as usize;
-                let vbase = nv + 3 * ne + per * k;
-                let ebase = 4 * ne + 2 * per * k;
-                let vert = |r: usize, i: usize| -> u32 {
-                    if r == 0 {
-                        r0[i % w].0
-                    } else {
-                        (vbase + (r - 1) * w + i % w) as u32
-                    }
+        };
+        let ring_edge = |r: usize, i: usize, side: u32| lab(ebase + (r - 1) * w + i % w, side);
+        let up = |r: usize, i: usize, side: u32| lab(ebase + RINGS * w + (r - 1) * w + i % w, side);
+        for r in 1..=RINGS {
+            for (i, &(_, edge0)) in r0.iter().enumerate() {
+                let below = if r == 1 {
+                    edge0
+                } else {
+                    ring_edge(r - 1, i, 0)
                 };
-                let ring_edge =
-                    |r: usize, i: usize, side: u32| lab(ebase + (r - 1) * w + i % w, side);
-                let up = |r: usize, i: usize, side: u32| {
-                    lab(ebase + RINGS * w + (r - 1) * w + i % w, side)
-                };
-                for r in 1..=RINGS {
-                    for (i, &(_, edge0)) in r0.iter().enumerate() {
-                        let below = if r == 1 {
-                            edge0
-                        } else {
-                            ring_edge(r - 1, i, 0)
-                        };
-                        b.face(
-                            false,
-                            &[
-                                (vert(r - 1, i), below),
-                                (vert(r - 1, i + 1), up(r, i + 1, 0)),
-                                (vert(r, i + 1), ring_edge(r, i, 1)),
-                                (vert(r, i), up(r, i, 1)),
-                            ],
-                        );
-                    }
-                }
-                poly.clear();
-                poly.extend((0..w).map(|i| (vert(RINGS, i), ring_edge(RINGS, i, 0))));
-                b.face(false, &poly);
+                b.face(
+                    false,
+                    &[
+                        (vert(r - 1, i), below),
+                        (vert(r - 1, i + 1), up(r, i + 1, 0)),
+                        (vert(r, i + 1), ring_edge(r, i, 1)),
+                        (vert(r, i), up(r, i, 1)),
+                    ],
+                );
             }
         }
-    }
+        b.walk(false, 0..w, |i, out| {
+            out.push((vert(RINGS, i), ring_edge(RINGS, i, 0)))
+        });
+    });
     b.finish()
 }

@@ -13,8 +13,9 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, honeycomb_alpha, lab, tension_mask};
-use super::truncation::point_sphere_vertices;
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, honeycomb_alpha, lab, tension_mask};
+use super::truncation::{next_point_sphere, point_sphere_vertices};
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -53,26 +54,13 @@ pub(super) fn step(src: &Flat, budget: &Budget) -> Result<Flat, SubdivError> {
     let mut ps = point_sphere_vertices(&m, &mut pos);
     let copy = |c: usize| m.aidx(c) as u32;
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        if m.kind[face] == Kind::PointSphere {
-            b.point_sphere(ps, src.hole[face]);
-            ps += 1;
-            continue;
-        }
-        poly.clear();
-        poly.extend((lo..hi).map(|c| (copy(c), lab(m.aidx(c), 0))));
-        b.face(m.kind[face] == Kind::Hole, &poly);
-    }
-    m.for_each_ring(|_, ring| {
-        poly.clear();
-        for &c in ring {
-            let p = src.prev(c);
-            poly.push((copy(c), lab(m.aidx(p), 1)));
-            poly.push((copy(p), lab(ac + m.edge(p), m.side(p))));
-        }
-        b.face(false, &poly);
+    b.walked_faces(&m, next_point_sphere(&mut ps), |c, w| {
+        w.push((copy(c), lab(m.aidx(c), 0)));
+    });
+    b.vertex_faces(&m, |c, w| {
+        let p = src.prev(c);
+        w.push((copy(c), lab(m.aidx(p), 1)));
+        w.push((copy(p), lab(ac + m.edge(p), m.side(p))));
     })?;
     b.finish()
 }

@@ -12,7 +12,8 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab};
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -26,62 +27,37 @@ pub(super) enum Rule {
     Style(f64),
 }
 
-/// Half `v(c) → mₑ` of corner `c`'s edge.
-#[inline]
-fn first_half(m: &Map, c: usize) -> usize {
-    let (e, s) = (m.edge(c), m.side(c));
-    lab(2 * e + s as usize, s)
-}
-
-/// Half `mₑ → v(next c)` of corner `c`'s edge.
-#[inline]
-fn second_half(m: &Map, c: usize) -> usize {
-    let (e, s) = (m.edge(c), m.side(c));
-    lab(2 * e + 1 - s as usize, s)
-}
-
 /// Writes the corner triangles of every normal face and the refined
-/// holes; `middle(face, lo, hi, b)` writes what goes inside the midpoint
+/// holes; `middle(b, face, lo, hi)` writes what goes inside the midpoint
 /// polygon. Edge points are vertices `V + e`; cut edge of normal corner
 /// `k` is edge `2E + k`.
 fn corners_and_holes(
     m: &Map,
     b: &mut Builder,
-    mut middle: impl FnMut(usize, usize, usize, &mut Builder),
+    mut middle: impl FnMut(&mut Builder, usize, usize, usize),
 ) {
     let src = m.f;
     let (nv, ne) = (m.st.v as u32, m.st.e);
     let ep = |c: usize| nv + m.edge(c) as u32;
     let cut = |c: usize, side: u32| lab(2 * ne + m.nidx(c), side);
-    let mut hole = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                hole.clear();
-                for c in lo..hi {
-                    hole.push((src.cv[c], first_half(m, c)));
-                    hole.push((ep(c), second_half(m, c)));
-                }
-                b.face(true, &hole);
+    b.kept_faces(
+        m,
+        |c, hole| m.push_halves(c, nv as usize, hole),
+        |b, face, lo, hi| {
+            for c in lo..hi {
+                let p = src.prev(c);
+                b.face(
+                    false,
+                    &[
+                        (src.cv[c], m.half(c, false)),
+                        (ep(c), cut(c, 0)),
+                        (ep(p), m.half(p, true)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                for c in lo..hi {
-                    let p = src.prev(c);
-                    b.face(
-                        false,
-                        &[
-                            (src.cv[c], first_half(m, c)),
-                            (ep(c), cut(c, 0)),
-                            (ep(p), second_half(m, p)),
-                        ],
-                    );
-                }
-                middle(face, lo, hi, b);
-            }
-        }
-    }
+            middle(b, face, lo, hi);
+        },
+    );
 }
 
 /// One level of Loop's connectivity with `rule`'s positions: the input's
@@ -102,16 +78,12 @@ pub(super) fn step(src: &Flat, budget: &Budget, rule: Rule) -> Result<Flat, Subd
     };
     let mut b = Builder::new(pos, sizes);
     let (nv, ne) = (st.v as u32, st.e);
-    let mut poly = Vec::new();
-    corners_and_holes(&m, &mut b, |_, lo, hi, b| {
+    corners_and_holes(&m, &mut b, |b, _, lo, hi| {
         // The midpoint polygon walks mⱼ → mⱼ₊₁ along the cut edge of
         // corner j+1, on the side away from its corner triangle.
-        poly.clear();
-        for c in lo..hi {
-            let d = src.next(c);
-            poly.push((nv + m.edge(c) as u32, lab(2 * ne + m.nidx(d), 1)));
-        }
-        b.face(false, &poly);
+        b.walk(false, lo..hi, |c, w| {
+            w.push((nv + m.edge(c) as u32, lab(2 * ne + m.nidx(src.next(c)), 1)));
+        });
     });
     b.finish()
 }
@@ -172,31 +144,16 @@ fn loop_positions(m: &Map, nv: usize) -> Vec<DVec3> {
 /// corner (a self-loop counts twice). Boundary vertices stay, so open
 /// boundaries keep their shape.
 fn style_positions(m: &Map, nv: usize, length: f64) -> Vec<DVec3> {
-    let src = m.f;
-    let mid = |e: usize| {
-        let [a, b] = src.edges[e];
-        0.5 * (m.p(a as usize) + m.p(b as usize))
-    };
-    let mut pos = Vec::with_capacity(nv);
-    pos.extend_from_slice(&src.pos);
+    let mut pos = m.kept_positions(nv);
     if length != 1.0 {
-        let (n, h) = m.corner_counts();
-        let mut sum = vec![DVec3::ZERO; src.pos.len()];
-        for face in 0..src.face_count() {
-            if m.kind[face] == Kind::Normal {
-                let (lo, hi) = m.range(face);
-                for c in lo..hi {
-                    sum[src.cv[c] as usize] += mid(m.edge(c));
-                }
-            }
-        }
-        for (v, p) in pos.iter_mut().enumerate() {
-            if h[v] == 0 && n[v] > 0 {
-                *p = length * *p + (1.0 - length) * sum[v] / f64::from(n[v]);
+        let sums = m.interior_sums(|c| m.midpoint(m.edge(c)));
+        for (p, sum) in pos.iter_mut().zip(sums) {
+            if let Some((sum, k)) = sum {
+                *p = length * *p + (1.0 - length) * sum / k;
             }
         }
     }
-    pos.extend((0..src.edges.len()).map(mid));
+    pos.extend(m.midpoints());
     pos
 }
 
@@ -216,15 +173,11 @@ pub(super) fn fractal(src: &Flat, budget: &Budget, offset: f64) -> Result<Flat, 
     };
     budget.check(sizes)?;
     let mut pos = style_positions(&m, sizes.v, 1.0);
-    for face in 0..src.face_count() {
-        if m.kind[face] == Kind::Normal {
-            pos.push(apex(&m, face, offset));
-        }
-    }
+    pos.extend(m.normal_faces().map(|face| apex(&m, face, offset)));
     let mut b = Builder::new(pos, sizes);
     let (nv, ne, nc) = (st.v as u32, st.e, st.nc);
     let apex_base = nv + ne as u32;
-    corners_and_holes(&m, &mut b, |face, lo, hi, b| {
+    corners_and_holes(&m, &mut b, |b, face, lo, hi| {
         let z = apex_base + m.nrank[face];
         let spoke = |c: usize, side: u32| lab(2 * ne + nc + m.nidx(c), side);
         for c in lo..hi {

@@ -1,15 +1,14 @@
-//! What every remeshing scheme shares: a read-only view of the input map
-//! with per-face numbering ([`Map`]), the sizes one step will produce
-//! ([`Sizes`]) checked against the cap before anything is allocated
-//! ([`Budget`]), and a writer that pairs output corners into edges by
-//! explicit labels ([`Builder`]).
+//! What every remeshing scheme reads: a view of the input map with
+//! per-face numbering, the labels of the edge pieces the schemes cut, and
+//! the points and averages they place ([`Map`]); the writer that pairs
+//! output corners into edges by these labels is [`super::build`].
 //!
 //! # Edge labels
 //!
 //! Every output corner names the edge that starts at it as a *label*
 //! `2·edge + side`: the schemes number their output edges by arithmetic
 //! (old edge `e`, the spoke of normal corner `k`, …) and say which of the
-//! edge's two sides each corner is. The writer puts corner `x` with label
+//! edge's two sides each corner is. The writer ([`Builder`](super::build::Builder)) puts corner `x` with label
 //! `2e + s` into `edges[e][s]`; a slot filled twice or left empty is a bug
 //! and an [`SubdivError::Internal`] error. Pairing by label needs no
 //! search and no hashing, and it is indifferent to self-loops, multiple
@@ -200,6 +199,141 @@ impl<'a> Map<'a> {
             })
     }
 
+    /// The normal faces, in face order.
+    pub fn normal_faces(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.f.face_count()).filter(|&face| self.kind[face] == Kind::Normal)
+    }
+
+    /// The corners `c` of face `lo..hi` whose edge is not interior, each
+    /// as `(c, next c)`.
+    pub fn boundary_corners(
+        &self,
+        lo: usize,
+        hi: usize,
+    ) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (lo..hi)
+            .filter(|&c| !self.interior(self.edge(c)))
+            .map(|c| (c, self.f.next(c)))
+    }
+
+    /// Per edge, its number among the edges that are not interior, in
+    /// edge order (the old edges kept by the schemes that remove the
+    /// interior ones; an interior edge's entry is meaningless).
+    pub fn kept_edges(&self) -> Vec<u32> {
+        let mut kept = vec![0u32; self.st.e];
+        let mut next = 0u32;
+        for (e, k) in kept.iter_mut().enumerate() {
+            if !self.interior(e) {
+                *k = next;
+                next += 1;
+            }
+        }
+        kept
+    }
+
+    /// The label of corner `c`'s own edge, kept under its number, on `c`'s
+    /// side.
+    #[inline]
+    pub fn own(&self, c: usize) -> usize {
+        lab(self.edge(c), self.side(c))
+    }
+
+    /// The label of a half of corner `c`'s edge `e` split at one point
+    /// (halves `2e`, at the end of corner `edges[e][0]`, and `2e + 1`): the
+    /// first along `c`'s walk, or with `second` the one after the point.
+    #[inline]
+    pub fn half(&self, c: usize, second: bool) -> usize {
+        let (e, s) = (self.edge(c), self.side(c));
+        let k = if second { 1 - s } else { s };
+        lab(2 * e + k as usize, s)
+    }
+
+    /// The label of piece `k` (0, 1, 2 along `c`'s walk) of corner `c`'s
+    /// edge `e` cut in three (pieces `3e`, `3e + 1`, `3e + 2` from the end of
+    /// corner `edges[e][0]`).
+    #[inline]
+    pub fn third(&self, c: usize, k: usize) -> usize {
+        let (e, s) = (self.edge(c), self.side(c));
+        let along = if s == 0 { k } else { 2 - k };
+        lab(3 * e + along, s)
+    }
+
+    /// Of the two points `2e`, `2e + 1` that cut corner `c`'s edge `e`
+    /// (`2e + k` nearer the vertex of corner `edges[e][k]`), the one met
+    /// first along `c`'s walk, or with `far` the one met second.
+    #[inline]
+    pub fn cut_point(&self, c: usize, far: bool) -> usize {
+        let s = self.side(c) as usize;
+        2 * self.edge(c) + if far { 1 - s } else { s }
+    }
+
+    /// Pushes corner `c`'s edge split at its point (output vertex `base +
+    /// e`, halves as in [`Map::half`]) as the walk `v(c) → point`.
+    pub fn push_halves(&self, c: usize, base: usize, walk: &mut Vec<(u32, usize)>) {
+        walk.push((self.f.cv[c], self.half(c, false)));
+        walk.push(((base + self.edge(c)) as u32, self.half(c, true)));
+    }
+
+    /// Pushes corner `c`'s edge cut in three (points `base +`
+    /// [`Map::cut_point`], pieces as in [`Map::third`]) as the walk
+    /// `v(c) → near → far`.
+    pub fn push_thirds(&self, c: usize, base: usize, walk: &mut Vec<(u32, usize)>) {
+        walk.extend_from_slice(&[
+            (self.f.cv[c], self.third(c, 0)),
+            ((base + self.cut_point(c, false)) as u32, self.third(c, 1)),
+            ((base + self.cut_point(c, true)) as u32, self.third(c, 2)),
+        ]);
+    }
+
+    /// The midpoint of edge `e`.
+    #[inline]
+    pub fn midpoint(&self, e: usize) -> DVec3 {
+        let [a, b] = self.f.edges[e];
+        0.5 * (self.p(a as usize) + self.p(b as usize))
+    }
+
+    /// The edges' midpoints, in edge order.
+    pub fn midpoints(&self) -> impl Iterator<Item = DVec3> + '_ {
+        (0..self.f.edges.len()).map(|e| self.midpoint(e))
+    }
+
+    /// Per edge `e`, in edge order, the points at `t` of its length from
+    /// the vertex of corner `edges[e][0]`, then from the other end (the
+    /// points `2e` and `2e + 1` of [`Map::cut_point`]).
+    pub fn cut_points(&self, t: f64) -> impl Iterator<Item = DVec3> + '_ {
+        self.f.edges.iter().flat_map(move |&[a, b]| {
+            let (pa, pb) = (self.p(a as usize), self.p(b as usize));
+            [pa + t * (pb - pa), pb + t * (pa - pb)]
+        })
+    }
+
+    /// A position array with room for `cap`, starting with the input's
+    /// positions (the output vertices of the schemes that keep them).
+    pub fn kept_positions(&self, cap: usize) -> Vec<DVec3> {
+        let mut pos = Vec::with_capacity(cap);
+        pos.extend_from_slice(&self.f.pos);
+        pos
+    }
+
+    /// Per input vertex: for an interior one (corners only in normal
+    /// faces, at least one), the sum of `value(c)` over its corners `c` in
+    /// face order and their number; `None` for the others, which the
+    /// smoothing rules leave in place.
+    pub fn interior_sums(&self, value: impl Fn(usize) -> DVec3) -> Vec<Option<(DVec3, f64)>> {
+        let (n, h) = self.corner_counts();
+        let mut sum = vec![DVec3::ZERO; self.f.pos.len()];
+        for face in self.normal_faces() {
+            let (lo, hi) = self.range(face);
+            for c in lo..hi {
+                sum[self.f.cv[c] as usize] += value(c);
+            }
+        }
+        sum.into_iter()
+            .zip(n.into_iter().zip(h))
+            .map(|(s, (k, kh))| (kh == 0 && k > 0).then(|| (s, f64::from(k))))
+            .collect()
+    }
+
     /// The centroid of face `face`'s corners.
     pub fn centroid(&self, face: usize) -> DVec3 {
         let (lo, hi) = self.range(face);
@@ -294,133 +428,6 @@ impl<'a> Map<'a> {
             }
         }
         (n, h)
-    }
-}
-
-/// The exact size of one step's output.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(super) struct Sizes {
-    pub v: usize,
-    pub e: usize,
-    pub f: usize,
-    pub c: usize,
-}
-
-/// The cap in force and what to name in the error when a step would pass
-/// it.
-pub(super) struct Budget {
-    pub scheme: super::RemeshScheme,
-    pub levels: usize,
-    pub level: usize,
-    pub max_faces: usize,
-}
-
-impl Budget {
-    /// Refuses `s` when it has more faces than the cap or more entities
-    /// than the kernel's 32-bit indices hold.
-    pub fn check(&self, s: Sizes) -> Result<(), SubdivError> {
-        let limit = (u32::MAX - 2) as usize;
-        if s.f > self.max_faces || s.c > limit || s.v > limit || s.e > limit {
-            return Err(SubdivError::RemeshTooLarge {
-                scheme: self.scheme,
-                levels: self.levels,
-                level: self.level,
-                faces: s.f as u128,
-                corners: s.c as u128,
-                cap: self.max_faces,
-            });
-        }
-        Ok(())
-    }
-}
-
-/// Writes one step's output: faces as (vertex, label) corners, pairing
-/// corners into edges by label (see the module documentation).
-pub(super) struct Builder {
-    out: Flat,
-    sizes: Sizes,
-    /// The first inconsistency met, reported by [`Builder::finish`]; the
-    /// writing methods stay infallible so the schemes read as geometry.
-    bad: Option<String>,
-}
-
-impl Builder {
-    /// A writer for an output of exactly `sizes`, whose vertex positions
-    /// are `pos`. The caller has checked `sizes` against the [`Budget`].
-    pub fn new(pos: Vec<DVec3>, sizes: Sizes) -> Builder {
-        let bad = (pos.len() != sizes.v)
-            .then(|| format!("{} positions for {} vertices", pos.len(), sizes.v));
-        let mut out = Flat {
-            pos,
-            ..Flat::default()
-        };
-        out.off.reserve(sizes.f + 1);
-        out.cv.reserve(sizes.c);
-        out.cf.reserve(sizes.c);
-        out.cedge.reserve(sizes.c);
-        out.hole.reserve(sizes.f);
-        out.edges.resize(sizes.e, [NONE, NONE]);
-        Builder { out, sizes, bad }
-    }
-
-    /// Appends a face of the given corners (vertex, label), in walk order.
-    pub fn face(&mut self, hole: bool, corners: &[(u32, usize)]) {
-        let face = self.out.hole.len() as u32;
-        self.out.off.push(self.out.cv.len() as u32);
-        self.out.hole.push(hole);
-        for &(v, label) in corners {
-            let x = self.out.cv.len() as u32;
-            let (e, s) = (label >> 1, label & 1);
-            self.out.cv.push(v);
-            self.out.cf.push(face);
-            self.out.cedge.push(e as u32);
-            match self.out.edges.get_mut(e) {
-                Some(slot) if slot[s] == NONE => slot[s] = x,
-                _ => {
-                    if self.bad.is_none() {
-                        self.bad =
-                            Some(format!("edge label {label} is out of range or used twice"));
-                    }
-                }
-            }
-        }
-    }
-
-    /// Appends a point-sphere at vertex `v` (one corner, no edge).
-    pub fn point_sphere(&mut self, v: u32, hole: bool) {
-        let face = self.out.hole.len() as u32;
-        self.out.off.push(self.out.cv.len() as u32);
-        self.out.hole.push(hole);
-        self.out.cv.push(v);
-        self.out.cf.push(face);
-        self.out.cedge.push(NONE);
-    }
-
-    /// The finished map; an error when an edge was left unpaired, a label
-    /// was used twice, or the output does not have the sizes predicted.
-    pub fn finish(mut self) -> Result<Flat, SubdivError> {
-        self.out.off.push(self.out.cv.len() as u32);
-        if let Some(what) = self.bad {
-            return Err(SubdivError::Internal(what));
-        }
-        if let Some(e) = self.out.edges.iter().position(|s| s.contains(&NONE)) {
-            return Err(SubdivError::Internal(format!(
-                "output edge {e} was left unpaired"
-            )));
-        }
-        let got = Sizes {
-            v: self.out.pos.len(),
-            e: self.out.edges.len(),
-            f: self.out.hole.len(),
-            c: self.out.cv.len(),
-        };
-        if got != self.sizes {
-            return Err(SubdivError::Internal(format!(
-                "made {got:?}, predicted {:?}",
-                self.sizes
-            )));
-        }
-        Ok(self.out)
     }
 }
 

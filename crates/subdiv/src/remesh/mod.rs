@@ -49,6 +49,7 @@
 //! ([`MAX_FACES`] unless [`remesh_capped`] is given another) is
 //! [`SubdivError::RemeshTooLarge`]. The input mesh is never modified.
 
+mod build;
 mod checkerboard;
 mod corner_cut;
 mod dual;
@@ -70,11 +71,11 @@ mod tests;
 use std::fmt;
 use std::str::FromStr;
 
-use holey_dlfl::{BuildError, Mesh, RawMesh};
+use holey_dlfl::{Mesh, RawMesh};
 
 use crate::flat::{Flat, Kind};
 use crate::{MAX_FACES, SubdivError};
-use map::Budget;
+use build::Budget;
 
 /// The most levels one call may ask for. Every scheme that grows the mesh
 /// reaches the face cap in far fewer; the dual and the triangulation do
@@ -828,15 +829,11 @@ pub fn remesh_capped(
     levels: usize,
     max_faces: usize,
 ) -> Result<Mesh, SubdivError> {
-    let mut flat = run(mesh, scheme, params, levels, max_faces)?;
+    let flat = run(mesh, scheme, params, levels, max_faces)?;
     if levels == 0 {
         return Ok(mesh.clone());
     }
-    flat.localize_vertices();
-    Mesh::from_raw_trusted(&flat.into_raw()).map_err(|e| match e {
-        BuildError::NonFinite { vertex, .. } => SubdivError::RemeshOverflow { scheme, vertex },
-        other => SubdivError::Internal(format!("the output is not a valid DLFL: {other}")),
-    })
+    flat.into_mesh(|vertex| SubdivError::RemeshOverflow { scheme, vertex })
 }
 
 /// [`remesh`] as flat arrays, without building the kernel mesh. The

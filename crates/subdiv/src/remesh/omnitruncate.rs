@@ -13,8 +13,9 @@
 //! side-`s` corner `x`, from `T₁(x)` to `T₂(twin x)` on side 0 (in the
 //! edge's quad).
 
-use super::map::{Budget, Builder, Map, Sizes, lab, scale_about_centroid};
-use super::truncation::point_sphere_vertices;
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab, scale_about_centroid};
+use super::truncation::{next_point_sphere, point_sphere_vertices};
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -56,21 +57,10 @@ pub(super) fn step(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, Subd
     let k = |c: usize, side: u32| lab(ac + m.aidx(c), side);
     let rung = |x: usize, side: u32| lab(2 * ac + 2 * m.edge(x) + m.side(x) as usize, side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        if m.kind[face] == Kind::PointSphere {
-            b.point_sphere(ps, src.hole[face]);
-            ps += 1;
-            continue;
-        }
-        poly.clear();
-        for c in lo..hi {
-            poly.push((t1(c), g(c, 0)));
-            poly.push((t2(c), k(src.next(c), 0)));
-        }
-        b.face(m.kind[face] == Kind::Hole, &poly);
-    }
+    b.walked_faces(&m, next_point_sphere(&mut ps), |c, w| {
+        w.push((t1(c), g(c, 0)));
+        w.push((t2(c), k(src.next(c), 0)));
+    });
     for &[a, bb] in &src.edges {
         let (a, bb) = (a as usize, bb as usize);
         b.face(
@@ -83,14 +73,10 @@ pub(super) fn step(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, Subd
             ],
         );
     }
-    m.for_each_ring(|_, ring| {
-        poly.clear();
-        for &c in ring {
-            let p = src.prev(c);
-            poly.push((t1(c), k(c, 1)));
-            poly.push((t2(p), rung(src.twin(p), 1)));
-        }
-        b.face(false, &poly);
+    b.vertex_faces(&m, |c, w| {
+        let p = src.prev(c);
+        w.push((t1(c), k(c, 1)));
+        w.push((t2(p), rung(src.twin(p), 1)));
     })?;
     b.finish()
 }

@@ -18,21 +18,10 @@
 //! copy makes an `n`-gon into the copy and `n` pentagons
 //! `[m(prev c), v(c), m(c), I(c), I(prev c)]`.
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab};
 use crate::SubdivError;
-use crate::flat::{Flat, Kind};
-
-/// Segment labels of corner `c`'s edge: (first, middle, last) along its
-/// walk.
-fn thirds(m: &Map, c: usize) -> [usize; 3] {
-    let (e, s) = (m.edge(c), m.side(c));
-    let su = s as usize;
-    [
-        lab(3 * e + 2 * su, s),
-        lab(3 * e + 1, s),
-        lab(3 * e + 2 - 2 * su, s),
-    ]
-}
+use crate::flat::Flat;
 
 /// Pentagonalization. Output vertices: the input's, `T(e, k)` as
 /// `V + 2e + k`, the centres by normal face. The third point joined to a
@@ -47,8 +36,7 @@ pub(super) fn pentagonalize(src: &Flat, budget: &Budget, offset: f64) -> Result<
         c: 5 * st.nc + 3 * st.hc + st.ps,
     };
     budget.check(sizes)?;
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
+    let mut pos = m.kept_positions(sizes.v);
     for &[a, b] in &src.edges {
         let (pa, pb) = (m.p(a as usize), m.p(b as usize));
         pos.push((2.0 * pa + pb) / 3.0);
@@ -56,61 +44,42 @@ pub(super) fn pentagonalize(src: &Flat, budget: &Budget, offset: f64) -> Result<
     }
     let nv = st.v;
     let zbase = nv + 2 * st.e;
-    for face in 0..src.face_count() {
-        if m.kind[face] != Kind::Normal {
-            continue;
-        }
+    let near = |c: usize| (nv + m.cut_point(c, false)) as u32;
+    let far = |c: usize| (nv + m.cut_point(c, true)) as u32;
+    for face in m.normal_faces() {
         let z = m.centroid(face);
         pos.push(z);
         if offset != 0.0 {
             let (lo, hi) = m.range(face);
             for c in lo..hi {
-                let a = nv + 2 * m.edge(c) + m.side(c) as usize;
+                let a = near(c) as usize;
                 let moved = pos[a] + offset * (z - pos[a]);
                 pos[a] = moved;
             }
         }
     }
-    let near = |c: usize| (nv + 2 * m.edge(c) + m.side(c) as usize) as u32;
-    let far = |c: usize| (nv + 2 * m.edge(c) + 1 - m.side(c) as usize) as u32;
     let spoke = |c: usize, side: u32| lab(3 * st.e + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut hole = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                hole.clear();
-                for c in lo..hi {
-                    let [first, middle, last] = thirds(&m, c);
-                    hole.extend_from_slice(&[
-                        (src.cv[c], first),
-                        (near(c), middle),
-                        (far(c), last),
-                    ]);
-                }
-                b.face(true, &hole);
+    b.kept_faces(
+        &m,
+        |c, hole| m.push_thirds(c, nv, hole),
+        |b, face, lo, hi| {
+            let z = (zbase + m.nrank[face] as usize) as u32;
+            for c in lo..hi {
+                let d = src.next(c);
+                b.face(
+                    false,
+                    &[
+                        (z, spoke(c, 0)),
+                        (near(c), m.third(c, 1)),
+                        (far(c), m.third(c, 2)),
+                        (src.cv[d], m.third(d, 0)),
+                        (near(d), spoke(d, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                let z = (zbase + m.nrank[face] as usize) as u32;
-                for c in lo..hi {
-                    let d = src.next(c);
-                    let [_, middle, last] = thirds(&m, c);
-                    b.face(
-                        false,
-                        &[
-                            (z, spoke(c, 0)),
-                            (near(c), middle),
-                            (far(c), last),
-                            (src.cv[d], thirds(&m, d)[0]),
-                            (near(d), spoke(d, 1)),
-                        ],
-                    );
-                }
-            }
-        }
-    }
+        },
+    );
     b.finish()
 }
 
@@ -128,19 +97,11 @@ pub(super) fn preserve(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, 
         c: 6 * st.nc + 2 * st.hc + st.ps,
     };
     budget.check(sizes)?;
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
-    pos.extend(
-        src.edges
-            .iter()
-            .map(|&[a, b]| 0.5 * (m.p(a as usize) + m.p(b as usize))),
-    );
+    let mut pos = m.kept_positions(sizes.v);
+    pos.extend(m.midpoints());
     let nv = st.v;
     let mid = |c: usize| (nv + m.edge(c)) as u32;
-    for face in 0..src.face_count() {
-        if m.kind[face] != Kind::Normal {
-            continue;
-        }
+    for face in m.normal_faces() {
         let (lo, hi) = m.range(face);
         let centre = m.centroid(face);
         // The midpoints' centroid is the corners' centroid.
@@ -150,46 +111,28 @@ pub(super) fn preserve(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, 
         }
     }
     let inner = |c: usize| (nv + st.e + m.nidx(c)) as u32;
-    let half = |c: usize, second: bool| {
-        let (e, s) = (m.edge(c), m.side(c));
-        let k = if second { 1 - s } else { s };
-        lab(2 * e + k as usize, s)
-    };
     let l = |c: usize, side: u32| lab(2 * st.e + m.nidx(c), side);
     let q = |c: usize, side: u32| lab(2 * st.e + st.nc + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                poly.clear();
-                for c in lo..hi {
-                    poly.push((src.cv[c], half(c, false)));
-                    poly.push((mid(c), half(c, true)));
-                }
-                b.face(true, &poly);
+    b.kept_faces(
+        &m,
+        |c, hole| m.push_halves(c, nv, hole),
+        |b, _, lo, hi| {
+            b.walk(false, lo..hi, |c, w| w.push((inner(c), l(src.next(c), 0))));
+            for c in lo..hi {
+                let p = src.prev(c);
+                b.face(
+                    false,
+                    &[
+                        (mid(p), m.half(p, true)),
+                        (src.cv[c], m.half(c, false)),
+                        (mid(c), q(c, 0)),
+                        (inner(c), l(c, 1)),
+                        (inner(p), q(p, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                poly.clear();
-                poly.extend((lo..hi).map(|c| (inner(c), l(src.next(c), 0))));
-                b.face(false, &poly);
-                for c in lo..hi {
-                    let p = src.prev(c);
-                    b.face(
-                        false,
-                        &[
-                            (mid(p), half(p, true)),
-                            (src.cv[c], half(c, false)),
-                            (mid(c), q(c, 0)),
-                            (inner(c), l(c, 1)),
-                            (inner(p), q(p, 1)),
-                        ],
-                    );
-                }
-            }
-        }
-    }
+        },
+    );
     b.finish()
 }

@@ -13,9 +13,10 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, honeycomb_alpha, lab, tension_mask};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, honeycomb_alpha, lab, tension_mask};
 use crate::SubdivError;
-use crate::flat::{Flat, Kind};
+use crate::flat::Flat;
 
 /// One level. Output vertices: the input's, then `I(c)` by normal corner.
 /// Edges: the kept old edges, then `L`, then `J`, each by normal corner.
@@ -36,51 +37,30 @@ pub(super) fn step(
     };
     budget.check(sizes)?;
     let pos = positions(&m, sizes.v, weight, twist);
-    let mut kept = vec![0u32; st.e];
-    let mut next = 0u32;
-    for (e, k) in kept.iter_mut().enumerate() {
-        if !m.interior(e) {
-            *k = next;
-            next += 1;
-        }
-    }
+    let kept = m.kept_edges();
     let old = |c: usize| lab(kept[m.edge(c)] as usize, m.side(c));
     let inner = |c: usize| (st.v + m.nidx(c)) as u32;
     let l = |c: usize, side: u32| lab(kept_count + m.nidx(c), side);
     let j = |c: usize, side: u32| lab(kept_count + st.nc + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                poly.clear();
-                poly.extend((lo..hi).map(|c| (src.cv[c], old(c))));
-                b.face(true, &poly);
+    b.kept_faces(
+        &m,
+        |c, hole| hole.push((src.cv[c], old(c))),
+        |b, _, lo, hi| {
+            b.walk(false, lo..hi, |c, w| w.push((inner(c), l(c, 0))));
+            for (c, d) in m.boundary_corners(lo, hi) {
+                b.face(
+                    false,
+                    &[
+                        (src.cv[c], old(c)),
+                        (src.cv[d], j(d, 0)),
+                        (inner(d), l(c, 1)),
+                        (inner(c), j(c, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                poly.clear();
-                poly.extend((lo..hi).map(|c| (inner(c), l(c, 0))));
-                b.face(false, &poly);
-                for c in lo..hi {
-                    if m.interior(m.edge(c)) {
-                        continue;
-                    }
-                    let d = src.next(c);
-                    b.face(
-                        false,
-                        &[
-                            (src.cv[c], old(c)),
-                            (src.cv[d], j(d, 0)),
-                            (inner(d), l(c, 1)),
-                            (inner(c), j(c, 1)),
-                        ],
-                    );
-                }
-            }
-        }
-    }
+        },
+    );
     for (_, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,
@@ -104,14 +84,10 @@ pub(super) fn step(
 /// gone, which are these). Boundary vertices stay.
 fn positions(m: &Map, nv: usize, weight: f64, twist: f64) -> Vec<DVec3> {
     let src = m.f;
-    let mut pos = Vec::with_capacity(nv);
-    pos.extend_from_slice(&src.pos);
+    let mut pos = m.kept_positions(nv);
     let mut pts = Vec::new();
     let mut out = Vec::new();
-    for face in 0..src.face_count() {
-        if m.kind[face] != Kind::Normal {
-            continue;
-        }
+    for face in m.normal_faces() {
         let (lo, hi) = m.range(face);
         pts.clear();
         pts.extend((lo..hi).map(|c| (1.0 - twist) * m.p(c) + twist * m.p(src.next(c))));
@@ -121,20 +97,10 @@ fn positions(m: &Map, nv: usize, weight: f64, twist: f64) -> Vec<DVec3> {
         pos.extend_from_slice(&out);
     }
     if weight != 0.0 {
-        let (n, h) = m.corner_counts();
-        let mut sum = vec![DVec3::ZERO; src.pos.len()];
-        for face in 0..src.face_count() {
-            if m.kind[face] != Kind::Normal {
-                continue;
-            }
-            let (lo, hi) = m.range(face);
-            for c in lo..hi {
-                sum[src.cv[c] as usize] += pos[src.pos.len() + m.nidx(c)];
-            }
-        }
-        for v in 0..src.pos.len() {
-            if h[v] == 0 && n[v] > 0 {
-                pos[v] = (1.0 - weight) * pos[v] + weight * sum[v] / f64::from(n[v]);
+        let sums = m.interior_sums(|c| pos[src.pos.len() + m.nidx(c)]);
+        for (p, sum) in pos.iter_mut().zip(sums) {
+            if let Some((sum, k)) = sum {
+                *p = (1.0 - weight) * *p + weight * sum / k;
             }
         }
     }

@@ -12,9 +12,10 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab};
 use crate::SubdivError;
-use crate::flat::{Flat, Kind};
+use crate::flat::Flat;
 
 /// One level. Output vertices: the input's, then the centres in
 /// normal-face order; edges: the old ones (flipped or kept), then one spoke
@@ -34,34 +35,22 @@ pub(super) fn step(src: &Flat, budget: &Budget, smooth: bool) -> Result<Flat, Su
     let zc = |c: usize| st.v as u32 + m.nrank[src.cf[c] as usize];
     let spoke = |c: usize, side: u32| lab(st.e + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut copy = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                copy.clear();
-                copy.extend((lo..hi).map(|c| (src.cv[c], lab(m.edge(c), m.side(c)))));
-                b.face(true, &copy);
+    b.kept_faces(
+        &m,
+        |c, hole| hole.push((src.cv[c], m.own(c))),
+        |b, _, lo, hi| {
+            for (c, d) in m.boundary_corners(lo, hi) {
+                b.face(
+                    false,
+                    &[
+                        (src.cv[c], m.own(c)),
+                        (src.cv[d], spoke(d, 0)),
+                        (zc(c), spoke(c, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                for c in lo..hi {
-                    if m.interior(m.edge(c)) {
-                        continue;
-                    }
-                    let d = src.next(c);
-                    b.face(
-                        false,
-                        &[
-                            (src.cv[c], lab(m.edge(c), m.side(c))),
-                            (src.cv[d], spoke(d, 0)),
-                            (zc(c), spoke(c, 1)),
-                        ],
-                    );
-                }
-            }
-        }
-    }
+        },
+    );
     for (e, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,
@@ -89,32 +78,16 @@ pub(super) fn step(src: &Flat, budget: &Budget, smooth: bool) -> Result<Flat, Su
 /// vertices stay), then the face centroids.
 fn positions(m: &Map, nv: usize, smooth: bool) -> Vec<DVec3> {
     let src = m.f;
-    let mut pos = Vec::with_capacity(nv);
-    pos.extend_from_slice(&src.pos);
+    let mut pos = m.kept_positions(nv);
     if smooth {
-        let (n, h) = m.corner_counts();
-        let mut sum = vec![DVec3::ZERO; src.pos.len()];
-        for face in 0..src.face_count() {
-            if m.kind[face] != Kind::Normal {
-                continue;
-            }
-            let (lo, hi) = m.range(face);
-            for c in lo..hi {
-                sum[src.cv[c] as usize] += m.p(src.next(c));
-            }
-        }
-        for (v, p) in pos.iter_mut().enumerate() {
-            if h[v] == 0 && n[v] > 0 {
-                let k = f64::from(n[v]);
+        let sums = m.interior_sums(|c| m.p(src.next(c)));
+        for (p, sum) in pos.iter_mut().zip(sums) {
+            if let Some((sum, k)) = sum {
                 let alpha = (4.0 - 2.0 * (std::f64::consts::TAU / k).cos()) / 9.0;
-                *p = (1.0 - alpha) * *p + alpha * sum[v] / k;
+                *p = (1.0 - alpha) * *p + alpha * sum / k;
             }
         }
     }
-    for face in 0..src.face_count() {
-        if m.kind[face] == Kind::Normal {
-            pos.push(m.centroid(face));
-        }
-    }
+    pos.extend(m.normal_faces().map(|face| m.centroid(face)));
     pos
 }

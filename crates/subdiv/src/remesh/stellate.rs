@@ -13,7 +13,8 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab};
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -57,17 +58,15 @@ pub(super) fn stellate(
         let (lo, hi) = m.range(face);
         m.kind[face] == Kind::Normal && !(skip_triangles && hi - lo == 3)
     };
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
-    for face in 0..src.face_count() {
-        if stellated(face) {
-            pos.push(centre(&m, face, height));
-        }
-    }
+    let mut pos = m.kept_positions(sizes.v);
+    pos.extend(
+        (0..src.face_count())
+            .filter(|&face| stellated(face))
+            .map(|face| centre(&m, face, height)),
+    );
     let mut b = Builder::new(pos, sizes);
     let mut z = st.v as u32;
     let mut spoke = st.e;
-    let mut copy = Vec::new();
     for face in 0..src.face_count() {
         let (lo, hi) = m.range(face);
         if m.kind[face] == Kind::PointSphere {
@@ -79,7 +78,7 @@ pub(super) fn stellate(
                 b.face(
                     false,
                     &[
-                        (src.cv[c], lab(m.edge(c), m.side(c))),
+                        (src.cv[c], m.own(c)),
                         (src.cv[d], lab(spoke + (j + 1) % n, 0)),
                         (z, lab(spoke + j, 1)),
                     ],
@@ -88,9 +87,7 @@ pub(super) fn stellate(
             z += 1;
             spoke += n;
         } else {
-            copy.clear();
-            copy.extend((lo..hi).map(|c| (src.cv[c], lab(m.edge(c), m.side(c)))));
-            b.face(src.hole[face], &copy);
+            b.walk(src.hole[face], lo..hi, |c, w| w.push((src.cv[c], m.own(c))));
         }
     }
     b.finish()
@@ -118,53 +115,29 @@ pub(super) fn edge_removal(src: &Flat, budget: &Budget, height: f64) -> Result<F
     };
     budget.check(sizes)?;
     // Kept old edges are renumbered densely; interior ones get no number.
-    let mut kept = vec![0u32; st.e];
-    let mut next = 0u32;
-    for (e, k) in kept.iter_mut().enumerate() {
-        if !m.interior(e) {
-            *k = next;
-            next += 1;
-        }
-    }
-    let mut pos = Vec::with_capacity(sizes.v);
-    pos.extend_from_slice(&src.pos);
-    for face in 0..src.face_count() {
-        if m.kind[face] == Kind::Normal {
-            pos.push(centre(&m, face, height));
-        }
-    }
+    let kept = m.kept_edges();
+    let mut pos = m.kept_positions(sizes.v);
+    pos.extend(m.normal_faces().map(|face| centre(&m, face, height)));
     let zc = |c: usize| st.v as u32 + m.nrank[src.cf[c] as usize];
     let spoke = |c: usize, side: u32| lab(kept_count + m.nidx(c), side);
     let old = |c: usize| lab(kept[m.edge(c)] as usize, m.side(c));
     let mut b = Builder::new(pos, sizes);
-    let mut copy = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        match m.kind[face] {
-            Kind::PointSphere => b.point_sphere(src.cv[lo], src.hole[face]),
-            Kind::Hole => {
-                copy.clear();
-                copy.extend((lo..hi).map(|c| (src.cv[c], old(c))));
-                b.face(true, &copy);
+    b.kept_faces(
+        &m,
+        |c, hole| hole.push((src.cv[c], old(c))),
+        |b, _, lo, hi| {
+            for (c, d) in m.boundary_corners(lo, hi) {
+                b.face(
+                    false,
+                    &[
+                        (src.cv[c], old(c)),
+                        (src.cv[d], spoke(d, 0)),
+                        (zc(c), spoke(c, 1)),
+                    ],
+                );
             }
-            Kind::Normal => {
-                for c in lo..hi {
-                    if m.interior(m.edge(c)) {
-                        continue;
-                    }
-                    let d = src.next(c);
-                    b.face(
-                        false,
-                        &[
-                            (src.cv[c], old(c)),
-                            (src.cv[d], spoke(d, 0)),
-                            (zc(c), spoke(c, 1)),
-                        ],
-                    );
-                }
-            }
-        }
-    }
+        },
+    );
     for (_, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,
@@ -189,12 +162,8 @@ pub(super) fn double(src: &Flat, budget: &Budget, offset: f64) -> Result<Flat, S
     let mut twice = stellate(&once, budget, 0.0, false)?;
     if offset != 0.0 {
         let m = Map::new(src);
-        let mut z = src.pos.len();
-        for face in 0..src.face_count() {
-            if m.kind[face] == Kind::Normal {
-                twice.pos[z] += offset * m.normal(face);
-                z += 1;
-            }
+        for (z, face) in (src.pos.len()..).zip(m.normal_faces()) {
+            twice.pos[z] += offset * m.normal(face);
         }
     }
     Ok(twice)

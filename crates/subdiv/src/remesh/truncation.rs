@@ -12,7 +12,8 @@
 
 use glam::DVec3;
 
-use super::map::{Budget, Builder, Map, Sizes, lab};
+use super::build::{Budget, Builder, Sizes};
+use super::map::{Map, lab};
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -32,38 +33,16 @@ pub(super) fn truncate(src: &Flat, budget: &Budget, offset: f64) -> Result<Flat,
     };
     budget.check(sizes)?;
     let mut pos: Vec<DVec3> = Vec::with_capacity(sizes.v);
-    for &[a, b] in &src.edges {
-        let (pa, pb) = (m.p(a as usize), m.p(b as usize));
-        pos.push(pa + offset * (pb - pa));
-        pos.push(pb + offset * (pa - pb));
-    }
+    pos.extend(m.cut_points(offset));
     let mut ps = point_sphere_vertices(&m, &mut pos);
-    let point = |c: usize, far: bool| {
-        let s = m.side(c) as usize;
-        (2 * m.edge(c) + if far { 1 - s } else { s }) as u32
-    };
+    let point = |c: usize, far: bool| m.cut_point(c, far) as u32;
     let cut = |c: usize, side: u32| lab(st.e + m.aidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        if m.kind[face] == Kind::PointSphere {
-            b.point_sphere(ps, src.hole[face]);
-            ps += 1;
-            continue;
-        }
-        poly.clear();
-        for c in lo..hi {
-            poly.push((point(c, false), lab(m.edge(c), m.side(c))));
-            poly.push((point(c, true), cut(src.next(c), 0)));
-        }
-        b.face(m.kind[face] == Kind::Hole, &poly);
-    }
-    m.for_each_ring(|_, ring| {
-        poly.clear();
-        poly.extend(ring.iter().map(|&c| (point(c, false), cut(c, 1))));
-        b.face(false, &poly);
-    })?;
+    b.walked_faces(&m, next_point_sphere(&mut ps), |c, w| {
+        w.push((point(c, false), m.own(c)));
+        w.push((point(c, true), cut(src.next(c), 0)));
+    });
+    b.vertex_faces(&m, |c, w| w.push((point(c, false), cut(c, 1))))?;
     b.finish()
 }
 
@@ -81,31 +60,14 @@ pub(super) fn simplest(src: &Flat, budget: &Budget) -> Result<Flat, SubdivError>
     };
     budget.check(sizes)?;
     let mut pos: Vec<DVec3> = Vec::with_capacity(sizes.v);
-    pos.extend(
-        src.edges
-            .iter()
-            .map(|&[a, b]| 0.5 * (m.p(a as usize) + m.p(b as usize))),
-    );
+    pos.extend(m.midpoints());
     let mut ps = point_sphere_vertices(&m, &mut pos);
     let cut = |c: usize, side: u32| lab(m.aidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    let mut poly = Vec::new();
-    for face in 0..src.face_count() {
-        let (lo, hi) = m.range(face);
-        if m.kind[face] == Kind::PointSphere {
-            b.point_sphere(ps, src.hole[face]);
-            ps += 1;
-            continue;
-        }
-        poly.clear();
-        poly.extend((lo..hi).map(|c| (m.edge(c) as u32, cut(src.next(c), 0))));
-        b.face(m.kind[face] == Kind::Hole, &poly);
-    }
-    m.for_each_ring(|_, ring| {
-        poly.clear();
-        poly.extend(ring.iter().map(|&c| (m.edge(c) as u32, cut(c, 1))));
-        b.face(false, &poly);
-    })?;
+    b.walked_faces(&m, next_point_sphere(&mut ps), |c, w| {
+        w.push((m.edge(c) as u32, cut(src.next(c), 0)));
+    });
+    b.vertex_faces(&m, |c, w| w.push((m.edge(c) as u32, cut(c, 1))))?;
     b.finish()
 }
 
@@ -119,4 +81,13 @@ pub(super) fn point_sphere_vertices(m: &Map, pos: &mut Vec<DVec3>) -> u32 {
         }
     }
     first
+}
+
+/// The output vertices of the point-spheres one after the other, from the
+/// first at `*ps`: what [`Builder::walked_faces`] asks for each.
+pub(super) fn next_point_sphere(ps: &mut u32) -> impl FnMut(usize) -> u32 + '_ {
+    move |_| {
+        *ps += 1;
+        *ps - 1
+    }
 }

@@ -30,25 +30,8 @@ fn soup(tris: &[[DVec3; 3]]) -> TriMesh {
 
 /// A closed octahedron of radius `r` around `c`.
 pub(crate) fn octahedron(c: DVec3, r: f64) -> TriMesh {
-    let p = [
-        DVec3::X,
-        -DVec3::X,
-        DVec3::Y,
-        -DVec3::Y,
-        DVec3::Z,
-        -DVec3::Z,
-    ]
-    .map(|d| c + d * r);
-    let t = [
-        [0, 2, 4],
-        [2, 1, 4],
-        [1, 3, 4],
-        [3, 0, 4],
-        [2, 0, 5],
-        [1, 2, 5],
-        [3, 1, 5],
-        [0, 3, 5],
-    ];
+    let (p, t) = holey_testkit::octahedron();
+    let p = p.map(|d| c + DVec3::from_array(d) * r);
     TriMesh {
         positions: p.to_vec(),
         triangles: t.to_vec(),

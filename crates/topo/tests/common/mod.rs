@@ -101,43 +101,7 @@ pub fn closed_oriented(m: &TriMesh) -> bool {
 /// Edges with one triangle side, and the number of boundary loops
 /// (connected components of the boundary-edge graph).
 pub fn boundary(m: &TriMesh) -> (usize, usize) {
-    let mut undirected: HashMap<(u32, u32), usize> = HashMap::new();
-    for t in &m.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *undirected.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let bedges: Vec<(u32, u32)> = undirected
-        .into_iter()
-        .filter(|&(_, n)| n == 1)
-        .map(|(e, _)| e)
-        .collect();
-    let mut parent: HashMap<u32, u32> = HashMap::new();
-    fn find(p: &mut HashMap<u32, u32>, x: u32) -> u32 {
-        let mut r = x;
-        while let Some(&q) = p.get(&r) {
-            if q == r {
-                break;
-            }
-            r = q;
-        }
-        p.insert(x, r);
-        r
-    }
-    for &(a, b) in &bedges {
-        parent.entry(a).or_insert(a);
-        parent.entry(b).or_insert(b);
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        if ra != rb {
-            parent.insert(ra, rb);
-        }
-    }
-    let verts: Vec<u32> = parent.keys().copied().collect();
-    let mut roots: Vec<u32> = verts.iter().map(|&v| find(&mut parent, v)).collect();
-    roots.sort_unstable();
-    roots.dedup();
-    (bedges.len(), roots.len())
+    holey_testkit::boundary(&m.triangles)
 }
 
 /// Connected components through shared vertices.
@@ -292,14 +256,10 @@ pub fn euler(m: &TriMesh) -> i64 {
 /// The largest number of triangles on one undirected edge (2 for a
 /// manifold surface, 1 on a boundary).
 pub fn max_edge_degree(m: &TriMesh) -> usize {
-    let mut d: HashMap<(u32, u32), usize> = HashMap::new();
-    for t in &m.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *d.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    d.values().copied().max().unwrap_or(0)
+    holey_testkit::edge_degrees(&m.triangles)
+        .into_values()
+        .max()
+        .unwrap_or(0)
 }
 
 /// Triangles split into connected components (through shared vertices):

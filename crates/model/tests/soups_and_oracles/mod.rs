@@ -22,14 +22,8 @@ pub fn prim(spec: &str) -> Mesh {
 /// The soup `a` followed by `b` moved by `offset`: faces of `a` keep
 /// their indices, faces of `b` follow.
 pub fn union(a: &PolyMesh, b: &PolyMesh, offset: DVec3) -> PolyMesh {
-    let nv = a.positions.len() as u32;
     let mut out = a.clone();
-    out.positions
-        .extend(b.positions.iter().map(|&p| p + offset));
-    for f in b.faces() {
-        let shifted: Vec<u32> = f.iter().map(|v| v + nv).collect();
-        out.push_face(&shifted);
-    }
+    out.append(&b.translated(offset));
     out
 }
 

@@ -1,0 +1,150 @@
+//! Small meshes the tests of several crates build on, as plain arrays
+//! (positions as `[f64; 3]`, faces as vertex indices), so that this crate
+//! depends on none of them: each test turns them into its own crate's
+//! type.
+
+/// The unit cube `[0, 1]³`: corners in the order `(0,0,0)`, `(1,0,0)`,
+/// `(1,1,0)`, `(0,1,0)`, then the same at `z = 1`; six quads, outward.
+pub fn unit_cube() -> ([[f64; 3]; 8], [[u32; 4]; 6]) {
+    (
+        [
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+            [1., 0., 1.],
+            [1., 1., 1.],
+            [0., 1., 1.],
+        ],
+        [
+            [0, 3, 2, 1],
+            [4, 5, 6, 7],
+            [0, 1, 5, 4],
+            [2, 3, 7, 6],
+            [1, 2, 6, 5],
+            [0, 4, 7, 3],
+        ],
+    )
+}
+
+/// The regular octahedron with corners on the axes, in the order +x, −x,
+/// +y, −y, +z, −z (unit directions; scale and move them as needed), and
+/// its eight triangles, outward.
+pub fn octahedron() -> ([[f64; 3]; 6], [[u32; 3]; 8]) {
+    (
+        [
+            [1., 0., 0.],
+            [-1., 0., 0.],
+            [0., 1., 0.],
+            [0., -1., 0.],
+            [0., 0., 1.],
+            [0., 0., -1.],
+        ],
+        [
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ],
+    )
+}
+
+/// A UV sphere of `2·nu·(nv−2)` triangles: `nu` meridians, `nv` parallels
+/// (poles included), welded, outward-oriented, centre `c`, radius `r`.
+/// Vertices: the north pole, the rings from north to south, the south
+/// pole.
+pub fn uv_sphere(nu: usize, nv: usize, c: [f64; 3], r: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let mut pos = vec![[c[0], c[1], c[2] + r]];
+    for j in 1..nv - 1 {
+        let th = std::f64::consts::PI * j as f64 / (nv - 1) as f64;
+        for i in 0..nu {
+            let ph = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
+            pos.push([
+                c[0] + r * th.sin() * ph.cos(),
+                c[1] + r * th.sin() * ph.sin(),
+                c[2] + r * th.cos(),
+            ]);
+        }
+    }
+    pos.push([c[0], c[1], c[2] - r]);
+    let south = (pos.len() - 1) as u32;
+    let ring = |j: usize, i: usize| (1 + (j - 1) * nu + (i % nu)) as u32;
+    let mut tris = Vec::new();
+    for i in 0..nu {
+        tris.push([0, ring(1, i), ring(1, i + 1)]);
+    }
+    for j in 1..nv - 2 {
+        for i in 0..nu {
+            let (a, b, c2, d) = (
+                ring(j, i),
+                ring(j + 1, i),
+                ring(j + 1, i + 1),
+                ring(j, i + 1),
+            );
+            tris.push([a, b, c2]);
+            tris.push([a, c2, d]);
+        }
+    }
+    for i in 0..nu {
+        tris.push([ring(nv - 2, i), south, ring(nv - 2, i + 1)]);
+    }
+    (pos, tris)
+}
+
+/// Several [`uv_sphere`]s of `nu × nv` as one mesh, each `(centre,
+/// radius)` in turn: the vertices of sphere `k` follow those of sphere
+/// `k − 1`.
+pub fn uv_spheres(
+    nu: usize,
+    nv: usize,
+    spheres: &[([f64; 3], f64)],
+) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let (mut pos, mut tris) = (Vec::new(), Vec::new());
+    for &(c, r) in spheres {
+        let (p, t) = uv_sphere(nu, nv, c, r);
+        let base = pos.len() as u32;
+        pos.extend(p);
+        tris.extend(t.iter().map(|x| x.map(|v| v + base)));
+    }
+    (pos, tris)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every directed edge once and its reverse once: closed and oriented.
+    fn closed_oriented<const N: usize>(faces: &[[u32; N]]) -> bool {
+        let mut edges: Vec<(u32, u32)> = faces
+            .iter()
+            .flat_map(|f| (0..N).map(move |k| (f[k], f[(k + 1) % N])))
+            .collect();
+        edges.sort_unstable();
+        let unique = edges.windows(2).all(|w| w[0] != w[1]);
+        unique
+            && edges
+                .iter()
+                .all(|&(a, b)| edges.binary_search(&(b, a)).is_ok())
+    }
+
+    #[test]
+    fn the_meshes_are_closed_and_oriented() {
+        assert!(closed_oriented(&unit_cube().1));
+        assert!(closed_oriented(&octahedron().1));
+        let (p, t) = uv_sphere(12, 7, [1.0, 2.0, 3.0], 0.5);
+        assert_eq!((p.len(), t.len()), (2 + 12 * 5, 2 * 12 * 5));
+        assert!(closed_oriented(&t));
+        let (p2, t2) = uv_spheres(12, 7, &[([0.0; 3], 1.0), ([1.0, 2.0, 3.0], 0.5)]);
+        assert_eq!(&p2[p2.len() - p.len()..], &p[..]);
+        assert_eq!(t2[t.len()], t[0].map(|v| v + p.len() as u32));
+        for q in &p {
+            let d = ((q[0] - 1.0).powi(2) + (q[1] - 2.0).powi(2) + (q[2] - 3.0).powi(2)).sqrt();
+            assert!((d - 0.5).abs() < 1e-12);
+        }
+    }
+}
