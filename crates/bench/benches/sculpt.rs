@@ -29,11 +29,7 @@ fn radius_for(mesh: &TriMesh) -> f64 {
 fn frame(bencher: Bencher, level: u32, brush: Brush, strength: f64, to: DVec3) {
     let mesh = holey_bench::icosphere(level);
     let radius = radius_for(&mesh);
-    let settings = BrushSettings {
-        brush,
-        radius,
-        strength,
-    };
+    let settings = BrushSettings::new(brush, radius, strength);
     let top = DVec3::Z;
     bencher
         .with_inputs(|| {

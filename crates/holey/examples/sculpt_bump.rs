@@ -27,12 +27,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             radius: 0.3,
             strength: 0.01,
             path: arc.clone(),
+            ..Stroke::default()
         },
         Stroke {
             brush: Brush::Smooth,
             radius: 0.3,
             strength: 0.5,
             path: arc,
+            ..Stroke::default()
         },
     ];
     for stroke in &strokes {

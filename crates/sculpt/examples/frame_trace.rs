@@ -60,9 +60,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frame_no = 0usize;
     for (s, stroke) in file.strokes.iter().enumerate() {
         let settings = BrushSettings {
-            brush: stroke.brush,
-            radius: stroke.radius,
-            strength: stroke.strength,
+            falloff: stroke.falloff,
+            ..BrushSettings::new(stroke.brush, stroke.radius, stroke.strength)
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;

@@ -50,11 +50,13 @@ pub mod remesh;
 pub mod report;
 pub mod session;
 pub mod strokes;
+pub mod symmetry;
 
-pub use brush::{Brush, falloff};
-pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke};
+pub use brush::{Brush, Falloff, falloff};
+pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke, PressureDrives};
 pub use remesh::{
     RemeshError, RemeshOptions, RemeshReport, default_range, remesh, remesh_in_place, remesh_with,
 };
 pub use session::{Diagnostics, Frame, ObserverError, SculptError, Session, StrokeReport};
-pub use strokes::{Remesh, Stroke, StrokeFile, StrokeFileError, parse_strokes};
+pub use strokes::{Mask, Remesh, Stroke, StrokeFile, StrokeFileError, parse_strokes};
+pub use symmetry::{About, Symmetry};

@@ -5,7 +5,8 @@
 //! picks, [`LiveStroke::frame`] moves the surface by one path point and
 //! [`LiveStroke::finish`] ends the stroke (the release of a drag).
 //!
-//! - Inflate and smooth change topology between every pair of frames.
+//! - Inflate, smooth and the snake hook change topology between every
+//!   pair of frames.
 //! - Grab and move accumulate collision parity over the drag
 //!   ([`Accumulator`]) and change topology once, at release; during the
 //!   drag the corrected parity of the dragged surface is available for the
@@ -20,9 +21,12 @@ use holey_topo::{
     Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
 };
 
-use crate::brush::{Brush, closest_point, component_of, grab_weights, inflate, smooth};
+use crate::brush::{
+    Brush, Falloff, closest_point, component_of, grab_weights_with, paint_at, snake_hook,
+};
 use crate::remesh::{RemeshOptions, RemeshReport, default_range, remesh_in_place_checked};
 use crate::report::{Diagnostics, SculptError, StrokeReport};
+use crate::symmetry::{Mirror, Symmetry};
 
 /// The share of the bounding-box diagonal within which a move's first
 /// point must lie from the surface: a move picks a whole component, so it
@@ -38,6 +42,40 @@ pub struct BrushSettings {
     pub radius: f64,
     /// See [`crate::Stroke::strength`].
     pub strength: f64,
+    /// The falloff curve of the centred brushes and the grab (the snake
+    /// hook keeps the smooth curve its step bound is worked out for, and
+    /// move its plateau).
+    pub falloff: Falloff,
+    /// The mirror planes every frame is repeated across.
+    pub symmetry: Symmetry,
+    /// What a frame's pen pressure scales ([`LiveStroke::frame_pressed`]).
+    pub pressure: PressureDrives,
+}
+
+impl BrushSettings {
+    /// A brush with the smooth falloff, no symmetry, pressure on strength.
+    pub fn new(brush: Brush, radius: f64, strength: f64) -> BrushSettings {
+        BrushSettings {
+            brush,
+            radius,
+            strength,
+            falloff: Falloff::Smooth,
+            symmetry: Symmetry::NONE,
+            pressure: PressureDrives::Strength,
+        }
+    }
+}
+
+/// What pen pressure (0 to 1 per frame) scales in a paint frame. Drags
+/// (grab, move) follow the pointer and ignore it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PressureDrives {
+    /// The frame's strength is multiplied by the pressure.
+    #[default]
+    Strength,
+    /// The frame's radius is multiplied by the pressure.
+    Radius,
 }
 
 /// What one frame shows.
@@ -64,11 +102,14 @@ pub struct LiveFrame<'a> {
 enum State {
     Paint {
         mesh: TriMesh,
+        /// For a snake hook: where the hook is and the pointer was.
+        hook: Option<Hook>,
     },
     Drag {
         start: TriMesh,
-        /// Per-vertex share of the pointer offset (0 = held still).
-        weights: Vec<f64>,
+        /// Per mirror image: each vertex's share of the pointer offset (0
+        /// = held still) and the image the offset is reflected by.
+        holds: Vec<(Vec<f64>, Mirror)>,
         first: DVec3,
         /// The surface point a grab holds.
         picked: DVec3,
@@ -77,10 +118,95 @@ enum State {
     },
 }
 
+/// The snake hook's grip: the centre it pulls from and the path point the
+/// last frame reached. The centre advances by `strength ×` the pointer's
+/// motion, so it stays on the part it pulls whatever the strength.
+///
+/// The hook lets go once a step changes topology: what it pulled has met
+/// something and fused (a tip pressed into a body is now a handle), or
+/// torn. Pulling on would drag the fused seam, and the body around it,
+/// along after the pointer.
+#[derive(Clone, Copy, Debug)]
+struct Hook {
+    centre: DVec3,
+    pointer: DVec3,
+    holding: bool,
+}
+
+/// Where one paint frame applies its brush.
+#[derive(Clone, Copy, Debug)]
+enum Dab {
+    /// A centred brush (inflate, smooth, draw, ...) at the point.
+    At(DVec3),
+    /// The snake hook: the hooked patch pulled from the first point to
+    /// the second (the strength already applied).
+    Pull(DVec3, DVec3),
+}
+
+impl Dab {
+    /// The positions at the end of the dab.
+    fn end(
+        self,
+        mesh: &TriMesh,
+        brush: Brush,
+        radius: f64,
+        strength: f64,
+        falloff: Falloff,
+    ) -> Vec<DVec3> {
+        match self {
+            Dab::Pull(from, to) => snake_hook::snake_hook(mesh, from, to, radius, 1.0),
+            Dab::At(p) => paint_at(mesh, brush, p, radius, strength, falloff),
+        }
+    }
+
+    /// The dab's mirror image.
+    fn mirrored(self, m: &Mirror) -> Dab {
+        match self {
+            Dab::At(p) => Dab::At(m.point(p)),
+            Dab::Pull(a, b) => Dab::Pull(m.point(a), m.point(b)),
+        }
+    }
+
+    /// Whether remeshing after the dab works around `p`: within the
+    /// radius of the centre, or of the segment a pull swept, or of one
+    /// of their mirror images.
+    fn reaches(self, p: DVec3, radius: f64, mirrors: &[Mirror]) -> bool {
+        mirrors.iter().any(|m| match self.mirrored(m) {
+            Dab::At(c) => p.distance(c) < radius,
+            Dab::Pull(a, b) => distance_to_segment(p, a, b) < radius,
+        })
+    }
+
+    /// `steps` dabs that together make this one, each with its strength:
+    /// a centred dab repeated with its strength shared out
+    /// ([`sub_strength`]), a pull cut into equal consecutive pieces.
+    fn split(self, brush: Brush, strength: f64, steps: usize) -> Vec<(Dab, f64)> {
+        if steps <= 1 {
+            return vec![(self, strength)];
+        }
+        match self {
+            Dab::At(_) => vec![(self, sub_strength(brush, strength, steps)); steps],
+            Dab::Pull(a, b) => (0..steps)
+                .map(|k| {
+                    let at = |i: usize| a + (b - a) * (i as f64 / steps as f64);
+                    let end = if k + 1 == steps { b } else { at(k + 1) };
+                    (Dab::Pull(at(k), end), strength)
+                })
+                .collect(),
+        }
+    }
+}
+
 /// A stroke in progress. Dropping it abandons the stroke; the mesh it
 /// began from was only borrowed, so nothing changes.
 pub struct LiveStroke {
     settings: BrushSettings,
+    /// The images of every frame (the identity first).
+    mirrors: Vec<Mirror>,
+    /// Positions of the masked vertices, which never move (a masked
+    /// vertex keeps its position, so its position names it across the
+    /// topology changes and remeshing that renumber vertices).
+    mask: std::collections::HashSet<[u64; 3]>,
     options: Options,
     preview: bool,
     remesh: Option<RemeshOptions>,
@@ -100,9 +226,9 @@ pub struct LiveStroke {
 }
 
 impl LiveStroke {
-    /// Starts a stroke on `mesh`. A grab or move picks here: `first` must
-    /// lie within the brush radius (grab) or 10% of the bounding-box
-    /// diagonal (move) of the surface. Inflate and smooth pick nothing;
+    /// Starts a stroke on `mesh`. A grab, move or snake hook picks here:
+    /// `first` must lie within the brush radius (grab, snake hook) or 10%
+    /// of the bounding-box diagonal (move) of the surface. Inflate and smooth pick nothing;
     /// their first frame is the first call to [`LiveStroke::frame`].
     pub fn begin(
         mesh: &TriMesh,
@@ -115,23 +241,49 @@ impl LiveStroke {
             triangles_before: mesh.triangles.len(),
             ..StrokeReport::default()
         };
-        let state = if settings.brush.is_drag() {
+        let state = if settings.brush == Brush::SnakeHook {
+            check_pick(mesh, settings, first)?;
+            State::Paint {
+                mesh: mesh.clone(),
+                hook: Some(Hook {
+                    centre: first,
+                    pointer: first,
+                    holding: true,
+                }),
+            }
+        } else if settings.brush.is_drag() {
             let (weights, picked) = pick(mesh, settings, first)?;
+            let mut holds = vec![(weights, Mirror::IDENTITY)];
+            // A mirror image picks on its own; one that finds no surface
+            // near it, or holds exactly what another image holds (the
+            // same whole piece), adds nothing.
+            for m in settings.symmetry.mirrors().into_iter().skip(1) {
+                if let Ok((w, _)) = pick(mesh, settings, m.point(first))
+                    && holds.iter().all(|(h, _)| *h != w)
+                {
+                    holds.push((w, m));
+                }
+            }
             let acc = Accumulator::new(mesh.clone(), options)
                 .map_err(|source| SculptError::Topo { frame: 0, source })?;
             State::Drag {
                 start: mesh.clone(),
-                weights,
+                holds,
                 first,
                 picked,
                 acc: Box::new(acc),
                 view: mesh.clone(),
             }
         } else {
-            State::Paint { mesh: mesh.clone() }
+            State::Paint {
+                mesh: mesh.clone(),
+                hook: None,
+            }
         };
         Ok(LiveStroke {
             settings,
+            mirrors: settings.symmetry.mirrors(),
+            mask: std::collections::HashSet::new(),
             options,
             preview: false,
             remesh: None,
@@ -145,6 +297,22 @@ impl LiveStroke {
             started: Instant::now(),
             grab_tube: None,
         })
+    }
+
+    /// Masks the vertices at `positions` (exact positions, as
+    /// [`holey_geom::position_key`] gives them): no frame moves them, and
+    /// remeshing leaves them where they are. Replaces any earlier mask.
+    pub fn set_mask(&mut self, positions: std::collections::HashSet<[u64; 3]>) {
+        if let State::Drag { start, holds, .. } = &mut self.state {
+            for (weights, _) in holds.iter_mut() {
+                for (w, p) in weights.iter_mut().zip(&start.positions) {
+                    if positions.contains(&position_key(*p)) {
+                        *w = 0.0;
+                    }
+                }
+            }
+        }
+        self.mask = positions;
     }
 
     /// Whether drag frames compute the corrected parity (a static
@@ -173,7 +341,7 @@ impl LiveStroke {
     /// The current surface (during a drag: the dragged one).
     pub fn mesh(&self) -> &TriMesh {
         match &self.state {
-            State::Paint { mesh } => mesh,
+            State::Paint { mesh, .. } => mesh,
             State::Drag { view, .. } => view,
         }
     }
@@ -183,23 +351,58 @@ impl LiveStroke {
         self.frames
     }
 
-    /// One frame with the brush at `point` (inflate, smooth: the brush
-    /// centre; grab, move: the drag target). On error the stroke is left
-    /// as it was before the call.
+    /// One frame with the brush at `point` (a centred brush: its centre;
+    /// grab, move, snake hook: the drag target). On error the stroke is
+    /// left as it was before the call.
     pub fn frame(&mut self, point: DVec3) -> Result<LiveFrame<'_>, SculptError> {
+        self.frame_pressed(point, 1.0)
+    }
+
+    /// [`LiveStroke::frame`] with the pen's `pressure` (0 to 1; not finite
+    /// counts as 1), which scales the frame's strength or radius as the
+    /// settings say ([`PressureDrives`]). Drags ignore it.
+    pub fn frame_pressed(
+        &mut self,
+        point: DVec3,
+        pressure: f64,
+    ) -> Result<LiveFrame<'_>, SculptError> {
         let started = Instant::now();
         let index = self.frames;
         let BrushSettings {
             brush,
             radius,
             strength,
+            falloff,
+            pressure: drives,
+            ..
         } = self.settings;
+        let pressure = if pressure.is_finite() {
+            pressure.clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let (paint_radius, paint_strength) = match drives {
+            _ if pressure == 1.0 => (radius, strength),
+            PressureDrives::Strength => (radius, strength * pressure),
+            PressureDrives::Radius => (radius * pressure, strength),
+        };
         let mut connectivity_changed = false;
         let mut topology_changed = false;
         let mut corrected_odd = None;
         match &mut self.state {
-            State::Paint { mesh } => {
+            State::Paint { mesh, hook } => {
+                let dab = match hook {
+                    Some(h) if h.holding => Some(Dab::Pull(
+                        h.centre,
+                        h.centre + strength * (point - h.pointer),
+                    )),
+                    Some(_) => None,
+                    None => Some(Dab::At(point)),
+                };
                 let mut step = PaintStep {
+                    falloff,
+                    mirrors: &self.mirrors,
+                    mask: &self.mask,
                     options: &self.options,
                     held: &mut self.held,
                     remesh: self.remesh.as_ref(),
@@ -210,14 +413,25 @@ impl LiveStroke {
                     connectivity_changed: false,
                     topology_changed: false,
                 };
-                step.paint(mesh, brush, point, radius, strength, 0)
-                    .map_err(|e| e.at_frame(index))?;
+                if let Some(dab) = dab {
+                    // The snake hook's grip is sized by the radius alone.
+                    let r = if hook.is_some() { radius } else { paint_radius };
+                    step.paint(mesh, brush, dab, r, paint_strength)
+                        .map_err(|e| e.at_frame(index))?;
+                    if let (Some(h), Dab::Pull(_, to)) = (hook.as_mut(), dab) {
+                        *h = Hook {
+                            centre: to,
+                            pointer: point,
+                            holding: !step.topology_changed,
+                        };
+                    }
+                }
                 connectivity_changed = step.connectivity_changed;
                 topology_changed = step.topology_changed;
             }
             State::Drag {
                 start,
-                weights,
+                holds,
                 first,
                 picked,
                 acc,
@@ -229,12 +443,21 @@ impl LiveStroke {
                 }
                 // Weight 0 keeps a vertex bit-exact, and a zero offset
                 // (back at the start) restores every position exactly.
-                let next: Vec<DVec3> = start
-                    .positions
-                    .iter()
-                    .zip(weights.iter())
-                    .map(|(&p, &w)| if w == 0.0 { p } else { p + w * offset })
-                    .collect();
+                let mut next = start.positions.clone();
+                for (v, p) in next.iter_mut().enumerate() {
+                    let mut moved = DVec3::ZERO;
+                    let mut any = false;
+                    for (weights, m) in holds.iter() {
+                        let w = weights[v];
+                        if w != 0.0 {
+                            moved += w * m.vector(offset);
+                            any = true;
+                        }
+                    }
+                    if any {
+                        *p += moved;
+                    }
+                }
                 if next != view.positions {
                     acc.advance(&next).map_err(|source| SculptError::Topo {
                         frame: index,
@@ -272,7 +495,7 @@ impl LiveStroke {
         report.frames = self.frames;
         let last = self.frames.saturating_sub(1);
         let (mesh, diagnostics) = match self.state {
-            State::Paint { mesh } => (mesh, self.diagnostics),
+            State::Paint { mesh, .. } => (mesh, self.diagnostics),
             State::Drag { start, acc, .. } => {
                 if acc.frames() == 0 {
                     (start, None)
@@ -331,6 +554,11 @@ pub const MAX_SUBFRAME_DEPTH: u32 = 6;
 
 /// What a paint frame writes into its stroke.
 struct PaintStep<'a> {
+    falloff: Falloff,
+    /// The images of every dab (the identity first).
+    mirrors: &'a [Mirror],
+    /// Positions that never move.
+    mask: &'a std::collections::HashSet<[u64; 3]>,
     options: &'a Options,
     /// Positions of the vertices the stroke's frames had to hold.
     held: &'a mut std::collections::HashSet<[u64; 3]>,
@@ -359,6 +587,38 @@ impl StepError {
 }
 
 impl PaintStep<'_> {
+    /// The positions at the end of `dab` and its mirror images, all
+    /// evaluated on the same surface and their displacements added
+    /// ([`crate::symmetry`]); masked vertices stay.
+    fn end(
+        &self,
+        mesh: &TriMesh,
+        brush: Brush,
+        dab: Dab,
+        radius: f64,
+        strength: f64,
+    ) -> Vec<DVec3> {
+        let mut end = dab.end(mesh, brush, radius, strength, self.falloff);
+        for m in self.mirrors.iter().skip(1) {
+            let image = dab
+                .mirrored(m)
+                .end(mesh, brush, radius, strength, self.falloff);
+            for ((e, q), p) in end.iter_mut().zip(&image).zip(&mesh.positions) {
+                if q != p {
+                    *e += *q - *p;
+                }
+            }
+        }
+        if !self.mask.is_empty() {
+            for (e, p) in end.iter_mut().zip(&mesh.positions) {
+                if self.mask.contains(&position_key(*p)) {
+                    *e = *p;
+                }
+            }
+        }
+        end
+    }
+
     /// Collapses the edges shorter than the cleanup length at the last
     /// `new` vertices of `mesh` (the points a topology change made), onto
     /// the vertices around them, which stay put. The cut inserts its
@@ -380,26 +640,52 @@ impl PaintStep<'_> {
         Ok(())
     }
 
-    /// One frame of inflate or smooth at `point`: the brush, the guarded
-    /// topology change, then remeshing. A motion the engine refuses as
+    /// One frame of a paint brush: a pull longer than the snake hook's
+    /// step bound ([`snake_hook::steps`]) is cut into pieces first, each
+    /// then painted by [`PaintStep::paint_piece`] on the surface the one
+    /// before it left, until one changes topology (the hook lets go:
+    /// [`Hook`]).
+    fn paint(
+        &mut self,
+        mesh: &mut TriMesh,
+        brush: Brush,
+        dab: Dab,
+        radius: f64,
+        strength: f64,
+    ) -> Result<(), StepError> {
+        let pieces = match dab {
+            Dab::Pull(from, to) => snake_hook::steps(from, to, radius, 1.0),
+            Dab::At(_) => 1,
+        };
+        if pieces > 1 {
+            self.report.subframes += pieces - 1;
+        }
+        for (piece, s) in dab.split(brush, strength, pieces) {
+            self.paint_piece(mesh, brush, piece, radius, s, 0)?;
+            if self.topology_changed && matches!(dab, Dab::Pull(..)) {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// One frame of inflate, smooth or a snake hook's step: the brush, the
+    /// guarded topology change, then remeshing. A motion the engine refuses as
     /// too crumpled for one frame ([`IntersectError::TooManyPairs`]) is
     /// split into two frames of half the motion, each with the brush
     /// evaluated again on the surface it then finds, up to
     /// [`MAX_SUBFRAME_DEPTH`] halvings; past that the frame is held (the
     /// surface does not move), so a stroke never stops on a refusal.
-    fn paint(
+    fn paint_piece(
         &mut self,
         mesh: &mut TriMesh,
         brush: Brush,
-        point: DVec3,
+        dab: Dab,
         radius: f64,
         strength: f64,
         depth: u32,
     ) -> Result<(), StepError> {
-        let end = match brush {
-            Brush::Smooth => smooth(mesh, point, radius, strength),
-            _ => inflate(mesh, point, radius, strength),
-        };
+        let end = self.end(mesh, brush, dab, radius, strength);
         // A frame that moves a vertex farther than the edges around the
         // moving vertices are long is cut into as many sub-frames as it
         // takes (at most 2^MAX_SUBFRAME_DEPTH), each evaluating the brush
@@ -410,9 +696,8 @@ impl PaintStep<'_> {
             let steps = substeps(mesh, &end);
             if steps > 1 {
                 self.report.subframes += steps - 1;
-                let part = sub_strength(brush, strength, steps);
-                for _ in 0..steps {
-                    self.paint(mesh, brush, point, radius, part, 1)?;
+                for (part, s) in dab.split(brush, strength, steps) {
+                    self.paint_piece(mesh, brush, part, radius, s, 1)?;
                 }
                 return Ok(());
             }
@@ -462,9 +747,10 @@ impl PaintStep<'_> {
                         return Ok(());
                     }
                     self.report.subframes += 1;
-                    let half = sub_strength(brush, strength, 2);
-                    self.paint(mesh, brush, point, radius, half, depth + 1)?;
-                    return self.paint(mesh, brush, point, radius, half, depth + 1);
+                    for (half, s) in dab.split(brush, strength, 2) {
+                        self.paint_piece(mesh, brush, half, radius, s, depth + 1)?;
+                    }
+                    return Ok(());
                 }
                 Err(e) => return Err(StepError::Topo(e)),
             }
@@ -472,7 +758,9 @@ impl PaintStep<'_> {
         if let Some(opts) = self.remesh {
             // After the topology change (§4): the vertices the brush
             // reaches, at their new positions.
-            let active = remesh_active(mesh, |p| p.distance(point) < radius);
+            let active = remesh_active(mesh, |p| {
+                dab.reaches(p, radius, self.mirrors) && !self.mask.contains(&position_key(p))
+            });
             if active.contains(&true) {
                 let r = remesh_in_place_checked(mesh, &active, opts).map_err(StepError::Remesh)?;
                 if self.remeshed.add(&r) {
@@ -485,12 +773,21 @@ impl PaintStep<'_> {
 }
 
 /// The strength of each of `steps` frames that together make one frame
-/// of `strength`: the displacement shared out, or for smoothing the step
-/// whose `steps`-th power is the whole one, (1 − s')ⁿ = 1 − s.
+/// of `strength`: the displacement shared out, or for a share of the way
+/// (smooth, flatten, scrape, pinch) the step whose `steps`-th power is
+/// the whole one, (1 − s')ⁿ = 1 − s.
 fn sub_strength(brush: Brush, strength: f64, steps: usize) -> f64 {
-    match brush {
-        Brush::Smooth => 1.0 - (1.0 - strength.clamp(0.0, 1.0)).powf(1.0 / steps as f64),
-        _ => strength / steps as f64,
+    // The brushes that take a share of the way towards a target (the
+    // neighbour mean, the brush plane, the centre) compound; the others
+    // add up.
+    let compounds = matches!(
+        brush,
+        Brush::Smooth | Brush::Flatten | Brush::Scrape | Brush::Pinch
+    );
+    if compounds && (0.0..=1.0).contains(&strength) {
+        1.0 - (1.0 - strength).powf(1.0 / steps as f64)
+    } else {
+        strength / steps as f64
     }
 }
 
@@ -549,6 +846,42 @@ fn pick(
     settings: BrushSettings,
     point: DVec3,
 ) -> Result<(Vec<f64>, DVec3), SculptError> {
+    let (triangle, picked) = check_pick(mesh, settings, point)?;
+    let weights = match settings.brush {
+        // A radius makes the move local: the picked piece's vertices
+        // within it, rigidly in the inner half (a plateau) and blending
+        // out to the rim.
+        Brush::Move if settings.radius > 0.0 => component_of(mesh, triangle)
+            .into_iter()
+            .zip(&mesh.positions)
+            .map(|(held, p)| {
+                if held {
+                    move_falloff(p.distance(picked), settings.radius)
+                } else {
+                    0.0
+                }
+            })
+            .collect(),
+        Brush::Move => component_of(mesh, triangle)
+            .into_iter()
+            .map(|held| if held { 1.0 } else { 0.0 })
+            .collect(),
+        _ => grab_weights_with(mesh, picked, settings.radius, settings.falloff)
+            .into_iter()
+            .map(|w| w * settings.strength)
+            .collect(),
+    };
+    Ok((weights, picked))
+}
+
+/// The triangle and surface point nearest `point`, after checking that it
+/// lies within the brush radius (grab, snake hook) or
+/// [`MOVE_PICK_FRACTION`] of the diagonal (move).
+fn check_pick(
+    mesh: &TriMesh,
+    settings: BrushSettings,
+    point: DVec3,
+) -> Result<(usize, DVec3), SculptError> {
     let brush = settings.brush;
     let Some((triangle, picked, distance)) = closest_point(mesh, point) else {
         return Err(SculptError::NoSurface { brush });
@@ -571,31 +904,7 @@ fn pick(
             why,
         });
     }
-    let weights = match brush {
-        // A radius makes the move local: the picked piece's vertices
-        // within it, rigidly in the inner half (a plateau) and blending
-        // out to the rim.
-        Brush::Move if settings.radius > 0.0 => component_of(mesh, triangle)
-            .into_iter()
-            .zip(&mesh.positions)
-            .map(|(held, p)| {
-                if held {
-                    move_falloff(p.distance(picked), settings.radius)
-                } else {
-                    0.0
-                }
-            })
-            .collect(),
-        Brush::Move => component_of(mesh, triangle)
-            .into_iter()
-            .map(|held| if held { 1.0 } else { 0.0 })
-            .collect(),
-        _ => grab_weights(mesh, picked, settings.radius)
-            .into_iter()
-            .map(|w| w * settings.strength)
-            .collect(),
-    };
-    Ok((weights, picked))
+    Ok((triangle, picked))
 }
 
 /// The local move's weight at `distance` from the pick: 1 within half
@@ -603,12 +912,7 @@ fn pick(
 /// (`falloff((d − r/2) / (r/2))`), 0 beyond: a part held rigidly,
 /// blended into the rest.
 pub fn move_falloff(distance: f64, radius: f64) -> f64 {
-    let half = 0.5 * radius;
-    if distance <= half {
-        if radius > 0.0 { 1.0 } else { 0.0 }
-    } else {
-        crate::brush::falloff(distance - half, half)
-    }
+    crate::brush::falloff::plateau(distance, radius)
 }
 
 fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {

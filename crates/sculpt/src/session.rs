@@ -2,7 +2,7 @@
 //! applies strokes with incidental topology change, keeps undo and redo of
 //! whole strokes and the diagnostics of the last change.
 //!
-//! - Inflate and smooth run the topology change between every pair of
+//! - Inflate, smooth and the snake hook run the topology change between every pair of
 //!   frames, so a collision changes topology at once.
 //! - Grab and move accumulate raw collision parity over all frames of the
 //!   drag ([`holey_topo::Accumulator`]) and change topology once, at
@@ -14,12 +14,14 @@
 //! session needs no seed and replaying the same strokes on the same mesh
 //! gives the same mesh bit for bit.
 
+use glam::DVec3;
 use holey_topo::{Options, TriMesh};
 
 use crate::live::{BrushSettings, LiveStroke};
 use crate::remesh::{RemeshOptions, default_range};
 pub use crate::report::{Diagnostics, ObserverError, SculptError, StrokeReport};
 use crate::strokes::{Remesh, Stroke, StrokeFile};
+use crate::symmetry::{About, Symmetry};
 
 /// The state after one frame, for pictures and live preview.
 #[derive(Debug)]
@@ -167,21 +169,33 @@ impl Session {
         stroke: &Stroke,
         observer: &mut dyn FnMut(&Frame<'_>) -> Result<(), ObserverError>,
     ) -> Result<StrokeReport, SculptError> {
+        let centre = match stroke.symmetry_about {
+            About::Origin => DVec3::ZERO,
+            About::Centre => box_centre(&self.mesh),
+        };
         let settings = BrushSettings {
-            brush: stroke.brush,
-            radius: stroke.radius,
-            strength: stroke.strength,
+            falloff: stroke.falloff,
+            symmetry: Symmetry {
+                axes: stroke.symmetry,
+                centre,
+            },
+            pressure: stroke.pressure_drives,
+            ..BrushSettings::new(stroke.brush, stroke.radius, stroke.strength)
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
         live.set_remesh(self.remesh().map(RemeshOptions::new));
+        if let Some(mask) = &stroke.mask {
+            live.set_mask(mask.positions(&self.mesh.positions));
+        }
         let drag = stroke.brush.is_drag();
         let last = stroke.path.len().saturating_sub(1);
         for (index, &point) in stroke.path.iter().enumerate() {
             let release = drag && index == last;
             // The last frame of a drag is shown after the release.
             live.set_preview(self.preview && !release);
-            let frame = live.frame(point)?;
+            let pressure = stroke.pressure.get(index).copied().unwrap_or(1.0);
+            let frame = live.frame_pressed(point, pressure)?;
             if !release {
                 observer(&Frame {
                     index,
@@ -254,6 +268,25 @@ impl Session {
     }
 }
 
+/// The centre of the bounding box of the vertices triangles use (the
+/// origin for a mesh without triangles).
+fn box_centre(mesh: &TriMesh) -> DVec3 {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for t in &mesh.triangles {
+        for &v in t {
+            let p = mesh.positions[v as usize];
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    if lo.x <= hi.x {
+        (lo + hi) * 0.5
+    } else {
+        DVec3::ZERO
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -283,6 +316,7 @@ mod tests {
             radius: 0.5,
             strength: 1.0,
             path: vec![DVec3::new(0.2, 0.2, 0.6), DVec3::ZERO],
+            ..Stroke::default()
         };
         let e = s.apply_stroke(&grab).unwrap_err();
         assert!(matches!(e, SculptError::PickTooFar { .. }), "{e}");
@@ -291,6 +325,7 @@ mod tests {
             radius: 0.0,
             strength: 1.0,
             path: vec![DVec3::new(0.2, 0.2, 0.2), DVec3::ZERO],
+            ..Stroke::default()
         };
         assert!(s.apply_stroke(&mv).is_err());
         assert!(!s.can_undo(), "a refused stroke is not an undo step");
@@ -310,6 +345,7 @@ mod tests {
                 radius: 0.1,
                 strength: 0.1,
                 path: vec![DVec3::splat(5.0)],
+                ..Stroke::default()
             })
             .unwrap();
         assert_eq!(r.engine_runs, 0);

@@ -7,7 +7,8 @@
 //!     {"brush": "inflate", "radius": 0.3, "strength": 0.02, "path": [[0,0,1], [0.1,0,1]]},
 //!     {"brush": "smooth",  "radius": 0.3, "strength": 0.5,  "path": [[0,0,1]]},
 //!     {"brush": "grab",    "radius": 0.4, "path": [[0,0,1], [0,0,0.5], [0,0,-1.5]]},
-//!     {"brush": "move",    "path": [[2,0,0], [1.5,0,0], [1,0,0]]}
+//!     {"brush": "move",    "path": [[2,0,0], [1.5,0,0], [1,0,0]]},
+//!     {"brush": "snake_hook", "radius": 0.3, "path": [[0,0,1], [0,0,1.5]]}
 //!   ]
 //! }
 //! ```
@@ -19,6 +20,9 @@
 //! `move` takes a path and an optional `radius`: without one (or 0) it
 //! moves the whole piece it picks, with one the part of it within the
 //! radius, held rigidly in the inner half and blended out to the rim.
+//! `snake_hook` hooks the surface at the first point (within the radius)
+//! and pulls it along the rest, with an optional `strength` (default 1,
+//! the hooked point follows the path).
 //!
 //! `remesh` is the target edge-length range of dynamic remeshing; without
 //! it the session derives one from the mesh's mean edge length
@@ -27,10 +31,12 @@
 use glam::DVec3;
 use serde::Deserialize;
 
-use crate::brush::Brush;
+use crate::brush::{Brush, Falloff};
+use crate::live::PressureDrives;
+use crate::symmetry::About;
 
 /// One stroke: a brush, its parameters and its path (one point per frame).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Stroke {
     /// The brush the stroke uses.
     pub brush: Brush,
@@ -38,12 +44,107 @@ pub struct Stroke {
     pub radius: f64,
     /// Inflate: displacement per frame at the centre (negative deflates).
     /// Smooth: fraction of a Laplacian step, in `[0, 1]`. Grab: scale of
-    /// the drag (1 follows the pointer). Move: unused.
+    /// the drag (1 follows the pointer). Move: unused. Snake hook: scale of
+    /// the pull (1 follows the path).
     pub strength: f64,
     /// The brush positions in world space, one per frame (never empty in a
-    /// parsed file): inflate and smooth centre the brush there; grab and
-    /// move pick at the first point and then follow the later ones.
+    /// parsed file): inflate and smooth centre the brush there; grab, move
+    /// and snake hook pick at the first point and then follow the later
+    /// ones.
     pub path: Vec<DVec3>,
+    /// The falloff curve (`"falloff"`, default smooth).
+    pub falloff: Falloff,
+    /// Mirror the stroke across the planes normal to x, y, z
+    /// (`"symmetry": "xz"`).
+    pub symmetry: [bool; 3],
+    /// Where the mirror planes pass (`"symmetry_about"`: `origin`, the
+    /// default, or `centre`).
+    pub symmetry_about: About,
+    /// Vertices the stroke may not move (`"mask"`).
+    pub mask: Option<Mask>,
+    /// Pen pressure per path point, in `[0, 1]` (`"pressure"`; empty: 1
+    /// throughout).
+    pub pressure: Vec<f64>,
+    /// What the pressure scales (`"pressure_drives"`: `strength`, the
+    /// default, or `radius`).
+    pub pressure_drives: PressureDrives,
+}
+
+/// The vertices a stroke may not move.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Mask {
+    /// These vertices of the mesh the stroke starts on (`{"vertices":
+    /// [0, 5, 9]}`).
+    Vertices(Vec<u32>),
+    /// The vertices within a ball (`{"sphere": {"centre": [0, 0, 1],
+    /// "radius": 0.3}}`).
+    Sphere {
+        /// The ball's centre.
+        centre: [f64; 3],
+        /// Its radius (non-negative).
+        radius: f64,
+    },
+}
+
+impl Mask {
+    /// The exact positions of the masked vertices of `positions`, as
+    /// [`holey_geom::position_key`] gives them; indices out of range
+    /// mask nothing.
+    pub fn positions(&self, positions: &[DVec3]) -> std::collections::HashSet<[u64; 3]> {
+        let key = holey_geom::position_key;
+        match self {
+            Mask::Vertices(vs) => vs
+                .iter()
+                .filter_map(|&v| positions.get(v as usize))
+                .map(|&p| key(p))
+                .collect(),
+            Mask::Sphere { centre, radius } => {
+                let c = DVec3::from_array(*centre);
+                positions
+                    .iter()
+                    .filter(|p| p.distance(c) <= *radius)
+                    .map(|&p| key(p))
+                    .collect()
+            }
+        }
+    }
+}
+
+/// The keys every brush accepts besides its own.
+#[derive(Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Common {
+    #[serde(default)]
+    falloff: Falloff,
+    #[serde(default)]
+    symmetry: String,
+    #[serde(default)]
+    symmetry_about: About,
+    #[serde(default)]
+    mask: Option<Mask>,
+    #[serde(default)]
+    pressure: Vec<f64>,
+    #[serde(default)]
+    pressure_drives: PressureDrives,
+}
+
+const COMMON_KEYS: [&str; 6] = [
+    "falloff",
+    "symmetry",
+    "symmetry_about",
+    "mask",
+    "pressure",
+    "pressure_drives",
+];
+
+/// The keys of the centred brushes that have no variant of their own.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PaintSpec {
+    radius: f64,
+    strength: f64,
+    path: Vec<[f64; 3]>,
 }
 
 /// The optional target edge-length range of dynamic remeshing.
@@ -97,7 +198,7 @@ struct FileSpec {
 
 // Parsed one stroke at a time so that every error can name its stroke.
 #[derive(Deserialize)]
-#[serde(tag = "brush", rename_all = "lowercase", deny_unknown_fields)]
+#[serde(tag = "brush", rename_all = "snake_case", deny_unknown_fields)]
 enum StrokeSpec {
     Inflate {
         radius: f64,
@@ -118,6 +219,12 @@ enum StrokeSpec {
     Move {
         #[serde(default)]
         radius: f64,
+        path: Vec<[f64; 3]>,
+    },
+    SnakeHook {
+        radius: f64,
+        #[serde(default)]
+        strength: Option<f64>,
         path: Vec<[f64; 3]>,
     },
 }
@@ -151,8 +258,94 @@ pub fn parse_strokes(text: &str) -> Result<StrokeFile, StrokeFileError> {
 }
 
 fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
-    let spec: StrokeSpec = serde_json::from_value(value).map_err(|e| e.to_string())?;
-    let (brush, radius, strength, path) = match spec {
+    let serde_json::Value::Object(mut fields) = value else {
+        return Err("a stroke must be a JSON object".into());
+    };
+    let mut common = serde_json::Map::new();
+    for key in COMMON_KEYS {
+        if let Some(v) = fields.remove(key) {
+            common.insert(key.into(), v);
+        }
+    }
+    let common: Common =
+        serde_json::from_value(serde_json::Value::Object(common)).map_err(|e| e.to_string())?;
+    // The sculptor's brushes beyond §4's share one shape of keys.
+    let named = fields
+        .get("brush")
+        .and_then(|b| b.as_str())
+        .and_then(Brush::from_name)
+        .filter(|b| {
+            !matches!(
+                b,
+                Brush::Inflate | Brush::Smooth | Brush::Grab | Brush::Move | Brush::SnakeHook
+            )
+        });
+    let mut out = match named {
+        Some(brush) => {
+            fields.remove("brush");
+            let spec: PaintSpec = serde_json::from_value(serde_json::Value::Object(fields))
+                .map_err(|e| format!("{brush}: {e}"))?;
+            (brush, spec.radius, spec.strength, spec.path)
+        }
+        None => classic(fields)?,
+    };
+    let brush = out.0;
+    if brush.strength_is_a_share() && brush != Brush::Smooth {
+        let (lo, hi) = brush.share_range();
+        if !(lo..=hi).contains(&out.2) {
+            return Err(format!(
+                "{brush}: strength is a share of the way per frame and must be in [{lo}, {hi}], got {}",
+                out.2
+            ));
+        }
+    }
+    if !common.pressure.is_empty() && common.pressure.len() != out.3.len() {
+        return Err(format!(
+            "{brush}: {} pressure values for {} path points",
+            common.pressure.len(),
+            out.3.len()
+        ));
+    }
+    if let Some(k) = common
+        .pressure
+        .iter()
+        .position(|p| !(0.0..=1.0).contains(p))
+    {
+        return Err(format!("{brush}: pressure {k} must be in [0, 1]"));
+    }
+    if let Some(Mask::Sphere { centre, radius }) = &common.mask
+        && !(centre.iter().all(|c| c.is_finite()) && radius.is_finite() && *radius >= 0.0)
+    {
+        return Err(format!(
+            "{brush}: a mask sphere needs a finite centre and a non-negative radius"
+        ));
+    }
+    let symmetry = crate::symmetry::Symmetry::parse(&common.symmetry, DVec3::ZERO)
+        .ok_or_else(|| {
+            format!(
+                "{brush}: symmetry names axes among x, y and z, got {:?}",
+                common.symmetry
+            )
+        })?
+        .axes;
+    let path = std::mem::take(&mut out.3);
+    let mut s = checked(brush, out.1, out.2, path)?;
+    s.falloff = common.falloff;
+    s.symmetry = symmetry;
+    s.symmetry_about = common.symmetry_about;
+    s.mask = common.mask;
+    s.pressure = common.pressure;
+    s.pressure_drives = common.pressure_drives;
+    Ok(s)
+}
+
+type Parts = (Brush, f64, f64, Vec<[f64; 3]>);
+
+/// A stroke of §4's brushes and the snake hook, by their own keys.
+fn classic(fields: serde_json::Map<String, serde_json::Value>) -> Result<Parts, String> {
+    let spec: StrokeSpec =
+        serde_json::from_value(serde_json::Value::Object(fields)).map_err(|e| e.to_string())?;
+    Ok(match spec {
         StrokeSpec::Inflate {
             radius,
             strength,
@@ -178,7 +371,21 @@ fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
             path,
         } => (Brush::Grab, radius, strength.unwrap_or(1.0), path),
         StrokeSpec::Move { radius, path } => (Brush::Move, radius, 1.0, path),
-    };
+        StrokeSpec::SnakeHook {
+            radius,
+            strength,
+            path,
+        } => (Brush::SnakeHook, radius, strength.unwrap_or(1.0), path),
+    })
+}
+
+/// The checks every stroke passes, and the stroke they make.
+fn checked(
+    brush: Brush,
+    radius: f64,
+    strength: f64,
+    path: Vec<[f64; 3]>,
+) -> Result<Stroke, String> {
     if brush != Brush::Move && !(radius.is_finite() && radius > 0.0) {
         return Err(format!("{brush}: radius must be positive, got {radius}"));
     }
@@ -201,6 +408,7 @@ fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
         radius,
         strength,
         path: path.into_iter().map(DVec3::from_array).collect(),
+        ..Stroke::default()
     })
 }
 

@@ -1,6 +1,10 @@
 //! Strokes fed one mouse event at a time.
 
-use holey_sculpt::{Brush, BrushSettings, LiveStroke, Remesh, RemeshOptions, default_range};
+use glam::DVec3;
+use holey_sculpt::brush::ALL_BRUSHES;
+use holey_sculpt::{
+    About, Brush, BrushSettings, LiveStroke, Remesh, RemeshOptions, Symmetry, default_range,
+};
 use holey_topo::Options;
 use serde_json::{Value, json};
 
@@ -13,16 +17,13 @@ use crate::{ConnId, ServeError};
 impl Shared {
     pub(super) fn stroke_begin(&self, conn: ConnId, doc: &mut Document, req: &Value) -> Reply {
         let mesh = doc.sculpt_mesh("sculpting")?;
-        let brush = match str_field(req, "brush")? {
-            "inflate" => Brush::Inflate,
-            "smooth" => Brush::Smooth,
-            "grab" => Brush::Grab,
-            "move" => Brush::Move,
-            other => {
-                return Err(ServeError::BadRequest(format!(
-                    "unknown brush {other:?} (inflate, smooth, grab, move)"
-                )));
-            }
+        let name = str_field(req, "brush")?;
+        let Some(brush) = Brush::from_name(name) else {
+            let known: Vec<&str> = ALL_BRUSHES.iter().map(|b| b.name()).collect();
+            return Err(ServeError::BadRequest(format!(
+                "unknown brush {name:?} ({})",
+                known.join(", ")
+            )));
         };
         let radius = num_field(req, "radius")?;
         let strength = match brush {
@@ -41,15 +42,28 @@ impl Shared {
         // A frame that pushes the surface farther than a fraction of the
         // brush folds it over itself many times at once; every tab would
         // wait for that frame. The modeler's slider stays far below.
-        if brush == Brush::Inflate && strength.abs() > MAX_INFLATE_PER_RADIUS * radius {
+        if brush.strength_is_a_share() {
+            let (lo, hi) = brush.share_range();
+            if !(lo..=hi).contains(&strength) {
+                return Err(ServeError::BadRequest(format!(
+                    "{brush}: the strength is a share of the way per frame, in [{lo}, {hi}]; got {strength}"
+                )));
+            }
+        }
+        let displaces = matches!(
+            brush,
+            Brush::Inflate | Brush::Draw | Brush::Clay | Brush::Crease
+        );
+        if displaces && strength.abs() > MAX_INFLATE_PER_RADIUS * radius {
             return Err(ServeError::Refused(format!(
-                "inflate strength {strength} is more than {MAX_INFLATE_PER_RADIUS} of the radius {radius} per frame"
+                "{brush} strength {strength} is more than {MAX_INFLATE_PER_RADIUS} of the radius {radius} per frame"
             )));
         }
         let settings = BrushSettings {
-            brush,
-            radius,
-            strength,
+            falloff: optional(req, "falloff")?.unwrap_or_default(),
+            symmetry: symmetry(req, mesh)?,
+            pressure: optional(req, "pressure_drives")?.unwrap_or_default(),
+            ..BrushSettings::new(brush, radius, strength)
         };
         let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
         live.set_preview(brush.is_drag());
@@ -103,7 +117,9 @@ impl Shared {
         let Some(stroke) = doc.stroke.as_mut() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
-        let frame = stroke.live.frame(point)?;
+        // Pen pressure, when the pointer has one (a mouse sends none).
+        let pressure = req.get("pressure").and_then(Value::as_f64).unwrap_or(1.0);
+        let frame = stroke.live.frame_pressed(point, pressure)?;
         let ms = frame.seconds * 1e3;
         let vanish = frame.corrected_odd.as_deref();
         let moved = &frame.mesh.positions;
@@ -131,6 +147,47 @@ impl Shared {
         self.hub.broadcast(&Out::Binary(bytes));
         Ok(json!({"ms": ms, "vanishing": vanishing}))
     }
+}
+
+/// An optional field decoded by its own `Deserialize` (a falloff name or
+/// `{"custom": [five values]}`, a pressure target); `None` when absent.
+fn optional<T: serde::de::DeserializeOwned>(
+    req: &Value,
+    name: &str,
+) -> Result<Option<T>, ServeError> {
+    match req.get(name) {
+        None | Some(Value::Null) => Ok(None),
+        Some(v) => serde_json::from_value(v.clone())
+            .map(Some)
+            .map_err(|e| ServeError::BadRequest(format!("{name}: {e}"))),
+    }
+}
+
+/// The stroke's mirror planes: `symmetry` names the axes (`"xz"`),
+/// `symmetry_about` is `origin` (the default) or `centre` (the centre of
+/// the mesh's bounding box).
+fn symmetry(req: &Value, mesh: &holey_topo::TriMesh) -> Result<Symmetry, ServeError> {
+    let axes = req.get("symmetry").and_then(Value::as_str).unwrap_or("");
+    let about: About = optional(req, "symmetry_about")?.unwrap_or_default();
+    let centre = match about {
+        About::Origin => DVec3::ZERO,
+        About::Centre => {
+            let (lo, hi) = mesh.positions.iter().fold(
+                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                |(lo, hi), &p| (lo.min(p), hi.max(p)),
+            );
+            if lo.x <= hi.x {
+                (lo + hi) * 0.5
+            } else {
+                DVec3::ZERO
+            }
+        }
+    };
+    Symmetry::parse(axes, centre).ok_or_else(|| {
+        ServeError::BadRequest(format!(
+            "symmetry names axes among x, y and z, got {axes:?}"
+        ))
+    })
 }
 
 /// The remeshing of the detail slider: off at 0; otherwise edges around

@@ -1,22 +1,43 @@
-//! The four brushes of Bernstein & Wojtan 2013, §4, as pure functions of
-//! positions and triangles: each returns the positions at the end of one
-//! frame and never changes connectivity. Topology change is the session's
-//! business (see [`crate::session`]).
+//! The brushes, as pure functions of positions and triangles: each
+//! returns the positions at the end of one frame and never changes
+//! connectivity. Topology change is the session's business (see
+//! [`crate::session`]). Inflate, smooth, grab and move are the four of
+//! Bernstein & Wojtan 2013, §4; the others are the brushes sculptors know
+//! from SculptGL and Blender, one file each with its displacement field:
+//! [`draw`], [`clay`], [`crease`], [`flatten`], [`pinch`], [`scrape`],
+//! [`scale`] and the [`snake_hook`], which pulls a tentacle out of the
+//! surface along the pointer's path. Every centred brush weighs its
+//! displacement by a [`Falloff`] curve.
 //!
 //! Every function works on any triangle list (open, non-manifold,
 //! unoriented, many components), because the engine does.
+
+pub mod clay;
+pub mod crease;
+pub mod draw;
+pub mod falloff;
+pub mod flatten;
+pub mod pinch;
+pub mod region;
+pub mod scale;
+pub mod scrape;
+pub mod snake_hook;
+
+pub use falloff::Falloff;
+use region::Region;
 
 use glam::DVec3;
 use holey_geom::position_key;
 use holey_topo::TriMesh;
 use serde::{Deserialize, Serialize};
 
-/// The brushes of §4.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+/// The brushes: the four of §4 and the sculptor's set.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Brush {
     /// Instantaneous displacement along the surface normal (negative
     /// strength deflates).
+    #[default]
     Inflate,
     /// Instantaneous explicit Laplacian smoothing, masked by the brush.
     Smooth,
@@ -27,7 +48,42 @@ pub enum Brush {
     /// [`crate::live::move_falloff`]); with radius 0, the whole connected
     /// piece, as §4's move.
     Move,
+    /// Pull the surface under the brush along the path in short steps,
+    /// stretching it into a tentacle that fuses with what it is pulled
+    /// into ([`snake_hook`]); topology changes every frame, as for
+    /// inflate.
+    SnakeHook,
+    /// Raise along the brush's normal ([`draw`]).
+    Draw,
+    /// Build up to a plane just above the surface ([`clay`]).
+    Clay,
+    /// Cut a sharp groove ([`crease`]).
+    Crease,
+    /// Pull towards the brush plane ([`flatten`]).
+    Flatten,
+    /// Draw together towards the centre ([`pinch`]).
+    Pinch,
+    /// Flatten only what stands above the plane ([`scrape`]).
+    Scrape,
+    /// Grow or shrink about the centre ([`scale`]).
+    Scale,
 }
+
+/// Every brush, in the modeler's order.
+pub const ALL_BRUSHES: [Brush; 12] = [
+    Brush::Inflate,
+    Brush::Smooth,
+    Brush::Grab,
+    Brush::Move,
+    Brush::SnakeHook,
+    Brush::Draw,
+    Brush::Clay,
+    Brush::Crease,
+    Brush::Flatten,
+    Brush::Pinch,
+    Brush::Scrape,
+    Brush::Scale,
+];
 
 impl Brush {
     /// The name used in stroke files.
@@ -37,6 +93,38 @@ impl Brush {
             Brush::Smooth => "smooth",
             Brush::Grab => "grab",
             Brush::Move => "move",
+            Brush::SnakeHook => "snake_hook",
+            Brush::Draw => "draw",
+            Brush::Clay => "clay",
+            Brush::Crease => "crease",
+            Brush::Flatten => "flatten",
+            Brush::Pinch => "pinch",
+            Brush::Scrape => "scrape",
+            Brush::Scale => "scale",
+        }
+    }
+
+    /// The brush a stroke file or the modeler names, if any.
+    pub fn from_name(name: &str) -> Option<Brush> {
+        ALL_BRUSHES.into_iter().find(|b| b.name() == name)
+    }
+
+    /// Whether the strength is a share of the way per frame, checked to
+    /// lie in `[0, 1]` (`[−1, 1]` for scale and pinch) rather than a
+    /// distance in world units (inflate, draw, clay, crease) or a scale of
+    /// the pointer's motion (grab, move, snake hook).
+    pub fn strength_is_a_share(self) -> bool {
+        matches!(
+            self,
+            Brush::Smooth | Brush::Flatten | Brush::Scrape | Brush::Pinch | Brush::Scale
+        )
+    }
+
+    /// The range a share strength must lie in.
+    pub fn share_range(self) -> (f64, f64) {
+        match self {
+            Brush::Pinch | Brush::Scale => (-1.0, 1.0),
+            _ => (0.0, 1.0),
         }
     }
 
@@ -157,18 +245,62 @@ fn touched(mesh: &TriMesh, centre: DVec3, radius: f64) -> Vec<u32> {
         .collect()
 }
 
+/// One frame of a centred brush (every brush but grab, move and the snake
+/// hook) at `centre`: the positions at the end of the frame. The others
+/// are driven by [`crate::LiveStroke`] from their picks.
+pub fn paint_at(
+    mesh: &TriMesh,
+    brush: Brush,
+    centre: DVec3,
+    radius: f64,
+    strength: f64,
+    curve: Falloff,
+) -> Vec<DVec3> {
+    match brush {
+        Brush::Smooth => return smooth_with(mesh, centre, radius, strength, curve),
+        Brush::Inflate | Brush::Grab | Brush::Move | Brush::SnakeHook => {
+            return inflate_with(mesh, centre, radius, strength, curve);
+        }
+        _ => {}
+    }
+    let region = Region::gather(mesh, centre, radius, curve);
+    match brush {
+        Brush::Draw => draw::draw(mesh, &region, strength),
+        Brush::Clay => clay::clay(mesh, &region, strength),
+        Brush::Crease => crease::crease(mesh, &region, centre, radius, strength),
+        Brush::Flatten => flatten::flatten(mesh, &region, strength),
+        Brush::Pinch => pinch::pinch(mesh, &region, centre, strength),
+        Brush::Scrape => scrape::scrape(mesh, &region, strength),
+        Brush::Scale => scale::scale(mesh, &region, centre, strength),
+        _ => inflate_with(mesh, centre, radius, strength, curve),
+    }
+}
+
 /// One frame of inflate (§4): every vertex within `radius` of `centre`
 /// moves along its (area-weighted) normal by `strength × falloff`.
 /// Normals are computed only for the vertices the brush touches, so the
 /// cost beyond two linear scans is the brush's. Coincident vertices move
 /// as one point.
 pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
+    inflate_with(mesh, centre, radius, strength, Falloff::Smooth)
+}
+
+/// [`inflate`] with another falloff curve. Like smooth, and unlike the
+/// sculptor's brushes ([`region`]), it moves every vertex within the
+/// radius, whichever sheet it is on, as §4 does.
+pub fn inflate_with(
+    mesh: &TriMesh,
+    centre: DVec3,
+    radius: f64,
+    strength: f64,
+    curve: Falloff,
+) -> Vec<DVec3> {
     let hit = touched(mesh, centre, radius);
     let normals = normals_of(mesh, &hit);
     let mut out = mesh.positions.clone();
     for (&v, n) in hit.iter().zip(&normals) {
         let p = out[v as usize];
-        out[v as usize] = p + *n * (strength * falloff(p.distance(centre), radius));
+        out[v as usize] = p + *n * (strength * curve.weight(p.distance(centre), radius));
     }
     out
 }
@@ -181,6 +313,17 @@ pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec
 /// their rings, and a neighbour position counts once however many
 /// vertices sit there, so a soup smooths as its welded surface would.
 pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
+    smooth_with(mesh, centre, radius, strength, Falloff::Smooth)
+}
+
+/// [`smooth`] with the weight of another falloff curve.
+pub fn smooth_with(
+    mesh: &TriMesh,
+    centre: DVec3,
+    radius: f64,
+    strength: f64,
+    curve: Falloff,
+) -> Vec<DVec3> {
     let hit = touched(mesh, centre, radius);
     let class = coincident(mesh, &hit);
     let mut slot = vec![u32::MAX; mesh.positions.len()];
@@ -211,7 +354,7 @@ pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<
     for (&v, &c) in hit.iter().zip(&class) {
         let ring = &rings[c as usize];
         let p = mesh.positions[v as usize];
-        let w = strength * falloff(p.distance(centre), radius);
+        let w = strength * curve.weight(p.distance(centre), radius);
         if w == 0.0 || ring.is_empty() {
             continue;
         }
@@ -305,13 +448,18 @@ pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 /// The grab weights of §4: `falloff(|x_v − picked|)` at the stroke's
 /// start, zero for vertices no triangle uses.
 pub fn grab_weights(mesh: &TriMesh, picked: DVec3, radius: f64) -> Vec<f64> {
+    grab_weights_with(mesh, picked, radius, Falloff::Smooth)
+}
+
+/// [`grab_weights`] with another falloff curve.
+pub fn grab_weights_with(mesh: &TriMesh, picked: DVec3, radius: f64, curve: Falloff) -> Vec<f64> {
     let used = referenced(mesh);
     mesh.positions
         .iter()
         .zip(&used)
         .map(|(&p, &u)| {
             if u {
-                falloff(p.distance(picked), radius)
+                curve.weight(p.distance(picked), radius)
             } else {
                 0.0
             }
