@@ -11,7 +11,9 @@ Two papers stand behind it:
   (:func:`sculpt`);
 - Srinivasan, *Modeling High-Genus Surfaces* (2004): the doubly linked
   face list and its tools, in :class:`Mesh` (handles, rinds, Sierpinski
-  polyhedra, Menger sponges, Catmull-Clark and Doo-Sabin).
+  polyhedra, Menger sponges, Catmull-Clark and Doo-Sabin), with TopMod's
+  toolbox: remeshing schemes, extrusions, wireframes, cuts and
+  truncations.
 
 A triangle mesh is a pair ``(V, F)``: ``V`` an ``(n, 3)`` array of
 positions and ``F`` an ``(m, 3)`` array of vertex indices. Any array-like
@@ -33,6 +35,7 @@ True
 from __future__ import annotations
 
 import json
+import numbers
 import os
 import warnings
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
@@ -502,6 +505,133 @@ class Mesh:
         for note in notes:
             warnings.warn(note, stacklevel=2)
         return Mesh(native)
+
+    def remesh(self, scheme: str, n: int = 1, **opts: Union[float, bool]) -> "Mesh":
+        """``n`` levels of one of TopMod's remeshing schemes, by the names
+        of ``holey remesh``: ``"dual"``, ``"sqrt3"``, ``"loop"``,
+        ``"vertex-truncation"``, ``"stellate"``, ``"corner-cutting"``,
+        ``"honeycomb"``, ``"12.6.4"``, ``"dual-12.6.4"``,
+        ``"pentagonalization"``, ``"checkerboard"``, ``"global-extrude"``,
+        ``"dome"``, ``"fractal"`` and the others ``holey remesh --help``
+        lists with their counts.
+
+        Options, each read by the schemes ``holey remesh --help`` names
+        (any other is refused): ``alpha`` (corner-cutting's tension),
+        ``thickness``, ``offset``, ``scale``, ``length``, ``weight``,
+        ``twist``, ``height``, ``curve`` and ``triangles=True``
+        (subdivide-face). Every scheme keeps the genus; those built from
+        the dual refuse a mesh with a boundary.
+
+        >>> import holey
+        >>> holey.Mesh.primitive("cube").remesh("dual").info()["faces"]
+        8
+        """
+        triangles = opts.pop("triangles", False)
+        if not isinstance(triangles, bool):
+            raise HoleyError(f"remesh option triangles={triangles!r}: expected True or False")
+        options = []
+        for name, value in opts.items():
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise HoleyError(f"remesh option {name}={value!r}: expected a number")
+            options.append((name, float(value)))
+        return Mesh(self._native.remesh(scheme, n, options=options, triangles=triangles))
+
+    def extrude(
+        self,
+        faces: Union[int, Sequence[int]],
+        kind: str = "plain",
+        distance: Optional[float] = None,
+        scale: Optional[float] = None,
+        rotation: Optional[float] = None,
+        twist: Optional[float] = None,
+        height: Optional[float] = None,
+        count: Optional[int] = None,
+        together: bool = False,
+        vertex_normals: bool = False,
+    ) -> "Mesh":
+        """Extrudes each of ``faces`` (numbered as :meth:`to_arrays` lists
+        them), one after the other, as ``holey extrude`` does.
+
+        ``kind``: ``"plain"`` (``distance`` 1, ``scale`` 1, ``rotation``
+        in degrees 0, ``count`` 1), ``"doo-sabin"`` (``distance``,
+        ``scale``, ``twist``, ``count``), ``"cubical"`` (``height`` times
+        the mean edge, ``count``), ``"dome"`` (``height``, ``count`` rings,
+        default 5), ``"dodecahedral"``, ``"icosahedral"``,
+        ``"octahedral"`` (``height``, 1 is regular), ``"stellate"`` and
+        ``"double-stellate"`` (``distance``: the apex's lift, 0). An
+        option the kind does not read is refused. ``together=True`` lifts
+        the faces as one region (plain; ``distance``, ``count``,
+        ``vertex_normals``). For a ``d``-gon, a plain extrusion adds ``d``
+        vertices, ``2d`` edges and ``d`` faces per repetition.
+        """
+        if isinstance(faces, numbers.Integral):
+            faces = [faces]
+        return Mesh(
+            self._native.extrude(
+                [int(f) for f in faces],
+                kind=kind,
+                distance=distance,
+                scale=scale,
+                rotation=rotation,
+                twist=twist,
+                height=height,
+                count=count,
+                together=together,
+                vertex_normals=vertex_normals,
+            )
+        )
+
+    def wireframe(self, thickness: float, columns: Optional[int] = None) -> "Mesh":
+        """Every edge a tube and every vertex a joint: the surface of the
+        thickened edge graph, of genus ``E - V + 1`` per component. Without
+        ``columns``, TopMod's wireframe (four-sided tubes ``thickness``
+        wide: ``4E`` vertices, ``10E`` edges, ``4E + 2V`` faces); with
+        ``columns=n``, ``n``-sided columns of radius ``thickness``."""
+        return Mesh(self._native.wireframe(thickness, columns=columns))
+
+    def cut(
+        self,
+        vertices: Sequence[int] = (),
+        edges: Sequence[Tuple[int, int]] = (),
+        faces: Sequence[int] = (),
+        offset: Optional[float] = None,
+        fraction: Optional[float] = None,
+    ) -> "Mesh":
+        """Cuts each vertex, edge and face off with one new face (TopMod's
+        conical cuts, ``holey cut``): every edge leaving the target is cut
+        at ``offset`` model units or at ``fraction`` of its length (default
+        ``fraction=0.25``) and the cut points joined. Vertices and faces
+        are numbered as :meth:`to_arrays` lists them; an edge is a pair of
+        vertex numbers. A vertex of valence ``k`` adds ``k - 1`` vertices,
+        ``k`` edges and one face."""
+        return Mesh(
+            self._native.cut(
+                vertices=[int(v) for v in vertices],
+                edges=[(int(a), int(b)) for a, b in edges],
+                faces=[int(f) for f in faces],
+                offset=offset,
+                fraction=fraction,
+            )
+        )
+
+    def truncate(
+        self,
+        fraction: float = 1 / 3,
+        vertices: Optional[Sequence[int]] = None,
+        edges: Optional[Sequence[Tuple[int, int]]] = None,
+    ) -> "Mesh":
+        """Truncates vertices (every vertex when neither ``vertices`` nor
+        ``edges`` is given) or edges at ``fraction`` of each edge, in
+        ``(0, 0.5)``. Every vertex of a closed mesh: ``2E`` vertices,
+        ``3E`` edges, ``F + V`` faces; an icosahedron at 1/3 is the soccer
+        ball (60/90/32)."""
+        return Mesh(
+            self._native.truncate(
+                fraction,
+                vertices=None if vertices is None else [int(v) for v in vertices],
+                edges=None if edges is None else [(int(a), int(b)) for a, b in edges],
+            )
+        )
 
     def info(self) -> Dict[str, Any]:
         """The measurements of ``holey info --json`` for a ``.dlfl``:

@@ -73,4 +73,43 @@ class Mesh:
     def rind(
         self, thickness: float, *, punch: List[int] = ..., peel: List[int] = ...
     ) -> Tuple[Mesh, List[str]]: ...
+    def remesh(
+        self,
+        scheme: str,
+        levels: int = ...,
+        *,
+        options: List[Tuple[str, float]] = ...,
+        triangles: bool = ...,
+    ) -> Mesh: ...
+    def extrude(
+        self,
+        faces: List[int],
+        *,
+        kind: str = ...,
+        distance: Optional[float] = ...,
+        scale: Optional[float] = ...,
+        rotation: Optional[float] = ...,
+        twist: Optional[float] = ...,
+        height: Optional[float] = ...,
+        count: Optional[int] = ...,
+        together: bool = ...,
+        vertex_normals: bool = ...,
+    ) -> Mesh: ...
+    def wireframe(self, thickness: float, *, columns: Optional[int] = ...) -> Mesh: ...
+    def cut(
+        self,
+        *,
+        vertices: List[int] = ...,
+        edges: List[Tuple[int, int]] = ...,
+        faces: List[int] = ...,
+        offset: Optional[float] = ...,
+        fraction: Optional[float] = ...,
+    ) -> Mesh: ...
+    def truncate(
+        self,
+        fraction: float,
+        *,
+        vertices: Optional[List[int]] = ...,
+        edges: Optional[List[Tuple[int, int]]] = ...,
+    ) -> Mesh: ...
     def validate(self) -> None: ...

@@ -57,6 +57,16 @@ enum Command {
     Handle(cmd::handle::Args),
     /// Catmull–Clark or Doo–Sabin smoothing.
     Subdivide(cmd::subdivide::Args),
+    /// TopMod's remeshing schemes: dual, √3, Loop, truncations, honeycomb, 12.6.4, …
+    Remesh(cmd::remesh::Args),
+    /// Extrude faces: plain, cubical, polyhedral, Doo–Sabin, dome, stellations.
+    Extrude(cmd::extrude::Args),
+    /// Wireframe and column modeling: a tube along every edge.
+    Wireframe(cmd::wireframe::Args),
+    /// Cut a vertex, edge or face off with a plane-like cut (conical tools).
+    Cut(cmd::cut::Args),
+    /// Truncate vertices or edges (a cut at a fraction of each edge).
+    Truncate(cmd::cut::TruncateArgs),
     /// Draw a mesh to a PNG picture.
     Render(cmd::render::Args),
     /// Rind modeling: a crust with punched and peeled holes (thesis chapter V).
@@ -111,6 +121,11 @@ fn main() {
         Command::Rind(a) => cmd::rind::run(a),
         Command::Render(a) => cmd::render::run(a),
         Command::Subdivide(a) => cmd::subdivide::run(a),
+        Command::Remesh(a) => cmd::remesh::run(a),
+        Command::Extrude(a) => cmd::extrude::run(a),
+        Command::Wireframe(a) => cmd::wireframe::run(a),
+        Command::Cut(a) => cmd::cut::run(a),
+        Command::Truncate(a) => cmd::cut::run_truncate(a),
         Command::Topo(a) => cmd::topo::run(a),
         Command::Union(a) => cmd::union::run(a),
         Command::Intersection(a) => cmd::boolean::run(a, holey_topo::Operation::Intersection),

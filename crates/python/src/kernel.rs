@@ -20,6 +20,7 @@ use pyo3::prelude::*;
 use crate::arrays::poly_mesh;
 use crate::errors::{bad, io};
 use crate::files::{PolyArrays, kernel_of_raw, poly_arrays};
+use crate::toolbox;
 
 /// A DLFL mesh: every vertex, edge, face and corner of an orientable
 /// 2-manifold with boundary (holes are faces too), and the thesis's
@@ -207,6 +208,85 @@ impl Mesh {
             }
         }
         Ok((Mesh::wrap(rind.into_mesh()), notes))
+    }
+
+    /// `levels` levels of one of TopMod's remeshing schemes (`holey
+    /// remesh`), with its options as (name, value) pairs.
+    #[pyo3(signature = (scheme, levels=1, *, options=Vec::new(), triangles=false))]
+    fn remesh(
+        &self,
+        py: Python<'_>,
+        scheme: &str,
+        levels: usize,
+        options: Vec<(String, f64)>,
+        triangles: bool,
+    ) -> PyResult<Mesh> {
+        py.detach(|| toolbox::run_remesh(&self.mesh, scheme, levels, &options, triangles))
+            .map(Mesh::wrap)
+    }
+
+    /// Extrudes the faces numbered `faces` (`holey extrude`).
+    #[pyo3(signature = (faces, *, kind="plain", distance=None, scale=None, rotation=None, twist=None, height=None, count=None, together=false, vertex_normals=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn extrude(
+        &self,
+        faces: Vec<usize>,
+        kind: &str,
+        distance: Option<f64>,
+        scale: Option<f64>,
+        rotation: Option<f64>,
+        twist: Option<f64>,
+        height: Option<f64>,
+        count: Option<usize>,
+        together: bool,
+        vertex_normals: bool,
+    ) -> PyResult<Mesh> {
+        let how = toolbox::Extrusion {
+            kind: kind.to_string(),
+            distance,
+            scale,
+            rotation,
+            twist,
+            height,
+            count,
+            together,
+            vertex_normals,
+        };
+        toolbox::run_extrude(&self.mesh, &faces, &how).map(Mesh::wrap)
+    }
+
+    /// The wireframe of the mesh with tubes `thickness` wide, or columns
+    /// of `columns` sides and radius `thickness` (`holey wireframe`).
+    #[pyo3(signature = (thickness, *, columns=None))]
+    fn wireframe(&self, py: Python<'_>, thickness: f64, columns: Option<usize>) -> PyResult<Mesh> {
+        py.detach(|| toolbox::run_wireframe(&self.mesh, thickness, columns))
+            .map(Mesh::wrap)
+    }
+
+    /// Cuts the vertices, edges (vertex pairs) and faces off (`holey cut`).
+    #[pyo3(signature = (*, vertices=Vec::new(), edges=Vec::new(), faces=Vec::new(), offset=None, fraction=None))]
+    fn cut(
+        &self,
+        vertices: Vec<usize>,
+        edges: Vec<(usize, usize)>,
+        faces: Vec<usize>,
+        offset: Option<f64>,
+        fraction: Option<f64>,
+    ) -> PyResult<Mesh> {
+        toolbox::run_cut(&self.mesh, &vertices, &edges, &faces, offset, fraction).map(Mesh::wrap)
+    }
+
+    /// Truncates the vertices and edges named (every vertex when neither
+    /// is given) at `fraction` of each edge (`holey truncate`).
+    #[pyo3(signature = (fraction, *, vertices=None, edges=None))]
+    fn truncate(
+        &self,
+        fraction: f64,
+        vertices: Option<Vec<usize>>,
+        edges: Option<Vec<(usize, usize)>>,
+    ) -> PyResult<Mesh> {
+        toolbox::run_truncate(&self.mesh, fraction, vertices.as_deref(), edges.as_deref())
+            .map(Mesh::wrap)
     }
 
     /// Checks every invariant of the DLFL (for tests).

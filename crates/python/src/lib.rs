@@ -19,6 +19,7 @@ mod engine;
 mod errors;
 mod files;
 mod kernel;
+mod toolbox;
 
 /// The module `holey._holey`.
 #[pymodule]

@@ -20,7 +20,9 @@ use holey_io::Format;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
-use crate::cmd::{convert, info, menger, resolve, selfint, sierpinski, subdivide, union};
+use crate::cmd::{
+    convert, cut, info, menger, remesh, resolve, selfint, sierpinski, subdivide, union, wireframe,
+};
 use crate::error::{bad_input, exit_status};
 
 const AFTER_HELP: &str = "\
@@ -39,8 +41,8 @@ directly is always taken; folders and patterns give only files with a
 mesh extension, in name order. A file named twice runs once, and every
 INPUT must give at least one file.
 
-Results: the commands that write a mesh (convert, subdivide, resolve,
-union, sierpinski, menger) write each file's result into DIR (--out,
+Results: the commands that write a mesh (convert, subdivide, remesh,
+wireframe, truncate, resolve, union, sierpinski, menger) write each file's result into DIR (--out,
 created if missing) as <stem>.<ext>, the input's name with the extension
 --format gives, or its own. Before any work the run is refused if two
 inputs would write the same file (a.obj and b/a.obj; a.obj and a.ply
@@ -72,6 +74,7 @@ permissions) or an internal error.
 Examples:
   holey batch convert scans/ --format ply --out ply/
   holey batch subdivide --scheme catmull-clark -n 2 models/ --out smooth/
+  holey batch remesh --scheme honeycomb models/ --out honeycomb/
   holey batch union 'repairs/**/*.stl' --out solid/ --jobs 4
   holey batch sierpinski -n 2 a.obj b.off --out sierpinski/ --format dlfl
   holey batch info models/ --recursive > counts.jsonl
@@ -113,6 +116,36 @@ pub enum Batched {
     Subdivide {
         #[command(flatten)]
         options: subdivide::Options,
+        #[command(flatten)]
+        out: Outputs,
+        #[command(flatten)]
+        inputs: Inputs,
+    },
+    /// TopMod's remeshing schemes on each file.
+    #[command(after_help = WRITES)]
+    Remesh {
+        #[command(flatten)]
+        options: remesh::Options,
+        #[command(flatten)]
+        out: Outputs,
+        #[command(flatten)]
+        inputs: Inputs,
+    },
+    /// The wireframe (or columns) of each file.
+    #[command(after_help = WRITES)]
+    Wireframe {
+        #[command(flatten)]
+        options: wireframe::Options,
+        #[command(flatten)]
+        out: Outputs,
+        #[command(flatten)]
+        inputs: Inputs,
+    },
+    /// Truncation of each file's vertices (--all) or of the ones named.
+    #[command(after_help = WRITES)]
+    Truncate {
+        #[command(flatten)]
+        options: cut::TruncateOptions,
         #[command(flatten)]
         out: Outputs,
         #[command(flatten)]
@@ -222,6 +255,9 @@ fn known_extensions() -> String {
 enum Job {
     Convert(convert::Options),
     Subdivide(subdivide::Options),
+    Remesh(remesh::Options),
+    Wireframe(wireframe::Options),
+    Truncate(cut::TruncateOptions),
     Resolve,
     Union(union::Options),
     Sierpinski(sierpinski::Options),
@@ -244,6 +280,21 @@ impl Batched {
                 out,
                 inputs,
             } => (Job::Subdivide(options), inputs, Some(out)),
+            Batched::Remesh {
+                options,
+                out,
+                inputs,
+            } => (Job::Remesh(options), inputs, Some(out)),
+            Batched::Wireframe {
+                options,
+                out,
+                inputs,
+            } => (Job::Wireframe(options), inputs, Some(out)),
+            Batched::Truncate {
+                options,
+                out,
+                inputs,
+            } => (Job::Truncate(options), inputs, Some(out)),
             Batched::Resolve { out, inputs } => (Job::Resolve, inputs, Some(out)),
             Batched::Union {
                 options,
@@ -271,6 +322,9 @@ impl Job {
         match self {
             Job::Convert(_) => "convert",
             Job::Subdivide(_) => "subdivide",
+            Job::Remesh(_) => "remesh",
+            Job::Wireframe(_) => "wireframe",
+            Job::Truncate(_) => "truncate",
             Job::Resolve => "resolve",
             Job::Union(_) => "union",
             Job::Sierpinski(_) => "sierpinski",
@@ -318,6 +372,9 @@ impl Job {
         match self {
             Job::Convert(o) => convert::run_file(input, out()?, o)?,
             Job::Subdivide(o) => subdivide::run_file(input, out()?, o)?,
+            Job::Remesh(o) => remesh::run_file(input, out()?, o)?,
+            Job::Wireframe(o) => wireframe::run_file(input, out()?, o)?,
+            Job::Truncate(o) => cut::run_truncate_file(input, out()?, o)?,
             Job::Resolve => {
                 // What -v would print; it does not name the file.
                 let _summary = resolve::run_file(input, out()?)?;

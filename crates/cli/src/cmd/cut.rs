@@ -1,0 +1,256 @@
+//! `holey cut` and `holey truncate`: TopMod's conical tools (issue 18).
+
+use anyhow::Result;
+use holey_dlfl::{EdgeId, VertexId};
+use holey_io::WriteOptions;
+use holey_model::cut::{CutError, CutOffset, CutTarget, cut};
+
+use crate::error::bad_input;
+use crate::input::{Kernel, load, parse_edge_list, parse_index_list};
+use crate::output::write_kernel;
+
+#[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("target").required(true).multiple(true).args(["vertex", "edge", "face"])))]
+#[command(after_help = "\
+Cuts a small neighbourhood of each target off the mesh and closes the
+wound with one new face: each edge leaving the target (a spoke) is cut
+at --offset model units (or --fraction of its length) from the target,
+the cut points are joined across the faces around it, and the target
+goes. Vertices are numbered in file order, faces as `holey info` counts
+them; an edge is U-W (the edge between vertices U and W) or F:C (the
+edge leaving corner C of face F). Counts:
+  vertex of valence k         +(k-1) vertices, +k edges, +1 face (a k-gon)
+  edge between valences a, b  +(a+b-4), +(a+b-3), +1
+  face with s spokes, d sides +(s-d), +(s-d), +0 (the face moves in)
+A cube corner: 8/12/6 -> 10/15/7. Several targets are cut at once (no
+two may share a vertex); --vertex with --edge is TopMod's edge-vertex cut.
+
+Refused (nothing written): an offset that is not positive and finite or
+reaches the middle of a spoke, a target whose neighbourhood is not a
+disk or is a whole component, a hole face, self-loops, two targets
+sharing a vertex.
+
+Examples:
+  holey cut @cube corner.obj --vertex 0 --offset 0.5
+  holey cut @cube wedge.obj --edge 0-1 --fraction 0.25
+  holey cut @octahedron c.obj --vertex 0 --edge 1-2 --offset 0.3")]
+pub struct Args {
+    /// Input mesh (a file or a primitive).
+    pub input: String,
+    /// Output file; its extension names the format.
+    pub output: String,
+    /// Vertices to cut off, comma-separated (file order).
+    #[arg(long, value_name = "V[,V...]")]
+    pub vertex: Option<String>,
+    /// Edges to cut off, comma-separated, each U-W or F:C.
+    #[arg(long, value_name = "E[,E...]")]
+    pub edge: Option<String>,
+    /// Faces to cut off, comma-separated (file order).
+    #[arg(long, value_name = "F[,F...]")]
+    pub face: Option<String>,
+    /// Distance of the cut along each spoke, in model units [default: --fraction 0.25].
+    #[arg(long, conflicts_with = "fraction", allow_hyphen_values = true)]
+    pub offset: Option<f64>,
+    /// Distance of the cut along each spoke, as a fraction of its length (below 0.5).
+    #[arg(long, allow_hyphen_values = true)]
+    pub fraction: Option<f64>,
+}
+
+#[derive(clap::Args)]
+#[command(after_help = "\
+Truncation is the conical cut of `holey cut` with the offset a fraction
+of each edge's length, so it scales with the mesh. Truncating every
+vertex (--all) of a closed mesh gives 2E vertices, 3E edges and F + V
+faces, each vertex of valence k becoming a k-gon: a cube 8/12/6 ->
+24/36/14 (the truncated cube), an icosahedron at 1/3 -> 60/90/32 (the
+soccer ball). Truncating an edge between valences a and b adds a+b-4
+vertices, a+b-3 edges and one face. Vertices are numbered in file order;
+an edge is U-W (between vertices U and W) or F:C (leaving corner C of
+face F). The fraction must lie strictly between 0 and 0.5.
+
+Examples:
+  holey truncate @cube tcube.obj --all
+  holey truncate @icosahedron ball.obj --all --fraction 0.3333333333333333
+  holey truncate @cube t.obj --vertex 0,7 --fraction 0.2
+  holey truncate @cube e.obj --edge 0-1,6-7")]
+pub struct TruncateArgs {
+    /// Input mesh (a file or a primitive).
+    pub input: String,
+    /// Output file; its extension names the format.
+    pub output: String,
+    #[command(flatten)]
+    pub options: TruncateOptions,
+}
+
+/// The options besides the two files, which `holey batch truncate` shares.
+#[derive(clap::Args)]
+#[command(group(clap::ArgGroup::new("target").required(true).args(["vertex", "edge", "all"])))]
+pub struct TruncateOptions {
+    /// Vertices to truncate, comma-separated (file order).
+    #[arg(long, value_name = "V[,V...]")]
+    pub vertex: Option<String>,
+    /// Edges to truncate, comma-separated, each U-W or F:C; no two may share a vertex.
+    #[arg(long, value_name = "E[,E...]")]
+    pub edge: Option<String>,
+    /// Truncate every vertex that has an edge.
+    #[arg(long)]
+    pub all: bool,
+    /// Where each edge is cut, as a fraction of its length from the truncated end.
+    #[arg(long, default_value_t = 1.0 / 3.0, allow_hyphen_values = true)]
+    pub fraction: f64,
+}
+
+/// The targets the comma-separated lists name, in the order given.
+fn targets(
+    kernel: &Kernel,
+    vertices: Option<&str>,
+    edges: Option<&str>,
+    faces: Option<&str>,
+) -> Result<Vec<CutTarget>> {
+    let mut out = Vec::new();
+    if let Some(list) = vertices {
+        for n in parse_index_list(list, "vertex")? {
+            out.push(CutTarget::Vertex(kernel.vertex(n)?));
+        }
+    }
+    if let Some(list) = edges {
+        for spec in parse_edge_list(list)? {
+            let e = kernel
+                .edge(spec)
+                .map_err(|e| bad_input(format!("edge {spec}: {e}")))?;
+            out.push(CutTarget::Edge(e));
+        }
+    }
+    if let Some(list) = faces {
+        for n in parse_index_list(list, "face")? {
+            out.push(CutTarget::Face(kernel.face(n)?));
+        }
+    }
+    if out.is_empty() {
+        return Err(bad_input("no vertex, edge or face was named to cut"));
+    }
+    Ok(out)
+}
+
+/// A cut's refusal in the input's numbering (vertices in file order,
+/// edges by their two vertices) where the library names kernel ids.
+fn describe(kernel: &Kernel, e: &CutError) -> String {
+    let vertex = |v: VertexId| kernel.vertex_name(v);
+    let edge = |e: EdgeId| kernel.edge_name(e);
+    let target = |t: &CutTarget| match *t {
+        CutTarget::Vertex(v) => kernel.vertex_name(v),
+        CutTarget::Edge(e) => kernel.edge_name(e),
+        CutTarget::Face(f) => kernel.face_name(f),
+    };
+    match e {
+        CutError::OffsetTooLarge {
+            edge: e,
+            length,
+            offset,
+            limit,
+        } => format!(
+            "an offset of {offset} reaches the middle of {} (length {length}); it must be less than {limit}",
+            edge(*e)
+        ),
+        CutError::Overlap(v) => {
+            format!(
+                "two cut targets share {}; cut them one at a time",
+                vertex(*v)
+            )
+        }
+        CutError::SelfLoop(e) => {
+            format!(
+                "{} is a self-loop; regions with self-loops are not cut",
+                edge(*e)
+            )
+        }
+        CutError::NotADisk(t) => format!(
+            "the neighbourhood of {} is not a disk (it wraps around a handle or a hole); it cannot be cut off by one face",
+            target(t)
+        ),
+        CutError::NothingToCut(t) => format!(
+            "{} has no edges leaving it (it is a whole component); there is nothing to cut",
+            target(t)
+        ),
+        CutError::HoleFace(f) => format!(
+            "{} is a hole (a boundary loop); it cannot be cut or cut away",
+            kernel.face_name(*f)
+        ),
+        other => other.to_string(),
+    }
+}
+
+/// Cuts `targets` off `kernel` and writes it to `output`.
+fn cut_and_write(
+    input: &str,
+    output: &str,
+    mut kernel: Kernel,
+    targets: &[CutTarget],
+    offset: CutOffset,
+) -> Result<()> {
+    // A refused cut leaves the mesh unchanged, so its ids still describe it.
+    cut(&mut kernel.mesh, targets, offset)
+        .map_err(|e| bad_input(format!("{input}: {}", describe(&kernel, &e))))?;
+    write_kernel(output, &kernel.mesh, &WriteOptions::default())
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let offset = match (args.offset, args.fraction) {
+        (Some(x), _) => CutOffset::Distance(x),
+        (None, Some(t)) => CutOffset::Fraction(t),
+        (None, None) => CutOffset::Fraction(0.25),
+    };
+    let kernel = load(&args.input)?.into_kernel(false)?;
+    let targets = targets(
+        &kernel,
+        args.vertex.as_deref(),
+        args.edge.as_deref(),
+        args.face.as_deref(),
+    )
+    .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
+    cut_and_write(&args.input, &args.output, kernel, &targets, offset)
+}
+
+pub fn run_truncate(args: TruncateArgs) -> Result<()> {
+    run_truncate_file(&args.input, &args.output, &args.options)
+}
+
+/// Truncates the mesh `input` names into the file `output`.
+pub fn run_truncate_file(input: &str, output: &str, o: &TruncateOptions) -> Result<()> {
+    if !(o.fraction > 0.0 && o.fraction < 0.5) {
+        return Err(bad_input(format!(
+            "--fraction must lie strictly between 0 and 0.5, got {}",
+            o.fraction
+        )));
+    }
+    let kernel = load(input)?.into_kernel(false)?;
+    let targets = if o.all {
+        let mut all = Vec::new();
+        for v in kernel.mesh.vertices() {
+            if kernel
+                .mesh
+                .valence(v)
+                .map_err(|e| bad_input(e.to_string()))?
+                > 0
+            {
+                all.push(CutTarget::Vertex(v));
+            }
+        }
+        if all.is_empty() {
+            return Err(bad_input(format!(
+                "{input}: the mesh has no edges to truncate"
+            )));
+        }
+        all
+    } else {
+        targets(&kernel, o.vertex.as_deref(), o.edge.as_deref(), None)
+            .map_err(|e| bad_input(format!("{input}: {e}")))?
+    };
+    cut_and_write(
+        input,
+        output,
+        kernel,
+        &targets,
+        CutOffset::Fraction(o.fraction),
+    )
+}

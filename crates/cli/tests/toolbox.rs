@@ -1,0 +1,764 @@
+//! TopMod's toolbox on the command line (issue 18): `holey remesh`,
+//! `extrude`, `wireframe`, `cut` and `truncate`. Every expected count is
+//! worked out here from the input's own counts (read back with `holey
+//! info --json`), the operator's definition and Euler's formula; never
+//! read from an output.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{holey, ok};
+use serde_json::Value;
+
+/// V, E, F, genus, components, boundary loops of a mesh argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Counts {
+    v: i64,
+    e: i64,
+    f: i64,
+    genus: i64,
+    components: i64,
+    loops: i64,
+}
+
+fn info(mesh: &str) -> Value {
+    serde_json::from_str(&ok(&["info", mesh, "--json"])).expect("info --json is JSON")
+}
+
+fn counts(mesh: &str) -> Counts {
+    let j = info(mesh);
+    let n = |k: &str| {
+        j[k].as_i64()
+            .unwrap_or_else(|| panic!("info {mesh}: no integer {k}: {j}"))
+    };
+    Counts {
+        v: n("vertices"),
+        e: n("edges"),
+        f: n("faces"),
+        genus: n("genus"),
+        components: n("components"),
+        loops: n("boundary_loops"),
+    }
+}
+
+fn vef(c: Counts) -> (i64, i64, i64) {
+    (c.v, c.e, c.f)
+}
+
+struct Dir(tempfile::TempDir);
+
+impl Dir {
+    fn new() -> Dir {
+        Dir(tempfile::tempdir().expect("a temporary folder"))
+    }
+    fn path(&self, name: &str) -> String {
+        let p: PathBuf = self.0.path().join(name);
+        p.to_str().expect("utf-8 path").to_owned()
+    }
+}
+
+/// Runs `holey args`, which must fail with status 2 (bad input) and no
+/// panic; gives its stderr.
+fn refused(args: &[&str]) -> String {
+    let out = holey(args);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "holey {args:?} should be refused as bad input; stderr: {err}"
+    );
+    assert!(!err.contains("panicked"), "holey {args:?} panicked: {err}");
+    err
+}
+
+/// `holey remesh IN OUT --scheme S [extra]` and the output's counts.
+fn remesh(dir: &Dir, input: &str, scheme: &str, extra: &[&str]) -> Counts {
+    let out = dir.path(&format!("{}.dlfl", scheme.replace('.', "_")));
+    let mut args = vec!["remesh", input, &out, "--scheme", scheme];
+    args.extend_from_slice(extra);
+    ok(&args);
+    counts(&out)
+}
+
+// ---------------------------------------------------------------- remesh
+
+#[test]
+fn dual_of_a_cube_is_an_octahedron() {
+    let d = Dir::new();
+    let cube = counts("@cube");
+    let dual = remesh(&d, "@cube", "dual", &[]);
+    // V' = F, E' = E, F' = V.
+    assert_eq!(vef(dual), (cube.f, cube.e, cube.v));
+    assert_eq!(vef(dual), (6, 12, 8));
+    assert_eq!(info(&d.path("dual.dlfl"))["face_sizes"]["3"], 8);
+}
+
+#[test]
+fn sqrt3_of_a_tetrahedron() {
+    let d = Dir::new();
+    let t = counts("@tetrahedron");
+    let c = 2 * t.e; // corners of a closed mesh
+    let s = remesh(&d, "@tetrahedron", "sqrt3", &[]);
+    assert_eq!(vef(s), (t.v + t.f, t.e + c, c));
+    assert_eq!(vef(s), (8, 18, 12));
+    // Two levels: apply the rule twice.
+    let s2 = remesh(&d, "@tetrahedron", "sqrt3", &["-n", "2"]);
+    assert_eq!(vef(s2), (s.v + s.f, s.e + 2 * s.e, 2 * s.e));
+    // TopMod's spellings are accepted too.
+    assert_eq!(vef(remesh(&d, "@tetrahedron", "root-3", &[])), vef(s));
+}
+
+#[test]
+fn loop_of_a_triangle_mesh() {
+    let d = Dir::new();
+    let ico = counts("@icosahedron");
+    let l = remesh(&d, "@icosahedron", "loop", &[]);
+    // Loop: V + E, 2E + 3F, 4F.
+    assert_eq!(vef(l), (ico.v + ico.e, 2 * ico.e + 3 * ico.f, 4 * ico.f));
+}
+
+#[test]
+fn truncation_stellation_and_corner_cutting_of_a_cube() {
+    let d = Dir::new();
+    let k = counts("@cube");
+    let c = 2 * k.e;
+    // Vertex truncation: 2E, E + C, F + V.
+    let t = remesh(&d, "@cube", "vertex-truncation", &[]);
+    assert_eq!(vef(t), (2 * k.e, k.e + c, k.f + k.v));
+    assert_eq!(vef(t), (24, 36, 14));
+    // Stellate: V + F, E + C, C.
+    let s = remesh(&d, "@cube", "stellate", &[]);
+    assert_eq!(vef(s), (k.v + k.f, k.e + c, c));
+    assert_eq!(vef(s), (14, 36, 24));
+    // Corner cutting (Doo–Sabin connectivity): C, 2C, F + E + V.
+    let cc = remesh(&d, "@cube", "corner-cutting", &["--alpha", "0.7"]);
+    assert_eq!(vef(cc), (c, 2 * c, k.f + k.e + k.v));
+    assert_eq!(vef(cc), (24, 48, 26));
+}
+
+#[test]
+fn scheme_options_reach_their_parameters() {
+    let d = Dir::new();
+    let k = counts("@cube");
+    // Vertex truncation at ½ of every edge is the simplest scheme (the two
+    // cut points of an edge coincide): E, C, F + V instead of 2E, E + C, F + V.
+    let half = remesh(&d, "@cube", "vertex-truncation", &["--offset", "0.5"]);
+    assert_eq!(vef(half), (k.e, 2 * k.e, k.f + k.v));
+    // Corner cutting with α = 1 puts every corner point on its vertex, so
+    // the result encloses the whole cube (volume 8); TopMod's α = 9/16
+    // cuts the corners and edges away.
+    let volume = |scheme_args: &[&str]| {
+        let out = d.path("cc.obj");
+        let mut args = vec!["remesh", "@cube", &out, "--scheme", "corner-cutting"];
+        args.extend_from_slice(scheme_args);
+        ok(&args);
+        info(&out)["volume"]
+            .as_f64()
+            .expect("a closed mesh has a volume")
+    };
+    assert!((volume(&["--alpha", "1"]) - 8.0).abs() < 1e-12);
+    assert!(volume(&[]) < 7.9);
+    // subdivide-face makes quads, or triangles with --triangles.
+    let tri = remesh(&d, "@cube", "subdivide-face", &["--triangles"]);
+    assert_eq!(vef(tri), (k.v + k.f, 3 * k.e, 2 * k.e));
+}
+
+#[test]
+fn twelve_six_four_names_are_accepted() {
+    let d = Dir::new();
+    let k = counts("@cube");
+    let c = 2 * k.e;
+    // 12.6.4: barycentric subdivision, V + E + F, 3C, 2C.
+    let b = remesh(&d, "@cube", "12.6.4", &[]);
+    assert_eq!(vef(b), (k.v + k.e + k.f, 3 * c, 2 * c));
+    // dual 12.6.4: the omnitruncation, 2C, 2E + 2C, F + E + V; a cube
+    // gives the truncated cuboctahedron: 48 vertices, 12 squares,
+    // 8 hexagons, 6 octagons.
+    let o = remesh(&d, "@cube", "dual-12.6.4", &["--scale", "0.5"]);
+    assert_eq!(vef(o), (2 * c, 2 * k.e + 2 * c, k.f + k.e + k.v));
+    let sizes = &info(&d.path("dual-12_6_4.dlfl"))["face_sizes"];
+    assert_eq!(
+        (&sizes["4"], &sizes["6"], &sizes["8"]),
+        (&12.into(), &8.into(), &6.into())
+    );
+}
+
+/// Every scheme name the issue lists, and TopMod's others the library has.
+const SCHEMES: &[&str] = &[
+    "dual",
+    "triangulate",
+    "sqrt3",
+    "loop",
+    "root4",
+    "linear-vertex-insertion",
+    "vertex-truncation",
+    "dual-vertex-truncation",
+    "stellate",
+    "double-stellate",
+    "corner-cutting",
+    "modified-corner-cutting",
+    "simplest",
+    "honeycomb",
+    "12.6.4",
+    "dual-12.6.4",
+    "pentagonalization",
+    "dual-pentagonalization",
+    "checkerboard",
+    "dual-checkerboard",
+    "global-extrude",
+    "dual-global-extrude",
+    "dome",
+    "fractal",
+    "cubic-pentagonalization",
+    "pentagon-preserving",
+    "dual-pentagon-preserving",
+    "hexagon-preserving",
+    "dual-hexagon-preserving",
+    "loop-style",
+    "dual-loop",
+    "stellate-edge-removal",
+    "modified-double-stellate",
+    "doo-sabin-bc",
+    "subdivide-face",
+    "catmull-clark",
+    "doo-sabin",
+];
+
+/// The schemes built from the dual, which need a closed surface.
+const CLOSED_ONLY: &[&str] = &[
+    "dual",
+    "12.6.4",
+    "cubic-pentagonalization",
+    "dual-pentagonalization",
+    "dual-loop",
+    "dual-global-extrude",
+    "dual-checkerboard",
+    "dual-pentagon-preserving",
+    "dual-hexagon-preserving",
+];
+
+#[test]
+fn every_scheme_keeps_the_topology_of_a_torus_and_a_grid() {
+    let d = Dir::new();
+    let torus = counts("@torus:8:4");
+    assert_eq!((torus.genus, torus.components, torus.loops), (1, 1, 0));
+    let grid = counts("@plane:3:3");
+    assert_eq!((grid.genus, grid.components, grid.loops), (0, 1, 1));
+    for scheme in SCHEMES {
+        let r = remesh(&d, "@torus:8:4", scheme, &[]);
+        assert_eq!(
+            (r.genus, r.components, r.loops),
+            (1, 1, 0),
+            "{scheme} on a torus"
+        );
+        // Euler's formula for a genus-1 closed surface.
+        assert_eq!(r.v - r.e + r.f, 0, "{scheme}: χ of a torus");
+        let out = d.path("grid.dlfl");
+        let args = ["remesh", "@plane:3:3", &out, "--scheme", scheme];
+        if CLOSED_ONLY.contains(scheme) {
+            let err = refused(&args);
+            assert!(err.contains("boundary"), "{scheme} on a grid: {err}");
+        } else {
+            ok(&args);
+            let g = counts(&out);
+            assert_eq!(
+                (g.genus, g.components, g.loops),
+                (0, 1, 1),
+                "{scheme} on an open grid"
+            );
+        }
+    }
+}
+
+/// One level's counts from each scheme's definition, for a closed mesh
+/// of quads (no triangles): `(V, E, F, C)` to `(V', E', F')`.
+type Rule = fn(i64, i64, i64, i64) -> (i64, i64, i64);
+
+const RULES: &[(&str, Rule)] = &[
+    ("dual", |v, e, f, _| (f, e, v)),
+    ("triangulate", |v, e, f, c| (v + f, e + c, c)),
+    ("sqrt3", |v, e, f, c| (v + f, e + c, c)),
+    ("dual-vertex-truncation", |v, e, f, c| (v + f, e + c, c)),
+    ("stellate", |v, e, f, c| (v + f, e + c, c)),
+    ("double-stellate", |v, e, f, c| {
+        (v + f + c, e + 4 * c, 3 * c)
+    }),
+    ("stellate-edge-removal", |v, e, f, c| (v + f, c, e)),
+    ("modified-double-stellate", |v, e, f, c| {
+        (v + f + c, 2 * e + 2 * c, e + c)
+    }),
+    ("loop", |v, e, f, c| (v + e, 2 * e + c, f + c)),
+    ("loop-style", |v, e, f, c| (v + e, 2 * e + c, f + c)),
+    ("dual-loop", |v, e, f, c| (v + c, 2 * c, f + e)),
+    ("root4", |v, e, f, c| (v + c, 2 * c, f + e)),
+    ("hexagon-preserving", |v, e, f, c| (v + c, 2 * c, f + e)),
+    ("dual-hexagon-preserving", |v, e, f, c| {
+        (v + e, 2 * c, f + c)
+    }),
+    ("linear-vertex-insertion", |v, e, f, c| {
+        (v + e + f, 2 * e + c, c)
+    }),
+    ("subdivide-face", |v, e, f, c| (v + e + f, 2 * e + c, c)),
+    ("catmull-clark", |v, e, f, c| (v + e + f, 2 * e + c, c)),
+    ("vertex-truncation", |v, e, f, c| (2 * e, e + c, f + v)),
+    ("simplest", |v, e, f, c| (e, c, f + v)),
+    ("corner-cutting", |v, e, f, c| (c, 2 * c, f + e + v)),
+    ("modified-corner-cutting", |v, e, f, c| {
+        (c, 2 * c, f + e + v)
+    }),
+    ("doo-sabin", |v, e, f, c| (c, 2 * c, f + e + v)),
+    ("doo-sabin-bc", |v, e, f, c| {
+        (2 * c, 4 * c - e, v + 2 * e + f)
+    }),
+    ("honeycomb", |v, e, f, c| (c, e + c, f + v)),
+    ("12.6.4", |v, e, f, c| (v + e + f, 3 * c, 2 * c)),
+    ("dual-12.6.4", |v, e, f, c| {
+        (2 * c, 2 * e + 2 * c, f + e + v)
+    }),
+    ("pentagonalization", |v, e, f, c| {
+        (v + 2 * e + f, 3 * e + c, c)
+    }),
+    ("cubic-pentagonalization", |v, e, f, c| {
+        (v + 2 * e + f, 3 * e + c, c)
+    }),
+    ("dual-pentagonalization", |v, e, f, c| {
+        (c, 3 * e + c, v + 2 * e + f)
+    }),
+    ("pentagon-preserving", |v, e, f, c| {
+        (v + e + c, 2 * e + 2 * c, f + c)
+    }),
+    ("dual-pentagon-preserving", |v, e, f, c| {
+        (v + c, 2 * e + 2 * c, f + e + c)
+    }),
+    ("checkerboard", |v, e, f, c| {
+        (v + 2 * e + c, 3 * e + 3 * c, f + 2 * c)
+    }),
+    ("dual-checkerboard", |v, e, f, c| {
+        (v + 2 * c, 3 * e + 3 * c, f + 2 * e + c)
+    }),
+    ("global-extrude", |v, e, f, c| (v + c, e + 2 * c, f + c)),
+    ("dual-global-extrude", |v, e, f, c| {
+        (v + c, e + 2 * c, f + c)
+    }),
+    ("dome", |v, e, f, c| {
+        (v + 3 * e + 28 * c, 4 * e + 56 * c, f + 28 * c)
+    }),
+    ("fractal", |v, e, f, c| (v + e + f, 2 * e + 2 * c, 2 * c)),
+];
+
+#[test]
+fn every_scheme_gives_its_counts() {
+    let d = Dir::new();
+    assert_eq!(RULES.len(), SCHEMES.len(), "a rule for every scheme");
+    for mesh in ["@cube", "@torus:8:4"] {
+        let m = counts(mesh);
+        let c = 2 * m.e; // closed, so every edge has two corners
+        for (scheme, rule) in RULES {
+            assert!(SCHEMES.contains(scheme), "{scheme}");
+            let got = remesh(&d, mesh, scheme, &[]);
+            assert_eq!(vef(got), rule(m.v, m.e, m.f, c), "{scheme} of {mesh}");
+            // Euler's formula: the genus is kept.
+            assert_eq!(got.v - got.e + got.f, m.v - m.e + m.f, "{scheme} of {mesh}");
+        }
+    }
+}
+
+#[test]
+fn the_help_lists_every_scheme() {
+    let help = ok(&["remesh", "--help"]);
+    for scheme in SCHEMES {
+        assert!(
+            help.contains(&format!("  {scheme} ")),
+            "remesh --help does not list {scheme}"
+        );
+    }
+    assert!(help.contains("Examples:"));
+}
+
+#[test]
+fn remesh_refusals() {
+    let d = Dir::new();
+    let out = d.path("x.obj");
+    let err = refused(&["remesh", "@cube", &out, "--scheme", "no-such-scheme"]);
+    assert!(
+        err.contains("no-such-scheme") && err.contains("12.6.4"),
+        "{err}"
+    );
+    let err = refused(&[
+        "remesh",
+        "@cube",
+        &out,
+        "--scheme",
+        "corner-cutting",
+        "--alpha",
+        "NaN",
+    ]);
+    assert!(err.contains("NaN") && err.contains("@cube"), "{err}");
+    let err = refused(&[
+        "remesh", "@cube", &out, "--scheme", "dual", "--alpha", "0.6",
+    ]);
+    assert!(err.contains("--alpha") && err.contains("dual"), "{err}");
+    let err = refused(&[
+        "remesh",
+        "@cube",
+        &out,
+        "--scheme",
+        "vertex-truncation",
+        "--offset",
+        "0.75",
+    ]);
+    assert!(err.contains("0.75"), "{err}");
+    assert!(!Path::new(&out).exists(), "a refused remesh wrote {out}");
+}
+
+// ---------------------------------------------------------------- extrude
+
+/// `holey extrude @cube OUT --faces 0 [extra]`: the change in V, E, F.
+fn extrude_cube(d: &Dir, extra: &[&str]) -> (i64, i64, i64) {
+    let before = counts("@cube");
+    let out = d.path("extruded.dlfl");
+    let mut args = vec!["extrude", "@cube", &out, "--faces", "0"];
+    args.extend_from_slice(extra);
+    ok(&args);
+    let after = counts(&out);
+    assert_eq!(
+        (after.genus, after.components, after.loops),
+        (0, 1, 0),
+        "{extra:?}"
+    );
+    (after.v - before.v, after.e - before.e, after.f - before.f)
+}
+
+#[test]
+fn extrusion_counts_of_a_quad() {
+    let d = Dir::new();
+    let q = 4; // the cube's face 0 is a quad
+    // Plain, once: one ring of d quads: +d, +2d, +d.
+    assert_eq!(extrude_cube(&d, &[]), (q, 2 * q, q));
+    assert_eq!((q, 2 * q, q), (4, 8, 4));
+    // k times: +kd, +2kd, +kd, with turn and scale.
+    let k = 3;
+    assert_eq!(
+        extrude_cube(&d, &["--count", "3", "--scale", "0.8", "--rotation", "15"]),
+        (k * q, 2 * k * q, k * q)
+    );
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "cubical", "--count", "2"]),
+        (2 * q, 4 * q, 2 * q)
+    );
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "doo-sabin", "--twist", "0.1"]),
+        (q, 2 * q, q)
+    );
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "octahedral"]),
+        (q, 3 * q, 2 * q)
+    );
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "dodecahedral"]),
+        (3 * q, 5 * q, 2 * q)
+    );
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "icosahedral"]),
+        (3 * q, 9 * q, 6 * q)
+    );
+    // Stellate: a cone of d triangles in place of the face.
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "stellate", "--distance", "1"]),
+        (1, q, q - 1)
+    );
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "double-stellate"]),
+        (q + 1, 4 * q, 3 * q - 1)
+    );
+    // A dome of k rings: +kd + 1, +2kd + d, +kd + d − 1.
+    let k = 2;
+    assert_eq!(
+        extrude_cube(&d, &["--kind", "dome", "--count", "2"]),
+        (k * q + 1, 2 * k * q + q, k * q + q - 1)
+    );
+}
+
+#[test]
+fn stellating_every_face_of_a_cube() {
+    let d = Dir::new();
+    let k = counts("@cube");
+    let out = d.path("spiky.obj");
+    ok(&[
+        "extrude",
+        "@cube",
+        &out,
+        "--faces",
+        "0,1,2,3,4,5",
+        "--kind",
+        "stellate",
+        "--distance",
+        "1",
+    ]);
+    // Each of the F quads: +1, +4, +3.
+    let s = counts(&out);
+    assert_eq!(vef(s), (k.v + k.f, k.e + 4 * k.f, k.f + 3 * k.f));
+    assert_eq!(vef(s), (14, 36, 24));
+    assert_eq!(info(&out)["face_sizes"]["3"], 24);
+}
+
+#[test]
+fn extruding_faces_together() {
+    let d = Dir::new();
+    // A 4×4 grid of quads, faces row by row: 5, 6, 9, 10 are the middle
+    // 2×2 block, whose boundary has b = 8 sides: +b, +2b, +b.
+    let g = counts("@plane:4:4");
+    assert_eq!(vef(g), (25, 40, 16));
+    let out = d.path("block.obj");
+    ok(&[
+        "extrude",
+        "@plane:4:4",
+        &out,
+        "--faces",
+        "5,6,9,10",
+        "--together",
+        "--distance",
+        "0.5",
+    ]);
+    let b = 8;
+    let t = counts(&out);
+    assert_eq!(vef(t), (g.v + b, g.e + 2 * b, g.f + b));
+    // One by one, each quad gets its own four walls: 4 × (4, 8, 4).
+    ok(&["extrude", "@plane:4:4", &out, "--faces", "5,6,9,10"]);
+    let s = counts(&out);
+    assert_eq!(vef(s), (g.v + 16, g.e + 32, g.f + 16));
+}
+
+#[test]
+fn extrude_refusals() {
+    let d = Dir::new();
+    let out = d.path("x.obj");
+    let err = refused(&["extrude", "@cube", &out, "--faces", "6"]);
+    assert!(
+        err.contains("face 6") && err.contains("6 faces"),
+        "a bad face id: {err}"
+    );
+    let err = refused(&[
+        "extrude",
+        "@cube",
+        &out,
+        "--faces",
+        "0",
+        "--distance",
+        "nan",
+    ]);
+    assert!(
+        err.contains("distance") && err.contains("NaN") && err.contains("face 0"),
+        "{err}"
+    );
+    let err = refused(&["extrude", "@cube", &out, "--faces", "0", "--scale", "-1"]);
+    assert!(err.contains("scale"), "{err}");
+    let err = refused(&[
+        "extrude",
+        "@cube",
+        &out,
+        "--faces",
+        "0",
+        "--kind",
+        "octahedral",
+        "--rotation",
+        "10",
+    ]);
+    assert!(
+        err.contains("--rotation") && err.contains("octahedral"),
+        "{err}"
+    );
+    let err = refused(&["extrude", "@cube", &out, "--faces", "0,x"]);
+    assert!(err.contains("\"x\""), "{err}");
+    refused(&[
+        "extrude", "@cube", &out, "--faces", "0", "--kind", "pyramid",
+    ]);
+    assert!(!Path::new(&out).exists());
+}
+
+// ---------------------------------------------------------------- wireframe
+
+#[test]
+fn wireframe_genus_is_the_cycle_rank() {
+    let d = Dir::new();
+    for mesh in ["@cube", "@dodecahedron", "@plane:2:2", "@torus:6:4"] {
+        let m = counts(mesh);
+        let out = d.path("frame.dlfl");
+        ok(&["wireframe", mesh, &out, "--thickness", "0.05"]);
+        let w = counts(&out);
+        // The graph of a mesh: V vertices, E edges, one component.
+        assert_eq!(w.genus, m.e - m.v + 1, "{mesh}");
+        assert_eq!((w.components, w.loops), (1, 0), "{mesh}");
+        // Four-sided tubes: V' = 4E, E' = 10E, F' = 4E + 2V.
+        assert_eq!(vef(w), (4 * m.e, 10 * m.e, 4 * m.e + 2 * m.v), "{mesh}");
+    }
+    // An open 2×2 grid (9 vertices, 12 edges) gives genus 4: its boundary
+    // loop is a window like the faces.
+    let out = d.path("grid.obj");
+    ok(&["wireframe", "@plane:2:2", &out, "--thickness", "0.05"]);
+    assert_eq!(counts(&out).genus, 4);
+}
+
+#[test]
+fn columns_along_every_edge() {
+    let d = Dir::new();
+    let m = counts("@cube"); // every vertex of valence 3
+    let n = 6;
+    let out = d.path("columns.obj");
+    ok(&[
+        "wireframe",
+        "@cube",
+        &out,
+        "--thickness",
+        "0.1",
+        "--columns",
+        "6",
+    ]);
+    let c = counts(&out);
+    // V' = 2nE; E' = 3nE + Σ 2k; F' = nE + Σ (k + 2), over valence-3 vertices.
+    assert_eq!(
+        vef(c),
+        (2 * n * m.e, 3 * n * m.e + 2 * 3 * m.v, n * m.e + 5 * m.v)
+    );
+    assert_eq!(c.genus, m.e - m.v + 1);
+}
+
+#[test]
+fn wireframe_refusals() {
+    let d = Dir::new();
+    let out = d.path("x.obj");
+    let err = refused(&["wireframe", "@cube", &out, "--thickness", "NaN"]);
+    assert!(err.contains("thickness") && err.contains("NaN"), "{err}");
+    let err = refused(&["wireframe", "@cube", &out, "--thickness", "5"]);
+    assert!(
+        err.contains("face 0") && err.contains("turns over"),
+        "{err}"
+    );
+    let err = refused(&[
+        "wireframe",
+        "@cube",
+        &out,
+        "--thickness",
+        "0.1",
+        "--columns",
+        "2",
+    ]);
+    assert!(err.contains("3 sides"), "{err}");
+    assert!(!Path::new(&out).exists());
+}
+
+// ---------------------------------------------------------------- cut, truncate
+
+#[test]
+fn truncating_every_vertex() {
+    let d = Dir::new();
+    let out = d.path("t.obj");
+    for (mesh, fraction) in [("@cube", "0.25"), ("@icosahedron", "0.3333333333333333")] {
+        let m = counts(mesh);
+        ok(&["truncate", mesh, &out, "--all", "--fraction", fraction]);
+        let t = counts(&out);
+        // 2E, 3E, F + V.
+        assert_eq!(vef(t), (2 * m.e, 3 * m.e, m.f + m.v), "{mesh}");
+    }
+    // The last one is the soccer ball: 60/90/32, 12 pentagons, 20 hexagons,
+    // as the built-in @soccerball.
+    let ball = counts(&out);
+    assert_eq!(vef(ball), (60, 90, 32));
+    assert_eq!(vef(counts("@soccerball")), vef(ball));
+    let sizes = &info(&out)["face_sizes"];
+    assert_eq!((&sizes["5"], &sizes["6"]), (&12.into(), &20.into()));
+}
+
+#[test]
+fn cutting_a_vertex_an_edge_and_a_face() {
+    let d = Dir::new();
+    let k = counts("@cube"); // valence 3 everywhere
+    let out = d.path("c.obj");
+    // A vertex of valence 3: +(k − 1), +k, +1.
+    ok(&["cut", "@cube", &out, "--vertex", "0", "--offset", "0.5"]);
+    assert_eq!(vef(counts(&out)), (k.v + 2, k.e + 3, k.f + 1));
+    // An edge between valences 3 and 3: +(a + b − 4), +(a + b − 3), +1;
+    // named by its vertices or by a corner.
+    ok(&["cut", "@cube", &out, "--edge", "0-1", "--fraction", "0.25"]);
+    assert_eq!(vef(counts(&out)), (k.v + 2, k.e + 3, k.f + 1));
+    ok(&["cut", "@cube", &out, "--edge", "0:0"]);
+    assert_eq!(vef(counts(&out)), (k.v + 2, k.e + 3, k.f + 1));
+    // A face with 4 spokes and 4 sides: +0, +0, +0.
+    ok(&["cut", "@cube", &out, "--face", "0"]);
+    assert_eq!(vef(counts(&out)), vef(k));
+    // Two vertices at once.
+    ok(&["cut", "@cube", &out, "--vertex", "0,7"]);
+    assert_eq!(vef(counts(&out)), (k.v + 4, k.e + 6, k.f + 2));
+    // Truncating one edge: +(a + b − 4), +(a + b − 3), +1.
+    ok(&["truncate", "@cube", &out, "--edge", "0-1"]);
+    assert_eq!(vef(counts(&out)), (k.v + 2, k.e + 3, k.f + 1));
+}
+
+#[test]
+fn cut_and_truncate_refusals() {
+    let d = Dir::new();
+    let out = d.path("x.obj");
+    let err = refused(&["cut", "@cube", &out, "--vertex", "8"]);
+    assert!(
+        err.contains("vertex 8") && err.contains("8 vertices"),
+        "{err}"
+    );
+    let err = refused(&["cut", "@cube", &out, "--face", "6"]);
+    assert!(err.contains("face 6"), "{err}");
+    let err = refused(&["cut", "@cube", &out, "--vertex", "0", "--offset", "5"]);
+    assert!(
+        err.contains("reaches the middle") && err.contains("edge 0-"),
+        "the edge is named by its vertices: {err}"
+    );
+    let err = refused(&["cut", "@cube", &out, "--vertex", "0", "--offset", "NaN"]);
+    assert!(err.contains("NaN"), "{err}");
+    let err = refused(&["cut", "@cube", &out, "--edge", "0-7"]);
+    assert!(err.contains("not joined"), "{err}");
+    let err = refused(&["cut", "@cube", &out, "--edge", "0-1", "--vertex", "1"]);
+    assert!(err.contains("share vertex 1"), "{err}");
+    refused(&["cut", "@cube", &out]);
+    let err = refused(&["truncate", "@cube", &out, "--all", "--fraction", "0.5"]);
+    assert!(err.contains("0.5"), "{err}");
+    assert!(!Path::new(&out).exists());
+}
+
+// ---------------------------------------------------------------- shared
+
+#[test]
+fn every_new_command_has_examples() {
+    for command in ["remesh", "extrude", "wireframe", "cut", "truncate"] {
+        let help = ok(&[command, "--help"]);
+        assert!(
+            help.contains("Examples:\n  holey "),
+            "{command} --help: {help}"
+        );
+    }
+}
+
+#[test]
+fn batch_remesh_wireframe_and_truncate() {
+    let d = Dir::new();
+    let a = d.path("a.obj");
+    let b = d.path("b.obj");
+    ok(&["primitive", "@cube", &a]);
+    ok(&["primitive", "@tetrahedron", &b]);
+    let out = d.path("out");
+    ok(&["batch", "remesh", "--scheme", "dual", &a, &b, "--out", &out]);
+    assert_eq!(vef(counts(&format!("{out}/a.obj"))), (6, 12, 8));
+    assert_eq!(vef(counts(&format!("{out}/b.obj"))), (4, 6, 4));
+    let frames = d.path("frames");
+    ok(&[
+        "batch",
+        "wireframe",
+        "--thickness",
+        "0.05",
+        &a,
+        "--out",
+        &frames,
+    ]);
+    assert_eq!(counts(&format!("{frames}/a.obj")).genus, 12 - 8 + 1);
+    let cut = d.path("cut");
+    ok(&["batch", "truncate", "--all", &a, &b, "--out", &cut]);
+    assert_eq!(vef(counts(&format!("{cut}/b.obj"))), (12, 18, 8));
+}

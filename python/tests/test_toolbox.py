@@ -1,0 +1,180 @@
+"""holey.Mesh's TopMod toolbox (issue 18): remeshing schemes, extrusions,
+wireframes, cuts and truncations. Every expected count is worked out here
+from the input's counts, the operator's definition and Euler's formula."""
+
+import math
+
+import pytest
+
+import holey
+
+
+def counts(m):
+    i = m.info()
+    return i["vertices"], i["edges"], i["faces"]
+
+
+def topology(m):
+    i = m.info()
+    return i["genus"], i["components"], i["boundary_loops"]
+
+
+def test_dual_of_a_cube():
+    cube = holey.Mesh.primitive("cube")
+    V, E, F = counts(cube)
+    dual = cube.remesh("dual")
+    dual.validate()
+    assert counts(dual) == (F, E, V) == (6, 12, 8)
+    assert counts(cube) == (8, 12, 6)  # a new mesh; the cube is unchanged
+
+
+def test_sqrt3_and_loop():
+    t = holey.Mesh.primitive("tetrahedron")
+    V, E, F = counts(t)
+    C = 2 * E
+    assert counts(t.remesh("sqrt3")) == (V + F, E + C, C) == (8, 18, 12)
+    ico = holey.Mesh.primitive("icosahedron")
+    V, E, F = counts(ico)
+    loop = ico.remesh("loop", 2)
+    # Loop twice: (V, E, F) -> (V + E, 2E + 3F, 4F), applied two times.
+    V1, E1, F1 = V + E, 2 * E + 3 * F, 4 * F
+    assert counts(loop) == (V1 + E1, 2 * E1 + 3 * F1, 4 * F1)
+
+
+def test_truncation_stellation_corner_cutting_of_a_cube():
+    cube = holey.Mesh.primitive("cube")
+    V, E, F = counts(cube)
+    C = 2 * E
+    assert counts(cube.remesh("vertex-truncation", offset=0.3)) == (2 * E, E + C, F + V) == (24, 36, 14)
+    assert counts(cube.remesh("stellate")) == (V + F, E + C, C) == (14, 36, 24)
+    assert counts(cube.remesh("corner-cutting", alpha=0.6)) == (C, 2 * C, F + E + V) == (24, 48, 26)
+    assert counts(cube.remesh("12.6.4")) == (V + E + F, 3 * C, 2 * C)
+    assert counts(cube.remesh("dual-12.6.4")) == (2 * C, 2 * E + 2 * C, F + E + V)
+
+
+def test_options_reach_their_parameters():
+    cube = holey.Mesh.primitive("cube")
+    V, E, F = counts(cube)
+    # Truncation at half of every edge is the simplest scheme: E, 2E, F + V.
+    assert counts(cube.remesh("vertex-truncation", offset=0.5)) == (E, 2 * E, F + V)
+    assert counts(cube.remesh("subdivide-face", triangles=True)) == (V + F, 3 * E, 2 * E)
+
+
+def test_every_scheme_keeps_a_torus_a_torus():
+    torus = holey.Mesh.primitive("torus", 8, 4)
+    schemes = [
+        "dual", "triangulate", "sqrt3", "loop", "root4", "linear-vertex-insertion",
+        "vertex-truncation", "dual-vertex-truncation", "stellate", "double-stellate",
+        "corner-cutting", "modified-corner-cutting", "simplest", "honeycomb", "12.6.4",
+        "dual-12.6.4", "pentagonalization", "dual-pentagonalization", "checkerboard",
+        "dual-checkerboard", "global-extrude", "dual-global-extrude", "dome", "fractal",
+    ]
+    for scheme in schemes:
+        r = torus.remesh(scheme)
+        r.validate()
+        V, E, F = counts(r)
+        assert V - E + F == 0, scheme  # Euler: genus 1
+        assert topology(r) == (1, 1, 0), scheme
+
+
+def test_remesh_refusals():
+    cube = holey.Mesh.primitive("cube")
+    with pytest.raises(holey.HoleyError, match="no-such-scheme"):
+        cube.remesh("no-such-scheme")
+    with pytest.raises(holey.HoleyError, match="NaN"):
+        cube.remesh("corner-cutting", alpha=float("nan"))
+    with pytest.raises(holey.HoleyError, match="alpha"):
+        cube.remesh("dual", alpha=0.5)
+    with pytest.raises(holey.HoleyError, match="boundary"):
+        holey.Mesh.primitive("plane", 3, 3).remesh("dual")
+    with pytest.raises(ValueError):  # HoleyError is a ValueError
+        cube.remesh("sqrt3", offset="big")
+
+
+def test_extrusions_of_a_quad():
+    cube = holey.Mesh.primitive("cube")
+    V, E, F = counts(cube)
+    d = 4  # every face of the cube is a quad
+
+    def delta(m):
+        m.validate()
+        v, e, f = counts(m)
+        return v - V, e - E, f - F
+
+    assert delta(cube.extrude(0)) == (d, 2 * d, d) == (4, 8, 4)
+    k = 3
+    assert delta(cube.extrude([0], distance=0.5, scale=0.8, rotation=10, count=k)) == (k * d, 2 * k * d, k * d)
+    assert delta(cube.extrude(0, kind="octahedral")) == (d, 3 * d, 2 * d)
+    assert delta(cube.extrude(0, kind="dodecahedral")) == (3 * d, 5 * d, 2 * d)
+    assert delta(cube.extrude(0, kind="icosahedral")) == (3 * d, 9 * d, 6 * d)
+    assert delta(cube.extrude(0, kind="double-stellate")) == (d + 1, 4 * d, 3 * d - 1)
+    # Every face stellated: 14/36/24.
+    spiky = cube.extrude(range(6), kind="stellate", distance=1.0)
+    assert counts(spiky) == (V + F, E + d * F, d * F) == (14, 36, 24)
+
+
+def test_extruding_a_block_together():
+    grid = holey.Mesh.primitive("plane", 4, 4)
+    V, E, F = counts(grid)
+    # The middle 2x2 block of quads has 8 boundary sides: +8, +16, +8.
+    block = grid.extrude([5, 6, 9, 10], together=True, distance=0.5)
+    assert counts(block) == (V + 8, E + 16, F + 8)
+
+
+def test_extrude_refusals():
+    cube = holey.Mesh.primitive("cube")
+    with pytest.raises(holey.HoleyError, match="face 6 does not exist"):
+        cube.extrude(6)
+    with pytest.raises(holey.HoleyError, match="NaN"):
+        cube.extrude(0, distance=math.nan)
+    with pytest.raises(holey.HoleyError, match="rotation"):
+        cube.extrude(0, kind="cubical", rotation=5)
+    with pytest.raises(holey.HoleyError, match="pyramid"):
+        cube.extrude(0, kind="pyramid")
+
+
+def test_wireframe_genus_is_the_cycle_rank():
+    for mesh in [holey.Mesh.primitive("cube"), holey.Mesh.primitive("dodecahedron")]:
+        V, E, F = counts(mesh)
+        w = mesh.wireframe(0.05)
+        w.validate()
+        assert counts(w) == (4 * E, 10 * E, 4 * E + 2 * V)
+        assert topology(w) == (E - V + 1, 1, 0)
+    cube = holey.Mesh.primitive("cube")
+    cols = cube.wireframe(0.1, columns=5)
+    n, (V, E, F) = 5, counts(cube)
+    # Valence 3 everywhere: 2nE, 3nE + 6V, nE + 5V.
+    assert counts(cols) == (2 * n * E, 3 * n * E + 6 * V, n * E + 5 * V)
+    with pytest.raises(holey.HoleyError, match="thickness"):
+        cube.wireframe(float("nan"))
+    with pytest.raises(holey.HoleyError, match="face 0 turns over"):
+        cube.wireframe(5.0)
+    with pytest.raises(holey.HoleyError, match="3 sides"):
+        cube.wireframe(0.1, columns=2)
+
+
+def test_cut_and_truncate():
+    cube = holey.Mesh.primitive("cube")
+    V, E, F = counts(cube)
+    # A vertex of valence 3: +2, +3, +1; an edge between two of them too.
+    assert counts(cube.cut(vertices=[0], offset=0.5)) == (V + 2, E + 3, F + 1)
+    assert counts(cube.cut(edges=[(0, 1)], fraction=0.25)) == (V + 2, E + 3, F + 1)
+    assert counts(cube.cut(faces=[0])) == (V, E, F)
+    assert counts(cube.truncate()) == (2 * E, 3 * E, F + V) == (24, 36, 14)
+    ico = holey.Mesh.primitive("icosahedron")
+    V, E, F = counts(ico)
+    ball = ico.truncate(1 / 3)
+    ball.validate()
+    assert counts(ball) == (2 * E, 3 * E, F + V) == (60, 90, 32)
+    assert counts(ball) == counts(holey.Mesh.primitive("soccerball"))
+    assert ball.info()["face_sizes"] == {"5": 12, "6": 20}
+    with pytest.raises(holey.HoleyError, match="not joined"):
+        cube.cut(edges=[(0, 7)])
+    with pytest.raises(holey.HoleyError, match="vertex 8 does not exist"):
+        cube.cut(vertices=[8])
+    with pytest.raises(holey.HoleyError, match=r"middle of edge \(0, \d\)"):
+        cube.cut(vertices=[0], offset=5.0)
+    with pytest.raises(holey.HoleyError, match="share vertex 1"):
+        cube.cut(vertices=[1], edges=[(0, 1)])
+    with pytest.raises(holey.HoleyError, match="0.5"):
+        cube.truncate(0.5)
