@@ -10,7 +10,7 @@ that only moved the surface apart from those where the engine cut it.
 
     cargo build --release -p holey-sculpt --example frame_trace
     cargo build --release -p holey-cli
-    python3 bench/sculpt/frames.py [--shared ../shared] [--out /tmp/holey-frames]
+    python3 bench/sculpt/frames.py [--shared ../shared] [--out /tmp/holey-frames] [--only bunny]
 
 Needs numpy. The shared meshes are read, never copied.
 """
@@ -61,7 +61,22 @@ def bunny_strokes(bunny):
         {"brush": "inflate", "radius": r8, "strength": 0.05 * r8, "path": [spot] * 30},
         {"brush": "smooth", "radius": r8, "strength": 0.5, "path": [spot] * 10},
     ]}
-    return {"bunny-haunch": haunch, "bunny-dwell": dwell}
+    # The haunch stroke mirrored across z = 0 onto the other flank (issue
+    # 19: a frame with symmetry should cost at most 1.5x one without).
+    mirrored = {"strokes": [dict(st, symmetry="z") for st in haunch["strokes"]]}
+    # The ear pulled into the head with the snake hook (issue 15, item 3),
+    # the path of crates/sculpt/tests/real_meshes.rs.
+    used = bunny.v[bunny.used]
+    tip = used[np.argmax(used[:, 1])]
+    near = used[(np.abs(used[:, 0] + 0.065) < 0.002) & (np.abs(used[:, 2] - 0.02) < 0.002)]
+    crown = near[np.argmax(near[:, 1])]
+    corners = [tip, np.array([-0.04, tip[1] + 0.013, 0.02]),
+               crown + np.array([0.0, 0.025, 0.005]), crown - np.array([0.0, 0.02, 0.0])]
+    hook_path = [list(a + (b - a) * i / 10) for a, b in zip(corners, corners[1:]) for i in range(10)]
+    hook_path.append(list(corners[-1]))
+    hook = {"strokes": [{"brush": "snake_hook", "radius": 0.012, "path": [list(map(float, p)) for p in hook_path]}]}
+    return {"bunny-haunch": haunch, "bunny-haunch-mirrored-z": mirrored,
+            "bunny-dwell": dwell, "bunny-ear-snake-hook": hook}
 
 
 def sphere_strokes():
@@ -88,6 +103,7 @@ def main():
     ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
     ap.add_argument("--out", default="/tmp/holey-frames")
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--only", default="", help="run only the jobs whose name contains this")
     args = ap.parse_args()
     trace = os.path.join(ROOT, "target", "release", "examples", "frame_trace")
     holey = os.path.join(ROOT, "target", "release", "holey")
@@ -100,11 +116,14 @@ def main():
     else:
         print(f"SKIP bunny: {bunny_path} absent", file=sys.stderr)
     sphere = os.path.join(args.out, "sphere8.obj")
-    if not os.path.exists(sphere):
+    if ("sphere" in args.only or not args.only) and not os.path.exists(sphere):
         subprocess.run([holey, "convert", "@sphere:8", sphere], check=True)
-    for name, s in sphere_strokes().items():
-        jobs.append((name, sphere, s))
+    if "sphere" in args.only or not args.only:
+        for name, s in sphere_strokes().items():
+            jobs.append((name, sphere, s))
     for name, mesh, s in jobs:
+        if args.only not in name:
+            continue
         path = os.path.join(args.out, name + ".json")
         with open(path, "w") as f:
             json.dump(s, f)

@@ -59,8 +59,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut frame_no = 0usize;
     for (s, stroke) in file.strokes.iter().enumerate() {
+        // Mirror planes through the origin (the stroke file's default).
         let settings = BrushSettings {
             falloff: stroke.falloff,
+            symmetry: holey_sculpt::Symmetry {
+                axes: stroke.symmetry,
+                centre: glam::DVec3::ZERO,
+            },
             ..BrushSettings::new(stroke.brush, stroke.radius, stroke.strength)
         };
         let first = stroke.path.first().copied().unwrap_or_default();

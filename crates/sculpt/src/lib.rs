@@ -3,12 +3,17 @@
 //! The modeler of Bernstein & Wojtan, *Putting Holes in Holey Geometry*
 //! (SIGGRAPH 2013), §4: four ordinary brushes (inflate/deflate, smooth,
 //! grab, move) whose collisions change the topology of the surface as a
-//! side effect, through the engine of `holey-topo` (§3).
+//! side effect, through the engine of `holey-topo` (§3); and the brushes
+//! sculptors know from SculptGL and Blender (draw, clay, crease, flatten,
+//! pinch, scrape, local scale, the snake hook), under the same rule.
 //!
-//! - [`brush`]: the brushes as pure functions of positions (no topology).
+//! - [`brush`]: the brushes as pure functions of positions (no topology),
+//!   one file each with its displacement field, and the falloff curves.
+//! - [`symmetry`]: the mirror images a stroke is repeated across.
 //! - [`session`]: a [`Session`] owns the mesh, applies strokes with the
-//!   topology change (every frame for inflate and smooth, once at release
-//!   for grab and move), undo and redo of whole strokes, diagnostics.
+//!   topology change (every frame for the painting brushes and the snake
+//!   hook, once at release for grab and move), undo and redo of whole
+//!   strokes, diagnostics.
 //! - [`strokes`]: the JSON stroke files `holey sculpt` replays.
 //! - [`remesh`](mod@remesh): dynamic remeshing (split, collapse, flip) of the region
 //!   around given vertices, never changing topology; strokes run it after

@@ -17,8 +17,9 @@ use crate::tri::{compact, load_triangles, load_triangles_welded, write_triangles
 #[command(after_help = "\
 Replays the strokes of a JSON file on a triangle mesh (polygons are
 fan-triangulated) and writes the result. Brushes: inflate (negative
-strength deflates), smooth, grab and move. Each path point is one frame.
-Inflate and smooth change topology every frame where the surface
+strength deflates), smooth, grab, move, snake_hook, draw, clay, crease,
+flatten, pinch, scrape and scale. Each path point is one frame. All but
+grab and move change topology every frame where the surface
 collides with itself; grab and move accumulate collisions over the drag
 and change topology once, at the end of the stroke, so a drag that comes
 back to where it began changes nothing.
@@ -29,7 +30,22 @@ STROKES.json:
      {\"brush\": \"inflate\", \"radius\": 0.3, \"strength\": 0.02, \"path\": [[0,0,1], [0.1,0,1]]},
      {\"brush\": \"smooth\",  \"radius\": 0.3, \"strength\": 0.5,  \"path\": [[0,0,1]]},
      {\"brush\": \"grab\",    \"radius\": 0.4, \"path\": [[0,0,1], [0,0,0.5], [0,0,-1.5]]},
-     {\"brush\": \"move\",    \"path\": [[2,0,0], [1.5,0,0], [1,0,0]]}]}
+     {\"brush\": \"move\",    \"path\": [[2,0,0], [1.5,0,0], [1,0,0]]},
+     {\"brush\": \"snake_hook\", \"radius\": 0.3, \"path\": [[1,0,0], [1.5,0,0], [1.5,0,1]]},
+     {\"brush\": \"crease\", \"radius\": 0.3, \"strength\": 0.01, \"path\": [[0,0,1]],
+      \"falloff\": \"sharp\", \"symmetry\": \"x\", \"mask\": {\"sphere\": {\"centre\": [0,0,-1], \"radius\": 0.5}},
+      \"pressure\": [0.7]}]}
+
+The sculptor's brushes draw, clay and crease take a strength in world
+units per frame like inflate; flatten, scrape (in [0, 1]), pinch and scale
+(in [-1, 1]) a share of the way per frame. Every stroke may give a
+\"falloff\" (smooth, sphere, root, sharp, linear, constant, or
+{\"custom\": [five values]}), \"symmetry\" (axes among x, y, z) with
+\"symmetry_about\" (origin or centre), a \"mask\" ({\"vertices\": [...]} or a
+sphere) whose vertices never move, and a \"pressure\" per path point
+with \"pressure_drives\" (strength or radius). The snake hook pulls the
+part under it along the path and lets go when it fuses with what it
+meets.
 
 Strokes are numbered from 0 in errors. The first point of a grab must lie
 within its radius of the surface, that of a move within 10% of the
