@@ -323,20 +323,46 @@ pub fn remesh_in_place_checked(
     let region = (lo - grow, hi + grow);
     let saved = mesh.clone();
     let mut report = remesh_in_place(mesh, active, options)?;
-    // Counted only when the run changed something (most frames of a
-    // stroke over a remeshed surface change nothing), and the start only
-    // when the result has any: on a clean surface the second count is
-    // never needed.
-    let crossings = holey_topo::intersect::crossing_pairs_within;
+    // Checked only when the run changed something (most frames of a
+    // stroke over a remeshed surface change nothing). Crossings are
+    // counted only for the pairs a made or unmade triangle takes part in:
+    // the pairs among the triangles the run left alone are the same
+    // before and after, so the whole region's counts compare as these do,
+    // at the cost of what the run touched. The start is counted only
+    // when the result has any.
     let grew = |after: usize, before: &dyn Fn() -> usize| after > 0 && after > before();
-    if report.splits + report.collapses + report.flips > 0
-        && (grew(crossings(mesh, region), &|| crossings(&saved, region))
-            || grew(flat_within(mesh, region), &|| flat_within(&saved, region)))
-    {
-        *mesh = saved;
-        report.undone = true;
+    if report.splits + report.collapses + report.flips > 0 {
+        let (made, unmade) = changed_triangles(&saved, mesh);
+        let crossings = holey_topo::intersect::crossing_pairs_involving;
+        if grew(crossings(mesh, region, &made), &|| {
+            crossings(&saved, region, &unmade)
+        }) || grew(flat_within(mesh, region), &|| flat_within(&saved, region))
+        {
+            *mesh = saved;
+            report.undone = true;
+        }
     }
     Ok(report)
+}
+
+/// Which triangles of `after` differ from the triangle at the same index
+/// of `before` (other corners, or a corner moved, or no triangle there),
+/// and the same the other way: a superset of what a remeshing run made
+/// and unmade, found by one pass without hashing. Every unmarked triangle
+/// of one is the same triangle, at the same place, in the other.
+fn changed_triangles(before: &TriMesh, after: &TriMesh) -> (Vec<bool>, Vec<bool>) {
+    // Positions first, in one sequential pass: a triangle is the same
+    // when its corners are and none of them moved.
+    let moved: Vec<bool> = (0..before.positions.len().max(after.positions.len()))
+        .map(|v| before.positions.get(v) != after.positions.get(v))
+        .collect();
+    let same = |i: usize| match (before.triangles.get(i), after.triangles.get(i)) {
+        (Some(a), Some(b)) => a == b && a.iter().all(|&v| !moved[v as usize]),
+        _ => false,
+    };
+    let made = (0..after.triangles.len()).map(|i| !same(i)).collect();
+    let unmade = (0..before.triangles.len()).map(|i| !same(i)).collect();
+    (made, unmade)
 }
 
 /// Triangles with exactly collinear corners (zero area) among those whose
@@ -602,15 +628,19 @@ impl Work {
 
     /// Sorted, distinct edges with an active end, whose ends both live.
     fn active_edges(&self) -> Vec<(u32, u32)> {
-        let mut edges = Vec::new();
+        // Packed into one u64 each (smaller end high), whose order is the
+        // pairs' order: one integer sort instead of a sort of tuples. Of
+        // an edge with both ends active, only the smaller end emits it.
+        let mut edges: Vec<u64> = Vec::new();
         for v in 0..self.pos.len() as u32 {
             if !(self.active[v as usize] && self.alive_v[v as usize]) {
                 continue;
             }
             for &t in &self.ring[v as usize] {
                 for &x in &self.tris[t as usize] {
-                    if x != v {
-                        edges.push((v.min(x), v.max(x)));
+                    if x != v && (x > v || !self.active[x as usize] || !self.alive_v[x as usize]) {
+                        let (a, b) = (v.min(x), v.max(x));
+                        edges.push(u64::from(a) << 32 | u64::from(b));
                     }
                 }
             }
@@ -618,6 +648,9 @@ impl Work {
         edges.sort_unstable();
         edges.dedup();
         edges
+            .into_iter()
+            .map(|e| ((e >> 32) as u32, e as u32))
+            .collect()
     }
 
     fn length(&self, a: u32, b: u32) -> f64 {

@@ -759,6 +759,88 @@ pub fn crossing_pairs_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
     intersecting_pair_count(&part, usize::MAX).unwrap_or(0)
 }
 
+/// The crossing pairs of [`crossing_pairs_within`] that involve at least
+/// one triangle `involved` marks (by index into `mesh.triangles`; a short
+/// slice marks nothing past its end). Tested exactly as there, but only
+/// the pairs a marked triangle takes part in: the marked triangles get a
+/// tree, every other triangle in `region` queries it with its box, so a
+/// check after a local edit costs what the edit touched, not the region.
+///
+/// Two meshes that differ only in their marked triangles have the same
+/// unmarked pairs, so their full counts compare as these do.
+pub fn crossing_pairs_involving(
+    mesh: &TriMesh,
+    region: (DVec3, DVec3),
+    involved: &[bool],
+) -> usize {
+    let n = mesh.positions.len();
+    let (mut marked, mut rest) = (Vec::new(), Vec::new());
+    for (i, t) in mesh.triangles.iter().enumerate() {
+        if t.iter().any(|&v| v as usize >= n) {
+            continue;
+        }
+        let p = t.map(|v| mesh.positions[v as usize]);
+        let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+        if lo.cmpgt(region.1).any() || hi.cmplt(region.0).any() {
+            continue;
+        }
+        if involved.get(i).copied().unwrap_or(false) {
+            marked.push(*t);
+        } else {
+            rest.push(*t);
+        }
+    }
+    if marked.is_empty() {
+        return 0;
+    }
+    // One part mesh, the marked triangles first.
+    let mut local = vec![u32::MAX; n];
+    let mut part = TriMesh::default();
+    for t in marked.iter().chain(&rest) {
+        part.triangles.push(t.map(|v| {
+            if local[v as usize] == u32::MAX {
+                local[v as usize] = part.positions.len() as u32;
+                part.positions.push(mesh.positions[v as usize]);
+            }
+            local[v as usize]
+        }));
+    }
+    let Ok(ids) = holey_geom::position_classes(&part.positions) else {
+        return 0;
+    };
+    let tris = &part.triangles;
+    let bounds = |t: &[u32; 3]| Aabb::from_points(&t.map(|v| part.positions[v as usize]));
+    let split = marked.len();
+    let boxes: Vec<Aabb> = tris[..split].iter().map(bounds).collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return 0;
+    };
+    let sym = Symbolic {
+        positions: &part.positions,
+        ids: &ids,
+    };
+    let hit = |a: u32, b: u32| pair_segment_with(tris, &sym, None, a.min(b), a.max(b)).is_some();
+    let (among, _) =
+        tree.self_overlaps_filter_map(|i, j| hit(i, j).then_some((i.min(j), i.max(j))));
+    let mut pairs: Vec<(u32, u32)> = among;
+    let across: Vec<(u32, u32)> = (split..tris.len())
+        .into_par_iter()
+        .flat_map_iter(|k| {
+            let mut found = Vec::new();
+            tree.for_each_overlap(&bounds(&tris[k]), |i| {
+                if hit(i, k as u32) {
+                    found.push((i, k as u32));
+                }
+            });
+            found
+        })
+        .collect();
+    pairs.extend(across);
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs.len()
+}
+
 /// [`intersecting_pair_count`] of `mesh`'s triangles at `positions`
 /// (indices already checked).
 pub(crate) fn pair_count_at(

@@ -386,3 +386,51 @@ fn crossings_within_a_box_are_those_of_the_triangles_meeting_it() {
     broken.triangles.push([0, 1, 9999]);
     assert_eq!(crossing_pairs_within(&broken, everything), l + r);
 }
+
+/// `crossing_pairs_involving` counts exactly the crossing pairs that a
+/// marked triangle takes part in: checked against every pair tested on
+/// its own (a two-triangle mesh each), for several markings of two
+/// overlapping octahedra.
+#[test]
+fn crossing_pairs_involving_counts_the_marked_triangles_pairs() {
+    let mut m = octahedron(DVec3::ZERO, 1.0);
+    m.append(&octahedron(DVec3::new(0.6, 0.3, 0.2), 1.0));
+    let n = m.triangles.len();
+    let crosses = |i: usize, j: usize| {
+        let pair = TriMesh {
+            positions: m.positions.clone(),
+            triangles: vec![m.triangles[i], m.triangles[j]],
+        };
+        intersecting_pair_count(&pair, usize::MAX).unwrap() == 1
+    };
+    let mut pairs = Vec::new();
+    for i in 0..n {
+        for j in i + 1..n {
+            if crosses(i, j) {
+                pairs.push((i, j));
+            }
+        }
+    }
+    assert!(pairs.len() > 4, "the octahedra cross");
+    let everywhere = (DVec3::splat(-10.0), DVec3::splat(10.0));
+    assert_eq!(crossing_pairs_within(&m, everywhere), pairs.len());
+    for marking in [
+        vec![true; n],
+        vec![false; n],
+        (0..n).map(|i| i % 3 == 0).collect(),
+        (0..n).map(|i| i < 8).collect::<Vec<_>>(),
+    ] {
+        let want = pairs
+            .iter()
+            .filter(|&&(i, j)| marking[i] || marking[j])
+            .count();
+        assert_eq!(
+            crossing_pairs_involving(&m, everywhere, &marking),
+            want,
+            "{marking:?}"
+        );
+    }
+    // Outside the region nothing is counted.
+    let far = (DVec3::splat(50.0), DVec3::splat(60.0));
+    assert_eq!(crossing_pairs_involving(&m, far, &vec![true; n]), 0);
+}
