@@ -1010,6 +1010,12 @@ fn remesh_active(mesh: &TriMesh, near: impl Fn(DVec3) -> bool) -> Vec<bool> {
 
 /// The bounding-box diagonal of the vertices triangles use.
 fn diagonal(mesh: &TriMesh) -> f64 {
+    used_bounds(mesh).map_or(0.0, |(lo, hi)| lo.distance(hi))
+}
+
+/// The bounding box of the vertices triangles use; `None` without
+/// triangles.
+pub(crate) fn used_bounds(mesh: &TriMesh) -> Option<(DVec3, DVec3)> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
     for t in &mesh.triangles {
@@ -1019,5 +1025,5 @@ fn diagonal(mesh: &TriMesh) -> f64 {
             hi = hi.max(p);
         }
     }
-    if lo.x <= hi.x { lo.distance(hi) } else { 0.0 }
+    (lo.x <= hi.x).then_some((lo, hi))
 }

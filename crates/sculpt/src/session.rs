@@ -271,20 +271,7 @@ impl Session {
 /// The centre of the bounding box of the vertices triangles use (the
 /// origin for a mesh without triangles).
 fn box_centre(mesh: &TriMesh) -> DVec3 {
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for t in &mesh.triangles {
-        for &v in t {
-            let p = mesh.positions[v as usize];
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-    }
-    if lo.x <= hi.x {
-        (lo + hi) * 0.5
-    } else {
-        DVec3::ZERO
-    }
+    crate::live::used_bounds(mesh).map_or(DVec3::ZERO, |(lo, hi)| (lo + hi) * 0.5)
 }
 
 #[cfg(test)]

@@ -126,7 +126,11 @@ fn snake_hook_tip_pressed_into_the_body_makes_a_handle() {
     let top = *path.last().unwrap();
     for i in 1..=8 {
         let t = f64::from(i) / 8.0;
-        path.push(DVec3::new(top.x * (1.0 - t), 0.0, top.z + (0.5 - top.z) * t));
+        path.push(DVec3::new(
+            top.x * (1.0 - t),
+            0.0,
+            top.z + (0.5 - top.z) * t,
+        ));
     }
     let hook = Stroke {
         brush: Brush::SnakeHook,
@@ -680,20 +684,7 @@ fn fuzz_seed(seed: u64, remesh_soups: bool, tally: &mut FuzzTally) {
     let mut s = Session::new(mesh).unwrap();
     for _ in 0..4 {
         let m = s.mesh().clone();
-        let brush = *rng.pick(&[
-            Brush::Inflate,
-            Brush::Smooth,
-            Brush::Grab,
-            Brush::Move,
-            Brush::SnakeHook,
-            Brush::Draw,
-            Brush::Clay,
-            Brush::Crease,
-            Brush::Flatten,
-            Brush::Pinch,
-            Brush::Scrape,
-            Brush::Scale,
-        ]);
+        let brush = *rng.pick(&holey_sculpt::brush::ALL_BRUSHES);
         let start = random_point_near(&mut rng, &m);
         let frames = 1 + rng.below(3);
         let mut path = vec![start];
