@@ -344,9 +344,14 @@ def sculpt(
     ``strokes`` is the stroke file ``holey sculpt`` reads, as a dict
     (``{"strokes": [...], "remesh": {...}}``), a list of strokes (each
     ``{"brush": "inflate", "radius": 0.3, "strength": 0.02, "path":
-    [[x, y, z], ...]}``) or the path of a JSON file. ``remesh`` remeshes
-    the brushed region between frames. Returns ``(V, F)`` (and one report
-    dict per stroke when ``report=True``).
+    [[x, y, z], ...]}``) or the path of a JSON file. The brushes are
+    inflate, smooth, grab, move, snake_hook, draw, clay, crease, flatten,
+    pinch, scrape and scale; a stroke may add ``falloff``, ``symmetry``
+    (``"x"``, ``"xz"``, ...), ``symmetry_about``, ``mask`` (``{"vertices":
+    [...]}`` or ``{"sphere": {"centre": [...], "radius": r}}``) and a
+    ``pressure`` per path point (see ``holey sculpt --help``). ``remesh``
+    remeshes the brushed region between frames. Returns ``(V, F)`` (and
+    one report dict per stroke when ``report=True``).
     """
     if isinstance(strokes, (str, os.PathLike)):
         with open(strokes, encoding="utf-8") as handle:

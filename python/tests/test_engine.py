@@ -116,6 +116,32 @@ def test_sculpt_inflate_closes_the_hole_of_a_torus():
     assert holey.self_intersections(W, G)["intersecting_pairs"] == 0
 
 
+def test_sculpt_snake_hook_through_a_sphere_makes_a_tunnel():
+    # Issue 19: hooked at the top and pulled down through the inside and
+    # out of the bottom, the dent meets the far side and opens: genus 1.
+    V, F = holey.primitive("sphere", 3)
+    path = [[0, 0, 1 - 2.4 * k / 20] for k in range(21)]
+    strokes = [{"brush": "snake_hook", "radius": 0.45, "path": path}]
+    W, G, reports = holey.sculpt(V, F, strokes, report=True)
+    assert reports[0]["topology_changes"] >= 1
+    i = holey.info(W, G)
+    assert i["closed"] and i["manifold"] and i["components"] == 1 and i["genus"] == 1
+
+
+def test_sculpt_symmetry_x_leaves_a_mirror_image():
+    # A draw stroke on one side with symmetry in x, on a sphere symmetric
+    # in x: every vertex has its mirror image among the vertices.
+    V, F = holey.primitive("sphere", 3)
+    strokes = [{"brush": "draw", "radius": 0.4, "strength": 0.02,
+                "path": [[0.6, 0.3, 0.74], [0.62, 0.25, 0.74]], "symmetry": "x"}]
+    W, G = holey.sculpt(V, F, strokes, remesh=False)
+    mirrored = W * np.array([-1.0, 1.0, 1.0])
+    nearest = np.min(np.linalg.norm(W[:, None, :] - mirrored[None, :, :], axis=2), axis=1)
+    assert nearest.max() < 1e-9
+    moved = np.linalg.norm(W - V, axis=1) > 0
+    assert moved[V[:, 0] > 0].any() and moved[V[:, 0] < 0].any()
+
+
 def test_the_gil_is_released_during_engine_calls():
     # While one thread runs a long exact computation, the main thread
     # keeps running Python: with the GIL held it could not run at all.

@@ -394,6 +394,80 @@ fn stanford_bunny_ear_snake_hooked_into_the_head_makes_a_handle() {
     assert_eq!(genus(&end), 1, "the ear fused to the head: a handle");
 }
 
+/// Issue 19's brushes on the scan, each dragged across the haunch as
+/// the inflate test does (radius 5%): draw, clay, crease, flatten,
+/// pinch, scrape and local scale, with symmetry in z on one stroke (the
+/// mirror image lands on the other flank) and a falloff other than the
+/// default on another. Every stroke keeps what item 1 asks (the oracle
+/// of this file), and the bunny stays one piece of genus 0 with its five
+/// holes.
+#[test]
+fn stanford_bunny_sculptor_brushes_across_the_haunch() {
+    let Some(bunny) = load("stanford_bunny_brushes", "stanford-bunny.obj") else {
+        return;
+    };
+    let (r, k) = radius_and_strength(&bunny, 0.05, 1.0);
+    let across = walk(&bunny, [0.55, 0.35, 1.0], [0.75, 0.45, 1.0], 20);
+    let mut strokes: Vec<Stroke> = [
+        (Brush::Draw, k),
+        (Brush::Clay, k),
+        (Brush::Crease, 0.5 * k),
+        (Brush::Flatten, 0.5),
+        (Brush::Pinch, 0.3),
+        (Brush::Scrape, 0.5),
+        (Brush::Scale, 0.05),
+    ]
+    .into_iter()
+    .map(|(brush, strength)| paint(brush, r, strength, across.clone()))
+    .collect();
+    strokes[0].symmetry = [false, false, true];
+    strokes[1].falloff = holey_sculpt::Falloff::Sphere;
+    let (_, reports, end) = sculpt("bunny brushes", bunny, &strokes, true);
+    assert!(reports.iter().all(|r| r.refused.is_empty()));
+    assert_eq!(end.components, 1);
+    assert_eq!(end.boundary_loops, 5);
+    assert_eq!(genus(&end), 0);
+}
+
+/// Issue 19: a crease held on the back ear's flat middle cuts through the
+/// thin ear and opens a slit: genus 0 → 1, one piece, the five holes
+/// underneath as they were.
+#[test]
+fn stanford_bunny_crease_through_the_ear_opens_a_slit() {
+    let Some(bunny) = load("stanford_bunny_crease_ear", "stanford-bunny.obj") else {
+        return;
+    };
+    // The middle of the ear: the mean of the used vertices above y = 0.165
+    // with x > −0.04 (the back ear), then the used vertex nearest it.
+    let used: Vec<DVec3> = bunny
+        .triangles
+        .iter()
+        .flatten()
+        .map(|&v| bunny.positions[v as usize])
+        .collect();
+    let ear: Vec<DVec3> = used
+        .iter()
+        .copied()
+        .filter(|p| p.y > 0.165 && p.x > -0.04)
+        .collect();
+    let mean = ear.iter().copied().sum::<DVec3>() / ear.len() as f64;
+    let spot = used
+        .iter()
+        .copied()
+        .min_by(|a, b| a.distance(mean).total_cmp(&b.distance(mean)))
+        .unwrap();
+    let (_, reports, end) = sculpt(
+        "bunny crease",
+        bunny,
+        &[paint(Brush::Crease, 0.01, 0.0008, vec![spot; 30])],
+        true,
+    );
+    assert!(reports[0].changes >= 1, "the groove met the far side");
+    assert_eq!(end.components, 1);
+    assert_eq!(end.boundary_loops, 5);
+    assert_eq!(genus(&end), 1, "a slit through the ear");
+}
+
 /// The teapot: patches stored unwelded, non-manifold vertices, 156 pairs
 /// crossing. Inflate along the spout and body, smooth, and grab the
 /// spout's tip into the body: nothing gets worse, and nothing far from
