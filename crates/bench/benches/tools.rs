@@ -6,10 +6,13 @@
 use divan::{Bencher, black_box};
 use holey_dlfl::Mesh;
 use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_model::extrude::{ExtrudeParams, extrude_face, stellate_face};
 use holey_model::handle::{HandleParams, create_handle};
 use holey_model::menger::{MengerParams, Thickness, menger};
 use holey_model::rind::Rind;
 use holey_model::sierpinski::sierpinski;
+use holey_model::truncate::truncate_all_vertices;
+use holey_model::wireframe::{ColumnParams, columns, wireframe};
 use holey_render::{RenderOptions, render};
 use holey_subdiv::{catmull_clark, doo_sabin};
 
@@ -135,6 +138,77 @@ fn catmull_clark_to_1m(bencher: Bencher) {
 fn doo_sabin_to_1m(bencher: Bencher) {
     let base = primitive("@torus:64:64");
     bencher.bench(|| black_box(doo_sabin(&base, 4)).map(|m| m.face_count()));
+}
+
+/// Issue 18's families at about a million output faces, on a
+/// 128 × 128 torus of quads (16,384 faces, 32,768 edges).
+fn torus_128() -> Mesh {
+    primitive("@torus:128:128")
+}
+
+/// Every face extruded once, repeated 15 times (+4 faces each ring):
+/// 16,384 × (1 + 4 · 15) ≈ 1.0M faces.
+#[divan::bench(sample_count = 3)]
+fn extrude_every_face_15_rings_to_1m(bencher: Bencher) {
+    let base = torus_128();
+    let faces: Vec<_> = base.faces().collect();
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let params = ExtrudeParams::new(0.001, 15);
+            for &f in &faces {
+                let _ = black_box(extrude_face(&mut m, f, &params));
+            }
+            m.face_count()
+        });
+}
+
+/// Every face of a 256 × 256 torus stellated (each quad fans into 4
+/// triangles): 65,536 × 4 = 262,144 faces, one face at a time.
+#[divan::bench(sample_count = 3)]
+fn stellate_every_face_of_a_256_torus(bencher: Bencher) {
+    let base = primitive("@torus:256:256");
+    let faces: Vec<_> = base.faces().collect();
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            for &f in &faces {
+                let _ = black_box(stellate_face(&mut m, f, 0.001));
+            }
+            m.face_count()
+        });
+}
+
+/// The wireframe of a 320 × 320 torus: 4E + 2V = 10 · 320² ≈ 1.02M
+/// faces.
+#[divan::bench(sample_count = 3)]
+fn wireframe_to_1m(bencher: Bencher) {
+    let base = primitive("@torus:320:320");
+    bencher.bench(|| black_box(wireframe(&base, 0.001)).map(|m| m.face_count()));
+}
+
+/// Hexagonal columns on every edge of the 128 × 128 torus, with their
+/// joints.
+#[divan::bench(sample_count = 3)]
+fn columns_6_on_every_edge(bencher: Bencher) {
+    let base = torus_128();
+    let params = ColumnParams {
+        sides: 6,
+        radius: 0.002,
+    };
+    bencher.bench(|| black_box(columns(&base, &params)).map(|m| m.face_count()));
+}
+
+/// Every vertex of a 512 × 512 torus truncated: V + F = 524,288 faces.
+#[divan::bench(sample_count = 3)]
+fn truncate_every_vertex_of_a_512_torus(bencher: Bencher) {
+    let base = primitive("@torus:512:512");
+    bencher
+        .with_inputs(|| base.clone())
+        .bench_local_values(|mut m| {
+            let _ = black_box(truncate_all_vertices(&mut m, 1.0 / 3.0));
+            m.face_count()
+        });
 }
 
 /// A 1M-triangle icosphere at 1024×768 (flat shading, 3×3 supersampling).
