@@ -346,7 +346,7 @@ def sculpt(
     ``{"brush": "inflate", "radius": 0.3, "strength": 0.02, "path":
     [[x, y, z], ...]}``) or the path of a JSON file. The brushes are
     inflate, smooth, grab, move, snake_hook, draw, clay, crease, flatten,
-    pinch, scrape and scale; a stroke may add ``falloff``, ``symmetry``
+    pinch, scrape, scale and layer; a stroke may add ``falloff``, ``symmetry``
     (``"x"``, ``"xz"``, ...), ``symmetry_about``, ``mask`` (``{"vertices":
     [...]}`` or ``{"sphere": {"centre": [...], "radius": r}}``) and a
     ``pressure`` per path point (see ``holey sculpt --help``). ``remesh``

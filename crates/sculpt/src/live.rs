@@ -21,8 +21,9 @@ use holey_topo::{
     Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
 };
 
+use crate::brush::region::Region;
 use crate::brush::{
-    Brush, Falloff, closest_point, component_of, grab_weights_with, paint_at, snake_hook,
+    Brush, Falloff, closest_point, component_of, grab_weights_with, layer, paint_at, snake_hook,
 };
 use crate::remesh::{RemeshOptions, RemeshReport, default_range, remesh_in_place_checked};
 use crate::report::{Diagnostics, SculptError, StrokeReport};
@@ -149,12 +150,15 @@ impl Dab {
         self,
         mesh: &TriMesh,
         brush: Brush,
-        radius: f64,
-        strength: f64,
-        falloff: Falloff,
+        (radius, strength, falloff): (f64, f64, Falloff),
+        heights: &mut layer::Heights,
     ) -> Vec<DVec3> {
         match self {
             Dab::Pull(from, to) => snake_hook::snake_hook(mesh, from, to, radius, 1.0),
+            Dab::At(p) if brush == Brush::Layer => {
+                let region = Region::gather(mesh, p, radius, falloff);
+                layer::layer(mesh, &region, strength, heights)
+            }
             Dab::At(p) => paint_at(mesh, brush, p, radius, strength, falloff),
         }
     }
@@ -185,6 +189,9 @@ impl Dab {
             return vec![(self, strength)];
         }
         match self {
+            // The layer moves towards its plateau and never past it: each
+            // piece aims at the whole height.
+            Dab::At(_) if brush == Brush::Layer => vec![(self, strength); steps],
             Dab::At(_) => vec![(self, sub_strength(brush, strength, steps)); steps],
             Dab::Pull(a, b) => (0..steps)
                 .map(|k| {
@@ -207,6 +214,8 @@ pub struct LiveStroke {
     /// vertex keeps its position, so its position names it across the
     /// topology changes and remeshing that renumber vertices).
     mask: std::collections::HashSet<[u64; 3]>,
+    /// The layer brush's heights added so far, by position.
+    heights: layer::Heights,
     options: Options,
     preview: bool,
     remesh: Option<RemeshOptions>,
@@ -284,6 +293,7 @@ impl LiveStroke {
             settings,
             mirrors: settings.symmetry.mirrors(),
             mask: std::collections::HashSet::new(),
+            heights: layer::Heights::new(),
             options,
             preview: false,
             remesh: None,
@@ -401,6 +411,7 @@ impl LiveStroke {
                 };
                 let mut step = PaintStep {
                     falloff,
+                    heights: &mut self.heights,
                     mirrors: &self.mirrors,
                     mask: &self.mask,
                     options: &self.options,
@@ -555,6 +566,8 @@ pub const MAX_SUBFRAME_DEPTH: u32 = 6;
 /// What a paint frame writes into its stroke.
 struct PaintStep<'a> {
     falloff: Falloff,
+    /// The layer brush's heights so far in the stroke.
+    heights: &'a mut layer::Heights,
     /// The images of every dab (the identity first).
     mirrors: &'a [Mirror],
     /// Positions that never move.
@@ -591,18 +604,17 @@ impl PaintStep<'_> {
     /// evaluated on the same surface and their displacements added
     /// ([`crate::symmetry`]); masked vertices stay.
     fn end(
-        &self,
+        &mut self,
         mesh: &TriMesh,
         brush: Brush,
         dab: Dab,
         radius: f64,
         strength: f64,
     ) -> Vec<DVec3> {
-        let mut end = dab.end(mesh, brush, radius, strength, self.falloff);
+        let how = (radius, strength, self.falloff);
+        let mut end = dab.end(mesh, brush, how, self.heights);
         for m in self.mirrors.iter().skip(1) {
-            let image = dab
-                .mirrored(m)
-                .end(mesh, brush, radius, strength, self.falloff);
+            let image = dab.mirrored(m).end(mesh, brush, how, self.heights);
             for ((e, q), p) in end.iter_mut().zip(&image).zip(&mesh.positions) {
                 if q != p {
                     *e += *q - *p;

@@ -417,3 +417,51 @@ fn crease_through_a_thin_slab_opens_a_hole() {
     assert_eq!(holey_testkit::components(&m.triangles), 1);
     assert_eq!(genus_and_closed(m), (1, true), "a slab with a hole");
 }
+
+/// The layer brush lays a plateau: dwelling at the top of a sphere, the
+/// vertex under the centre rises by the layer's height and no further,
+/// however long the brush stays (10 frames and 20 frames give the same
+/// surface), and no vertex rises further than the layer's height.
+#[test]
+fn layer_rises_to_its_height_and_stops() {
+    let m = sphere();
+    let top = *m
+        .positions
+        .iter()
+        .max_by(|a, b| a.z.total_cmp(&b.z))
+        .unwrap();
+    let h = 0.03;
+    let run = |frames: usize| {
+        let mut s = Session::new(m.clone()).unwrap();
+        s.set_remeshing(false);
+        s.apply_stroke(&Stroke {
+            brush: Brush::Layer,
+            radius: 0.5,
+            strength: h,
+            path: vec![top; frames],
+            ..Stroke::default()
+        })
+        .unwrap();
+        s.into_mesh()
+    };
+    let (ten, twenty) = (run(10), run(20));
+    assert_eq!(
+        ten.positions, twenty.positions,
+        "the plateau is reached and kept"
+    );
+    let v = m.positions.iter().position(|&p| p == top).unwrap();
+    let rise = ten.positions[v].distance(top);
+    // Along the brush normal of each frame, which tilts a little as the
+    // patch rises: within 1% of the height.
+    assert!(
+        (rise - h).abs() < 1e-2 * h,
+        "the centre rose {rise}, the layer is {h}"
+    );
+    // Nothing rises past the plateau, and nothing outside the brush moves.
+    for (p, q) in m.positions.iter().zip(&ten.positions) {
+        assert!(q.distance(*p) <= h * (1.0 + 1e-12));
+        if p.distance(top) >= 0.5 {
+            assert_eq!(p, q);
+        }
+    }
+}

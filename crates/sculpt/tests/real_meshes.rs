@@ -396,7 +396,7 @@ fn stanford_bunny_ear_snake_hooked_into_the_head_makes_a_handle() {
 
 /// Issue 19's brushes on the scan, each dragged across the haunch as
 /// the inflate test does (radius 5%): draw, clay, crease, flatten,
-/// pinch, scrape and local scale, with symmetry in z on one stroke (the
+/// pinch, scrape, local scale and layer, with symmetry in z on one stroke (the
 /// mirror image lands on the other flank) and a falloff other than the
 /// default on another. Every stroke keeps what item 1 asks (the oracle
 /// of this file), and the bunny stays one piece of genus 0 with its five
@@ -416,6 +416,7 @@ fn stanford_bunny_sculptor_brushes_across_the_haunch() {
         (Brush::Pinch, 0.3),
         (Brush::Scrape, 0.5),
         (Brush::Scale, 0.05),
+        (Brush::Layer, 4.0 * k),
     ]
     .into_iter()
     .map(|(brush, strength)| paint(brush, r, strength, across.clone()))

@@ -705,7 +705,7 @@ fn fuzz_seed(seed: u64, remesh_soups: bool, tally: &mut FuzzTally) {
             brush,
             radius: rng.range(0.2, 0.8),
             strength: match brush {
-                Brush::Inflate | Brush::Draw | Brush::Clay | Brush::Crease => {
+                Brush::Inflate | Brush::Draw | Brush::Clay | Brush::Crease | Brush::Layer => {
                     rng.range(-0.05, 0.05)
                 }
                 Brush::Smooth | Brush::Flatten | Brush::Scrape => rng.unit(),

@@ -18,7 +18,7 @@ use crate::tri::{compact, load_triangles, load_triangles_welded, write_triangles
 Replays the strokes of a JSON file on a triangle mesh (polygons are
 fan-triangulated) and writes the result. Brushes: inflate (negative
 strength deflates), smooth, grab, move, snake_hook, draw, clay, crease,
-flatten, pinch, scrape and scale. Each path point is one frame. All but
+flatten, pinch, scrape, scale and layer. Each path point is one frame. All but
 grab and move change topology every frame where the surface
 collides with itself; grab and move accumulate collisions over the drag
 and change topology once, at the end of the stroke, so a drag that comes
@@ -37,7 +37,7 @@ STROKES.json:
       \"pressure\": [0.7]}]}
 
 The sculptor's brushes draw, clay and crease take a strength in world
-units per frame like inflate; flatten, scrape (in [0, 1]), pinch and scale
+units per frame like inflate, layer the height of its plateau; flatten, scrape (in [0, 1]), pinch and scale
 (in [-1, 1]) a share of the way per frame. Every stroke may give a
 \"falloff\" (smooth, sphere, root, sharp, linear, constant, or
 {\"custom\": [five values]}), \"symmetry\" (axes among x, y, z) with

@@ -4,7 +4,7 @@
 //! [`crate::session`]). Inflate, smooth, grab and move are the four of
 //! Bernstein & Wojtan 2013, §4; the others are the brushes sculptors know
 //! from SculptGL and Blender, one file each with its displacement field:
-//! [`draw`], [`clay`], [`crease`], [`flatten`], [`pinch`], [`scrape`],
+//! [`draw`], [`clay`], [`crease`], [`flatten`], [`layer`], [`pinch`], [`scrape`],
 //! [`scale`] and the [`snake_hook`], which pulls a tentacle out of the
 //! surface along the pointer's path. Every centred brush weighs its
 //! displacement by a [`Falloff`] curve.
@@ -17,6 +17,7 @@ pub mod crease;
 pub mod draw;
 pub mod falloff;
 pub mod flatten;
+pub mod layer;
 pub mod pinch;
 pub mod region;
 pub mod scale;
@@ -67,10 +68,13 @@ pub enum Brush {
     Scrape,
     /// Grow or shrink about the centre ([`scale`]).
     Scale,
+    /// Raise to a plateau a fixed height above the stroke's start
+    /// ([`layer`]).
+    Layer,
 }
 
 /// Every brush, in the modeler's order.
-pub const ALL_BRUSHES: [Brush; 12] = [
+pub const ALL_BRUSHES: [Brush; 13] = [
     Brush::Inflate,
     Brush::Smooth,
     Brush::Grab,
@@ -83,6 +87,7 @@ pub const ALL_BRUSHES: [Brush; 12] = [
     Brush::Pinch,
     Brush::Scrape,
     Brush::Scale,
+    Brush::Layer,
 ];
 
 impl Brush {
@@ -101,6 +106,7 @@ impl Brush {
             Brush::Pinch => "pinch",
             Brush::Scrape => "scrape",
             Brush::Scale => "scale",
+            Brush::Layer => "layer",
         }
     }
 
@@ -111,7 +117,7 @@ impl Brush {
 
     /// Whether the strength is a share of the way per frame, checked to
     /// lie in `[0, 1]` (`[−1, 1]` for scale and pinch) rather than a
-    /// distance in world units (inflate, draw, clay, crease) or a scale of
+    /// distance in world units (inflate, draw, clay, crease, layer) or a scale of
     /// the pointer's motion (grab, move, snake hook).
     pub fn strength_is_a_share(self) -> bool {
         matches!(
@@ -272,6 +278,9 @@ pub fn paint_at(
         Brush::Pinch => pinch::pinch(mesh, &region, centre, strength),
         Brush::Scrape => scrape::scrape(mesh, &region, strength),
         Brush::Scale => scale::scale(mesh, &region, centre, strength),
+        // The layer needs the stroke's heights: LiveStroke calls it
+        // itself; without them it is a draw capped at half a layer.
+        Brush::Layer => layer::layer(mesh, &region, strength, &mut layer::Heights::new()),
         _ => inflate_with(mesh, centre, radius, strength, curve),
     }
 }
