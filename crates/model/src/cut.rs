@@ -42,6 +42,22 @@
 //!
 //! Regions on a boundary are cut like any other: the new face closes the
 //! corner of the boundary loop that the cut removed.
+//!
+//! ## Two spokes: no new face
+//! A region with two spokes in two different faces — a vertex of valence
+//! 2 (a corner of a lone polygon, a vertex in the middle of a chain), an
+//! edge whose ends have valence 2 — would leave a two-gon wound. Its two
+//! sides are one edge instead: the corner becomes an edge of both faces,
+//! as when a polygon's corner is cut off. So
+//!
+//! ```text
+//! ΔV = 2 − |S|,   ΔE = 1 − |I|,   ΔF = −|Φ|
+//! ```
+//!
+//! (a corner of a lone triangle: 3/3/2 → 4/4/2, a quad and its boundary
+//! loop). On a boundary the edge is cut across the surface face and the
+//! boundary loop follows it; the face returned is the one the region
+//! opened into (the hole, on a boundary).
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
@@ -410,6 +426,23 @@ fn split_from(
     Ok(if a == from { s.edges[1] } else { s.edges[0] })
 }
 
+/// For a region whose wound would be a two-gon (two runs, in two
+/// different faces), the run to cut across: the first in a surface face.
+fn two_gon_run(mesh: &Mesh, runs: &[(CornerId, CornerId)]) -> Result<Option<usize>, CutError> {
+    let [(a, _), (b, _)] = runs else {
+        return Ok(None);
+    };
+    let (fa, fb) = (mesh.corner_face(*a)?, mesh.corner_face(*b)?);
+    if fa == fb {
+        return Ok(None);
+    }
+    Ok(Some(if mesh.is_hole(fa)? && !mesh.is_hole(fb)? {
+        1
+    } else {
+        0
+    }))
+}
+
 fn apply(mesh: &mut Mesh, regions: &[Region], spokes: &[Spoke]) -> Result<Vec<FaceId>, CutError> {
     // 1. The cut points.
     for spoke in spokes {
@@ -427,13 +460,25 @@ fn apply(mesh: &mut Mesh, regions: &[Region], spokes: &[Spoke]) -> Result<Vec<Fa
     let mut cut_edges = Vec::with_capacity(regions.len());
     for r in regions {
         let mut first_edge = None;
-        for &(first, last) in &r.runs {
+        let mut runs = r.runs.clone();
+        let mut opens_into_hole = false;
+        if let Some(keep) = two_gon_run(mesh, &runs)? {
+            // Two spokes in two faces: the wound would be a two-gon, so its
+            // two sides become one edge across one face (a surface face,
+            // not the hole, when the region is on a boundary).
+            opens_into_hole = mesh.is_hole(mesh.corner_face(runs[1 - keep].0)?)?;
+            runs = vec![runs[keep]];
+        }
+        for &(first, last) in &runs {
             let before = mesh.corner_prev(first)?;
             let after = mesh.corner_next(last)?;
             let e = mesh.insert_edge(after, before)?;
             first_edge.get_or_insert(e);
         }
-        cut_edges.push(first_edge.ok_or_else(|| internal("a region without runs"))?);
+        cut_edges.push((
+            first_edge.ok_or_else(|| internal("a region without runs"))?,
+            opens_into_hole,
+        ));
     }
     // 3. Delete the region's edges (inner ones first) and so its vertices.
     for r in regions {
@@ -463,8 +508,14 @@ fn apply(mesh: &mut Mesh, regions: &[Region], spokes: &[Spoke]) -> Result<Vec<Fa
     // The first corner of a cut edge lies on the side that was cut off,
     // which is now the new face.
     let mut faces = Vec::with_capacity(regions.len());
-    for &e in &cut_edges {
-        faces.push(mesh.corner_face(mesh.edge_corners(e)?[0])?);
+    for &(e, hole) in &cut_edges {
+        let f = mesh.corner_face(mesh.edge_corners(e)?[0])?;
+        if hole {
+            // The boundary loop took in the cut-off corner; merging kept
+            // the surface face's flag.
+            mesh.set_hole(f, true)?;
+        }
+        faces.push(f);
     }
     Ok(faces)
 }

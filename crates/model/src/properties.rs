@@ -80,6 +80,17 @@ fn cut_delta(m: &Mesh, s: &HashSet<VertexId>) -> (i64, i64, i64) {
         .faces()
         .filter(|&f| m.face_vertices(f).unwrap().iter().all(|v| s.contains(v)))
         .count() as i64;
+    // Two spokes in two faces: one edge instead of a two-gon face.
+    let partial = m
+        .faces()
+        .filter(|&f| {
+            let vs = m.face_vertices(f).unwrap();
+            vs.iter().any(|v| s.contains(v)) && !vs.iter().all(|v| s.contains(v))
+        })
+        .count();
+    if spokes == 2 && partial == 2 {
+        return (2 - s.len() as i64, 1 - inner, -full);
+    }
     (spokes - s.len() as i64, spokes - inner, 1 - full)
 }
 

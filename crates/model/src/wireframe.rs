@@ -29,6 +29,14 @@
 //! - per corner, a jamb `(o_c, o_(next c), i_(next c), i_c)`;
 //! - per vertex of valence `k ≥ 1`, an outer and an inner `k`-gon joint.
 //!
+//! Each corner's copy is the point `thickness` inside both of its edges
+//! as seen in its face's plane (so a corner bending out of a non-planar
+//! face is offset by its in-plane angle), but moves at most a third of
+//! either edge at it, and the inner layer is lowered (to an eighth of
+//! the vertex's shortest edge) where it would turn over at a crease: in
+//! slivers and at short edges the tubes thin out instead of folding. A
+//! thickness that no corner has room for is refused.
+//!
 //! Counts, with `C = 2E` corners: `V' = 2C = 4E`, `E' = 5C = 10E`,
 //! `F' = 4E + 2V` (plus any point-spheres, copied). Tubes have four sides.
 //!
@@ -357,12 +365,17 @@ fn wireframe_points(
     }
     let pos = |c: usize| mesh.position(cs.vertex[c]);
     let mut outer = Vec::with_capacity(n);
-    let mut inner = Vec::with_capacity(n);
+    // The vertex normal at every corner, and whether the corner's copy was
+    // held back from the full thickness.
+    let mut down = Vec::with_capacity(n);
+    let mut held = Vec::with_capacity(n);
     for c in 0..n {
         let p = pos(c)?;
+        let mut was_held = false;
         if cs.partner[c] == u32::MAX {
             outer.push(p);
-            inner.push(p);
+            down.push(DVec3::ZERO);
+            held.push(false);
             continue;
         }
         let f = cs.face[c];
@@ -379,23 +392,27 @@ fn wireframe_points(
             face: f,
             corner: cs.ids[c],
         };
-        let e1 = (pos(cs.next[c] as usize)? - p).normalize_or_zero();
-        let e2 = (pos(cs.prev[c] as usize)? - p).normalize_or_zero();
+        let (pn, pp) = (pos(cs.next[c] as usize)?, pos(cs.prev[c] as usize)?);
+        let e1 = (pn - p).normalize_or_zero();
+        let e2 = (pp - p).normalize_or_zero();
         if e1 == DVec3::ZERO || e2 == DVec3::ZERO {
             return Err(degenerate);
         }
-        let sine = e1.cross(e2).dot(nf);
-        let o = if sine.abs() > 1e-6 {
-            p + (e1 + e2) * (w / sine)
-        } else if e1.dot(e2) < 0.0 {
-            // A straight corner: straight into the face.
-            p + nf.cross(e1) * w
-        } else if (e1 - e2).length() < 1e-9 {
+        let o = if cs.vertex[cs.next[c] as usize] == cs.vertex[cs.prev[c] as usize] || pn == pp {
             // The tip of a dangling edge: the face wraps around it, so the
             // copy goes round the tip, beyond it.
             p - e1 * w
         } else {
-            return Err(degenerate);
+            // Where the face is narrower than the tubes (a sliver, a
+            // short edge beside a sharp corner) the copy's corner moves
+            // at most a third of either edge at it, so the copy of every
+            // edge keeps at least a third of its length and never turns
+            // over: the tubes thin out there instead.
+            let q = miter(nf, e1, e2, w).ok_or(degenerate)?;
+            let reach = p.distance(pn).min(p.distance(pp)) / 3.0;
+            let len = q.length();
+            was_held = len > reach;
+            p + if was_held { q * (reach / len) } else { q }
         };
         // A hole face is the boundary loop seen from outside the surface:
         // its copy grows instead of shrinking, so the tubes along the
@@ -411,19 +428,33 @@ fn wireframe_points(
             }
         };
         outer.push(o);
-        inner.push(o - nv * w);
+        down.push(nv);
+        held.push(was_held);
     }
-    // The shrunk copy of every face (grown, for a hole) must keep the
-    // direction of its edges.
+    let inner = inner_layer(mesh, cs, w, &outer, &down, &mut held)?;
+    // Held back everywhere: no corner of the mesh has room for the
+    // thickness asked for, so the result would not have it anywhere.
+    if let Some(c) = (0..n).find(|&c| cs.partner[c] != u32::MAX)
+        && (0..n).all(|c| cs.partner[c] == u32::MAX || held[c])
+    {
+        return Err(WireframeError::ThicknessTooLarge {
+            face: cs.face[c],
+            thickness: w,
+        });
+    }
+    // The shrunk copy of every face (grown, for a hole) keeps the
+    // direction of its edges by construction; the inner layer, `thickness`
+    // below it along the vertex normals, must keep them too (a thickness
+    // past the surface's curvature turns it over).
     for c in 0..n {
         if cs.partner[c] == u32::MAX {
             continue;
         }
         let nc = cs.next[c] as usize;
         let along = pos(nc)? - pos(c)?;
-        let copy = outer[nc] - outer[c];
-        let dot = copy.dot(along);
-        if dot.is_nan() || dot <= 0.0 || !outer[c].is_finite() || !inner[c].is_finite() {
+        let dot = (outer[nc] - outer[c]).dot(along);
+        let dot_inner = (inner[nc] - inner[c]).dot(along);
+        if !(dot > 0.0 && dot_inner > 0.0 && outer[c].is_finite() && inner[c].is_finite()) {
             return Err(WireframeError::ThicknessTooLarge {
                 face: cs.face[c],
                 thickness: w,
@@ -431,6 +462,89 @@ fn wireframe_points(
         }
     }
     Ok((outer, inner))
+}
+
+/// The inner layer: every corner's copy moved down its vertex normal
+/// (`down`) by the thickness `w`, except at vertices where that would
+/// turn an edge of the inner layer over against the outer one (short
+/// edges at a crease whose normals part). There the depth is lowered to
+/// `min(w, ℓ/8)`, `ℓ` the vertex's shortest edge, at both ends of each
+/// such edge until none is left: with both ends lowered an edge's inner
+/// copy keeps at least a quarter of its outer copy's length along it
+/// (the outer copy keeps a third of the edge, the two depths take at
+/// most a quarter), so this ends after lowering each vertex at most once.
+/// The corners of lowered vertices are marked in `held`.
+fn inner_layer(
+    mesh: &Mesh,
+    cs: &Corners,
+    w: f64,
+    outer: &[DVec3],
+    down: &[DVec3],
+    held: &mut [bool],
+) -> Result<Vec<DVec3>, WireframeError> {
+    let n = cs.len();
+    let pos = |c: usize| mesh.position(cs.vertex[c]);
+    let mut depth: HashMap<VertexId, f64> = HashMap::new();
+    let inner_at = |depth: &HashMap<VertexId, f64>, c: usize| {
+        outer[c] - down[c] * depth.get(&cs.vertex[c]).copied().unwrap_or(w)
+    };
+    let mut work: Vec<usize> = (0..n).filter(|&c| cs.partner[c] != u32::MAX).collect();
+    while let Some(c) = work.pop() {
+        let nc = cs.next[c] as usize;
+        let along = pos(nc)? - pos(c)?;
+        let outer_along = (outer[nc] - outer[c]).dot(along);
+        let inner_along = (inner_at(&depth, nc) - inner_at(&depth, c)).dot(along);
+        if inner_along >= outer_along / 4.0 || !inner_along.is_finite() {
+            continue;
+        }
+        for end in [c, nc] {
+            let v = cs.vertex[end];
+            if depth.contains_key(&v) {
+                continue;
+            }
+            // The corners around v: lower v and look again at both edges
+            // of each of them in its face.
+            let mut ring = Vec::new();
+            let mut x = end;
+            loop {
+                ring.push(x);
+                x = cs.rot[x] as usize;
+                if x == end || ring.len() > n {
+                    break;
+                }
+            }
+            let mut shortest = f64::INFINITY;
+            for &x in &ring {
+                shortest = shortest.min(pos(cs.next[x] as usize)?.distance(pos(x)?));
+            }
+            depth.insert(v, w.min(shortest / 8.0));
+            for &x in &ring {
+                held[x] = true;
+                work.push(x);
+                work.push(cs.prev[x] as usize);
+            }
+        }
+    }
+    Ok((0..n).map(|c| inner_at(&depth, c)).collect())
+}
+
+/// Where the copy of a corner goes, relative to the corner: the point
+/// `w` inside both of its edges, within the face's plane (unit normal
+/// `n`). `e1` and `e2` are the unit directions from the corner to the
+/// next and to the previous corner. Both edges are measured in that
+/// plane, each by its own inward normal, so a corner that bends out of
+/// a non-planar face is offset by its angle as seen in the face: the
+/// miter `w (d1 + d2) / (1 + d1·d2)` has length `w / sin(θ/2)` for the
+/// corner's in-plane angle `θ` (`w` at a straight corner, reflex
+/// corners included) and grows without bound only as the corner closes
+/// into a spike. `None` when an edge runs along the normal (no in-plane
+/// direction) or the two edges fold back onto each other.
+fn miter(n: DVec3, e1: DVec3, e2: DVec3, w: f64) -> Option<DVec3> {
+    let d1 = n.cross(e1).try_normalize()?;
+    let d2 = e2.cross(n).try_normalize()?;
+    let denom = 1.0 + d1.dot(d2);
+    let q = (d1 + d2) * (w / denom);
+    (denom > 0.0 && q.is_finite()).then_some(q)
 }
 
 /// The parameters of [`columns`].

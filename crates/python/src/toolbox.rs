@@ -13,7 +13,7 @@ use holey::model::extrude::{
     self, DomeParams, DooSabinParams, ExtrudeParams, MultiExtrudeParams, RegionDirection,
 };
 use holey::model::wireframe::{ColumnParams, WireframeError, columns, wireframe};
-use holey::subdiv::{RemeshParams, RemeshScheme, remesh};
+use holey::subdiv::{RemeshParams, RemeshScheme, SubdivError, remesh};
 use pyo3::PyResult;
 
 use crate::errors::bad;
@@ -171,39 +171,6 @@ impl Numbering {
     }
 }
 
-/// The parameter a scheme option sets for `scheme` (the short names of
-/// `holey remesh`'s options), or `None` when the scheme does not read it.
-fn field<'a>(p: &'a mut RemeshParams, scheme: RemeshScheme, name: &str) -> Option<&'a mut f64> {
-    use RemeshScheme as S;
-    Some(match (name, scheme) {
-        ("alpha", S::CornerCutting) => &mut p.corner_cutting_alpha,
-        ("thickness", S::ModifiedCornerCutting) => &mut p.modified_corner_cutting_thickness,
-        ("thickness", S::Checkerboard | S::DualCheckerboard) => &mut p.checkerboard_thickness,
-        ("offset", S::VertexTruncation) => &mut p.vertex_truncation_offset,
-        ("offset", S::Pentagonalization | S::CubicPentagonalization | S::DualPentagonalization) => {
-            &mut p.pentagonal_offset
-        }
-        ("offset", S::DoubleStellate) => &mut p.double_stellate_offset,
-        ("offset", S::Fractal) => &mut p.fractal_offset,
-        ("scale", S::PentagonPreserving | S::DualPentagonPreserving) => {
-            &mut p.pentagon_preserving_scale
-        }
-        ("scale", S::TwelveSixFour | S::Dual12_6_4) => &mut p.omnitruncation_scale,
-        ("scale", S::GlobalExtrude | S::DualGlobalExtrude) => &mut p.extrude_scale,
-        ("scale", S::Dome) => &mut p.dome_scale,
-        ("length", S::GlobalExtrude | S::DualGlobalExtrude) => &mut p.extrude_length,
-        ("length", S::Dome) => &mut p.dome_length,
-        ("length", S::LoopStyle) => &mut p.loop_style_length,
-        ("weight", S::Root4 | S::HexagonPreserving | S::DualHexagonPreserving) => {
-            &mut p.root4_weight
-        }
-        ("twist", S::Root4 | S::HexagonPreserving | S::DualHexagonPreserving) => &mut p.root4_twist,
-        ("height", S::ModifiedDoubleStellate) => &mut p.stellate_height,
-        ("curve", S::ModifiedDoubleStellate) => &mut p.stellate_curve,
-        _ => return None,
-    })
-}
-
 /// `levels` levels of the scheme named `scheme`, with its options.
 pub fn run_remesh(
     mesh: &Mesh,
@@ -215,12 +182,12 @@ pub fn run_remesh(
     let scheme: RemeshScheme = scheme.parse().map_err(bad)?;
     let mut p = RemeshParams::default();
     for (name, value) in options {
-        let slot = field(&mut p, scheme, name).ok_or_else(|| {
-            bad(format!(
+        p.set(scheme, name, *value).map_err(|e| match e {
+            SubdivError::UnknownOption { .. } => bad(format!(
                 "option {name:?} does not apply to scheme {scheme} (the options are alpha, thickness, offset, scale, length, weight, twist, height, curve and triangles, each read by some schemes; see `holey remesh --help`)"
-            ))
+            )),
+            e => bad(e),
         })?;
-        *slot = *value;
     }
     if triangles {
         if scheme != RemeshScheme::SubdivideFace {

@@ -68,7 +68,9 @@ use holey_dlfl::{Mesh, NonFinite, RawMesh};
 
 pub use flat::Counts;
 use flat::Flat;
-pub use remesh::{MAX_LEVELS, RemeshParams, RemeshScheme, remesh, remesh_capped, remesh_to_raw};
+pub use remesh::{
+    MAX_LEVELS, RemeshOption, RemeshParams, RemeshScheme, remesh, remesh_capped, remesh_to_raw,
+};
 
 /// The most faces a subdivision may produce by default: fifty million,
 /// about 10 GB as a kernel mesh.
@@ -208,6 +210,17 @@ pub enum SubdivError {
         /// What it must be.
         expected: &'static str,
     },
+    /// An option the scheme does not read ([`RemeshScheme::options`]).
+    #[error(
+        "{scheme} remeshing does not read the option {name:?}; it reads {}",
+        list_options(*scheme)
+    )]
+    UnknownOption {
+        /// The scheme that was asked for.
+        scheme: RemeshScheme,
+        /// The name given.
+        name: String,
+    },
     /// A name that is no [`RemeshScheme`]'s.
     #[error(
         "unknown remeshing scheme {name:?}; the schemes are: {}",
@@ -217,6 +230,15 @@ pub enum SubdivError {
         /// The name given.
         name: String,
     },
+}
+
+fn list_options(scheme: RemeshScheme) -> String {
+    let names: Vec<&str> = scheme.options().iter().map(|o| o.name).collect();
+    if names.is_empty() {
+        "no options".to_string()
+    } else {
+        names.join(", ")
+    }
 }
 
 /// `levels` levels of Catmull–Clark subdivision of `mesh`, as a new mesh

@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 use holey_io::WriteOptions;
-use holey_subdiv::{RemeshParams, RemeshScheme, remesh};
+use holey_subdiv::{RemeshParams, RemeshScheme, SubdivError, remesh};
 
 use crate::error::bad_input;
 use crate::input::load;
@@ -141,40 +141,6 @@ pub fn parse_scheme(s: &str) -> std::result::Result<RemeshScheme, String> {
     }
 }
 
-/// The parameter field a scheme option sets for `scheme`, or `None` when
-/// the scheme does not read that option.
-fn field<'a>(p: &'a mut RemeshParams, scheme: RemeshScheme, flag: &str) -> Option<&'a mut f64> {
-    use RemeshScheme as S;
-    let f: &mut f64 = match (flag, scheme) {
-        ("alpha", S::CornerCutting) => &mut p.corner_cutting_alpha,
-        ("thickness", S::ModifiedCornerCutting) => &mut p.modified_corner_cutting_thickness,
-        ("thickness", S::Checkerboard | S::DualCheckerboard) => &mut p.checkerboard_thickness,
-        ("offset", S::VertexTruncation) => &mut p.vertex_truncation_offset,
-        ("offset", S::Pentagonalization | S::CubicPentagonalization | S::DualPentagonalization) => {
-            &mut p.pentagonal_offset
-        }
-        ("offset", S::DoubleStellate) => &mut p.double_stellate_offset,
-        ("offset", S::Fractal) => &mut p.fractal_offset,
-        ("scale", S::PentagonPreserving | S::DualPentagonPreserving) => {
-            &mut p.pentagon_preserving_scale
-        }
-        ("scale", S::TwelveSixFour | S::Dual12_6_4) => &mut p.omnitruncation_scale,
-        ("scale", S::GlobalExtrude | S::DualGlobalExtrude) => &mut p.extrude_scale,
-        ("scale", S::Dome) => &mut p.dome_scale,
-        ("length", S::GlobalExtrude | S::DualGlobalExtrude) => &mut p.extrude_length,
-        ("length", S::Dome) => &mut p.dome_length,
-        ("length", S::LoopStyle) => &mut p.loop_style_length,
-        ("weight", S::Root4 | S::HexagonPreserving | S::DualHexagonPreserving) => {
-            &mut p.root4_weight
-        }
-        ("twist", S::Root4 | S::HexagonPreserving | S::DualHexagonPreserving) => &mut p.root4_twist,
-        ("height", S::ModifiedDoubleStellate) => &mut p.stellate_height,
-        ("curve", S::ModifiedDoubleStellate) => &mut p.stellate_curve,
-        _ => return None,
-    };
-    Some(f)
-}
-
 impl Options {
     /// The library's parameters: TopMod's defaults with the options given.
     pub fn params(&self) -> Result<RemeshParams> {
@@ -193,12 +159,12 @@ impl Options {
         ];
         for (flag, value) in given {
             let Some(value) = value else { continue };
-            let Some(slot) = field(&mut p, scheme, flag) else {
-                return Err(bad_input(format!(
+            p.set(scheme, flag, value).map_err(|e| match e {
+                SubdivError::UnknownOption { .. } => bad_input(format!(
                     "--{flag} does not apply to --scheme {scheme} (see `holey remesh --help` for what each scheme reads)"
-                )));
-            };
-            *slot = value;
+                )),
+                e => bad_input(e.to_string()),
+            })?;
         }
         if self.triangles {
             if scheme != RemeshScheme::SubdivideFace {
@@ -218,7 +184,9 @@ pub fn run(args: Args) -> Result<()> {
 
 /// Remeshes the mesh `input` names into the file `output`.
 pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
-    let params = options.params()?;
+    let params = options
+        .params()
+        .map_err(|e| bad_input(format!("{input}: {e}")))?;
     let kernel = load(input)?.into_kernel(options.split_nonmanifold)?;
     let _p = Progress::start(format!(
         "remeshing ({}), {} level(s)",

@@ -306,3 +306,67 @@ fn cuts_on_a_boundary() {
     assert_eq!(m.face_len(f).unwrap(), 3);
     assert_eq!(m.hole_count(), 1);
 }
+
+fn lone_triangle() -> Mesh {
+    let mut p = holey_mesh::PolyMesh::new();
+    p.positions = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+    ];
+    p.face_offsets = vec![0, 3];
+    p.face_indices = vec![0, 1, 2];
+    to_dlfl(&p, ImportOptions::default()).unwrap().mesh
+}
+
+#[test]
+fn cutting_a_corner_of_a_lone_triangle_makes_a_quad() {
+    // A boundary vertex of valence 2 (S = 1, I = 0, Φ = 0, two spokes):
+    // ΔV = 2 − 1, ΔE = 1 − 0, ΔF = 0: 3/3/2 → 4/4/2, the triangle and
+    // its boundary loop both become quads, no two-gon.
+    let mut m = lone_triangle();
+    let v = m.vertex_at(0).unwrap();
+    assert_eq!(m.valence(v).unwrap(), 2);
+    let f = cut_vertex(&mut m, v, 0.25).unwrap();
+    check(&m);
+    assert_eq!(counts(&m), (4, 4, 2));
+    assert_eq!(face_sizes(&m), vec![4, 4]);
+    assert_eq!(m.hole_count(), 1);
+    // The face returned is the one the corner opened into: the hole.
+    assert!(m.is_hole(f).unwrap());
+    // The new corners lie 0.25 along the two edges from the old corner.
+    let mut at: Vec<DVec3> = m.vertices().map(|v| m.position(v).unwrap()).collect();
+    at.retain(|p| p.x.abs() < 1e-12 || p.y.abs() < 1e-12);
+    at.retain(|p| (p.length() - 0.25).abs() < 1e-12);
+    assert_eq!(at.len(), 2);
+}
+
+#[test]
+fn cutting_an_edge_of_a_lone_triangle_leaves_a_triangle() {
+    // Edge between two valence-2 vertices: S = 2, I = 1, two spokes:
+    // ΔV = 0, ΔE = 0, ΔF = 0; the triangle gets smaller.
+    let mut m = lone_triangle();
+    let e = m.edges().next().unwrap();
+    cut_edge(&mut m, e, 0.25).unwrap();
+    check(&m);
+    assert_eq!(counts(&m), (3, 3, 2));
+    assert_eq!(face_sizes(&m), vec![3, 3]);
+    assert_eq!(m.hole_count(), 1);
+}
+
+#[test]
+fn cutting_an_inner_vertex_of_valence_two_joins_its_faces_by_one_edge() {
+    // A cube edge split at its middle: 9/13/6, two pentagons. Cutting the
+    // middle vertex (valence 2, two spokes): +1/+1/+0, the pentagons
+    // become hexagons sharing the new edge.
+    let mut m = prim("@cube");
+    let e = m.edges().next().unwrap();
+    let s = m.subdivide_edge_at(e, 0.5).unwrap();
+    let [a, b] = m.edge_vertices(s.edges[0]).unwrap();
+    let mid = if m.valence(a).unwrap() == 2 { a } else { b };
+    assert_eq!(counts(&m), (9, 13, 6));
+    cut_vertex(&mut m, mid, 0.25).unwrap();
+    check(&m);
+    assert_eq!(counts(&m), (10, 14, 6));
+    assert_eq!(face_sizes(&m), vec![4, 4, 4, 4, 6, 6]);
+}

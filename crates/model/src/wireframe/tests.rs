@@ -327,3 +327,83 @@ fn wireframe_of_an_open_grid_straddles_its_boundary() {
     // The hole's 8 corners, each with an outer and an inner copy.
     assert_eq!(outside, 16);
 }
+
+/// The lone quad (−1,0,0), (0,ε,h), (1,0,0), (0,1,h): bent along its
+/// diagonals, so its second corner (157° between its edges) lies almost
+/// straight in the face's plane (in-plane sine about ε), like Suzanne's
+/// face 466. Measuring the corner's angle in that plane against its
+/// edges' own sum put its copy 0.05 / 2·10⁻⁴ ≈ 100 units away and the
+/// quad was refused at every thickness.
+fn bent_quad(eps: f64, h: f64) -> Mesh {
+    let mut p = PolyMesh::new();
+    p.positions = vec![
+        DVec3::new(-1.0, 0.0, 0.0),
+        DVec3::new(0.0, eps, h),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, h),
+    ];
+    p.face_offsets = vec![0, 4];
+    p.face_indices = vec![0, 1, 2, 3];
+    mesh(&p)
+}
+
+#[test]
+fn wireframe_of_a_non_planar_quad_keeps_its_corners_near() {
+    for eps in [0.0, 1e-4, 1e-3, -1e-4] {
+        let m = bent_quad(eps, 0.2);
+        for w in [0.01, 0.05] {
+            let out = wireframe(&m, w).unwrap();
+            out.validate().unwrap();
+            assert_eq!(counts(&out), wire_counts(&m));
+            assert_eq!(out.genus(), graph_genus(&m));
+            // Every corner's copy (and the inner layer w below it) stays
+            // near the corner: the miter is w / sin(θ/2) for the corner's
+            // in-plane angle θ, here at most w / sin(22°) < 3w, so every
+            // vertex is within 4w of an input vertex.
+            let input: Vec<DVec3> = m.vertices().map(|v| m.position(v).unwrap()).collect();
+            for v in out.vertices() {
+                let q = out.position(v).unwrap();
+                let near = input.iter().map(|p| p.distance(q)).fold(f64::MAX, f64::min);
+                assert!(near <= 4.0 * w, "eps {eps}, w {w}: {q} is {near} away");
+            }
+        }
+    }
+}
+
+#[test]
+fn wireframe_thins_its_tubes_in_a_sliver_instead_of_refusing() {
+    // A 2×2 square with a sliver triangle 10⁻³ high along one side:
+    // tubes of 0.05 do not fit in the sliver, so its copy is held back
+    // to a third of its edges (it keeps its orientation) and the rest of
+    // the mesh gets the full thickness.
+    let mut p = PolyMesh::new();
+    p.positions = vec![
+        DVec3::new(-1.0, -1.0, 0.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(-1.0, 1.0, 0.0),
+        DVec3::new(0.0, -1.001, 0.0),
+    ];
+    p.face_offsets = vec![0, 4, 7];
+    p.face_indices = vec![0, 1, 2, 3, 0, 4, 1];
+    let m = mesh(&p);
+    let out = wireframe(&m, 0.05).unwrap();
+    out.validate().unwrap();
+    assert_eq!(counts(&out), wire_counts(&m));
+    assert_eq!(out.genus(), graph_genus(&m));
+    // Inside the square's window: the copy of the square's corner
+    // (1, 1) sits at (0.95, 0.95), the full thickness in from both sides.
+    let hits = out
+        .vertices()
+        .filter(|&v| {
+            let q = out.position(v).unwrap();
+            (q.x - 0.95).abs() < 1e-12 && (q.y - 0.95).abs() < 1e-12 && q.z.abs() < 1e-12
+        })
+        .count();
+    assert_eq!(hits, 1);
+    // Too thick for every corner: refused, the mesh unchanged.
+    assert!(matches!(
+        wireframe(&m, 5.0),
+        Err(WireframeError::ThicknessTooLarge { .. })
+    ));
+}

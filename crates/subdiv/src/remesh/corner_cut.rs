@@ -92,7 +92,8 @@ pub(super) fn step(src: &Flat, budget: &Budget, rule: Rule) -> Result<Flat, Subd
 /// the point at distance `t` from both edge lines inside the corner. When
 /// the corner is straight or folded (`|u₁·u₂|` within 1e-9 of 1) or an
 /// edge has no length, it moves by `t` towards the centroid instead (not
-/// at all if it is the centroid).
+/// at all if it is the centroid). No corner moves more than a third of
+/// either edge at it (the inset is held back in faces narrower than it).
 fn inset(p: &[DVec3], t: f64, out: &mut [DVec3]) {
     let n = p.len();
     let centroid = p.iter().sum::<DVec3>() / n as f64;
@@ -102,10 +103,24 @@ fn inset(p: &[DVec3], t: f64, out: &mut [DVec3]) {
         let u2 = (p[(i + 1) % n] - v).normalize_or_zero();
         let cos = u1.dot(u2);
         let sin2 = 1.0 - cos * cos;
-        out[i] = if u1 == DVec3::ZERO || u2 == DVec3::ZERO || sin2 < 1e-9 {
-            v + t * (centroid - v).normalize_or_zero()
+        let step = if u1 == DVec3::ZERO || u2 == DVec3::ZERO || sin2 < 1e-9 {
+            t * (centroid - v).normalize_or_zero()
         } else {
-            v + (t / sin2.sqrt()) * (u1 + u2)
+            (t / sin2.sqrt()) * (u1 + u2)
+        };
+        // A face narrower than the inset (a sliver, or a thickness larger
+        // than the model's faces) would turn over and throw its corners
+        // far outside: each corner moves at most a third of either edge
+        // at it, so every inset edge keeps a third of its length.
+        let reach = p[(i + n - 1) % n]
+            .distance(v)
+            .min(p[(i + 1) % n].distance(v))
+            / 3.0;
+        let len = step.length();
+        out[i] = v + if len > reach {
+            step * (reach / len)
+        } else {
+            step
         };
     }
 }

@@ -215,7 +215,9 @@ schemes! {
     /// at distance [`modified_corner_cutting_thickness`]`/2`: corner `v`
     /// with unit edge directions `u₁`, `u₂` moves to
     /// `v + t/√(1 − (u₁·u₂)²) (u₁ + u₂)`. A straight or degenerate corner
-    /// moves by `t` towards the face's centroid.
+    /// moves by `t` towards the face's centroid. No corner moves more than
+    /// a third of either edge at it, so faces narrower than the inset are
+    /// inset less instead of turning over.
     /// `V' = C, E' = 2C, F' = F + E + V`.
     ///
     /// [`modified_corner_cutting_thickness`]: RemeshParams::modified_corner_cutting_thickness
@@ -540,61 +542,158 @@ impl Range {
     }
 }
 
-impl RemeshParams {
-    /// The parameters `scheme` reads: name, value, range.
-    fn read_by(&self, scheme: RemeshScheme) -> Vec<(&'static str, f64, Range)> {
-        use Range::*;
+/// One option of a scheme: the short name that `holey remesh`, Python's
+/// `Mesh.remesh` and the modeler's Remesh panel use, and the field of
+/// [`RemeshParams`] it sets. [`RemeshParams::set`] takes either.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RemeshOption {
+    /// The short name, e.g. `alpha`, `thickness`, `offset`.
+    pub name: &'static str,
+    /// The field of [`RemeshParams`], e.g. `corner_cutting_alpha`.
+    pub field: &'static str,
+}
+
+const fn opt(name: &'static str, field: &'static str) -> RemeshOption {
+    RemeshOption { name, field }
+}
+
+const ALPHA: &[RemeshOption] = &[opt("alpha", "corner_cutting_alpha")];
+const INSET: &[RemeshOption] = &[opt("thickness", "modified_corner_cutting_thickness")];
+const TRUNCATION: &[RemeshOption] = &[opt("offset", "vertex_truncation_offset")];
+const PENTAGONAL: &[RemeshOption] = &[opt("offset", "pentagonal_offset")];
+const PENTAGON_PRESERVING: &[RemeshOption] = &[opt("scale", "pentagon_preserving_scale")];
+const CHECKERBOARD: &[RemeshOption] = &[opt("thickness", "checkerboard_thickness")];
+const ROOT4: &[RemeshOption] = &[opt("weight", "root4_weight"), opt("twist", "root4_twist")];
+const DOUBLE_STELLATE: &[RemeshOption] = &[opt("offset", "double_stellate_offset")];
+const MODIFIED_STELLATE: &[RemeshOption] = &[
+    opt("height", "stellate_height"),
+    opt("curve", "stellate_curve"),
+];
+const FRACTAL: &[RemeshOption] = &[opt("offset", "fractal_offset")];
+const DOME: &[RemeshOption] = &[opt("length", "dome_length"), opt("scale", "dome_scale")];
+const OMNITRUNCATION: &[RemeshOption] = &[opt("scale", "omnitruncation_scale")];
+const LOOP_STYLE: &[RemeshOption] = &[opt("length", "loop_style_length")];
+const EXTRUDE: &[RemeshOption] = &[
+    opt("length", "extrude_length"),
+    opt("scale", "extrude_scale"),
+];
+
+impl RemeshScheme {
+    /// The numeric options this scheme reads, in the order it lists them
+    /// (empty for most; `subdivide_face_quads`, a flag, is set directly).
+    /// The one table that the CLI, Python and the modeler share.
+    pub fn options(self) -> &'static [RemeshOption] {
         use RemeshScheme::*;
-        let p = self;
-        match scheme {
-            CornerCutting => vec![("corner_cutting_alpha", p.corner_cutting_alpha, Finite)],
-            ModifiedCornerCutting => vec![(
-                "modified_corner_cutting_thickness",
-                p.modified_corner_cutting_thickness,
-                Finite,
-            )],
-            VertexTruncation => vec![(
-                "vertex_truncation_offset",
-                p.vertex_truncation_offset,
-                UpToHalf,
-            )],
-            Pentagonalization | CubicPentagonalization | DualPentagonalization => {
-                vec![("pentagonal_offset", p.pentagonal_offset, Finite)]
-            }
-            PentagonPreserving | DualPentagonPreserving => vec![(
-                "pentagon_preserving_scale",
-                p.pentagon_preserving_scale,
-                Finite,
-            )],
-            Checkerboard | DualCheckerboard => vec![(
-                "checkerboard_thickness",
-                p.checkerboard_thickness,
-                ZeroToHalf,
-            )],
-            Root4 | HexagonPreserving | DualHexagonPreserving => vec![
-                ("root4_weight", p.root4_weight, Finite),
-                ("root4_twist", p.root4_twist, Finite),
-            ],
-            DoubleStellate => vec![("double_stellate_offset", p.double_stellate_offset, Finite)],
-            ModifiedDoubleStellate => vec![
-                ("stellate_height", p.stellate_height, Finite),
-                ("stellate_curve", p.stellate_curve, Finite),
-            ],
-            Fractal => vec![("fractal_offset", p.fractal_offset, Finite)],
-            Dome => vec![
-                ("dome_length", p.dome_length, Finite),
-                ("dome_scale", p.dome_scale, Finite),
-            ],
-            Dual12_6_4 | TwelveSixFour => {
-                vec![("omnitruncation_scale", p.omnitruncation_scale, Finite)]
-            }
-            LoopStyle => vec![("loop_style_length", p.loop_style_length, Finite)],
-            GlobalExtrude | DualGlobalExtrude => vec![
-                ("extrude_length", p.extrude_length, Finite),
-                ("extrude_scale", p.extrude_scale, Finite),
-            ],
-            _ => Vec::new(),
+        match self {
+            CornerCutting => ALPHA,
+            ModifiedCornerCutting => INSET,
+            VertexTruncation => TRUNCATION,
+            Pentagonalization | CubicPentagonalization | DualPentagonalization => PENTAGONAL,
+            PentagonPreserving | DualPentagonPreserving => PENTAGON_PRESERVING,
+            Checkerboard | DualCheckerboard => CHECKERBOARD,
+            Root4 | HexagonPreserving | DualHexagonPreserving => ROOT4,
+            DoubleStellate => DOUBLE_STELLATE,
+            ModifiedDoubleStellate => MODIFIED_STELLATE,
+            Fractal => FRACTAL,
+            Dome => DOME,
+            Dual12_6_4 | TwelveSixFour => OMNITRUNCATION,
+            LoopStyle => LOOP_STYLE,
+            GlobalExtrude | DualGlobalExtrude => EXTRUDE,
+            _ => &[],
         }
+    }
+
+    /// The short names of [`options`](RemeshScheme::options).
+    pub fn reads(self) -> impl Iterator<Item = &'static str> {
+        self.options().iter().map(|o| o.name)
+    }
+}
+
+impl RemeshParams {
+    /// The field a numeric parameter lives in, and its range.
+    fn slot(&mut self, field: &str) -> Option<(&mut f64, Range)> {
+        use Range::*;
+        let p = self;
+        Some(match field {
+            "corner_cutting_alpha" => (&mut p.corner_cutting_alpha, Finite),
+            "modified_corner_cutting_thickness" => {
+                (&mut p.modified_corner_cutting_thickness, Finite)
+            }
+            "vertex_truncation_offset" => (&mut p.vertex_truncation_offset, UpToHalf),
+            "pentagonal_offset" => (&mut p.pentagonal_offset, Finite),
+            "pentagon_preserving_scale" => (&mut p.pentagon_preserving_scale, Finite),
+            "checkerboard_thickness" => (&mut p.checkerboard_thickness, ZeroToHalf),
+            "root4_weight" => (&mut p.root4_weight, Finite),
+            "root4_twist" => (&mut p.root4_twist, Finite),
+            "double_stellate_offset" => (&mut p.double_stellate_offset, Finite),
+            "stellate_height" => (&mut p.stellate_height, Finite),
+            "stellate_curve" => (&mut p.stellate_curve, Finite),
+            "fractal_offset" => (&mut p.fractal_offset, Finite),
+            "dome_length" => (&mut p.dome_length, Finite),
+            "dome_scale" => (&mut p.dome_scale, Finite),
+            "omnitruncation_scale" => (&mut p.omnitruncation_scale, Finite),
+            "loop_style_length" => (&mut p.loop_style_length, Finite),
+            "extrude_length" => (&mut p.extrude_length, Finite),
+            "extrude_scale" => (&mut p.extrude_scale, Finite),
+            _ => return None,
+        })
+    }
+
+    /// Sets the option `name` of `scheme` — its short name (`alpha`,
+    /// `thickness`, `offset`, `scale`, `length`, `weight`, `twist`,
+    /// `height`, `curve`; [`RemeshScheme::options`] lists a scheme's) or
+    /// its field name (`corner_cutting_alpha`) — to `value`.
+    ///
+    /// Refused, leaving `self` unchanged: an option the scheme does not
+    /// read ([`SubdivError::UnknownOption`]), and a value out of the
+    /// option's range ([`SubdivError::InvalidParameter`], as [`remesh`]
+    /// would refuse it).
+    pub fn set(&mut self, scheme: RemeshScheme, name: &str, value: f64) -> Result<(), SubdivError> {
+        let option = scheme
+            .options()
+            .iter()
+            .find(|o| o.name == name || o.field == name)
+            .ok_or_else(|| SubdivError::UnknownOption {
+                scheme,
+                name: name.to_string(),
+            })?;
+        let (slot, range) = self
+            .slot(option.field)
+            .ok_or_else(|| SubdivError::UnknownOption {
+                scheme,
+                name: name.to_string(),
+            })?;
+        if !range.contains(value) {
+            return Err(SubdivError::InvalidParameter {
+                scheme,
+                name: option.field,
+                value,
+                expected: range.text(),
+            });
+        }
+        *slot = value;
+        Ok(())
+    }
+
+    /// The value of the option `name` (short or field name) of `scheme`,
+    /// or `None` when the scheme does not read it.
+    pub fn get(&self, scheme: RemeshScheme, name: &str) -> Option<f64> {
+        let option = scheme
+            .options()
+            .iter()
+            .find(|o| o.name == name || o.field == name)?;
+        let mut copy = *self;
+        copy.slot(option.field).map(|(x, _)| *x)
+    }
+
+    /// The parameters `scheme` reads: field name, value, range.
+    fn read_by(&self, scheme: RemeshScheme) -> Vec<(&'static str, f64, Range)> {
+        let mut copy = *self;
+        scheme
+            .options()
+            .iter()
+            .filter_map(|o| copy.slot(o.field).map(|(x, r)| (o.field, *x, r)))
+            .collect()
     }
 
     /// Refuses a parameter `scheme` reads that is not finite or out of its

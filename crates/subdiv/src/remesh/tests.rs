@@ -1117,3 +1117,76 @@ fn random_sequences_of_schemes_keep_every_component_and_stay_valid() {
     );
     assert!(used.iter().all(|&u| u), "every scheme was exercised");
 }
+
+// ------------------------------------------------------- the option table
+
+fn positions(m: &Mesh) -> Vec<DVec3> {
+    m.vertices().map(|v| m.position(v).unwrap()).collect()
+}
+
+#[test]
+fn every_option_in_the_table_is_read_by_its_scheme() {
+    // The table is the schemes' own: changing an option it lists moves
+    // the output of that scheme (on a cube, or a triangulated cube where
+    // the scheme wants triangles), by either of its names.
+    let cube = prim("@cube");
+    let mut listed = 0;
+    for &s in S::ALL {
+        for o in s.options() {
+            for name in [o.name, o.field] {
+                let base = RemeshParams::default();
+                let before = base.get(s, name).unwrap();
+                let mut p = base;
+                // Inside every range: the (0, ½] and [0, ½] fractions and
+                // any finite number.
+                let value = if before > 0.3 { 0.2 } else { before + 0.1 };
+                p.set(s, name, value).unwrap();
+                assert_eq!(p.get(s, o.name), Some(value), "{s} {name}");
+                assert_ne!(p, base, "{s} {name}");
+                let a = positions(&remesh(&cube, s, &base, 1).unwrap());
+                let b = positions(&remesh(&cube, s, &p, 1).unwrap());
+                assert_ne!(a, b, "{s}: option {name} changes nothing");
+                listed += 1;
+            }
+        }
+        assert_eq!(s.reads().count(), s.options().len());
+    }
+    // 18 fields, some shared by several schemes, each under two names.
+    assert!(listed >= 2 * 18, "{listed}");
+}
+
+#[test]
+fn setting_an_option_a_scheme_does_not_read_or_out_of_range_is_refused() {
+    let mut p = RemeshParams::default();
+    let before = p;
+    assert!(matches!(
+        p.set(S::Dual, "alpha", 0.5),
+        Err(SubdivError::UnknownOption { .. })
+    ));
+    assert!(matches!(
+        p.set(S::CornerCutting, "thickness", 0.5),
+        Err(SubdivError::UnknownOption { .. })
+    ));
+    assert!(matches!(
+        p.set(S::CornerCutting, "checkerboard_thickness", 0.5),
+        Err(SubdivError::UnknownOption { .. })
+    ));
+    for (s, name, x) in [
+        (S::CornerCutting, "alpha", f64::NAN),
+        (S::VertexTruncation, "offset", 0.0),
+        (S::VertexTruncation, "offset", 0.6),
+        (S::Checkerboard, "thickness", -0.1),
+        (S::Dome, "scale", f64::INFINITY),
+    ] {
+        assert!(
+            matches!(p.set(s, name, x), Err(SubdivError::InvalidParameter { .. })),
+            "{s} {name} {x}"
+        );
+    }
+    assert_eq!(p, before);
+    // The message names what the scheme reads.
+    let e = p.set(S::Dome, "alpha", 1.0).unwrap_err().to_string();
+    assert!(e.contains("length, scale"), "{e}");
+    let e = p.set(S::Loop, "alpha", 1.0).unwrap_err().to_string();
+    assert!(e.contains("no options"), "{e}");
+}
