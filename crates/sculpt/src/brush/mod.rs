@@ -1,13 +1,13 @@
 //! The brushes, as pure functions of positions and triangles: each
 //! returns the positions at the end of one frame and never changes
 //! connectivity. Topology change is the session's business (see
-//! [`crate::session`]). Inflate, smooth, grab and move are the four of
-//! Bernstein & Wojtan 2013, §4; the others are the brushes sculptors know
-//! from SculptGL and Blender, one file each with its displacement field:
-//! [`draw`], [`clay`], [`crease`], [`flatten`], [`layer`], [`pinch`], [`scrape`],
-//! [`scale`] and the [`snake_hook`], which pulls a tentacle out of the
-//! surface along the pointer's path. Every centred brush weighs its
-//! displacement by a [`Falloff`] curve.
+//! [`crate::session`]). One file per brush, each stating its displacement
+//! field: §4's [`mod@inflate`], [`mod@smooth`], [`grab`] and move ([`moving`]);
+//! the sculptor's [`draw`], [`clay`], [`crease`], [`flatten`], [`layer`],
+//! [`pinch`], [`scrape`], [`scale`] and the [`snake_hook`], which pulls a
+//! tentacle out of the surface along the pointer's path. Every centred
+//! brush weighs its displacement by a [`Falloff`] curve; the sculptor's
+//! brushes act on the connected patch under them ([`region`]).
 //!
 //! Every function works on any triangle list (open, non-manifold,
 //! unoriented, many components), because the engine does.
@@ -17,15 +17,23 @@ pub mod crease;
 pub mod draw;
 pub mod falloff;
 pub mod flatten;
+pub mod grab;
+pub mod inflate;
 pub mod layer;
+pub mod moving;
 pub mod pinch;
 pub mod region;
 pub mod scale;
 pub mod scrape;
+pub mod smooth;
 pub mod snake_hook;
 
 pub use falloff::Falloff;
+pub use grab::{grab_weights, grab_weights_with};
+pub use inflate::{inflate, inflate_with};
+pub use moving::component_of;
 use region::Region;
+pub use smooth::{smooth, smooth_with};
 
 use glam::DVec3;
 use holey_geom::position_key;
@@ -285,104 +293,6 @@ pub fn paint_at(
     }
 }
 
-/// One frame of inflate (§4): every vertex within `radius` of `centre`
-/// moves along its (area-weighted) normal by `strength × falloff`.
-/// Normals are computed only for the vertices the brush touches, so the
-/// cost beyond two linear scans is the brush's. Coincident vertices move
-/// as one point.
-pub fn inflate(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
-    inflate_with(mesh, centre, radius, strength, Falloff::Smooth)
-}
-
-/// [`inflate`] with another falloff curve. Like smooth, and unlike the
-/// sculptor's brushes ([`region`]), it moves every vertex within the
-/// radius, whichever sheet it is on, as §4 does.
-pub fn inflate_with(
-    mesh: &TriMesh,
-    centre: DVec3,
-    radius: f64,
-    strength: f64,
-    curve: Falloff,
-) -> Vec<DVec3> {
-    let hit = touched(mesh, centre, radius);
-    let normals = normals_of(mesh, &hit);
-    let mut out = mesh.positions.clone();
-    for (&v, n) in hit.iter().zip(&normals) {
-        let p = out[v as usize];
-        out[v as usize] = p + *n * (strength * curve.weight(p.distance(centre), radius));
-    }
-    out
-}
-
-/// One frame of smooth (§4): an explicit umbrella-Laplacian step, each
-/// vertex moving the fraction `strength × falloff` of the way to the mean
-/// of its edge neighbours. Jacobi-style (all from the old positions), so
-/// the result does not depend on vertex order. Only the touched vertices'
-/// rings are gathered. Coincident vertices are one point: they share
-/// their rings, and a neighbour position counts once however many
-/// vertices sit there, so a soup smooths as its welded surface would.
-pub fn smooth(mesh: &TriMesh, centre: DVec3, radius: f64, strength: f64) -> Vec<DVec3> {
-    smooth_with(mesh, centre, radius, strength, Falloff::Smooth)
-}
-
-/// [`smooth`] with the weight of another falloff curve.
-pub fn smooth_with(
-    mesh: &TriMesh,
-    centre: DVec3,
-    radius: f64,
-    strength: f64,
-    curve: Falloff,
-) -> Vec<DVec3> {
-    let hit = touched(mesh, centre, radius);
-    let class = coincident(mesh, &hit);
-    let mut slot = vec![u32::MAX; mesh.positions.len()];
-    for (i, &v) in hit.iter().enumerate() {
-        slot[v as usize] = class[i];
-    }
-    let mut rings: Vec<Vec<[u64; 3]>> = vec![Vec::new(); hit.len()];
-    let key = |v: u32| position_key(mesh.positions[v as usize]);
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if key(a) == key(b) {
-                continue;
-            }
-            if let Some(r) = rings.get_mut(slot[a as usize] as usize) {
-                r.push(key(b));
-            }
-            if let Some(r) = rings.get_mut(slot[b as usize] as usize) {
-                r.push(key(a));
-            }
-        }
-    }
-    for ring in &mut rings {
-        ring.sort_unstable();
-        ring.dedup();
-    }
-    let mut out = mesh.positions.clone();
-    for (&v, &c) in hit.iter().zip(&class) {
-        let ring = &rings[c as usize];
-        let p = mesh.positions[v as usize];
-        let w = strength * curve.weight(p.distance(centre), radius);
-        if w == 0.0 || ring.is_empty() {
-            continue;
-        }
-        let mean = ring
-            .iter()
-            .map(|k| {
-                DVec3::new(
-                    f64::from_bits(k[0]),
-                    f64::from_bits(k[1]),
-                    f64::from_bits(k[2]),
-                )
-            })
-            .sum::<DVec3>()
-            / ring.len() as f64;
-        out[v as usize] = p + w * (mean - p);
-    }
-    out
-}
-
 /// The closest point of a surface to `query`: `(triangle, point,
 /// distance)`, the first triangle in order on ties, or `None` without
 /// triangles. Brute force over all triangles: picking happens once per
@@ -452,44 +362,6 @@ pub fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
     let v = vb / denom;
     let w = vc / denom;
     a + ab * v + ac * w
-}
-
-/// The grab weights of §4: `falloff(|x_v − picked|)` at the stroke's
-/// start, zero for vertices no triangle uses.
-pub fn grab_weights(mesh: &TriMesh, picked: DVec3, radius: f64) -> Vec<f64> {
-    grab_weights_with(mesh, picked, radius, Falloff::Smooth)
-}
-
-/// [`grab_weights`] with another falloff curve.
-pub fn grab_weights_with(mesh: &TriMesh, picked: DVec3, radius: f64, curve: Falloff) -> Vec<f64> {
-    let used = referenced(mesh);
-    mesh.positions
-        .iter()
-        .zip(&used)
-        .map(|(&p, &u)| {
-            if u {
-                curve.weight(p.distance(picked), radius)
-            } else {
-                0.0
-            }
-        })
-        .collect()
-}
-
-/// The vertices of the connected component (through shared vertex
-/// indices) that contains `triangle`: the rigid body the move brush holds.
-pub fn component_of(mesh: &TriMesh, triangle: usize) -> Vec<bool> {
-    let n = mesh.positions.len();
-    let mut sets = holey_mesh::UnionFind::new(n);
-    for t in &mesh.triangles {
-        sets.union(t[0], t[1]);
-        sets.union(t[0], t[2]);
-    }
-    let Some(tri) = mesh.triangles.get(triangle) else {
-        return vec![false; n];
-    };
-    let root = sets.find(tri[0]);
-    (0..n as u32).map(|v| sets.find(v) == root).collect()
 }
 
 #[cfg(test)]
