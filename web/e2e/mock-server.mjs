@@ -95,8 +95,11 @@ function frameOf(m, version, flags = 0, sparse = null) {
     for (let k = 1; k + 1 < f.length; k++) { tris.push(f[0], f[k], f[k + 1]); triFace.push(fi); }
     f.forEach((a, i) => { const b = f[(i + 1) % f.length]; edges.set(a < b ? `${a},${b}` : `${b},${a}`, [a, b]); });
   });
+  // The sculpt mask, on whole frames of the sculpt workspace (as the real server).
+  const masked = doc.workspace === 'sculpt' && doc.mask.size ? m.p.map((v) => (doc.mask.has(v.join(',')) ? 1 : 0)) : null;
+  const sculptMask = masked && masked.includes(1) ? masked : null;
   return encodeFrame({
-    flags, version, positions: m.p.flat(), tris, triFace, edges: [...edges.values()].flat(), nf: m.f.length, sparse,
+    flags, version, positions: m.p.flat(), tris, triFace, edges: [...edges.values()].flat(), nf: m.f.length, sparse, sculptMask,
   });
 }
 
@@ -113,7 +116,8 @@ function parseObj(text) {
 
 // ---- document -------------------------------------------------------------------
 
-const doc = { mesh: cube(), workspace: 'model', version: 1, undo: [], redo: [], remesh: 0.5 };
+// `mask`: the sculpt mask as exact positions ("x,y,z").
+const doc = { mesh: cube(), workspace: 'model', version: 1, undo: [], redo: [], remesh: 0.5, mask: new Set() };
 const clients = new Set();
 let stroke = null;
 
@@ -186,7 +190,7 @@ function handle(ws, msg) {
       const moved = [];
       for (const [i, v] of stroke.mesh.p.entries()) {
         const d = Math.hypot(v[0] - x, v[1] - y, v[2] - z);
-        if (d >= r) continue;
+        if (d >= r || doc.mask.has(v.join(','))) continue;
         moved.push(i);
         const l = Math.hypot(...v) || 1, w = (1 - d / r) ** 2 * stroke.strength * 0.05 * r;
         v[0] += (v[0] / l) * w; v[1] += (v[1] / l) * w; v[2] += (v[2] / l) * w;
@@ -204,6 +208,24 @@ function handle(ws, msg) {
       stroke = null;
       commit(m);
       return ok();
+    }
+    case 'mask_paint':
+    case 'mask_clear':
+    case 'mask_invert': {
+      if (doc.workspace !== 'sculpt') return err('masking works in the sculpt workspace; switch to it first');
+      const keys = doc.mesh.p.map((v) => v.join(','));
+      if (msg.op === 'mask_clear') doc.mask = new Set();
+      else if (msg.op === 'mask_invert') doc.mask = new Set(keys.filter((k) => !doc.mask.has(k)));
+      else {
+        const centres = msg.points ?? [msg.point], r = msg.radius;
+        doc.mesh.p.forEach((v, i) => {
+          if (!centres.some((c) => Math.hypot(v[0] - c[0], v[1] - c[1], v[2] - c[2]) <= r)) return;
+          if (msg.erase) doc.mask.delete(keys[i]);
+          else doc.mask.add(keys[i]);
+        });
+      }
+      for (const c of clients) c.send(frameOf(doc.mesh, doc.version));
+      return ok({ masked: keys.filter((k) => doc.mask.has(k)).length });
     }
     case 'remesh_schemes':
       // Two of the real server's list, so that the Remesh panel fills in;

@@ -172,6 +172,68 @@ const median = (xs) => (xs.length ? [...xs].sort((a, b) => a - b)[xs.length >> 1
 const pct = (xs, p) => (xs.length ? [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor(xs.length * p))] : null);
 const round = (x, d = 1) => (x == null ? null : Math.round(x * 10 ** d) / 10 ** d);
 
+// ---- the sculpt workspace's helpers ---------------------------------------------
+
+/** A fresh @sphere (level 3: 642 vertices on the unit sphere) in the sculpt
+ * workspace, seen from the front, remeshing off so vertex numbers stay. */
+async function sculptSphere(page) {
+  await setWorkspace(page, 'model');
+  await createPrimitive(page, '@sphere');
+  await setWorkspace(page, 'sculpt');
+  await setRange(page, 'remesh-detail', 0);
+  await waitFor(page, 'remeshing off', () => window.__holey.state?.remesh?.detail === 0);
+  if (await page.evaluate(() => window.__holey.camera.ortho)) await page.uncheck(tid('ortho-toggle'));
+  await page.evaluate(() => window.__holey.setView([0, 0, 1]));
+  await page.waitForTimeout(100);
+}
+
+/** The positions the page shows (the server's frames, f32). */
+const positions = (page) => page.evaluate(() => window.__holey.positions);
+
+/** Drag the mouse from one world point to another (projected to the
+ * screen) in `steps` moves, holding `modifiers`; waits for the stroke's end. */
+async function dragThrough(page, from, to, { steps = 12, modifiers = [] } = {}) {
+  const a = await page.evaluate((p) => window.__holey.project(p), from);
+  const b = await page.evaluate((p) => window.__holey.project(p), to);
+  for (const m of modifiers) await page.keyboard.down(m);
+  await page.mouse.move(a[0], a[1]);
+  await page.mouse.down();
+  for (let i = 1; i <= steps; i++) {
+    await page.mouse.move(a[0] + ((b[0] - a[0]) * i) / steps, a[1] + ((b[1] - a[1]) * i) / steps);
+    await page.waitForTimeout(15);
+  }
+  await page.mouse.up();
+  for (const m of modifiers) await page.keyboard.up(m);
+  await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+}
+
+/** Indices of the vertices whose position differs (same vertex count). */
+function movedVertices(before, after) {
+  if (before.length !== after.length) throw new Error(`the vertex count changed: ${before.length / 3} -> ${after.length / 3}`);
+  const out = [];
+  for (let k = 0; k < before.length / 3; k++) {
+    if (before[3 * k] !== after[3 * k] || before[3 * k + 1] !== after[3 * k + 1] || before[3 * k + 2] !== after[3 * k + 2]) out.push(k);
+  }
+  return out;
+}
+
+const norm = (p, k) => Math.hypot(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
+
+/** The largest distance from a vertex's mirror image across x = 0 to the
+ * nearest vertex. */
+function mirrorDistance(p) {
+  let worst = 0;
+  for (let i = 0; i < p.length; i += 3) {
+    let best = Infinity;
+    for (let j = 0; j < p.length; j += 3) {
+      const d = Math.hypot(p[j] + p[i], p[j + 1] - p[i + 1], p[j + 2] - p[i + 2]);
+      if (d < best) best = d;
+    }
+    worst = Math.max(worst, best);
+  }
+  return worst;
+}
+
 // ---- scenarios ------------------------------------------------------------------
 
 const consoleErrors = [];
@@ -815,6 +877,349 @@ const scenarios = [
     await waitFor(page, 'one selected edge', () => window.__holey.selection.edges.length === 1);
     await run('sel-edge-ring', 'a ring of 8 edges', () => window.__holey.selection.edges.length === 8);
     await page.screenshot({ path: path.join(artifacts, '19-edge-ring.png') });
+  }],
+  // ---- the sculpt workspace (issue 19) ------------------------------------------
+  // Oracles: positions read back from the page's frames (the server's mesh
+  // to f32), the fields the page sent, and counts worked out here.
+
+  ['sculpt: every new brush button strokes @sphere and moves it; falloff and strength are sent', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await setRange(page, 'radius', 20);
+    await setRange(page, 'strength', 1);
+    const before = await positions(page);
+    const radius = await page.evaluate(() => window.__holey.bbox.diag * 0.2);
+    const falloffs = ['sphere', 'root', 'sharp', 'linear', 'constant', 'smooth', 'custom', 'sphere'];
+    const expected = { draw: 0.05 * radius, clay: 0.05 * radius, crease: 0.05 * radius, flatten: 1, pinch: 0.25, scrape: 1, scale: 0.05, layer: 0.1 * radius };
+    for (const [i, brush] of Object.keys(expected).entries()) {
+      await page.click(tid(`tool-${brush}`));
+      if (!(await page.$eval(tid(`tool-${brush}`), (b) => b.classList.contains('active')))) throw new Error(`${brush}'s button is not shown active`);
+      await page.selectOption(tid('falloff-select'), falloffs[i]);
+      const v = await version(page);
+      await dragThrough(page, [-0.3, 0.1, 0.95], [0.3, -0.1, 0.95]);
+      await waitVersionAbove(page, v);
+      const after = await positions(page);
+      const moved = movedVertices(before, after);
+      // The brush reaches 0.69 from the path: nothing on the back moves.
+      const far = moved.filter((k) => before[3 * k + 2] < -0.5);
+      if (moved.length < 5 || far.length) throw new Error(`${brush}: ${moved.length} vertices moved, ${far.length} of them on the far side`);
+      const sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+      if (sent.brush !== brush) throw new Error(`sent brush ${sent.brush}, not ${brush}`);
+      const f = falloffs[i];
+      if (f === 'custom' ? JSON.stringify(sent.falloff) !== JSON.stringify({ custom: [1, 0.8, 0.5, 0.2, 0] }) : sent.falloff !== f) {
+        throw new Error(`${brush}: sent falloff ${JSON.stringify(sent.falloff)}, not ${f}`);
+      }
+      if (Math.abs(sent.strength - expected[brush]) > 1e-9) throw new Error(`${brush}: sent strength ${sent.strength}, not ${expected[brush]}`);
+      if (i === 0) await page.screenshot({ path: path.join(artifacts, '20-draw.png') });
+      const u = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, u);
+    }
+    // Ctrl inverts draw: a negative strength, and what moved went inwards.
+    await page.click(tid('tool-draw'));
+    const v = await version(page);
+    await dragThrough(page, [-0.3, 0.1, 0.95], [0.3, -0.1, 0.95], { modifiers: ['Control'] });
+    await waitVersionAbove(page, v);
+    const sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (!(sent.strength < 0)) throw new Error(`Ctrl-draw sent strength ${sent.strength}`);
+    const after = await positions(page);
+    const out = movedVertices(before, after).filter((k) => norm(after, k) > norm(before, k));
+    if (out.length) throw new Error(`Ctrl-draw pushed ${out.length} vertices outwards`);
+    await page.screenshot({ path: path.join(artifacts, '20-draw-carved.png') });
+    // A drag brush has no strength: its slider is disabled.
+    await page.click(tid('tool-grab'));
+    if (!(await page.$eval(tid('strength'), (s) => s.disabled))) throw new Error('grab leaves the strength slider enabled');
+    await page.click(tid('tool-draw'));
+    if (await page.$eval(tid('strength'), (s) => s.disabled)) throw new Error('draw leaves the strength slider disabled');
+    await page.selectOption(tid('falloff-select'), 'smooth');
+  }],
+
+  ['sculpt: a mouse stroke with symmetry X on one side of @sphere changes both sides alike', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await page.click(tid('tool-draw'));
+    await setRange(page, 'radius', 12);
+    await setRange(page, 'strength', 1);
+    await page.check(tid('symmetry-x'));
+    await page.selectOption(tid('symmetry-about'), 'origin');
+    const before = await positions(page);
+    const v = await version(page);
+    // Entirely on the +x side.
+    await dragThrough(page, [0.5, 0.3, 0.81], [0.6, -0.2, 0.77]);
+    await waitVersionAbove(page, v);
+    await page.screenshot({ path: path.join(artifacts, '21-symmetry-x.png') });
+    await page.uncheck(tid('symmetry-x'));
+    const sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (sent.symmetry !== 'x' || sent.symmetry_about !== 'origin') throw new Error(`sent ${JSON.stringify(sent)}`);
+    const after = await positions(page);
+    const moved = movedVertices(before, after);
+    const plus = moved.filter((k) => before[3 * k] > 0.2).length, minus = moved.filter((k) => before[3 * k] < -0.2).length;
+    if (plus < 5 || plus !== minus) throw new Error(`moved ${plus} vertices on the +x side and ${minus} on the −x side`);
+    // Every vertex has its mirror image across x = 0 (f32 rounding apart).
+    const worst = mirrorDistance(after);
+    if (worst > 1e-5) throw new Error(`a vertex is ${worst} from the nearest mirror of another`);
+  }],
+
+  ['sculpt: [ and ] change the radius, Shift+[ and ] the strength; F sizes the radius on screen', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await setRange(page, 'radius', 10);
+    await setRange(page, 'strength', 0.5);
+    await page.locator(tid('canvas')).focus();
+    const radius = () => page.$eval(tid('radius'), (r) => Number(r.value));
+    const strength = () => page.$eval(tid('strength'), (r) => Number(r.value));
+    await page.keyboard.press(']');
+    const up = await radius();
+    if (!(up > 10)) throw new Error(`] left the radius at ${up}`);
+    await page.keyboard.press('[');
+    const down = await radius();
+    if (!(down < up)) throw new Error(`[ left the radius at ${down}`);
+    await page.keyboard.press('Shift+BracketRight');
+    if (Math.abs((await strength()) - 0.55) > 1e-9) throw new Error(`Shift+] made the strength ${await strength()}`);
+    await page.keyboard.press('Shift+BracketLeft');
+    if (Math.abs((await strength()) - 0.5) > 1e-9) throw new Error(`Shift+[ made the strength ${await strength()}`);
+    const radiusText = await page.textContent(tid('radius-value'));
+    if (!radiusText.startsWith(`${down}%`)) throw new Error(`the radius label says ${radiusText}, the slider ${down}`);
+    // F: the ring keeps its size with the pointer on its rim; moving the
+    // pointer 60 px away from the ring's centre adds 60 px of radius.
+    await setRange(page, 'radius', 10);
+    const at = await page.evaluate(() => window.__holey.project([0, 0, 1]));
+    const ppu = await page.evaluate(() => {
+      const a = window.__holey.project([0, 0, 1]), b = window.__holey.project([0.01, 0, 1]);
+      return Math.hypot(b[0] - a[0], b[1] - a[1]) / 0.01;
+    });
+    const diag = await page.evaluate(() => window.__holey.bbox.diag);
+    await page.mouse.move(at[0], at[1]);
+    await page.keyboard.press('f');
+    await waitFor(page, 'F to start sizing the radius', () => window.__holey.sizing === 'radius');
+    if (Math.abs((await radius()) - 10) > 0.5) throw new Error(`F alone changed the radius to ${await radius()}`);
+    await page.mouse.move(at[0] + 60, at[1]);
+    const want = 10 + (60 / ppu / diag) * 100;
+    const got = await radius();
+    if (Math.abs(got - want) > 0.51) throw new Error(`after 60 px the radius is ${got}%, not ${want.toFixed(2)}%`);
+    await page.screenshot({ path: path.join(artifacts, '22-f-sizing.png') });
+    await page.mouse.down();
+    await page.mouse.up();
+    await waitFor(page, 'the click to end the sizing', () => window.__holey.sizing === null);
+    if ((await radius()) !== got) throw new Error('the click did not keep the new radius');
+    if (await page.evaluate(() => window.__holey.stroking)) throw new Error('the click started a stroke');
+    // Escape puts it back.
+    await page.keyboard.press('f');
+    await page.mouse.move(at[0] + 150, at[1] + 20);
+    await page.keyboard.press('Escape');
+    if ((await radius()) !== got) throw new Error(`Escape left the radius at ${await radius()}, not ${got}`);
+  }],
+
+  ['sculpt: mask paint, then a draw stroke over it leaves the masked vertices where they were; invert and clear', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    const nv = await page.evaluate(() => window.__holey.stats.vertices);
+    await setRange(page, 'radius', 8);
+    await page.click(tid('mask-paint'));
+    const replies = await page.evaluate(() => window.__holey.maskReplies.length);
+    await dragThrough(page, [-0.25, 0.05, 0.967], [0.25, 0.05, 0.967]);
+    await waitFor(page, 'the mask from the server', (n) => window.__holey.maskReplies.length > n, replies);
+    const painted = await page.evaluate(() => window.__holey.maskPaints.at(-1));
+    const before = await positions(page);
+    const mask = await page.evaluate(() => window.__holey.sculptMask);
+    if (!mask) throw new Error('no mask came with the frame');
+    // The oracle: every vertex within the radius of a dab, and no other.
+    const r2 = painted.radius ** 2;
+    for (let k = 0; k < nv; k++) {
+      const inside = painted.points.some((c) => (before[3 * k] - c[0]) ** 2 + (before[3 * k + 1] - c[1]) ** 2 + (before[3 * k + 2] - c[2]) ** 2 <= r2 * (1 - 1e-6));
+      const outside = painted.points.every((c) => (before[3 * k] - c[0]) ** 2 + (before[3 * k + 1] - c[1]) ** 2 + (before[3 * k + 2] - c[2]) ** 2 > r2 * (1 + 1e-6));
+      if ((inside && !mask[k]) || (outside && mask[k])) throw new Error(`vertex ${k} is ${mask[k] ? '' : 'not '}masked`);
+    }
+    const n = mask.filter((m) => m).length;
+    const reply = await page.evaluate(() => window.__holey.maskReplies.at(-1));
+    if (n < 5 || reply !== n) throw new Error(`${n} vertices masked in the frame, the server said ${reply}`);
+    await page.waitForTimeout(100);
+    await page.screenshot({ path: path.join(artifacts, '23-mask.png') });
+    // A wide draw stroke over the masked band.
+    await page.click(tid('tool-draw'));
+    await setRange(page, 'radius', 25);
+    await setRange(page, 'strength', 1);
+    const v = await version(page);
+    await dragThrough(page, [-0.3, -0.1, 0.95], [0.3, 0.15, 0.94]);
+    await waitVersionAbove(page, v);
+    const after = await positions(page);
+    let unmovedMasked = 0;
+    for (let k = 0; k < nv; k++) {
+      if (!mask[k]) continue;
+      for (let c = 0; c < 3; c++) if (after[3 * k + c] !== before[3 * k + c]) throw new Error(`masked vertex ${k} moved`);
+      unmovedMasked++;
+    }
+    const moved = movedVertices(before, after);
+    if (moved.length < 10) throw new Error(`only ${moved.length} unmasked vertices moved`);
+    await page.screenshot({ path: path.join(artifacts, '23-mask-then-draw.png') });
+    const stillMasked = await page.evaluate(() => window.__holey.maskedCount);
+    if (stillMasked !== n) throw new Error(`${stillMasked} vertices masked after the stroke, not ${n}`);
+    await page.click(tid('mask-invert'));
+    await waitFor(page, 'the inverted mask', (m) => window.__holey.maskedCount === m, nv - n);
+    await page.click(tid('mask-clear'));
+    await waitFor(page, 'no mask', () => window.__holey.maskedCount === 0 && window.__holey.sculptMask === null);
+    const text = await page.textContent(tid('mask-count'));
+    if (text) throw new Error(`the mask count still says "${text}"`);
+  }],
+
+  ['display: matcaps, orthographic view, front/side/top views and numpad keys, a PNG screenshot', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    const options = await page.$$eval(`${tid('matcap-select')} option`, (os) => os.map((o) => o.value));
+    const matcaps = options.filter((o) => o !== 'studio');
+    if (matcaps.length < 4) throw new Error(`only ${matcaps.length} matcaps offered: ${options}`);
+    const centre = await page.evaluate(() => window.__holey.project([0, 0, 1]));
+    const clip = { x: centre[0] - 40, y: centre[1] - 40, width: 80, height: 80 };
+    const seen = new Set();
+    for (const m of options) {
+      await page.selectOption(tid('matcap-select'), m);
+      await waitFor(page, `the ${m} material`, (x) => window.__holey.camera.material === x, m);
+      await page.waitForTimeout(80);
+      seen.add((await page.screenshot({ clip })).toString('base64'));
+      if (m === 'studio' || m === 'clay' || m === 'chrome') await page.screenshot({ path: path.join(artifacts, `24-matcap-${m}.png`) });
+    }
+    if (seen.size !== options.length) throw new Error(`${options.length} materials drew ${seen.size} different pictures`);
+    await page.selectOption(tid('matcap-select'), 'clay');
+    const dir = () => page.evaluate(() => {
+      const c = window.__holey.camera;
+      const d = c.position.map((x, i) => x - c.target[i]);
+      const l = Math.hypot(...d);
+      return d.map((x) => Math.round((x / l) * 1000) / 1000);
+    });
+    const expectDir = async (what, want) => {
+      const d = await dir();
+      if (d.some((x, i) => Math.abs(x - want[i]) > 1e-3)) throw new Error(`${what}: the camera looks from ${d}, not ${want}`);
+    };
+    await page.click(tid('view-side'));
+    await expectDir('Side', [1, 0, 0]);
+    await page.click(tid('view-top'));
+    await expectDir('Top', [0, 1, 0]);
+    await page.click(tid('view-front'));
+    await expectDir('Front', [0, 0, 1]);
+    await page.locator(tid('canvas')).focus();
+    await page.keyboard.press('Numpad3');
+    await expectDir('numpad 3', [1, 0, 0]);
+    await page.keyboard.press('Control+Numpad1');
+    await expectDir('Ctrl+numpad 1', [0, 0, -1]);
+    await page.keyboard.press('Numpad7');
+    await expectDir('numpad 7', [0, 1, 0]);
+    await page.keyboard.press('Numpad1');
+    await expectDir('numpad 1', [0, 0, 1]);
+    // Orthographic: the button and numpad 5; the sphere keeps its size.
+    const size = () => page.evaluate(() => {
+      const a = window.__holey.project([-1, 0, 0]), b = window.__holey.project([1, 0, 0]);
+      return b[0] - a[0];
+    });
+    const perspective = await size();
+    await page.check(tid('ortho-toggle'));
+    await waitFor(page, 'the orthographic camera', () => window.__holey.camera.ortho);
+    const ortho = await size();
+    if (Math.abs(ortho - perspective) / perspective > 0.15) throw new Error(`the sphere is ${ortho} px wide in ortho, ${perspective} px in perspective`);
+    await page.click(tid('view-side'));
+    await expectDir('Side (ortho)', [1, 0, 0]);
+    await page.click(tid('view-front'));
+    await page.waitForTimeout(100);
+    await page.screenshot({ path: path.join(artifacts, '24-ortho-front.png') });
+    // A stroke picks right in the orthographic view too.
+    await page.click(tid('tool-draw'));
+    const v = await version(page);
+    await dragThrough(page, [-0.2, 0, 0.98], [0.2, 0, 0.98]);
+    await waitVersionAbove(page, v);
+    await page.keyboard.press('Numpad5');
+    await waitFor(page, 'the perspective camera', () => !window.__holey.camera.ortho);
+    if (await page.isChecked(tid('ortho-toggle'))) throw new Error('numpad 5 left the Ortho box checked');
+    // The screenshot button downloads a PNG of the view.
+    const [download] = await Promise.all([page.waitForEvent('download', { timeout: 30000 }), page.click(tid('screenshot'))]);
+    if (!/^holey-.*\.png$/.test(download.suggestedFilename())) throw new Error(`downloaded as ${download.suggestedFilename()}`);
+    const saved = path.join(artifacts, '24-screenshot-button.png');
+    await download.saveAs(saved);
+    const png = fs.readFileSync(saved);
+    if (png.subarray(0, 8).toString('hex') !== '89504e470d0a1a0a' || png.length < 2000) throw new Error(`the download is not a PNG picture (${png.length} bytes)`);
+    const width = png.readUInt32BE(16), height = png.readUInt32BE(20);
+    const canvasSize = await page.$eval(tid('canvas'), (c) => [c.width, c.height]);
+    if (width !== canvasSize[0] || height !== canvasSize[1]) throw new Error(`the PNG is ${width}×${height}, the view ${canvasSize}`);
+  }],
+
+  ['sculpt: a fast drag lays a dab every spacing % of the radius; the stabilizer holds short moves; pen pressure is sent', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await page.click(tid('tool-draw'));
+    await setRange(page, 'radius', 10);
+    await setRange(page, 'strength', 0.3);
+    const radius = await page.evaluate(() => window.__holey.bbox.diag * 0.1);
+    const A = [-0.4, 0, Math.sqrt(1 - 0.16)], B = [0.4, 0, Math.sqrt(1 - 0.16)];
+    // One jump of the pointer from A to B: the dabs still cover the way.
+    const framesFor = async (spacing) => {
+      await page.fill(tid('stroke-spacing'), String(spacing));
+      const f0 = await page.evaluate(() => window.__holey.framesSent);
+      const v = await version(page);
+      await dragThrough(page, A, B, { steps: 1 });
+      await waitVersionAbove(page, v);
+      const frames = (await page.evaluate(() => window.__holey.framesSent)) - f0;
+      const u = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, u);
+      return frames;
+    };
+    for (const spacing of [10, 50]) {
+      const want = Math.floor(0.8 / ((spacing / 100) * radius));
+      const got = await framesFor(spacing);
+      // The dabs sit on the surface, slightly off the straight chord.
+      if (Math.abs(got - want) > 1) throw new Error(`spacing ${spacing}%: ${got} frames for a jump of 0.8, not ${want}`);
+    }
+    await page.fill(tid('stroke-spacing'), '10');
+    // The stabilizer: a 40 px wiggle within a 60 px string sends nothing.
+    const short = async (lazy) => {
+      await setRange(page, 'lazy-mouse', lazy);
+      const a = await page.evaluate((p) => window.__holey.project(p), [0, 0, 1]);
+      const f0 = await page.evaluate(() => window.__holey.framesSent);
+      await page.mouse.move(a[0], a[1]);
+      await page.mouse.down();
+      for (let i = 1; i <= 8; i++) await page.mouse.move(a[0] + 5 * i, a[1]);
+      await page.mouse.up();
+      await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+      return (await page.evaluate(() => window.__holey.framesSent)) - f0;
+    };
+    const held = await short(60);
+    const free = await short(0);
+    if (held !== 0 || free < 2) throw new Error(`a 40 px move sent ${held} frames with the stabilizer and ${free} without`);
+    // Pen pressure (synthetic pen events): sent with stroke_begin and each
+    // frame; a mouse sends none.
+    const mouseSent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if ('pressure' in mouseSent) throw new Error('a mouse stroke sent a pressure');
+    await page.selectOption(tid('pressure-drives'), 'radius');
+    const a = await page.evaluate((p) => window.__holey.project(p), A);
+    const b = await page.evaluate((p) => window.__holey.project(p), B);
+    const p0 = await page.evaluate(() => window.__holey.pressuresSent.length);
+    const v = await version(page);
+    await page.evaluate(([a, b]) => {
+      const c = document.querySelector('[data-testid="canvas"]');
+      const ev = (type, x, y, pressure) => c.dispatchEvent(new PointerEvent(type, {
+        pointerId: 41, pointerType: 'pen', isPrimary: true, pressure, clientX: x, clientY: y,
+        button: type === 'pointermove' ? -1 : 0, buttons: type === 'pointerup' ? 0 : 1, bubbles: true, cancelable: true,
+      }));
+      ev('pointerdown', a[0], a[1], 0.3);
+      for (let i = 1; i <= 10; i++) ev('pointermove', a[0] + ((b[0] - a[0]) * i) / 10, a[1] + ((b[1] - a[1]) * i) / 10, 0.3 + 0.05 * i);
+      ev('pointerup', b[0], b[1], 0);
+    }, [a, b]);
+    await waitFor(page, 'the end of the pen stroke', () => !window.__holey.stroking);
+    await waitVersionAbove(page, v);
+    const sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (!(Math.abs(sent.pressure - 0.3) < 1e-6) || sent.pressure_drives !== 'radius') throw new Error(`the pen stroke began with ${JSON.stringify(sent)}`);
+    const pressures = await page.evaluate((n) => window.__holey.pressuresSent.slice(n), p0);
+    if (pressures.length < 5 || pressures.some((p) => !(p > 0.3 && p <= 0.81))) throw new Error(`frame pressures ${pressures}`);
+    await page.selectOption(tid('pressure-drives'), 'strength');
+    await page.screenshot({ path: path.join(artifacts, '25-pen.png') });
+    // Shift-drag on the mesh smooths, whatever brush is chosen, and the
+    // brush stays chosen.
+    const before = await positions(page);
+    const w = await version(page);
+    await dragThrough(page, A, B, { modifiers: ['Shift'] });
+    await waitVersionAbove(page, w);
+    const smooth = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (smooth.brush !== 'smooth' || !(smooth.strength > 0 && smooth.strength <= 1)) throw new Error(`Shift-drag sent ${JSON.stringify(smooth)}`);
+    if (movedVertices(before, await positions(page)).length < 5) throw new Error('the Shift-drag moved nothing');
+    if (!(await page.$eval(tid('tool-draw'), (b) => b.classList.contains('active')))) throw new Error('Shift-drag changed the chosen brush');
   }],
 ];
 

@@ -8,6 +8,7 @@ export const FLAG_PREVIEW = 1;
 export const FLAG_MASK = 2;
 export const FLAG_POSITIONS_ONLY = 4;
 export const FLAG_SPARSE = 8;
+export const FLAG_SCULPT_MASK = 16;
 const MAGIC = 0x48534d48; // 'HMSH' read as a little-endian u32
 
 const pad4 = (n) => (n + 3) & ~3;
@@ -70,9 +71,11 @@ export function parseFrame(buf, prev) {
     edges = new Uint32Array(buf, take(8 * ne), 2 * ne);
   }
   const mask = flags & FLAG_MASK ? new Uint8Array(buf, take(nv), nv) : null;
+  // The sculpt mask (whole frames only): 1 = no brush moves the vertex.
+  const sculptMask = flags & FLAG_SCULPT_MASK ? new Uint8Array(buf, take(nv), nv) : null;
 
   return {
-    flags, version, nv, nt, ne, nf, positions, tris, triFace, edges, mask,
+    flags, version, nv, nt, ne, nf, positions, tris, triFace, edges, mask, sculptMask,
     preview: (flags & FLAG_PREVIEW) !== 0,
     positionsOnly, sparse, sparseIdx, sparsePos,
   };
@@ -89,7 +92,7 @@ export function applySparse(positions, idx, pos) {
 }
 
 /** Build a frame (used by the mock server and unit checks). */
-export function encodeFrame({ flags = 0, version, positions, tris, triFace, edges, nf, mask, sparse }) {
+export function encodeFrame({ flags = 0, version, positions, tris, triFace, edges, nf, mask, sculptMask, sparse }) {
   // `sparse` (optional): the indices of the vertices that moved; the frame
   // then carries only those (flags get bits 2 and 3).
   const nv = positions.length / 3;
@@ -98,9 +101,11 @@ export function encodeFrame({ flags = 0, version, positions, tris, triFace, edge
   const nt = tris.length / 3;
   const ne = edges.length / 2;
   if (mask) flags |= FLAG_MASK;
+  if (sculptMask && !positionsOnly) flags |= FLAG_SCULPT_MASK;
   let size = 32 + (sparse ? 4 + 16 * sparse.length : 12 * nv);
   if (!positionsOnly) size += 12 * nt + 4 * nt + 8 * ne;
   if (mask) size += pad4(nv);
+  if (flags & FLAG_SCULPT_MASK) size += pad4(nv);
   const buf = new ArrayBuffer(size);
   const dv = new DataView(buf);
   [MAGIC, 1, flags, version, nv, nt, ne, nf].forEach((v, i) => dv.setUint32(4 * i, v, true));
@@ -120,6 +125,10 @@ export function encodeFrame({ flags = 0, version, positions, tris, triFace, edge
     new Uint32Array(buf, off, nt).set(triFace); off += 4 * nt;
     new Uint32Array(buf, off, 2 * ne).set(edges); off += 8 * ne;
   }
-  if (mask) new Uint8Array(buf, off, nv).set(mask);
+  if (mask) {
+    new Uint8Array(buf, off, nv).set(mask);
+    off += pad4(nv);
+  }
+  if (flags & FLAG_SCULPT_MASK) new Uint8Array(buf, off, nv).set(sculptMask);
   return buf;
 }

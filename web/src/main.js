@@ -83,6 +83,21 @@ const hook = {
   lastFrameMs: null, // pointer event -> stroke frame rendered, last stroke frame
   lastParseRenderMs: null,
   errors: [],
+  // The sculpt workspace (issue 19): what strokes sent, the mask shown.
+  strokesSent: [], // stroke_begin fields
+  framesSent: 0, // stroke_frame requests
+  pressuresSent: [], // the pen pressure each stroke_frame carried
+  maskPaints: [], // mask_paint fields
+  maskReplies: [], // `masked` of each mask request's answer
+  sizing: null, // 'radius' or 'strength' while F sizes the brush
+  get positions() { return app.frame ? Array.from(app.frame.positions) : null; },
+  get sculptMask() { return viewer?.sculptMask ? Array.from(viewer.sculptMask) : null; },
+  get maskedCount() { return viewer?.maskedCount ?? 0; },
+  get camera() {
+    if (!viewer) return null;
+    const c = viewer.camera, t = viewer.controls?.target;
+    return { ortho: viewer.ortho, position: c.position.toArray(), target: t ? t.toArray() : null, zoom: c.zoom, material: viewer.materialName };
+  },
   setView: (dir) => viewer?.setView(dir),
   project: (p) => viewer?.project(p),
   request: (op, fields) => conn.request(op, fields),
@@ -237,6 +252,7 @@ function onFrame(buf) {
     call('hello'); // ask for a full frame again
     return;
   }
+  if (!f.positionsOnly) showMaskCount();
   if (newTopology) {
     // Huge meshes: the wireframe would cost more than the surface itself.
     if (f.nt > 300000 && $('wireframe').checked) setShading(viewer.flat, false);
@@ -427,18 +443,46 @@ window.addEventListener('keydown', (e) => {
   if (t instanceof HTMLSelectElement) return;
   const mod = e.ctrlKey || e.metaKey;
   const k = e.key.toLowerCase();
-  if (mod && k === 'z') {
+  const sculpt = app.state?.workspace === 'sculpt';
+  if (sizing) {
+    e.preventDefault();
+    if (k === 'escape') finishSizing(true);
+    else if (k === 'enter' || k === 'f') finishSizing(false);
+    return;
+  }
+  // The numpad views, as in Blender: 1 front, 3 side, 7 top (Ctrl: the
+  // opposite side), 5 orthographic, . frame.
+  const views = { Numpad1: 'front', Numpad3: 'side', Numpad7: 'top' };
+  if (views[e.code]) {
+    e.preventDefault();
+    axisView(views[e.code], mod);
+  } else if (e.code === 'Numpad5') {
+    e.preventDefault();
+    toggleOrtho();
+  } else if (e.code === 'NumpadDecimal' || (!mod && k === 'home')) {
+    e.preventDefault(); // a focused slider would jump to its minimum
+    viewer?.setView();
+  } else if (mod && k === 'z') {
     e.preventDefault();
     if (!app.stroke) call(e.shiftKey ? 'redo' : 'undo');
   } else if (mod && k === 'y') {
     e.preventDefault();
     if (!app.stroke) call('redo');
   } else if (!mod && k === 'f') {
-    viewer?.setView();
+    // Sculpt: F sizes the radius on screen, Shift+F the strength (Blender,
+    // SculptGL); elsewhere, and always with Home, it frames the mesh.
+    if (sculpt) startSizing(e.shiftKey ? 'strength' : 'radius');
+    else viewer?.setView();
+  } else if (!mod && sculpt && (e.code === 'BracketLeft' || e.code === 'BracketRight')) {
+    e.preventDefault();
+    stepBrush(e.code === 'BracketRight', e.shiftKey);
   } else if (!mod && k === 'escape') {
     clearSelection();
-  } else if (!mod && app.state?.workspace === 'sculpt' && '123456'.includes(k) && k) {
-    setTool(['inflate', 'smooth', 'grab', 'move', 'move-piece', 'snake_hook'][Number(k) - 1]);
+  } else if (!mod && sculpt && k === 'm') {
+    setTool('mask');
+  } else if (!mod && sculpt && /^Digit[0-9]$/.test(e.code)) {
+    const n = Number(e.code.slice(5));
+    setTool(NUMBER_KEYS[(n + 9) % 10]);
   }
 });
 
@@ -700,9 +744,18 @@ for (const b of document.querySelectorAll('[data-tool-op]')) {
 
 // ---- sculpt workspace ---------------------------------------------------------
 
+/** The brushes that follow the pointer: the strength slider does not apply. */
+const DRAGS = new Set(['grab', 'move', 'move-piece', 'snake_hook']);
+/** The number keys' brushes (1 … 9, then 0), as the buttons' titles say. */
+const NUMBER_KEYS = ['inflate', 'smooth', 'grab', 'move', 'move-piece', 'snake_hook', 'draw', 'clay', 'crease', 'flatten'];
+
 function setTool(tool) {
   app.tool = tool;
   for (const b of document.querySelectorAll('[data-tool]')) b.classList.toggle('active', b.dataset.tool === tool);
+  $('strength').disabled = DRAGS.has(tool) || tool === 'mask';
+  $('strength').title = $('strength').disabled
+    ? 'This brush follows the pointer: it has no strength'
+    : 'Shift+[ and Shift+] change it; Shift+F then move the pointer sizes it';
 }
 for (const b of document.querySelectorAll('[data-tool]')) b.onclick = () => setTool(b.dataset.tool);
 setTool('inflate');
@@ -711,14 +764,67 @@ const brushRadius = () => (num('radius') / 100) * (viewer?.bbox.diag ?? 1);
 function showSliderValues() {
   $('radius-value').textContent = `${num('radius')}% (${brushRadius().toPrecision(3)})`;
   $('strength-value').textContent = num('strength').toFixed(2);
+  $('lazy-value').textContent = num('lazy-mouse') > 0 ? `${num('lazy-mouse')} px` : 'off';
+}
+/** Set a slider (clamped and snapped to its step by the browser). */
+function setSlider(id, value) {
+  $(id).value = String(value);
+  showSliderValues();
 }
 $('radius').oninput = showSliderValues;
 $('strength').oninput = showSliderValues;
+$('lazy-mouse').oninput = showSliderValues;
 showSliderValues();
 $('remesh-detail').oninput = () => {
   $('remesh-value').textContent = num('remesh-detail') > 0 ? num('remesh-detail') : 'off';
 };
 $('remesh-detail').onchange = () => call('set_remesh', { detail: num('remesh-detail') });
+$('falloff-select').onchange = () => {
+  $('falloff-custom').hidden = $('falloff-select').value !== 'custom';
+};
+
+// Masking: the mask lives on the server (every stroke respects it); the
+// frames carry it and the viewer darkens what is masked.
+async function maskOp(op, fields = {}) {
+  const ok = await call(op, fields);
+  if (ok) hook.maskReplies.push(ok.masked);
+  return ok;
+}
+$('mask-clear').onclick = () => maskOp('mask_clear');
+$('mask-invert').onclick = () => maskOp('mask_invert');
+function showMaskCount() {
+  const n = viewer?.maskedCount ?? 0;
+  $('mask-count').textContent = n ? `${n} vertices masked` : '';
+}
+
+// ---- display ------------------------------------------------------------------
+
+$('matcap-select').onchange = () => viewer?.setMaterial($('matcap-select').value);
+$('ortho-toggle').onchange = () => viewer?.setOrtho($('ortho-toggle').checked);
+/** The axis views (Blender's numpad 1, 3 and 7): `dir` points from the
+ * mesh to the camera; top is seen with −z up the screen. */
+const AXIS_VIEWS = { front: [0, 0, 1], side: [1, 0, 0], top: [0, 1, 1e-6] };
+function axisView(name, opposite = false) {
+  const d = AXIS_VIEWS[name];
+  viewer?.setView(opposite ? d.map((x) => -x) : d);
+}
+for (const name of Object.keys(AXIS_VIEWS)) $(`view-${name}`).onclick = () => axisView(name);
+function toggleOrtho() {
+  $('ortho-toggle').checked = !$('ortho-toggle').checked;
+  viewer?.setOrtho($('ortho-toggle').checked);
+}
+
+$('screenshot').onclick = () => {
+  if (!viewer) return toast('There is no 3D view to take a picture of.', 'error');
+  const url = viewer.screenshot();
+  const stamp = new Date().toISOString().replace(/[:.]/g, '-').slice(0, 19);
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = `holey-${stamp}.png`;
+  document.body.append(a);
+  a.click();
+  a.remove();
+};
 
 // ---- repairs ------------------------------------------------------------------
 
@@ -729,41 +835,107 @@ async function repair(op, fields) {
 $('op-weld').onclick = () => repair('weld', { distance: num('weld-distance') / 100 });
 $('op-make-manifold').onclick = () => repair('make_manifold');
 
-/** Stroke protocol: stroke_begin, then stroke_frame with at most one request
- * in flight (the newest pointer position waits in `queued`), then stroke_end
- * once everything sent has been answered. */
-/** Inflate displacement per frame at full strength, as a share of the radius. */
-const INFLATE_PER_FRAME = 0.05;
+// ---- strokes ------------------------------------------------------------------
 
-function beginStroke(hit, e) {
-  const sign = $('deflate').checked !== e.ctrlKey ? -1 : 1;
-  // "Move piece" is the move brush without a radius: the whole piece.
-  const piece = app.tool === 'move-piece';
-  const stroke = {
-    brush: piece ? 'move' : app.tool,
+/** Stroke protocol: stroke_begin, then stroke_frame with at most one request
+ * in flight (the dabs waiting in `queue`), then stroke_end once everything
+ * sent has been answered. */
+/** Inflate, draw, clay and crease: displacement per frame at full strength,
+ * as a share of the radius (the server's strength is in world units). */
+const INFLATE_PER_FRAME = 0.05;
+/** Pinch at full strength: the share of the way to the centre per frame. */
+const PINCH_PER_FRAME = 0.25;
+/** Local scale at full strength: the growth per frame. */
+const SCALE_PER_FRAME = 0.05;
+/** Layer at full strength: the slab's height, as a share of the radius
+ * (the server moves at most half of it a frame). */
+const LAYER_PER_RADIUS = 0.1;
+/** Shift+F: pixels from the anchor for strength 1. */
+const STRENGTH_PX = 200;
+/** The most dabs one pointer event adds (a jump across the screen with a
+ * tiny spacing), and the most waiting for the server: past it every other
+ * one is dropped, so a slow frame (a collision, a huge mesh) leaves the
+ * brush at most that many frames behind the pointer. */
+const MAX_DABS_PER_EVENT = 400;
+const MAX_QUEUE = 64;
+
+/** The strength the server takes for `brush`: world units per frame for
+ * the displacing brushes (scaled to the radius, as inflate always was; for
+ * layer, the slab's height),
+ * shares for the others; `sign` −1 inverts where that means something. */
+function strokeStrength(brush, radius, s, sign) {
+  switch (brush) {
+    case 'inflate': case 'draw': case 'clay': case 'crease':
+      return s * INFLATE_PER_FRAME * radius * sign;
+    case 'smooth': case 'flatten': case 'scrape':
+      return s; // a share of the way in [0, 1]: no opposite
+    case 'layer':
+      return s * LAYER_PER_RADIUS * radius * sign; // negative sinks
+    case 'pinch':
+      return s * PINCH_PER_FRAME * sign; // negative spreads
+    case 'scale':
+      return s * SCALE_PER_FRAME * sign; // negative shrinks
+    default:
+      return 1; // grab, move and the snake hook follow the pointer
+  }
+}
+
+/** Falloff, symmetry and what pen pressure drives, for stroke_begin. */
+function strokeOptions() {
+  const o = {};
+  const f = $('falloff-select').value;
+  o.falloff = f === 'custom' ? { custom: [0, 1, 2, 3, 4].map((i) => num(`falloff-custom-${i}`)) } : f;
+  const axes = ['x', 'y', 'z'].filter((a) => $(`symmetry-${a}`).checked).join('');
+  if (axes) {
+    o.symmetry = axes;
+    o.symmetry_about = $('symmetry-about').value;
+  }
+  const drives = $('pressure-drives').value;
+  if (drives !== 'none') o.pressure_drives = drives;
+  return o;
+}
+
+/** The pen's pressure for this event, or undefined (a mouse, or pressure
+ * switched off). */
+function penPressure(stroke, e) {
+  return stroke.pen && e.pointerType === 'pen' && $('pressure-drives').value !== 'none' ? e.pressure : undefined;
+}
+
+function newStroke(brush, hit, e, radius) {
+  return {
+    brush,
     anchor: hit.point,
     normal: hit.normal,
-    radius: piece ? 0 : brushRadius(),
-    inflight: { t: e.timeStamp, measured: true },
-    queued: null,
+    radius,
+    inflight: null,
+    queue: [],
     ending: false,
     pointerId: e.pointerId,
+    pen: e.pointerType === 'pen',
+    last: hit.point, // the last dab's centre
+    lazy: [e.clientX, e.clientY], // the stabilizer's end of the string
   };
+}
+
+function beginStroke(hit, e, override = null) {
+  const sign = $('deflate').checked !== e.ctrlKey ? -1 : 1;
+  const tool = override ?? app.tool;
+  // "Move piece" is the move brush without a radius: the whole piece.
+  const piece = tool === 'move-piece';
+  const brush = piece ? 'move' : tool;
+  const stroke = newStroke(brush, hit, e, piece ? 0 : brushRadius());
+  stroke.inflight = { t: e.timeStamp, measured: true };
   app.stroke = stroke;
   viewer.beginMotion('stroke'); // cheaper pictures until the stroke ends
   viewer.showBrush(hit.point, hit.normal, stroke.radius);
-  // The server's strength is in world units for inflate (displacement per
-  // frame) and a step fraction for smooth; grab, move and the snake hook
-  // follow the pointer.
-  // Inflate is scaled to the brush so that one frame moves the surface by a
-  // few percent of the radius: a frame that pushes farther than the edges
-  // are long folds the surface over itself many times at once.
-  const s = num('strength');
-  const strength = stroke.brush === 'inflate' ? s * INFLATE_PER_FRAME * stroke.radius * sign
-    : stroke.brush === 'smooth' ? s : 1;
-  conn.request('stroke_begin', {
-    brush: stroke.brush, radius: stroke.radius, strength, point: hit.point,
-  }).then(
+  const fields = {
+    brush, radius: stroke.radius, strength: strokeStrength(brush, stroke.radius, num('strength'), sign),
+    point: hit.point, ...strokeOptions(),
+  };
+  const pressure = penPressure(stroke, e);
+  if (pressure !== undefined) fields.pressure = pressure;
+  pushCapped(hook.strokesSent, fields);
+  conn.request('stroke_begin', fields).then(
     () => strokeAnswered(stroke),
     (err) => {
       toast(err.message, 'error');
@@ -772,15 +944,41 @@ function beginStroke(hit, e) {
   );
 }
 
+/** The mask brush: dabs are shown here at once and sent in one
+ * `mask_paint` at release (Ctrl, or Invert, unmasks). */
+function beginMaskStroke(hit, e) {
+  const stroke = newStroke('mask', hit, e, brushRadius());
+  stroke.erase = $('deflate').checked !== e.ctrlKey;
+  stroke.points = [hit.point];
+  app.stroke = stroke;
+  viewer.paintMask(hit.point, stroke.radius, stroke.erase);
+  viewer.showBrush(hit.point, hit.normal, stroke.radius);
+}
+
 function strokeAnswered(stroke) {
   stroke.inflight = null;
   if (app.stroke !== stroke) return;
-  if (stroke.queued) {
-    const q = stroke.queued;
-    stroke.queued = null;
+  if (stroke.brush === 'mask') {
+    if (!stroke.ending) return;
+    stroke.inflight = { t: performance.now(), measured: true };
+    const fields = { points: stroke.points, radius: stroke.radius, erase: stroke.erase };
+    hook.maskPaints.push(fields);
+    maskOp('mask_paint', fields).finally(() => {
+      if (app.stroke === stroke) endStrokeLocally();
+      viewer?.hideBrush();
+      showMaskCount();
+    });
+    return;
+  }
+  if (stroke.queue.length) {
+    const q = stroke.queue.shift();
     stroke.inflight = q;
     q.sent = performance.now();
-    conn.request('stroke_frame', { point: q.point }).then(
+    const fields = { point: q.point };
+    if (q.pressure !== undefined) fields.pressure = q.pressure;
+    hook.framesSent++;
+    if (q.pressure !== undefined) pushCapped(hook.pressuresSent, q.pressure);
+    conn.request('stroke_frame', fields).then(
       (ok) => {
         if (ok.ms != null) pushCapped(hook.serverMs, ok.ms);
         strokeAnswered(stroke);
@@ -801,20 +999,74 @@ function strokeAnswered(stroke) {
   }
 }
 
+/** Where the brush is for a pointer event after the stabilizer (lazy
+ * mouse): it trails the pointer on a string `lazy-mouse` pixels long and
+ * moves only when the pointer pulls the string taut; null until then. */
+function stabilized(s, e) {
+  const L = num('lazy-mouse');
+  if (!(L > 0)) return [e.clientX, e.clientY];
+  const dx = e.clientX - s.lazy[0], dy = e.clientY - s.lazy[1], d = Math.hypot(dx, dy);
+  if (d <= L) return null;
+  s.lazy = [e.clientX - (dx / d) * L, e.clientY - (dy / d) * L];
+  return s.lazy;
+}
+
+/** Dab centres from the last dab towards `point`, one every `spacing` % of
+ * the radius, each put back on the surface under it when `onSurface`; what
+ * is left over waits for the next event. So a fast drag lays as many dabs
+ * as a slow one. */
+function dabsTowards(s, point, onSurface) {
+  const step = Math.max(1e-12, (num('stroke-spacing') / 100) * (s.radius || brushRadius()));
+  const from = s.last;
+  const d = Math.hypot(point[0] - from[0], point[1] - from[1], point[2] - from[2]);
+  const n = Math.min(Math.floor(d / step), MAX_DABS_PER_EVENT);
+  const out = [];
+  for (let i = 1; i <= n; i++) {
+    const t = (i * step) / d;
+    let q = [from[0] + (point[0] - from[0]) * t, from[1] + (point[1] - from[1]) * t, from[2] + (point[2] - from[2]) * t];
+    if (onSurface && i < n) {
+      const [x, y] = viewer.project(q);
+      const hit = viewer.pick(x, y);
+      if (hit) q = hit.point;
+    }
+    out.push(q);
+  }
+  if (out.length) s.last = out[out.length - 1];
+  return out;
+}
+
 function strokeMove(e) {
   const s = app.stroke;
+  const at = stabilized(s, e);
+  if (!at) return;
+  const [x, y] = at;
   let point, normal = s.normal;
   // Grab, move and the snake hook follow the pointer in the view plane
   // through the picked point (the snake hook pulls off the surface).
   if (s.brush === 'grab' || s.brush === 'move' || s.brush === 'snake_hook') {
-    point = viewer.planePoint(e.clientX, e.clientY, s.anchor);
+    point = viewer.planePoint(x, y, s.anchor);
   } else {
-    const hit = viewer.pick(e.clientX, e.clientY);
+    const hit = viewer.pick(x, y);
     if (hit) ({ point, normal } = hit);
   }
   if (!point) return;
-  viewer.showBrush(point, normal, s.radius);
-  s.queued = { point, t: e.timeStamp };
+  viewer.showBrush(point, normal, s.radius || brushRadius());
+  const pressure = penPressure(s, e);
+  if (s.brush === 'grab' || s.brush === 'move') {
+    // A drag goes where the pointer is: only the newest position matters.
+    s.queue = [{ point, t: e.timeStamp, pressure }];
+  } else {
+    const dabs = dabsTowards(s, point, s.brush !== 'snake_hook');
+    if (s.brush === 'mask') {
+      for (const q of dabs) {
+        s.points.push(q);
+        viewer.paintMask(q, s.radius, s.erase);
+      }
+      return;
+    }
+    for (const q of dabs) s.queue.push({ point: q, t: e.timeStamp, pressure });
+    if (s.queue.length > MAX_QUEUE) s.queue = s.queue.filter((_, i) => i % 2 === 1);
+  }
   if (!s.inflight) strokeAnswered(s);
 }
 
@@ -833,6 +1085,59 @@ function endStrokeLocally() {
   if (viewer?.controls) viewer.controls.enabled = true;
 }
 
+// ---- sizing the brush on screen (F, Shift+F) -----------------------------------
+// As in Blender: F shows the brush ring with the pointer on its rim; moving
+// the pointer sizes it; a click, Enter or F again keeps it, Escape or a
+// right click puts it back.
+
+let sizing = null;
+let lastPointer = null; // the pointer over the canvas (client pixels)
+
+function startSizing(what) {
+  if (!viewer || !app.frame || app.stroke || sizing) return;
+  const r = canvas.getBoundingClientRect();
+  const at = lastPointer ?? [r.left + r.width / 2, r.top + r.height / 2];
+  const under = viewer.pick(at[0], at[1]);
+  const through = under?.point ?? viewer.bbox.center;
+  const ppu = viewer.pixelsPerUnit(through);
+  const now = what === 'radius' ? brushRadius() * ppu : num('strength') * STRENGTH_PX;
+  const anchor = [at[0] - now, at[1]];
+  // The ring sits on the surface under the anchor (or in the view plane).
+  const hit = viewer.pick(anchor[0], anchor[1]);
+  const centre = hit?.point ?? viewer.planePoint(anchor[0], anchor[1], through) ?? through;
+  const normal = hit?.normal ?? viewer.towardsCamera();
+  sizing = { what, anchor, centre, normal, ppu, before: $(what).value };
+  hook.sizing = what;
+  updateSizing(at[0], at[1]);
+}
+
+function updateSizing(x, y) {
+  const s = sizing;
+  const d = Math.hypot(x - s.anchor[0], y - s.anchor[1]);
+  if (s.what === 'radius') setSlider('radius', (d / s.ppu / viewer.bbox.diag) * 100);
+  else setSlider('strength', d / STRENGTH_PX);
+  const shown = s.what === 'radius' ? brushRadius() : (num('strength') * STRENGTH_PX) / s.ppu;
+  viewer.showBrush(s.centre, s.normal, shown);
+}
+
+function finishSizing(cancel) {
+  if (cancel) $(sizing.what).value = sizing.before;
+  sizing = null;
+  hook.sizing = null;
+  showSliderValues();
+  viewer?.hideBrush();
+}
+
+/** `[` and `]` (with Shift: strength), as in Blender and SculptGL. */
+function stepBrush(up, strength) {
+  if (strength) {
+    setSlider('strength', Math.round((num('strength') + (up ? 0.05 : -0.05)) * 100) / 100);
+  } else {
+    const v = num('radius');
+    setSlider('radius', up ? Math.max(v * 1.15, v + 0.5) : Math.min(v / 1.15, v - 0.5));
+  }
+}
+
 // ---- pointer input on the canvas ----------------------------------------------
 // Registered before OrbitControls so a stroke can switch them off before
 // they start orbiting on the same pointerdown.
@@ -842,16 +1147,35 @@ let hoverQueued = null;
 
 canvas.addEventListener('pointerdown', (e) => {
   down = { x: e.clientX, y: e.clientY, t: e.timeStamp, button: e.button };
+  if (sizing) {
+    // The click ends the sizing; it starts neither a stroke nor an orbit.
+    e.stopImmediatePropagation();
+    finishSizing(e.button !== 0);
+    down = null;
+    return;
+  }
   if (!viewer || !app.frame || app.stroke) return;
-  if (app.state?.workspace !== 'sculpt' || e.button !== 0 || e.shiftKey) return;
+  if (app.state?.workspace !== 'sculpt' || e.button !== 0) return;
   const hit = viewer.pick(e.clientX, e.clientY);
-  if (!hit) return; // empty space: orbit
+  if (!hit) return; // empty space: orbit (with Shift or Ctrl: pan)
   viewer.controls.enabled = false;
-  canvas.setPointerCapture(e.pointerId);
-  beginStroke(hit, e);
+  try {
+    canvas.setPointerCapture(e.pointerId);
+  } catch {
+    // A pointer the browser does not track (a synthetic one) is not captured.
+  }
+  // Shift-drag smooths whatever brush is chosen.
+  if (e.shiftKey) beginStroke(hit, e, 'smooth');
+  else if (app.tool === 'mask') beginMaskStroke(hit, e);
+  else beginStroke(hit, e);
 });
 
 canvas.addEventListener('pointermove', (e) => {
+  lastPointer = [e.clientX, e.clientY];
+  if (sizing) {
+    updateSizing(e.clientX, e.clientY);
+    return;
+  }
   if (app.stroke && e.pointerId === app.stroke.pointerId && !app.stroke.ending) {
     strokeMove(e);
     return;
@@ -864,7 +1188,7 @@ canvas.addEventListener('pointermove', (e) => {
     requestAnimationFrame(() => {
       const q = hoverQueued;
       hoverQueued = null;
-      if (app.stroke || app.state?.workspace !== 'sculpt') return;
+      if (app.stroke || sizing || app.state?.workspace !== 'sculpt') return;
       const hit = viewer.pick(q.x, q.y);
       if (hit) viewer.showBrush(hit.point, hit.normal, brushRadius());
       else viewer.hideBrush();
@@ -886,7 +1210,7 @@ canvas.addEventListener('pointerup', pointerEnd);
 canvas.addEventListener('pointercancel', pointerEnd);
 canvas.addEventListener('lostpointercapture', pointerEnd);
 canvas.addEventListener('pointerleave', () => {
-  if (!app.stroke) viewer?.hideBrush();
+  if (!app.stroke && !sizing) viewer?.hideBrush();
 });
 canvas.addEventListener('contextmenu', (e) => e.preventDefault());
 viewer?.attachControls();

@@ -69,20 +69,23 @@ export class Viewer {
     this.renderer.setClearColor(0x1d2230);
 
     this.scene = new THREE.Scene();
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    this.perspCamera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    // The orthographic camera's frustum is a half height (orthoHalf) times
+    // the aspect; OrbitControls zoom it through `zoom`.
+    this.orthoCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0.01, 1000);
+    this.orthoHalf = 1;
+    this.camera = this.perspCamera;
     this.camera.position.set(0, 0, 5);
-    this.scene.add(this.camera);
+    this.scene.add(this.perspCamera, this.orthoCamera);
     // Light rides with the camera: whatever side the artist orbits to is lit.
     const key = new THREE.DirectionalLight(0xffffff, 2.2);
     key.position.set(0.4, 0.8, 1);
+    this.key = key;
     this.camera.add(key);
     this.scene.add(new THREE.HemisphereLight(0xdde6ff, 0x303040, 1.1));
 
-    this.material = new THREE.MeshPhongMaterial({
-      color: BASE_COLOR, specular: 0x222222, shininess: 30, side: THREE.DoubleSide,
-      // Push the surface back so wireframe and overlays draw on top of it.
-      polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
-    });
+    this.materialName = 'studio';
+    this.material = makeMaterial('studio', false);
     this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x1a1f2b, transparent: true, opacity: 0.55 });
     this.selMaterial = new THREE.MeshBasicMaterial({
       color: 0xff9a2e, transparent: true, opacity: 0.6, side: THREE.DoubleSide, depthWrite: false,
@@ -91,10 +94,17 @@ export class Viewer {
       color: 0xff2a2a, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthTest: false, depthWrite: false,
     });
 
+    // The sculpt mask: masked vertices (brushes never move them) darkened.
+    this.maskedMaterial = new THREE.MeshBasicMaterial({
+      color: 0x000000, transparent: true, opacity: 0.55, side: THREE.DoubleSide, depthWrite: false,
+    });
+
     this.mesh = null; // THREE.Mesh of the current frame
     this.wire = null;
     this.selMesh = null;
     this.maskMesh = null;
+    this.maskedMesh = null; // the sculpt mask's overlay
+    this.sculptMask = null; // Uint8Array per vertex (1 = masked), or null
     this.frame = null;
     this.flat = false;
     this.showWire = true;
@@ -175,9 +185,10 @@ export class Viewer {
     const c = new OrbitControls(this.camera, this.canvas);
     c.enableDamping = false; // damping would need a render loop running all the time
     c.zoomToCursor = true;
-    // Every button orbits (shift/ctrl + drag pans, wheel zooms): an artist's
-    // right or middle drag never starts an edit by accident.
-    c.mouseButtons = { LEFT: THREE.MOUSE.ROTATE, MIDDLE: THREE.MOUSE.ROTATE, RIGHT: THREE.MOUSE.ROTATE };
+    // Left and right buttons orbit, the middle one pans (so does Shift or
+    // Ctrl + drag on empty space), the wheel zooms: a right or middle drag
+    // never starts an edit, and Shift-drag on the mesh is free to smooth.
+    c.mouseButtons = { LEFT: THREE.MOUSE.ROTATE, MIDDLE: THREE.MOUSE.PAN, RIGHT: THREE.MOUSE.ROTATE };
     // Motion starts with the drag (or wheel); the full picture returns once
     // the camera has been still for SETTLE_MS (a wheel tick is start, change
     // and end at once, so 'end' alone cannot say the zooming is over).
@@ -204,8 +215,8 @@ export class Viewer {
     const el = this.canvas.parentElement;
     const w = Math.max(1, el.clientWidth), h = Math.max(1, el.clientHeight);
     this.renderer.setSize(w, h, false);
-    this.camera.aspect = w / h;
-    this.camera.updateProjectionMatrix();
+    this.aspect = w / h;
+    this.updateProjection();
     this.renderNow();
   }
 
@@ -600,9 +611,18 @@ export class Viewer {
     this.maskMesh.visible = false;
     this.maskMesh.renderOrder = 3;
 
-    this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh);
+    const kgeo = new THREE.BufferGeometry();
+    kgeo.setAttribute('position', pos);
+    kgeo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * f.nt)), 1));
+    this.maskedMesh = new THREE.Mesh(kgeo, this.maskedMaterial);
+    this.maskedMesh.frustumCulled = false;
+    this.maskedMesh.visible = false;
+    this.maskedMesh.renderOrder = 1;
+
+    this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh, this.maskedMesh);
     this.computeBounds();
     this.updateMask();
+    this.setSculptMask(f.sculptMask);
     if (this.motion.size) this.applyMotion();
     this.scheduleProxy();
     return true;
@@ -648,12 +668,12 @@ export class Viewer {
 
   disposeMesh() {
     this.disposePartMesh();
-    for (const m of [this.mesh, this.wire, this.selMesh, this.maskMesh]) {
+    for (const m of [this.mesh, this.wire, this.selMesh, this.maskMesh, this.maskedMesh]) {
       if (!m) continue;
       this.scene.remove(m);
       m.geometry.dispose();
     }
-    this.mesh = this.wire = this.selMesh = this.maskMesh = null;
+    this.mesh = this.wire = this.selMesh = this.maskMesh = this.maskedMesh = null;
   }
 
   computeBounds() {
@@ -781,6 +801,91 @@ export class Viewer {
     m.visible = k > 0;
   }
 
+  // ---- the sculpt mask ------------------------------------------------------
+
+  /** Show the sculpt mask of a whole frame (null: nothing masked). The
+   * frame's array is not ours to keep: it is copied. */
+  setSculptMask(mask) {
+    const nv = this.frame?.nv ?? 0;
+    this.sculptMask = mask && mask.length === nv ? Uint8Array.from(mask) : null;
+    this.updateSculptMask();
+  }
+
+  /** Mask (or with `erase` unmask) the vertices within `radius` of
+   * `point`, here only: the mask brush's preview until the server's frame
+   * comes. Returns how many vertices changed. */
+  paintMask(point, radius, erase) {
+    const f = this.frame;
+    if (!f) return 0;
+    if (!this.sculptMask) this.sculptMask = new Uint8Array(f.nv);
+    const p = f.positions, m = this.sculptMask, r2 = radius * radius, want = erase ? 0 : 1;
+    let changed = 0;
+    for (let v = 0; v < f.nv; v++) {
+      const dx = p[3 * v] - point[0], dy = p[3 * v + 1] - point[1], dz = p[3 * v + 2] - point[2];
+      if (dx * dx + dy * dy + dz * dz <= r2 && m[v] !== want) {
+        m[v] = want;
+        changed++;
+      }
+    }
+    if (changed) this.updateSculptMask();
+    return changed;
+  }
+
+  get maskedCount() {
+    const m = this.sculptMask;
+    let n = 0;
+    if (m) for (let i = 0; i < m.length; i++) n += m[i];
+    return n;
+  }
+
+  /** Triangles touching a masked vertex are drawn darker. */
+  updateSculptMask() {
+    const f = this.frame, k = this.maskedMesh;
+    if (!k || !f) return;
+    const m = this.sculptMask;
+    let n = 0;
+    if (m) {
+      const out = k.geometry.index.array, t = f.tris;
+      for (let i = 0; i < t.length; i += 3) {
+        const a = t[i], b = t[i + 1], c = t[i + 2];
+        if (m[a] | m[b] | m[c]) {
+          out[n++] = a; out[n++] = b; out[n++] = c;
+        }
+      }
+      k.geometry.index.needsUpdate = true;
+    }
+    k.geometry.setDrawRange(0, n);
+    k.visible = n > 0;
+    this.requestRender();
+  }
+
+  // ---- materials ------------------------------------------------------------
+
+  /** 'studio' (lit) or a matcap's name (MATCAPS). */
+  setMaterial(name) {
+    if (name === this.materialName) return;
+    const old = this.material;
+    this.material = makeMaterial(name, this.flat);
+    this.materialName = name;
+    for (const m of [this.mesh, this.proxy, this.partMesh]) if (m) m.material = this.material;
+    old.dispose();
+    this.damage = 'full';
+    this.requestRender();
+  }
+
+  /** The picture as a PNG data URL, drawn whole at rest resolution without
+   * the brush ring. */
+  screenshot() {
+    const ring = this.brush.visible;
+    this.brush.visible = false;
+    this.damage = 'full';
+    this.renderNow();
+    const url = this.canvas.toDataURL('image/png');
+    this.brush.visible = ring;
+    this.requestRender();
+    return url;
+  }
+
   // ---- selection overlays -----------------------------------------------
 
   setSelection({ faces = [], corners = [], edges = [], edge = null } = {}) {
@@ -840,18 +945,71 @@ export class Viewer {
 
   // ---- camera ---------------------------------------------------------------
 
+  get ortho() {
+    return this.camera === this.orthoCamera;
+  }
+
+  /** The projection of the current camera for the canvas's aspect. */
+  updateProjection() {
+    const a = this.aspect || 1;
+    this.perspCamera.aspect = a;
+    this.perspCamera.updateProjectionMatrix();
+    const o = this.orthoCamera, h = this.orthoHalf;
+    o.left = -h * a; o.right = h * a; o.top = h; o.bottom = -h;
+    o.updateProjectionMatrix();
+  }
+
+  /** Orthographic (true) or perspective projection, keeping what is seen:
+   * the same view direction and, at the orbit target, the same size. */
+  setOrtho(on) {
+    if (on === this.ortho) return;
+    const from = this.camera, to = on ? this.orthoCamera : this.perspCamera;
+    const target = this.controls ? this.controls.target.clone() : new THREE.Vector3(...this.bbox.center);
+    const offset = from.position.clone().sub(target);
+    const dist = offset.length() || 1;
+    const tan = Math.tan(THREE.MathUtils.degToRad(this.perspCamera.fov / 2));
+    if (on) {
+      this.orthoHalf = dist * tan;
+      to.zoom = 1;
+      to.position.copy(from.position);
+    } else {
+      const half = this.orthoHalf / (from.zoom || 1);
+      to.position.copy(target).addScaledVector(offset.normalize(), half / tan);
+    }
+    to.quaternion.copy(from.quaternion);
+    to.up.copy(from.up);
+    to.near = from.near;
+    to.far = from.far;
+    to.add(this.key);
+    this.camera = to;
+    this.updateProjection();
+    if (this.controls) {
+      this.controls.object = to;
+      this.quietChange = true;
+      this.controls.update();
+      this.quietChange = false;
+    }
+    this.damage = 'full';
+    this.requestRender();
+  }
+
   /** Frame the mesh. `dir` is the direction from the target to the camera. */
   setView(dir = [0.35, 0.35, 1]) {
     const { center, diag } = this.bbox;
     const cam = this.camera;
     const r = diag / 2;
-    const dist = r / Math.sin(THREE.MathUtils.degToRad(cam.fov / 2)) * 1.05;
+    const fov = this.perspCamera.fov;
+    const dist = r / Math.sin(THREE.MathUtils.degToRad(fov / 2)) * 1.05;
     const d = new THREE.Vector3(...dir).normalize();
     cam.position.set(center[0] + d.x * dist, center[1] + d.y * dist, center[2] + d.z * dist);
     cam.up.set(0, 1, 0);
     cam.near = diag / 500;
     cam.far = diag * 100;
-    cam.updateProjectionMatrix();
+    if (this.ortho) {
+      this.orthoHalf = r * 1.05;
+      cam.zoom = 1;
+    }
+    this.updateProjection();
     if (this.controls) {
       this.controls.target.set(...center);
       this.quietChange = true; // a jump, not a motion
@@ -869,6 +1027,7 @@ export class Viewer {
   rayAt(clientX, clientY) {
     const r = this.canvas.getBoundingClientRect();
     this._v2.set(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
+    this.camera.updateMatrixWorld();
     this._ray.setFromCamera(this._v2, this.camera);
     const { origin, direction } = this._ray.ray;
     return { o: [origin.x, origin.y, origin.z], d: [direction.x, direction.y, direction.z] };
@@ -956,8 +1115,26 @@ export class Viewer {
   /** Client (CSS pixel) position of a world point. */
   project(point) {
     const r = this.canvas.getBoundingClientRect();
+    // The camera may have moved since the last picture (a view key).
+    this.camera.updateMatrixWorld();
     this._v.set(point[0], point[1], point[2]).project(this.camera);
     return [r.left + ((this._v.x + 1) / 2) * r.width, r.top + ((1 - this._v.y) / 2) * r.height];
+  }
+
+  /** Client pixels per model unit across the screen at a world point. */
+  pixelsPerUnit(point) {
+    this.camera.updateMatrixWorld();
+    const right = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 0).normalize();
+    const e = this.bbox.diag * 1e-3 || 1e-3;
+    const a = this.project(point);
+    const b = this.project([point[0] + right.x * e, point[1] + right.y * e, point[2] + right.z * e]);
+    return Math.hypot(b[0] - a[0], b[1] - a[1]) / e || 1;
+  }
+
+  /** The unit vector from the view towards the camera (a ring facing the viewer). */
+  towardsCamera() {
+    const d = this.camera.getWorldDirection(new THREE.Vector3());
+    return [-d.x, -d.y, -d.z];
   }
 
   /** Point where the ray through a client position meets the plane through
@@ -1010,3 +1187,80 @@ function liveAttribute(array, itemSize) {
 const onIdle = (fn) => (window.requestIdleCallback ? requestIdleCallback(fn, { timeout: 1500 }) : setTimeout(fn, 300));
 const cancelIdle = (id) => (window.cancelIdleCallback ? cancelIdleCallback(id) : clearTimeout(id));
 
+
+// ---- materials ----------------------------------------------------------------
+
+/** The matcaps offered, each drawn here into a canvas: a sphere's picture
+ * under a fixed light, looked up by each fragment's view-space normal. */
+export const MATCAPS = {
+  clay: { base: [0.78, 0.55, 0.42], ambient: 0.28, light: [-0.45, 0.6, 0.66], spec: 0.12, shine: 12, rim: 0.15 },
+  pearl: { base: [0.9, 0.9, 0.93], ambient: 0.35, light: [-0.3, 0.5, 0.81], spec: 0.55, shine: 40, rim: 0.35, rimColor: [0.75, 0.8, 1] },
+  jade: { base: [0.3, 0.62, 0.45], ambient: 0.3, light: [0.4, 0.6, 0.69], spec: 0.4, shine: 60, rim: 0.45, rimColor: [0.65, 1, 0.8] },
+  'red-wax': { base: [0.72, 0.12, 0.1], ambient: 0.25, light: [-0.5, 0.55, 0.67], spec: 0.5, shine: 25, rim: 0.2, rimColor: [1, 0.5, 0.4] },
+  chrome: { env: true },
+};
+
+const matcapTextures = new Map();
+
+/** A matcap texture, made once: for every pixel inside the disc, the
+ * normal n = (x, y, √(1 − x² − y²)) shaded by an ambient term, Lambert,
+ * Blinn–Phong and a rim; chrome reflects a sky-over-ground horizon. */
+function matcapTexture(name) {
+  if (matcapTextures.has(name)) return matcapTextures.get(name);
+  const m = MATCAPS[name];
+  const size = 256;
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = size;
+  const ctx = canvas.getContext('2d');
+  const img = ctx.createImageData(size, size);
+  const L = m.light ? normalize3(m.light) : null;
+  const H = L ? normalize3([L[0], L[1], L[2] + 1]) : null;
+  for (let j = 0; j < size; j++) {
+    for (let i = 0; i < size; i++) {
+      const x = ((i + 0.5) / size) * 2 - 1, y = 1 - ((j + 0.5) / size) * 2;
+      const rr = Math.min(1, x * x + y * y), z = Math.sqrt(1 - rr);
+      let c;
+      if (m.env) {
+        // Reflect the view ray (0, 0, −1) about n; sky above, ground below.
+        const ry = 2 * z * y, rz = 2 * z * z - 1;
+        const t = ry;
+        const sky = [0.55 + 0.4 * t, 0.62 + 0.35 * t, 0.75 + 0.25 * t];
+        const ground = [0.22 - 0.1 * t, 0.18 - 0.08 * t, 0.15 - 0.05 * t];
+        c = t > 0 ? sky : ground;
+        const glint = Math.pow(Math.max(0, 1 - Math.abs(t - 0.02) * 12), 2) * 0.6;
+        const back = Math.max(0, -rz) * 0.15;
+        c = c.map((v) => v + glint + back);
+      } else {
+        const diff = Math.max(0, x * L[0] + y * L[1] + z * L[2]);
+        const spec = m.spec * Math.pow(Math.max(0, x * H[0] + y * H[1] + z * H[2]), m.shine);
+        const rim = m.rim * Math.pow(1 - z, 3);
+        const rc = m.rimColor || [1, 1, 1];
+        c = m.base.map((b, k) => b * (m.ambient + (1 - m.ambient) * diff) + spec + rim * rc[k]);
+      }
+      const o = 4 * (j * size + i);
+      for (let k = 0; k < 3; k++) img.data[o + k] = Math.round(255 * Math.min(1, Math.max(0, c[k])));
+      img.data[o + 3] = 255;
+    }
+  }
+  ctx.putImageData(img, 0, 0);
+  const tex = new THREE.CanvasTexture(canvas);
+  tex.colorSpace = THREE.SRGBColorSpace;
+  matcapTextures.set(name, tex);
+  return tex;
+}
+
+function normalize3(v) {
+  const l = Math.hypot(v[0], v[1], v[2]) || 1;
+  return [v[0] / l, v[1] / l, v[2] / l];
+}
+
+/** The surface material: the lit studio (Phong) or a matcap. Both push
+ * the surface back so the wireframe and overlays draw on top of it. */
+function makeMaterial(name, flat) {
+  const common = {
+    side: THREE.DoubleSide, flatShading: flat,
+    polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+  };
+  if (name in MATCAPS) return new THREE.MeshMatcapMaterial({ matcap: matcapTexture(name), ...common });
+  return new THREE.MeshPhongMaterial({ color: BASE_COLOR, specular: 0x222222, shininess: 30, ...common });
+}

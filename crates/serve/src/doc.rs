@@ -3,6 +3,8 @@
 //! dragged). Every change goes through [`Document::commit`], which bumps
 //! the version, so requests made against an older picture are refused.
 
+use std::collections::HashSet;
+
 use glam::DVec3;
 use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_dlfl::dlfl_info;
@@ -192,6 +194,11 @@ pub struct Document {
     pub busy: Option<(ConnId, String)>,
     /// Dynamic remeshing detail in [0, 1]; 0 is off.
     pub remesh_detail: f64,
+    /// The sculpt mask: the exact positions (`holey_geom::position_key`)
+    /// of the vertices no brush moves. Kept by position, not by index, so
+    /// that it survives a stroke's topology change and remeshing (a masked
+    /// vertex never moves, so its key stays); not an undo step.
+    pub mask: HashSet<[u64; 3]>,
     display: Display,
     index: ModelIndex,
     stats: Value,
@@ -208,6 +215,7 @@ impl Document {
             stroke: None,
             busy: None,
             remesh_detail: DEFAULT_REMESH_DETAIL,
+            mask: HashSet::new(),
             display: Display::default(),
             index: ModelIndex::default(),
             stats: Value::Null,
@@ -357,6 +365,15 @@ impl Document {
             .ok_or_else(|| ServeError::Refused(format!("vertex {vertex} is not on face {face}")))
     }
 
+    /// The sculpt mask as one flag per displayed vertex, or `None` when no
+    /// displayed vertex is masked (or the model workspace is shown).
+    pub fn mask_flags(&self) -> Option<Vec<bool>> {
+        if self.rind.is_some() || !matches!(self.content, Content::Sculpt(_)) {
+            return None;
+        }
+        mask_flags(&self.mask, &self.display.positions)
+    }
+
     /// The sculpt mesh, or an error saying the request needs it.
     pub fn sculpt_mesh(&self, what: &str) -> Result<&TriMesh, ServeError> {
         match &self.content {
@@ -366,6 +383,19 @@ impl Document {
             ))),
         }
     }
+}
+
+/// One flag per position, set where the position is in `mask`; `None`
+/// when none is.
+pub fn mask_flags(mask: &HashSet<[u64; 3]>, positions: &[DVec3]) -> Option<Vec<bool>> {
+    if mask.is_empty() {
+        return None;
+    }
+    let flags: Vec<bool> = positions
+        .iter()
+        .map(|&p| mask.contains(&holey_geom::position_key(p)))
+        .collect();
+    flags.contains(&true).then_some(flags)
 }
 
 fn stats_json(info: &MeshInfo, triangles: usize) -> Value {

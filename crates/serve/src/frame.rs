@@ -18,6 +18,9 @@ pub const FLAG_POSITIONS_ONLY: u32 = 4;
 /// Frame flag (with [`FLAG_POSITIONS_ONLY`]): only the vertices that moved
 /// since the previous frame, as a count, their indices and positions.
 pub const FLAG_SPARSE: u32 = 8;
+/// Frame flag (full frames only): the sculpt mask follows the vanish mask,
+/// one byte per vertex, 1 where no brush moves the vertex.
+pub const FLAG_SCULPT_MASK: u32 = 16;
 
 const MAGIC: &[u8; 4] = b"HMSH";
 const FORMAT_VERSION: u32 = 1;
@@ -168,7 +171,25 @@ fn vanish_mask(out: &mut Vec<u8>, vanish: Option<&[bool]>, nv: usize) {
 
 /// A whole frame.
 pub fn encode(display: &Display, flags: u32, version: u64, vanish: Option<&[bool]>) -> Vec<u8> {
+    encode_masked(display, flags, version, vanish, None)
+}
+
+/// A whole frame with the sculpt mask (`masked`, one flag per vertex; none
+/// when no vertex is masked).
+pub fn encode_masked(
+    display: &Display,
+    flags: u32,
+    version: u64,
+    vanish: Option<&[bool]>,
+    masked: Option<&[bool]>,
+) -> Vec<u8> {
     let nv = display.positions.len();
+    let flags = flags
+        | if masked.is_some() {
+            FLAG_SCULPT_MASK
+        } else {
+            0
+        };
     let nt = display.triangles.len();
     let ne = display.edges.len();
     let mut out = Vec::with_capacity(32 + 12 * nv + 16 * nt + 8 * ne + nv + 4);
@@ -193,6 +214,8 @@ pub fn encode(display: &Display, flags: u32, version: u64, vanish: Option<&[bool
         put(&mut out, e[1]);
     }
     vanish_mask(&mut out, vanish, nv);
+    // The same layout as the vanish mask: a byte per vertex, padded.
+    vanish_mask(&mut out, masked, nv);
     out
 }
 
@@ -321,6 +344,26 @@ mod tests {
         // Everything moved: the dense frame is smaller.
         let all: Vec<DVec3> = m.positions.iter().map(|p| *p * 2.0).collect();
         assert!(encode_sparse(&d, &m.positions, &all, 0, 3, None).is_none());
+    }
+
+    #[test]
+    fn sculpt_mask_follows_the_vanish_mask() {
+        let m = TriMesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE, DVec3::Z],
+            triangles: vec![[0, 1, 2], [2, 1, 3], [0, 2, 4]],
+        };
+        let d = display_triangles(&m);
+        let vanish = [false, true, false, false, false];
+        let masked = [true, false, false, true, true];
+        let b = encode_masked(&d, 0, 2, Some(&vanish), Some(&masked));
+        assert_eq!(word(&b, 2), FLAG_VANISH | FLAG_SCULPT_MASK);
+        let arrays = 32 + 12 * 5 + 12 * 3 + 4 * 3 + 8 * d.edges.len();
+        // Each mask takes 5 bytes padded to 8.
+        assert_eq!(b.len(), arrays + 8 + 8);
+        assert_eq!(&b[arrays..arrays + 5], &[0, 1, 0, 0, 0]);
+        assert_eq!(&b[arrays + 8..arrays + 13], &[1, 0, 0, 1, 1]);
+        // Without a mask the frame is the plain one.
+        assert_eq!(encode_masked(&d, 0, 2, None, None), encode(&d, 0, 2, None));
     }
 
     #[test]

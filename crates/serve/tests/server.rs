@@ -1231,3 +1231,409 @@ fn a_long_remesh_reports_progress_and_cancels() {
     let r = a.ok(json!({"op": "remesh", "scheme": "loop", "levels": 2}));
     assert!(r["message"].as_str().unwrap_or("").contains("faces"), "{r}");
 }
+
+// ---- the sculpt workspace of issue 19: masks and the new stroke fields ----
+
+/// What a whole frame carries that these tests read: its flags, the
+/// positions (f32) and the sculpt mask (flag bit 4), if any.
+struct Decoded {
+    flags: u32,
+    positions: Vec<[f32; 3]>,
+    mask: Option<Vec<u8>>,
+}
+
+fn decode(b: &[u8]) -> Decoded {
+    let word = |i: usize| u32::from_le_bytes(b[4 * i..4 * i + 4].try_into().expect("word"));
+    assert_eq!(&b[..4], b"HMSH");
+    let flags = word(2);
+    assert_eq!(flags & 4, 0, "a whole frame, not positions only");
+    let [nv, nt, ne] = [word(4), word(5), word(6)].map(|n| n as usize);
+    let positions = (0..nv)
+        .map(|v| {
+            std::array::from_fn(|c| {
+                let at = 32 + 12 * v + 4 * c;
+                f32::from_le_bytes(b[at..at + 4].try_into().expect("f32"))
+            })
+        })
+        .collect();
+    let pad = |n: usize| n.div_ceil(4) * 4;
+    let mut at = 32 + 12 * nv + 12 * nt + 4 * nt + 8 * ne;
+    if flags & 2 != 0 {
+        at += pad(nv);
+    }
+    let mask = (flags & 16 != 0).then(|| b[at..at + nv].to_vec());
+    assert_eq!(b.len(), at + if flags & 16 != 0 { pad(nv) } else { 0 });
+    Decoded {
+        flags,
+        positions,
+        mask,
+    }
+}
+
+/// The last whole (not positions-only) frame a tab received.
+fn last_whole(tab: &Tab) -> Decoded {
+    let b = tab
+        .frames
+        .iter()
+        .rev()
+        .find(|f| u32::from_le_bytes(f[8..12].try_into().expect("flags")) & 4 == 0)
+        .expect("a whole frame");
+    decode(b)
+}
+
+fn dist(a: [f32; 3], b: [f64; 3]) -> f64 {
+    (0..3)
+        .map(|i| (f64::from(a[i]) - b[i]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// A fresh sculpt session on `@sphere:3` (642 vertices on the unit
+/// sphere) with dynamic remeshing off, so vertex numbers stay.
+fn sculpt_sphere(addr: SocketAddr) -> Tab {
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    a.ok(json!({"op": "set_remesh", "detail": 0}));
+    assert_eq!(a.state["stats"]["vertices"], 642);
+    a
+}
+
+#[test]
+fn mask_paint_invert_clear_and_masked_vertices_never_move() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = sculpt_sphere(addr);
+    let start = last_whole(&a);
+    assert!(start.mask.is_none(), "nothing masked at first");
+    let nv = start.positions.len();
+
+    // Paint two dabs: the vertices within 0.5 of either centre are masked.
+    let centres = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0]];
+    let want: Vec<bool> = start
+        .positions
+        .iter()
+        .map(|&p| centres.iter().any(|&c| dist(p, c) <= 0.5 - 1e-6))
+        .collect();
+    let unsure = start
+        .positions
+        .iter()
+        .filter(|&&p| centres.iter().any(|&c| (dist(p, c) - 0.5).abs() < 1e-6))
+        .count();
+    assert_eq!(unsure, 0, "no vertex on the brush's rim");
+    let n = want.iter().filter(|&&m| m).count();
+    assert!(n > 20 && n < nv / 2, "{n}");
+    let r = a.ok(json!({"op": "mask_paint", "points": centres, "radius": 0.5}));
+    assert_eq!(r["masked"], n);
+    let painted = last_whole(&a);
+    assert_eq!(painted.flags & 16, 16);
+    let flags: Vec<bool> = painted
+        .mask
+        .clone()
+        .expect("mask")
+        .iter()
+        .map(|&b| b == 1)
+        .collect();
+    assert_eq!(flags, want, "the frame marks exactly the painted vertices");
+
+    // Erasing with one dab leaves the other; painting again restores it.
+    let r = a.ok(json!({"op": "mask_paint", "point": [0, 1, 0], "radius": 0.5, "erase": true}));
+    let top = start
+        .positions
+        .iter()
+        .filter(|&&p| dist(p, [0.0, 0.0, 1.0]) <= 0.5)
+        .count();
+    assert_eq!(r["masked"], top);
+    let r = a.ok(json!({"op": "mask_paint", "point": [0, 1, 0], "radius": 0.5}));
+    assert_eq!(r["masked"], n);
+
+    // Invert twice is the identity.
+    let r = a.ok(json!({"op": "mask_invert"}));
+    assert_eq!(r["masked"], nv - n);
+    let r = a.ok(json!({"op": "mask_invert"}));
+    assert_eq!(r["masked"], n);
+
+    // A stroke over the masked cap and beyond it: masked vertices keep
+    // their positions bit for bit, the others under the brush move.
+    let v = a.state["version"].as_u64().expect("version");
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.9,
+                "strength": 0.04, "point": [0, 0, 1]}),
+    );
+    for x in [0.2f64, 0.4, 0.5] {
+        let z = (1.0f64 - x * x).sqrt();
+        a.ok(json!({"op": "stroke_frame", "point": [x, 0, z]}));
+    }
+    a.ok(json!({"op": "stroke_end"}));
+    assert!(
+        a.state["version"].as_u64().expect("version") > v,
+        "committed"
+    );
+    let after = last_whole(&a);
+    assert_eq!(after.positions.len(), nv, "no topology change here");
+    let mut moved = 0;
+    for (i, (&p, &q)) in start.positions.iter().zip(&after.positions).enumerate() {
+        if want[i] {
+            assert_eq!(
+                p.map(f32::to_bits),
+                q.map(f32::to_bits),
+                "masked vertex {i} moved"
+            );
+        } else if p != q {
+            moved += 1;
+        }
+    }
+    assert!(
+        moved > 10,
+        "the unmasked vertices under the brush moved: {moved}"
+    );
+    // The committed frame still carries the mask.
+    let flags: Vec<bool> = after.mask.expect("mask").iter().map(|&b| b == 1).collect();
+    assert_eq!(flags, want);
+
+    // Undo does not touch the mask (not an undo step); clear does.
+    a.ok(json!({"op": "undo"}));
+    assert!(last_whole(&a).mask.is_some());
+    let r = a.ok(json!({"op": "mask_clear"}));
+    assert_eq!(r["masked"], 0);
+    let cleared = last_whole(&a);
+    assert_eq!(cleared.flags & 16, 0);
+    assert!(cleared.mask.is_none());
+
+    // A new primitive starts unmasked.
+    a.ok(json!({"op": "mask_paint", "point": [0, 0, 1], "radius": 0.5}));
+    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    assert!(last_whole(&a).mask.is_none());
+
+    // Refusals say why and change nothing.
+    for (req, why) in [
+        (
+            json!({"op": "mask_paint", "point": [0, 0, 1], "radius": -1}),
+            "radius",
+        ),
+        (
+            json!({"op": "mask_paint", "point": [0, 0], "radius": 0.5}),
+            "point",
+        ),
+        (
+            json!({"op": "mask_paint", "points": [], "radius": 0.5}),
+            "points",
+        ),
+        (
+            json!({"op": "mask_paint", "points": [[0, 0, "x"]], "radius": 0.5}),
+            "points",
+        ),
+    ] {
+        let r = a.call(req.clone());
+        assert_eq!(r["type"], "error", "{req}");
+        assert!(
+            r["message"].as_str().unwrap_or("").contains(why),
+            "{req} -> {r}"
+        );
+    }
+    a.ok(json!({"op": "workspace", "workspace": "model"}));
+    let r = a.call(json!({"op": "mask_invert"}));
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("sculpt workspace"),
+        "{r}"
+    );
+}
+
+/// The displacement of every vertex between two whole frames over the
+/// same vertices.
+fn displacements(a: &Decoded, b: &Decoded) -> Vec<f64> {
+    assert_eq!(a.positions.len(), b.positions.len());
+    a.positions
+        .iter()
+        .zip(&b.positions)
+        .map(|(p, q)| {
+            (0..3)
+                .map(|i| f64::from(q[i] - p[i]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect()
+}
+
+#[test]
+fn strokes_read_falloff_symmetry_and_pressure() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = sculpt_sphere(addr);
+    let start = last_whole(&a);
+    let (r, s) = (0.6, 0.03);
+    let centre = [0.6, 0.0, 0.8];
+
+    // Constant falloff: one inflate frame moves every vertex well inside
+    // the brush by the full strength, and none well outside.
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": r, "strength": s,
+                "point": centre, "falloff": "constant"}),
+    );
+    a.ok(json!({"op": "stroke_end"}));
+    let one = last_whole(&a);
+    let d = displacements(&start, &one);
+    let mut inside = 0;
+    for (i, &p) in start.positions.iter().enumerate() {
+        let from = dist(p, centre);
+        if from < 0.95 * r {
+            inside += 1;
+            assert!(
+                (d[i] - s).abs() < 1e-5,
+                "vertex {i} at {from} moved {}",
+                d[i]
+            );
+        } else if from > 1.05 * r {
+            assert_eq!(d[i], 0.0, "vertex {i} at {from} outside the brush moved");
+        }
+    }
+    assert!(inside > 10);
+    a.ok(json!({"op": "undo"}));
+
+    // The default (smooth) falloff tapers: moves differ inside the brush.
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": r, "strength": s,
+                "point": centre}),
+    );
+    a.ok(json!({"op": "stroke_end"}));
+    let d = displacements(&start, &last_whole(&a));
+    let inner: Vec<f64> = (0..d.len())
+        .filter(|&i| dist(start.positions[i], centre) < 0.95 * r)
+        .map(|i| d[i])
+        .collect();
+    let (lo, hi) = inner
+        .iter()
+        .fold((f64::INFINITY, 0f64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+    assert!(
+        hi <= s + 1e-6 && lo < 0.5 * hi,
+        "smooth falloff: {lo}..{hi}"
+    );
+    a.ok(json!({"op": "undo"}));
+
+    // Pressure 0 on strength moves nothing: no undo step.
+    let v = a.state["version"].clone();
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": r, "strength": s,
+                "point": centre, "pressure": 0.0}),
+    );
+    a.ok(json!({"op": "stroke_frame", "point": centre, "pressure": 0.0}));
+    a.ok(json!({"op": "stroke_end"}));
+    assert_eq!(a.state["version"], v, "nothing moved, nothing committed");
+
+    // Pressure ½ on the radius: with a constant falloff only the vertices
+    // within half the radius move.
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": r, "strength": s,
+                "point": centre, "falloff": "constant", "pressure_drives": "radius",
+                "pressure": 0.5}),
+    );
+    a.ok(json!({"op": "stroke_end"}));
+    let d = displacements(&start, &last_whole(&a));
+    for (i, &p) in start.positions.iter().enumerate() {
+        let from = dist(p, centre);
+        if from < 0.45 * r {
+            assert!(
+                (d[i] - s).abs() < 1e-5,
+                "vertex {i} at {from} moved {}",
+                d[i]
+            );
+        } else if from > 0.55 * r {
+            assert_eq!(
+                d[i], 0.0,
+                "vertex {i} at {from} beyond half the radius moved"
+            );
+        }
+    }
+    a.ok(json!({"op": "undo"}));
+
+    // Symmetry in x about the origin: a stroke on the +x side only leaves
+    // a mesh that is its own mirror image (to f32 rounding), which the
+    // same stroke without symmetry does not.
+    let mirrored = |f: &Decoded| {
+        let mut worst = 0f64;
+        for p in &f.positions {
+            let m = [-f64::from(p[0]), f64::from(p[1]), f64::from(p[2])];
+            let near = f
+                .positions
+                .iter()
+                .map(|&q| dist(q, m))
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(near);
+        }
+        worst
+    };
+    assert!(
+        mirrored(&start) < 1e-6,
+        "the icosphere is symmetric to begin with"
+    );
+    for (symmetry, about) in [("x", "origin"), ("", "origin"), ("x", "centre")] {
+        a.ok(
+            json!({"op": "stroke_begin", "brush": "draw", "radius": r, "strength": 0.05,
+                    "point": centre, "symmetry": symmetry, "symmetry_about": about}),
+        );
+        a.ok(json!({"op": "stroke_frame", "point": [0.8, 0.0, 0.6]}));
+        a.ok(json!({"op": "stroke_end"}));
+        let worst = mirrored(&last_whole(&a));
+        if symmetry.is_empty() {
+            assert!(
+                worst > 1e-2,
+                "without symmetry the stroke is one-sided: {worst}"
+            );
+        } else {
+            assert!(
+                worst < 1e-5,
+                "{symmetry} about the {about}: a vertex is {worst} from its mirror"
+            );
+        }
+        a.ok(json!({"op": "undo"}));
+    }
+
+    // Every brush name the server lists is accepted with a share or a
+    // distance as its strength says.
+    for (brush, strength) in [
+        ("draw", 0.02),
+        ("clay", 0.02),
+        ("crease", 0.02),
+        ("flatten", 0.5),
+        ("pinch", -0.3),
+        ("scrape", 0.5),
+        ("scale", 0.1),
+        ("smooth", 0.5),
+        ("layer", 0.05),
+    ] {
+        a.ok(
+            json!({"op": "stroke_begin", "brush": brush, "radius": r, "strength": strength,
+                    "point": centre}),
+        );
+        a.ok(json!({"op": "stroke_end"}));
+    }
+
+    // Bad fields are refused by name.
+    for (req, why) in [
+        (json!({"falloff": "wobbly"}), "falloff"),
+        (json!({"falloff": {"custom": [1, 2]}}), "falloff"),
+        (json!({"symmetry": "w"}), "symmetry"),
+        (json!({"symmetry_about": "moon"}), "symmetry_about"),
+        (json!({"pressure_drives": "colour"}), "pressure_drives"),
+        (json!({"brush": "flatten", "strength": 1.5}), "[0, 1]"),
+        (json!({"brush": "scale", "strength": -1.5}), "[-1, 1]"),
+        (json!({"brush": "layer", "strength": 0.2}), "of the radius"),
+    ] {
+        let mut req_full = json!({"op": "stroke_begin", "brush": "inflate", "radius": r,
+                                  "strength": s, "point": centre});
+        for (k, v) in req.as_object().expect("object") {
+            req_full[k] = v.clone();
+        }
+        let r = a.call(req_full.clone());
+        assert_eq!(r["type"], "error", "{req_full}");
+        assert!(
+            r["message"].as_str().unwrap_or("").contains(why),
+            "{req_full} -> {r}"
+        );
+    }
+    // A refused stroke leaves no stroke behind.
+    assert_eq!(a.state["stroke"], false);
+}

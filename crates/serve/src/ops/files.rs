@@ -73,6 +73,7 @@ impl Shared {
             _ => content,
         };
         doc.rind = None;
+        doc.mask.clear();
         doc.commit(content);
         self.publish(&doc);
         Ok(format!("imported {name}{note}"))

@@ -11,7 +11,7 @@
 //! workspaces, undo and redo, repairs, settings), `model` (the thesis's
 //! edits), `rind` (rind modeling), `sculpt` (strokes), `long` (long
 //! operations: the fractals, subdivision, remeshing, wireframe and the
-//! clean-up tools), `remesh` (TopMod's remeshing schemes and their
+//! clean-up tools), `mask` (the sculpt mask), `remesh` (TopMod's remeshing schemes and their
 //! parameters), `toolbox` (extrusions, cuts and truncation of the
 //! selection), `select` (selection queries), `files` (uploads and
 //! downloads), and `fields` (reading a request).
@@ -24,7 +24,7 @@ use serde_json::{Value, json};
 
 use crate::auth::Gate;
 use crate::doc::{Content, Document};
-use crate::frame::encode;
+use crate::frame::encode_masked;
 use crate::persist::Saver;
 use crate::{Config, ConnId, ServeError};
 
@@ -32,6 +32,7 @@ mod document;
 mod fields;
 mod files;
 mod long;
+mod mask;
 mod model;
 mod remesh;
 mod rind;
@@ -120,10 +121,7 @@ impl Shared {
     pub fn hello(&self, conn: ConnId) {
         let doc = self.doc();
         self.hub.send(conn, Out::Text(doc.state_json().to_string()));
-        self.hub.send(
-            conn,
-            Out::Binary(encode(doc.display(), 0, doc.version(), None)),
-        );
+        self.hub.send(conn, Out::Binary(whole_frame(&doc)));
     }
 
     /// A tab went away: a stroke it was dragging is abandoned.
@@ -160,8 +158,7 @@ impl Shared {
     /// Sends every tab the state and the whole mesh, and saves.
     fn publish(&self, doc: &Document) {
         self.hub.broadcast(&Out::Text(doc.state_json().to_string()));
-        self.hub
-            .broadcast(&Out::Binary(encode(doc.display(), 0, doc.version(), None)));
+        self.hub.broadcast(&Out::Binary(whole_frame(doc)));
         if doc.rind.is_none() {
             self.saver.save(doc.version(), doc.content().clone());
         }
@@ -236,6 +233,7 @@ impl Shared {
             "stroke_begin" => self.stroke_begin(conn, doc, req),
             "stroke_frame" => self.stroke_frame(doc, req),
             "stroke_end" => self.stroke_end(doc),
+            "mask_paint" | "mask_clear" | "mask_invert" => self.mask_edit(doc, op, req),
             "" => Err(ServeError::BadRequest("the request has no \"op\"".into())),
             _ => Err(ServeError::BadRequest(format!("unknown op {op:?}"))),
         }
@@ -255,6 +253,12 @@ impl Shared {
             None => Err(ServeError::Refused("nothing to cancel".into())),
         }
     }
+}
+
+/// The committed document as a whole frame, with the sculpt mask.
+fn whole_frame(doc: &Document) -> Vec<u8> {
+    let masked = doc.mask_flags();
+    encode_masked(doc.display(), 0, doc.version(), None, masked.as_deref())
 }
 
 /// A model made while the sculpt workspace is open is sculpted too.

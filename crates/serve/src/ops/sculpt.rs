@@ -10,8 +10,10 @@ use serde_json::{Value, json};
 
 use super::fields::{num_field, point_field, str_field};
 use super::{Out, Reply, Shared};
-use crate::doc::{ActiveStroke, Content, Document};
-use crate::frame::{FLAG_PREVIEW, display_triangles, encode, encode_positions, encode_sparse};
+use crate::doc::{ActiveStroke, Content, Document, mask_flags};
+use crate::frame::{
+    FLAG_PREVIEW, display_triangles, encode_masked, encode_positions, encode_sparse,
+};
 use crate::{ConnId, ServeError};
 
 impl Shared {
@@ -52,7 +54,7 @@ impl Shared {
         }
         let displaces = matches!(
             brush,
-            Brush::Inflate | Brush::Draw | Brush::Clay | Brush::Crease
+            Brush::Inflate | Brush::Draw | Brush::Clay | Brush::Crease | Brush::Layer
         );
         if displaces && strength.abs() > MAX_INFLATE_PER_RADIUS * radius {
             return Err(ServeError::Refused(format!(
@@ -66,6 +68,9 @@ impl Shared {
             ..BrushSettings::new(brush, radius, strength)
         };
         let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
+        if !doc.mask.is_empty() {
+            live.set_mask(doc.mask.clone());
+        }
         live.set_preview(brush.is_drag());
         live.set_remesh(remesh_options(mesh, doc.remesh_detail));
         let display = doc.display().clone();
@@ -114,6 +119,7 @@ impl Shared {
     pub(super) fn stroke_frame(&self, doc: &mut Document, req: &Value) -> Reply {
         let point = point_field(req)?;
         let version = doc.version();
+        let mask = &doc.mask;
         let Some(stroke) = doc.stroke.as_mut() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
@@ -125,7 +131,9 @@ impl Shared {
         let moved = &frame.mesh.positions;
         let bytes = if frame.connectivity_changed {
             let display = display_triangles(frame.mesh);
-            let bytes = encode(&display, FLAG_PREVIEW, version, vanish);
+            // New vertex numbers: the mask is sent again with them.
+            let masked = mask_flags(mask, &display.positions);
+            let bytes = encode_masked(&display, FLAG_PREVIEW, version, vanish, masked.as_deref());
             stroke.display = display;
             bytes
         } else {
