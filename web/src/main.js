@@ -57,7 +57,7 @@ const hook = {
   get stroking() { return !!app.stroke; },
   get strokeInfo() {
     const s = app.stroke;
-    return s && { brush: s.brush, ending: s.ending, inflight: !!s.inflight, queued: !!s.queued };
+    return s && { brush: s.brush, ending: s.ending, inflight: !!s.inflight, queued: !!(s.queued || s.queue?.length) };
   },
   get pending() { return [...conn.pending.values()].map((p) => p.op); },
   get selection() { return app.sel; },

@@ -123,10 +123,11 @@ enum State {
 /// last frame reached. The centre advances by `strength ×` the pointer's
 /// motion, so it stays on the part it pulls whatever the strength.
 ///
-/// The hook lets go once a step changes topology: what it pulled has met
-/// something and fused (a tip pressed into a body is now a handle), or
-/// torn. Pulling on would drag the fused seam, and the body around it,
-/// along after the pointer.
+/// The hook lets go once a step changes topology within its radius: what
+/// it pulled has met something and fused (a tip pressed into a body is
+/// now a handle), or torn. Pulling on would drag the fused seam, and the
+/// body around it, along after the pointer. A change elsewhere (the thin
+/// tentacle touching itself far behind the tip) does not let go.
 #[derive(Clone, Copy, Debug)]
 struct Hook {
     centre: DVec3,
@@ -423,6 +424,7 @@ impl LiveStroke {
                     diagnostics: &mut self.diagnostics,
                     connectivity_changed: false,
                     topology_changed: false,
+                    hook_met: false,
                 };
                 if let Some(dab) = dab {
                     // The snake hook's grip is sized by the radius alone.
@@ -433,7 +435,7 @@ impl LiveStroke {
                         *h = Hook {
                             centre: to,
                             pointer: point,
-                            holding: !step.topology_changed,
+                            holding: !step.hook_met,
                         };
                     }
                 }
@@ -582,6 +584,8 @@ struct PaintStep<'a> {
     diagnostics: &'a mut Option<Diagnostics>,
     connectivity_changed: bool,
     topology_changed: bool,
+    /// A snake hook's step changed topology within the hook's reach.
+    hook_met: bool,
 }
 
 /// An error of a paint frame, before it knows its frame number.
@@ -655,8 +659,8 @@ impl PaintStep<'_> {
     /// One frame of a paint brush: a pull longer than the snake hook's
     /// step bound ([`snake_hook::steps`]) is cut into pieces first, each
     /// then painted by [`PaintStep::paint_piece`] on the surface the one
-    /// before it left, until one changes topology (the hook lets go:
-    /// [`Hook`]).
+    /// before it left, until one changes topology within the hook's reach
+    /// (the hook lets go: [`Hook`]).
     fn paint(
         &mut self,
         mesh: &mut TriMesh,
@@ -674,7 +678,7 @@ impl PaintStep<'_> {
         }
         for (piece, s) in dab.split(brush, strength, pieces) {
             self.paint_piece(mesh, brush, piece, radius, s, 0)?;
-            if self.topology_changed && matches!(dab, Dab::Pull(..)) {
+            if self.hook_met {
                 break;
             }
         }
@@ -749,6 +753,16 @@ impl PaintStep<'_> {
                     });
                     self.connectivity_changed |= !out.positions_only;
                     self.topology_changed |= !out.positions_only;
+                    // A snake hook has met something when the cut made
+                    // points within its reach (the engine appends them).
+                    if let Dab::Pull(_, to) = dab
+                        && !out.positions_only
+                    {
+                        let n = mesh.positions.len();
+                        self.hook_met |= mesh.positions[n.saturating_sub(out.new_vertices)..]
+                            .iter()
+                            .any(|p| p.distance(to) < radius);
+                    }
                     if self.remesh.is_none() && out.new_vertices > 0 {
                         self.clean_up(mesh, out.new_vertices)?;
                     }
