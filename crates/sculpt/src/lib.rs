@@ -57,8 +57,8 @@ pub mod session;
 pub mod strokes;
 pub mod symmetry;
 
-pub use brush::{Brush, Falloff, falloff};
-pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke, PressureDrives};
+pub use brush::{Brush, Falloff, PressureDrives, falloff};
+pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke};
 pub use remesh::{
     RemeshError, RemeshOptions, RemeshReport, default_range, remesh, remesh_in_place, remesh_with,
 };

@@ -23,7 +23,8 @@ use holey_topo::{
 
 use crate::brush::region::Region;
 use crate::brush::{
-    Brush, Falloff, closest_point, component_of, grab_weights_with, layer, paint_at, snake_hook,
+    Brush, Falloff, PressureDrives, closest_point, component_of, grab_weights_with, layer,
+    paint_at, snake_hook,
 };
 use crate::remesh::{RemeshOptions, RemeshReport, default_range, remesh_in_place_checked};
 use crate::report::{Diagnostics, SculptError, StrokeReport};
@@ -65,18 +66,6 @@ impl BrushSettings {
             pressure: PressureDrives::Strength,
         }
     }
-}
-
-/// What pen pressure (0 to 1 per frame) scales in a paint frame. Drags
-/// (grab, move) follow the pointer and ignore it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum PressureDrives {
-    /// The frame's strength is multiplied by the pressure.
-    #[default]
-    Strength,
-    /// The frame's radius is multiplied by the pressure.
-    Radius,
 }
 
 /// What one frame shows.

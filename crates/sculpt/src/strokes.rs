@@ -31,8 +31,7 @@
 use glam::DVec3;
 use serde::Deserialize;
 
-use crate::brush::{Brush, Falloff};
-use crate::live::PressureDrives;
+use crate::brush::{Brush, Falloff, PressureDrives};
 use crate::symmetry::About;
 
 /// One stroke: a brush, its parameters and its path (one point per frame).

@@ -81,6 +81,18 @@ pub enum Brush {
     Layer,
 }
 
+/// What pen pressure (0 to 1 per frame) scales in a paint frame. Drags
+/// (grab, move) follow the pointer and ignore it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PressureDrives {
+    /// The frame's strength is multiplied by the pressure.
+    #[default]
+    Strength,
+    /// The frame's radius is multiplied by the pressure.
+    Radius,
+}
+
 /// Every brush, in the modeler's order.
 pub const ALL_BRUSHES: [Brush; 13] = [
     Brush::Inflate,
