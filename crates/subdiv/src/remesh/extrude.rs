@@ -4,6 +4,11 @@
 //! (`domeSubdivide`: edges cut in quarters, every face extruded seven times
 //! by its Doo–Sabin extrusion `extrudeFaceDS`).
 //!
+//! Lengths are relative: a face moves `length × √A` along its unit normal,
+//! `A` its area ([`Map::size`]), so the result looks the same on a mesh of
+//! any scale or density (a square extruded by 1 becomes a cube) and a
+//! sliver is barely raised.
+//!
 //! An extrusion of a face with ring `R₀` (its corners) adds a ring `R₁`
 //! of as many vertices, the side quads `[R₀(i), R₀(i+1), R₁(i+1), R₁(i)]`
 //! and moves the face to `R₁`. Per ring `r ≥ 1` of a face, the ring's edge
@@ -20,7 +25,8 @@ use crate::doo_sabin::corner_points;
 use crate::flat::Flat;
 
 /// Global extrude. Output vertices: the input's, then ring 1 by normal
-/// corner: `centroid + scale (v − centroid) + length n̂`. Edges: the old
+/// corner: `centroid + scale (v − centroid) + length √A n̂` (`A` the
+/// face's area). Edges: the old
 /// ones, then the ring's edges `L`, then the verticals `W`, by normal
 /// corner.
 pub(super) fn global(
@@ -42,7 +48,8 @@ pub(super) fn global(
     for face in m.normal_faces() {
         let (lo, hi) = m.range(face);
         let (z, n) = (m.centroid(face), m.normal(face));
-        pos.extend((lo..hi).map(|c| z + scale * (m.p(c) - z) + length * n));
+        let lift = length * m.size(face) * n;
+        pos.extend((lo..hi).map(|c| z + scale * (m.p(c) - z) + lift));
     }
     let (nv, ne, nc) = (st.v, st.e, st.nc);
     let top = |c: usize| (nv + m.nidx(c)) as u32;
@@ -135,13 +142,14 @@ pub(super) fn dome(
         }
         pts.clear();
         pts.extend(r0.iter().map(|&(v, _)| pos[v as usize]));
-        let n = m.normal(face);
+        // The lengths are in units of the face's size.
+        let n = m.normal(face) * (length * m.size(face));
         for &(d, s) in &DOME {
             next.clear();
             next.resize(pts.len(), DVec3::ZERO);
             corner_points(&pts, &mut next, &mut trig);
             for q in &mut next {
-                *q += d * length * n;
+                *q += d * n;
             }
             // TopMod scales by |s|, and not at all when that is 0 or 1.
             let s = (s * scale).abs();

@@ -346,6 +346,12 @@ impl<'a> Map<'a> {
     /// the area vector for planar faces and a robust average otherwise);
     /// zero for a face with no area.
     pub fn normal(&self, face: usize) -> DVec3 {
+        self.newell(face).normalize_or_zero()
+    }
+
+    /// Twice the area vector of face `face` by Newell's method (see
+    /// [`Map::normal`]).
+    fn newell(&self, face: usize) -> DVec3 {
         let (lo, hi) = self.range(face);
         let c0 = self.centroid(face);
         let mut n = DVec3::ZERO;
@@ -353,7 +359,16 @@ impl<'a> Map<'a> {
             let nc = if c + 1 == hi { lo } else { c + 1 };
             n += (self.p(c) - c0).cross(self.p(nc) - c0);
         }
-        n.normalize_or_zero()
+        n
+    }
+
+    /// The size of face `face`: `√A`, `A` the length of its area vector
+    /// (its area when planar), so the side of a square face, `0.66×` the
+    /// side of an equilateral triangle. Extrusions measure their lengths
+    /// in it, so they look the same on a mesh of any scale or density,
+    /// and a sliver (little area, long edges) is barely raised.
+    pub fn size(&self, face: usize) -> f64 {
+        (self.newell(face).length() / 2.0).sqrt()
     }
 
     /// Calls `visit(v, ring)` for every vertex with corners outside

@@ -287,9 +287,12 @@ schemes! {
     DualLoop = "dual-loop",
     /// **Global extrude** (TopMod lists "Global Extrude" but never
     /// implemented it; this is its face extrusion applied to every face):
-    /// every face is replaced by a copy moved [`extrude_length`] along its
-    /// unit normal (scaled about its centroid by [`extrude_scale`]) and
-    /// joined to the old boundary by one quad per edge; the old edges stay.
+    /// every face is replaced by a copy moved [`extrude_length`]` · √A`
+    /// along its unit normal (`A` the face's area, so the length is
+    /// relative to each face's own size: at 1 a square becomes a cube, on
+    /// any mesh's scale or density), scaled about its centroid by
+    /// [`extrude_scale`], and joined to the old boundary by one quad per
+    /// edge; the old edges stay.
     /// `V' = V + C, E' = E + 2C, F' = F + C` (quads stay quads).
     ///
     /// [`extrude_length`]: RemeshParams::extrude_length
@@ -371,8 +374,11 @@ schemes! {
     /// quarters, then every face extruded seven times by TopMod's
     /// Doo–Sabin extrusion (each ring the Doo–Sabin corner points of the
     /// previous one, moved along the face normal by `(0, 0.3, 0.18, 0.1,
-    /// 0.05, 0.025, 0.01)·`[`dome_length`] and scaled about its centroid
-    /// by `(1.6, 1.7, 1.6, 1.4, 1.2, 1.1, 0.01)·`[`dome_scale`]).
+    /// 0.05, 0.025, 0.01)·`[`dome_length`]`·√A` and scaled about its
+    /// centroid by `(1.6, 1.7, 1.6, 1.4, 1.2, 1.1, 0.01)·`[`dome_scale`]).
+    /// `A` is the face's area: TopMod's lengths are absolute, which on a
+    /// fine triangle mesh raises spikes many faces tall; here a dome is
+    /// `0.665 · `[`dome_length`] times its face's size high on any mesh.
     /// `V' = V + 3E + 28C, E' = 4E + 56C, F' = F + 28C`.
     ///
     /// [`dome_length`]: RemeshParams::dome_length
@@ -467,7 +473,9 @@ pub struct RemeshParams {
     pub stellate_curve: f64,
     /// Fractal's multiplier of the apex height (TopMod: 1).
     pub fractal_offset: f64,
-    /// Dome's length factor (TopMod: 1).
+    /// Dome's length factor, in units of each face's size `√(area)`: the
+    /// domes rise `0.665 ×` this times their face's size (1; TopMod's
+    /// lengths were absolute).
     pub dome_length: f64,
     /// Dome's scale factor (TopMod: 1).
     pub dome_scale: f64,
@@ -476,8 +484,10 @@ pub struct RemeshParams {
     pub omnitruncation_scale: f64,
     /// Loop-style's length factor: 1 keeps the old vertices (TopMod: 1).
     pub loop_style_length: f64,
-    /// Global extrude's distance along the face normals (TopMod has no
-    /// global extrude; this is its face extrusion's default, 2).
+    /// Global extrude's distance along the face normals, in units of each
+    /// face's size `√(area)`, so 1 turns a square into a cube on a mesh of
+    /// any scale (1; TopMod has no global extrude, and its face
+    /// extrusion's absolute default of 2 raised spikes on fine meshes).
     pub extrude_length: f64,
     /// Global extrude's scale of the moved faces (TopMod's extrusion
     /// default, 1).
@@ -505,7 +515,7 @@ impl Default for RemeshParams {
             dome_scale: 1.0,
             omnitruncation_scale: 0.7,
             loop_style_length: 1.0,
-            extrude_length: 2.0,
+            extrude_length: 1.0,
             extrude_scale: 1.0,
             subdivide_face_quads: true,
         }
@@ -543,39 +553,125 @@ impl Range {
 }
 
 /// One option of a scheme: the short name that `holey remesh`, Python's
-/// `Mesh.remesh` and the modeler's Remesh panel use, and the field of
-/// [`RemeshParams`] it sets. [`RemeshParams::set`] takes either.
+/// `Mesh.remesh` and the modeler's Remesh panel use, the field of
+/// [`RemeshParams`] it sets ([`RemeshParams::set`] takes either), and
+/// what it means, in one line with its unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RemeshOption {
     /// The short name, e.g. `alpha`, `thickness`, `offset`.
     pub name: &'static str,
     /// The field of [`RemeshParams`], e.g. `corner_cutting_alpha`.
     pub field: &'static str,
+    /// What the value means and in what unit, e.g. "height of each
+    /// face's extrusion, in units of the face's size √(area)".
+    pub meaning: &'static str,
 }
 
-const fn opt(name: &'static str, field: &'static str) -> RemeshOption {
-    RemeshOption { name, field }
+const fn opt(name: &'static str, field: &'static str, meaning: &'static str) -> RemeshOption {
+    RemeshOption {
+        name,
+        field,
+        meaning,
+    }
 }
 
-const ALPHA: &[RemeshOption] = &[opt("alpha", "corner_cutting_alpha")];
-const INSET: &[RemeshOption] = &[opt("thickness", "modified_corner_cutting_thickness")];
-const TRUNCATION: &[RemeshOption] = &[opt("offset", "vertex_truncation_offset")];
-const PENTAGONAL: &[RemeshOption] = &[opt("offset", "pentagonal_offset")];
-const PENTAGON_PRESERVING: &[RemeshOption] = &[opt("scale", "pentagon_preserving_scale")];
-const CHECKERBOARD: &[RemeshOption] = &[opt("thickness", "checkerboard_thickness")];
-const ROOT4: &[RemeshOption] = &[opt("weight", "root4_weight"), opt("twist", "root4_twist")];
-const DOUBLE_STELLATE: &[RemeshOption] = &[opt("offset", "double_stellate_offset")];
-const MODIFIED_STELLATE: &[RemeshOption] = &[
-    opt("height", "stellate_height"),
-    opt("curve", "stellate_curve"),
+const ALPHA: &[RemeshOption] = &[opt(
+    "alpha",
+    "corner_cutting_alpha",
+    "tension: the weight of each corner's own vertex in its new point",
+)];
+const INSET: &[RemeshOption] = &[opt(
+    "thickness",
+    "modified_corner_cutting_thickness",
+    "twice the distance of the new edges inside the old ones (a length)",
+)];
+const TRUNCATION: &[RemeshOption] = &[opt(
+    "offset",
+    "vertex_truncation_offset",
+    "fraction of each edge cut off at both ends, in (0, 0.5]",
+)];
+const PENTAGONAL: &[RemeshOption] = &[opt(
+    "offset",
+    "pentagonal_offset",
+    "fraction of the way the joined third points move towards the face centroid",
+)];
+const PENTAGON_PRESERVING: &[RemeshOption] = &[opt(
+    "scale",
+    "pentagon_preserving_scale",
+    "scale of each inner face about its centroid",
+)];
+const CHECKERBOARD: &[RemeshOption] = &[opt(
+    "thickness",
+    "checkerboard_thickness",
+    "fraction of each edge cut off at both ends, in [0, 0.5]",
+)];
+const ROOT4: &[RemeshOption] = &[
+    opt(
+        "weight",
+        "root4_weight",
+        "fraction of the way each old vertex moves towards its new neighbours",
+    ),
+    opt(
+        "twist",
+        "root4_twist",
+        "where along each edge the averaged points lie, as a fraction from its start",
+    ),
 ];
-const FRACTAL: &[RemeshOption] = &[opt("offset", "fractal_offset")];
-const DOME: &[RemeshOption] = &[opt("length", "dome_length"), opt("scale", "dome_scale")];
-const OMNITRUNCATION: &[RemeshOption] = &[opt("scale", "omnitruncation_scale")];
-const LOOP_STYLE: &[RemeshOption] = &[opt("length", "loop_style_length")];
+const DOUBLE_STELLATE: &[RemeshOption] = &[opt(
+    "offset",
+    "double_stellate_offset",
+    "lift of the first centres along the face normal (a length)",
+)];
+const MODIFIED_STELLATE: &[RemeshOption] = &[
+    opt(
+        "height",
+        "stellate_height",
+        "lift of the first centres along the face normal (a length)",
+    ),
+    opt(
+        "curve",
+        "stellate_curve",
+        "lift of the second centres along the face normal (a length)",
+    ),
+];
+const FRACTAL: &[RemeshOption] = &[opt(
+    "offset",
+    "fractal_offset",
+    "multiplier of the apex height TopMod's rule gives",
+)];
+const DOME: &[RemeshOption] = &[
+    opt(
+        "length",
+        "dome_length",
+        "height factor, in units of each face's size √(area): a dome rises 0.665 × this × its face's size",
+    ),
+    opt(
+        "scale",
+        "dome_scale",
+        "multiplier of the rings' scales about their centroids",
+    ),
+];
+const OMNITRUNCATION: &[RemeshOption] = &[opt(
+    "scale",
+    "omnitruncation_scale",
+    "scale of each new face about its centroid (0 and ±1: unscaled)",
+)];
+const LOOP_STYLE: &[RemeshOption] = &[opt(
+    "length",
+    "loop_style_length",
+    "weight of each old vertex's own position (1 keeps it)",
+)];
 const EXTRUDE: &[RemeshOption] = &[
-    opt("length", "extrude_length"),
-    opt("scale", "extrude_scale"),
+    opt(
+        "length",
+        "extrude_length",
+        "height of each face's extrusion, in units of the face's size √(area) (1 turns a square into a cube)",
+    ),
+    opt(
+        "scale",
+        "extrude_scale",
+        "scale of each moved face about its centroid",
+    ),
 ];
 
 impl RemeshScheme {

@@ -4,7 +4,9 @@
 //! components, closed-form positions of the linear schemes, the typed
 //! refusals, and seeded random sequences of schemes.
 
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{CornerId, DVec3, Mesh, RawMesh};
+use holey_mesh::PolyMesh;
 use holey_testkit::Rng;
 
 use super::{RemeshParams, RemeshScheme, remesh, remesh_capped, remesh_to_raw};
@@ -679,8 +681,9 @@ fn extrusions_and_stellations_move_along_the_face_normal() {
     let cube = prim("@cube");
     let nv = cube.vertex_count();
     // Global extrude with scale 1: the moved face is the face plus
-    // length × its outward normal, so every new vertex is a cube corner
-    // pushed out along one axis.
+    // length × √area × its outward normal; the cube's faces are squares
+    // of side 2 (√A = 2), so at length 0.5 every new vertex is a cube
+    // corner pushed out by 1 along one axis.
     let p = RemeshParams {
         extrude_length: 0.5,
         ..params()
@@ -689,7 +692,7 @@ fn extrusions_and_stellations_move_along_the_face_normal() {
     for q in &r.positions[nv..] {
         let mut a: Vec<f64> = q.to_array().iter().map(|x| x.abs()).collect();
         a.sort_by(f64::total_cmp);
-        assert_eq!(a, vec![1.0, 1.0, 1.5], "{q}");
+        assert_eq!(a, vec![1.0, 1.0, 1.0 + 0.5 * 2.0], "{q}");
     }
     // Double stellate: the first centres move by offset along the normal.
     let p = RemeshParams {
@@ -709,6 +712,58 @@ fn extrusions_and_stellations_move_along_the_face_normal() {
     for f in 0..6 {
         let q = raw_pos(&r, nv + ne + f);
         assert!((q.length() - 2.0).abs() < 1e-12, "{q}");
+    }
+}
+
+#[test]
+fn extrusion_lengths_are_relative_to_each_face() {
+    // A triangle of legs 1 (area ½) and a square of side 3 (area 9), apart:
+    // global extrude lifts each new vertex by length × √area along its
+    // face's normal (+z), dome's cap rises 0.665 × length × √area.
+    let mut soup = PolyMesh::new();
+    soup.positions = vec![
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(5.0, 0.0, 0.0),
+        DVec3::new(8.0, 0.0, 0.0),
+        DVec3::new(8.0, 3.0, 0.0),
+        DVec3::new(5.0, 3.0, 0.0),
+    ];
+    soup.face_offsets = vec![0, 3, 7];
+    soup.face_indices = vec![0, 1, 2, 3, 4, 5, 6];
+    let m = to_dlfl(&soup, ImportOptions::default()).unwrap().mesh;
+    let sizes = [0.5f64.sqrt(), 3.0];
+    let p = RemeshParams {
+        extrude_length: 0.7,
+        dome_length: 0.3,
+        ..params()
+    };
+    let out = checked(&m, S::GlobalExtrude, &p, 1);
+    for v in out.vertices() {
+        let q = out.position(v).unwrap();
+        let size = if q.x < 3.0 { sizes[0] } else { sizes[1] };
+        assert!(q.z == 0.0 || (q.z - 0.7 * size).abs() < 1e-12, "{q}");
+    }
+    let out = checked(&m, S::Dome, &p, 1);
+    let mut tops = [0.0f64; 2];
+    for v in out.vertices() {
+        let q = out.position(v).unwrap();
+        let k = usize::from(q.x >= 3.0);
+        tops[k] = tops[k].max(q.z);
+    }
+    for k in 0..2 {
+        assert!((tops[k] - 0.665 * 0.3 * sizes[k]).abs() < 1e-12, "{tops:?}");
+    }
+    // So a mesh scaled by s is extruded into the same shape scaled by s.
+    let sphere = prim("@sphere:1");
+    let small = scaled(&sphere, 0.01);
+    for s in [S::GlobalExtrude, S::Dome] {
+        let a = positions(&remesh(&sphere, s, &params(), 1).unwrap());
+        let b = positions(&remesh(&small, s, &params(), 1).unwrap());
+        for (x, y) in a.iter().zip(&b) {
+            assert!((*x * 0.01 - *y).length() < 1e-12, "{s}: {x} {y}");
+        }
     }
 }
 
@@ -813,8 +868,9 @@ fn inner_copies_loop_style_and_dome_rings_are_where_defined() {
         assert!((raw_pos(&r, 8 + f).length() - 1.5).abs() < 1e-12);
     }
     // Dome: ring centroids stay over the face centroid (the Doo–Sabin
-    // mask and the scaling keep it), raised by the sum of the lengths;
-    // the last ring is scaled by 0.01 to a small cap.
+    // mask and the scaling keep it), raised by the sum of the lengths
+    // (0.665) times the face's size (a square of side 2: √A = 2); the
+    // last ring is scaled by 0.01 to a small cap.
     let out = checked(&sq, S::Dome, &p, 1);
     let cap = out
         .faces()
@@ -824,12 +880,14 @@ fn inner_copies_loop_style_and_dome_rings_are_where_defined() {
     let ps = out.face_positions(cap).unwrap();
     assert_eq!(ps.len(), 16, "the quartered square's cap");
     let c = ps.iter().sum::<DVec3>() / 16.0;
-    close(c, DVec3::new(0.0, 0.0, 0.665), "dome top");
+    let top = 0.665 * 2.0;
+    close(c, DVec3::new(0.0, 0.0, top), "dome top");
     assert!(
         ps.iter()
-            .all(|q| (*q - c).length() < 0.05 && (q.z - 0.665).abs() < 1e-12)
+            .all(|q| (*q - c).length() < 0.05 && (q.z - top).abs() < 1e-12)
     );
-    // Global extrude's scale shrinks the moved face about its centroid.
+    // Global extrude's scale shrinks the moved face about its centroid;
+    // length 1 lifts it by its size, the side 2.
     let q = RemeshParams {
         extrude_length: 1.0,
         extrude_scale: 0.5,
@@ -839,7 +897,7 @@ fn inner_copies_loop_style_and_dome_rings_are_where_defined() {
     for k in 0..4 {
         close(
             raw_pos(&r, 4 + k),
-            0.5 * corner(k) + DVec3::Z,
+            0.5 * corner(k) + 2.0 * DVec3::Z,
             "extruded corner",
         );
     }
@@ -1122,6 +1180,15 @@ fn random_sequences_of_schemes_keep_every_component_and_stay_valid() {
 
 fn positions(m: &Mesh) -> Vec<DVec3> {
     m.vertices().map(|v| m.position(v).unwrap()).collect()
+}
+
+/// `m` scaled by `s` about the origin.
+fn scaled(m: &Mesh, s: f64) -> Mesh {
+    let mut out = m.clone();
+    for v in m.vertices() {
+        out.set_position(v, m.position(v).unwrap() * s).unwrap();
+    }
+    out
 }
 
 #[test]
