@@ -4,6 +4,7 @@
 //! the version, so requests made against an older picture are refused.
 
 use std::collections::HashSet;
+use std::sync::Arc;
 
 use glam::DVec3;
 use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
@@ -172,6 +173,21 @@ pub struct RindMode {
     pub thickness: f64,
 }
 
+/// The sculpt mask: the exact positions (`holey_geom::position_key`) of
+/// the vertices no brush moves. Kept by position, not by index, so that
+/// it survives a stroke's topology change and remeshing (a masked vertex
+/// never moves, so its key stays).
+pub type Mask = HashSet<[u64; 3]>;
+
+/// One step of the undo or redo history: what the document was before it.
+/// The mask is shared, not copied, between the steps that leave it alone.
+struct Step {
+    /// The content before the step; `None` for a step that changed only
+    /// the mask.
+    content: Option<Content>,
+    mask: Arc<Mask>,
+}
+
 /// A stroke being dragged by one tab.
 pub struct ActiveStroke {
     pub owner: ConnId,
@@ -185,8 +201,8 @@ pub struct ActiveStroke {
 /// The document the server edits.
 pub struct Document {
     content: Content,
-    undo: Vec<Content>,
-    redo: Vec<Content>,
+    undo: Vec<Step>,
+    redo: Vec<Step>,
     version: u64,
     pub rind: Option<RindMode>,
     pub stroke: Option<ActiveStroke>,
@@ -194,11 +210,9 @@ pub struct Document {
     pub busy: Option<(ConnId, String)>,
     /// Dynamic remeshing detail in [0, 1]; 0 is off.
     pub remesh_detail: f64,
-    /// The sculpt mask: the exact positions (`holey_geom::position_key`)
-    /// of the vertices no brush moves. Kept by position, not by index, so
-    /// that it survives a stroke's topology change and remeshing (a masked
-    /// vertex never moves, so its key stays); not an undo step.
-    pub mask: HashSet<[u64; 3]>,
+    /// The sculpt mask. Its changes are undo steps like the mesh's, and
+    /// every undo step restores the mask it had.
+    mask: Arc<Mask>,
     display: Display,
     index: ModelIndex,
     stats: Value,
@@ -215,7 +229,7 @@ impl Document {
             stroke: None,
             busy: None,
             remesh_detail: DEFAULT_REMESH_DETAIL,
-            mask: HashSet::new(),
+            mask: Arc::default(),
             display: Display::default(),
             index: ModelIndex::default(),
             stats: Value::Null,
@@ -262,16 +276,71 @@ impl Document {
         self.index = index;
     }
 
-    /// Replaces the content as one undo step.
+    /// The same document with `mask` as its sculpt mask, not an undo step
+    /// (a restored session's).
+    pub fn with_mask(mut self, mask: Mask) -> Document {
+        self.mask = Arc::new(mask);
+        self
+    }
+
+    /// The sculpt mask.
+    pub fn mask(&self) -> &Arc<Mask> {
+        &self.mask
+    }
+
+    /// Replaces the content as one undo step; the mask stays.
     pub fn commit(&mut self, content: Content) {
         let old = std::mem::replace(&mut self.content, content);
-        self.undo.push(old);
+        self.record(Some(old));
+        self.refresh();
+    }
+
+    /// Replaces the content and clears the mask as one undo step (a new
+    /// mesh starts unmasked; undo brings back both).
+    pub fn commit_unmasked(&mut self, content: Content) {
+        let old = std::mem::replace(&mut self.content, content);
+        self.record(Some(old));
+        self.mask = Arc::default();
+        self.refresh();
+    }
+
+    /// Replaces the mask as one undo step, unless it is the same mask.
+    /// Says whether it changed.
+    pub fn commit_mask(&mut self, mask: Mask) -> bool {
+        if mask == *self.mask {
+            return false;
+        }
+        self.record(None);
+        self.mask = Arc::new(mask);
+        true
+    }
+
+    /// Pushes the step back to the state before a change (`old`, the
+    /// content it replaces, or `None` when only the mask changes) and
+    /// bumps the version.
+    fn record(&mut self, old: Option<Content>) {
+        self.undo.push(Step {
+            content: old,
+            mask: Arc::clone(&self.mask),
+        });
         if self.undo.len() > UNDO_LIMIT {
             self.undo.remove(0);
         }
         self.redo.clear();
         self.version += 1;
-        self.refresh();
+    }
+
+    /// Goes back to `step`, returning the step that comes back here.
+    fn restore(&mut self, step: Step) -> Step {
+        let content = step
+            .content
+            .map(|c| std::mem::replace(&mut self.content, c));
+        let mask = std::mem::replace(&mut self.mask, step.mask);
+        self.version += 1;
+        if content.is_some() {
+            self.refresh();
+        }
+        Step { content, mask }
     }
 
     /// Shows the rind's current crust (after a punch) without committing.
@@ -282,10 +351,9 @@ impl Document {
 
     pub fn undo(&mut self) -> bool {
         match self.undo.pop() {
-            Some(c) => {
-                self.redo.push(std::mem::replace(&mut self.content, c));
-                self.version += 1;
-                self.refresh();
+            Some(step) => {
+                let back = self.restore(step);
+                self.redo.push(back);
                 true
             }
             None => false,
@@ -294,10 +362,9 @@ impl Document {
 
     pub fn redo(&mut self) -> bool {
         match self.redo.pop() {
-            Some(c) => {
-                self.undo.push(std::mem::replace(&mut self.content, c));
-                self.version += 1;
-                self.refresh();
+            Some(step) => {
+                let back = self.restore(step);
+                self.undo.push(back);
                 true
             }
             None => false,
@@ -387,7 +454,7 @@ impl Document {
 
 /// One flag per position, set where the position is in `mask`; `None`
 /// when none is.
-pub fn mask_flags(mask: &HashSet<[u64; 3]>, positions: &[DVec3]) -> Option<Vec<bool>> {
+pub fn mask_flags(mask: &Mask, positions: &[DVec3]) -> Option<Vec<bool>> {
     if mask.is_empty() {
         return None;
     }
@@ -460,5 +527,48 @@ mod tests {
             triangles: vec![[0, 1, 2], [0, 1, 3], [0, 1, 4]],
         });
         assert!(fan.into_model().is_err());
+    }
+
+    /// Mask edits are undo steps between the mesh's; undoing a mesh step
+    /// brings back the mask it had, and a new mesh's cleared mask too.
+    #[test]
+    fn the_mask_is_undone_with_the_mesh() {
+        let key = |x: f64| holey_geom::position_key(DVec3::splat(x));
+        let mut d = Document::new(model("@cube").into_sculpt().unwrap(), 1);
+        let one: Mask = [key(1.0)].into();
+        let two: Mask = [key(1.0), key(2.0)].into();
+        assert!(d.commit_mask(one.clone()));
+        assert!(!d.commit_mask(one.clone()), "the same mask is no step");
+        let after_mask = d.version();
+        d.commit(model("@torus").into_sculpt().unwrap());
+        assert!(d.commit_mask(two.clone()));
+        d.commit_unmasked(model("@cube").into_sculpt().unwrap());
+        assert!(d.mask().is_empty());
+        // Back through the new mesh, the second mask, the torus, the first mask.
+        assert!(d.undo());
+        assert_eq!(**d.mask(), two);
+        assert_eq!(d.state_json()["stats"]["genus"], 1);
+        assert!(d.undo());
+        assert_eq!(**d.mask(), one);
+        assert_eq!(d.state_json()["stats"]["genus"], 1);
+        assert!(d.undo());
+        assert_eq!(**d.mask(), one);
+        assert_eq!(d.state_json()["stats"]["genus"], 0);
+        assert!(d.version() > after_mask);
+        assert!(d.undo());
+        assert!(d.mask().is_empty());
+        assert!(!d.undo());
+        // And forward again.
+        assert!(d.redo());
+        assert_eq!(**d.mask(), one);
+        assert!(d.redo() && d.redo());
+        assert_eq!(**d.mask(), two);
+        assert!(d.redo());
+        assert!(d.mask().is_empty());
+        assert!(!d.redo());
+        // A mask edit drops the redo history like any edit.
+        assert!(d.undo());
+        assert!(d.commit_mask(one));
+        assert!(!d.can_redo());
     }
 }

@@ -4,10 +4,13 @@
 //! atomic writes: a crash leaves the previous save or the new one, never
 //! half of one.
 //!
-//! Files: `session.json` (`{"workspace", "version", "mesh"}`) names the
-//! mesh file, `session.dlfl` for the model workspace or `session.ply` for
-//! the sculpt workspace. The mesh is written first, so the JSON never
-//! names a file that is not complete.
+//! Files: `session.json` (`{"workspace", "version", "mesh", "mask"}`)
+//! names the mesh file, `session.dlfl` for the model workspace or
+//! `session.ply` for the sculpt workspace, and lists the sculpt mask as
+//! the numbers of the masked vertices in that file (the mask is kept by
+//! exact position; the numbers give it back whatever the file's precision).
+//! The mesh is written first, so the JSON never names a file that is not
+//! complete.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Condvar, Mutex};
@@ -18,9 +21,11 @@ use holey_io::{MeshFile, WriteOptions};
 use serde_json::{Value, json};
 
 use crate::ServeError;
-use crate::doc::{Content, Document, poly_to_tri};
+use crate::doc::{Content, Document, Mask, mask_flags, poly_to_tri};
 
-type Pending = Arc<(Mutex<Option<(u64, Content)>>, Condvar)>;
+/// A save waiting to be written: the version, the content and its mask.
+type Job = (u64, Content, Arc<Mask>);
+type Pending = Arc<(Mutex<Option<Job>>, Condvar)>;
 
 /// The background writer.
 pub struct Saver {
@@ -33,7 +38,7 @@ impl Saver {
         let shared = Arc::clone(&pending);
         std::thread::spawn(move || {
             loop {
-                let (version, content) = {
+                let (version, content, mask) = {
                     let (lock, ready) = &*shared;
                     let mut slot = lock.lock().unwrap_or_else(|p| p.into_inner());
                     loop {
@@ -43,7 +48,7 @@ impl Saver {
                         slot = ready.wait(slot).unwrap_or_else(|p| p.into_inner());
                     }
                 };
-                if let Err(e) = save(&dir, version, &content) {
+                if let Err(e) = save(&dir, version, &content, &mask) {
                     eprintln!("holey serve: autosave failed: {e}");
                 }
             }
@@ -51,36 +56,42 @@ impl Saver {
         Saver { pending }
     }
 
-    /// Queues `content` for writing, replacing an older version that has
-    /// not been written yet.
-    pub fn save(&self, version: u64, content: Content) {
+    /// Queues `content` and its mask for writing, replacing an older
+    /// version that has not been written yet.
+    pub fn save(&self, version: u64, content: Content, mask: Arc<Mask>) {
         let (lock, ready) = &*self.pending;
-        *lock.lock().unwrap_or_else(|p| p.into_inner()) = Some((version, content));
+        *lock.lock().unwrap_or_else(|p| p.into_inner()) = Some((version, content, mask));
         ready.notify_one();
     }
 }
 
 /// Writes the session now.
-pub fn save(dir: &Path, version: u64, content: &Content) -> Result<(), ServeError> {
+pub fn save(dir: &Path, version: u64, content: &Content, mask: &Mask) -> Result<(), ServeError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| ServeError::io(format!("cannot create {}", dir.display()), e))?;
     let refused = |e: holey_io::IoError| ServeError::Refused(e.to_string());
+    let mut masked = Vec::new();
     let file = match content {
         Content::Model(m) => {
             holey_io::write_dlfl(&dir.join("session.dlfl"), &m.to_raw()).map_err(refused)?;
             "session.dlfl"
         }
         Content::Sculpt(_) => {
-            holey_io::write_poly(
-                &dir.join("session.ply"),
-                &content.to_poly(),
-                &WriteOptions::default(),
-            )
-            .map_err(refused)?;
+            let poly = content.to_poly();
+            if let Some(flags) = mask_flags(mask, &poly.positions) {
+                masked.extend((0..flags.len()).filter(|&i| flags[i]));
+            }
+            holey_io::write_poly(&dir.join("session.ply"), &poly, &WriteOptions::default())
+                .map_err(refused)?;
             "session.ply"
         }
     };
-    let meta = json!({"workspace": content.workspace(), "version": version, "mesh": file});
+    let meta = json!({
+        "workspace": content.workspace(),
+        "version": version,
+        "mesh": file,
+        "mask": masked,
+    });
     holey_io::write_bytes_atomic(&dir.join("session.json"), meta.to_string().as_bytes())
         .map_err(refused)
 }
@@ -93,8 +104,8 @@ pub fn restore(dir: &Path) -> Result<(Document, String), ServeError> {
         return Ok((Document::new(fresh()?, 1), "new session".into()));
     }
     match load(dir, &meta_path) {
-        Ok((content, version)) => Ok((
-            Document::new(content, version + 1),
+        Ok((content, version, mask)) => Ok((
+            Document::new(content, version + 1).with_mask(mask),
             format!("restored the session saved in {}", dir.display()),
         )),
         Err(e) => Ok((
@@ -107,7 +118,7 @@ pub fn restore(dir: &Path) -> Result<(Document, String), ServeError> {
     }
 }
 
-fn load(dir: &Path, meta_path: &Path) -> Result<(Content, u64), ServeError> {
+fn load(dir: &Path, meta_path: &Path) -> Result<(Content, u64, Mask), ServeError> {
     let text = std::fs::read_to_string(meta_path)
         .map_err(|e| ServeError::io(meta_path.display().to_string(), e))?;
     let meta: Value = serde_json::from_str(&text)
@@ -130,7 +141,38 @@ fn load(dir: &Path, meta_path: &Path) -> Result<(Content, u64), ServeError> {
             ));
         }
     };
-    Ok((content, version))
+    let mask = match &content {
+        Content::Sculpt(t) => saved_mask(&meta, &t.positions)?,
+        Content::Model(_) => Mask::new(),
+    };
+    Ok((content, version, mask))
+}
+
+/// The mask `session.json` lists (vertex numbers of the saved mesh) as
+/// the exact positions of those vertices; none when it lists none (a save
+/// from before masks were saved). A number past the mesh is an error.
+fn saved_mask(meta: &Value, positions: &[glam::DVec3]) -> Result<Mask, ServeError> {
+    let Some(list) = meta.get("mask") else {
+        return Ok(Mask::new());
+    };
+    let bad = || ServeError::Refused("session.json: \"mask\" must list vertex numbers".into());
+    list.as_array()
+        .ok_or_else(bad)?
+        .iter()
+        .map(|i| {
+            let i = i.as_u64().ok_or_else(bad)?;
+            usize::try_from(i)
+                .ok()
+                .and_then(|i| positions.get(i))
+                .map(|&p| holey_geom::position_key(p))
+                .ok_or_else(|| {
+                    ServeError::Refused(format!(
+                        "session.json masks vertex {i}, and the mesh has {}",
+                        positions.len()
+                    ))
+                })
+        })
+        .collect()
 }
 
 fn fresh() -> Result<Content, ServeError> {
@@ -156,13 +198,13 @@ mod tests {
             let soup = holey_shapes::parse_primitive("@torus").unwrap();
             Content::Model(to_dlfl(&soup, ImportOptions::default()).unwrap().mesh)
         };
-        save(dir.path(), 5, &torus).unwrap();
+        save(dir.path(), 5, &torus, &Mask::new()).unwrap();
         let (back, note) = restore(dir.path()).unwrap();
         assert!(note.starts_with("restored"), "{note}");
         assert_eq!(back.state_json()["stats"]["genus"], 1);
         assert_eq!(back.version(), 6);
         let sculpt = torus.into_sculpt().unwrap();
-        save(dir.path(), 9, &sculpt).unwrap();
+        save(dir.path(), 9, &sculpt, &Mask::new()).unwrap();
         let (back, _) = restore(dir.path()).unwrap();
         assert_eq!(back.state_json()["workspace"], "sculpt");
         assert_eq!(back.state_json()["stats"]["genus"], 1);
@@ -176,5 +218,54 @@ mod tests {
             std::fs::read(dir.path().join("session.ply")).unwrap(),
             b"garbage"
         );
+    }
+
+    /// The sculpt mask comes back with the session, on the same vertices
+    /// (by exact position), and a save without one restores unmasked.
+    #[test]
+    fn the_mask_is_saved_with_the_sculpt_session() {
+        let dir = tempfile::tempdir().unwrap();
+        let soup = holey_shapes::parse_primitive("@sphere:2").unwrap();
+        let sphere = Content::Model(to_dlfl(&soup, ImportOptions::default()).unwrap().mesh)
+            .into_sculpt()
+            .unwrap();
+        let Content::Sculpt(t) = &sphere else {
+            panic!("not sculpt")
+        };
+        // The upper cap is masked.
+        let mask: Mask = t
+            .positions
+            .iter()
+            .filter(|p| p.z > 0.3)
+            .map(|&p| holey_geom::position_key(p))
+            .collect();
+        assert!(!mask.is_empty() && mask.len() < t.positions.len());
+        save(dir.path(), 3, &sphere, &mask).unwrap();
+        let (back, _) = restore(dir.path()).unwrap();
+        assert_eq!(**back.mask(), mask);
+        let flags = back.mask_flags().unwrap();
+        assert_eq!(flags.iter().filter(|&&b| b).count(), mask.len());
+        // Undo does not reach before the restored session.
+        assert!(!back.can_undo());
+        // Keys of vertices no longer in the mesh are not saved.
+        let mut stale = mask.clone();
+        stale.insert(holey_geom::position_key(glam::DVec3::splat(7.0)));
+        save(dir.path(), 4, &sphere, &stale).unwrap();
+        let (back, _) = restore(dir.path()).unwrap();
+        assert_eq!(**back.mask(), mask);
+        // A save from before masks were saved restores unmasked; a number
+        // past the mesh is refused (and the session left on disk).
+        let meta = dir.path().join("session.json");
+        let text = std::fs::read_to_string(&meta).unwrap();
+        let mut v: Value = serde_json::from_str(&text).unwrap();
+        v.as_object_mut().unwrap().remove("mask");
+        std::fs::write(&meta, v.to_string()).unwrap();
+        let (back, note) = restore(dir.path()).unwrap();
+        assert!(note.starts_with("restored"), "{note}");
+        assert!(back.mask().is_empty());
+        v["mask"] = json!([0, 100_000_000]);
+        std::fs::write(&meta, v.to_string()).unwrap();
+        let (_, note) = restore(dir.path()).unwrap();
+        assert!(note.contains("masks vertex 100000000"), "{note}");
     }
 }

@@ -1281,6 +1281,14 @@ fn last_whole(tab: &Tab) -> Decoded {
     decode(b)
 }
 
+/// The sculpt mask of a whole frame as flags (none masked without one).
+fn masked_flags(d: &Decoded) -> Vec<bool> {
+    match &d.mask {
+        Some(m) => m.iter().map(|&b| b == 1).collect(),
+        None => vec![false; d.positions.len()],
+    }
+}
+
 fn dist(a: [f32; 3], b: [f64; 3]) -> f64 {
     (0..3)
         .map(|i| (f64::from(a[i]) - b[i]).powi(2))
@@ -1391,19 +1399,78 @@ fn mask_paint_invert_clear_and_masked_vertices_never_move() {
     let flags: Vec<bool> = after.mask.expect("mask").iter().map(|&b| b == 1).collect();
     assert_eq!(flags, want);
 
-    // Undo does not touch the mask (not an undo step); clear does.
+    // Undo takes back the stroke and keeps the mask it had; clear is an
+    // undo step of its own.
     a.ok(json!({"op": "undo"}));
-    assert!(last_whole(&a).mask.is_some());
+    assert_eq!(last_whole(&a).positions, start.positions);
+    assert_eq!(masked_flags(&last_whole(&a)), want);
     let r = a.ok(json!({"op": "mask_clear"}));
     assert_eq!(r["masked"], 0);
     let cleared = last_whole(&a);
     assert_eq!(cleared.flags & 16, 0);
     assert!(cleared.mask.is_none());
+    assert_eq!(a.state["can_undo"], true);
+    assert_eq!(a.state["can_redo"], false, "an edit drops the redo history");
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(
+        masked_flags(&last_whole(&a)),
+        want,
+        "undo brings the mask back"
+    );
+    a.ok(json!({"op": "redo"}));
+    assert!(last_whole(&a).mask.is_none(), "redo clears it again");
+    a.ok(json!({"op": "undo"}));
+    // Undo steps back through the mask edits too: the second invert, the
+    // first, the paint, the erase, the first paint.
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(
+        masked_flags(&last_whole(&a)).iter().filter(|&&m| m).count(),
+        nv - n
+    );
+    for _ in 0..4 {
+        a.ok(json!({"op": "undo"}));
+    }
+    assert!(last_whole(&a).mask.is_none(), "before the first paint");
+    for _ in 0..5 {
+        a.ok(json!({"op": "redo"}));
+    }
+    assert_eq!(masked_flags(&last_whole(&a)), want);
+    // Clearing an empty mask or painting where it is masked already
+    // makes no undo step.
+    let v = a.state["version"].as_u64().expect("version");
+    let r = a.ok(json!({"op": "mask_paint", "point": [0, 0, 1], "radius": 0.3}));
+    assert_eq!(r["masked"], n);
+    assert_eq!(a.state["version"].as_u64(), Some(v), "no step");
 
-    // A new primitive starts unmasked.
-    a.ok(json!({"op": "mask_paint", "point": [0, 0, 1], "radius": 0.5}));
-    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
-    assert!(last_whole(&a).mask.is_none());
+    // The mask is saved with the session and comes back at a restart.
+    let meta = dir.path().join("session.json");
+    let deadline = Instant::now() + Duration::from_secs(20);
+    loop {
+        let saved: Value = std::fs::read_to_string(&meta)
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or(Value::Null);
+        if saved["version"].as_u64() == Some(v) {
+            assert_eq!(saved["mask"].as_array().map(Vec::len), Some(n));
+            break;
+        }
+        assert!(Instant::now() < deadline, "no autosave: {saved}");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let again = self::start(dir.path(), 1 << 20);
+    let mut b = Tab::open(again);
+    assert_eq!(
+        masked_flags(&last_whole(&b)),
+        want,
+        "restored with the mask"
+    );
+    assert_eq!(b.state["can_undo"], false);
+    // A new primitive starts unmasked, and undo brings the mask back.
+    b.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    assert!(last_whole(&b).mask.is_none());
+    b.ok(json!({"op": "undo"}));
+    assert_eq!(masked_flags(&last_whole(&b)), want);
+    drop(b);
 
     // Refusals say why and change nothing.
     for (req, why) in [

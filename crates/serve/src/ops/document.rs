@@ -28,9 +28,8 @@ impl Shared {
             .mesh;
         let content = keep_workspace(doc, Content::Model(mesh))?;
         doc.rind = None;
-        // A new mesh starts unmasked.
-        doc.mask.clear();
-        doc.commit(content);
+        // A new mesh starts unmasked (undo brings the mask back too).
+        doc.commit_unmasked(content);
         self.publish(doc);
         Ok(json!({"message": format!("created {spec}")}))
     }

@@ -73,8 +73,7 @@ impl Shared {
             _ => content,
         };
         doc.rind = None;
-        doc.mask.clear();
-        doc.commit(content);
+        doc.commit_unmasked(content);
         self.publish(&doc);
         Ok(format!("imported {name}{note}"))
     }

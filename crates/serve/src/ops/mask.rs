@@ -1,18 +1,19 @@
 //! The sculpt mask: vertices no brush moves. Painted by a mask brush,
 //! cleared and inverted; kept in the document as exact positions and
-//! handed to every stroke (`LiveStroke::set_mask`). Every change sends
-//! every tab the whole frame, which carries the mask (flag bit 4).
+//! handed to every stroke (`LiveStroke::set_mask`). Every change is an
+//! undo step, is saved with the session, and sends every tab the state
+//! and the whole frame, which carries the mask (flag bit 4).
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 use glam::DVec3;
 use holey_geom::position_key;
 use serde_json::{Value, json};
 
 use super::fields::num_field;
-use super::{Out, Reply, Shared, whole_frame};
+use super::{Reply, Shared};
 use crate::ServeError;
-use crate::doc::Document;
+use crate::doc::{Document, Mask};
 
 /// The most dab centres one `mask_paint` takes (a long drag sends its
 /// dabs in one request at release).
@@ -20,8 +21,9 @@ pub const MAX_MASK_POINTS: usize = 100_000;
 
 impl Shared {
     /// `mask_paint` (`points` or `point`, `radius`, `erase`), `mask_clear`
-    /// or `mask_invert` (`op`). Answers with `"masked"`, the number of the
-    /// mesh's vertices masked now.
+    /// or `mask_invert` (`op`): one undo step when the mask changes.
+    /// Answers with `"masked"`, the number of the mesh's vertices masked
+    /// now.
     pub(super) fn mask_edit(&self, doc: &mut Document, op: &str, req: &Value) -> Reply {
         let mesh = doc.sculpt_mesh("masking")?;
         if doc.rind.is_some() {
@@ -29,13 +31,13 @@ impl Shared {
                 "finish or cancel the rind first".into(),
             ));
         }
-        let mask = match op {
-            "mask_clear" => HashSet::new(),
+        let mask: Mask = match op {
+            "mask_clear" => Mask::new(),
             "mask_invert" => mesh
                 .positions
                 .iter()
                 .map(|&p| position_key(p))
-                .filter(|k| !doc.mask.contains(k))
+                .filter(|k| !doc.mask().contains(k))
                 .collect(),
             _ => {
                 let radius = num_field(req, "radius")?;
@@ -46,7 +48,7 @@ impl Shared {
                 }
                 let dabs = Dabs::new(dab_points(req)?, radius);
                 let erase = req.get("erase").and_then(Value::as_bool).unwrap_or(false);
-                let mut mask = doc.mask.clone();
+                let mut mask = Mask::clone(doc.mask());
                 for &p in &mesh.positions {
                     if dabs.cover(p) {
                         let key = position_key(p);
@@ -60,12 +62,12 @@ impl Shared {
                 mask
             }
         };
-        doc.mask = mask;
-        let flags = doc.mask_flags();
-        let masked = flags
-            .as_ref()
+        if doc.commit_mask(mask) {
+            self.publish(doc);
+        }
+        let masked = doc
+            .mask_flags()
             .map_or(0, |f| f.iter().filter(|&&b| b).count());
-        self.hub.broadcast(&Out::Binary(whole_frame(doc)));
         Ok(json!({"masked": masked}))
     }
 }

@@ -155,12 +155,14 @@ impl Shared {
         self.hub.send(conn, Out::Text(msg.to_string()));
     }
 
-    /// Sends every tab the state and the whole mesh, and saves.
+    /// Sends every tab the state and the whole mesh (with the mask), and
+    /// saves both.
     fn publish(&self, doc: &Document) {
         self.hub.broadcast(&Out::Text(doc.state_json().to_string()));
         self.hub.broadcast(&Out::Binary(whole_frame(doc)));
         if doc.rind.is_none() {
-            self.saver.save(doc.version(), doc.content().clone());
+            self.saver
+                .save(doc.version(), doc.content().clone(), Arc::clone(doc.mask()));
         }
     }
 

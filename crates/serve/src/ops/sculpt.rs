@@ -1,5 +1,7 @@
 //! Strokes fed one mouse event at a time.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 use holey_sculpt::brush::ALL_BRUSHES;
 use holey_sculpt::{
@@ -10,7 +12,7 @@ use serde_json::{Value, json};
 
 use super::fields::{num_field, point_field, str_field};
 use super::{Out, Reply, Shared};
-use crate::doc::{ActiveStroke, Content, Document, mask_flags};
+use crate::doc::{ActiveStroke, Content, Document, Mask, mask_flags};
 use crate::frame::{
     FLAG_PREVIEW, display_triangles, encode_masked, encode_positions, encode_sparse,
 };
@@ -68,8 +70,8 @@ impl Shared {
             ..BrushSettings::new(brush, radius, strength)
         };
         let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
-        if !doc.mask.is_empty() {
-            live.set_mask(doc.mask.clone());
+        if !doc.mask().is_empty() {
+            live.set_mask(Mask::clone(doc.mask()));
         }
         live.set_preview(brush.is_drag());
         live.set_remesh(remesh_options(mesh, doc.remesh_detail));
@@ -119,7 +121,7 @@ impl Shared {
     pub(super) fn stroke_frame(&self, doc: &mut Document, req: &Value) -> Reply {
         let point = point_field(req)?;
         let version = doc.version();
-        let mask = &doc.mask;
+        let mask = Arc::clone(doc.mask());
         let Some(stroke) = doc.stroke.as_mut() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
@@ -132,7 +134,7 @@ impl Shared {
         let bytes = if frame.connectivity_changed {
             let display = display_triangles(frame.mesh);
             // New vertex numbers: the mask is sent again with them.
-            let masked = mask_flags(mask, &display.positions);
+            let masked = mask_flags(&mask, &display.positions);
             let bytes = encode_masked(&display, FLAG_PREVIEW, version, vanish, masked.as_deref());
             stroke.display = display;
             bytes
