@@ -27,7 +27,15 @@
 //! - per edge, an outer strip `(o_(next a), o_a, o_(next b), o_b)` and
 //!   the inner strip below it (`a`, `b` the edge's two corners);
 //! - per corner, a jamb `(o_c, o_(next c), i_(next c), i_c)`;
-//! - per vertex of valence `k ≥ 1`, an outer and an inner `k`-gon joint.
+//! - per vertex of valence `k ≥ 3`, an outer and an inner `k`-gon joint.
+//!
+//! A vertex of valence 2 (a grid's corner, a polygon's vertex on a
+//! straight run) would make two-gon joints, flat between the same two
+//! points: there the two strips share one edge instead, outer and inner.
+//! At valence 1 (the tip of a dangling edge) the joint would be a
+//! monogon closed by a loop: the edge's strips are triangles there. So
+//! every face of the result has at least three sides and no edge is a
+//! loop.
 //!
 //! Each corner's copy is the point `thickness` inside both of its edges
 //! as seen in its face's plane (so a corner bending out of a non-planar
@@ -37,8 +45,12 @@
 //! slivers and at short edges the tubes thin out instead of folding. A
 //! thickness that no corner has room for is refused.
 //!
-//! Counts, with `C = 2E` corners: `V' = 2C = 4E`, `E' = 5C = 10E`,
-//! `F' = 4E + 2V` (plus any point-spheres, copied). Tubes have four sides.
+//! Counts, with `C = 2E` corners, `V₁` and `V₂` the vertices of valence
+//! 1 and 2 and `V₃` those of valence 3 or more: `V' = 2C = 4E`,
+//! `E' = 5C − 2V₁ − 2V₂ = 10E − 2V₁ − 2V₂`, `F' = 4E + 2V₃` (plus any
+//! point-spheres, copied: one vertex and one face each). So
+//! `χ' = V' − E' + F' = 2(V₁ + V₂ + V₃) − 2E`, twice the edge graph's,
+//! which is the genus above. Tubes have four sides.
 //!
 //! ## Columns ([`columns`])
 //! An `n`-sided column (a prism of `n` quads) along every edge, ending at
@@ -208,6 +220,16 @@ impl Builder {
             .push(self.raw.face_vertices.len() as u32);
     }
 
+    /// Adds a face without the corners that start a loop (an edge from a
+    /// vertex back to itself, listed as two equal consecutive vertices).
+    fn face_without_loops(&mut self, corners: &[(u32, u64)]) {
+        let kept: Vec<(u32, u64)> = (0..corners.len())
+            .filter(|&j| corners[j].0 != corners[(j + 1) % corners.len()].0)
+            .map(|j| corners[j])
+            .collect();
+        self.face(&kept);
+    }
+
     fn finish(mut self) -> Result<Mesh, WireframeError> {
         let mut first: HashMap<u64, u32> = HashMap::with_capacity(self.keys.len() / 2);
         for (corner, &key) in self.keys.iter().enumerate() {
@@ -283,8 +305,20 @@ pub fn wireframe(mesh: &Mesh, thickness: f64) -> Result<Mesh, WireframeError> {
         o[c] = b.vertex(outer[c]);
         i[c] = b.vertex(inner[c]);
     }
+    let rings = joint_rings(&cs);
+    // The joint edge from corner c to its rotation successor is keyed by
+    // `joint[c]`; around a vertex of valence 2 both of its corners name
+    // one edge, so the two strips there meet at that edge instead of
+    // across a two-gon joint.
+    let mut joint: Vec<u64> = (0..n as u64).collect();
+    for ring in &rings {
+        if let [x, y] = ring[..] {
+            joint[y] = joint[x];
+        }
+    }
     let (ko, ki, kv, kjo, kji) = (0u8, 1u8, 2u8, 3u8, 4u8);
     let k = |kind: u8, c: usize| key(kind, c as u64);
+    let kj = |kind: u8, c: usize| key(kind, joint[c]);
     for c in 0..n {
         if cs.partner[c] == u32::MAX {
             continue;
@@ -299,24 +333,47 @@ pub fn wireframe(mesh: &Mesh, thickness: f64) -> Result<Mesh, WireframeError> {
             (i[c], k(kv, c)),
         ]);
         // The strips of the edge leaving c, made once, from its first side.
+        // At a vertex of valence 1 (the tip of a dangling edge) the joint
+        // edge would be a loop closing a monogon: the strip is a triangle.
         if c < a {
             let na = cs.next[a] as usize;
-            b.face(&[
+            b.face_without_loops(&[
                 (o[nc], k(ko, c)),
-                (o[c], k(kjo, c)),
+                (o[c], kj(kjo, c)),
                 (o[na], k(ko, a)),
-                (o[a], k(kjo, a)),
+                (o[a], kj(kjo, a)),
             ]);
-            b.face(&[
+            b.face_without_loops(&[
                 (i[c], k(ki, c)),
-                (i[nc], k(kji, a)),
+                (i[nc], kj(kji, a)),
                 (i[a], k(ki, a)),
-                (i[na], k(kji, c)),
+                (i[na], kj(kji, c)),
             ]);
         }
     }
-    // The joints: outer against the rotation (counter-clockwise seen from
-    // outside), inner along it.
+    // The joints of valence 3 and more: outer against the rotation
+    // (counter-clockwise seen from outside), inner along it.
+    for ring in rings.iter().filter(|r| r.len() >= 3) {
+        let outer_joint: Vec<(u32, u64)> = (0..ring.len())
+            .rev()
+            .map(|j| {
+                let prev = ring[(j + ring.len() - 1) % ring.len()];
+                (o[ring[j]], k(kjo, prev))
+            })
+            .collect();
+        // The corner at o_(c_j) starts the edge to o_(c_(j−1)), keyed by
+        // c_(j−1); listed in reverse rotation order.
+        b.face(&outer_joint);
+        let inner_joint: Vec<(u32, u64)> = ring.iter().map(|&c| (i[c], k(kji, c))).collect();
+        b.face(&inner_joint);
+    }
+    b.finish()
+}
+
+/// The corners around every vertex with edges, in rotation order.
+fn joint_rings(cs: &Corners) -> Vec<Vec<usize>> {
+    let n = cs.len();
+    let mut rings = Vec::new();
     let mut done = vec![false; n];
     for start in 0..n {
         if done[start] || cs.partner[start] == u32::MAX {
@@ -332,20 +389,9 @@ pub fn wireframe(mesh: &Mesh, thickness: f64) -> Result<Mesh, WireframeError> {
                 break;
             }
         }
-        let outer_joint: Vec<(u32, u64)> = (0..ring.len())
-            .rev()
-            .map(|j| {
-                let prev = ring[(j + ring.len() - 1) % ring.len()];
-                (o[ring[j]], k(kjo, prev))
-            })
-            .collect();
-        // The corner at o_(c_j) starts the edge to o_(c_(j−1)), keyed by
-        // c_(j−1); listed in reverse rotation order.
-        b.face(&outer_joint);
-        let inner_joint: Vec<(u32, u64)> = ring.iter().map(|&c| (i[c], k(kji, c))).collect();
-        b.face(&inner_joint);
+        rings.push(ring);
     }
-    b.finish()
+    rings
 }
 
 /// Outer and inner positions of every corner (point-spheres: the vertex).

@@ -51,11 +51,31 @@ fn counts(m: &Mesh) -> (usize, usize, usize) {
     (m.vertex_count(), m.edge_count(), m.face_count())
 }
 
-/// The wireframe counts of the module documentation from V and E:
-/// (4E, 10E, 4E + 2V) for a mesh with no point-spheres.
+/// The wireframe counts of the module documentation from E and the
+/// valences: (4E, 10E − 2(V₁ + V₂), 4E + 2V₃) for a mesh with no
+/// point-spheres (`V_k` the vertices of valence k, `V₃` of 3 or more).
 fn wire_counts(m: &Mesh) -> (usize, usize, usize) {
-    let (v, e) = (m.vertex_count(), m.edge_count());
-    (4 * e, 10 * e, 4 * e + 2 * v)
+    let e = m.edge_count();
+    let low = valences(m).iter().filter(|&&k| k == 1 || k == 2).count();
+    let high = valences(m).iter().filter(|&&k| k >= 3).count();
+    (4 * e, 10 * e - 2 * low, 4 * e + 2 * high)
+}
+
+/// Every face but a point-sphere's has three sides or more and no edge
+/// is a loop.
+fn no_two_gons_or_loops(w: &Mesh) {
+    for f in w.faces() {
+        let point_sphere = w
+            .face_vertices(f)
+            .unwrap()
+            .iter()
+            .all(|&v| w.valence(v).unwrap() == 0);
+        assert!(point_sphere || w.face_len(f).unwrap() >= 3, "face {f:?}");
+    }
+    for e in w.edges() {
+        let [a, b] = w.edge_vertices(e).unwrap();
+        assert_ne!(a, b, "edge {e:?} is a loop");
+    }
 }
 
 /// The column counts of the module documentation from E and the valences.
@@ -116,6 +136,7 @@ fn wireframe_genus_is_the_cycle_rank_of_the_edge_graph() {
     ] {
         let w = wireframe(&m, 0.02).unwrap();
         w.validate().unwrap();
+        no_two_gons_or_loops(&w);
         assert_eq!(w.genus(), graph_genus(&m));
         assert_eq!(
             w.topology().component_count(),
@@ -149,10 +170,72 @@ fn wireframe_handles_dangling_edges_and_point_spheres() {
     let w = wireframe(&m, 0.05).unwrap();
     w.validate().unwrap();
     let (v, e, f) = wire_counts(&m);
-    // The point-sphere: one vertex and one face more, no edge; its
-    // vertex has no edge, so it makes no joint (−2 faces from 2V).
-    assert_eq!(counts(&w), (v + 1, e, f - 2 + 1));
+    // The point-sphere: one vertex and one face more, no edge (its vertex
+    // has valence 0, so no joint). The dangling edge's tip has valence 1:
+    // its strips are triangles, with no monogon joint.
+    assert_eq!(counts(&w), (v + 1, e, f + 1));
     assert_eq!(w.genus(), graph_genus(&m));
+    no_two_gons_or_loops(&w);
+}
+
+/// A lone `n`-gon (one face and its hole) of radius 1 in the plane z = 0.
+fn polygon(n: usize) -> Mesh {
+    let mut p = PolyMesh::new();
+    for k in 0..n {
+        let t = std::f64::consts::TAU * k as f64 / n as f64;
+        p.positions.push(DVec3::new(t.cos(), t.sin(), 0.0));
+    }
+    p.face_offsets = vec![0, n as u32];
+    p.face_indices = (0..n as u32).collect();
+    mesh(&p)
+}
+
+#[test]
+fn wireframe_at_valence_two_has_no_two_gons_and_the_graph_genus() {
+    // A cube with one edge split at its midpoint (a vertex of valence 2
+    // between two faces), lone polygons (every vertex of valence 2, so
+    // the wireframe of an n-gon is a ring: genus n − n + 1 = 1), an open
+    // grid (its four corners have valence 2), a cylinder's side (open at
+    // both ends) and a prism whose side edges are split twice.
+    let mut split = prim("@cube");
+    let e = split.edge_at(0).unwrap();
+    split.subdivide_edge(e).unwrap();
+    let mut prism = prim("@cylinder:5");
+    for k in 0..3 {
+        let e = prism.edge_at(k).unwrap();
+        let half = prism.subdivide_edge(e).unwrap().edges[1];
+        prism.subdivide_edge(half).unwrap();
+    }
+    let cases = [
+        ("split cube", split),
+        ("triangle", polygon(3)),
+        ("hexagon", polygon(6)),
+        ("grid", prim("@plane:3:2")),
+        ("prism", prism),
+    ];
+    for (name, m) in cases {
+        m.validate().unwrap();
+        let two = valences(&m).iter().filter(|&&k| k == 2).count();
+        assert!(two > 0, "{name} has vertices of valence 2");
+        let w = wireframe(&m, 0.02).unwrap();
+        w.validate().unwrap();
+        no_two_gons_or_loops(&w);
+        assert_eq!(counts(&w), wire_counts(&m), "{name}");
+        // Euler's formula over the counts gives the genus E − V + 1 of
+        // the (connected) edge graph: χ' = 2V − 2E = 2 − 2g.
+        let (v, e) = (m.vertex_count() as i64, m.edge_count() as i64);
+        assert_eq!(m.topology().component_count(), 1);
+        assert_eq!(w.genus(), e - v + 1, "{name}");
+        assert_eq!(w.topology().component_count(), 1, "{name}");
+        assert_eq!(w.hole_count(), 0, "{name}");
+        assert!(signed_volume(&w) > 0.0, "{name}");
+    }
+    // The triangle worked out: 3 edges, 3 vertices of valence 2, none of
+    // 3 or more: 4·3 = 12 vertices, 10·3 − 2·3 = 24 edges, 4·3 + 0 = 12
+    // faces (6 jambs, 3 outer and 3 inner strips): χ = 0, a torus.
+    let w = wireframe(&polygon(3), 0.05).unwrap();
+    assert_eq!(counts(&w), (12, 24, 12));
+    assert_eq!(w.genus(), 1);
 }
 
 #[test]
