@@ -13,6 +13,7 @@
 //! - [`wireframe`]: wireframe and column modeling (a tube along every edge);
 //! - [`cut`] and [`truncate`]: the conical tools (cut by vertex, edge or
 //!   face; truncation of vertices and edges);
+//! - [`hull`]: the convex hull and TopMod's dual convex hull;
 //! - [`tools`]: planarize, make spherical, two-gon and valence-2 cleanup;
 //! - [`select`]: face loops, edge loops and rings, grow, shrink, invert,
 //!   similar, checkerboard.
@@ -22,7 +23,9 @@
 pub mod cut;
 pub mod extrude;
 pub mod handle;
+pub mod hull;
 pub mod menger;
+pub mod numbering;
 mod polygon;
 #[cfg(test)]
 mod properties;
