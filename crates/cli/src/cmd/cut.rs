@@ -1,12 +1,12 @@
 //! `holey cut` and `holey truncate`: TopMod's conical tools (issue 18).
 
 use anyhow::Result;
-use holey_dlfl::{EdgeId, VertexId};
 use holey_io::WriteOptions;
-use holey_model::cut::{CutError, CutOffset, CutTarget, cut};
+use holey_model::cut::{CutOffset, CutTarget, cut};
+use holey_model::numbering::{parse_edge_list, parse_index_list};
 
 use crate::error::bad_input;
-use crate::input::{Kernel, load, parse_edge_list, parse_index_list};
+use crate::input::{Kernel, load};
 use crate::output::write_kernel;
 
 #[derive(clap::Args)]
@@ -107,77 +107,21 @@ fn targets(
     edges: Option<&str>,
     faces: Option<&str>,
 ) -> Result<Vec<CutTarget>> {
-    let mut out = Vec::new();
-    if let Some(list) = vertices {
-        for n in parse_index_list(list, "vertex")? {
-            out.push(CutTarget::Vertex(kernel.vertex(n)?));
-        }
-    }
-    if let Some(list) = edges {
-        for spec in parse_edge_list(list)? {
-            let e = kernel
-                .edge(spec)
-                .map_err(|e| bad_input(format!("edge {spec}: {e}")))?;
-            out.push(CutTarget::Edge(e));
-        }
-    }
-    if let Some(list) = faces {
-        for n in parse_index_list(list, "face")? {
-            out.push(CutTarget::Face(kernel.face(n)?));
-        }
-    }
+    let numbers =
+        |list: Option<&str>, what| list.map_or(Ok(Vec::new()), |s| parse_index_list(s, what));
+    let vertices = numbers(vertices, "vertex").map_err(bad_input)?;
+    let edges = edges
+        .map_or(Ok(Vec::new()), parse_edge_list)
+        .map_err(bad_input)?;
+    let faces = numbers(faces, "face").map_err(bad_input)?;
+    let out = kernel
+        .numbering
+        .cut_targets(&kernel.mesh, &vertices, &edges, &faces)
+        .map_err(bad_input)?;
     if out.is_empty() {
         return Err(bad_input("no vertex, edge or face was named to cut"));
     }
     Ok(out)
-}
-
-/// A cut's refusal in the input's numbering (vertices in file order,
-/// edges by their two vertices) where the library names kernel ids.
-fn describe(kernel: &Kernel, e: &CutError) -> String {
-    let vertex = |v: VertexId| kernel.vertex_name(v);
-    let edge = |e: EdgeId| kernel.edge_name(e);
-    let target = |t: &CutTarget| match *t {
-        CutTarget::Vertex(v) => kernel.vertex_name(v),
-        CutTarget::Edge(e) => kernel.edge_name(e),
-        CutTarget::Face(f) => kernel.face_name(f),
-    };
-    match e {
-        CutError::OffsetTooLarge {
-            edge: e,
-            length,
-            offset,
-            limit,
-        } => format!(
-            "an offset of {offset} reaches the middle of {} (length {length}); it must be less than {limit}",
-            edge(*e)
-        ),
-        CutError::Overlap(v) => {
-            format!(
-                "two cut targets share {}; cut them one at a time",
-                vertex(*v)
-            )
-        }
-        CutError::SelfLoop(e) => {
-            format!(
-                "{} is a self-loop; regions with self-loops are not cut",
-                edge(*e)
-            )
-        }
-        CutError::NotADisk(t) => format!(
-            "the neighbourhood of {} is not a disk (it wraps around a handle or a hole); it cannot be cut off by one face",
-            target(t)
-        ),
-        CutError::NothingToCut(t) => format!(
-            "{} has no edges leaving it (it is a whole component); there is nothing to cut",
-            target(t)
-        ),
-        CutError::HoleFace(f) => format!(
-            "{} is a hole (a boundary loop); it cannot be cut or cut away",
-            kernel.face_name(*f)
-        ),
-        other => other.to_string(),
-    }
 }
 
 /// Cuts `targets` off `kernel` and writes it to `output`.
@@ -189,8 +133,10 @@ fn cut_and_write(
     offset: CutOffset,
 ) -> Result<()> {
     // A refused cut leaves the mesh unchanged, so its ids still describe it.
-    cut(&mut kernel.mesh, targets, offset)
-        .map_err(|e| bad_input(format!("{input}: {}", describe(&kernel, &e))))?;
+    cut(&mut kernel.mesh, targets, offset).map_err(|e| {
+        let why = kernel.numbering.describe_cut(&kernel.mesh, &e);
+        bad_input(format!("{input}: {why}"))
+    })?;
     write_kernel(output, &kernel.mesh, &WriteOptions::default())
 }
 

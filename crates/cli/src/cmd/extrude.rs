@@ -5,12 +5,12 @@ use clap::ValueEnum;
 use holey_dlfl::FaceId;
 use holey_io::WriteOptions;
 use holey_model::extrude::{
-    self, DomeParams, DooSabinParams, ExtrudeError, ExtrudeParams, MultiExtrudeParams,
-    RegionDirection,
+    self, DomeParams, DooSabinParams, ExtrudeParams, MultiExtrudeParams, RegionDirection,
 };
+use holey_model::numbering::parse_index_list;
 
 use crate::error::bad_input;
-use crate::input::{Kernel, load, parse_index_list};
+use crate::input::load;
 use crate::output::write_kernel;
 
 /// The kind of extrusion.
@@ -188,22 +188,17 @@ pub fn run(args: Args) -> Result<()> {
 /// Extrudes the faces of the mesh `input` names into the file `output`.
 pub fn run_file(input: &str, output: &str, o: &Options) -> Result<()> {
     o.check()?;
-    let numbers = parse_index_list(&o.faces, "face")?;
+    let numbers = parse_index_list(&o.faces, "face").map_err(bad_input)?;
     if numbers.is_empty() {
         return Err(bad_input("--faces names no face"));
     }
     let mut kernel = load(input)?.into_kernel(false)?;
     // Every id is resolved before the first extrusion, so the numbers
     // are those of the input whatever the earlier extrusions made.
-    let mut faces: Vec<(usize, FaceId)> = Vec::with_capacity(numbers.len());
-    for &n in &numbers {
-        let f = kernel
-            .face(n)
-            .map_err(|e| bad_input(format!("{input}: --faces: {e}")))?;
-        if !faces.iter().any(|&(_, g)| g == f) {
-            faces.push((n, f));
-        }
-    }
+    let faces = kernel
+        .numbering
+        .faces(&numbers)
+        .map_err(|e| bad_input(format!("{input}: --faces: {e}")))?;
     if o.together {
         let params = MultiExtrudeParams {
             distance: o.distance.unwrap_or(1.0),
@@ -219,7 +214,7 @@ pub fn run_file(input: &str, output: &str, o: &Options) -> Result<()> {
             bad_input(format!(
                 "{input}: faces {}: {}",
                 o.faces,
-                describe(&kernel, &e)
+                kernel.numbering.describe_extrude(&kernel.mesh, &e)
             ))
         })?;
         return write_kernel(output, &kernel.mesh, &WriteOptions::default());
@@ -277,38 +272,10 @@ pub fn run_file(input: &str, output: &str, o: &Options) -> Result<()> {
         };
         // A refused extrusion leaves the mesh unchanged; the faces before
         // it are done, but nothing is written.
-        done.map_err(|e| bad_input(format!("{input}: face {n}: {}", describe(&kernel, &e))))?;
+        done.map_err(|e| {
+            let why = kernel.numbering.describe_extrude(&kernel.mesh, &e);
+            bad_input(format!("{input}: face {n}: {why}"))
+        })?;
     }
     write_kernel(output, &kernel.mesh, &WriteOptions::default())
-}
-
-/// A refusal in the input's numbering where the library names kernel ids.
-fn describe(kernel: &Kernel, e: &ExtrudeError) -> String {
-    match e {
-        ExtrudeError::HoleFace(f) => format!(
-            "{} is a hole (a boundary loop), not surface; there is nothing to extrude",
-            kernel.face_name(*f)
-        ),
-        ExtrudeError::PointSphere(f) => format!(
-            "{} is a point-sphere (one corner, no edge); there is nothing to extrude",
-            kernel.face_name(*f)
-        ),
-        ExtrudeError::SelfLoop { face, edge } => format!(
-            "{} of {} is a self-loop; faces with self-loops are not extruded",
-            kernel.edge_name(*edge),
-            kernel.face_name(*face)
-        ),
-        ExtrudeError::DegenerateFace(f) => format!(
-            "{} has zero area, so it has no normal to extrude along",
-            kernel.face_name(*f)
-        ),
-        ExtrudeError::NonFinite { face } => format!(
-            "a new vertex of {} would have non-finite coordinates; the parameters are too large for the model's scale",
-            kernel.face_name(*face)
-        ),
-        ExtrudeError::NoDirection { at } => format!(
-            "the normals of the selected faces cancel out at {at}; there is no direction to extrude along"
-        ),
-        other => other.to_string(),
-    }
 }

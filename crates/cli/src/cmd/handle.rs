@@ -3,9 +3,10 @@
 use anyhow::Result;
 use holey_io::WriteOptions;
 use holey_model::handle::{HandleParams, create_handle};
+use holey_model::numbering::parse_face_corner;
 
 use crate::error::bad_input;
-use crate::input::{load, parse_face_corner};
+use crate::input::load;
 use crate::output::write_kernel;
 
 #[derive(clap::Args)]
@@ -45,11 +46,16 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let (f1, c1) = parse_face_corner(&args.from)?;
-    let (f2, c2) = parse_face_corner(&args.to)?;
+    let (f1, c1) = parse_face_corner(&args.from).map_err(bad_input)?;
+    let (f2, c2) = parse_face_corner(&args.to).map_err(bad_input)?;
     let mut kernel = load(&args.input)?.into_kernel(false)?;
-    let a = kernel.corner(f1, c1)?;
-    let b = kernel.corner(f2, c2)?;
+    let corner = |f, c| {
+        kernel
+            .numbering
+            .corner(&kernel.mesh, f, c)
+            .map_err(bad_input)
+    };
+    let (a, b) = (corner(f1, c1)?, corner(f2, c2)?);
     let params = HandleParams::new(args.segments, args.w1, args.w2);
     create_handle(&mut kernel.mesh, a, b, &params)
         .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;

@@ -2,10 +2,11 @@
 
 use anyhow::Result;
 use holey_io::WriteOptions;
+use holey_model::numbering::parse_index_list;
 use holey_model::rind::{PunchOutcome, Rind};
 
 use crate::error::bad_input;
-use crate::input::{load, parse_face_list};
+use crate::input::load;
 use crate::output::write_kernel;
 
 #[derive(clap::Args)]
@@ -38,8 +39,8 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let punch = parse_face_list(&args.punch)?;
-    let peel = parse_face_list(&args.peel)?;
+    let punch = parse_index_list(&args.punch, "face").map_err(bad_input)?;
+    let peel = parse_index_list(&args.peel, "face").map_err(bad_input)?;
     let kernel = load(&args.input)?.into_kernel(false)?;
     let name = &args.input;
     let mut rind =

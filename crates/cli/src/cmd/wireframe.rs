@@ -2,10 +2,10 @@
 
 use anyhow::Result;
 use holey_io::WriteOptions;
-use holey_model::wireframe::{ColumnParams, WireframeError, columns, wireframe};
+use holey_model::wireframe::{ColumnParams, columns, wireframe};
 
 use crate::error::bad_input;
-use crate::input::{Kernel, load};
+use crate::input::load;
 use crate::output::write_kernel;
 use crate::progress::Progress;
 
@@ -74,47 +74,9 @@ pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
             },
         ),
     }
-    .map_err(|e| bad_input(format!("{input}: {}", describe(&kernel, &e))))?;
+    .map_err(|e| {
+        let why = kernel.numbering.describe_wireframe(&kernel.mesh, &e);
+        bad_input(format!("{input}: {why}"))
+    })?;
     write_kernel(output, &out, &WriteOptions::default())
-}
-
-/// A refusal in the input's numbering where the library names kernel ids.
-fn describe(kernel: &Kernel, e: &WireframeError) -> String {
-    match e {
-        WireframeError::DegenerateFace(f) => format!(
-            "{} has zero area, so its corners cannot be moved into it",
-            kernel.face_name(*f)
-        ),
-        WireframeError::DegenerateCorner { face, corner } => {
-            let index = kernel
-                .mesh
-                .face_corners(*face)
-                .ok()
-                .and_then(|mut cs| cs.position(|c| c == *corner));
-            match index {
-                Some(i) => format!(
-                    "corner {i} of {} has no inward direction (its edges coincide or fold back)",
-                    kernel.face_name(*face)
-                ),
-                None => e.to_string(),
-            }
-        }
-        WireframeError::ThicknessTooLarge { face, thickness } => format!(
-            "at thickness {thickness} the shrunk copy of {} turns over; use a smaller thickness",
-            kernel.face_name(*face)
-        ),
-        WireframeError::EdgeTooShort { edge, radius } => format!(
-            "at radius {radius} the joints at the ends of {} overlap (the edge is too short)",
-            kernel.edge_name(*edge)
-        ),
-        WireframeError::CoincidentEdges(v) => format!(
-            "two edges at {} point the same way; their columns would coincide",
-            kernel.vertex_name(*v)
-        ),
-        WireframeError::NoNormal(v) => format!(
-            "{} has no normal: the normals of its faces cancel out",
-            kernel.vertex_name(*v)
-        ),
-        other => other.to_string(),
-    }
 }
