@@ -41,8 +41,7 @@
 
 use std::collections::HashMap;
 
-use holey_dlfl::convert::ImportError;
-use holey_dlfl::{DVec3, Mesh};
+use holey_dlfl::{BuildError, DVec3, Mesh, RawMesh};
 
 /// Why a hull was refused. The input is unchanged (these functions never
 /// change it).
@@ -68,7 +67,7 @@ pub enum HullError {
     Numerical(&'static str),
     /// The kernel refused the built polygons; a bug in this module.
     #[error("internal error building the hull (please report): {0}")]
-    Build(#[from] ImportError),
+    Build(#[from] BuildError),
 }
 
 /// The convex hull of `mesh`'s vertices as a new mesh (see the module
@@ -159,16 +158,24 @@ fn around_vertices(
     vertices: &[DVec3],
     units: &[DVec3],
 ) -> Result<Vec<Vec<u32>>, HullError> {
-    // The facet holding each directed edge a → b.
-    let mut holding: HashMap<(u32, u32), u32> = HashMap::new();
+    // The facet holding each directed edge a → b, sorted by (a, b).
+    let mut holding: Vec<(u64, u32)> = Vec::new();
     let mut first: Vec<Option<(u32, u32)>> = vec![None; points];
     for (f, facet) in facets.iter().enumerate() {
         for (k, &a) in facet.iter().enumerate() {
             let b = facet[(k + 1) % facet.len()];
-            holding.insert((a, b), f as u32);
+            holding.push(((u64::from(a) << 32) | u64::from(b), f as u32));
             first[a as usize].get_or_insert((f as u32, b));
         }
     }
+    holding.sort_unstable();
+    let holder = |a: u32, b: u32| {
+        let key = (u64::from(a) << 32) | u64::from(b);
+        holding
+            .binary_search_by_key(&key, |&(x, _)| x)
+            .map(|k| holding[k].1)
+            .map_err(|_| HullError::Numerical("the polar hull is open"))
+    };
     let mut faces = Vec::with_capacity(points);
     for (v, start) in first.iter().enumerate() {
         // A polar point that is no corner of the polar hull (its plane
@@ -183,9 +190,7 @@ fn around_vertices(
             face.push(f);
             // Across edge v → b lies the facet holding b → v; its edge
             // leaving v comes next.
-            let g = *holding
-                .get(&(b, v))
-                .ok_or(HullError::Numerical("the polar hull is open"))?;
+            let g = holder(b, v)?;
             let facet = &facets[g as usize];
             let k = facet
                 .iter()
@@ -206,9 +211,45 @@ fn around_vertices(
     Ok(faces)
 }
 
-/// The kernel mesh of `faces` over `points` (unused points left out).
+/// The kernel mesh of `faces` over `points` (unused points left out):
+/// each corner's edge is the corner starting the reverse edge.
 fn build(points: Vec<DVec3>, faces: &[Vec<u32>]) -> Result<Mesh, HullError> {
-    Ok(Mesh::from_polygons(points, faces)?)
+    let mut raw = RawMesh::default();
+    let mut number = vec![u32::MAX; points.len()];
+    raw.face_offsets.push(0);
+    for face in faces {
+        for &i in face {
+            if number[i as usize] == u32::MAX {
+                number[i as usize] = raw.positions.len() as u32;
+                raw.positions.push(points[i as usize]);
+            }
+            raw.face_vertices.push(number[i as usize]);
+        }
+        raw.face_offsets.push(raw.face_vertices.len() as u32);
+    }
+    // Directed edges (from, to) with their corners, sorted, so the reverse
+    // of each is found by binary search.
+    let mut directed: Vec<(u64, u32)> = Vec::with_capacity(raw.face_vertices.len());
+    for f in 0..raw.face_count() {
+        let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+        for c in lo..hi {
+            let d = if c + 1 == hi { lo } else { c + 1 };
+            let (a, b) = (raw.face_vertices[c as usize], raw.face_vertices[d as usize]);
+            directed.push(((u64::from(a) << 32) | u64::from(b), c));
+        }
+    }
+    directed.sort_unstable();
+    for &(key, c) in &directed {
+        let (a, b) = (key >> 32, key & 0xffff_ffff);
+        if a < b {
+            let reverse = (b << 32) | a;
+            let k = directed
+                .binary_search_by_key(&reverse, |&(x, _)| x)
+                .map_err(|_| HullError::Numerical("an edge of the hull has one side"))?;
+            raw.edges.push([c, directed[k].1]);
+        }
+    }
+    Ok(Mesh::from_raw(&raw)?)
 }
 
 /// The tolerance of a point set: a point this close to a plane is on it.
@@ -462,6 +503,59 @@ impl<'a> Quickhull<'a> {
     /// the points that are corners of fewer than three faces (in the
     /// middle of a straight edge).
     fn polygons(&self) -> Result<Vec<Vec<u32>>, HullError> {
+        let group = self.coplanar_groups()?;
+        let n = self.tris.len();
+        let crossing = |t: usize, e: usize| group[self.tris[t].next[e] as usize] != group[t];
+        // Every face's boundary passes once through each of its corners,
+        // so the faces at a point are the boundary edges leaving it.
+        let mut faces_at = vec![0u32; self.p.len()];
+        for t in (0..n).filter(|&t| self.tris[t].alive) {
+            for e in (0..3).filter(|&e| crossing(t, e)) {
+                faces_at[self.tris[t].v[e] as usize] += 1;
+            }
+        }
+        let mut done = vec![false; 3 * n];
+        let mut walked = vec![false; n];
+        let mut out = Vec::new();
+        for t0 in (0..n).filter(|&t| self.tris[t].alive) {
+            for e0 in 0..3 {
+                if done[3 * t0 + e0] || !crossing(t0, e0) {
+                    continue;
+                }
+                // A second loop for one face: it is not a disk.
+                if std::mem::replace(&mut walked[group[t0]], true) {
+                    return Err(HullError::Numerical("a merged face is not a disk"));
+                }
+                let mut face = Vec::new();
+                let (mut t, mut e) = (t0, e0);
+                loop {
+                    done[3 * t + e] = true;
+                    let a = self.tris[t].v[e];
+                    if faces_at[a as usize] >= 3 {
+                        face.push(a);
+                    }
+                    (t, e) = self.next_boundary_edge(t, e, &group)?;
+                    if (t, e) == (t0, e0) {
+                        break;
+                    }
+                    if done[3 * t + e] {
+                        return Err(HullError::Numerical("a face's boundary is not a loop"));
+                    }
+                }
+                if face.len() < 3 {
+                    return Err(HullError::Numerical(
+                        "a merged face has fewer than 3 corners",
+                    ));
+                }
+                out.push(face);
+            }
+        }
+        Ok(out)
+    }
+
+    /// The coplanar groups of the live triangles, as one triangle number
+    /// per group (by union-find over the edges).
+    fn coplanar_groups(&self) -> Result<Vec<usize>, HullError> {
         let n = self.tris.len();
         let mut group: Vec<usize> = (0..n).collect();
         fn find(group: &mut [usize], mut x: usize) -> usize {
@@ -484,57 +578,39 @@ impl<'a> Quickhull<'a> {
                 }
             }
         }
-        // Boundary edges per group, and the groups at each point.
-        let mut loops: HashMap<usize, HashMap<u32, u32>> = HashMap::new();
-        let mut faces_at: HashMap<u32, Vec<usize>> = HashMap::new();
-        for t in (0..n).filter(|&t| self.tris[t].alive) {
-            let gt = find(&mut group, t);
-            for e in 0..3 {
-                let g = self.tris[t].next[e] as usize;
-                if find(&mut group, g) == gt {
-                    continue;
-                }
-                let (a, b) = (self.tris[t].v[e], self.tris[t].v[(e + 1) % 3]);
-                if loops.entry(gt).or_default().insert(a, b).is_some() {
-                    return Err(HullError::Numerical("a merged face is not a disk"));
-                }
-                let at = faces_at.entry(a).or_default();
-                if !at.contains(&gt) {
-                    at.push(gt);
-                }
-            }
+        for t in 0..n {
+            group[t] = find(&mut group, t);
         }
-        let mut keys: Vec<usize> = loops.keys().copied().collect();
-        keys.sort_unstable();
-        let mut out = Vec::with_capacity(keys.len());
-        for key in keys {
-            let edges = &loops[&key];
-            let start = edges
-                .keys()
-                .copied()
-                .min()
-                .ok_or(HullError::Numerical("an empty face"))?;
-            let mut face = Vec::with_capacity(edges.len());
-            let (mut a, mut steps) = (start, 0);
-            loop {
-                if faces_at.get(&a).map_or(0, Vec::len) >= 3 {
-                    face.push(a);
-                }
-                a = *edges
-                    .get(&a)
-                    .ok_or(HullError::Numerical("a face's boundary is open"))?;
-                steps += 1;
-                if a == start || steps > edges.len() {
-                    break;
-                }
+        Ok(group)
+    }
+
+    /// The boundary edge of `t`'s group after edge `e` of triangle `t`
+    /// (from `a` to `b`): the first edge leaving `b` that crosses into
+    /// another group, turning about `b` inside the group.
+    fn next_boundary_edge(
+        &self,
+        t: usize,
+        e: usize,
+        group: &[usize],
+    ) -> Result<(usize, usize), HullError> {
+        let (mut t, mut e) = (t, (e + 1) % 3);
+        for _ in 0..self.tris.len() {
+            let g = self.tris[t].next[e] as usize;
+            if group[g] != group[t] {
+                return Ok((t, e));
             }
-            // One loop through every boundary edge: the face is a disk.
-            if a != start || steps != edges.len() || face.len() < 3 {
-                return Err(HullError::Numerical("a merged face is not a disk"));
-            }
-            out.push(face);
+            // Inside the group: g holds the reverse edge, ending at b;
+            // its edge leaving b is the one after.
+            let b = self.tris[t].v[e];
+            let k = (0..3)
+                .find(|&k| {
+                    self.tris[g].v[(k + 1) % 3] == b
+                        && self.tris[g].v[k] == self.tris[t].v[(e + 1) % 3]
+                })
+                .ok_or(HullError::Numerical("neighbouring triangles disagree"))?;
+            (t, e) = (g, (k + 1) % 3);
         }
-        Ok(out)
+        Err(HullError::Numerical("a face's boundary is not a loop"))
     }
 }
 
