@@ -94,17 +94,16 @@ export class Viewer {
       color: 0xff2a2a, transparent: true, opacity: 0.45, side: THREE.DoubleSide, depthTest: false, depthWrite: false,
     });
 
-    // The sculpt mask: masked vertices (brushes never move them) darkened.
-    this.maskedMaterial = new THREE.MeshBasicMaterial({
-      color: 0x000000, transparent: true, opacity: 0.55, side: THREE.DoubleSide, depthWrite: false,
-    });
 
     this.mesh = null; // THREE.Mesh of the current frame
     this.wire = null;
     this.selMesh = null;
     this.maskMesh = null;
-    this.maskedMesh = null; // the sculpt mask's overlay
-    this.sculptMask = null; // Uint8Array per vertex (1 = masked), or null
+    // The sculpt mask: a Uint8Array per vertex (1 = masked), or null. It is
+    // drawn through the mesh's own 'masked' attribute: the material
+    // darkens masked vertices' shading (see makeMaterial), so the masked
+    // part keeps its shape on screen and its rim fades over one triangle.
+    this.sculptMask = null;
     this.frame = null;
     this.flat = false;
     this.showWire = true;
@@ -502,6 +501,7 @@ export class Viewer {
     const geo = new THREE.BufferGeometry();
     geo.setAttribute('position', g.attributes.position);
     geo.setAttribute('normal', g.attributes.normal);
+    geo.setAttribute('masked', g.attributes.masked);
     geo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * this.frame.nt)), 1));
     geo.setDrawRange(0, 0);
     this.partMesh = new THREE.Mesh(geo, this.material);
@@ -582,6 +582,7 @@ export class Viewer {
     const geo = new THREE.BufferGeometry();
     geo.setAttribute('position', pos);
     geo.setAttribute('normal', liveAttribute(new Float32Array(3 * f.nv), 3));
+    geo.setAttribute('masked', new THREE.BufferAttribute(new Float32Array(f.nv), 1));
     geo.setIndex(new THREE.BufferAttribute(f.tris, 1));
     this.mesh = new THREE.Mesh(geo, this.material);
     // Bounds are tracked by hand (computeBoundingSphere would allocate); the
@@ -611,15 +612,7 @@ export class Viewer {
     this.maskMesh.visible = false;
     this.maskMesh.renderOrder = 3;
 
-    const kgeo = new THREE.BufferGeometry();
-    kgeo.setAttribute('position', pos);
-    kgeo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * f.nt)), 1));
-    this.maskedMesh = new THREE.Mesh(kgeo, this.maskedMaterial);
-    this.maskedMesh.frustumCulled = false;
-    this.maskedMesh.visible = false;
-    this.maskedMesh.renderOrder = 1;
-
-    this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh, this.maskedMesh);
+    this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh);
     this.computeBounds();
     this.updateMask();
     this.setSculptMask(f.sculptMask);
@@ -668,12 +661,12 @@ export class Viewer {
 
   disposeMesh() {
     this.disposePartMesh();
-    for (const m of [this.mesh, this.wire, this.selMesh, this.maskMesh, this.maskedMesh]) {
+    for (const m of [this.mesh, this.wire, this.selMesh, this.maskMesh]) {
       if (!m) continue;
       this.scene.remove(m);
       m.geometry.dispose();
     }
-    this.mesh = this.wire = this.selMesh = this.maskMesh = this.maskedMesh = null;
+    this.mesh = this.wire = this.selMesh = this.maskMesh = null;
   }
 
   computeBounds() {
@@ -838,24 +831,15 @@ export class Viewer {
     return n;
   }
 
-  /** Triangles touching a masked vertex are drawn darker. */
+  /** The mask into the mesh's 'masked' attribute: the material darkens
+   * masked vertices' shading, interpolated across triangles. */
   updateSculptMask() {
-    const f = this.frame, k = this.maskedMesh;
-    if (!k || !f) return;
-    const m = this.sculptMask;
-    let n = 0;
-    if (m) {
-      const out = k.geometry.index.array, t = f.tris;
-      for (let i = 0; i < t.length; i += 3) {
-        const a = t[i], b = t[i + 1], c = t[i + 2];
-        if (m[a] | m[b] | m[c]) {
-          out[n++] = a; out[n++] = b; out[n++] = c;
-        }
-      }
-      k.geometry.index.needsUpdate = true;
-    }
-    k.geometry.setDrawRange(0, n);
-    k.visible = n > 0;
+    const attr = this.mesh?.geometry.attributes.masked;
+    if (!attr) return;
+    const m = this.sculptMask, out = attr.array;
+    if (m && m.length === out.length) for (let v = 0; v < out.length; v++) out[v] = m[v];
+    else out.fill(0);
+    attr.needsUpdate = true;
     this.requestRender();
   }
 
@@ -1261,6 +1245,30 @@ function makeMaterial(name, flat) {
     side: THREE.DoubleSide, flatShading: flat,
     polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
   };
-  if (name in MATCAPS) return new THREE.MeshMatcapMaterial({ matcap: matcapTexture(name), ...common });
-  return new THREE.MeshPhongMaterial({ color: BASE_COLOR, specular: 0x222222, shininess: 30, ...common });
+  const m = name in MATCAPS
+    ? new THREE.MeshMatcapMaterial({ matcap: matcapTexture(name), ...common })
+    : new THREE.MeshPhongMaterial({ color: BASE_COLOR, specular: 0x222222, shininess: 30, ...common });
+  return withSculptMask(m);
+}
+
+/** What masked vertices' light is multiplied by (linear RGB, before
+ * tone mapping and sRGB encoding): a dark slate, so the masked part reads
+ * at once yet keeps the material's shading, highlights and rim, and so
+ * its shape (a flat overlay hides the form under it). */
+const MASK_TINT = [0.2, 0.23, 0.3];
+
+/** The material with the sculpt mask: a per-vertex `masked` attribute
+ * (0 or 1, interpolated over triangles) multiplies the shaded colour by
+ * MASK_TINT. Meshes without the attribute (the orbit proxy) read 0. */
+function withSculptMask(material) {
+  material.onBeforeCompile = (shader) => {
+    shader.vertexShader = 'attribute float masked;\nvarying float vMasked;\n' +
+      shader.vertexShader.replace('#include <begin_vertex>', '#include <begin_vertex>\n\tvMasked = masked;');
+    const tint = MASK_TINT.map((c) => c.toFixed(3)).join(', ');
+    shader.fragmentShader = 'varying float vMasked;\n' +
+      shader.fragmentShader.replace('#include <opaque_fragment>',
+        `outgoingLight *= mix(vec3(1.0), vec3(${tint}), vMasked);\n\t#include <opaque_fragment>`);
+  };
+  material.customProgramCacheKey = () => 'sculpt-mask';
+  return material;
 }
