@@ -234,6 +234,108 @@ function mirrorDistance(p) {
   return worst;
 }
 
+/** Drag the mouse through world points (projected to the screen), `steps`
+ * moves between each two, as one stroke; waits for the stroke's end. */
+async function dragPath(page, points, { steps = 12, pause = 15 } = {}) {
+  const px = [];
+  for (const p of points) px.push(await page.evaluate((q) => window.__holey.project(q), p));
+  await page.mouse.move(px[0][0], px[0][1]);
+  await page.mouse.down();
+  for (let j = 1; j < px.length; j++) {
+    const [a, b] = [px[j - 1], px[j]];
+    for (let i = 1; i <= steps; i++) {
+      await page.mouse.move(a[0] + ((b[0] - a[0]) * i) / steps, a[1] + ((b[1] - a[1]) * i) / steps);
+      await page.waitForTimeout(pause);
+    }
+  }
+  await page.mouse.up();
+  await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+}
+
+/** Renders the 3D view whole and keeps its pixels in the page
+ * (`window.__e2ePicture`), or with `compare` counts the pixels whose
+ * luma differs from the kept picture by more than 4 levels in 255 (the
+ * pictures are drawn alike, so any difference is the mesh's). */
+async function viewPicture(page, compare = false) {
+  return page.evaluate(async (cmp) => {
+    const img = new Image();
+    img.src = window.__holey.viewer.screenshot();
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    const luma = new Float32Array(c.width * c.height);
+    for (let i = 0; i < luma.length; i++) luma[i] = 0.2126 * d[4 * i] + 0.7152 * d[4 * i + 1] + 0.0722 * d[4 * i + 2];
+    if (!cmp) {
+      window.__e2ePicture = luma;
+      return 0;
+    }
+    const old = window.__e2ePicture;
+    let n = 0;
+    for (let i = 0; i < luma.length; i++) if (Math.abs(luma[i] - old[i]) > 4) n++;
+    return n;
+  }, compare);
+}
+
+/** The 3D view's luma (0–255) at world points, each averaged over 5×5
+ * pixels, drawn whole. */
+async function lumaAt(page, points) {
+  return page.evaluate(async (pts) => {
+    const v = window.__holey.viewer;
+    const img = new Image();
+    img.src = v.screenshot();
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const r = v.canvas.getBoundingClientRect();
+    return pts.map((p) => {
+      const [x, y] = v.project(p);
+      const px = Math.round(((x - r.left) * c.width) / r.width), py = Math.round(((y - r.top) * c.height) / r.height);
+      const d = ctx.getImageData(px - 2, py - 2, 5, 5).data;
+      let sum = 0;
+      for (let i = 0; i < 25; i++) sum += 0.2126 * d[4 * i] + 0.7152 * d[4 * i + 1] + 0.0722 * d[4 * i + 2];
+      return sum / 25;
+    });
+  }, points);
+}
+
+/** The farthest any position of `after` lies from the nearest position of
+ * `before` (flat xyz arrays; a grid of `cell`-wide boxes, searched ring by
+ * ring), a lower bound for how far the surface moved. */
+function farthestMove(before, after, cell) {
+  const key = (x, y, z) => `${Math.floor(x / cell)},${Math.floor(y / cell)},${Math.floor(z / cell)}`;
+  const grid = new Map();
+  for (let i = 0; i < before.length; i += 3) {
+    const k = key(before[i], before[i + 1], before[i + 2]);
+    if (!grid.has(k)) grid.set(k, []);
+    grid.get(k).push(i);
+  }
+  let worst = 0;
+  for (let j = 0; j < after.length; j += 3) {
+    const [x, y, z] = [after[j], after[j + 1], after[j + 2]];
+    const [cx, cy, cz] = [Math.floor(x / cell), Math.floor(y / cell), Math.floor(z / cell)];
+    let best = Infinity;
+    // Ring r holds every point within r·cell; stop once the best beats it.
+    for (let r = 0; r < 64 && !(best <= r * cell); r++) {
+      for (let a = -r; a <= r; a++) for (let b = -r; b <= r; b++) for (let c = -r; c <= r; c++) {
+        if (Math.max(Math.abs(a), Math.abs(b), Math.abs(c)) !== r) continue;
+        for (const i of grid.get(`${cx + a},${cy + b},${cz + c}`) || []) {
+          const d = Math.hypot(before[i] - x, before[i + 1] - y, before[i + 2] - z);
+          if (d < best) best = d;
+        }
+      }
+    }
+    if (best > worst) worst = best;
+  }
+  return worst;
+}
+
 // ---- scenarios ------------------------------------------------------------------
 
 const consoleErrors = [];
@@ -909,7 +1011,7 @@ const scenarios = [
     const before = await positions(page);
     const radius = await page.evaluate(() => window.__holey.bbox.diag * 0.2);
     const falloffs = ['sphere', 'root', 'sharp', 'linear', 'constant', 'smooth', 'custom', 'sphere'];
-    const expected = { draw: 0.05 * radius, clay: 0.05 * radius, crease: 0.05 * radius, flatten: 1, pinch: 0.25, scrape: 1, scale: 0.05, layer: 0.1 * radius };
+    const expected = { draw: 0.05 * radius, clay: 0.05 * radius, crease: 0.1 * radius, flatten: 1, pinch: 0.25, scrape: 1, scale: 0.1, layer: 0.25 * radius };
     for (const [i, brush] of Object.keys(expected).entries()) {
       await page.click(tid(`tool-${brush}`));
       if (!(await page.$eval(tid(`tool-${brush}`), (b) => b.classList.contains('active')))) throw new Error(`${brush}'s button is not shown active`);
@@ -1239,6 +1341,229 @@ const scenarios = [
     if (smooth.brush !== 'smooth' || !(smooth.strength > 0 && smooth.strength <= 1)) throw new Error(`Shift-drag sent ${JSON.stringify(smooth)}`);
     if (movedVertices(before, await positions(page)).length < 5) throw new Error('the Shift-drag moved nothing');
     if (!(await page.$eval(tid('tool-draw'), (b) => b.classList.contains('active')))) throw new Error('Shift-drag changed the chosen brush');
+  }],
+
+  ['sculpt: layer passed back and forth in one stroke rises to its height and stops; a new stroke lays the next layer on top', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await page.click(tid('tool-layer'));
+    await setRange(page, 'radius', 12);
+    await setRange(page, 'strength', 0.5);
+    const stats0 = await statsText(page);
+    const before = await positions(page);
+    const radius = await page.evaluate(() => window.__holey.bbox.diag * 0.12);
+    const h = 0.5 * 0.25 * radius; // the first slab's height
+    // How far each vertex rose along the sphere's normal (the brush normal
+    // near the path's middle), and the highest.
+    const rise = (after) => {
+      let top = 0;
+      for (let k = 0; k < before.length / 3; k++) top = Math.max(top, norm(after, k) - norm(before, k));
+      return top;
+    };
+    const [A, B] = [[-0.25, 0.0, 0.97], [0.25, 0.0, 0.97]];
+    const stroke = async (path) => {
+      const v = await version(page);
+      await dragPath(page, path);
+      await waitVersionAbove(page, v);
+      const sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+      // The slab's height: strength × LAYER_PER_RADIUS × the radius sent
+      // (which follows the mesh's size, so it grows with the first slab).
+      if (sent.brush !== 'layer' || Math.abs(sent.strength - 0.5 * 0.25 * sent.radius) > 1e-9) throw new Error(`sent ${JSON.stringify(sent)}`);
+      return positions(page);
+    };
+    const undo = async () => {
+      const u = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, u);
+    };
+    // One pass: the middle of the path rises to the slab's height.
+    const once = rise(await stroke([A, B]));
+    if (!(once > 0.85 * h && once < 1.02 * h)) throw new Error(`one pass rose ${once}, the slab is ${h}`);
+    await undo();
+    // There, back and there again, in one stroke: the same slab, not three.
+    const thrice = await stroke([A, B, A, B]);
+    const back = rise(thrice);
+    console.log(`  layer: slab ${h.toFixed(4)}, one pass ${once.toFixed(4)}, three passes ${back.toFixed(4)}`);
+    if (!(back < 1.02 * h && Math.abs(back - once) < 0.05 * h)) throw new Error(`three passes in one stroke rose ${back}, one pass ${once} (slab ${h})`);
+    // A vertex under the path did not move farther than the slab either
+    // (in any direction, so the plateau is not sideways drift).
+    let far = 0;
+    for (let k = 0; k < before.length / 3; k++) {
+      const d = Math.hypot(thrice[3 * k] - before[3 * k], thrice[3 * k + 1] - before[3 * k + 1], thrice[3 * k + 2] - before[3 * k + 2]);
+      far = Math.max(far, d);
+    }
+    if (far > 1.05 * h) throw new Error(`a vertex moved ${far}, more than the slab ${h}`);
+    await page.screenshot({ path: path.join(artifacts, '26-layer-once.png') });
+    // A new stroke starts a new layer on the last one (Blender: "a new
+    // stroke … paints on top of the previous stroke").
+    const twice = rise(await stroke([A, B]));
+    if (!(twice > 1.7 * h && twice < 2.05 * h)) throw new Error(`a second stroke rose ${twice} in all, not two slabs of ${h}`);
+    await page.screenshot({ path: path.join(artifacts, '26-layer-twice.png') });
+    await undo();
+    await undo();
+    if ((await statsText(page)) !== stats0) throw new Error(`undo left "${await statsText(page)}", not "${stats0}"`);
+  }],
+
+  ['sculpt: hotkeys pick every brush (1 … 0, Shift+1 … 4, Blender\'s letters) and titles show them; mask edits undo and redo; the mask shades with the surface', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await page.locator(tid('canvas')).focus();
+    const active = () => page.$$eval('[data-tool].active', (bs) => bs.map((b) => b.dataset.tool));
+    const keys = [
+      ['1', 'inflate'], ['2', 'smooth'], ['3', 'grab'], ['4', 'move'], ['5', 'move-piece'], ['6', 'snake_hook'],
+      ['7', 'draw'], ['8', 'clay'], ['9', 'crease'], ['0', 'flatten'],
+      ['Shift+1', 'layer'], ['Shift+2', 'pinch'], ['Shift+3', 'scrape'], ['Shift+4', 'scale'],
+      ['x', 'draw'], ['c', 'clay'], ['Shift+C', 'crease'], ['i', 'inflate'], ['s', 'smooth'], ['g', 'grab'],
+      ['k', 'snake_hook'], ['l', 'layer'], ['p', 'pinch'], ['Shift+T', 'flatten'], ['m', 'mask'],
+    ];
+    for (const [key, tool] of keys) {
+      await page.click(tid(tool === 'inflate' ? 'tool-smooth' : 'tool-inflate')); // start elsewhere
+      await page.locator(tid('canvas')).focus();
+      await page.keyboard.press(key);
+      const on = await active();
+      if (on.length !== 1 || on[0] !== tool) throw new Error(`${key} picked ${on}, not ${tool}`);
+      // The button's title names the key (Shift+1 as "Shift+1", x as "X").
+      const title = await page.$eval(`[data-tool="${tool}"]`, (b) => b.title);
+      const shown = key.length === 1 ? key.toUpperCase() : key.replace(/\+(\w)$/, (_, c) => `+${c.toUpperCase()}`);
+      if (!new RegExp(`[(, ]${shown.replace('+', '\\+')}[,)]`).test(title)) throw new Error(`${tool}'s title "${title}" does not name ${shown}`);
+    }
+    // Every brush button names at least one key.
+    const silent = await page.$$eval('[data-panel="sculpt"] [data-tool]', (bs) => bs.filter((b) => !/\((\w|Shift\+)/.test(b.title)).map((b) => b.dataset.tool));
+    if (silent.length) throw new Error(`no key in the titles of ${silent}`);
+
+    // Mask edits are undo steps: paint, Ctrl+Z unmasks, Ctrl+Shift+Z masks again.
+    await setRange(page, 'radius', 20);
+    const replies = await page.evaluate(() => window.__holey.maskReplies.length);
+    await dragThrough(page, [-0.3, 0.0, 0.954], [0.3, 0.0, 0.954]);
+    await waitFor(page, 'the mask from the server', (n) => window.__holey.maskReplies.length > n, replies);
+    const n = await page.evaluate(() => window.__holey.maskedCount);
+    if (n < 10) throw new Error(`${n} vertices masked`);
+    if (!(await page.evaluate(() => window.__holey.state.can_undo))) throw new Error('no undo after the mask paint');
+    let v = await version(page);
+    await page.keyboard.press('Control+Z');
+    await waitVersionAbove(page, v);
+    await waitFor(page, 'the mask undone', () => window.__holey.maskedCount === 0);
+    v = await version(page);
+    await page.keyboard.press('Control+Shift+Z');
+    await waitVersionAbove(page, v);
+    await waitFor(page, 'the mask redone', (m) => window.__holey.maskedCount === m, n);
+    // Ctrl+I inverts, Alt+M clears, as in Blender; both undo.
+    const nv = await page.evaluate(() => window.__holey.stats.vertices);
+    await page.keyboard.press('Control+I');
+    await waitFor(page, 'the inverted mask', (m) => window.__holey.maskedCount === m, nv - n);
+    await page.keyboard.press('Alt+M');
+    await waitFor(page, 'no mask', () => window.__holey.maskedCount === 0);
+    v = await version(page);
+    await page.keyboard.press('Control+Z');
+    await waitFor(page, 'the inverted mask back', (m) => window.__holey.maskedCount === m, nv - n);
+
+    // The mask shades with the surface: masked, the sphere's middle is
+    // darker than unmasked, and its middle still differs from its rim
+    // (a flat overlay would paint both one grey). Everything masked:
+    await page.keyboard.press('Alt+M');
+    await waitFor(page, 'no mask', () => window.__holey.maskedCount === 0);
+    const spots = [[0, 0, 1], [0.93, 0, 0.37], [0, 0.93, 0.37]];
+    await page.selectOption(tid('matcap-select'), 'studio');
+    await waitFor(page, 'the studio material', () => window.__holey.camera.material === 'studio');
+    const plain = await lumaAt(page, spots);
+    await page.click(tid('mask-invert'));
+    await waitFor(page, 'all masked', (m) => window.__holey.maskedCount === m, nv);
+    for (const material of ['studio', 'clay']) {
+      await page.selectOption(tid('matcap-select'), material);
+      await waitFor(page, `the ${material} material`, (x) => window.__holey.camera.material === x, material);
+      const masked = await lumaAt(page, spots);
+      console.log(`  ${material}: unmasked ${plain.map((x) => x.toFixed(0))}, masked ${masked.map((x) => x.toFixed(0))}`);
+      if (material === 'studio' && !(masked[0] < 0.75 * plain[0])) throw new Error(`masked, the middle reads ${masked[0]}, unmasked ${plain[0]}`);
+      const spread = Math.max(...masked) - Math.min(...masked);
+      if (!(spread > 12)) throw new Error(`${material}: the masked sphere reads ${masked} from middle to rim: flat`);
+      await page.screenshot({ path: path.join(artifacts, `27-mask-${material}.png`) });
+    }
+    await page.selectOption(tid('matcap-select'), 'studio');
+    // Half masked, for the picture: the rim between fades over a triangle.
+    await page.click(tid('mask-clear'));
+    await waitFor(page, 'no mask', () => window.__holey.maskedCount === 0);
+    await page.evaluate(() => window.__holey.setView([0.5, 0.3, 1]));
+    await page.click(tid('mask-paint'));
+    await setRange(page, 'radius', 30);
+    const r2 = await page.evaluate(() => window.__holey.maskReplies.length);
+    await dragThrough(page, [-0.4, 0.5, 0.77], [0.5, -0.3, 0.81]);
+    await waitFor(page, 'the mask from the server', (k) => window.__holey.maskReplies.length > k, r2);
+    await page.waitForTimeout(100);
+    await page.screenshot({ path: path.join(artifacts, '27-mask-half.png') });
+    await page.click(tid('mask-clear'));
+    await page.click(tid('tool-inflate'));
+  }],
+
+  ['bunny: one stroke of every brush at the default radius and strength shows in the picture and keeps the bunny whole', async (page) => {
+    const file = path.join(meshesDir, 'stanford-bunny.obj');
+    if (useMock || !fs.existsSync(file)) return 'SKIP';
+    await page.reload();
+    await page.waitForFunction(() => window.__holey?.frames > 0, null, { timeout: 30000 });
+    const v0 = await version(page);
+    await page.setInputFiles(tid('import-input'), file);
+    await waitVersionAbove(page, v0, 60000);
+    await setWorkspace(page, 'sculpt');
+    await waitStats(page, /components 1 · genus 0 · boundary loops 5/);
+    // The page's defaults, as a new user finds them.
+    const defaults = await page.evaluate(() => ({
+      radius: Number(document.querySelector('[data-testid="radius"]').value),
+      strength: Number(document.querySelector('[data-testid="strength"]').value),
+      remesh: Number(document.querySelector('[data-testid="remesh-detail"]').defaultValue),
+    }));
+    // Remeshing is on by default (earlier scenarios turned it off in the
+    // server's session, which outlives the page).
+    if (!(defaults.remesh > 0)) throw new Error('remeshing is off by default');
+    await setRange(page, 'remesh-detail', defaults.remesh);
+    await waitFor(page, 'remeshing on', (d) => window.__holey.state?.remesh?.detail === d, defaults.remesh);
+    await page.evaluate(() => window.__holey.setView([0, 0, 1]));
+    await page.waitForTimeout(100);
+    const diag = await page.evaluate(() => window.__holey.bbox.diag);
+    // Across the haunch, seen from the bunny's right side (+z), a stroke
+    // about two brush radii long, as in scenario 10.
+    const [A, B] = [[-0.01, 0.07, 0.07], [0.025, 0.085, 0.07]];
+    const results = {};
+    await page.screenshot({ path: path.join(artifacts, '28-bunny-before.png') });
+    // The drag brushes follow the pointer: they pull the back up by one
+    // radius, from a vertex just inside the top silhouette facing us (a
+    // sideways drag over the haunch slides it through its neighbours,
+    // which the engine turns into a topology change, as it should).
+    const start = await page.evaluate(() => {
+      const p = window.__holey.positions;
+      let best = null;
+      for (let k = 0; k < p.length; k += 3) {
+        if (p[k + 2] > 0.035 && p[k] > -0.03 && p[k] < 0 && (!best || p[k + 1] > best[1])) best = [p[k], p[k + 1], p[k + 2]];
+      }
+      return best;
+    });
+    const up = [start[0], start[1] + 0.1 * diag, start[2]];
+    const drags = new Set(['grab', 'move', 'snake_hook']);
+    for (const tool of ['inflate', 'smooth', 'grab', 'move', 'snake_hook', 'draw', 'clay', 'crease', 'flatten', 'pinch', 'scrape', 'layer', 'scale']) {
+      await page.click(tid(`tool-${tool.replace('_', '-')}`));
+      const r = await page.evaluate(() => [Number(document.querySelector('[data-testid="radius"]').value), Number(document.querySelector('[data-testid="strength"]').value)]);
+      if (r[0] !== defaults.radius || r[1] !== defaults.strength) throw new Error(`${tool} starts at radius ${r[0]}, strength ${r[1]}, not the defaults`);
+      const before = await positions(page);
+      await viewPicture(page);
+      const v = await version(page);
+      await dragPath(page, drags.has(tool) ? [start, up] : [A, B], { steps: 20, pause: 20 });
+      await waitVersionAbove(page, v, 60000);
+      const changed = await viewPicture(page, true);
+      const moved = farthestMove(before, await positions(page), diag / 200);
+      const stats = parseStats(await statsText(page));
+      const whole = /components 1 · genus 0 · boundary loops 5/.test(await statsText(page));
+      results[tool] = { changedPixels: changed, movedShare: round(moved / diag, 4), whole, V: stats.V };
+      await page.screenshot({ path: path.join(artifacts, `28-bunny-${tool}.png`) });
+      const u = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, u);
+    }
+    console.log(`  defaults ${JSON.stringify(defaults)}; per brush ${JSON.stringify(results)}`);
+    // Visible: hundreds of pixels change. Not destructive: one piece, five
+    // holes, genus 0, and no point farther than 8% of the size from where
+    // the surface was (the drags: their pull, a tenth, and a margin).
+    const bad = Object.entries(results).filter(([tool, r]) =>
+      !r.whole || r.changedPixels < 500 || r.movedShare > (drags.has(tool) ? 0.15 : 0.08));
+    fs.writeFileSync(path.join(artifacts, '28-bunny-defaults.json'), JSON.stringify({ defaults, results }, null, 2) + '\n');
+    if (bad.length) throw new Error(`not visible, or destructive: ${JSON.stringify(Object.fromEntries(bad))}`);
   }],
 ];
 

@@ -478,11 +478,18 @@ window.addEventListener('keydown', (e) => {
     stepBrush(e.code === 'BracketRight', e.shiftKey);
   } else if (!mod && k === 'escape') {
     clearSelection();
-  } else if (!mod && sculpt && k === 'm') {
-    setTool('mask');
-  } else if (!mod && sculpt && /^Digit[0-9]$/.test(e.code)) {
-    const n = Number(e.code.slice(5));
-    setTool(NUMBER_KEYS[(n + 9) % 10]);
+  } else if (sculpt && e.altKey && !mod && e.code === 'KeyM') {
+    e.preventDefault(); // Blender: Alt+M clears the mask, Ctrl+I inverts it
+    if (!app.stroke) maskOp('mask_clear');
+  } else if (sculpt && mod && !e.altKey && e.code === 'KeyI') {
+    e.preventDefault();
+    if (!app.stroke) maskOp('mask_invert');
+  } else if (!mod && !e.altKey && sculpt && /^Digit[0-9]$/.test(e.code)) {
+    // 1 … 9 and 0 pick the first ten brushes, Shift+1 … the rest (Blender).
+    const tool = (e.shiftKey ? SHIFT_NUMBER_KEYS : NUMBER_KEYS)[(Number(e.code.slice(5)) + 9) % 10];
+    if (tool) setTool(tool);
+  } else if (!mod && !e.altKey && sculpt && LETTER_KEYS[(e.shiftKey ? 'Shift+' : '') + e.code]) {
+    setTool(LETTER_KEYS[(e.shiftKey ? 'Shift+' : '') + e.code]);
   }
 });
 
@@ -746,8 +753,15 @@ for (const b of document.querySelectorAll('[data-tool-op]')) {
 
 /** The brushes that follow the pointer: the strength slider does not apply. */
 const DRAGS = new Set(['grab', 'move', 'move-piece', 'snake_hook']);
-/** The number keys' brushes (1 … 9, then 0), as the buttons' titles say. */
+/** The number keys' brushes (1 … 9, then 0), as the buttons' titles say;
+ * with Shift, the brushes past ten, as Blender numbers its brushes. */
 const NUMBER_KEYS = ['inflate', 'smooth', 'grab', 'move', 'move-piece', 'snake_hook', 'draw', 'clay', 'crease', 'flatten'];
+const SHIFT_NUMBER_KEYS = ['layer', 'pinch', 'scrape', 'scale'];
+/** Blender's sculpt-mode letters (by physical key, as `e.code` names it). */
+const LETTER_KEYS = {
+  KeyX: 'draw', KeyC: 'clay', 'Shift+KeyC': 'crease', KeyI: 'inflate', KeyS: 'smooth', KeyG: 'grab',
+  KeyK: 'snake_hook', KeyL: 'layer', KeyP: 'pinch', 'Shift+KeyT': 'flatten', KeyM: 'mask',
+};
 
 function setTool(tool) {
   app.tool = tool;
@@ -843,13 +857,20 @@ $('op-make-manifold').onclick = () => repair('make_manifold');
 /** Inflate, draw, clay and crease: displacement per frame at full strength,
  * as a share of the radius (the server's strength is in world units). */
 const INFLATE_PER_FRAME = 0.05;
+/** Crease at full strength, per frame: its groove is narrower than the
+ * brush (the weight squared), so it needs twice the depth to read on the
+ * bunny at the default strength. */
+const CREASE_PER_FRAME = 0.1;
 /** Pinch at full strength: the share of the way to the centre per frame. */
 const PINCH_PER_FRAME = 0.25;
-/** Local scale at full strength: the growth per frame. */
-const SCALE_PER_FRAME = 0.05;
+/** Local scale at full strength: the growth per frame (0.05 barely
+ * showed on the bunny at the default strength along a stroke). */
+const SCALE_PER_FRAME = 0.1;
 /** Layer at full strength: the slab's height, as a share of the radius
- * (the server moves at most half of it a frame). */
-const LAYER_PER_RADIUS = 0.1;
+ * (the server moves at most half of it a frame, and takes at most a
+ * quarter). At the default strength, an eighth of the radius: a tenth
+ * read as nothing on the bunny's scanned bumps. */
+const LAYER_PER_RADIUS = 0.25;
 /** Shift+F: pixels from the anchor for strength 1. */
 const STRENGTH_PX = 200;
 /** The most dabs one pointer event adds (a jump across the screen with a
@@ -865,8 +886,10 @@ const MAX_QUEUE = 64;
  * shares for the others; `sign` −1 inverts where that means something. */
 function strokeStrength(brush, radius, s, sign) {
   switch (brush) {
-    case 'inflate': case 'draw': case 'clay': case 'crease':
+    case 'inflate': case 'draw': case 'clay':
       return s * INFLATE_PER_FRAME * radius * sign;
+    case 'crease':
+      return s * CREASE_PER_FRAME * radius * sign;
     case 'smooth': case 'flatten': case 'scrape':
       return s; // a share of the way in [0, 1]: no opposite
     case 'layer':
