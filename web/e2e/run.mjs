@@ -234,6 +234,23 @@ function mirrorDistance(p) {
   return worst;
 }
 
+/** The largest distance from a vertex's mirror image across the plane
+ * `axis` (0, 1, 2) = `c` to the nearest vertex (flat xyz array). */
+function mirrorDistanceAcross(p, axis, c) {
+  let worst = 0;
+  for (let i = 0; i < p.length; i += 3) {
+    const q = [p[i], p[i + 1], p[i + 2]];
+    q[axis] = 2 * c - q[axis];
+    let best = Infinity;
+    for (let j = 0; j < p.length; j += 3) {
+      const d = Math.hypot(p[j] - q[0], p[j + 1] - q[1], p[j + 2] - q[2]);
+      if (d < best) best = d;
+    }
+    worst = Math.max(worst, best);
+  }
+  return worst;
+}
+
 /** Drag the mouse through world points (projected to the screen), `steps`
  * moves between each two, as one stroke; waits for the stroke's end. */
 async function dragPath(page, points, { steps = 12, pause = 15 } = {}) {
@@ -1564,6 +1581,72 @@ const scenarios = [
       !r.whole || r.changedPixels < 500 || r.movedShare > (drags.has(tool) ? 0.15 : 0.08));
     fs.writeFileSync(path.join(artifacts, '28-bunny-defaults.json'), JSON.stringify({ defaults, results }, null, 2) + '\n');
     if (bad.length) throw new Error(`not visible, or destructive: ${JSON.stringify(Object.fromEntries(bad))}`);
+  }],
+
+  ['sculpt: symmetry Y and Z together mirror a stroke into four places; symmetry X about the mesh centre follows a moved sphere', async (page) => {
+    if (useMock) return 'SKIP';
+    await sculptSphere(page);
+    await page.click(tid('tool-draw'));
+    await setRange(page, 'radius', 10);
+    await setRange(page, 'strength', 1);
+    for (const a of ['x', 'y', 'z']) await page.uncheck(tid(`symmetry-${a}`));
+    await page.check(tid('symmetry-y'));
+    await page.check(tid('symmetry-z'));
+    await page.selectOption(tid('symmetry-about'), 'origin');
+    let before = await positions(page);
+    let v = await version(page);
+    // In the +y, +z quarter only (seen from +z).
+    await dragThrough(page, [-0.2, 0.5, 0.84], [0.2, 0.45, 0.87]);
+    await waitVersionAbove(page, v);
+    let sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (sent.symmetry !== 'yz' || sent.symmetry_about !== 'origin') throw new Error(`sent ${JSON.stringify(sent)}`);
+    let after = await positions(page);
+    let moved = movedVertices(before, after);
+    const quarter = (sy, sz) => moved.filter((k) => sy * before[3 * k + 1] > 0.2 && sz * before[3 * k + 2] > 0.2).length;
+    const counts = [quarter(1, 1), quarter(-1, 1), quarter(1, -1), quarter(-1, -1)];
+    if (counts[0] < 5 || counts.some((c) => c !== counts[0])) throw new Error(`moved per quarter (+y+z, −y+z, +y−z, −y−z): ${counts}`);
+    for (const axis of [1, 2]) {
+      const worst = mirrorDistanceAcross(after, axis, 0);
+      if (worst > 1e-5) throw new Error(`across ${'xyz'[axis]} = 0, a vertex is ${worst} from the nearest mirror of another`);
+    }
+    await page.screenshot({ path: path.join(artifacts, '29-symmetry-yz.png') });
+    let u = await version(page);
+    await page.click(tid('undo'));
+    await waitVersionAbove(page, u);
+    for (const a of ['y', 'z']) await page.uncheck(tid(`symmetry-${a}`));
+
+    // Move the whole sphere to the right, then draw with symmetry X about
+    // the mesh's centre: the result mirrors across the sphere's own middle.
+    await page.click(tid('tool-move-piece'));
+    v = await version(page);
+    await dragThrough(page, [0, 0, 1], [0.6, 0, 1]);
+    await waitVersionAbove(page, v);
+    const c = await page.evaluate(() => window.__holey.bbox.center);
+    if (!(c[0] > 0.3)) throw new Error(`the sphere's centre is at ${c}, not moved right`);
+    await page.click(tid('tool-draw'));
+    await page.check(tid('symmetry-x'));
+    await page.selectOption(tid('symmetry-about'), 'centre');
+    before = await positions(page);
+    v = await version(page);
+    const at = (dx, y) => [c[0] + dx, y, Math.sqrt(1 - dx * dx - y * y)];
+    await dragThrough(page, at(0.45, 0.3), at(0.55, -0.2));
+    await waitVersionAbove(page, v);
+    sent = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (sent.symmetry !== 'x' || sent.symmetry_about !== 'centre') throw new Error(`sent ${JSON.stringify(sent)}`);
+    after = await positions(page);
+    moved = movedVertices(before, after);
+    const right = moved.filter((k) => before[3 * k] > c[0] + 0.2).length, left = moved.filter((k) => before[3 * k] < c[0] - 0.2).length;
+    if (right < 5 || right !== left) throw new Error(`moved ${right} vertices right of the centre and ${left} left of it`);
+    const worst = mirrorDistanceAcross(after, 0, c[0]);
+    if (worst > 1e-5) throw new Error(`across x = ${c[0]}, a vertex is ${worst} from the nearest mirror of another`);
+    await page.screenshot({ path: path.join(artifacts, '29-symmetry-x-centre.png') });
+    await page.uncheck(tid('symmetry-x'));
+    await page.selectOption(tid('symmetry-about'), 'origin');
+    for (let i = 0; i < 2; i++) {
+      u = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, u);
+    }
   }],
 ];
 
