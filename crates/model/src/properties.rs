@@ -14,7 +14,7 @@ use holey_testkit::Rng;
 
 use crate::cut::{self, CutError};
 use crate::extrude::{self, ExtrudeError, ExtrudeParams, MultiExtrudeParams, RegionDirection};
-use crate::{tools, truncate, wireframe};
+use crate::{hull, tools, truncate, wireframe};
 
 fn prim(spec: &str) -> Mesh {
     let poly = holey_shapes::parse_primitive(spec).unwrap();
@@ -268,11 +268,14 @@ fn tool_step(m: &mut Mesh, rng: &mut Rng) {
     }
 }
 
-/// Wireframe and columns of the current mesh: genus E − V + C.
+/// Wireframe and columns of the current mesh: genus E − V + C; the
+/// wireframe's counts from E and the valences (`4E`, `10E − 2(V₁ + V₂)`,
+/// `4E + 2V₃`, point-spheres copied) and no face under three sides.
 fn frame_check(m: &Mesh, rng: &mut Rng) {
     let rank =
         m.edge_count() as i64 - m.vertex_count() as i64 + m.topology().component_count() as i64;
-    let made = if rng.chance(0.5) {
+    let wire = rng.chance(0.5);
+    let made = if wire {
         wireframe::wireframe(m, 0.002)
     } else {
         let p = wireframe::ColumnParams {
@@ -284,7 +287,44 @@ fn frame_check(m: &Mesh, rng: &mut Rng) {
     if let Ok(w) = made {
         w.validate().unwrap();
         assert_eq!(w.genus(), rank);
+        if wire {
+            let k: Vec<usize> = m.vertices().map(|v| m.valence(v).unwrap()).collect();
+            let (e, spheres) = (m.edge_count(), k.iter().filter(|&&x| x == 0).count());
+            let low = k.iter().filter(|&&x| x == 1 || x == 2).count();
+            let high = k.iter().filter(|&&x| x >= 3).count();
+            let expected = (
+                4 * e + spheres,
+                10 * e - 2 * low,
+                4 * e + 2 * high + spheres,
+            );
+            let got = (w.vertex_count(), w.edge_count(), w.face_count());
+            assert_eq!(got, expected, "wireframe counts");
+            for f in w.faces() {
+                let n = w.face_len(f).unwrap();
+                assert!(n >= 3 || w.edge_count() == 0 || n == 1, "a {n}-gon");
+            }
+        }
     }
+}
+
+/// The convex hull and the dual convex hull of the current mesh: convex
+/// polyhedra (genus 0, one piece, no holes), the dual with one face per
+/// corner of the hull; or refused (flat meshes) with the input unchanged.
+fn hull_check(m: &Mesh) {
+    let before = m.to_raw();
+    match (hull::convex_hull(m), hull::dual_convex_hull(m)) {
+        (Ok(h), Ok(d)) => {
+            for x in [&h, &d] {
+                x.validate().unwrap();
+                let t = x.topology();
+                assert_eq!((t.genus(), t.component_count(), x.hole_count()), (0, 1, 0));
+            }
+            assert_eq!(d.face_count(), h.vertex_count());
+        }
+        (Err(a), Err(b)) => assert_eq!(a, b),
+        (a, b) => panic!("one hull refused and not the other: {a:?} {b:?}"),
+    }
+    assert_eq!(m.to_raw(), before);
 }
 
 #[test]
@@ -316,6 +356,7 @@ fn random_sequences_of_issue_18_operators() {
             }
             if step % 10 == 9 && m.corner_count() < 1500 {
                 frame_check(&m, &mut rng);
+                hull_check(&m);
             }
             if m.corner_count() > 4000 {
                 break;
