@@ -100,7 +100,7 @@ export function areaNormals(pos, index, out) {
   }
 }
 
-export function clusterDecimate(positions, tris, bbox, targetTris = 120000) {
+export function clusterDecimate(positions, tris, bbox, targetTris = 120000, mask = null) {
   const nv = positions.length / 3, nt = tris.length / 3;
   const ext = Math.max(bbox.max[0] - bbox.min[0], bbox.max[1] - bbox.min[1], bbox.max[2] - bbox.min[2]) || 1;
   const lo = [bbox.min[0] - 1e-6 * ext, bbox.min[1] - 1e-6 * ext, bbox.min[2] - 1e-6 * ext];
@@ -162,5 +162,12 @@ export function clusterDecimate(positions, tris, bbox, targetTris = 120000) {
 
   const nrm = new Float32Array(3 * m);
   areaNormals(pos, index, nrm);
-  return { positions: pos, normals: nrm, index, nv: m, nt: k / 3, grid: g };
+  // The sculpt mask of a cluster: the share of its vertices masked.
+  let masked = null;
+  if (mask && mask.length === nv) {
+    masked = new Float32Array(m);
+    for (let v = 0; v < nv; v++) masked[vid[v]] += mask[v];
+    for (let c = 0; c < m; c++) masked[c] /= cnt[c] || 1;
+  }
+  return { positions: pos, normals: nrm, index, nv: m, nt: k / 3, grid: g, masked };
 }

@@ -264,10 +264,11 @@ export class Viewer {
     if (this.proxy && this.proxyFor === f) return true;
     this.disposeProxy();
     const t0 = performance.now();
-    const d = clusterDecimate(f.positions, f.tris, this.bbox, this.proxyTarget);
+    const d = clusterDecimate(f.positions, f.tris, this.bbox, this.proxyTarget, this.sculptMask);
     const geo = new THREE.BufferGeometry();
     geo.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
     geo.setAttribute('normal', new THREE.BufferAttribute(d.normals, 3));
+    if (d.masked) geo.setAttribute('masked', new THREE.BufferAttribute(d.masked, 1));
     geo.setIndex(new THREE.BufferAttribute(d.index, 1));
     this.proxy = new THREE.Mesh(geo, this.material);
     this.proxy.frustumCulled = false;
@@ -840,6 +841,8 @@ export class Viewer {
     if (m && m.length === out.length) for (let v = 0; v < out.length; v++) out[v] = m[v];
     else out.fill(0);
     attr.needsUpdate = true;
+    // The orbit proxy carries the mask too: built again when next needed.
+    if (this.proxy && !this.proxyShown) this.disposeProxy();
     this.requestRender();
   }
 
@@ -1258,8 +1261,9 @@ function makeMaterial(name, flat) {
 const MASK_TINT = [0.2, 0.23, 0.3];
 
 /** The material with the sculpt mask: a per-vertex `masked` attribute
- * (0 or 1, interpolated over triangles) multiplies the shaded colour by
- * MASK_TINT. Meshes without the attribute (the orbit proxy) read 0. */
+ * (0 or 1, interpolated over triangles; the orbit proxy's clusters carry
+ * the share of their vertices masked) multiplies the shaded colour by
+ * MASK_TINT. A mesh without the attribute reads 0. */
 function withSculptMask(material) {
   material.onBeforeCompile = (shader) => {
     shader.vertexShader = 'attribute float masked;\nvarying float vMasked;\n' +
