@@ -4,171 +4,29 @@
 //! methods. Faces and vertices are numbered as `Mesh.to_arrays` lists
 //! them; an edge is named by its two vertices.
 
-use std::collections::HashSet;
-
-use holey::dlfl::convert::to_poly;
-use holey::dlfl::{EdgeId, FaceId, Mesh, VertexId};
-use holey::model::cut::{CutError, CutOffset, CutTarget, cut};
+use holey::dlfl::{FaceId, Mesh};
+use holey::model::cut::{CutOffset, CutTarget, cut};
 use holey::model::extrude::{
     self, DomeParams, DooSabinParams, ExtrudeParams, MultiExtrudeParams, RegionDirection,
 };
-use holey::model::wireframe::{ColumnParams, WireframeError, columns, wireframe};
+use holey::model::numbering::{EdgeSpec, Numbering};
+use holey::model::wireframe::{ColumnParams, columns, wireframe};
 use holey::subdiv::{RemeshParams, RemeshScheme, SubdivError, remesh};
 use pyo3::PyResult;
 
 use crate::errors::bad;
 
-/// The faces and vertices of a mesh as `to_arrays` numbers them.
-pub struct Numbering {
-    pub faces: Vec<FaceId>,
-    pub vertices: Vec<VertexId>,
+/// The faces and vertices of `mesh` as `to_arrays` numbers them.
+fn numbering(mesh: &Mesh) -> PyResult<Numbering> {
+    Numbering::of_arrays(mesh).map_err(bad)
 }
 
-impl Numbering {
-    pub fn of(mesh: &Mesh) -> PyResult<Numbering> {
-        let exported = to_poly(mesh);
-        let mut used = HashSet::new();
-        for &f in &exported.faces {
-            for c in mesh.face_corners(f).map_err(bad)? {
-                used.insert(mesh.corner_vertex(c).map_err(bad)?);
-            }
-        }
-        let vertices = mesh.vertices().filter(|v| used.contains(v)).collect();
-        Ok(Numbering {
-            faces: exported.faces,
-            vertices,
-        })
-    }
-
-    pub fn face(&self, index: usize) -> PyResult<FaceId> {
-        self.faces.get(index).copied().ok_or_else(|| {
-            bad(format!(
-                "face {index} does not exist: the mesh has {} faces",
-                self.faces.len()
-            ))
-        })
-    }
-
-    pub fn vertex(&self, index: usize) -> PyResult<VertexId> {
-        self.vertices.get(index).copied().ok_or_else(|| {
-            bad(format!(
-                "vertex {index} does not exist: the mesh has {} vertices",
-                self.vertices.len()
-            ))
-        })
-    }
-
-    /// `vertex N` as `to_arrays` numbers it (the kernel id if it has no number).
-    fn vertex_name(&self, v: VertexId) -> String {
-        match self.vertices.iter().position(|&w| w == v) {
-            Some(n) => format!("vertex {n}"),
-            None => format!("vertex {v}"),
-        }
-    }
-
-    /// `edge (U, W)` by its vertices' numbers.
-    fn edge_name(&self, mesh: &Mesh, e: EdgeId) -> String {
-        let number = |v: VertexId| self.vertices.iter().position(|&w| w == v);
-        match mesh.edge_vertices(e) {
-            Ok([a, b]) => match (number(a), number(b)) {
-                (Some(a), Some(b)) => format!("edge ({a}, {b})"),
-                _ => format!("edge {e}"),
-            },
-            Err(_) => format!("edge {e}"),
-        }
-    }
-
-    /// `face N` as `to_arrays` numbers it (a hole by its kernel id).
-    fn face_name(&self, f: FaceId) -> String {
-        match self.faces.iter().position(|&g| g == f) {
-            Some(n) => format!("face {n}"),
-            None => format!("face {f} (a hole)"),
-        }
-    }
-
-    /// A cut's refusal in this numbering; the library names kernel ids.
-    fn cut_error(&self, mesh: &Mesh, e: &CutError) -> String {
-        let target = |t: &CutTarget| match *t {
-            CutTarget::Vertex(v) => self.vertex_name(v),
-            CutTarget::Edge(e) => self.edge_name(mesh, e),
-            CutTarget::Face(f) => self.face_name(f),
-        };
-        match e {
-            CutError::OffsetTooLarge {
-                edge,
-                length,
-                offset,
-                limit,
-            } => format!(
-                "an offset of {offset} reaches the middle of {} (length {length}); it must be less than {limit}",
-                self.edge_name(mesh, *edge)
-            ),
-            CutError::Overlap(v) => format!(
-                "two cut targets share {}; cut them one at a time",
-                self.vertex_name(*v)
-            ),
-            CutError::SelfLoop(e) => format!(
-                "{} is a self-loop; regions with self-loops are not cut",
-                self.edge_name(mesh, *e)
-            ),
-            CutError::NotADisk(t) => format!(
-                "the neighbourhood of {} is not a disk (it wraps around a handle or a hole); it cannot be cut off by one face",
-                target(t)
-            ),
-            CutError::NothingToCut(t) => format!(
-                "{} has no edges leaving it (it is a whole component); there is nothing to cut",
-                target(t)
-            ),
-            CutError::HoleFace(f) => format!(
-                "{} is a hole (a boundary loop); it cannot be cut or cut away",
-                self.face_name(*f)
-            ),
-            other => other.to_string(),
-        }
-    }
-
-    /// A wireframe's refusal in this numbering.
-    fn wireframe_error(&self, mesh: &Mesh, e: &WireframeError) -> String {
-        match e {
-            WireframeError::DegenerateFace(f) => format!(
-                "{} has zero area, so its corners cannot be moved into it",
-                self.face_name(*f)
-            ),
-            WireframeError::ThicknessTooLarge { face, thickness } => format!(
-                "at thickness {thickness} the shrunk copy of {} turns over; use a smaller thickness",
-                self.face_name(*face)
-            ),
-            WireframeError::EdgeTooShort { edge, radius } => format!(
-                "at radius {radius} the joints at the ends of {} overlap (the edge is too short)",
-                self.edge_name(mesh, *edge)
-            ),
-            WireframeError::CoincidentEdges(v) => format!(
-                "two edges at {} point the same way; their columns would coincide",
-                self.vertex_name(*v)
-            ),
-            WireframeError::NoNormal(v) => format!(
-                "{} has no normal: the normals of its faces cancel out",
-                self.vertex_name(*v)
-            ),
-            other => other.to_string(),
-        }
-    }
-
-    /// The edge between vertices `a` and `b`.
-    pub fn edge(&self, mesh: &Mesh, (a, b): (usize, usize)) -> PyResult<EdgeId> {
-        let (u, w) = (self.vertex(a)?, self.vertex(b)?);
-        for c in mesh.vertex_corners(u).map_err(bad)? {
-            if let Some(e) = mesh.corner_edge(c).map_err(bad)? {
-                let [x, y] = mesh.edge_vertices(e).map_err(bad)?;
-                if (x == u && y == w) || (x == w && y == u) {
-                    return Ok(e);
-                }
-            }
-        }
-        Err(bad(format!(
-            "vertices {a} and {b} are not joined by an edge"
-        )))
-    }
+/// Edges given as pairs of vertex numbers.
+fn edge_specs(edges: &[(usize, usize)]) -> Vec<EdgeSpec> {
+    edges
+        .iter()
+        .map(|&(a, b)| EdgeSpec::Vertices(a, b))
+        .collect()
 }
 
 /// `levels` levels of the scheme named `scheme`, with its options.
@@ -266,14 +124,8 @@ pub fn run_extrude(mesh: &Mesh, faces: &[usize], o: &Extrusion) -> PyResult<Mesh
     if faces.is_empty() {
         return Err(bad("no faces were given to extrude"));
     }
-    let numbering = Numbering::of(mesh)?;
-    let mut ids: Vec<(usize, FaceId)> = Vec::with_capacity(faces.len());
-    for &n in faces {
-        let f = numbering.face(n)?;
-        if !ids.iter().any(|&(_, g)| g == f) {
-            ids.push((n, f));
-        }
-    }
+    let numbering = numbering(mesh)?;
+    let ids = numbering.faces(faces).map_err(bad)?;
     let mut m = mesh.clone();
     if o.together {
         let params = MultiExtrudeParams {
@@ -286,7 +138,8 @@ pub fn run_extrude(mesh: &Mesh, faces: &[usize], o: &Extrusion) -> PyResult<Mesh
             count: o.count.unwrap_or(1),
         };
         let list: Vec<FaceId> = ids.iter().map(|&(_, f)| f).collect();
-        extrude::extrude_faces(&mut m, &list, &params).map_err(bad)?;
+        extrude::extrude_faces(&mut m, &list, &params)
+            .map_err(|e| bad(numbering.describe_extrude(&m, &e)))?;
         return Ok(m);
     }
     for (n, face) in ids {
@@ -335,7 +188,7 @@ pub fn run_extrude(mesh: &Mesh, faces: &[usize], o: &Extrusion) -> PyResult<Mesh
             "stellate" => extrude::stellate_face(&mut m, face, o.distance.unwrap_or(0.0)),
             _ => extrude::double_stellate_face(&mut m, face, o.distance.unwrap_or(0.0)),
         };
-        done.map_err(|e| bad(format!("face {n}: {e}")))?;
+        done.map_err(|e| bad(format!("face {n}: {}", numbering.describe_extrude(&m, &e))))?;
     }
     Ok(m)
 }
@@ -354,29 +207,8 @@ pub fn run_wireframe(mesh: &Mesh, thickness: f64, sides: Option<usize>) -> PyRes
     };
     match out {
         Ok(m) => Ok(m),
-        Err(e) => Err(bad(Numbering::of(mesh)?.wireframe_error(mesh, &e))),
+        Err(e) => Err(bad(numbering(mesh)?.describe_wireframe(mesh, &e))),
     }
-}
-
-/// The cut targets the numbers name.
-fn targets(
-    mesh: &Mesh,
-    numbering: &Numbering,
-    vertices: &[usize],
-    edges: &[(usize, usize)],
-    faces: &[usize],
-) -> PyResult<Vec<CutTarget>> {
-    let mut out = Vec::new();
-    for &v in vertices {
-        out.push(CutTarget::Vertex(numbering.vertex(v)?));
-    }
-    for &e in edges {
-        out.push(CutTarget::Edge(numbering.edge(mesh, e)?));
-    }
-    for &f in faces {
-        out.push(CutTarget::Face(numbering.face(f)?));
-    }
-    Ok(out)
 }
 
 /// Cuts the named vertices, edges and faces off, at `offset` model units
@@ -395,13 +227,15 @@ pub fn run_cut(
         (None, Some(t)) => CutOffset::Fraction(t),
         (None, None) => CutOffset::Fraction(0.25),
     };
-    let numbering = Numbering::of(mesh)?;
-    let list = targets(mesh, &numbering, vertices, edges, faces)?;
+    let numbering = numbering(mesh)?;
+    let list = numbering
+        .cut_targets(mesh, vertices, &edge_specs(edges), faces)
+        .map_err(bad)?;
     if list.is_empty() {
         return Err(bad("no vertex, edge or face was given to cut"));
     }
     let mut m = mesh.clone();
-    cut(&mut m, &list, how).map_err(|e| bad(numbering.cut_error(mesh, &e)))?;
+    cut(&mut m, &list, how).map_err(|e| bad(numbering.describe_cut(mesh, &e)))?;
     Ok(m)
 }
 
@@ -418,7 +252,7 @@ pub fn run_truncate(
             "fraction must lie strictly between 0 and 0.5, got {fraction}"
         )));
     }
-    let numbering = Numbering::of(mesh)?;
+    let numbering = numbering(mesh)?;
     let list = match (vertices, edges) {
         (None, None) => {
             let mut all = Vec::new();
@@ -429,13 +263,15 @@ pub fn run_truncate(
             }
             all
         }
-        (v, e) => targets(mesh, &numbering, v.unwrap_or(&[]), e.unwrap_or(&[]), &[])?,
+        (v, e) => numbering
+            .cut_targets(mesh, v.unwrap_or(&[]), &edge_specs(e.unwrap_or(&[])), &[])
+            .map_err(bad)?,
     };
     if list.is_empty() {
         return Err(bad("there is nothing to truncate"));
     }
     let mut m = mesh.clone();
     cut(&mut m, &list, CutOffset::Fraction(fraction))
-        .map_err(|e| bad(numbering.cut_error(mesh, &e)))?;
+        .map_err(|e| bad(numbering.describe_cut(mesh, &e)))?;
     Ok(m)
 }
