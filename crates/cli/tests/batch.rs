@@ -9,7 +9,7 @@ use std::process::Output;
 use serde_json::Value;
 
 mod common;
-use common::holey;
+use common::{holey, ok, refused};
 
 fn stdout(out: &Output) -> String {
     String::from_utf8(out.stdout.clone()).expect("utf-8 output")
@@ -17,28 +17,6 @@ fn stdout(out: &Output) -> String {
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = holey(args);
-    assert!(
-        out.status.success(),
-        "holey {args:?} failed: {}",
-        stderr(&out)
-    );
-    stdout(&out)
-}
-
-/// Runs holey expecting exit status 2 (bad input); returns stderr.
-fn bad(args: &[&str]) -> String {
-    let out = holey(args);
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "holey {args:?} should fail with status 2; stderr: {}",
-        stderr(&out)
-    );
-    stderr(&out)
 }
 
 fn info(mesh: &Path) -> Value {
@@ -261,8 +239,8 @@ fn patterns_folders_and_recursion_pick_the_right_files() {
     );
     // A pattern or folder with no mesh files is a mistake, said before work.
     let none = format!("{}/*.stl", s(root));
-    assert!(bad(&["batch", "info", &obj, &none]).contains("no mesh files"));
-    assert!(bad(&["batch", "info", s(&root.join("missing.obj"))]).contains("no such file"));
+    assert!(refused(&["batch", "info", &obj, &none]).contains("no mesh files"));
+    assert!(refused(&["batch", "info", s(&root.join("missing.obj"))]).contains("no such file"));
 }
 
 #[test]
@@ -426,7 +404,7 @@ fn an_output_collision_is_refused_before_any_work() {
     let first = primitive(dir.path(), "@cube", "a/x.obj");
     let second = primitive(dir.path(), "@tetrahedron", "b/x.obj");
     let out_dir = dir.path().join("out");
-    let err = bad(&[
+    let err = refused(&[
         "batch",
         "convert",
         s(&first),
@@ -442,7 +420,7 @@ fn an_output_collision_is_refused_before_any_work() {
     ok(&["batch", "convert", s(&first), s(&ply), "--out", s(&out_dir)]);
     assert_eq!(listing(&out_dir), ["x.obj", "x.ply"]);
     let stl_dir = dir.path().join("stl");
-    bad(&[
+    refused(&[
         "batch",
         "convert",
         s(&first),
@@ -461,7 +439,7 @@ fn an_out_folder_that_is_a_file_is_refused() {
     let cube = primitive(dir.path(), "@cube", "cube.obj");
     let file = dir.path().join("results");
     std::fs::write(&file, "precious").unwrap();
-    let err = bad(&[
+    let err = refused(&[
         "batch",
         "convert",
         s(&cube),
@@ -479,7 +457,7 @@ fn a_result_never_replaces_its_input() {
     let dir = tmp();
     let cube = primitive(dir.path(), "@cube", "cube.obj");
     let before = std::fs::read(&cube).unwrap();
-    let err = bad(&[
+    let err = refused(&[
         "batch",
         "subdivide",
         "--scheme",
@@ -498,7 +476,7 @@ fn options_that_name_one_file_are_refused() {
     let cube = primitive(dir.path(), "@cube", "cube.obj");
     let report = dir.path().join("r.json");
     let out_dir = dir.path().join("out");
-    let err = bad(&[
+    let err = refused(&[
         "batch",
         "union",
         s(&cube),
@@ -510,7 +488,7 @@ fn options_that_name_one_file_are_refused() {
     assert!(err.contains("--report"), "{err}");
     assert!(!report.exists() && !out_dir.exists());
     let curves = dir.path().join("c.obj");
-    bad(&["batch", "selfint", s(&cube), "--curves", s(&curves)]);
+    refused(&["batch", "selfint", s(&cube), "--curves", s(&curves)]);
     assert!(!curves.exists());
     // Reports write no files, so they take no --out.
     let out = holey(&["batch", "info", s(&cube), "--out", s(&out_dir)]);

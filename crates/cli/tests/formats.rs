@@ -9,17 +9,7 @@ use std::path::Path;
 use serde_json::Value;
 
 mod common;
-use common::{holey, ok};
-
-fn bad(args: &[&str]) -> String {
-    let out = holey(args);
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "holey {args:?} should fail with status 2"
-    );
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use common::{ok, refused};
 
 fn s(p: &Path) -> &str {
     p.to_str().expect("utf-8 path")
@@ -116,7 +106,7 @@ fn malformed_or_unwritable_is_status_2_with_the_reason() {
     let dir = tempfile::tempdir().unwrap();
     let junk = dir.path().join("junk.glb");
     std::fs::write(&junk, b"solid not a glb\n").unwrap();
-    let err = bad(&["info", s(&junk)]);
+    let err = refused(&["info", s(&junk)]);
     assert!(
         err.contains(&format!(
             "{}: byte 0: not a GLB file: it starts with \"soli\"",
@@ -126,13 +116,13 @@ fn malformed_or_unwritable_is_status_2_with_the_reason() {
     );
     let zip = dir.path().join("empty.3mf");
     std::fs::write(&zip, b"PK\x05\x06\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0").unwrap();
-    let err = bad(&["info", s(&zip)]);
+    let err = refused(&["info", s(&zip)]);
     assert!(err.contains("has no model part 3D/3dmodel.model"), "{err}");
     // glTF cannot hold a coordinate beyond f32: refused, nothing written.
     let big = dir.path().join("big.obj");
     std::fs::write(&big, "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     let out = dir.path().join("big.glb");
-    let err = bad(&["convert", s(&big), s(&out)]);
+    let err = refused(&["convert", s(&big), s(&out)]);
     assert!(err.contains("beyond the range of f32"), "{err}");
     assert!(!out.exists());
     // 3MF holds it exactly.
