@@ -1031,6 +1031,7 @@ const scenarios = [
     const expected = { draw: 0.05 * radius, clay: 0.05 * radius, crease: 0.1 * radius, flatten: 1, pinch: 0.25, scrape: 1, scale: 0.1, layer: 0.25 * radius };
     for (const [i, brush] of Object.keys(expected).entries()) {
       await page.click(tid(`tool-${brush}`));
+      await setRange(page, 'strength', 1); // each brush has its own
       if (!(await page.$eval(tid(`tool-${brush}`), (b) => b.classList.contains('active')))) throw new Error(`${brush}'s button is not shown active`);
       await page.selectOption(tid('falloff-select'), falloffs[i]);
       const v = await version(page);
@@ -1098,7 +1099,7 @@ const scenarios = [
     if (worst > 1e-5) throw new Error(`a vertex is ${worst} from the nearest mirror of another`);
   }],
 
-  ['sculpt: [ and ] change the radius, Shift+[ and ] the strength; F sizes the radius on screen', async (page) => {
+  ['sculpt: [ and ] change the radius, Shift+[ and ] the strength; each brush keeps its own strength; F sizes the radius on screen', async (page) => {
     if (useMock) return 'SKIP';
     await sculptSphere(page);
     await setRange(page, 'radius', 10);
@@ -1116,6 +1117,28 @@ const scenarios = [
     if (Math.abs((await strength()) - 0.55) > 1e-9) throw new Error(`Shift+] made the strength ${await strength()}`);
     await page.keyboard.press('Shift+BracketLeft');
     if (Math.abs((await strength()) - 0.5) > 1e-9) throw new Error(`Shift+[ made the strength ${await strength()}`);
+    // Each brush keeps its own strength (Blender, SculptGL); the radius is shared.
+    await page.click(tid('tool-draw'));
+    await setRange(page, 'strength', 0.8);
+    await page.click(tid('tool-smooth'));
+    await setRange(page, 'strength', 0.3);
+    await page.click(tid('tool-draw'));
+    if (Math.abs((await strength()) - 0.8) > 1e-9) throw new Error(`draw came back at strength ${await strength()}, not its 0.8`);
+    if ((await page.textContent(tid('strength-value'))) !== '0.80') throw new Error(`the strength label says ${await page.textContent(tid('strength-value'))}`);
+    if ((await radius()) !== down) throw new Error(`choosing a brush changed the radius to ${await radius()}`);
+    await page.keyboard.press('2');
+    if (Math.abs((await strength()) - 0.3) > 1e-9) throw new Error(`smooth came back at strength ${await strength()}, not its 0.3`);
+    // Shift-drag smooths with smooth's own strength while draw is chosen.
+    await page.click(tid('tool-draw'));
+    await page.locator(tid('canvas')).focus();
+    const sv = await version(page);
+    await dragThrough(page, [-0.2, 0, 0.98], [0.2, 0, 0.98], { modifiers: ['Shift'] });
+    await waitVersionAbove(page, sv);
+    const shifted = await page.evaluate(() => window.__holey.strokesSent.at(-1));
+    if (shifted.brush !== 'smooth' || Math.abs(shifted.strength - 0.3) > 1e-9) throw new Error(`Shift-drag sent ${JSON.stringify(shifted)}, not smooth at 0.3`);
+    await setRange(page, 'strength', 0.5);
+    await page.click(tid('tool-smooth'));
+    await setRange(page, 'strength', 0.5);
     const radiusText = await page.textContent(tid('radius-value'));
     if (!radiusText.startsWith(`${down}%`)) throw new Error(`the radius label says ${radiusText}, the slider ${down}`);
     // F: the ring keeps its size with the pointer on its rim; moving the

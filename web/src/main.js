@@ -763,7 +763,22 @@ const LETTER_KEYS = {
   KeyK: 'snake_hook', KeyL: 'layer', KeyP: 'pinch', 'Shift+KeyT': 'flatten', KeyM: 'mask',
 };
 
+/** Each brush's own strength, as in Blender and SculptGL: the slider shows
+ * the chosen brush's, and choosing another brings that one's back (the
+ * page's default until it is changed). Radius is shared, as Blender's
+ * unified size is by default. */
+const brushStrengths = {};
+const DEFAULT_STRENGTH = Number($('strength').defaultValue);
+const hasStrength = (tool) => !DRAGS.has(tool) && tool !== 'mask';
+/** The strength `tool` strokes with: the slider's for the chosen brush. */
+const strengthOf = (tool) => (tool === app.tool ? num('strength') : brushStrengths[tool] ?? DEFAULT_STRENGTH);
+
 function setTool(tool) {
+  if (app.tool && hasStrength(app.tool)) brushStrengths[app.tool] = num('strength');
+  if (hasStrength(tool)) {
+    $('strength').value = String(brushStrengths[tool] ?? DEFAULT_STRENGTH);
+    $('strength-value').textContent = num('strength').toFixed(2);
+  }
   app.tool = tool;
   for (const b of document.querySelectorAll('[data-tool]')) b.classList.toggle('active', b.dataset.tool === tool);
   $('strength').disabled = DRAGS.has(tool) || tool === 'mask';
@@ -952,7 +967,7 @@ function beginStroke(hit, e, override = null) {
   viewer.beginMotion('stroke'); // cheaper pictures until the stroke ends
   viewer.showBrush(hit.point, hit.normal, stroke.radius);
   const fields = {
-    brush, radius: stroke.radius, strength: strokeStrength(brush, stroke.radius, num('strength'), sign),
+    brush, radius: stroke.radius, strength: strokeStrength(brush, stroke.radius, strengthOf(tool), sign),
     point: hit.point, ...strokeOptions(),
   };
   const pressure = penPressure(stroke, e);
