@@ -5,14 +5,31 @@
 //! by the tangent planes at the hull's vertices.
 //!
 //! ## Convex hull
-//! Quickhull over the vertex positions (point-spheres included), with a
-//! tolerance of `10⁻¹¹` of the points' bounding-box diagonal: a point
-//! that close to a face is on it. Coplanar triangles are merged into one
-//! convex polygon and points in the middle of a face or of a straight
-//! edge are dropped, so every vertex of the result is a corner of at
-//! least three faces: a convex polyhedron of genus 0, `V − E + F = 2`,
-//! with `F = 2V − 4` when every face is a triangle (points in general
-//! position). The hull of a cube's vertices is the cube, `8/12/6`.
+//! Quickhull over the vertex positions (point-spheres included), every
+//! decision exact and without a tolerance: a point lies outside a
+//! triangle when Shewchuk's exact `orient3d` ([`holey_geom::orient3d`])
+//! of the triangle and the point is negative, and two neighbouring
+//! triangles are one face when the far corner of one gives `orient3d`
+//! exactly zero on the other. A point 10⁻¹⁷ outside a face is a corner of
+//! the hull, at any offset; a point exactly on a face or on a straight
+//! edge is not. Coplanar triangles are merged into one convex polygon and
+//! points in the middle of a face or of a straight edge are dropped, so
+//! every vertex of the result is a corner of at least three faces: a
+//! convex polyhedron of genus 0, `V − E + F = 2`, with `F = 2V − 4` when
+//! every face is a triangle (points in general position). The hull of a
+//! cube's vertices is the cube, `8/12/6`.
+//!
+//! The predicates see the points scaled by one power of two, chosen so the
+//! largest coordinate magnitude lies in `[1, 2)`: scaling by a power of two
+//! is exact, and it keeps the determinants' products from overflowing, so
+//! any finite coordinates have a hull. `orient3d` is exact as long as its
+//! products do not underflow, which holds when every nonzero coordinate
+//! (after that scaling) is above about `10⁻⁹⁰`; a set mixing coordinates
+//! below that with ones near 1 could be misjudged, and what the
+//! construction then finds inconsistent is refused with
+//! [`HullError::Numerical`] rather than returned. Only the farthest-point
+//! choice of quickhull uses floating point, which changes the order of
+//! the work and never the result.
 //!
 //! ## Dual convex hull
 //! TopMod's `createDualConvexHull` cuts the points' bounding box by the
@@ -20,14 +37,24 @@
 //! leaves the box untouched where the planes only graze it (a cube came
 //! back a cube). Here the box is gone: the result is the intersection of
 //! the half-spaces `n̂_v · (x − p_v) ≤ 0` over the hull's vertices `v`,
-//! `n_v = Σ_(f ∋ v) A_f n̂_f / k_f` (`A_f`, `n̂_f` and `k_f` the area,
-//! unit normal and number of corners of each hull face at `v`).
+//! where `n_v = ∫ n dA` over the normal cone of `v`: the spherical polygon
+//! spanned by the unit normals of the hull's faces at `v`, in order around
+//! it.
 //!
 //! That `n_v` lies strictly inside the cone of normals at `v`, so each
 //! plane touches the hull at `p_v` only and bounds one face of the
-//! result; and `Σ_v n_v = Σ_f A_f n̂_f = 0` with every weight positive,
-//! so the half-spaces bound a polytope. The result is the polar dual of
-//! the hull seen from its vertex centroid: one face per hull vertex,
+//! result; and the normal cones of a convex polyhedron's corners tile the
+//! sphere, so `Σ_v n_v = ∫_(S²) n dA = 0` with every `n_v` nonzero and the
+//! half-spaces bound a polytope. The cone does not change when a flat
+//! face is cut into triangles and moves continuously with the faces, so
+//! a face that is planar only to rounding (a dodecahedron's pentagons in
+//! `f64`), which the exact hull keeps as several triangles, gives the
+//! same planes to within rounding. (The earlier `Σ_f A_f n̂_f / k_f`
+//! depended on how such a face was split.) Where rounding leaves that
+//! integral outside the cone (faces meeting within rounding of flat), so
+//! that a neighbour of `v` would lie in front of the plane, the sum of
+//! the faces' unit normals is used instead. The result is the polar dual
+//! of the hull seen from its vertex centroid: one face per hull vertex,
 //! `F* = V`, and where three planes meet at each vertex (points in
 //! general position) `V* = 2F* − 4`, `E* = 3F* − 6`. On a regular
 //! polyhedron the normals point at its vertices and the result is its
@@ -35,20 +62,39 @@
 //! icosahedron `12/30/20`. It contains the hull, touching it at the
 //! hull's vertices.
 //!
+//! **Constructions and decisions.** The dual needs new points: the
+//! normals `n_v`, each plane's polar point `n̂_v / (n̂_v · (p_v − c))`
+//! about the centroid `c`, and each result vertex (the plane of a facet
+//! of the polar points' hull). These are computed in floating point. The
+//! rule is that a constructed point is rounded once and then only ever
+//! decided on exactly, as an input: the polar points' hull is the exact
+//! hull of the rounded polar points, and the result's faces, edges and
+//! orientation are read off its combinatorics (the facets around each
+//! polar corner, turned to face outward by the hull's own orientation,
+//! with no sign test on constructed coordinates). So rounding can move a
+//! vertex of the result (its faces are then planar only to rounding), or
+//! make a plane that only just touches the others bound no face (a hull
+//! corner whose planes meet within rounding), but it cannot make the
+//! result invalid: it is always the dual of an exact convex polytope, a
+//! closed genus-0 2-manifold. Constructions are done on the scaled points
+//! and scaled back, so only a result whose corners lie beyond the range of
+//! `f64` is refused ([`HullError::Overflow`]).
+//!
 //! Both run in `O(n log n)` expected time for `n` points and never change
 //! their input. Fewer than four points off one plane are refused with
-//! [`HullError::Flat`].
+//! [`HullError::Flat`], decided exactly.
 
 use std::collections::HashMap;
 
 use holey_dlfl::{BuildError, DVec3, Mesh, RawMesh};
+use holey_geom::{Sign, orient2d, orient3d};
 
 /// Why a hull was refused. The input is unchanged (these functions never
 /// change it).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum HullError {
     /// The points do not span space: all on one plane, a line or a point
-    /// (or there are fewer than four).
+    /// (or there are fewer than four), decided exactly.
     #[error(
         "the {points} vertex position(s) lie on one plane, so they bound no solid; a hull needs four points off one plane"
     )]
@@ -56,14 +102,17 @@ pub enum HullError {
         /// How many points there were.
         points: usize,
     },
-    /// The coordinates are so large that the hull's planes overflow.
+    /// The dual convex hull's corners lie beyond the range of `f64` (the
+    /// number is the largest coordinate magnitude of the input).
     #[error(
-        "the coordinates are too large to compute a hull with (the box of the points is {0} across)"
+        "the coordinates are too large for the dual convex hull: its corners lie beyond the range of floating point (the largest input coordinate is {0})"
     )]
     Overflow(f64),
-    /// Rounding made the hull's faces inconsistent (points within the
-    /// tolerance of each other in ways the construction cannot order).
-    #[error("the hull could not be built consistently: {0} (points too close to each other?)")]
+    /// The construction found its own faces inconsistent. The decisions are
+    /// exact, so this needs coordinates whose products underflow (nonzero
+    /// coordinates below about 10⁻⁹⁰ of the largest), or a dual whose
+    /// rounded planes do not close.
+    #[error("the hull could not be built consistently: {0} (coordinates too small beside others?)")]
     Numerical(&'static str),
     /// The kernel refused the built polygons; a bug in this module.
     #[error("internal error building the hull (please report): {0}")]
@@ -83,33 +132,66 @@ pub fn convex_hull(mesh: &Mesh) -> Result<Mesh, HullError> {
 /// module documentation): one face per vertex of the convex hull, on the
 /// plane through it perpendicular to its normal.
 pub fn dual_convex_hull(mesh: &Mesh) -> Result<Mesh, HullError> {
-    let points = positions(mesh)?;
+    let input = positions(mesh)?;
+    // Every construction on the points scaled by 2^-k (exact), the
+    // result's corners scaled back.
+    let (points, k) = scaled(&input);
     let hull = hull_polygons(&points)?;
-    // The hull's vertices and their normals n_v = Σ A_f n̂_f / k_f.
-    let mut normal: HashMap<u32, DVec3> = HashMap::new();
-    for face in &hull {
-        let ps: Vec<DVec3> = face.iter().map(|&i| points[i as usize]).collect();
-        let share = newell(&ps) / (2.0 * face.len() as f64);
-        for &i in face {
-            *normal.entry(i).or_insert(DVec3::ZERO) += share;
-        }
+    // Each hull corner's normal: the integral of the unit normal over its
+    // normal cone, the spherical polygon of the unit normals of its faces
+    // in order around it.
+    let units: Vec<DVec3> = hull
+        .iter()
+        .map(|face| {
+            let ps: Vec<DVec3> = face.iter().map(|&i| points[i as usize]).collect();
+            newell(&ps).normalize_or_zero()
+        })
+        .collect();
+    let mut corners = Vec::new();
+    let mut normal = Vec::new();
+    for (v, around) in around_vertices(&hull, points.len())? {
+        let cone: Vec<DVec3> = around.iter().map(|&f| units[f as usize]).collect();
+        // The plane must touch the hull at p_v only: every neighbour of v
+        // behind it. A cone too thin for the integral to round to a
+        // direction inside it (faces meeting within rounding of flat)
+        // takes the sum of its unit normals, also inside it.
+        let p = points[v as usize];
+        let neighbours: Vec<DVec3> = around
+            .iter()
+            .filter_map(|&f| {
+                let face = &hull[f as usize];
+                let k = face.iter().position(|&x| x == v)?;
+                Some(points[face[(k + 1) % face.len()] as usize])
+            })
+            .collect();
+        let touches_once = |n: DVec3| {
+            n.normalize_or_zero() != DVec3::ZERO && neighbours.iter().all(|&w| n.dot(w - p) < 0.0)
+        };
+        let n = cone_normal(&cone);
+        let n = if touches_once(n) {
+            n
+        } else {
+            cone.iter().sum()
+        };
+        corners.push(v);
+        normal.push(n);
     }
-    let mut corners: Vec<u32> = normal.keys().copied().collect();
-    corners.sort_unstable();
     let centre = corners.iter().map(|&i| points[i as usize]).sum::<DVec3>() / corners.len() as f64;
     // Each plane n̂·(x − p) ≤ 0 as the polar point n̂ / (n̂·(p − centre)),
     // seen from the centre; the planes' intersection is the polar of the
     // polar points' hull.
     let mut polar = Vec::with_capacity(corners.len());
-    let mut units = Vec::with_capacity(corners.len());
-    for &i in &corners {
-        let n = normal[&i].normalize_or_zero();
+    for (&i, n) in corners.iter().zip(&normal) {
+        let n = n.normalize_or_zero();
         let d = n.dot(points[i as usize] - centre);
-        if n == DVec3::ZERO || d.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        let q = n / d;
+        if n == DVec3::ZERO
+            || d.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+            || !q.is_finite()
+        {
             return Err(HullError::Numerical("a hull vertex has no outward normal"));
         }
-        polar.push(n / d);
-        units.push(n);
+        polar.push(q);
     }
     let facets = hull_polygons(&polar)?;
     // A vertex of the result per facet of the polar hull: its plane
@@ -125,9 +207,16 @@ pub fn dual_convex_hull(mesh: &Mesh) -> Result<Mesh, HullError> {
                 "a facet of the polar hull has no plane",
             ));
         }
-        vertices.push(centre + a);
+        let corner = times_pow2(centre + a, k);
+        if !corner.is_finite() {
+            return Err(HullError::Overflow(largest(&input)));
+        }
+        vertices.push(corner);
     }
-    let faces = around_vertices(&facets, polar.len(), &vertices, &units)?;
+    let faces: Vec<Vec<u32>> = around_vertices(&facets, polar.len())?
+        .into_iter()
+        .map(|(_, face)| face)
+        .collect();
     build(vertices, &faces)
 }
 
@@ -140,24 +229,44 @@ fn positions(mesh: &Mesh) -> Result<Vec<DVec3>, HullError> {
         .map_err(|_| HullError::Numerical("a vertex the mesh lists is stale"))
 }
 
-/// Twice the area vector of a polygon (Newell's method).
+/// `∫ n dA` over the spherical polygon with corners `cone` (unit vectors,
+/// counter-clockwise seen from outside the sphere): half the sum over its
+/// arcs of the arc's angle times the unit normal of its great circle
+/// (`½ ∮ x × dx`). Repeated corners (coplanar faces) add nothing, so it
+/// does not depend on how a flat face is cut into triangles, and it moves
+/// continuously with the faces' normals.
+fn cone_normal(cone: &[DVec3]) -> DVec3 {
+    let mut sum = DVec3::ZERO;
+    for (k, &u) in cone.iter().enumerate() {
+        let w = cone[(k + 1) % cone.len()];
+        let m = u.cross(w);
+        let angle = m.length().atan2(u.dot(w));
+        sum += m.normalize_or_zero() * angle;
+    }
+    sum / 2.0
+}
+
+/// Twice the area vector of a polygon (Newell's method), about its first
+/// corner (so a polygon far from the origin loses no digits to it).
 fn newell(ps: &[DVec3]) -> DVec3 {
+    let Some(&o) = ps.first() else {
+        return DVec3::ZERO;
+    };
     let mut n = DVec3::ZERO;
     for (k, p) in ps.iter().enumerate() {
-        n += p.cross(ps[(k + 1) % ps.len()]);
+        n += (*p - o).cross(ps[(k + 1) % ps.len()] - o);
     }
     n
 }
 
-/// The faces around each polar point: the facets of the polar hull
-/// containing it, in order, each facet standing for the result's vertex
-/// of the same number. Faces are turned to face along `units`.
-fn around_vertices(
-    facets: &[Vec<u32>],
-    points: usize,
-    vertices: &[DVec3],
-    units: &[DVec3],
-) -> Result<Vec<Vec<u32>>, HullError> {
+/// The facets around each point that is a corner of `facets` (a convex
+/// polyhedron's faces, counter-clockwise seen from outside), in order
+/// counter-clockwise seen from outside. For the polar hull each facet
+/// stands for the result's vertex of the same number, and the lists are
+/// the result's faces. The walk below goes clockwise seen from outside (the facets are
+/// counter-clockwise), so each face is reversed to face outward: read off
+/// the combinatorics, never from the constructed coordinates.
+fn around_vertices(facets: &[Vec<u32>], points: usize) -> Result<Vec<(u32, Vec<u32>)>, HullError> {
     // The facet holding each directed edge a → b, sorted by (a, b).
     let mut holding: Vec<(u64, u32)> = Vec::new();
     let mut first: Vec<Option<(u32, u32)>> = vec![None; points];
@@ -179,7 +288,8 @@ fn around_vertices(
     let mut faces = Vec::with_capacity(points);
     for (v, start) in first.iter().enumerate() {
         // A polar point that is no corner of the polar hull (its plane
-        // only grazes the others within the tolerance) bounds no face.
+        // only touches the others where they meet, after rounding) bounds
+        // no face.
         let Some(&(f0, b0)) = start.as_ref() else {
             continue;
         };
@@ -198,15 +308,15 @@ fn around_vertices(
                 .ok_or(HullError::Numerical("the polar hull is inconsistent"))?;
             f = g;
             b = facet[(k + 1) % facet.len()];
-            if f == f0 || face.len() > facets.len() {
+            if f == f0 {
                 break;
             }
+            if face.len() > facets.len() {
+                return Err(HullError::Numerical("the polar hull is inconsistent"));
+            }
         }
-        let ps: Vec<DVec3> = face.iter().map(|&i| vertices[i as usize]).collect();
-        if newell(&ps).dot(units[v as usize]) < 0.0 {
-            face.reverse();
-        }
-        faces.push(face);
+        face.reverse();
+        faces.push((v, face));
     }
     Ok(faces)
 }
@@ -252,56 +362,95 @@ fn build(points: Vec<DVec3>, faces: &[Vec<u32>]) -> Result<Mesh, HullError> {
     Ok(Mesh::from_raw(&raw)?)
 }
 
-/// The tolerance of a point set: a point this close to a plane is on it.
-/// Refused when the products of coordinates a plane needs overflow.
-fn tolerance(points: &[DVec3]) -> Result<f64, HullError> {
-    let (lo, hi) = points.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    );
-    let diagonal = (hi - lo).length();
-    if points.len() >= 4 && !(diagonal * diagonal).is_finite() {
-        return Err(HullError::Overflow(diagonal));
+/// The largest coordinate magnitude of `points` (0 for none).
+fn largest(points: &[DVec3]) -> f64 {
+    points
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max)
+}
+
+/// `p · 2^k`, exact unless the result overflows or falls into the
+/// subnormal range (done in steps so that no factor overflows).
+fn times_pow2(mut p: DVec3, mut k: i32) -> DVec3 {
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        p *= 2f64.powi(step);
+        k -= step;
     }
-    Ok(1e-11 * diagonal)
+    p
+}
+
+/// `points` scaled by `2^-k`, with `k` chosen so the largest coordinate
+/// magnitude lies in `[1, 2)` (all points zero: unscaled), and `k`.
+/// Scaling by a power of two changes no exact decision (barring
+/// underflow) and keeps the predicates' products in range.
+fn scaled(points: &[DVec3]) -> (Vec<DVec3>, i32) {
+    let m = largest(points);
+    if m == 0.0 || !m.is_finite() {
+        return (points.to_vec(), 0);
+    }
+    // The binary exponent of m, subnormals included: log2 rounds, so
+    // it is corrected by exact scalings.
+    let mut k = m.log2().floor() as i32;
+    let at = |k: i32| times_pow2(DVec3::splat(m), -k).x;
+    while at(k) >= 2.0 {
+        k += 1;
+    }
+    while at(k) < 1.0 {
+        k -= 1;
+    }
+    let out = points.iter().map(|&p| times_pow2(p, -k)).collect();
+    (out, k)
 }
 
 /// The convex hull of `points` as convex polygons (point numbers,
 /// counter-clockwise seen from outside), coplanar triangles merged and
-/// only the corners kept.
+/// only the corners kept. Decided exactly on the points scaled by a power
+/// of two.
 fn hull_polygons(points: &[DVec3]) -> Result<Vec<Vec<u32>>, HullError> {
-    let eps = tolerance(points)?;
-    let mut hull = Quickhull::start(points, eps)?;
+    let (p, _) = scaled(points);
+    let mut hull = Quickhull::start(&p)?;
     hull.run()?;
     hull.polygons()
 }
 
+/// Whether `a`, `b` and `c` lie on one line, exactly (all three
+/// coordinate projections collinear).
+fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
+    let xy = |p: DVec3| glam::DVec2::new(p.x, p.y);
+    let yz = |p: DVec3| glam::DVec2::new(p.y, p.z);
+    let zx = |p: DVec3| glam::DVec2::new(p.z, p.x);
+    [xy, yz, zx]
+        .iter()
+        .all(|f| orient2d(f(a), f(b), f(c)) == Sign::Zero)
+}
+
 /// One triangle of the hull: corners counter-clockwise seen from outside,
 /// `next[i]` the triangle across the edge from corner `i` to corner
-/// `i + 1`, the plane `normal · x = offset`, and the points outside it
-/// that no earlier triangle took.
+/// `i + 1`, a floating-point normal (only to choose the farthest point),
+/// and the points outside it that no earlier triangle took.
 struct Tri {
     v: [u32; 3],
     next: [u32; 3],
     normal: DVec3,
-    offset: f64,
     outside: Vec<u32>,
     alive: bool,
 }
 
 struct Quickhull<'a> {
     p: &'a [DVec3],
-    eps: f64,
     tris: Vec<Tri>,
 }
 
 impl<'a> Quickhull<'a> {
-    /// A tetrahedron of four extreme points, every other point given to
-    /// the first of its faces it lies outside of.
-    fn start(p: &'a [DVec3], eps: f64) -> Result<Quickhull<'a>, HullError> {
-        let flat = HullError::Flat { points: p.len() };
-        if p.len() < 4 || eps.is_nan() {
-            return Err(flat);
+    /// A tetrahedron of four points off one plane (extreme ones where the
+    /// floating-point guess is right, checked exactly), every other point
+    /// given to the first of its faces it lies outside of.
+    fn start(p: &'a [DVec3]) -> Result<Quickhull<'a>, HullError> {
+        let flat = || HullError::Flat { points: p.len() };
+        if p.len() < 4 {
+            return Err(flat());
         }
         // The farthest pair among the extremes along the axes.
         let mut ext = Vec::with_capacity(6);
@@ -320,32 +469,52 @@ impl<'a> Quickhull<'a> {
                 }
             }
         }
-        let (a, b) = (pair.0, pair.1);
+        let a = pair.0;
+        // Any point other than p[a] (the extremes differ unless all
+        // points are one).
+        let b = if p[pair.1] != p[a] {
+            pair.1
+        } else {
+            (0..p.len()).find(|&i| p[i] != p[a]).ok_or_else(flat)?
+        };
         let line = (p[b] - p[a]).normalize_or_zero();
         let off_line = |i: usize| {
             let d = p[i] - p[a];
             (d - line * d.dot(line)).length()
         };
-        let c = (0..p.len())
+        let guess = (0..p.len())
             .max_by(|&x, &y| off_line(x).total_cmp(&off_line(y)))
-            .ok_or(HullError::Flat { points: p.len() })?;
-        if pair.2 <= eps || off_line(c) <= eps {
-            return Err(flat);
-        }
-        let n = (p[b] - p[a]).cross(p[c] - p[a]).normalize_or_zero();
-        let off_plane = |i: usize| n.dot(p[i] - p[a]);
-        let d = (0..p.len())
-            .max_by(|&x, &y| off_plane(x).abs().total_cmp(&off_plane(y).abs()))
-            .ok_or(HullError::Flat { points: p.len() })?;
-        if off_plane(d).abs() <= eps {
-            return Err(flat);
-        }
-        // Orient a, b, c counter-clockwise seen from outside (d behind).
-        let (b, c) = if off_plane(d) > 0.0 { (c, b) } else { (b, c) };
+            .ok_or_else(flat)?;
+        let c = if !collinear(p[a], p[b], p[guess]) {
+            guess
+        } else {
+            (0..p.len())
+                .find(|&i| !collinear(p[a], p[b], p[i]))
+                .ok_or_else(flat)?
+        };
+        let n = (p[b] - p[a]).cross(p[c] - p[a]);
+        let off_plane = |i: usize| n.dot(p[i] - p[a]).abs();
+        let guess = (0..p.len())
+            .max_by(|&x, &y| off_plane(x).total_cmp(&off_plane(y)))
+            .ok_or_else(flat)?;
+        let side = |i: usize| orient3d(p[a], p[b], p[c], p[i]);
+        let d = if side(guess) != Sign::Zero {
+            guess
+        } else {
+            (0..p.len())
+                .find(|&i| side(i) != Sign::Zero)
+                .ok_or_else(flat)?
+        };
+        // Orient a, b, c counter-clockwise seen from outside (d behind,
+        // orient3d positive).
+        let (b, c) = if side(d) == Sign::Negative {
+            (c, b)
+        } else {
+            (b, c)
+        };
         let [a, b, c, d] = [a as u32, b as u32, c as u32, d as u32];
         let mut hull = Quickhull {
             p,
-            eps,
             tris: Vec::new(),
         };
         // Faces 0..4 and their neighbours across each edge.
@@ -353,17 +522,6 @@ impl<'a> Quickhull<'a> {
         hull.push([a, d, b], [3, 2, 0]);
         hull.push([b, d, c], [1, 3, 0]);
         hull.push([c, d, a], [2, 1, 0]);
-        for t in 0..4 {
-            let [x, y, z] = hull.tris[t].v;
-            for (k, w) in [(0, [x, y]), (1, [y, z]), (2, [z, x])] {
-                let g = hull.tris[t].next[k] as usize;
-                if !hull.tris[g].v.contains(&w[0]) || !hull.tris[g].v.contains(&w[1]) {
-                    return Err(HullError::Numerical(
-                        "the first tetrahedron is inconsistent",
-                    ));
-                }
-            }
-        }
         let taken = [a, b, c, d];
         for i in 0..p.len() as u32 {
             if !taken.contains(&i) {
@@ -373,30 +531,42 @@ impl<'a> Quickhull<'a> {
         Ok(hull)
     }
 
-    /// Adds a triangle with its plane.
+    /// Adds a triangle with its floating-point normal.
     fn push(&mut self, v: [u32; 3], next: [u32; 3]) -> u32 {
         let [a, b, c] = v.map(|i| self.p[i as usize]);
-        let normal = (b - a).cross(c - a).normalize_or_zero();
         self.tris.push(Tri {
             v,
             next,
-            normal,
-            offset: normal.dot(a),
+            normal: (b - a).cross(c - a),
             outside: Vec::new(),
             alive: true,
         });
         (self.tris.len() - 1) as u32
     }
 
-    /// How far point `i` lies outside triangle `t`.
+    /// Exactly where point `i` lies from triangle `t`'s plane: `Negative`
+    /// outside (in front of its counter-clockwise side), `Zero` on it.
+    fn side(&self, t: usize, i: u32) -> Sign {
+        let [a, b, c] = self.tris[t].v.map(|k| self.p[k as usize]);
+        orient3d(a, b, c, self.p[i as usize])
+    }
+
+    /// Whether point `i` lies strictly outside triangle `t`, exactly.
+    fn outside(&self, t: usize, i: u32) -> bool {
+        self.side(t, i) == Sign::Negative
+    }
+
+    /// About how far point `i` lies outside triangle `t` (in units of the
+    /// triangle's doubled area; only to pick the farthest point).
     fn height(&self, t: usize, i: u32) -> f64 {
-        self.tris[t].normal.dot(self.p[i as usize]) - self.tris[t].offset
+        let a = self.p[self.tris[t].v[0] as usize];
+        self.tris[t].normal.dot(self.p[i as usize] - a)
     }
 
     /// Gives point `i` to the first triangle of `among` it lies outside
-    /// of; a point outside none is inside the hull and dropped.
+    /// of; a point outside none is inside the hull or on it, and dropped.
     fn give(&mut self, i: u32, among: std::ops::Range<usize>) {
-        if let Some(t) = among.into_iter().find(|&t| self.height(t, i) > self.eps) {
+        if let Some(t) = among.into_iter().find(|&t| self.outside(t, i)) {
             self.tris[t].outside.push(i);
         }
     }
@@ -444,7 +614,7 @@ impl<'a> Quickhull<'a> {
                 let sees = match seen.get(&g) {
                     Some(&s) => s,
                     None => {
-                        let s = self.height(g, apex) > self.eps;
+                        let s = self.outside(g, apex);
                         seen.insert(g, s);
                         if s {
                             visible.push(g);
@@ -498,8 +668,7 @@ impl<'a> Quickhull<'a> {
     }
 
     /// The live triangles merged into convex polygons: triangles whose
-    /// neighbour's far corner lies on their plane (within the tolerance)
-    /// are one face; each face is the loop of its boundary edges, without
+    /// neighbour's far corner lies exactly on their plane are one face; each face is the loop of its boundary edges, without
     /// the points that are corners of fewer than three faces (in the
     /// middle of a straight edge).
     fn polygons(&self) -> Result<Vec<Vec<u32>>, HullError> {
@@ -572,7 +741,7 @@ impl<'a> Quickhull<'a> {
                 let Some(&far) = self.tris[g].v.iter().find(|&&x| x != a && x != b) else {
                     return Err(HullError::Numerical("two triangles share three corners"));
                 };
-                if self.height(t, far).abs() <= self.eps {
+                if self.side(t, far) == Sign::Zero {
                     let (x, y) = (find(&mut group, t), find(&mut group, g));
                     group[x] = y;
                 }
