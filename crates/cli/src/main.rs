@@ -67,6 +67,8 @@ enum Command {
     Cut(cmd::cut::Args),
     /// Truncate vertices or edges (a cut at a fraction of each edge).
     Truncate(cmd::cut::TruncateArgs),
+    /// The convex hull of a mesh's vertices, or TopMod's dual convex hull.
+    Hull(cmd::hull::Args),
     /// Draw a mesh to a PNG picture.
     Render(cmd::render::Args),
     /// Rind modeling: a crust with punched and peeled holes (thesis chapter V).
@@ -126,6 +128,7 @@ fn main() {
         Command::Wireframe(a) => cmd::wireframe::run(a),
         Command::Cut(a) => cmd::cut::run(a),
         Command::Truncate(a) => cmd::cut::run_truncate(a),
+        Command::Hull(a) => cmd::hull::run(a),
         Command::Topo(a) => cmd::topo::run(a),
         Command::Union(a) => cmd::union::run(a),
         Command::Intersection(a) => cmd::boolean::run(a, holey_topo::Operation::Intersection),

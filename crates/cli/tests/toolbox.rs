@@ -785,11 +785,57 @@ fn cut_and_truncate_refusals() {
     assert!(!Path::new(&out).exists());
 }
 
+// ---------------------------------------------------------------- hull
+
+#[test]
+fn hull_of_a_torus_and_dual_hull_of_a_cube() {
+    let d = Dir::new();
+    // A cube is its own hull; its dual convex hull is the octahedron
+    // (F, E, V of the cube). Both genus 0, one piece, closed.
+    let h = d.path("h.obj");
+    ok(&["hull", "@cube", &h]);
+    let cube = counts("@cube");
+    assert_eq!(vef(counts(&h)), vef(cube));
+    let o = d.path("o.obj");
+    ok(&["hull", "@cube", &o, "--dual"]);
+    let oct = counts(&o);
+    assert_eq!(vef(oct), (cube.f, cube.e, cube.v));
+    // A torus's hull drops its inner ring: genus 0, one piece, no
+    // boundary, Euler's formula, fewer vertices than the torus.
+    let t = d.path("t.dlfl");
+    ok(&["hull", "@torus", &t]);
+    let (torus, hull) = (counts("@torus"), counts(&t));
+    assert_eq!((hull.genus, hull.components, hull.loops), (0, 1, 0));
+    assert_eq!(hull.v - hull.e + hull.f, 2);
+    assert!(hull.v < torus.v);
+    // The dual has one face per corner of the hull.
+    let td = d.path("td.dlfl");
+    ok(&["hull", "@torus", &td, "--dual"]);
+    let dual = counts(&td);
+    assert_eq!(dual.f, hull.v);
+    assert_eq!((dual.genus, dual.components, dual.loops), (0, 1, 0));
+}
+
+#[test]
+fn hull_of_a_flat_mesh_is_refused_and_writes_nothing() {
+    let d = Dir::new();
+    for dual in [false, true] {
+        let out = d.path("flat.obj");
+        let mut args = vec!["hull", "@plane:3:3", &out];
+        if dual {
+            args.push("--dual");
+        }
+        let err = refused(&args);
+        assert!(err.contains("one plane"), "{err}");
+        assert!(!Path::new(&out).exists());
+    }
+}
+
 // ---------------------------------------------------------------- shared
 
 #[test]
 fn every_new_command_has_examples() {
-    for command in ["remesh", "extrude", "wireframe", "cut", "truncate"] {
+    for command in ["remesh", "extrude", "wireframe", "cut", "truncate", "hull"] {
         let help = ok(&[command, "--help"]);
         assert!(
             help.contains("Examples:\n  holey "),

@@ -7,6 +7,7 @@ pub mod cut;
 pub mod demo;
 pub mod extrude;
 pub mod handle;
+pub mod hull;
 pub mod info;
 pub mod menger;
 pub mod primitive;

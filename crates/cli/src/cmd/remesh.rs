@@ -99,8 +99,8 @@ pub struct Options {
     /// face scale [default: 0.7]; global-extrude: top scale [default: 1]; dome [default: 1].
     #[arg(long, allow_hyphen_values = true)]
     pub scale: Option<f64>,
-    /// global-extrude: distance [default: 2]; dome: height factor [default: 1];
-    /// loop-style: old vertex weight [default: 1].
+    /// global-extrude, dual-global-extrude, dome: height in units of each face's
+    /// size √(area) [default: 1]; loop-style: old vertex weight [default: 1].
     #[arg(long, allow_hyphen_values = true)]
     pub length: Option<f64>,
     /// root4, hexagon-preserving, dual-hexagon-preserving: smoothing weight [default: 0].

@@ -19,7 +19,9 @@ too.
 
 Without --columns: TopMod's wireframe, each face shrunk by --thickness
 into a window with jambs down to an inner layer; four-sided tubes,
-V' = 4E, E' = 10E, F' = 4E + 2V (a cube: 48/120/64, genus 5).
+V' = 4E, E' = 10E - 2(V1 + V2), F' = 4E + 2V3, Vk the vertices of
+valence k (V3 those of valence 3 or more; no joint where two edges or
+one meet); a cube: 48/120/64, genus 5.
 
 With --columns N: an N-sided column of radius --thickness along every
 edge, joined at each vertex of valence k >= 3 by k side faces and two
