@@ -590,8 +590,11 @@ class Mesh:
         """Every edge a tube and every vertex a joint: the surface of the
         thickened edge graph, of genus ``E - V + 1`` per component. Without
         ``columns``, TopMod's wireframe (four-sided tubes ``thickness``
-        wide: ``4E`` vertices, ``10E`` edges, ``4E + 2V`` faces); with
-        ``columns=n``, ``n``-sided columns of radius ``thickness``."""
+        wide: ``4E`` vertices, ``10E - 2(V1 + V2)`` edges and
+        ``4E + 2 V3`` faces, ``Vk`` the vertices of valence ``k`` and
+        ``V3`` those of valence 3 or more: no joint where one or two edges
+        meet); with ``columns=n``, ``n``-sided columns of radius
+        ``thickness``."""
         return Mesh(self._native.wireframe(thickness, columns=columns))
 
     def cut(
@@ -637,6 +640,24 @@ class Mesh:
                 edges=None if edges is None else [(int(a), int(b)) for a, b in edges],
             )
         )
+
+    def convex_hull(self) -> "Mesh":
+        """The convex hull of the vertices (``holey hull``): a convex
+        polyhedron of genus 0, its faces the hull's planar facets and its
+        vertices the corners (points inside, on a face or on a straight
+        edge dropped); ``V - E + F = 2``, and ``F = 2V - 4`` when every
+        face is a triangle. Decided exactly, with no tolerance: a point
+        ``1e-17`` outside a face is a corner. Raises :class:`HoleyError`
+        when the points lie on one plane."""
+        return Mesh(self._native.convex_hull())
+
+    def dual_convex_hull(self) -> "Mesh":
+        """TopMod's dual convex hull (``holey hull --dual``): the solid
+        bounded by the plane through each corner of the convex hull
+        perpendicular to its normal, one face per corner; a cube gives
+        the octahedron (6/12/8). Raises :class:`HoleyError` when the
+        points lie on one plane."""
+        return Mesh(self._native.dual_convex_hull())
 
     def info(self) -> Dict[str, Any]:
         """The measurements of ``holey info --json`` for a ``.dlfl``:

@@ -138,6 +138,7 @@ def test_wireframe_genus_is_the_cycle_rank():
         V, E, F = counts(mesh)
         w = mesh.wireframe(0.05)
         w.validate()
+        # Every vertex has valence 3 or more: E' = 10E, F' = 4E + 2V.
         assert counts(w) == (4 * E, 10 * E, 4 * E + 2 * V)
         assert topology(w) == (E - V + 1, 1, 0)
     cube = holey.Mesh.primitive("cube")
@@ -178,3 +179,40 @@ def test_cut_and_truncate():
         cube.cut(vertices=[1], edges=[(0, 1)])
     with pytest.raises(holey.HoleyError, match="0.5"):
         cube.truncate(0.5)
+
+
+def test_convex_hull_and_dual_convex_hull():
+    # A cube is its own hull; its dual convex hull is the octahedron
+    # (the cube's F, E, V).
+    cube = holey.Mesh.primitive("cube")
+    V, E, F = counts(cube)
+    h = cube.convex_hull()
+    h.validate()
+    assert counts(h) == (V, E, F)
+    d = cube.dual_convex_hull()
+    d.validate()
+    assert counts(d) == (F, E, V)
+    assert topology(d) == (0, 1, 0)
+    # A torus's hull: genus 0, closed, Euler's formula; its dual has one
+    # face per corner of the hull.
+    torus = holey.Mesh.primitive("torus")
+    t = torus.convex_hull()
+    tv, te, tf = counts(t)
+    assert topology(t) == (0, 1, 0) and tv - te + tf == 2
+    assert counts(torus.dual_convex_hull())[2] == tv
+    # A 3 x 3 grid on z = 0 closed by eight triangles to a point 1e-17
+    # above its middle: the hull is the pyramid over the square (5/8/5);
+    # with the point exactly on the grid it is flat.
+    grid = [(float(i), float(j), 0.0) for j in range(3) for i in range(3)]
+    base = [[0, 3, 4, 1], [1, 4, 5, 2], [3, 6, 7, 4], [4, 7, 8, 5]]
+    rim = [0, 1, 2, 5, 8, 7, 6, 3]
+    sides = [[a, b, 9] for a, b in zip(rim, rim[1:] + rim[:1])]
+    for z, pyramid in [(1e-17, True), (0.0, False)]:
+        m = holey.Mesh.from_polygons(grid + [(1.0, 1.0, z)], base + sides)
+        if pyramid:
+            assert counts(m.convex_hull()) == (5, 8, 5)
+        else:
+            with pytest.raises(holey.HoleyError, match="one plane"):
+                m.convex_hull()
+            with pytest.raises(holey.HoleyError, match="one plane"):
+                m.dual_convex_hull()

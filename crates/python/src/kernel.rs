@@ -289,6 +289,21 @@ impl Mesh {
             .map(Mesh::wrap)
     }
 
+    /// The convex hull of the mesh's vertices (`holey hull`).
+    fn convex_hull(&self, py: Python<'_>) -> PyResult<Mesh> {
+        py.detach(|| holey::model::hull::convex_hull(&self.mesh))
+            .map(Mesh::wrap)
+            .map_err(bad)
+    }
+
+    /// TopMod's dual convex hull of the mesh's vertices (`holey hull
+    /// --dual`).
+    fn dual_convex_hull(&self, py: Python<'_>) -> PyResult<Mesh> {
+        py.detach(|| holey::model::hull::dual_convex_hull(&self.mesh))
+            .map(Mesh::wrap)
+            .map_err(bad)
+    }
+
     /// Checks every invariant of the DLFL (for tests).
     fn validate(&self) -> PyResult<()> {
         self.mesh.validate().map_err(bad)
