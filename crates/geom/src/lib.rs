@@ -17,6 +17,7 @@
 //! | [`construct`] | coordinates and barycentric coordinates of edge × triangle and triple points, correctly rounded from exact values |
 //! | [`dd`] | double-double values with error bounds: the certified fast path of the constructions (bit-identical results, exact fallback) |
 //! | [`bvh`] | median-split BVH: box queries, streamed batches, self-overlap, refit |
+//! | [`frame`] | the frame in which a turned CAD mesh's triangle boxes are tight (its dominant normal and edge direction), each box widened by its rounding bound |
 //! | [`ccd`] | vertex–triangle continuous collision: the paper's float cubic, the exact root parity, the parallel broad phase |
 //! | [`sos`], [`ring`], [`expansion`] | the machinery: generic predicate polynomials evaluated in intervals, exact expansions and perturbation polynomials |
 //!
@@ -45,6 +46,7 @@ pub mod construct;
 pub mod dd;
 pub mod error;
 pub mod expansion;
+pub mod frame;
 pub mod identity;
 pub mod intersect;
 pub mod orient;
@@ -57,6 +59,7 @@ pub(crate) mod testutil;
 pub use bvh::{Aabb, Bvh};
 pub use construct::{EdgeTrianglePoint, TriplePoint, edge_triangle_point, triple_point};
 pub use error::{GeomError, NonFinite};
+pub use frame::BoxFrame;
 pub use identity::{index_identities, motion_classes, position_classes, position_key};
 pub use intersect::{
     SegEnd, end_side, order_on_segment, segment_triangle_intersect, triangle_triangle_segment,

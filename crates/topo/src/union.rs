@@ -58,13 +58,14 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_geom::{Bvh, SymPoint};
+use holey_geom::{BoxFrame, Bvh, SymPoint};
 use rayon::prelude::*;
 
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
 use crate::intersect::{
-    Candidates, any_intersection_among, default_pair_limit, intersections_among, triangle_boxes,
+    Candidates, any_intersection_among, default_pair_limit, framed_triangle_boxes,
+    intersections_among, triangle_boxes,
 };
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
@@ -509,7 +510,37 @@ fn unite(
     let pos = &mesh.positions;
     let edges = pa.edges.joined(&pb.edges, pair.split_vertex, pair.split);
     let ids = identities(&pair);
-    let (tree_a, tree_b) = (&pa.tree, &pb.tree);
+    // Pairs across A and B are found in the frame of both together
+    // ([`BoxFrame`]): turned CAD parts' flat faces then have flat boxes
+    // (EMBER pairs: 1.14M candidate pairs → 0.21M). The solids' own
+    // trees stay in the world's axes for the containment rays.
+    let frame =
+        BoxFrame::of_triangles(&[(&a.positions, &a.triangles), (&b.positions, &b.triangles)]);
+    let framed;
+    let (framed_a, framed_b) = if frame.is_identity() {
+        (&pa.tree, &pb.tree)
+    } else {
+        let (ta, tb) = rayon::join(
+            || {
+                Bvh::build(&framed_triangle_boxes(
+                    a,
+                    &a.positions,
+                    0..a.triangles.len(),
+                    &frame,
+                ))
+            },
+            || {
+                Bvh::build(&framed_triangle_boxes(
+                    b,
+                    &b.positions,
+                    0..b.triangles.len(),
+                    &frame,
+                ))
+            },
+        );
+        framed = (ta.map_err(TopoError::from)?, tb.map_err(TopoError::from)?);
+        (&framed.0, &framed.1)
+    };
     let oriented = pa.oriented() && pb.oriented();
     // A difference takes B inside out: then B faces inward.
     let outward = pa.outward && pb.outward == (op != Operation::Difference);
@@ -522,8 +553,8 @@ fn unite(
         &edges,
         &ids,
         Candidates::Across {
-            first: tree_a,
-            second: tree_b,
+            first: framed_a,
+            second: framed_b,
             split: pair.split,
         },
         limit,
@@ -565,8 +596,8 @@ fn unite(
         far_id,
     };
     let other = |s: Solid| match s {
-        Solid::A => (tree_b, pair.split),
-        Solid::B => (tree_a, 0),
+        Solid::A => (&pb.tree, pair.split),
+        Solid::B => (&pa.tree, 0),
     };
     let mut odd = vec![false; n];
     let mut cast = 0usize;
