@@ -8,6 +8,7 @@ use holey_dlfl::Mesh;
 use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_model::extrude::{ExtrudeParams, extrude_face, stellate_face};
 use holey_model::handle::{HandleParams, create_handle};
+use holey_model::hull::{convex_hull, dual_convex_hull};
 use holey_model::menger::{MengerParams, Thickness, menger};
 use holey_model::rind::Rind;
 use holey_model::sierpinski::sierpinski;
@@ -241,4 +242,42 @@ fn export_1m_face_sierpinski_to_soup(bencher: Bencher) {
     let mut m = primitive("@tetrahedron");
     let _ = sierpinski(&mut m, 9);
     bencher.bench(|| black_box(to_poly(&m)).poly.face_count());
+}
+
+/// `n` points on the unit sphere, as point-spheres (a SplitMix64 stream,
+/// so every run hulls the same points): every one a corner of the hull.
+fn sphere_points(n: usize) -> Mesh {
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let mut m = Mesh::new();
+    while m.vertex_count() < n {
+        let p = glam::DVec3::new(next(), next(), next());
+        let r = p.length();
+        if r > 0.1 && r <= 1.0 {
+            m.create_vertex(p / r).expect("a finite point");
+        }
+    }
+    m
+}
+
+/// The convex hull of 500,000 points on a sphere: 2n − 4 = 999,996
+/// triangles, every decision exact.
+#[divan::bench(sample_count = 3)]
+fn convex_hull_of_500k_sphere_points(bencher: Bencher) {
+    let base = sphere_points(500_000);
+    bencher.bench(|| black_box(convex_hull(&base)).map(|m| m.face_count()));
+}
+
+/// The dual convex hull of 100,000 points on a sphere: 100,000 faces,
+/// 2n − 4 = 199,996 vertices (two hulls and the constructions between).
+#[divan::bench(sample_count = 3)]
+fn dual_convex_hull_of_100k_sphere_points(bencher: Bencher) {
+    let base = sphere_points(100_000);
+    bencher.bench(|| black_box(dual_convex_hull(&base)).map(|m| m.face_count()));
 }
