@@ -473,13 +473,14 @@ pub(crate) enum Candidates<'a> {
     /// Every pair of the mesh's triangles whose boxes overlap: one tree
     /// over all of them.
     Within(&'a Bvh),
-    /// Only pairs across two parts: the triangles before `split` (tree
-    /// `first`) against those from `split` on (tree `second`, whose
-    /// primitive `i` is triangle `split + i`).
+    /// Only pairs across two parts: the triangles of tree `first` against
+    /// those of tree `second`, each tree's primitives numbered as its
+    /// [`Primitives`] says.
     Across {
         first: &'a Bvh,
+        first_triangles: Primitives<'a>,
         second: &'a Bvh,
-        split: u32,
+        second_triangles: Primitives<'a>,
     },
     /// Pairs among a subset of the triangles: `tree`'s primitive `i` is
     /// triangle `triangles[i]`.
@@ -491,6 +492,25 @@ pub(crate) enum Candidates<'a> {
         tree: &'a Bvh,
         distinct: &'a Distinct,
     },
+}
+
+/// Which triangle a tree's primitive `i` is.
+#[derive(Clone, Copy)]
+pub(crate) enum Primitives<'a> {
+    /// Triangle `offset + i`.
+    From(u32),
+    /// Triangle `list[i]`.
+    Listed(&'a [u32]),
+}
+
+impl Primitives<'_> {
+    #[inline]
+    fn triangle(self, i: u32) -> u32 {
+        match self {
+            Primitives::From(offset) => offset + i,
+            Primitives::Listed(list) => list[i as usize],
+        }
+    }
 }
 
 /// The triangles that can meet another, when some cannot or repeat
@@ -655,9 +675,12 @@ fn segments(
         Candidates::Within(bvh) => bvh.self_overlaps_filter_map(test),
         Candidates::Across {
             first,
+            first_triangles,
             second,
-            split,
-        } => first.overlaps_with_filter_map(second, |t1, t2| test(t1, split + t2)),
+            second_triangles,
+        } => first.overlaps_with_filter_map(second, |i, j| {
+            test(first_triangles.triangle(i), second_triangles.triangle(j))
+        }),
         Candidates::Among { tree, triangles } => tree.self_overlaps_filter_map(|i, j| {
             let (t1, t2) = (triangles[i as usize], triangles[j as usize]);
             test(t1.min(t2), t1.max(t2))
