@@ -578,6 +578,28 @@ fn extrude_refuses_non_finite_parameters() {
         "{err}"
     );
     assert!(!Path::new(&out).exists());
+    // Together: the first step reaches 1e308, the second is refused about
+    // faces the first made, which the message names by what they are
+    // (never by a kernel id such as `f20v1`).
+    let err = refused(&[
+        "extrude",
+        "@plane:4:4",
+        &out,
+        "--faces",
+        "5",
+        "--together",
+        "--distance",
+        "1e308",
+        "--count",
+        "5",
+    ]);
+    assert!(
+        err.contains("repetition 2 of 5 was refused, so none was made")
+            && err.contains("non-finite coordinates")
+            && !err.contains("v1"),
+        "{err}"
+    );
+    assert!(!Path::new(&out).exists());
 }
 
 #[test]

@@ -508,6 +508,23 @@ impl Numbering {
                 "a new vertex of {} would have non-finite coordinates; the parameters are too large for the model's scale",
                 face(*f)
             ),
+            ExtrudeError::Repeated { step, count, cause } => {
+                // The faces of a later repetition are ones the earlier
+                // repetitions made, unknown to the caller: named so.
+                let why = match cause.as_ref() {
+                    ExtrudeError::NonFinite { .. } => {
+                        "a new vertex would have non-finite coordinates; the distance times the count is too large for the model's scale".to_string()
+                    }
+                    ExtrudeError::DegenerateFace(_) => {
+                        "a face made by the earlier repetitions has zero area, so it has no normal to extrude along".to_string()
+                    }
+                    ExtrudeError::NoDirection { .. } => {
+                        "the normals of the faces made by the earlier repetitions cancel out; there is no direction to extrude along".to_string()
+                    }
+                    other => self.describe_extrude(mesh, other),
+                };
+                format!("repetition {step} of {count} was refused, so none was made: {why}")
+            }
             other => other.to_string(),
         }
     }

@@ -132,6 +132,18 @@ pub enum ExtrudeError {
         /// The face being extruded.
         face: FaceId,
     },
+    /// A repetition after the first of a repeated multi-face extrusion
+    /// was refused (its faces are ones the earlier repetitions made, which
+    /// the caller never named); the mesh is as it was before the first.
+    #[error("repetition {step} of {count} was refused, so none was made: {cause}")]
+    Repeated {
+        /// Which repetition, from 1 (always at least 2).
+        step: usize,
+        /// How many were asked for.
+        count: usize,
+        /// Why it was refused, about faces that repetition would extrude.
+        cause: Box<ExtrudeError>,
+    },
     /// The extrusion would add more than [`MAX_NEW_CORNERS`] corners.
     #[error(
         "this extrusion would add about {corners} corners, more than the limit of {MAX_NEW_CORNERS}"

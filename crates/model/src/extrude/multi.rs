@@ -70,7 +70,10 @@ pub struct MultiExtruded {
 ///
 /// Refused, with the mesh unchanged: no faces, a stale id, a hole, a
 /// point-sphere, a face with a self-loop, a non-finite distance, a count
-/// of 0, or no direction (see [`RegionDirection`]).
+/// of 0, or no direction (see [`RegionDirection`]); a repetition after
+/// the first that is refused (its own faces, made by the earlier ones, are
+/// what it found wrong) gives [`ExtrudeError::Repeated`] and the mesh as
+/// it was before the first.
 pub fn extrude_faces(
     mesh: &mut Mesh,
     faces: &[FaceId],
@@ -89,31 +92,41 @@ pub fn extrude_faces(
         .collect::<BTreeSet<_>>()
         .into_iter()
         .collect();
-    let mut plan = plan_once(mesh, &unique, params)?;
+    let plan = plan_once(mesh, &unique, params)?;
     let corners: u64 = plan.fans.len() as u64 * 5 + unique.len() as u64;
     check_size(corners * params.count as u64)?;
-    // A translated selection plans again exactly as the first time, but
-    // moving along vertex normals reshapes it, so a later repetition could
-    // find no direction: keep a copy to put back in that case (the copy
-    // has the same slots and generations, so every handle stays good).
-    let backup = (params.count > 1 && params.direction == RegionDirection::VertexNormals)
-        .then(|| mesh.clone());
+    // A later repetition can be refused (moving along vertex normals
+    // reshapes the selection so it may find no direction; a long distance
+    // reaches non-finite coordinates): keep a copy to put back, so a
+    // refusal leaves the mesh as it was (the copy has the same slots and
+    // generations, so every handle stays good).
+    let backup = (params.count > 1).then(|| mesh.clone());
     let mut walls = Vec::new();
     let mut vertices = Vec::new();
     let mut tops = unique;
     for k in 0..params.count {
-        if k > 0 {
-            match plan_once(mesh, &tops, params) {
-                Ok(p) => plan = p,
-                Err(e) => {
-                    if let Some(b) = backup {
-                        *mesh = b;
-                    }
-                    return Err(e);
+        let step = if k == 0 {
+            region::apply(mesh, &plan)
+        } else {
+            plan_once(mesh, &tops, params).and_then(|p| region::apply(mesh, &p))
+        };
+        let made = match step {
+            Ok(made) => made,
+            Err(e) => {
+                if let Some(b) = backup {
+                    *mesh = b;
                 }
+                return Err(if k == 0 {
+                    e
+                } else {
+                    ExtrudeError::Repeated {
+                        step: k + 1,
+                        count: params.count,
+                        cause: Box::new(e),
+                    }
+                });
             }
-        }
-        let made = region::apply(mesh, &plan)?;
+        };
         walls.extend(made.walls);
         vertices.extend(made.fan_vertices);
         tops = made.tops;

@@ -638,3 +638,32 @@ fn dome_lies_on_a_half_sphere() {
         assert!((d - 2f64.sqrt()).abs() < 1e-12, "{d}");
     }
 }
+
+#[test]
+fn a_refused_later_repetition_leaves_the_mesh_unchanged() {
+    // The first step of 1e308 is finite, the second is not: refused as
+    // repetition 2 of 5, with the mesh as before the first, along the
+    // average direction and along vertex normals alike.
+    for direction in [RegionDirection::Average, RegionDirection::VertexNormals] {
+        let mut m = prim("@plane:4:4");
+        let before = m.clone();
+        let sel = [face(&m, 5), face(&m, 6)];
+        let p = MultiExtrudeParams {
+            distance: 1e308,
+            direction,
+            count: 5,
+        };
+        match extrude_faces(&mut m, &sel, &p) {
+            Err(ExtrudeError::Repeated {
+                step: 2,
+                count: 5,
+                cause,
+            }) => {
+                assert!(matches!(*cause, ExtrudeError::NonFinite { .. }), "{cause}");
+            }
+            other => panic!("{other:?}"),
+        }
+        unchanged(&m, &before);
+        m.validate().unwrap();
+    }
+}
