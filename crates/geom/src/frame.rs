@@ -100,7 +100,7 @@ impl BoxFrame {
                     .reduce(|| 0.0, f64::max),
             );
         }
-        if !(reach < HUGE) {
+        if reach.is_nan() || reach >= HUGE {
             return BoxFrame::IDENTITY;
         }
         let Some(normal) = dominant_normal(parts) else {
@@ -154,7 +154,7 @@ fn unsigned_normal(positions: &[DVec3], t: &[u32; 3]) -> Option<(DVec3, f64)> {
     ];
     let n = (*b - *a).cross(*c - *a);
     let w = n.length();
-    if !(w > 0.0 && w.is_finite()) {
+    if w.is_nan() || w <= 0.0 || w.is_infinite() {
         return None;
     }
     let d = n / w;

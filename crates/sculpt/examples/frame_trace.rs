@@ -41,6 +41,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .position(|a| a == "--dump")
         .and_then(|i| args.get(i + 1))
         .and_then(|k| k.parse().ok());
+    if args.len() < 3 {
+        return Err(
+            "usage: frame_trace MESH STROKES.json [--no-remesh] [--no-audit] [--dump K]".into(),
+        );
+    }
     let MeshFile::Poly(poly) = holey_io::read_path(Path::new(&args[1]))? else {
         return Err("a polygon mesh file, please".into());
     };
