@@ -1232,6 +1232,104 @@ fn a_long_remesh_reports_progress_and_cancels() {
     assert!(r["message"].as_str().unwrap_or("").contains("faces"), "{r}");
 }
 
+/// The convex hull and TopMod's dual convex hull (issue 18): one undo
+/// step each, a flat mesh refused with the document unchanged.
+#[test]
+fn hull_and_dual_hull_replace_the_mesh_and_undo() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let (v, e, f) = (8u64, 12u64, 6u64);
+    assert_eq!(vef(&a), [v, e, f]);
+    // The cube's half side h, from the picture.
+    let h = last_whole(&a)
+        .positions
+        .iter()
+        .flatten()
+        .fold(0f32, |m, c| m.max(c.abs()));
+    assert!(h > 0.0);
+
+    // The hull of a convex polyhedron's corners is itself.
+    a.ok(json!({"op": "hull"}));
+    assert_eq!(vef(&a), [v, e, f]);
+    a.ok(json!({"op": "undo"}));
+
+    // The dual hull: one face per hull corner (F* = V = 8); on a regular
+    // polyhedron it is the polar dual, so V* = F = 6 and E* = E = 12: an
+    // octahedron, genus 0 (6 − 12 + 8 = 2).
+    let before = a.state["version"].clone();
+    let r = a.ok(json!({"op": "hull", "dual": true}));
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("dual convex hull"),
+        "{r}"
+    );
+    assert_eq!(vef(&a), [f, e, v]);
+    assert_eq!(a.genus(), 0);
+    assert_eq!(a.state["can_undo"], true);
+    // The plane at the corner (h, h, h) is normal to (1, 1, 1): x + y + z
+    // = 3h, which meets the axes at 3h; so every corner of the octahedron
+    // lies on an axis, 3h from the centre.
+    let oct = last_whole(&a);
+    assert_eq!(oct.positions.len(), 6);
+    for p in &oct.positions {
+        let mut m: Vec<f32> = p.iter().map(|c| c.abs()).collect();
+        m.sort_by(f32::total_cmp);
+        assert!(m[0] < 1e-4 * h && m[1] < 1e-4 * h, "{p:?} is off the axes");
+        assert!((m[2] - 3.0 * h).abs() < 1e-4 * h, "{p:?} is not 3h out");
+    }
+    // One undo step brings back the cube.
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(vef(&a), [v, e, f]);
+    assert!(a.state["version"].as_u64() > before.as_u64());
+    a.ok(json!({"op": "redo"}));
+    assert_eq!(vef(&a), [f, e, v]);
+
+    // A flat mesh bounds no solid: refused in one error, nothing changed.
+    a.ok(json!({"op": "primitive", "spec": "@plane"}));
+    let flat = vef(&a);
+    let version = a.state["version"].clone();
+    let frames = a.frames.len();
+    for dual in [false, true] {
+        let r = a.call(json!({"op": "hull", "dual": dual}));
+        assert_eq!(r["type"], "error", "{r}");
+        assert_eq!(r["cancelled"], false, "{r}");
+        let m = r["message"].as_str().unwrap_or("");
+        assert!(m.contains("one plane"), "{m:?}");
+        assert!(
+            m.starts_with(if dual {
+                "dual convex hull: "
+            } else {
+                "convex hull: "
+            }),
+            "{m:?}"
+        );
+        assert_eq!(vef(&a), flat);
+        assert_eq!(a.state["version"], version);
+        assert_eq!(a.state["busy"], Value::Null);
+    }
+    assert_eq!(a.frames.len(), frames, "a refusal sends no mesh");
+    let r = a.call(json!({"op": "hull", "dual": "yes"}));
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("\"dual\""),
+        "{r}"
+    );
+    // The hull belongs to the model workspace, like the other whole-mesh tools.
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    let r = a.call(json!({"op": "hull", "dual": true}));
+    assert!(
+        r["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("model workspace"),
+        "{r}"
+    );
+}
+
 // ---- the sculpt workspace of issue 19: masks and the new stroke fields ----
 
 /// What a whole frame carries that these tests read: its flags, the

@@ -6,6 +6,7 @@ use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use holey_dlfl::{FaceId, Mesh, VertexId};
+use holey_model::hull::{convex_hull, dual_convex_hull};
 use holey_model::menger::{MengerParams, menger_capped};
 use holey_model::sierpinski::sierpinski_capped;
 use holey_model::tools::{
@@ -87,6 +88,7 @@ impl Shared {
                 }
                 "wireframe" => wireframe_job(&mesh, req, self.config.max_faces)?,
                 "tool" => tool_job(&doc, req)?,
+                "hull" => hull_job(req)?,
                 _ => {
                     let n = level("levels", 8)?;
                     let scheme = match req.get("scheme").and_then(Value::as_str) {
@@ -224,6 +226,9 @@ pub(super) enum Job {
     Columns(ColumnParams),
     /// A clean-up tool.
     Tool(Tool),
+    /// The convex hull of the vertices, or (true) TopMod's dual convex
+    /// hull.
+    Hull(bool),
 }
 
 /// The tools of TopMod's Tools menu.
@@ -318,6 +323,28 @@ fn tool_job(doc: &Document, req: &Value) -> Result<(Job, String), ServeError> {
     Ok((Job::Tool(tool), name.replace('-', " ")))
 }
 
+/// `hull`: `dual` (optional, default false) chooses TopMod's dual convex
+/// hull. Neither can outgrow the cap by much: the hull has at most
+/// 2V − 4 faces and its dual one face per hull corner; the result is
+/// checked against the cap when built.
+fn hull_job(req: &Value) -> Result<(Job, String), ServeError> {
+    let dual = match req.get("dual") {
+        None | Some(Value::Null) => false,
+        Some(v) => v
+            .as_bool()
+            .ok_or_else(|| ServeError::BadRequest("\"dual\" must be true or false".into()))?,
+    };
+    Ok((Job::Hull(dual), hull_name(dual).into()))
+}
+
+fn hull_name(dual: bool) -> &'static str {
+    if dual {
+        "dual convex hull"
+    } else {
+        "convex hull"
+    }
+}
+
 impl Job {
     fn run(
         self,
@@ -391,6 +418,23 @@ impl Job {
                 done(out)
             }
             Job::Tool(tool) => tool.run(mesh, progress),
+            Job::Hull(dual) => {
+                let what = hull_name(dual);
+                progress(None, format!("building the {what}"));
+                let out = if dual {
+                    dual_convex_hull(&mesh)
+                } else {
+                    convex_hull(&mesh)
+                }
+                .map_err(|e| refused(format!("{what}: {e}")))?;
+                let faces = out.face_count() - out.hole_count();
+                if faces > max_faces {
+                    return Err(refused(format!(
+                        "{what}: that would make {faces} faces; the modeler's limit is {max_faces}"
+                    )));
+                }
+                done(out)
+            }
         }
     }
 }

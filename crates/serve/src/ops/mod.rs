@@ -10,8 +10,8 @@
 //! dispatch; one file per kind of request: `document` (primitives,
 //! workspaces, undo and redo, repairs, settings), `model` (the thesis's
 //! edits), `rind` (rind modeling), `sculpt` (strokes), `long` (long
-//! operations: the fractals, subdivision, remeshing, wireframe and the
-//! clean-up tools), `mask` (the sculpt mask), `remesh` (TopMod's remeshing schemes and their
+//! operations: the fractals, subdivision, remeshing, wireframe, the
+//! clean-up tools and the convex hulls), `mask` (the sculpt mask), `remesh` (TopMod's remeshing schemes and their
 //! parameters), `toolbox` (extrusions, cuts and truncation of the
 //! selection), `select` (selection queries), `files` (uploads and
 //! downloads), and `fields` (reading a request).
@@ -180,7 +180,7 @@ impl Shared {
         let id = req.get("id").cloned();
         let op = req.get("op").and_then(Value::as_str).unwrap_or("");
         let result = match op {
-            "sierpinski" | "menger" | "subdivide" | "remesh" | "wireframe" | "tool" => {
+            "sierpinski" | "menger" | "subdivide" | "remesh" | "wireframe" | "tool" | "hull" => {
                 return self.start_long(conn, id, op, &req);
             }
             "cancel" => self.cancel(),

@@ -1,9 +1,9 @@
 //! TopMod's toolbox on the selection (issue 18): extrusions of the
 //! selected faces, conical cuts and truncation of the selected vertices,
 //! edges and faces. Each is one undo step. The whole-mesh tools
-//! (remeshing, wireframe and columns, planarize and the other clean-ups)
-//! build on a worker as long operations (`long`); the selection queries
-//! are in `select`.
+//! (remeshing, wireframe and columns, the convex hull and dual convex
+//! hull, planarize and the other clean-ups) build on a worker as long
+//! operations (`long`); the selection queries are in `select`.
 //!
 //! Requests name display indices; this file turns them into the kernel's
 //! handles, and the handles in the library's error messages back into
