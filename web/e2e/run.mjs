@@ -1671,6 +1671,57 @@ const scenarios = [
       await waitVersionAbove(page, u);
     }
   }],
+
+  ['Convex hull and dual convex hull of a cube: the cube, then an octahedron three times as wide; undo; a flat mesh is refused', async (page) => {
+    if (useMock) return 'SKIP'; // the mock server has no hulls
+    await setWorkspace(page, 'model');
+    for (const id of ['op-hull', 'op-dual-hull']) {
+      const title = await page.getAttribute(tid(id), 'title');
+      if (!title || title.length < 20) throw new Error(`${id} has no tooltip (title "${title}")`);
+    }
+    await createPrimitive(page, '@cube');
+    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
+    const { V, E, F } = parseStats(await statsText(page));
+    const width = await page.evaluate(() => window.__holey.bbox.max[0] - window.__holey.bbox.min[0]);
+    const undo = async () => {
+      const u = await version(page);
+      await page.click(tid('undo'));
+      await waitVersionAbove(page, u);
+      await waitStats(page, new RegExp(`\\bV ${V} · E ${E} · F ${F}\\b.*genus 0(?!\\d)`));
+    };
+    // The hull of a convex polyhedron's corners is the polyhedron: a new
+    // version with the same counts.
+    let v = await version(page);
+    await page.click(tid('op-hull'));
+    await waitVersionAbove(page, v);
+    await waitStats(page, new RegExp(`\\bV ${V} · E ${E} · F ${F}\\b`));
+    await undo();
+    // The dual hull has one face per corner of the hull; on a regular
+    // polyhedron it is the polar dual, so a vertex per face and an edge
+    // per edge: F, E, V (the octahedron, 6 − 12 + 8 = 2, genus 0).
+    v = await version(page);
+    await page.click(tid('op-dual-hull'));
+    await waitVersionAbove(page, v);
+    await waitStats(page, new RegExp(`\\bV ${F} · E ${E} · F ${V}\\b.*genus 0(?!\\d)`));
+    // The tangent plane at the corner (h, h, h) is x + y + z = 3h: the
+    // octahedron's corners are on the axes, 3h out, three times as wide.
+    const wide = await page.evaluate(() => window.__holey.bbox.max[0] - window.__holey.bbox.min[0]);
+    if (Math.abs(wide - 3 * width) > 1e-4 * width) throw new Error(`the dual hull is ${wide} wide, not 3 × ${width}`);
+    await waitFor(page, 'a toast naming the dual convex hull',
+      () => [...document.querySelectorAll('[data-testid="toast"]')].some((t) => /dual convex hull/.test(t.textContent)));
+    await page.evaluate(() => window.__holey.setView([1, 0.8, 1.2]));
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(artifacts, '30-dual-hull.png') });
+    await undo();
+    // Points on one plane bound no solid: an error toast, the plane unchanged.
+    await createPrimitive(page, '@plane');
+    const flat = await statsText(page);
+    v = await version(page);
+    await page.click(tid('op-dual-hull'));
+    await waitFor(page, 'an error toast saying the points lie on one plane', () =>
+      [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /one plane/.test(t.textContent)));
+    if ((await version(page)) !== v || (await statsText(page)) !== flat) throw new Error('the refused hull changed the document');
+  }],
 ];
 
 // ---- run --------------------------------------------------------------------------

@@ -737,6 +737,18 @@ $('op-cut').onclick = () => cutOp('cut', { distance: num('cut-distance') });
 $('op-truncate').onclick = () => cutOp('truncate', { fraction: num('truncate-fraction') });
 $('op-truncate-all').onclick = () => cutOp('truncate', { fraction: num('truncate-fraction') }, true);
 
+// The hulls act on the whole mesh: no selection. The hull has the mesh's
+// bounding box; the dual hull is larger (a cube's is an octahedron three
+// times as wide), so the view frames it.
+async function hullOp(dual) {
+  app.fitNext = dual;
+  const ok = await long('hull', { dual }, dual ? 'dual convex hull' : 'convex hull');
+  if (!ok) app.fitNext = false;
+  if (ok?.message) toast(ok.message);
+}
+$('op-hull').onclick = () => hullOp(false);
+$('op-dual-hull').onclick = () => hullOp(true);
+
 $('op-wireframe').onclick = () => long('wireframe', { thickness: num('wireframe-thickness') }, 'wireframe');
 $('op-columns').onclick = () =>
   long('wireframe', { thickness: num('wireframe-thickness'), columns: num('columns-sides') }, 'columns');
