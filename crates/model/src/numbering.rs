@@ -73,7 +73,7 @@
 use std::fmt;
 
 use holey_dlfl::convert::{Imported, to_poly};
-use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, RawMesh, VertexId};
+use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, RawMesh, VertexId};
 
 use crate::cut::{CutError, CutTarget};
 use crate::extrude::ExtrudeError;
@@ -504,17 +504,25 @@ impl Numbering {
                 "{} has zero area, so it has no normal to extrude along",
                 face(*f)
             ),
-            ExtrudeError::NonFinite { face: f } => format!(
-                "a new vertex of {} would have non-finite coordinates; the parameters are too large for the model's scale",
+            ExtrudeError::NonFinite { face: f, point } => format!(
+                "a new vertex of {} would have non-finite coordinates ({point}); the parameters are too large for the model's scale",
                 face(*f)
             ),
+            ExtrudeError::Face { face: f, cause } => {
+                format!("{}: {}", face(*f), self.describe_extrude(mesh, cause))
+            }
             ExtrudeError::Repeated { step, count, cause } => {
                 // The faces of a later repetition are ones the earlier
                 // repetitions made, unknown to the caller: named so.
                 let why = match cause.as_ref() {
-                    ExtrudeError::NonFinite { .. } => {
-                        "a new vertex would have non-finite coordinates; the distance times the count is too large for the model's scale".to_string()
-                    }
+                    ExtrudeError::NonFinite { point, .. } => format!(
+                        "a new vertex would have non-finite coordinates ({}); the distance times the count is too large for the model's scale",
+                        NonFinite {
+                            what: "a lifted corner",
+                            index: None,
+                            ..*point
+                        }
+                    ),
                     ExtrudeError::DegenerateFace(_) => {
                         "a face made by the earlier repetitions has zero area, so it has no normal to extrude along".to_string()
                     }
@@ -736,6 +744,31 @@ mod tests {
         );
         let e = file.edge(&mesh, EdgeSpec::Corner(0, 0))?;
         assert!(arrays.edge_name(&mesh, e).starts_with("edge ("));
+        Ok(())
+    }
+
+    #[test]
+    fn extrusion_refusals_name_the_face_and_the_point() -> Result<(), NumberingError> {
+        use crate::extrude::{ExtrudeKind, ExtrudeOptions, extrude_selection};
+
+        let (mut mesh, n) = cube();
+        let faces: Vec<FaceId> = n.faces(&[1, 2])?.into_iter().map(|(_, f)| f).collect();
+        let options = ExtrudeOptions {
+            distance: Some(1e308),
+            count: Some(3),
+            ..ExtrudeOptions::default()
+        };
+        let Err(e) = extrude_selection(&mut mesh, &faces, ExtrudeKind::Plain, &options) else {
+            panic!("1e308 three times was not refused");
+        };
+        let text = n.describe_extrude(&mesh, &e);
+        assert!(
+            text.starts_with(
+                "face 1: a new vertex of face 1 would have non-finite coordinates (new point 4 has a non-finite coordinate ("
+            ) && text.ends_with("); the parameters are too large for the model's scale")
+                && text.contains("inf"),
+            "{text}"
+        );
         Ok(())
     }
 

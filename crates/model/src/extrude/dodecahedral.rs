@@ -44,8 +44,8 @@ pub fn extrude_face_dodecahedral(
     let ring3: Vec<DVec3> = (0..d)
         .map(|i| c + half_step(&points, c, i) + n * (PHI * PHI * h))
         .collect();
-    for ring in [&ring1, &mids, &ring3] {
-        check_points(face, ring)?;
+    for (k, ring) in [&ring1, &mids, &ring3].into_iter().enumerate() {
+        check_points(face, k * d, ring)?;
     }
     let first = extrude_to(mesh, face, corners[0], &ring1)?;
     let first_top = face_edges(mesh, first.top)?;

@@ -69,11 +69,12 @@ pub fn extrude_face_dome(
                 .collect()
         })
         .collect();
-    for ring in &rings {
-        check_points(face, ring)?;
+    let d = points.len();
+    for (j, ring) in rings.iter().enumerate() {
+        check_points(face, j * d, ring)?;
     }
     let apex = c + n * h;
-    check_points(face, &[apex])?;
+    check_points(face, k * d, &[apex])?;
     let body = extrude_rings(mesh, face, corners[0], &rings)?;
     let cone = stellate_at(mesh, body.top, body.top_start, apex)?;
     let mut vertices = body.vertices;

@@ -64,9 +64,9 @@ pub fn extrude_face_doo_sabin(
     check_size(params.count as u64 * 5 * corners.len() as u64)?;
     let mut rings = Vec::with_capacity(params.count);
     let mut ring = points;
-    for _ in 0..params.count {
+    for k in 0..params.count {
         ring = doo_sabin_ring(&ring, frame.normal, params);
-        check_points(face, &ring)?;
+        check_points(face, k * ring.len(), &ring)?;
         rings.push(ring.clone());
     }
     plain::extrude_rings(mesh, face, corners[0], &rings)

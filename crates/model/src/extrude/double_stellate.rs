@@ -24,7 +24,7 @@ pub fn double_stellate_face(
     check_param("height", height, "finite", |_| true)?;
     let (corners, _, frame) = base_face(mesh, face)?;
     let lifted = frame.centroid + frame.normal * height;
-    check_points(face, &[lifted])?;
+    check_points(face, 0, &[lifted])?;
     let first = stellate_at(mesh, face, corners[0], frame.centroid)?;
     let apex = first.vertices[0];
     let mut triangles = vec![first.top];

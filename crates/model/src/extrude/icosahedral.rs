@@ -44,8 +44,8 @@ pub fn extrude_face_icosahedral(
     let ring: Vec<DVec3> = (0..d)
         .map(|i| c + half_step(&points, c, i) + n * (PHI * PHI * h))
         .collect();
-    for pts in [&mids, &apexes, &ring] {
-        check_points(face, pts)?;
+    for (k, pts) in [&mids, &apexes, &ring].into_iter().enumerate() {
+        check_points(face, k * d, pts)?;
     }
     let dual = dual_extrude_at(mesh, corners[0], &mids)?;
     let dual_top = face_edges(mesh, dual.top)?;

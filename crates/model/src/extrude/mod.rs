@@ -50,6 +50,7 @@ mod dome;
 mod doo_sabin;
 mod double_stellate;
 mod icosahedral;
+mod kind;
 mod multi;
 mod octahedral;
 mod plain;
@@ -67,6 +68,7 @@ pub use dome::{DomeParams, extrude_face_dome};
 pub use doo_sabin::{DooSabinParams, extrude_face_doo_sabin};
 pub use double_stellate::double_stellate_face;
 pub use icosahedral::extrude_face_icosahedral;
+pub use kind::{ExtrudeKind, ExtrudeOption, ExtrudeOptions, UnknownExtrudeKind, extrude_selection};
 pub use multi::{MultiExtrudeParams, MultiExtruded, RegionDirection, extrude_faces};
 pub use octahedral::extrude_face_octahedral;
 pub use plain::{ExtrudeParams, extrude_face};
@@ -126,11 +128,17 @@ pub enum ExtrudeError {
     /// A new vertex would get a NaN or infinite coordinate: the distance,
     /// scale or count is too large for the model's scale.
     #[error(
-        "a new vertex of face {face} would have non-finite coordinates; the parameters are too large for the model's scale"
+        "a new vertex of face {face} would have non-finite coordinates ({point}); the parameters are too large for the model's scale"
     )]
     NonFinite {
-        /// The face being extruded.
+        /// The face being extruded (for a multi-face extrusion, a selected
+        /// face at the vertex that would move there).
         face: FaceId,
+        /// Which new point and where: for one face, `new point i` counting
+        /// the points the kind places ring by ring, each ring from the
+        /// face's first corner ([`Mesh::face_corner`]); for a multi-face
+        /// extrusion, `the lift of corner i` of `face`, counted the same way.
+        point: holey_dlfl::NonFinite,
     },
     /// A repetition after the first of a repeated multi-face extrusion
     /// was refused (its faces are ones the earlier repetitions made, which
@@ -143,6 +151,36 @@ pub enum ExtrudeError {
         count: usize,
         /// Why it was refused, about faces that repetition would extrude.
         cause: Box<ExtrudeError>,
+    },
+    /// One face of a one-by-one extrusion ([`extrude_selection`]) was
+    /// refused; the faces before it were put back as they were.
+    #[error("face {face}: {cause}")]
+    Face {
+        /// The face refused, as given.
+        face: FaceId,
+        /// Why.
+        cause: Box<ExtrudeError>,
+    },
+    /// A multi-face extrusion ([`ExtrudeOptions::together`]) was asked of
+    /// a kind other than plain.
+    #[error("a multi-face extrusion is plain; it does not take the {0} kind")]
+    TogetherNotPlain(ExtrudeKind),
+    /// An option was given to a kind that does not read it.
+    #[error("option '{option}' does not apply to the {kind} extrusion")]
+    Unread {
+        /// The option given.
+        option: ExtrudeOption,
+        /// The kind asked for.
+        kind: ExtrudeKind,
+    },
+    /// An option besides distance and count was given to a multi-face
+    /// extrusion.
+    #[error(
+        "option '{option}' does not apply to a multi-face extrusion (it takes distance, count and the direction)"
+    )]
+    UnreadTogether {
+        /// The option given.
+        option: ExtrudeOption,
     },
     /// The extrusion would add more than [`MAX_NEW_CORNERS`] corners.
     #[error(
@@ -242,13 +280,20 @@ pub(crate) fn check_surface_face(mesh: &Mesh, face: FaceId) -> Result<(), Extrud
     Ok(())
 }
 
-/// Refuses non-finite points, naming the face they were computed for.
-pub(crate) fn check_points(face: FaceId, points: &[DVec3]) -> Result<(), ExtrudeError> {
-    if points.iter().all(|p| p.is_finite()) {
-        Ok(())
-    } else {
-        Err(ExtrudeError::NonFinite { face })
-    }
+/// Refuses non-finite points, naming the face they were computed for and
+/// the first bad point as `new point first + i`.
+pub(crate) fn check_points(
+    face: FaceId,
+    first: usize,
+    points: &[DVec3],
+) -> Result<(), ExtrudeError> {
+    holey_dlfl::NonFinite::check("new point", points).map_err(|point| ExtrudeError::NonFinite {
+        face,
+        point: holey_dlfl::NonFinite {
+            index: point.index.map(|i| first + i),
+            ..point
+        },
+    })
 }
 
 /// Refuses an extrusion that would add more than [`MAX_NEW_CORNERS`].

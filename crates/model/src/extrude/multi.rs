@@ -4,7 +4,7 @@
 
 use std::collections::BTreeSet;
 
-use holey_dlfl::{CornerId, DVec3, FaceId, Mesh, VertexId};
+use holey_dlfl::{CornerId, DVec3, FaceId, Mesh, NonFinite, VertexId};
 
 use super::{ExtrudeError, check_param, check_size, region};
 use crate::polygon;
@@ -158,12 +158,37 @@ fn plan_once(
         if p.is_finite() {
             Ok(p)
         } else {
-            Err(ExtrudeError::NonFinite {
-                face: faces.first().copied().ok_or(ExtrudeError::EmptySelection)?,
-            })
+            Err(non_finite_lift(mesh, corners, &selected, p)?)
         }
     };
     region::plan(mesh, faces, &target)
+}
+
+/// The refusal for a lifted vertex at the non-finite `p`: named as the
+/// lift of its corner in the first selected face of its fan `corners`.
+fn non_finite_lift(
+    mesh: &Mesh,
+    corners: &[CornerId],
+    selected: &BTreeSet<FaceId>,
+    p: DVec3,
+) -> Result<ExtrudeError, ExtrudeError> {
+    for &c in corners {
+        let face = mesh.corner_face(c)?;
+        if selected.contains(&face) {
+            let index = mesh.face_corners(face)?.position(|o| o == c).unwrap_or(0);
+            return Ok(ExtrudeError::NonFinite {
+                face,
+                point: NonFinite::new("the lift of corner", index, p),
+            });
+        }
+    }
+    // Every fan holds a selected corner; were it not so, the point is
+    // named by its position alone, at the face of its first corner.
+    let &c = corners.first().ok_or(ExtrudeError::EmptySelection)?;
+    Ok(ExtrudeError::NonFinite {
+        face: mesh.corner_face(c)?,
+        point: NonFinite::position(p),
+    })
 }
 
 /// The unit sum of the selected faces' vector areas.

@@ -27,7 +27,7 @@ pub fn extrude_face_octahedral(
     let mids: Vec<DVec3> = (0..points.len())
         .map(|i| frame.centroid + half_step(&points, frame.centroid, i) + lift)
         .collect();
-    check_points(face, &mids)?;
+    check_points(face, 0, &mids)?;
     dual_extrude_at(mesh, corners[0], &mids)
 }
 

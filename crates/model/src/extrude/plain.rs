@@ -85,13 +85,13 @@ pub fn extrude_face(
     let mut rings = Vec::with_capacity(params.count);
     let mut ring = points;
     let mut centre = frame.centroid;
-    for _ in 0..params.count {
+    for k in 0..params.count {
         ring = ring
             .iter()
             .map(|&p| transform(p, centre, &frame, params))
             .collect();
         centre += frame.normal * params.distance;
-        check_points(face, &ring)?;
+        check_points(face, k * ring.len(), &ring)?;
         rings.push(ring.clone());
     }
     extrude_rings(mesh, face, corners[0], &rings)

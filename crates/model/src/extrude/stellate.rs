@@ -15,7 +15,7 @@ pub fn stellate_face(mesh: &mut Mesh, face: FaceId, height: f64) -> Result<Extru
     check_param("height", height, "finite", |_| true)?;
     let (corners, _, frame) = base_face(mesh, face)?;
     let apex = frame.centroid + frame.normal * height;
-    check_points(face, &[apex])?;
+    check_points(face, 0, &[apex])?;
     stellate_at(mesh, face, corners[0], apex)
 }
 

@@ -667,3 +667,174 @@ fn a_refused_later_repetition_leaves_the_mesh_unchanged() {
         m.validate().unwrap();
     }
 }
+
+#[test]
+fn a_non_finite_point_is_named_and_placed() {
+    // Plain, 1e308 three times: ring 0 is finite, ring 1 (points 4..8 of
+    // the quad) is the first to overflow, at its first corner.
+    let mut m = prim("@cube");
+    let before = m.clone();
+    let f = face(&m, 2);
+    match extrude_face(&mut m, f, &ExtrudeParams::new(1e308, 3)) {
+        Err(ExtrudeError::NonFinite { face: g, point }) => {
+            assert_eq!(g, f);
+            assert_eq!((point.what, point.index), ("new point", Some(4)));
+            assert!(point.position.is_some_and(|p| !p.is_finite()), "{point}");
+        }
+        other => panic!("{other:?}"),
+    }
+    unchanged(&m, &before);
+    // Together: the second repetition's lifts overflow; the cause names a
+    // corner of a face the first made, and where the lift would go.
+    let mut m = prim("@plane:4:4");
+    let p = MultiExtrudeParams {
+        distance: 1e308,
+        direction: RegionDirection::Average,
+        count: 2,
+    };
+    let sel = [face(&m, 5)];
+    let Err(ExtrudeError::Repeated { cause, .. }) = extrude_faces(&mut m, &sel, &p) else {
+        panic!("not refused as a repetition");
+    };
+    let ExtrudeError::NonFinite { face: g, point } = *cause else {
+        panic!("{cause}");
+    };
+    assert_eq!(point.what, "the lift of corner");
+    assert!(point.index.is_some_and(|k| k < 4), "{point}");
+    assert!(
+        point.position.is_some_and(|p| p.z == f64::INFINITY),
+        "{point}"
+    );
+    // That face was made by the first repetition, which was put back.
+    assert!(m.is_hole(g).is_err());
+}
+
+#[test]
+fn kinds_and_options_by_name() {
+    for kind in ExtrudeKind::ALL {
+        assert_eq!(kind.name().parse::<ExtrudeKind>(), Ok(kind));
+    }
+    assert_eq!(
+        "pyramid".parse::<ExtrudeKind>().unwrap_err().to_string(),
+        "extrusion kind \"pyramid\" is not known: use plain, cubical, dodecahedral, icosahedral, \
+         octahedral, doo-sabin, dome, stellate or double-stellate"
+    );
+    let rotate = ExtrudeOptions {
+        rotation_deg: Some(5.0),
+        ..ExtrudeOptions::default()
+    };
+    assert_eq!(rotate.check(ExtrudeKind::Plain), Ok(()));
+    assert_eq!(
+        rotate.check(ExtrudeKind::Cubical),
+        Err(ExtrudeError::Unread {
+            option: ExtrudeOption::Rotation,
+            kind: ExtrudeKind::Cubical
+        })
+    );
+    let together = ExtrudeOptions {
+        together: Some(RegionDirection::Average),
+        ..rotate
+    };
+    assert_eq!(
+        together.check(ExtrudeKind::Dome),
+        Err(ExtrudeError::TogetherNotPlain(ExtrudeKind::Dome))
+    );
+    assert_eq!(
+        together.check(ExtrudeKind::Plain),
+        Err(ExtrudeError::UnreadTogether {
+            option: ExtrudeOption::Rotation
+        })
+    );
+    // Every kind reads something, and what it reads is accepted.
+    for kind in ExtrudeKind::ALL {
+        let read: Vec<_> = ExtrudeOption::ALL
+            .into_iter()
+            .filter(|&o| kind.reads(o))
+            .collect();
+        assert!(!read.is_empty(), "{kind}");
+    }
+}
+
+#[test]
+fn a_selection_extrudes_by_kind_with_the_kinds_counts() {
+    // One by one, each kind on two faces of a cube adds twice its d = 4
+    // counts (the module's table; dome with its default 5 rings).
+    let d = 4i64;
+    let cases = [
+        (ExtrudeKind::Plain, (d, 2 * d, d)),
+        (ExtrudeKind::Cubical, (d, 2 * d, d)),
+        (ExtrudeKind::DooSabin, (d, 2 * d, d)),
+        (ExtrudeKind::Octahedral, (d, 3 * d, 2 * d)),
+        (ExtrudeKind::Dodecahedral, (3 * d, 5 * d, 2 * d)),
+        (ExtrudeKind::Icosahedral, (3 * d, 9 * d, 6 * d)),
+        (ExtrudeKind::Stellate, (1, d, d - 1)),
+        (ExtrudeKind::DoubleStellate, (d + 1, 4 * d, 3 * d - 1)),
+        (ExtrudeKind::Dome, (5 * d + 1, 10 * d + d, 5 * d + d - 1)),
+    ];
+    for (kind, (dv, de, df)) in cases {
+        let mut m = prim("@cube");
+        let (v, e, f, ..) = state(&m);
+        let faces = [face(&m, 0), face(&m, 1)];
+        let tops = extrude_selection(&mut m, &faces, kind, &ExtrudeOptions::default()).unwrap();
+        assert_eq!(tops.len(), 2, "{kind}");
+        check(&m);
+        assert_eq!(state(&m).0 - v, 2 * dv, "{kind} V");
+        assert_eq!(state(&m).1 - e, 2 * de, "{kind} E");
+        assert_eq!(state(&m).2 - f, 2 * df, "{kind} F");
+    }
+    // Together: two quads sharing an edge have 6 boundary sides.
+    let mut m = prim("@plane:4:4");
+    let (v, e, f, ..) = state(&m);
+    let options = ExtrudeOptions {
+        distance: Some(0.5),
+        together: Some(RegionDirection::Average),
+        ..ExtrudeOptions::default()
+    };
+    let faces = [face(&m, 5), face(&m, 6)];
+    let tops = extrude_selection(&mut m, &faces, ExtrudeKind::Plain, &options).unwrap();
+    assert_eq!(tops.len(), 2);
+    check(&m);
+    assert_eq!(state(&m).0 - v, 6);
+    assert_eq!(state(&m).1 - e, 12);
+    assert_eq!(state(&m).2 - f, 6);
+}
+
+#[test]
+fn a_refused_face_of_a_selection_puts_the_earlier_ones_back() {
+    // Face 0 is extruded, then the hole is refused: the mesh is as before
+    // and the refusal names the hole.
+    let mut m = prim("@plane:2:2");
+    let before = m.clone();
+    let hole = m.faces().find(|&f| m.is_hole(f).unwrap()).unwrap();
+    let faces = [face(&m, 0), hole];
+    let err = extrude_selection(
+        &mut m,
+        &faces,
+        ExtrudeKind::Plain,
+        &ExtrudeOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        err,
+        ExtrudeError::Face {
+            face: hole,
+            cause: Box::new(ExtrudeError::HoleFace(hole))
+        }
+    );
+    unchanged(&m, &before);
+    // Nothing selected, and options refused before anything is done.
+    assert_eq!(
+        extrude_selection(&mut m, &[], ExtrudeKind::Plain, &ExtrudeOptions::default()),
+        Err(ExtrudeError::EmptySelection)
+    );
+    let twisted = ExtrudeOptions {
+        twist: Some(0.1),
+        ..ExtrudeOptions::default()
+    };
+    let first = [face(&m, 0)];
+    assert!(matches!(
+        extrude_selection(&mut m, &first, ExtrudeKind::Plain, &twisted),
+        Err(ExtrudeError::Unread { .. })
+    ));
+    unchanged(&m, &before);
+}
