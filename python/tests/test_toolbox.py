@@ -131,6 +131,9 @@ def test_extrude_refusals():
         cube.extrude(0, kind="cubical", rotation=5)
     with pytest.raises(holey.HoleyError, match="pyramid"):
         cube.extrude(0, kind="pyramid")
+    # The second ring overflows: the message says which point.
+    with pytest.raises(holey.HoleyError, match=r"face 2: .*\(new point 4 has a non-finite"):
+        cube.extrude([2], distance=1e308, count=3)
 
 
 def test_wireframe_genus_is_the_cycle_rank():

@@ -577,6 +577,11 @@ fn extrude_refuses_non_finite_parameters() {
         err.contains("face 2: a new vertex of face 2 would have non-finite coordinates"),
         "{err}"
     );
+    // Which point: the second ring's first (points 4..8 of the quad).
+    assert!(
+        err.contains("(new point 4 has a non-finite coordinate ("),
+        "{err}"
+    );
     assert!(!Path::new(&out).exists());
     // Together: the first step reaches 1e308, the second is refused about
     // faces the first made, which the message names by what they are

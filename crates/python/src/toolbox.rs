@@ -7,7 +7,7 @@
 use holey::dlfl::{FaceId, Mesh};
 use holey::model::cut::{CutOffset, CutTarget, cut};
 use holey::model::extrude::{
-    self, DomeParams, DooSabinParams, ExtrudeParams, MultiExtrudeParams, RegionDirection,
+    ExtrudeError, ExtrudeKind, ExtrudeOptions, RegionDirection, extrude_selection,
 };
 use holey::model::numbering::{EdgeSpec, Numbering};
 use holey::model::wireframe::{ColumnParams, columns, wireframe};
@@ -72,124 +72,67 @@ pub struct Extrusion {
 }
 
 impl Extrusion {
-    /// Refuses an option the kind does not read.
-    fn check(&self) -> PyResult<()> {
-        let reads: &[&str] = if self.together {
-            &["distance", "count"]
-        } else {
-            match self.kind.as_str() {
-                "plain" => &["distance", "scale", "rotation", "count"],
-                "doo-sabin" => &["distance", "scale", "twist", "count"],
-                "cubical" | "dome" => &["height", "count"],
-                "dodecahedral" | "icosahedral" | "octahedral" => &["height"],
-                "stellate" | "double-stellate" => &["distance"],
-                other => {
-                    return Err(bad(format!(
-                        "extrusion kind {other:?} is not known: use plain, cubical, dodecahedral, icosahedral, octahedral, doo-sabin, dome, stellate or double-stellate"
-                    )));
-                }
-            }
+    /// The kind and the options as the library takes them.
+    fn library(&self) -> PyResult<(ExtrudeKind, ExtrudeOptions)> {
+        let kind: ExtrudeKind = self.kind.parse().map_err(bad)?;
+        let options = ExtrudeOptions {
+            distance: self.distance,
+            scale: self.scale,
+            rotation_deg: self.rotation,
+            twist: self.twist,
+            height: self.height,
+            count: self.count,
+            together: self.together.then_some(if self.vertex_normals {
+                RegionDirection::VertexNormals
+            } else {
+                RegionDirection::Average
+            }),
         };
-        if self.together && self.kind != "plain" {
-            return Err(bad(format!(
-                "together=True extrudes plainly; it does not take kind {:?}",
-                self.kind
-            )));
-        }
-        let given = [
-            ("distance", self.distance.is_some()),
-            ("scale", self.scale.is_some()),
-            ("rotation", self.rotation.is_some()),
-            ("twist", self.twist.is_some()),
-            ("height", self.height.is_some()),
-            ("count", self.count.is_some()),
-        ];
-        for (name, set) in given {
-            if set && !reads.contains(&name) {
-                let what = if self.together {
-                    "together=True".to_string()
-                } else {
-                    format!("kind {:?}", self.kind)
-                };
-                return Err(bad(format!("option {name:?} does not apply to {what}")));
-            }
-        }
-        Ok(())
+        Ok((kind, options))
     }
+}
+
+/// An option refusal in the words of `Mesh.extrude`'s keywords; `None`
+/// for any other refusal.
+fn keyword_refusal(e: &ExtrudeError) -> Option<String> {
+    Some(match e {
+        ExtrudeError::TogetherNotPlain(kind) => {
+            format!(
+                "together=True extrudes plainly; it does not take kind {:?}",
+                kind.name()
+            )
+        }
+        ExtrudeError::UnreadTogether { option } => {
+            format!("option {:?} does not apply to together=True", option.name())
+        }
+        ExtrudeError::Unread { option, kind } => format!(
+            "option {:?} does not apply to kind {:?}",
+            option.name(),
+            kind.name()
+        ),
+        _ => return None,
+    })
 }
 
 /// Extrudes the faces numbered `faces`, one by one or together.
 pub fn run_extrude(mesh: &Mesh, faces: &[usize], o: &Extrusion) -> PyResult<Mesh> {
-    o.check()?;
+    let (kind, options) = o.library()?;
+    options
+        .check(kind)
+        .map_err(|e| bad(keyword_refusal(&e).unwrap_or_else(|| e.to_string())))?;
     if faces.is_empty() {
         return Err(bad("no faces were given to extrude"));
     }
     let numbering = numbering(mesh)?;
-    let ids = numbering.faces(faces).map_err(bad)?;
+    let ids: Vec<FaceId> = numbering
+        .faces(faces)
+        .map_err(bad)?
+        .into_iter()
+        .map(|(_, f)| f)
+        .collect();
     let mut m = mesh.clone();
-    if o.together {
-        let params = MultiExtrudeParams {
-            distance: o.distance.unwrap_or(1.0),
-            direction: if o.vertex_normals {
-                RegionDirection::VertexNormals
-            } else {
-                RegionDirection::Average
-            },
-            count: o.count.unwrap_or(1),
-        };
-        let list: Vec<FaceId> = ids.iter().map(|&(_, f)| f).collect();
-        extrude::extrude_faces(&mut m, &list, &params)
-            .map_err(|e| bad(numbering.describe_extrude(&m, &e)))?;
-        return Ok(m);
-    }
-    for (n, face) in ids {
-        let done = match o.kind.as_str() {
-            "plain" => extrude::extrude_face(
-                &mut m,
-                face,
-                &ExtrudeParams {
-                    distance: o.distance.unwrap_or(1.0),
-                    rotation_deg: o.rotation.unwrap_or(0.0),
-                    scale: o.scale.unwrap_or(1.0),
-                    count: o.count.unwrap_or(1),
-                },
-            ),
-            "doo-sabin" => extrude::extrude_face_doo_sabin(
-                &mut m,
-                face,
-                &DooSabinParams {
-                    distance: o.distance.unwrap_or(1.0),
-                    twist: o.twist.unwrap_or(0.0),
-                    scale: o.scale.unwrap_or(1.0),
-                    count: o.count.unwrap_or(1),
-                },
-            ),
-            "cubical" => extrude::extrude_face_cubical(
-                &mut m,
-                face,
-                o.height.unwrap_or(1.0),
-                o.count.unwrap_or(1),
-            ),
-            "dome" => extrude::extrude_face_dome(
-                &mut m,
-                face,
-                &DomeParams {
-                    height_factor: o.height.unwrap_or(1.0),
-                    rings: o.count.unwrap_or(DomeParams::default().rings),
-                },
-            ),
-            "dodecahedral" => {
-                extrude::extrude_face_dodecahedral(&mut m, face, o.height.unwrap_or(1.0))
-            }
-            "icosahedral" => {
-                extrude::extrude_face_icosahedral(&mut m, face, o.height.unwrap_or(1.0))
-            }
-            "octahedral" => extrude::extrude_face_octahedral(&mut m, face, o.height.unwrap_or(1.0)),
-            "stellate" => extrude::stellate_face(&mut m, face, o.distance.unwrap_or(0.0)),
-            _ => extrude::double_stellate_face(&mut m, face, o.distance.unwrap_or(0.0)),
-        };
-        done.map_err(|e| bad(format!("face {n}: {}", numbering.describe_extrude(&m, &e))))?;
-    }
+    extrude_selection(&mut m, &ids, kind, &options)
+        .map_err(|e| bad(numbering.describe_extrude(&m, &e)))?;
     Ok(m)
 }
 

@@ -1,11 +1,10 @@
 //! `holey extrude`: TopMod's extrusions (issue 18) of one face or several.
 
 use anyhow::Result;
-use clap::ValueEnum;
-use holey_dlfl::FaceId;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use holey_io::WriteOptions;
 use holey_model::extrude::{
-    self, DomeParams, DooSabinParams, ExtrudeParams, MultiExtrudeParams, RegionDirection,
+    ExtrudeError, ExtrudeKind, ExtrudeOptions, RegionDirection, extrude_selection,
 };
 use holey_model::numbering::parse_index_list;
 
@@ -13,55 +12,12 @@ use crate::error::bad_input;
 use crate::input::load;
 use crate::output::write_kernel;
 
-/// The kind of extrusion.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Kind {
-    /// Lift the face along its normal, turn and scale it, join it by quads.
-    Plain,
-    /// Plain, by --height times the face's mean edge length (cubes on squares).
-    Cubical,
-    /// Two rings of pentagons: a regular dodecahedron on a regular pentagon.
-    Dodecahedral,
-    /// Triangles and pentagon fans: a regular icosahedron on a triangle.
-    Icosahedral,
-    /// The face turned half a step and joined by triangles (an octahedron).
-    Octahedral,
-    /// Plain, each new ring smoothed by the Doo–Sabin face mask.
-    DooSabin,
-    /// Rings of quads closing over the face, finished by a cone.
-    Dome,
-    /// A cone: a vertex over the centroid joined to every corner.
-    Stellate,
-    /// A cone whose triangles are stellated again.
-    DoubleStellate,
-}
-
-impl Kind {
-    fn name(self) -> &'static str {
-        match self {
-            Kind::Plain => "plain",
-            Kind::Cubical => "cubical",
-            Kind::Dodecahedral => "dodecahedral",
-            Kind::Icosahedral => "icosahedral",
-            Kind::Octahedral => "octahedral",
-            Kind::DooSabin => "doo-sabin",
-            Kind::Dome => "dome",
-            Kind::Stellate => "stellate",
-            Kind::DoubleStellate => "double-stellate",
-        }
-    }
-
-    /// The options this kind reads (besides --faces and --kind).
-    fn reads(self, flag: &str) -> bool {
-        match self {
-            Kind::Plain => matches!(flag, "distance" | "scale" | "rotation" | "count"),
-            Kind::DooSabin => matches!(flag, "distance" | "scale" | "twist" | "count"),
-            Kind::Cubical => matches!(flag, "height" | "count"),
-            Kind::Dome => matches!(flag, "height" | "count"),
-            Kind::Dodecahedral | Kind::Icosahedral | Kind::Octahedral => flag == "height",
-            Kind::Stellate | Kind::DoubleStellate => flag == "distance",
-        }
-    }
+/// `--kind`: the library's kinds, with their names and summaries.
+fn kind_parser() -> impl TypedValueParser<Value = ExtrudeKind> {
+    PossibleValuesParser::new(
+        ExtrudeKind::ALL.map(|k| PossibleValue::new(k.name()).help(k.summary())),
+    )
+    .try_map(|name| name.parse::<ExtrudeKind>())
 }
 
 #[derive(clap::Args)]
@@ -111,8 +67,8 @@ pub struct Options {
     #[arg(long, value_name = "F[,F...]")]
     pub faces: String,
     /// The kind of extrusion.
-    #[arg(long, value_enum, default_value_t = Kind::Plain)]
-    pub kind: Kind,
+    #[arg(long, value_parser = kind_parser(), default_value = "plain")]
+    pub kind: ExtrudeKind,
     /// How far each repetition moves the face along its normal (plain,
     /// doo-sabin, --together); the apex's lift (stellate, double-stellate).
     #[arg(long, allow_hyphen_values = true)]
@@ -143,42 +99,39 @@ pub struct Options {
 }
 
 impl Options {
-    /// Refuses options the kind does not read, before anything is done.
-    fn check(&self) -> Result<()> {
-        let given = [
-            ("distance", self.distance.is_some()),
-            ("scale", self.scale.is_some()),
-            ("rotation", self.rotation.is_some()),
-            ("twist", self.twist.is_some()),
-            ("height", self.height.is_some()),
-            ("count", self.count.is_some()),
-        ];
-        if self.together {
-            if self.kind != Kind::Plain {
-                return Err(bad_input(format!(
-                    "--together extrudes plainly; it does not take --kind {}",
-                    self.kind.name()
-                )));
-            }
-            for (flag, set) in given {
-                if set && !matches!(flag, "distance" | "count") {
-                    return Err(bad_input(format!(
-                        "--{flag} does not apply to --together (it takes --distance, --count and --vertex-normals)"
-                    )));
-                }
-            }
-            return Ok(());
+    /// The options as the library takes them.
+    fn library(&self) -> ExtrudeOptions {
+        ExtrudeOptions {
+            distance: self.distance,
+            scale: self.scale,
+            rotation_deg: self.rotation,
+            twist: self.twist,
+            height: self.height,
+            count: self.count,
+            together: self.together.then_some(if self.vertex_normals {
+                RegionDirection::VertexNormals
+            } else {
+                RegionDirection::Average
+            }),
         }
-        for (flag, set) in given {
-            if set && !self.kind.reads(flag) {
-                return Err(bad_input(format!(
-                    "--{flag} does not apply to --kind {} (see `holey extrude --help`)",
-                    self.kind.name()
-                )));
-            }
-        }
-        Ok(())
     }
+}
+
+/// An option refusal in the words of this command's flags; `None` for
+/// any other refusal.
+fn flag_refusal(e: &ExtrudeError) -> Option<String> {
+    Some(match e {
+        ExtrudeError::TogetherNotPlain(kind) => {
+            format!("--together extrudes plainly; it does not take --kind {kind}")
+        }
+        ExtrudeError::UnreadTogether { option } => format!(
+            "--{option} does not apply to --together (it takes --distance, --count and --vertex-normals)"
+        ),
+        ExtrudeError::Unread { option, kind } => {
+            format!("--{option} does not apply to --kind {kind} (see `holey extrude --help`)")
+        }
+        _ => return None,
+    })
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -187,7 +140,11 @@ pub fn run(args: Args) -> Result<()> {
 
 /// Extrudes the faces of the mesh `input` names into the file `output`.
 pub fn run_file(input: &str, output: &str, o: &Options) -> Result<()> {
-    o.check()?;
+    let options = o.library();
+    // Refused before the input is read.
+    options
+        .check(o.kind)
+        .map_err(|e| bad_input(flag_refusal(&e).unwrap_or_else(|| e.to_string())))?;
     let numbers = parse_index_list(&o.faces, "face").map_err(bad_input)?;
     if numbers.is_empty() {
         return Err(bad_input("--faces names no face"));
@@ -199,83 +156,16 @@ pub fn run_file(input: &str, output: &str, o: &Options) -> Result<()> {
         .numbering
         .faces(&numbers)
         .map_err(|e| bad_input(format!("{input}: --faces: {e}")))?;
-    if o.together {
-        let params = MultiExtrudeParams {
-            distance: o.distance.unwrap_or(1.0),
-            direction: if o.vertex_normals {
-                RegionDirection::VertexNormals
-            } else {
-                RegionDirection::Average
-            },
-            count: o.count.unwrap_or(1),
-        };
-        let ids: Vec<FaceId> = faces.iter().map(|&(_, f)| f).collect();
-        extrude::extrude_faces(&mut kernel.mesh, &ids, &params).map_err(|e| {
-            bad_input(format!(
-                "{input}: faces {}: {}",
-                o.faces,
-                kernel.numbering.describe_extrude(&kernel.mesh, &e)
-            ))
-        })?;
-        return write_kernel(output, &kernel.mesh, &WriteOptions::default());
-    }
-    for &(n, face) in &faces {
-        let mesh = &mut kernel.mesh;
-        let done = match o.kind {
-            Kind::Plain => extrude::extrude_face(
-                mesh,
-                face,
-                &ExtrudeParams {
-                    distance: o.distance.unwrap_or(1.0),
-                    rotation_deg: o.rotation.unwrap_or(0.0),
-                    scale: o.scale.unwrap_or(1.0),
-                    count: o.count.unwrap_or(1),
-                },
-            ),
-            Kind::DooSabin => extrude::extrude_face_doo_sabin(
-                mesh,
-                face,
-                &DooSabinParams {
-                    distance: o.distance.unwrap_or(1.0),
-                    twist: o.twist.unwrap_or(0.0),
-                    scale: o.scale.unwrap_or(1.0),
-                    count: o.count.unwrap_or(1),
-                },
-            ),
-            Kind::Cubical => extrude::extrude_face_cubical(
-                mesh,
-                face,
-                o.height.unwrap_or(1.0),
-                o.count.unwrap_or(1),
-            ),
-            Kind::Dome => extrude::extrude_face_dome(
-                mesh,
-                face,
-                &DomeParams {
-                    height_factor: o.height.unwrap_or(1.0),
-                    rings: o.count.unwrap_or(DomeParams::default().rings),
-                },
-            ),
-            Kind::Dodecahedral => {
-                extrude::extrude_face_dodecahedral(mesh, face, o.height.unwrap_or(1.0))
-            }
-            Kind::Icosahedral => {
-                extrude::extrude_face_icosahedral(mesh, face, o.height.unwrap_or(1.0))
-            }
-            Kind::Octahedral => {
-                extrude::extrude_face_octahedral(mesh, face, o.height.unwrap_or(1.0))
-            }
-            Kind::Stellate => extrude::stellate_face(mesh, face, o.distance.unwrap_or(0.0)),
-            Kind::DoubleStellate => {
-                extrude::double_stellate_face(mesh, face, o.distance.unwrap_or(0.0))
-            }
-        };
-        // A refused extrusion leaves the mesh unchanged; the faces before
-        // it are done, but nothing is written.
-        done.map_err(|e| {
-            let why = kernel.numbering.describe_extrude(&kernel.mesh, &e);
-            bad_input(format!("{input}: face {n}: {why}"))
-        })?;
-    }
+    let ids: Vec<_> = faces.iter().map(|&(_, f)| f).collect();
+    // A refusal leaves the mesh unchanged, and nothing is written; one by
+    // one, it names the face refused.
+    extrude_selection(&mut kernel.mesh, &ids, o.kind, &options).map_err(|e| {
+        let why = kernel.numbering.describe_extrude(&kernel.mesh, &e);
+        if o.together {
+            bad_input(format!("{input}: faces {}: {why}", o.faces))
+        } else {
+            bad_input(format!("{input}: {why}"))
+        }
+    })?;
     write_kernel(output, &kernel.mesh, &WriteOptions::default())
 }
