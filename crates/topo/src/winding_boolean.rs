@@ -835,7 +835,11 @@ impl<'a> Rays<'a> {
             weights,
             end: SymPoint::new(far, self.start_id),
         };
-        let left_out = |t: u32| on.iter().any(|&(s, _)| s == t);
+        // A group of coincident cells can hold 300,000 sheets (a degenerate
+        // storm): looked up sorted, not by scanning `on` per triangle.
+        let mut left: Vec<u32> = on.iter().map(|&(s, _)| s).collect();
+        left.sort_unstable();
+        let left_out = |t: u32| left.binary_search(&t).is_ok();
         let mut count = vec![0i64; self.inputs];
         // The exact start lies in `x`, so this box holds the whole ray.
         let reach = Aabb::from_points(&[xc[0], xc[1], xc[2], far]);

@@ -254,3 +254,37 @@ fn a_degenerate_storm_is_one_triangle() {
     ));
     assert!(holey_topo::crosses_itself(&crossed).unwrap());
 }
+
+/// The storm's solid (`holey union storm.obj`, one input, the winding
+/// rule for an open input): the 300,000 copies put w = ∓300,000 Ω/4π on
+/// the two sides of their triangle (solid angles summed in the test), so the
+/// one boundary between inside and outside is that triangle, facing from
+/// inside out. A group of coincident cells that large made every ray and
+/// every generalized winding number scan the whole group per triangle
+/// (151 s); looked up sorted, it is linear.
+#[test]
+fn a_degenerate_storms_solid_is_its_one_triangle() {
+    let corners = 900_000u32;
+    let storm = TriMesh {
+        positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+        triangles: (1..corners - 1).map(|k| [0, k % 3, (k + 1) % 3]).collect(),
+    };
+    let out = holey_topo::solid_boolean(
+        &[&storm],
+        holey_topo::Operation::Union,
+        &holey_topo::BooleanOptions::default(),
+    )
+    .unwrap();
+    let m = out.mesh();
+    assert_eq!(m.triangles.len(), 1);
+    let [a, b, c] = m.corners(0);
+    let normal = (b - a).cross(c - a);
+    let (front, back) = (DVec3::new(0.2, 0.2, 0.1), DVec3::new(0.2, 0.2, -0.1));
+    let (w_front, w_back) = (winding(&storm, front), winding(&storm, back));
+    // Opposite, and far past ½: one side is inside, the other outside.
+    assert!(w_front.abs() > 1.0 && (w_front + w_back).abs() < 1e-6 * w_front.abs());
+    // The kept triangle faces the side that is outside (w < ½).
+    let outside = if w_front < 0.5 { front } else { back };
+    assert!(normal.dot(outside - a) > 0.0);
+    assert_eq!(normal.length(), 1.0);
+}
