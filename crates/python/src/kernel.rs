@@ -11,6 +11,7 @@ use std::path::Path;
 
 use holey::dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey::dlfl::{CornerId, FaceId, dlfl_info};
+use holey::model::extrude::{ExtrudeOptions, RegionDirection};
 use holey::model::handle::{HandleParams, create_handle};
 use holey::model::menger::{MengerParams, Thickness, menger};
 use holey::model::rind::{PunchOutcome, Rind};
@@ -241,18 +242,16 @@ impl Mesh {
         together: bool,
         vertex_normals: bool,
     ) -> PyResult<Mesh> {
-        let how = toolbox::Extrusion {
-            kind: kind.to_string(),
+        let options = ExtrudeOptions {
             distance,
             scale,
-            rotation,
+            rotation_deg: rotation,
             twist,
             height,
             count,
-            together,
-            vertex_normals,
+            together: together.then_some(RegionDirection::from_vertex_normals(vertex_normals)),
         };
-        toolbox::run_extrude(&self.mesh, &faces, &how).map(Mesh::wrap)
+        toolbox::run_extrude(&self.mesh, &faces, kind, &options).map(Mesh::wrap)
     }
 
     /// The wireframe of the mesh with tubes `thickness` wide, or columns

@@ -6,9 +6,7 @@
 
 use holey::dlfl::{FaceId, Mesh};
 use holey::model::cut::{CutOffset, CutTarget, cut};
-use holey::model::extrude::{
-    ExtrudeError, ExtrudeKind, ExtrudeOptions, RegionDirection, extrude_selection,
-};
+use holey::model::extrude::{ExtrudeError, ExtrudeKind, ExtrudeOptions, extrude_selection};
 use holey::model::numbering::{EdgeSpec, Numbering};
 use holey::model::wireframe::{ColumnParams, columns, wireframe};
 use holey::subdiv::{RemeshParams, RemeshScheme, SubdivError, remesh};
@@ -58,40 +56,6 @@ pub fn run_remesh(
     remesh(mesh, scheme, &p, levels).map_err(bad)
 }
 
-/// What `Mesh.extrude` was asked for.
-pub struct Extrusion {
-    pub kind: String,
-    pub distance: Option<f64>,
-    pub scale: Option<f64>,
-    pub rotation: Option<f64>,
-    pub twist: Option<f64>,
-    pub height: Option<f64>,
-    pub count: Option<usize>,
-    pub together: bool,
-    pub vertex_normals: bool,
-}
-
-impl Extrusion {
-    /// The kind and the options as the library takes them.
-    fn library(&self) -> PyResult<(ExtrudeKind, ExtrudeOptions)> {
-        let kind: ExtrudeKind = self.kind.parse().map_err(bad)?;
-        let options = ExtrudeOptions {
-            distance: self.distance,
-            scale: self.scale,
-            rotation_deg: self.rotation,
-            twist: self.twist,
-            height: self.height,
-            count: self.count,
-            together: self.together.then_some(if self.vertex_normals {
-                RegionDirection::VertexNormals
-            } else {
-                RegionDirection::Average
-            }),
-        };
-        Ok((kind, options))
-    }
-}
-
 /// An option refusal in the words of `Mesh.extrude`'s keywords; `None`
 /// for any other refusal.
 fn keyword_refusal(e: &ExtrudeError) -> Option<String> {
@@ -114,9 +78,15 @@ fn keyword_refusal(e: &ExtrudeError) -> Option<String> {
     })
 }
 
-/// Extrudes the faces numbered `faces`, one by one or together.
-pub fn run_extrude(mesh: &Mesh, faces: &[usize], o: &Extrusion) -> PyResult<Mesh> {
-    let (kind, options) = o.library()?;
+/// Extrudes the faces numbered `faces` by the kind named `kind`, one by
+/// one or together.
+pub fn run_extrude(
+    mesh: &Mesh,
+    faces: &[usize],
+    kind: &str,
+    options: &ExtrudeOptions,
+) -> PyResult<Mesh> {
+    let kind: ExtrudeKind = kind.parse().map_err(bad)?;
     options
         .check(kind)
         .map_err(|e| bad(keyword_refusal(&e).unwrap_or_else(|| e.to_string())))?;
@@ -131,7 +101,7 @@ pub fn run_extrude(mesh: &Mesh, faces: &[usize], o: &Extrusion) -> PyResult<Mesh
         .map(|(_, f)| f)
         .collect();
     let mut m = mesh.clone();
-    extrude_selection(&mut m, &ids, kind, &options)
+    extrude_selection(&mut m, &ids, kind, options)
         .map_err(|e| bad(numbering.describe_extrude(&m, &e)))?;
     Ok(m)
 }

@@ -108,11 +108,9 @@ impl Options {
             twist: self.twist,
             height: self.height,
             count: self.count,
-            together: self.together.then_some(if self.vertex_normals {
-                RegionDirection::VertexNormals
-            } else {
-                RegionDirection::Average
-            }),
+            together: self
+                .together
+                .then_some(RegionDirection::from_vertex_normals(self.vertex_normals)),
         }
     }
 }

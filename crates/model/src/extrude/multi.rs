@@ -23,6 +23,19 @@ pub enum RegionDirection {
     VertexNormals,
 }
 
+impl RegionDirection {
+    /// [`RegionDirection::VertexNormals`] when `vertex_normals`, else
+    /// [`RegionDirection::Average`]: what a front end's on/off switch for
+    /// vertex normals means.
+    pub fn from_vertex_normals(vertex_normals: bool) -> RegionDirection {
+        if vertex_normals {
+            RegionDirection::VertexNormals
+        } else {
+            RegionDirection::Average
+        }
+    }
+}
+
 /// The parameters of [`extrude_faces`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MultiExtrudeParams {
