@@ -418,6 +418,60 @@ fn crease_through_a_thin_slab_opens_a_hole() {
     assert_eq!(genus_and_closed(m), (1, true), "a slab with a hole");
 }
 
+/// Issue 19: symmetry holds across a topology change. The crease of the
+/// slab test, pressed at x = 0.5 with symmetry X about the origin, cuts
+/// through at x = ±0.5: a closed surface of genus 2 with a hole at each
+/// image of the brush. (The slab's triangulation is not itself
+/// mirror-symmetric, so positions are not compared vertex for vertex.)
+#[test]
+fn a_mirrored_crease_through_a_slab_opens_two_holes() {
+    let slab = holey_shapes::parse_primitive("@cube:12")
+        .unwrap()
+        .triangulated();
+    let slab = TriMesh {
+        positions: slab
+            .positions
+            .iter()
+            .map(|p| DVec3::new(p.x * 2.0, p.y * 2.0, p.z * 0.1))
+            .collect(),
+        triangles: slab.triangles,
+    };
+    let hi = slab
+        .positions
+        .iter()
+        .fold(f64::NEG_INFINITY, |z, p| z.max(p.z));
+    let lo = slab.positions.iter().fold(f64::INFINITY, |z, p| z.min(p.z));
+    let at = DVec3::new(0.5, 0.0, hi);
+    let mut s = Session::new(slab).unwrap();
+    let r = s
+        .apply_stroke(&Stroke {
+            brush: Brush::Crease,
+            radius: 0.45,
+            strength: 0.02,
+            path: vec![at; (3.0 * (hi - lo) / 0.02) as usize],
+            symmetry: [true, false, false],
+            ..Stroke::default()
+        })
+        .unwrap();
+    assert!(r.changes >= 1, "the grooves reached the far side");
+    let m = s.mesh();
+    assert_eq!(holey_testkit::components(&m.triangles), 1);
+    assert_eq!(genus_and_closed(m), (2, true), "a slab with two holes");
+    // One hole at each image of the brush: on each side of x = 0 the
+    // groove's tip went through the bottom face (z = lo).
+    let deepest = |sign: f64| {
+        m.positions
+            .iter()
+            .filter(|p| p.x * sign > 0.0)
+            .map(|p| p.z)
+            .fold(f64::INFINITY, f64::min)
+    };
+    assert!(
+        deepest(1.0) < lo && deepest(-1.0) < lo,
+        "both sides cut through"
+    );
+}
+
 /// The layer brush lays a plateau: dwelling at the top of a sphere, the
 /// vertex under the centre rises by the layer's height and no further,
 /// however long the brush stays (10 frames and 20 frames give the same
