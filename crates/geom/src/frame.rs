@@ -311,26 +311,15 @@ fn dominant_edge(parts: &[(&[DVec3], &[[u32; 3]])], normal: DVec3) -> Option<DVe
 mod tests {
     use super::*;
 
-    /// A slab `w × h × t` as 12 triangles, turned by `rotate`.
+    /// A slab `4 × 1 × 0.1` (the unit cube stretched) as 12 triangles,
+    /// turned by `rotate`.
     fn slab(rotate: impl Fn(DVec3) -> DVec3) -> (Vec<DVec3>, Vec<[u32; 3]>) {
-        let (w, h, t) = (4.0, 1.0, 0.1);
-        let p: Vec<DVec3> = (0..8)
-            .map(|i| {
-                rotate(DVec3::new(
-                    if i & 1 == 0 { 0.0 } else { w },
-                    if i & 2 == 0 { 0.0 } else { h },
-                    if i & 4 == 0 { 0.0 } else { t },
-                ))
-            })
+        let (corners, quads) = holey_testkit::unit_cube();
+        let size = DVec3::new(4.0, 1.0, 0.1);
+        let p = corners
+            .iter()
+            .map(|&c| rotate(DVec3::from(c) * size))
             .collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
         let tris = quads
             .iter()
             .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])

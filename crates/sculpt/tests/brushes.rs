@@ -377,23 +377,28 @@ fn snake_hook_pulled_through_the_far_side_makes_genus_1() {
     assert!(holey_topo::self_intersections(m).unwrap().pieces.is_empty());
 }
 
-/// Issue 19: a crease pressed into a thin closed slab, frame after
-/// frame at one spot, cuts through to the far side and opens a hole:
-/// the slab becomes a closed surface of genus 1.
-#[test]
-fn crease_through_a_thin_slab_opens_a_hole() {
-    // A 2 × 2 × 0.1 box, finely divided so the groove has vertices.
+/// A thin closed slab, `@cube:12` stretched to 4 × 4 × 0.2 (doubled in
+/// x and y, a tenth in z), finely divided so a groove has vertices.
+fn thin_slab() -> TriMesh {
     let slab = holey_shapes::parse_primitive("@cube:12")
         .unwrap()
         .triangulated();
-    let slab = TriMesh {
+    TriMesh {
         positions: slab
             .positions
             .iter()
             .map(|p| DVec3::new(p.x * 2.0, p.y * 2.0, p.z * 0.1))
             .collect(),
         triangles: slab.triangles,
-    };
+    }
+}
+
+/// Issue 19: a crease pressed into a thin closed slab, frame after
+/// frame at one spot, cuts through to the far side and opens a hole:
+/// the slab becomes a closed surface of genus 1.
+#[test]
+fn crease_through_a_thin_slab_opens_a_hole() {
+    let slab = thin_slab();
     let (lo, hi) = slab
         .positions
         .iter()
@@ -425,17 +430,7 @@ fn crease_through_a_thin_slab_opens_a_hole() {
 /// mirror-symmetric, so positions are not compared vertex for vertex.)
 #[test]
 fn a_mirrored_crease_through_a_slab_opens_two_holes() {
-    let slab = holey_shapes::parse_primitive("@cube:12")
-        .unwrap()
-        .triangulated();
-    let slab = TriMesh {
-        positions: slab
-            .positions
-            .iter()
-            .map(|p| DVec3::new(p.x * 2.0, p.y * 2.0, p.z * 0.1))
-            .collect(),
-        triangles: slab.triangles,
-    };
+    let slab = thin_slab();
     let hi = slab
         .positions
         .iter()
