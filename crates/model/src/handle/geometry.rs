@@ -1,5 +1,6 @@
-//! The geometry of a curved handle: the Hermite curve of eq. 4.1, the
-//! rotations of §IV.3, and the polar face morphing of §IV.3.1.
+//! The geometry of a curved handle: the Hermite curve of eq. 4.1, its
+//! cubic Bézier variant, the rotations of §IV.3, and the polar face
+//! morphing of §IV.3.1.
 //!
 //! Nothing here touches a mesh; [`super::plan_handle`] feeds it the
 //! positions of the two end faces.
@@ -94,16 +95,143 @@ impl HermiteCurve {
     /// `H(t ± step)` is used, and failing that `fallback`, so the result
     /// is always a finite unit vector.
     pub fn unit_tangent(&self, t: f64, step: f64, fallback: DVec3) -> DVec3 {
-        let tiny = 1e-12 * self.scale();
-        let v = self.velocity(t);
-        if v.length() > tiny {
-            return v.normalize();
+        unit_tangent(
+            |s| self.point(s),
+            self.velocity(t),
+            self.scale(),
+            t,
+            step,
+            fallback,
+        )
+    }
+}
+
+/// The unit tangent of a curve `point` with velocity `v` at `t`, sampled
+/// every `step`: `v` normalised, or where it vanishes (relative to
+/// `scale`) the chord between the neighbouring samples, or where that
+/// vanishes too (relative to `scale` and the samples' size) `fallback`.
+fn unit_tangent(
+    point: impl Fn(f64) -> DVec3,
+    v: DVec3,
+    scale: f64,
+    t: f64,
+    step: f64,
+    fallback: DVec3,
+) -> DVec3 {
+    let tiny = 1e-12 * scale;
+    if v.length() > tiny {
+        return v.normalize();
+    }
+    // Points carry rounding relative to their size, not the curve's.
+    let (ahead, behind) = (point((t + step).min(1.0)), point((t - step).max(0.0)));
+    let chord = ahead - behind;
+    if chord.length() > 1e-12 * (scale + ahead.length().max(behind.length())) {
+        return chord.normalize();
+    }
+    fallback
+}
+
+/// The cubic Bernstein basis `[(1 − t)³, 3t(1 − t)², 3t²(1 − t), t³]`.
+pub fn bernstein_basis(t: f64) -> [f64; 4] {
+    let s = 1.0 - t;
+    [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t]
+}
+
+/// The Bézier variant of a handle's path (TopMod's Bézier handle; the
+/// thesis, §IV.2, defines only the Hermite curve of eq. 4.1):
+///
+/// `B(t) = (1 − t)³·P0 + 3t(1 − t)²·P1 + 3t²(1 − t)·P2 + t³·P3`, `t ∈ [0, 1]`,
+///
+/// with `P0 = p1`, `P1 = p1 + w1·n1`, `P2 = p2 + w2·n2`, `P3 = p2`:
+/// `p1`, `p2` the faces' centroids and `n1`, `n2` their unit (outward)
+/// normals, so each inner control point stands at distance `|w|` above
+/// its face. The curve leaves `p1` with velocity `3·w1·n1` and reaches
+/// `p2` with velocity `−3·w2·n2`, so it is the curve of eq. 4.1 with both
+/// weights tripled: the weight here is a distance along the normal (where
+/// the control point sits), there a speed. It stays inside the convex
+/// hull of its four control points, which the Hermite form does not
+/// show. Negative weights put the control points inside the surface: a
+/// tunnel, as for eq. 4.1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BezierCurve {
+    /// The control points `[P0, P1, P2, P3]`.
+    pub control: [DVec3; 4],
+}
+
+impl BezierCurve {
+    /// The curve from the faces' centroids, unit normals and the weights.
+    pub fn new(p1: DVec3, n1: DVec3, w1: f64, p2: DVec3, n2: DVec3, w2: f64) -> Self {
+        BezierCurve {
+            control: [p1, p1 + n1 * w1, p2 + n2 * w2, p2],
         }
-        let chord = self.point((t + step).min(1.0)) - self.point((t - step).max(0.0));
-        if chord.length() > tiny {
-            return chord.normalize();
+    }
+
+    /// `B(t)`.
+    pub fn point(&self, t: f64) -> DVec3 {
+        let [b0, b1, b2, b3] = bernstein_basis(t);
+        let [p0, p1, p2, p3] = self.control;
+        p0 * b0 + p1 * b1 + p2 * b2 + p3 * b3
+    }
+
+    /// `B′(t) = 3(1 − t)²·(P1 − P0) + 6t(1 − t)·(P2 − P1) + 3t²·(P3 − P2)`.
+    pub fn velocity(&self, t: f64) -> DVec3 {
+        let s = 1.0 - t;
+        let [p0, p1, p2, p3] = self.control;
+        (p1 - p0) * (3.0 * s * s) + (p2 - p1) * (6.0 * t * s) + (p3 - p2) * (3.0 * t * t)
+    }
+
+    /// A length that sets the curve's scale: its control polygon's length.
+    pub(crate) fn scale(&self) -> f64 {
+        let [p0, p1, p2, p3] = self.control;
+        p0.distance(p1) + p1.distance(p2) + p2.distance(p3)
+    }
+
+    /// The unit tangent at `t`, as [`HermiteCurve::unit_tangent`]: never
+    /// NaN, also at cusps.
+    pub fn unit_tangent(&self, t: f64, step: f64, fallback: DVec3) -> DVec3 {
+        unit_tangent(
+            |s| self.point(s),
+            self.velocity(t),
+            self.scale(),
+            t,
+            step,
+            fallback,
+        )
+    }
+}
+
+/// The centre curve a handle follows: eq. 4.1 or its Bézier variant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HandlePath {
+    /// The thesis's Hermite curve (eq. 4.1).
+    Hermite(HermiteCurve),
+    /// The cubic Bézier variant.
+    Bezier(BezierCurve),
+}
+
+impl HandlePath {
+    /// The point at `t`: `H(t)` or `B(t)`.
+    pub fn point(&self, t: f64) -> DVec3 {
+        match self {
+            HandlePath::Hermite(c) => c.point(t),
+            HandlePath::Bezier(c) => c.point(t),
         }
-        fallback
+    }
+
+    /// The (unnormalised) tangent at `t`.
+    pub fn velocity(&self, t: f64) -> DVec3 {
+        match self {
+            HandlePath::Hermite(c) => c.velocity(t),
+            HandlePath::Bezier(c) => c.velocity(t),
+        }
+    }
+
+    /// The unit tangent at `t`, never NaN (see [`HermiteCurve::unit_tangent`]).
+    pub fn unit_tangent(&self, t: f64, step: f64, fallback: DVec3) -> DVec3 {
+        match self {
+            HandlePath::Hermite(c) => c.unit_tangent(t, step, fallback),
+            HandlePath::Bezier(c) => c.unit_tangent(t, step, fallback),
+        }
     }
 }
 
@@ -347,6 +475,42 @@ mod tests {
         // An all-zero curve falls back.
         let z = HermiteCurve::new(DVec3::ONE, DVec3::Z, 0.0, DVec3::ONE, DVec3::Z, 0.0);
         assert_eq!(z.unit_tangent(0.5, 0.1, DVec3::Y), DVec3::Y);
+    }
+
+    #[test]
+    fn bezier_interpolates_its_ends_and_is_hermite_with_tripled_weights() {
+        let (p1, n1, p2, n2) = (
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::Z,
+            DVec3::new(3.0, 1.0, 1.0),
+            DVec3::new(0.0, 0.6, 0.8),
+        );
+        let b = BezierCurve::new(p1, n1, 2.0, p2, n2, -0.5);
+        let h = HermiteCurve::new(p1, n1, 6.0, p2, n2, -1.5);
+        assert_eq!(b.point(0.0), p1);
+        assert_eq!(b.point(1.0), p2);
+        assert!(close(b.velocity(0.0), n1 * 6.0, 1e-14));
+        assert!(close(b.velocity(1.0), n2 * 1.5, 1e-14));
+        // De Casteljau at ½ by hand: (P0 + 3·P1 + 3·P2 + P3) / 8.
+        let [c0, c1, c2, c3] = b.control;
+        assert!(close(
+            b.point(0.5),
+            (c0 + c1 * 3.0 + c2 * 3.0 + c3) / 8.0,
+            1e-14
+        ));
+        for k in 0..=10 {
+            let t = k as f64 / 10.0;
+            assert!(close(b.point(t), h.point(t), 1e-13), "t={t}");
+            assert!(close(b.velocity(t), h.velocity(t), 1e-13), "t={t}");
+            let s: f64 = bernstein_basis(t).iter().sum();
+            assert!((s - 1.0).abs() < 1e-15);
+        }
+        // A degenerate curve (all control points equal) falls back.
+        let z = BezierCurve::new(DVec3::ONE, DVec3::Z, 0.0, DVec3::ONE, DVec3::Z, 0.0);
+        assert_eq!(z.unit_tangent(0.5, 0.1, DVec3::Y), DVec3::Y);
+        let path = HandlePath::Bezier(b);
+        assert_eq!(path.point(0.3), b.point(0.3));
+        assert_eq!(path.velocity(0.3), b.velocity(0.3));
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! # Multi-segment curved handles (thesis chapter IV)
 //!
 //! [`create_handle`] joins two faces of a mesh with a handle made of `k`
-//! straight segments that follow a Hermite curve (§IV.2, eq. 4.1). Between
+//! straight segments that follow a Hermite curve (§IV.2, eq. 4.1), or, with
+//! [`HandleCurve::Bezier`], TopMod's cubic Bézier variant of it
+//! ([`BezierCurve`]). Between
 //! faces of one component the genus rises by one; between two components
 //! they join and the genus sum is unchanged. With `k = 1` it is exactly
 //! the kernel's `CreatePipe` (§III.3).
@@ -19,7 +21,10 @@
 //!    face f2"): vertex `j` of one matches vertex `j` of the other.
 //! 2. The curve `H(t) = p1·h1 + p2·h2 + w1·n1·h3 − w2·n2·h4` runs from
 //!    the centroid `p1` of `f1` (leaving along its unit normal `n1`) to
-//!    the centroid `p2` of `f2` (arriving along `−n2`).
+//!    the centroid `p2` of `f2` (arriving along `−n2`). The Bézier variant
+//!    replaces it by `B(t) = (1−t)³·p1 + 3t(1−t)²·(p1 + w1·n1) +
+//!    3t²(1−t)·(p2 + w2·n2) + t³·p2`, which leaves and arrives the same
+//!    ways; everything after this step is the same for both curves.
 //! 3. Both faces are rotated about their centroids onto the reference
 //!    plane whose normal is along `p2 − p1`, flattened, and resolved into
 //!    polar coordinates `(r, θ)` ([`geometry::polar`]).
@@ -76,7 +81,7 @@ mod matching;
 use glam::DVec3;
 use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, VertexId};
 
-pub use geometry::HermiteCurve;
+pub use geometry::{BezierCurve, HandlePath, HermiteCurve};
 use geometry::{Morph, centroid, rotation_between, vector_area};
 use matching::{Matching, plan_matching};
 
@@ -147,22 +152,86 @@ pub enum HandleError {
     Kernel(#[from] holey_dlfl::Error),
 }
 
+/// Which curve a handle's sections follow.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum HandleCurve {
+    /// The thesis's Hermite curve (§IV.2, eq. 4.1, [`HermiteCurve`]): the
+    /// weights are the curve's speeds at its ends.
+    #[default]
+    Hermite,
+    /// TopMod's cubic Bézier variant ([`BezierCurve`]): the weights are
+    /// the distances of the inner control points above the faces. Equal
+    /// to the Hermite curve with the weights tripled.
+    Bezier,
+}
+
+impl HandleCurve {
+    /// Every curve, in the order front ends list them.
+    pub const ALL: [HandleCurve; 2] = [HandleCurve::Hermite, HandleCurve::Bezier];
+
+    /// The curve's name as front ends spell it: `"hermite"` or `"bezier"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            HandleCurve::Hermite => "hermite",
+            HandleCurve::Bezier => "bezier",
+        }
+    }
+}
+
+impl std::fmt::Display for HandleCurve {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not a [`HandleCurve`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown handle curve {0:?}; expected \"hermite\" or \"bezier\"")]
+pub struct UnknownHandleCurve(pub String);
+
+impl std::str::FromStr for HandleCurve {
+    type Err = UnknownHandleCurve;
+
+    /// `"hermite"` or `"bezier"` (also `"bézier"`), any case.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_lowercase().as_str() {
+            "hermite" => Ok(HandleCurve::Hermite),
+            "bezier" | "bézier" => Ok(HandleCurve::Bezier),
+            _ => Err(UnknownHandleCurve(s.to_string())),
+        }
+    }
+}
+
 /// The user's parameters of a handle (§IV.2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HandleParams {
     /// Number of segments `k ≥ 1`; `1` is a plain `CreatePipe`.
     pub segments: usize,
     /// Weight of the first face's normal in eq. 4.1 (in model units: the
-    /// curve's speed as it leaves `f1`). Negative makes a tunnel.
+    /// curve's speed as it leaves `f1`; for [`HandleCurve::Bezier`] the
+    /// height of the first inner control point above `f1`). Negative
+    /// makes a tunnel.
     pub w1: f64,
     /// Weight of the second face's normal.
     pub w2: f64,
+    /// The curve the sections follow; [`HandleCurve::Hermite`] by default.
+    pub curve: HandleCurve,
 }
 
 impl HandleParams {
-    /// `k` segments with weights `w1`, `w2`.
+    /// `k` segments with weights `w1`, `w2` along the Hermite curve.
     pub fn new(segments: usize, w1: f64, w2: f64) -> Self {
-        HandleParams { segments, w1, w2 }
+        HandleParams {
+            segments,
+            w1,
+            w2,
+            curve: HandleCurve::Hermite,
+        }
+    }
+
+    /// These parameters with the sections following `curve` instead.
+    pub fn with_curve(self, curve: HandleCurve) -> Self {
+        HandleParams { curve, ..self }
     }
 
     fn check(&self) -> Result<(), HandleError> {
@@ -223,8 +292,10 @@ pub struct HandlePlan {
     /// The face that preprocessing subdivides (the one with fewer corners),
     /// or `None` when both faces already have `N` corners.
     pub subdivided_face: Option<FaceId>,
-    /// The curve (eq. 4.1); `None` for one segment, which needs no geometry.
-    pub curve: Option<HermiteCurve>,
+    /// The curve (eq. 4.1 or its Bézier variant, as
+    /// [`HandleParams::curve`] chose); `None` for one segment, which needs
+    /// no geometry.
+    pub curve: Option<HandlePath>,
     /// Unit normals `n1`, `n2` of the faces (zero for one segment).
     pub normals: [DVec3; 2],
     /// Which way sections face.
@@ -386,7 +457,14 @@ pub fn plan_handle(
     let n1 = unit_normal(&a, f1)?;
     // `b` is f2 reversed, so its normal is −n2.
     let n2 = -unit_normal(&b, f2)?;
-    let curve = HermiteCurve::new(p1, n1, params.w1, p2, n2, params.w2);
+    let curve = match params.curve {
+        HandleCurve::Hermite => {
+            HandlePath::Hermite(HermiteCurve::new(p1, n1, params.w1, p2, n2, params.w2))
+        }
+        HandleCurve::Bezier => {
+            HandlePath::Bezier(BezierCurve::new(p1, n1, params.w1, p2, n2, params.w2))
+        }
+    };
     let chord = p2 - p1;
     let n_r = if chord.length() > 1e-12 * radius.max(chord.length()) {
         chord.normalize()

@@ -299,3 +299,174 @@ fn faces_sharing_an_edge_or_a_vertex() {
         }
     }
 }
+
+/// The centroid and outward unit normal of face `f`, from its positions.
+fn centroid_and_normal(m: &Mesh, f: FaceId) -> (DVec3, DVec3) {
+    let pts = m.face_positions(f).unwrap();
+    (
+        geometry::centroid(&pts),
+        geometry::vector_area(&pts).normalize(),
+    )
+}
+
+/// `B(½) = (P0 + 3·P1 + 3·P2 + P3) / 8` for the control points
+/// `p1, p1 + w1·n1, p2 + w2·n2, p2`, worked out here from the two faces.
+fn bezier_midpoint(m: &Mesh, f1: FaceId, f2: FaceId, w1: f64, w2: f64) -> DVec3 {
+    let (p1, n1) = centroid_and_normal(m, f1);
+    let (p2, n2) = centroid_and_normal(m, f2);
+    (p1 + (p1 + n1 * w1) * 3.0 + (p2 + n2 * w2) * 3.0 + p2) / 8.0
+}
+
+#[test]
+fn handle_curve_names_round_trip_and_hermite_is_the_default() {
+    assert_eq!(HandleCurve::default(), HandleCurve::Hermite);
+    assert_eq!(HandleParams::new(3, 1.0, 1.0).curve, HandleCurve::Hermite);
+    for c in HandleCurve::ALL {
+        assert_eq!(c.name().parse::<HandleCurve>(), Ok(c));
+        assert_eq!(c.to_string(), c.name());
+    }
+    assert_eq!(" Bézier".parse::<HandleCurve>(), Ok(HandleCurve::Bezier));
+    let err = "spline".parse::<HandleCurve>().unwrap_err();
+    assert!(err.to_string().contains("\"spline\""), "{err}");
+}
+
+#[test]
+fn bezier_handle_between_two_faces_of_a_cube() {
+    // Two quads of one cube, s segments. A handle of s segments between
+    // two d-gons makes s − 1 sections (d vertices, d edges, 2 faces each)
+    // and s pipes (each d new edges, 2 faces replaced by d quads):
+    //   V' = V + d(s − 1), E' = E + d(s − 1) + d·s, F' = F + 2(s − 1) + (d − 2)s,
+    // and the faces are in one component, so the genus rises by one.
+    let m0 = prim("@cube");
+    let (v, e, f) = (m0.vertex_count(), m0.edge_count(), m0.face_count());
+    assert_eq!((v, e, f, m0.genus()), (8, 12, 6, 0));
+    let d = 4;
+    // Faces 0 and 2 are adjacent (the bottom and a side): with positive
+    // weights the handle arcs outside the cube. Faces 5 and 0 are the top
+    // and the bottom: the curve runs along its own axis through the cube.
+    for (a, b) in [(0, 2), (5, 0)] {
+        for s in [2usize, 4, 6] {
+            let mut m = m0.clone();
+            let (f1, f2) = (m.face_at(a).unwrap(), m.face_at(b).unwrap());
+            let (c1, c2) = (corner(&m, a), corner(&m, b));
+            let (w1, w2) = (1.5, 0.75);
+            let mid = bezier_midpoint(&m, f1, f2, w1, w2);
+            let p = HandleParams::new(s, w1, w2).with_curve(HandleCurve::Bezier);
+            let r = create_handle_observed(&mut m, c1, c2, &p, |mesh, _| {
+                mesh.validate().unwrap();
+            })
+            .unwrap();
+            m.validate().unwrap();
+            assert_eq!(
+                (m.vertex_count(), m.edge_count(), m.face_count()),
+                (
+                    v + d * (s - 1),
+                    e + d * (s - 1) + d * s,
+                    f + 2 * (s - 1) + (d - 2) * s
+                ),
+                "faces {a},{b}, s={s}"
+            );
+            assert_eq!(m.genus(), 1);
+            assert!(matches!(r.plan.curve, Some(HandlePath::Bezier(_))));
+            // The middle ring (section s/2, t = ½) is centred on B(½).
+            let ring = &r.sections[s / 2 - 1];
+            assert_eq!(r.plan.sections[s / 2 - 1].t, 0.5);
+            let pts: Vec<DVec3> = ring.iter().map(|&v| m.position(v).unwrap()).collect();
+            let c = geometry::centroid(&pts);
+            assert!((c - mid).length() < 1e-12, "{c} vs {mid}");
+        }
+    }
+}
+
+#[test]
+fn bezier_and_hermite_differ_and_agree_at_tripled_weights() {
+    // Same faces and weights: the Bézier curve's inner control points sit
+    // |w| above the faces, the Hermite curve leaves at speed w, so the
+    // middle rings differ; with the Hermite weights tripled they coincide.
+    let m0 = prim("@cube");
+    let (c1, c2) = (corner(&m0, 0), corner(&m0, 2));
+    let bez = plan_handle(
+        &m0,
+        c1,
+        c2,
+        &HandleParams::new(4, 1.0, 1.0).with_curve(HandleCurve::Bezier),
+    )
+    .unwrap();
+    let her = plan_handle(&m0, c1, c2, &HandleParams::new(4, 1.0, 1.0)).unwrap();
+    let her3 = plan_handle(&m0, c1, c2, &HandleParams::new(4, 3.0, 3.0)).unwrap();
+    assert!(matches!(her.curve, Some(HandlePath::Hermite(_))));
+    let mid = |p: &HandlePlan| p.sections[1].centroid;
+    assert!((mid(&bez) - mid(&her)).length() > 0.1);
+    for (a, b) in bez.sections.iter().zip(&her3.sections) {
+        assert!((a.centroid - b.centroid).length() < 1e-12);
+        for (p, q) in a.points.iter().zip(&b.points) {
+            assert!((*p - *q).length() < 1e-12);
+        }
+    }
+}
+
+/// Two unit cubes side by side (the second shifted by `gap` along x): two
+/// components, 16 / 24 / 12.
+fn two_cubes(gap: f64) -> Mesh {
+    let one = holey_shapes::parse_primitive("@cube").unwrap();
+    let mut soup = one.clone();
+    let base = one.positions.len() as u32;
+    let shift = one.face_indices.len() as u32;
+    soup.positions
+        .extend(one.positions.iter().map(|&p| p + DVec3::X * gap));
+    soup.face_offsets
+        .extend(one.face_offsets.iter().skip(1).map(|&o| o + shift));
+    soup.face_indices
+        .extend(one.face_indices.iter().map(|&i| i + base));
+    to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
+}
+
+#[test]
+fn bezier_handle_between_two_components_joins_them() {
+    // The +x face of the first cube to the −x face of the second, facing
+    // each other across the gap. The counts are those of one component
+    // (above), but the pipe chain joins the two spheres into one: the
+    // genus sum stays 0 + 0 = 0 and V − E + F drops from 4 to 2.
+    let m0 = two_cubes(3.0);
+    let (v, e, f) = (m0.vertex_count(), m0.edge_count(), m0.face_count());
+    assert_eq!((v, e, f), (16, 24, 12));
+    assert_eq!(m0.topology().component_count(), 2);
+    let faces: Vec<FaceId> = m0.faces().collect();
+    let pick = |want: DVec3, x_range: (f64, f64)| {
+        *faces
+            .iter()
+            .find(|&&f| {
+                let (c, n) = centroid_and_normal(&m0, f);
+                n.dot(want) > 0.999 && c.x > x_range.0 && c.x < x_range.1
+            })
+            .unwrap()
+    };
+    let f1 = pick(DVec3::X, (-1.0, 1.5));
+    let f2 = pick(DVec3::NEG_X, (1.5, 4.0));
+    let (c1, c2) = (m0.face_corner(f1).unwrap(), m0.face_corner(f2).unwrap());
+    let (s, d, w) = (4usize, 4usize, 0.8);
+    let mid = bezier_midpoint(&m0, f1, f2, w, w);
+    let mut m = m0.clone();
+    let p = HandleParams::new(s, w, w).with_curve(HandleCurve::Bezier);
+    let r = create_handle(&mut m, c1, c2, &p).unwrap();
+    m.validate().unwrap();
+    assert_eq!(
+        (m.vertex_count(), m.edge_count(), m.face_count()),
+        (
+            v + d * (s - 1),
+            e + d * (s - 1) + d * s,
+            f + 2 * (s - 1) + (d - 2) * s
+        )
+    );
+    assert_eq!(m.topology().component_count(), 1);
+    assert_eq!(m.genus(), 0);
+    let ring: Vec<DVec3> = r.sections[1]
+        .iter()
+        .map(|&v| m.position(v).unwrap())
+        .collect();
+    assert!((geometry::centroid(&ring) - mid).length() < 1e-12);
+    // Facing faces on one straight line: B(½) is the midpoint of the gap.
+    let (p1, _) = centroid_and_normal(&m0, f1);
+    let (p2, _) = centroid_and_normal(&m0, f2);
+    assert!((mid - (p1 + p2) / 2.0).length() < 1e-12);
+}
