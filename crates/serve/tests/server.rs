@@ -1802,3 +1802,94 @@ fn strokes_read_falloff_symmetry_and_pressure() {
     // A refused stroke leaves no stroke behind.
     assert_eq!(a.state["stroke"], false);
 }
+
+/// `extrude` is the library's: each kind on a quad of the cube (d = 4)
+/// gives the counts its definition implies (see the unit test next to
+/// the op for where each comes from) and is one undo step; an option a
+/// kind does not read, or a face the library refuses, comes back as one
+/// plain error naming faces as the page numbers them, and the document
+/// (counts, version, undo history) is as it was.
+#[test]
+fn extrusions_are_the_librarys_and_a_refusal_changes_nothing() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let cube = [8u64, 12, 6];
+    assert_eq!(vef(&a), cube);
+    let d = 4u64;
+    for (kind, extra, [dv, de, df]) in [
+        ("plain", json!({}), [d, 2 * d, d]),
+        ("plain", json!({"count": 2}), [2 * d, 4 * d, 2 * d]),
+        ("together", json!({"distance": 0.5}), [d, 2 * d, d]),
+        ("doo-sabin", json!({}), [d, 2 * d, d]),
+        ("cubical", json!({"count": 2}), [2 * d, 4 * d, 2 * d]),
+        ("octahedral", json!({}), [d, 3 * d, 2 * d]),
+        ("dodecahedral", json!({}), [3 * d, 5 * d, 2 * d]),
+        ("icosahedral", json!({}), [3 * d, 9 * d, 6 * d]),
+        ("stellate", json!({}), [1, d, d - 1]),
+        (
+            "double-stellate",
+            json!({"distance": 0.2}),
+            [d + 1, 4 * d, 3 * d - 1],
+        ),
+        (
+            "dome",
+            json!({"count": 2}),
+            [2 * d + 1, 4 * d + d, 2 * d + d - 1],
+        ),
+    ] {
+        let mut req = json!({"op": "extrude", "faces": [0], "kind": kind});
+        if let (Some(r), Some(x)) = (req.as_object_mut(), extra.as_object()) {
+            r.extend(x.clone());
+        }
+        let r = a.ok(req.clone());
+        assert_eq!(vef(&a), [cube[0] + dv, cube[1] + de, cube[2] + df], "{req}");
+        assert_eq!(a.genus(), json!(0), "{req}");
+        assert_eq!(r["faces"].as_array().map(Vec::len), Some(1), "{req}");
+        a.ok(json!({"op": "undo"}));
+        assert_eq!(vef(&a), cube, "one undo step undoes {req}");
+    }
+
+    // One plain extrusion to undo later; then refusals.
+    a.ok(json!({"op": "extrude", "faces": [0]}));
+    let grown = vef(&a);
+    let version = a.state["version"].clone();
+    for (req, says) in [
+        (
+            json!({"op": "extrude", "faces": [0], "kind": "stellate", "scale": 2}),
+            "extrude: \"scale\" does not apply to the stellate extrusion (it reads \"distance\")",
+        ),
+        (
+            json!({"op": "extrude", "faces": [0], "kind": "cubical", "distance": 2}),
+            "extrude: \"distance\" does not apply to the cubical extrusion (it reads \"height\" and \"count\")",
+        ),
+        (
+            json!({"op": "extrude", "faces": [0, 1], "kind": "together", "rotation": 5}),
+            "extrude: \"rotation\" does not apply to the together extrusion (it reads \"distance\", \"count\" and \"direction\")",
+        ),
+        (
+            json!({"op": "extrude", "faces": [0], "kind": "dome", "direction": "normals"}),
+            "extrude: \"direction\" does not apply to the dome extrusion (only to together)",
+        ),
+    ] {
+        let r = a.call(req.clone());
+        assert_eq!(r["type"], "error", "{req} -> {r}");
+        assert_eq!(r["message"], says, "{req}");
+        assert_eq!(vef(&a), grown, "{req} changed the mesh");
+        assert_eq!(a.state["version"], version, "{req} changed the version");
+    }
+    // Several faces, refused at the first by a value too large for the
+    // model: nothing is extruded, and the face is named by its number.
+    let r = a.call(json!({"op": "extrude", "faces": [3, 0, 1],
+                          "distance": 1e308, "count": 2}));
+    assert_eq!(r["type"], "error", "{r}");
+    let m = r["message"].as_str().unwrap_or("");
+    assert!(m.starts_with("extrude: ") && m.contains("face 3"), "{m}");
+    assert!(!m.contains("v1"), "a kernel handle in {m:?}");
+    assert_eq!(vef(&a), grown);
+    assert_eq!(a.state["version"], version);
+    // The refusals added no undo step: one undo is back to the cube.
+    a.ok(json!({"op": "undo"}));
+    assert_eq!(vef(&a), cube);
+}

@@ -14,10 +14,7 @@ use std::collections::HashMap;
 use holey_dlfl::{EdgeId, FaceId, Mesh, VertexId};
 use holey_model::cut::{CutOffset, CutTarget, cut};
 use holey_model::extrude::{
-    DomeParams, DooSabinParams, ExtrudeParams, MultiExtrudeParams, RegionDirection,
-    double_stellate_face, extrude_face, extrude_face_cubical, extrude_face_dodecahedral,
-    extrude_face_dome, extrude_face_doo_sabin, extrude_face_icosahedral, extrude_face_octahedral,
-    extrude_faces, stellate_face,
+    ExtrudeError, ExtrudeKind, ExtrudeOption, ExtrudeOptions, RegionDirection, extrude_selection,
 };
 use serde_json::{Value, json};
 
@@ -30,19 +27,9 @@ use crate::frame::ModelIndex;
 /// The most repetitions an extrusion request may ask for.
 pub(super) const MAX_COUNT: usize = 64;
 
-/// The extrusion kinds, as requests name them.
-pub(super) const EXTRUDE_KINDS: &[&str] = &[
-    "plain",
-    "together",
-    "doo-sabin",
-    "cubical",
-    "dodecahedral",
-    "icosahedral",
-    "octahedral",
-    "stellate",
-    "double-stellate",
-    "dome",
-];
+/// The request's name for the plain kind lifting the faces as one region
+/// ([`ExtrudeOptions::together`]).
+const TOGETHER: &str = "together";
 
 impl Shared {
     /// `extrude`: the selected faces, each by itself (or all together,
@@ -55,17 +42,14 @@ impl Shared {
                 "select the faces to extrude first".into(),
             ));
         }
-        let kind = match req.get("kind") {
-            None | Some(Value::Null) => "plain",
-            Some(v) => v
-                .as_str()
-                .ok_or_else(|| ServeError::BadRequest("\"kind\" must be a string".into()))?,
-        };
+        let ext = extrusion_of(req)?;
         let before = counts(&mesh);
-        let tops = extrude_with(&mut mesh, &faces, kind, req)
-            .map_err(|e| ServeError::Refused(format!("extrude: {}", plain_ids(&e, doc.index()))))?;
+        // The library puts back what it did on a refusal, and the copy is
+        // only committed on success: a refusal leaves the document as it was.
+        let tops = extrude_selection(&mut mesh, &faces, ext.kind, &ext.options)
+            .map_err(|e| ServeError::Refused(format!("extrude: {}", refusal(&e, doc.index()))))?;
         self.check_size(&mesh)?;
-        let message = format!("{kind} extrusion: {}", delta(before, &mesh));
+        let message = format!("{} extrusion: {}", ext.name, delta(before, &mesh));
         doc.commit(Content::Model(mesh));
         let selected = display_faces(doc.index(), &tops);
         self.publish(doc);
@@ -151,91 +135,148 @@ impl Shared {
     }
 }
 
-/// Extrudes `faces` by `kind`; returns the top faces made.
-fn extrude_with(
-    mesh: &mut Mesh,
-    faces: &[FaceId],
-    kind: &str,
-    req: &Value,
-) -> Result<Vec<FaceId>, String> {
-    let opt = |name: &str, default: f64| -> Result<f64, String> {
-        match req.get(name) {
-            None | Some(Value::Null) => Ok(default),
-            Some(_) => num_field(req, name).map_err(|e| e.to_string()),
+/// What an `extrude` request asks for: the kind as it named it
+/// (`together` too), and the library's kind and options.
+struct Extrusion<'a> {
+    name: &'a str,
+    kind: ExtrudeKind,
+    options: ExtrudeOptions,
+}
+
+/// Reads an `extrude` request's kind and options. A field that is absent
+/// or null is not given (the library's default applies); whether the kind
+/// reads the options given is the library's to say, except `direction`,
+/// which only `together` reads.
+fn extrusion_of(req: &Value) -> Result<Extrusion<'_>, ServeError> {
+    let refused = |why: String| ServeError::Refused(format!("extrude: {why}"));
+    let name = match req.get("kind") {
+        None | Some(Value::Null) => ExtrudeKind::Plain.name(),
+        Some(v) => v
+            .as_str()
+            .ok_or_else(|| ServeError::BadRequest("\"kind\" must be a string".into()))?,
+    };
+    let together = name == TOGETHER;
+    let kind = if together {
+        ExtrudeKind::Plain
+    } else {
+        name.parse::<ExtrudeKind>().map_err(|_| {
+            let names: Vec<String> = ExtrudeKind::ALL
+                .iter()
+                .map(|k| k.name().to_owned())
+                .chain(std::iter::once(TOGETHER.to_owned()))
+                .collect();
+            refused(format!(
+                "unknown kind {name:?} (one of {})",
+                and_list(&names)
+            ))
+        })?
+    };
+    let given = |field: &str| !matches!(req.get(field), None | Some(Value::Null));
+    let number = |field: &str| -> Result<Option<f64>, ServeError> {
+        if given(field) {
+            num_field(req, field)
+                .map(Some)
+                .map_err(|e| refused(e.to_string()))
+        } else {
+            Ok(None)
         }
     };
-    let count = match req.get("count") {
-        None | Some(Value::Null) => 1,
-        Some(v) => v
-            .as_u64()
+    let count = if given("count") {
+        let n = req
+            .get("count")
+            .and_then(Value::as_u64)
             .and_then(|n| usize::try_from(n).ok())
             .filter(|n| (1..=MAX_COUNT).contains(n))
-            .ok_or_else(|| format!("\"count\" must be an integer from 1 to {MAX_COUNT}"))?,
+            .ok_or_else(|| {
+                refused(format!(
+                    "\"count\" must be an integer from 1 to {MAX_COUNT}"
+                ))
+            })?;
+        Some(n)
+    } else {
+        None
     };
-    let distance = opt("distance", 1.0)?;
-    let height = opt("height", 1.0)?;
-    if kind == "together" {
-        let direction = match req.get("direction").and_then(Value::as_str) {
-            None | Some("average") => RegionDirection::Average,
-            Some("normals") => RegionDirection::VertexNormals,
-            Some(other) => {
-                return Err(format!("unknown direction {other:?} (average or normals)"));
+    let direction = match req.get("direction") {
+        None | Some(Value::Null) => None,
+        Some(v) => match v.as_str() {
+            Some("average") => Some(RegionDirection::Average),
+            Some("normals") => Some(RegionDirection::VertexNormals),
+            _ => {
+                return Err(refused(format!(
+                    "unknown direction {v} (average or normals)"
+                )));
             }
-        };
-        let params = MultiExtrudeParams {
-            distance,
-            direction,
-            count,
-        };
-        return extrude_faces(mesh, faces, &params)
-            .map(|m| m.tops)
-            .map_err(|e| e.to_string());
-    }
-    if !EXTRUDE_KINDS.contains(&kind) {
-        return Err(format!(
-            "unknown kind {kind:?} (one of {})",
-            EXTRUDE_KINDS.join(", ")
-        ));
-    }
-    let plain = ExtrudeParams {
-        distance,
-        rotation_deg: opt("rotation", 0.0)?,
-        scale: opt("scale", 1.0)?,
-        count,
-    };
-    let doo_sabin = DooSabinParams {
-        distance,
-        twist: opt("twist", 0.0)?,
-        scale: opt("scale", 1.0)?,
-        count,
-    };
-    let dome = DomeParams {
-        height_factor: height,
-        rings: match req.get("count") {
-            None | Some(Value::Null) => DomeParams::default().rings,
-            _ => count,
         },
     };
-    // Every face not consumed keeps its handle through the others'
-    // extrusions, so the list stays good; the first refusal leaves a
-    // partly edited copy, which the caller drops.
-    let mut tops = Vec::with_capacity(faces.len());
-    for &f in faces {
-        let made = match kind {
-            "plain" => extrude_face(mesh, f, &plain),
-            "doo-sabin" => extrude_face_doo_sabin(mesh, f, &doo_sabin),
-            "cubical" => extrude_face_cubical(mesh, f, height, count),
-            "dodecahedral" => extrude_face_dodecahedral(mesh, f, height),
-            "icosahedral" => extrude_face_icosahedral(mesh, f, height),
-            "octahedral" => extrude_face_octahedral(mesh, f, height),
-            "stellate" => stellate_face(mesh, f, distance),
-            "double-stellate" => double_stellate_face(mesh, f, distance),
-            _ => extrude_face_dome(mesh, f, &dome),
-        }
-        .map_err(|e| e.to_string())?;
-        tops.push(made.top);
+    if direction.is_some() && !together {
+        return Err(refused(format!(
+            "\"direction\" does not apply to the {name} extrusion (only to {TOGETHER})"
+        )));
     }
-    Ok(tops)
+    let options = ExtrudeOptions {
+        distance: number("distance")?,
+        scale: number("scale")?,
+        rotation_deg: number("rotation")?,
+        twist: number("twist")?,
+        height: number("height")?,
+        count,
+        together: together.then(|| direction.unwrap_or(RegionDirection::Average)),
+    };
+    Ok(Extrusion {
+        name,
+        kind,
+        options,
+    })
+}
+
+/// "a", "a and b", "a, b and c".
+fn and_list(items: &[String]) -> String {
+    match items.split_last() {
+        None => String::new(),
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// A refused extrusion in the request's words (its field names, the kind
+/// `together`) with faces named by their display indices.
+fn refusal(e: &ExtrudeError, index: &ModelIndex) -> String {
+    let field = |o: &ExtrudeOption| format!("\"{o}\"");
+    let text = match e {
+        ExtrudeError::Unread { option, kind } => {
+            let reads: Vec<String> = ExtrudeOption::ALL
+                .iter()
+                .filter(|&&o| kind.reads(o))
+                .map(field)
+                .collect();
+            format!(
+                "{} does not apply to the {kind} extrusion (it reads {})",
+                field(option),
+                and_list(&reads)
+            )
+        }
+        ExtrudeError::UnreadTogether { option } => format!(
+            "{} does not apply to the {TOGETHER} extrusion (it reads \"distance\", \"count\" and \"direction\")",
+            field(option)
+        ),
+        // A bad value is about every face alike; a refusal that names
+        // its face already needs no prefix.
+        ExtrudeError::Face { cause, .. }
+            if matches!(**cause, ExtrudeError::InvalidParameter { .. }) =>
+        {
+            cause.to_string()
+        }
+        ExtrudeError::Face { face, cause } => {
+            let why = cause.to_string();
+            if why.contains(&face.to_string()) {
+                why
+            } else {
+                format!("face {face}: {why}")
+            }
+        }
+        other => other.to_string(),
+    };
+    plain_ids(&text, index)
 }
 
 fn kernel(e: holey_dlfl::Error) -> ServeError {
@@ -453,24 +494,70 @@ mod tests {
         assert_eq!(plain_ids(&"ünïcode f", &index), "ünïcode f");
     }
 
-    /// Each kind on one face of a cube, counted against the library's
-    /// documented deltas for a 4-gon (extrude/mod.rs's table, d = 4).
+    /// Extrudes face `f` of `m` as an `extrude` request with `fields`
+    /// asks; a refusal in the words the user is shown.
+    fn extrude_req(m: &mut Mesh, faces: &[FaceId], fields: &Value) -> Result<Vec<FaceId>, String> {
+        let (_, index) = display_model(m);
+        let ext = extrusion_of(fields).map_err(|e| e.to_string())?;
+        extrude_selection(m, faces, ext.kind, &ext.options).map_err(|e| refusal(&e, &index))
+    }
+
+    fn positions(m: &Mesh) -> Vec<[u64; 3]> {
+        m.vertices()
+            .map(|v| m.position(v).unwrap().to_array().map(f64::to_bits))
+            .collect()
+    }
+
+    /// Each kind on one quad (d = 4) of a cube, against the counts its
+    /// definition implies (V − E + F stays 2 for every one):
+    /// - plain, Doo–Sabin, cubical and together, k repetitions: each adds
+    ///   a ring of d corners, d rising edges and d ring edges, and d side
+    ///   quads (the face moves up): +d, +2d, +d per repetition;
+    /// - octahedral: a turned d-gon (+d corners, d edges), each new corner
+    ///   joined to the two old ones below it (2d edges), 2d triangles;
+    /// - dodecahedral: two rings of pentagons, +3d corners, +5d edges, +2d;
+    /// - icosahedral: +3d, +9d, +6d (triangles and pentagon fans);
+    /// - stellate: an apex (+1), d spokes, d triangles in place of the
+    ///   face: +1, +d, +d − 1;
+    /// - double stellate: stellate, then each of its d triangles
+    ///   stellated (+1, +3, +2 each): +d + 1, +4d, +3d − 1;
+    /// - dome of k rings: k rings of d corners and an apex (kd + 1), each
+    ///   ring d rising and d ring edges plus d spokes (2kd + d), kd quads
+    ///   and d triangles in place of the face (kd + d − 1).
     #[test]
-    fn every_kind_extrudes_with_its_documented_counts() {
+    fn every_kind_extrudes_with_the_counts_of_its_definition() {
         let d = 4;
-        for (kind, fields, dv, de, df) in [
-            ("plain", json!({"count": 2}), 2 * d, 4 * d, 2 * d),
-            ("together", json!({}), d, 2 * d, d),
-            ("doo-sabin", json!({}), d, 2 * d, d),
-            ("cubical", json!({"count": 3}), 3 * d, 6 * d, 3 * d),
-            ("octahedral", json!({}), d, 3 * d, 2 * d),
-            ("dodecahedral", json!({}), 3 * d, 5 * d, 2 * d),
-            ("icosahedral", json!({}), 3 * d, 9 * d, 6 * d),
-            ("stellate", json!({"distance": 0.5}), 1, d, d - 1),
-            ("double-stellate", json!({}), d + 1, 4 * d, 3 * d - 1),
+        for (fields, dv, de, df) in [
+            (json!({}), d, 2 * d, d),
+            (json!({"kind": "plain", "count": 2}), 2 * d, 4 * d, 2 * d),
+            (json!({"kind": "together"}), d, 2 * d, d),
             (
-                "dome",
-                json!({"count": 5}),
+                json!({"kind": "together", "count": 3, "direction": "normals"}),
+                3 * d,
+                6 * d,
+                3 * d,
+            ),
+            (json!({"kind": "doo-sabin", "twist": 0.1}), d, 2 * d, d),
+            (json!({"kind": "cubical", "count": 3}), 3 * d, 6 * d, 3 * d),
+            (json!({"kind": "octahedral"}), d, 3 * d, 2 * d),
+            (json!({"kind": "dodecahedral"}), 3 * d, 5 * d, 2 * d),
+            (
+                json!({"kind": "icosahedral", "height": 0.5}),
+                3 * d,
+                9 * d,
+                6 * d,
+            ),
+            (json!({"kind": "stellate", "distance": 0.5}), 1, d, d - 1),
+            (json!({"kind": "double-stellate"}), d + 1, 4 * d, 3 * d - 1),
+            (
+                json!({"kind": "dome", "count": 3}),
+                3 * d + 1,
+                2 * 3 * d + d,
+                3 * d + d - 1,
+            ),
+            // A dome's rings default to the library's.
+            (
+                json!({"kind": "dome"}),
                 5 * d + 1,
                 2 * 5 * d + d,
                 5 * d + d - 1,
@@ -478,15 +565,86 @@ mod tests {
         ] {
             let mut m = mesh("@cube");
             let f = m.faces().next().unwrap();
-            let tops = extrude_with(&mut m, &[f], kind, &fields).unwrap();
-            assert_eq!(tops.len(), 1, "{kind}");
+            let tops = extrude_req(&mut m, &[f], &fields).unwrap();
+            assert_eq!(tops.len(), 1, "{fields}");
             m.validate().unwrap();
             assert_eq!(
                 counts(&m),
                 [8 + dv as i64, 12 + de as i64, 6 + df as i64],
-                "{kind}"
+                "{fields}"
             );
-            assert_eq!(m.genus(), 0, "{kind}");
+            assert_eq!(m.genus(), 0, "{fields}");
+        }
+    }
+
+    /// Every kind refuses each option it does not read, naming the option
+    /// and what the kind reads, and the mesh is left as it was.
+    #[test]
+    fn an_option_a_kind_does_not_read_is_refused() {
+        let fields = ["distance", "scale", "rotation", "twist", "height", "count"];
+        let cube = mesh("@cube");
+        let f = cube.faces().next().unwrap();
+        let before = positions(&cube);
+        let mut refused = 0;
+        for kind in ExtrudeKind::ALL {
+            for (option, field) in ExtrudeOption::ALL.into_iter().zip(fields) {
+                assert_eq!(option.name(), field);
+                let req = json!({"kind": kind.name(), field: 2});
+                let mut m = cube.clone();
+                let r = extrude_req(&mut m, &[f], &req);
+                if kind.reads(option) {
+                    continue;
+                }
+                let e = r.unwrap_err();
+                assert!(
+                    e.starts_with(&format!(
+                        "\"{field}\" does not apply to the {kind} extrusion"
+                    )),
+                    "{req}: {e}"
+                );
+                assert_eq!(positions(&m), before, "{req}");
+                refused += 1;
+            }
+        }
+        assert!(refused > 30);
+        for (req, says) in [
+            (
+                json!({"kind": "together", "scale": 2}),
+                "\"scale\" does not apply to the together extrusion",
+            ),
+            (
+                json!({"kind": "stellate", "direction": "normals"}),
+                "\"direction\" does not apply to the stellate",
+            ),
+            (
+                json!({"direction": "average"}),
+                "\"direction\" does not apply to the plain",
+            ),
+        ] {
+            let mut m = cube.clone();
+            let e = extrude_req(&mut m, &[f], &req).unwrap_err();
+            assert!(e.contains(says), "{req}: {e}");
+            assert_eq!(positions(&m), before, "{req}");
+        }
+    }
+
+    /// Without a distance, a stellation lifts its apex as the library's
+    /// default does (0: the apex is the face's centroid, in its plane).
+    #[test]
+    fn stellate_default_distance_is_the_library_default() {
+        for kind in [ExtrudeKind::Stellate, ExtrudeKind::DoubleStellate] {
+            let mut served = mesh("@cube");
+            let f = served.faces().next().unwrap();
+            extrude_req(&mut served, &[f], &json!({"kind": kind.name()})).unwrap();
+            let mut library = mesh("@cube");
+            let g = library.faces().next().unwrap();
+            extrude_selection(&mut library, &[g], kind, &ExtrudeOptions::default()).unwrap();
+            assert_eq!(positions(&served), positions(&library), "{kind}");
+            // Nothing is lifted off the cube (corners at ±1): every corner stays in it.
+            for v in served.vertices() {
+                let p = served.position(v).unwrap();
+                assert!(p.abs().max_element() <= 1.0 + 1e-12, "{kind}: {p}");
+            }
         }
     }
 
@@ -494,15 +652,19 @@ mod tests {
     fn bad_extrusions_are_refused() {
         let mut m = mesh("@cube");
         let f = m.faces().next().unwrap();
-        for (kind, fields, says) in [
-            ("nope", json!({}), "unknown kind"),
-            ("plain", json!({"count": 0}), "count"),
-            ("plain", json!({"scale": -1}), "scale"),
-            ("plain", json!({"distance": "x"}), "distance"),
-            ("together", json!({"direction": "up"}), "direction"),
+        for (fields, says) in [
+            (
+                json!({"kind": "nope"}),
+                "unknown kind \"nope\" (one of plain, cubical",
+            ),
+            (json!({"count": 0}), "count"),
+            (json!({"count": 65}), "count"),
+            (json!({"scale": -1}), "scale"),
+            (json!({"distance": "x"}), "distance"),
+            (json!({"kind": "together", "direction": "up"}), "direction"),
         ] {
-            let e = extrude_with(&mut m, &[f], kind, &fields).unwrap_err();
-            assert!(e.contains(says), "{kind} {fields}: {e:?}");
+            let e = extrude_req(&mut m, &[f], &fields).unwrap_err();
+            assert!(e.contains(says), "{fields}: {e:?}");
         }
     }
 }
