@@ -405,7 +405,7 @@ fn bezier_and_hermite_differ_and_agree_at_tripled_weights() {
     }
 }
 
-/// Two unit cubes side by side (the second shifted by `gap` along x): two
+/// Two `@cube`s (side 2) side by side, the second shifted by `gap` along x: two
 /// components, 16 / 24 / 12.
 fn two_cubes(gap: f64) -> Mesh {
     let one = holey_shapes::parse_primitive("@cube").unwrap();
