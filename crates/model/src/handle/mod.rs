@@ -8,6 +8,10 @@
 //! they join and the genus sum is unchanged. With `k = 1` it is exactly
 //! the kernel's `CreatePipe` (§III.3).
 //!
+//! [`create_multi_face_handle`] joins four or more faces at once through
+//! a common polyhedral hub, one such handle per face (TopMod's multi-face
+//! handle; see its module documentation).
+//!
 //! ## Algorithm (§IV.4)
 //! Given corners `c1 = (v1, f1)`, `c2 = (v2, f2)`, weights `w1`, `w2` and
 //! `k` segments:
@@ -77,6 +81,7 @@
 
 pub mod geometry;
 mod matching;
+mod multi;
 
 use glam::DVec3;
 use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, VertexId};
@@ -84,6 +89,7 @@ use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, VertexId};
 pub use geometry::{BezierCurve, HandlePath, HermiteCurve};
 use geometry::{Morph, centroid, rotation_between, vector_area};
 use matching::{Matching, plan_matching};
+pub use multi::{MultiHandleError, MultiHandleParams, MultiHandleReport, create_multi_face_handle};
 
 /// Why a handle was refused. The mesh is unchanged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
