@@ -164,9 +164,9 @@ pub enum ExtrudeOption {
     Rotation,
     /// [`ExtrudeOptions::twist`].
     Twist,
-    /// [`ExtrudeOptions::height`].
+    /// The `height` field of [`ExtrudeOptions`].
     Height,
-    /// [`ExtrudeOptions::count`].
+    /// The `count` field of [`ExtrudeOptions`].
     Count,
 }
 
