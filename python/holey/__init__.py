@@ -492,13 +492,18 @@ class Mesh:
         segments: int = 4,
         w1: float = 1.0,
         w2: float = 1.0,
+        curve: str = "hermite",
     ) -> "Mesh":
         """A handle of ``segments`` segments from face ``faces[0]`` to
-        face ``faces[1]`` along a Hermite curve (thesis chapter IV); the
-        corners matched are ``corners``, so other corners twist it.
-        Negative weights make a tunnel through the mesh. In one component
-        the genus rises by 1; between two components they join."""
-        return Mesh(self._native.handle(tuple(faces), tuple(corners), segments=segments, w1=w1, w2=w2))
+        face ``faces[1]`` along a Hermite curve (thesis chapter IV), or
+        with ``curve="bezier"`` TopMod's cubic Bézier whose control points
+        stand ``w1`` and ``w2`` above the faces; the corners matched are
+        ``corners``, so other corners twist it. Negative weights make a
+        tunnel through the mesh. In one component the genus rises by 1;
+        between two components they join."""
+        return Mesh(
+            self._native.handle(tuple(faces), tuple(corners), segments=segments, w1=w1, w2=w2, curve=curve)
+        )
 
     def rind(self, thickness: float, punch: Sequence[int] = (), peel: Sequence[int] = ()) -> "Mesh":
         """A crust of ``thickness`` (thesis chapter V): two shells; each

@@ -69,6 +69,7 @@ class Mesh:
         segments: int = ...,
         w1: float = ...,
         w2: float = ...,
+        curve: str = ...,
     ) -> Mesh: ...
     def rind(
         self, thickness: float, *, punch: List[int] = ..., peel: List[int] = ...

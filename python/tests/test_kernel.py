@@ -92,6 +92,13 @@ def test_handle_through_a_cube_makes_genus_one():
     assert counts(tunnel)[:3] == (v + d * (s - 1), e + d * (2 * s - 1), f + d * s - 2)
     with pytest.raises(holey.HoleyError, match="face 9999"):
         m.handle((9999, 0))
+    # TopMod's Bézier curve: the same counts along another curve.
+    arch = m.handle((top, bottom), segments=6, w1=-1.0, w2=-1.0, curve="bezier")
+    arch.validate()
+    assert counts(arch)[:3] == counts(tunnel)[:3] and arch.info()["genus"] == 1
+    assert not np.array_equal(arch.to_arrays()[0], tunnel.to_arrays()[0])
+    with pytest.raises(holey.HoleyError, match="spline"):
+        m.handle((top, bottom), curve="spline")
 
 
 def test_rind_punches_join_the_shells_then_grow_handles():

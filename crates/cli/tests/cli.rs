@@ -593,7 +593,43 @@ fn curved_handles() {
         "-1",
     ]);
     assert_eq!(info(s(&tunnel), &[])["genus"], 1);
+    // The same handle along TopMod's Bézier: the same counts, another
+    // curve (the middle ring sits elsewhere, so the files differ).
+    let bezier = dir.path().join("b.obj");
+    ok(&[
+        "handle",
+        "@cube",
+        s(&bezier),
+        "--from",
+        "0:0",
+        "--to",
+        "5:0",
+        "--segments",
+        "3",
+        "--curve",
+        "bezier",
+    ]);
+    assert_eq!(vef(&info(s(&bezier), &[])), (16, 32, 16, 1));
+    assert_ne!(
+        std::fs::read(&out).unwrap(),
+        std::fs::read(&bezier).unwrap()
+    );
     let missing = dir.path().join("x.obj");
+    assert!(
+        bad(&[
+            "handle",
+            "@cube",
+            s(&missing),
+            "--from",
+            "0:0",
+            "--to",
+            "5:0",
+            "--curve",
+            "spline"
+        ])
+        .contains("spline")
+    );
+    assert!(!missing.exists());
     assert!(
         bad(&[
             "handle",

@@ -12,7 +12,7 @@ use std::path::Path;
 use holey::dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey::dlfl::{CornerId, FaceId, dlfl_info};
 use holey::model::extrude::{ExtrudeOptions, RegionDirection};
-use holey::model::handle::{HandleParams, create_handle};
+use holey::model::handle::{HandleCurve, HandleParams, create_handle};
 use holey::model::menger::{MengerParams, Thickness, menger};
 use holey::model::rind::{PunchOutcome, Rind};
 use holey::model::sierpinski::sierpinski;
@@ -160,9 +160,10 @@ impl Mesh {
 
     /// A handle of `segments` segments from corner `corners[0]` of face
     /// `faces[0]` to corner `corners[1]` of face `faces[1]` along a
-    /// Hermite curve with weights `w1`, `w2` (thesis ch. IV); negative
-    /// weights make a tunnel through the mesh.
-    #[pyo3(signature = (faces, corners=(0, 0), *, segments=4, w1=1.0, w2=1.0))]
+    /// Hermite curve (thesis ch. IV) or TopMod's cubic Bézier (`curve`)
+    /// with weights `w1`, `w2`; negative weights make a tunnel through
+    /// the mesh.
+    #[pyo3(signature = (faces, corners=(0, 0), *, segments=4, w1=1.0, w2=1.0, curve="hermite"))]
     fn handle(
         &self,
         faces: (usize, usize),
@@ -170,11 +171,14 @@ impl Mesh {
         segments: usize,
         w1: f64,
         w2: f64,
+        curve: &str,
     ) -> PyResult<Mesh> {
+        let curve: HandleCurve = curve.parse().map_err(bad)?;
         let a = self.corner(faces.0, corners.0)?;
         let b = self.corner(faces.1, corners.1)?;
         let mut m = self.mesh.clone();
-        create_handle(&mut m, a, b, &HandleParams::new(segments, w1, w2)).map_err(bad)?;
+        let params = HandleParams::new(segments, w1, w2).with_curve(curve);
+        create_handle(&mut m, a, b, &params).map_err(bad)?;
         Ok(Mesh::wrap(m))
     }
 

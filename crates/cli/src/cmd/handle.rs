@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use holey_io::WriteOptions;
-use holey_model::handle::{HandleParams, create_handle};
+use holey_model::handle::{HandleCurve, HandleParams, create_handle};
 use holey_model::numbering::parse_face_corner;
 
 use crate::error::bad_input;
@@ -19,10 +19,14 @@ in two components: they join. The corners (F:C, face F in file order as
 `holey info` counts, corner C its C-th vertex) are matched, so choosing
 other corners twists the handle. Between two d-gons a handle of s
 segments adds d(s-1) vertices, d(2s-1) edges and ds-2 faces.
+--curve bezier takes TopMod's cubic Bézier instead, with control points
+w1 and w2 above the faces along their normals (the Hermite curve with
+three times the weights).
 
 Examples:
   holey handle @torus out.obj --from 0:0 --to 150:2 --segments 6 --w1 2 --w2 2
-  holey handle @cube tunnel.obj --from 0:0 --to 5:0 --segments 4 --w1 -1 --w2 -1")]
+  holey handle @cube tunnel.obj --from 0:0 --to 5:0 --segments 4 --w1 -1 --w2 -1
+  holey handle @cube arch.obj --from 0:0 --to 2:0 --segments 6 --curve bezier")]
 pub struct Args {
     /// Input mesh (a file or a primitive).
     pub input: String,
@@ -43,9 +47,13 @@ pub struct Args {
     /// Weight of the second face's normal (negative: a hole).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub w2: f64,
+    /// The handle's centre curve: hermite (the thesis's, §IV.2) or bezier.
+    #[arg(long, default_value = "hermite")]
+    pub curve: String,
 }
 
 pub fn run(args: Args) -> Result<()> {
+    let curve: HandleCurve = args.curve.parse().map_err(bad_input)?;
     let (f1, c1) = parse_face_corner(&args.from).map_err(bad_input)?;
     let (f2, c2) = parse_face_corner(&args.to).map_err(bad_input)?;
     let mut kernel = load(&args.input)?.into_kernel(false)?;
@@ -56,7 +64,7 @@ pub fn run(args: Args) -> Result<()> {
             .map_err(bad_input)
     };
     let (a, b) = (corner(f1, c1)?, corner(f2, c2)?);
-    let params = HandleParams::new(args.segments, args.w1, args.w2);
+    let params = HandleParams::new(args.segments, args.w1, args.w2).with_curve(curve);
     create_handle(&mut kernel.mesh, a, b, &params)
         .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
     write_kernel(&args.output, &kernel.mesh, &WriteOptions::default())
