@@ -555,6 +555,86 @@ fn menger_sponges() {
     }
 }
 
+/// A multi-face handle (`--faces`): six unit cubes on the axes, the face
+/// of each that looks at the origin joined through a hub. The six
+/// directions are the octahedron's, so the hub is a cube (8 / 12 / 6)
+/// with a square facing each selected square; each handle of s segments
+/// between squares adds 4(s − 1) / 4(2s − 1) / 4s − 2; seven pieces
+/// joined by six handles are one sphere.
+#[test]
+fn multi_face_handle_joins_six_cubes_through_a_hub() {
+    let dir = tmp();
+    let input = dir.path().join("six.obj");
+    let corners = [
+        [0, 0, 0],
+        [1, 0, 0],
+        [1, 1, 0],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 0, 1],
+        [1, 1, 1],
+        [0, 1, 1],
+    ];
+    // Outward quads and their normals.
+    let quads: [([usize; 4], [i32; 3]); 6] = [
+        ([0, 3, 2, 1], [0, 0, -1]),
+        ([4, 5, 6, 7], [0, 0, 1]),
+        ([0, 1, 5, 4], [0, -1, 0]),
+        ([2, 3, 7, 6], [0, 1, 0]),
+        ([1, 2, 6, 5], [1, 0, 0]),
+        ([0, 4, 7, 3], [-1, 0, 0]),
+    ];
+    let (mut text, mut facing) = (String::new(), Vec::new());
+    for k in 0..6 {
+        let (axis, sign) = (k / 2, if k % 2 == 0 { -1 } else { 1 });
+        for c in corners {
+            let p: Vec<f64> = (0..3)
+                .map(|i| c[i] as f64 - 0.5 + if i == axis { 3.0 * sign as f64 } else { 0.0 })
+                .collect();
+            text += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+        }
+        for (j, (q, n)) in quads.into_iter().enumerate() {
+            // Face 6k + j in file order; this one looks at the origin.
+            if n[axis] == -sign {
+                facing.push((6 * k + j).to_string());
+            }
+            let v: Vec<String> = q.iter().map(|i| (8 * k + i + 1).to_string()).collect();
+            text += &format!("f {}\n", v.join(" "));
+        }
+    }
+    std::fs::write(&input, text).unwrap();
+    assert_eq!(facing.len(), 6);
+    let out = dir.path().join("star.obj");
+    let segments = 3usize;
+    ok(&[
+        "handle",
+        s(&input),
+        s(&out),
+        "--faces",
+        &facing.join(","),
+        "--segments",
+        &segments.to_string(),
+    ]);
+    let (k, sg) = (6, segments as i64);
+    let want = (
+        48 + 8 + k * 4 * (sg - 1),
+        72 + 12 + k * 4 * (2 * sg - 1),
+        36 + 6 + k * (4 * sg - 2),
+        0,
+    );
+    assert_eq!(vef(&info(s(&out), &[])), want);
+    assert_eq!(info(s(&out), &[])["components"], 1);
+    // Refusals name the user's face numbers and write nothing.
+    let missing = dir.path().join("x.obj");
+    let twice = format!("{0},{0},{1},{2}", facing[0], facing[1], facing[2]);
+    assert!(
+        bad(&["handle", s(&input), s(&missing), "--faces", &twice])
+            .contains(&format!("face {} is selected twice", facing[0]))
+    );
+    assert!(bad(&["handle", s(&input), s(&missing), "--faces", "0,1"]).contains("at least four"));
+    assert!(!missing.exists());
+}
+
 #[test]
 fn curved_handles() {
     let dir = tmp();

@@ -77,6 +77,7 @@ use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, RawMesh, VertexId};
 
 use crate::cut::{CutError, CutTarget};
 use crate::extrude::ExtrudeError;
+use crate::handle::MultiHandleError;
 use crate::wireframe::WireframeError;
 
 /// Whose list the numbers follow, which also decides how an edge is
@@ -477,6 +478,25 @@ impl Numbering {
             CutError::HoleFace(f) => format!(
                 "{} is a hole (a boundary loop); it cannot be cut or cut away",
                 self.face_name(mesh, *f)
+            ),
+            other => other.to_string(),
+        }
+    }
+
+    /// A multi-face handle's refusal in these numbers; `mesh` is the mesh
+    /// it refused (unchanged by a refusal).
+    pub fn describe_multi_handle(&self, mesh: &Mesh, e: &MultiHandleError) -> String {
+        let face = |f: FaceId| self.face_name(mesh, f);
+        match e {
+            MultiHandleError::DuplicateFace(f) => format!("{} is selected twice", face(*f)),
+            MultiHandleError::AtCentre(f) => format!(
+                "{} has its centroid at the centre of the selected faces, so no direction from the hub",
+                face(*f)
+            ),
+            MultiHandleError::SameDirection(f, g) => format!(
+                "{} and {} lie in the same direction from the centre of the selected faces",
+                face(*f),
+                face(*g)
             ),
             other => other.to_string(),
         }

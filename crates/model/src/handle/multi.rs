@@ -61,7 +61,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
-use holey_dlfl::{BuildError, FaceId, Mesh, RawMesh};
+use holey_dlfl::{BuildError, CornerId, FaceId, Mesh, RawMesh};
 
 use super::geometry::{centroid, vector_area};
 use super::{HandleError, HandleParams, HandleReport, create_handle};
@@ -275,7 +275,7 @@ pub fn create_multi_face_handle(
     for (index, (f, h)) in ends.into_iter().enumerate() {
         let handle = (|| {
             let c1 = joined.face_corner(f)?;
-            let c2 = joined.face_corner(h)?;
+            let c2 = least_twisted(&joined, c1, h)?;
             create_handle(&mut joined, c1, c2, &params.handle)
         })()
         .map_err(|source| MultiHandleError::Handle { index, source })?;
@@ -288,6 +288,44 @@ pub fn create_multi_face_handle(
         hub_faces,
         handles,
     })
+}
+
+/// The corner of hub face `h` to pair with corner `c1` of a selected
+/// face so that the handle turns least: the handle reads the selected
+/// face forwards from `c1` and the hub face backwards from the corner
+/// chosen (module docs), and the corner chosen is the one whose pairing
+/// best lines up the corners' directions from their faces' centroids
+/// (largest sum of dot products of the unit offsets). Faces of different
+/// sizes keep the hub face's first corner (their corners are matched by
+/// the handle's own rule).
+fn least_twisted(mesh: &Mesh, c1: CornerId, h: FaceId) -> Result<CornerId, HandleError> {
+    let f = mesh.corner_face(c1)?;
+    let offsets = |corners: Vec<CornerId>| -> Result<Vec<DVec3>, HandleError> {
+        let points = corners
+            .iter()
+            .map(|&c| mesh.position(mesh.corner_vertex(c)?))
+            .collect::<Result<Vec<_>, _>>()?;
+        let centroid = points.iter().copied().sum::<DVec3>() / points.len().max(1) as f64;
+        Ok(points
+            .iter()
+            .map(|p| (*p - centroid).normalize_or_zero())
+            .collect())
+    };
+    let selected: Vec<CornerId> = mesh.face_corners_from(c1)?.collect();
+    let hub: Vec<CornerId> = mesh.face_corners(h)?.collect();
+    let first = mesh.face_corner(h)?;
+    if selected.len() != hub.len() || mesh.face_corners(f)?.count() != selected.len() {
+        return Ok(first);
+    }
+    let (p, q) = (offsets(selected)?, offsets(hub.clone())?);
+    let d = q.len();
+    let score = |r: usize| -> f64 {
+        // Selected corner i meets hub corner r − i (backwards from r).
+        (0..d).map(|i| p[i].dot(q[(r + d - i) % d])).sum()
+    };
+    Ok((0..d)
+        .max_by(|&a, &b| score(a).total_cmp(&score(b)))
+        .map_or(first, |r| hub[r]))
 }
 
 /// `a` and `b` side by side: `b`'s vertices, faces, corners and edges
@@ -407,6 +445,16 @@ mod tests {
             assert_eq!(m.topology().component_count(), 1);
             assert_eq!(m.genus(), 0);
             assert_eq!(r.handles.len(), k);
+            // Untwisted: the hub's squares face the cubes' squares corner
+            // to corner along straight axes, so every quad the handles
+            // make is planar (a handle turned by a quarter would skew its
+            // sections' sides into twisted quads).
+            for f in m.faces() {
+                let p = m.face_positions(f).unwrap();
+                let n = (p[1] - p[0]).cross(p[2] - p[0]);
+                let off = (p[3] - p[0]).dot(n.normalize()).abs();
+                assert!(off < 1e-9, "{curve}: a quad {off} off its plane");
+            }
         }
     }
 
