@@ -503,17 +503,19 @@ struct Near {
 
 impl Near {
     fn of(a: &TriMesh, pa: &Parts, b: &TriMesh, pb: &Parts) -> Result<Near, UnionError> {
-        let meeting = |m: &TriMesh, other: Aabb, offset: u32| -> Vec<u32> {
-            (0..m.triangles.len() as u32)
-                .into_par_iter()
-                .filter(|&t| Aabb::from_points(&m.corners(t as usize)).overlaps(&other))
-                .map(|t| t + offset)
-                .collect()
+        // The solids' own trees hold every triangle's box already: a box
+        // query finds the ones meeting the other's box without a pass
+        // over all of them (sorted, for the order the mesh stores them in).
+        let meeting = |tree: &Bvh, other: Aabb, offset: u32| -> Vec<u32> {
+            let mut near = Vec::new();
+            tree.for_each_overlap(&other, |t| near.push(t + offset));
+            near.sort_unstable();
+            near
         };
         let split = a.triangles.len() as u32;
         let (near_a, near_b) = rayon::join(
-            || meeting(a, pb.tree.bounds(), 0),
-            || meeting(b, pa.tree.bounds(), split),
+            || meeting(&pa.tree, pb.tree.bounds(), 0),
+            || meeting(&pb.tree, pa.tree.bounds(), split),
         );
         let tris_a: Vec<[u32; 3]> = near_a.iter().map(|&t| a.triangles[t as usize]).collect();
         let tris_b: Vec<[u32; 3]> = near_b
