@@ -266,7 +266,18 @@ fn bad_requests_get_clear_errors() {
         (json!({"op": "nope"}), "unknown op"),
         (json!({}), "no \"op\""),
         (json!({"op": "primitive", "spec": "@nosuch"}), "@nosuch"),
-        (json!({"op": "primitive"}), "\"spec\""),
+        (
+            json!({"op": "primitive"}),
+            "\"primitive\" request: missing field \"spec\"",
+        ),
+        (
+            json!({"op": "handle", "faces": [0, 1], "segments": "four"}),
+            "\"handle\" request, field \"segments\": invalid type",
+        ),
+        (
+            json!({"op": "stroke_frame", "point": [0, 0]}),
+            "\"stroke_frame\" request, field \"point\"",
+        ),
         (
             json!({"op": "delete_edge", "edge": 99999}),
             "does not exist",
@@ -1129,7 +1140,10 @@ fn toolbox_refusals_are_clear_and_change_nothing() {
             "unknown kind",
         ),
         (json!({"op": "extrude", "faces": [0], "scale": 0}), "scale"),
-        (json!({"op": "extrude", "faces": "all"}), "list"),
+        (
+            json!({"op": "extrude", "faces": "all"}),
+            "\"extrude\" request, field \"faces\"",
+        ),
         (json!({"op": "wireframe", "thickness": -1}), "thickness"),
         (json!({"op": "wireframe"}), "\"thickness\""),
         (

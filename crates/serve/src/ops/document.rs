@@ -3,17 +3,15 @@
 //! remeshing setting.
 
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
-use serde_json::{Value, json};
+use serde_json::json;
 
-use super::fields::{num_field, str_field};
 use super::{Reply, Shared, keep_workspace};
 use crate::ServeError;
 use crate::doc::{Content, Document};
 
 impl Shared {
     /// `primitive`: the document becomes a built-in primitive (model workspace).
-    pub(super) fn create_primitive(&self, doc: &mut Document, req: &Value) -> Reply {
-        let spec = str_field(req, "spec")?;
+    pub(super) fn create_primitive(&self, doc: &mut Document, spec: &str) -> Reply {
         let soup = holey_shapes::parse_primitive(spec)
             .map_err(|e| ServeError::Refused(format!("{spec}: {e}")))?;
         if soup.face_count() > self.config.max_faces {
@@ -35,8 +33,7 @@ impl Shared {
     }
 
     /// `workspace`: the document converted to the model or sculpt workspace.
-    pub(super) fn switch_workspace(&self, doc: &mut Document, req: &Value) -> Reply {
-        let to = str_field(req, "workspace")?;
+    pub(super) fn switch_workspace(&self, doc: &mut Document, to: &str) -> Reply {
         if doc.content().workspace() == to {
             return Ok(json!({}));
         }
@@ -71,15 +68,16 @@ impl Shared {
         Ok(json!({}))
     }
 
-    /// `weld` (by a distance, a share of the mesh size) or `make_manifold` (`op`).
-    pub(super) fn repair(&self, doc: &mut Document, op: &str, req: &Value) -> Reply {
+    /// `weld` (by a distance, a share of the mesh size) or, without one,
+    /// `make_manifold`.
+    pub(super) fn repair(&self, doc: &mut Document, weld: Option<f64>) -> Reply {
         if doc.rind.is_some() {
             return Err(ServeError::Refused(
                 "finish or cancel the rind first".into(),
             ));
         }
-        let (content, message) = if op == "weld" {
-            doc.content().welded(num_field(req, "distance")?)?
+        let (content, message) = if let Some(distance) = weld {
+            doc.content().welded(distance)?
         } else {
             (
                 doc.content().made_manifold()?,
@@ -92,8 +90,7 @@ impl Shared {
     }
 
     /// `set_remesh`: the dynamic remeshing detail in [0, 1] (0 is off).
-    pub(super) fn set_remesh(&self, doc: &mut Document, req: &Value) -> Reply {
-        let detail = num_field(req, "detail")?;
+    pub(super) fn set_remesh(&self, doc: &mut Document, detail: f64) -> Reply {
         doc.remesh_detail = detail.clamp(0.0, 1.0);
         self.publish_state(doc);
         Ok(json!({}))

@@ -17,8 +17,8 @@ use holey_model::wireframe::{ColumnParams, columns, wireframe};
 use holey_subdiv::{RemeshParams, RemeshScheme, Scheme, remesh_capped, subdivide_capped};
 use serde_json::{Value, json};
 
-use super::fields::{index_field, num_field, str_field};
 use super::remesh::read_request;
+use super::request::{Request, ToolRequest, missing};
 use super::toolbox::{counts, faces_of, plain_ids, vertices_of};
 use super::{Out, Shared};
 use crate::doc::{Content, Document};
@@ -35,7 +35,7 @@ impl Shared {
         conn: ConnId,
         id: Option<Value>,
         op: &str,
-        req: &Value,
+        request: Request,
     ) {
         let started = (|| -> Result<Started, ServeError> {
             let mut doc = self.doc();
@@ -51,8 +51,7 @@ impl Shared {
             // The ids in the library's messages are named as the picture
             // the request was made on names them.
             let index = doc.index().clone();
-            let level = |name: &str, max: usize| -> Result<usize, ServeError> {
-                let v = index_field(req, name)?;
+            let at_most = |name: &str, v: usize, max: usize| -> Result<usize, ServeError> {
                 if v > max {
                     return Err(ServeError::Refused(format!(
                         "{op}: {name} {v} is more than the modeler allows ({max})"
@@ -60,16 +59,16 @@ impl Shared {
                 }
                 Ok(v)
             };
-            let (job, what) = match op {
-                "sierpinski" => {
-                    let n = level("level", 8)?;
+            let (job, what) = match request {
+                Request::Sierpinski { level } => {
+                    let n = at_most("level", level, 8)?;
                     (Job::Sierpinski(n), format!("Sierpinski level {n}"))
                 }
-                "menger" => {
-                    let n = level("level", 5)?;
+                Request::Menger { level, exact } => {
+                    let n = at_most("level", level, 5)?;
                     // The thesis's generalized sponge by default; `exact`
                     // builds the true Menger sponge of a box.
-                    let exact = req.get("exact").and_then(Value::as_bool) == Some(true);
+                    let exact = exact == Some(true);
                     let what = if exact {
                         format!("true Menger sponge level {n}")
                     } else {
@@ -77,8 +76,8 @@ impl Shared {
                     };
                     (Job::Menger(n, exact), what)
                 }
-                "remesh" => {
-                    let (scheme, params, n) = read_request(req)?;
+                Request::Remesh(r) => {
+                    let (scheme, params, n) = read_request(&r)?;
                     let what = if n == 1 {
                         format!("{scheme} remeshing")
                     } else {
@@ -86,12 +85,17 @@ impl Shared {
                     };
                     (Job::Remesh(scheme, Box::new(params), n), what)
                 }
-                "wireframe" => wireframe_job(&mesh, req, self.config.max_faces)?,
-                "tool" => tool_job(&doc, req)?,
-                "hull" => hull_job(req)?,
-                _ => {
-                    let n = level("levels", 8)?;
-                    let scheme = match req.get("scheme").and_then(Value::as_str) {
+                Request::Wireframe { thickness, columns } => {
+                    wireframe_job(&mesh, thickness, columns, self.config.max_faces)?
+                }
+                Request::Tool(t) => tool_job(&doc, &t)?,
+                Request::Hull { dual } => {
+                    let dual = dual == Some(true);
+                    (Job::Hull(dual), hull_name(dual).into())
+                }
+                Request::Subdivide { scheme, levels } => {
+                    let n = at_most("levels", levels, 8)?;
+                    let scheme = match scheme.as_deref() {
                         Some("doo-sabin") => Scheme::DooSabin,
                         Some("catmull-clark") | None => Scheme::CatmullClark,
                         Some(other) => {
@@ -101,6 +105,12 @@ impl Shared {
                         }
                     };
                     (Job::Subdivide(scheme, n), format!("subdivision ×{n}"))
+                }
+                // `Shared::request` sends only the long operations here.
+                _ => {
+                    return Err(ServeError::BadRequest(format!(
+                        "{op:?} is not a long operation"
+                    )));
                 }
             };
             doc.busy = Some((conn, what.clone()));
@@ -249,20 +259,18 @@ pub(super) enum Tool {
 /// wireframe) whose radius is the thickness. The output's faces are
 /// known from the counts (wireframe.rs) and checked against the cap
 /// before anything is built.
-fn wireframe_job(mesh: &Mesh, req: &Value, max_faces: usize) -> Result<(Job, String), ServeError> {
-    let thickness = num_field(req, "thickness")?;
-    let sides = match req.get("columns") {
-        None | Some(Value::Null) => 0,
-        Some(v) => v
-            .as_u64()
-            .and_then(|n| usize::try_from(n).ok())
-            .filter(|n| *n == 0 || (3..=MAX_COLUMN_SIDES).contains(n))
-            .ok_or_else(|| {
-                ServeError::BadRequest(format!(
-                    "\"columns\" must be 0 (the wireframe) or the sides of each column, 3 to {MAX_COLUMN_SIDES}"
-                ))
-            })?,
-    };
+fn wireframe_job(
+    mesh: &Mesh,
+    thickness: f64,
+    columns: Option<usize>,
+    max_faces: usize,
+) -> Result<(Job, String), ServeError> {
+    let sides = columns.unwrap_or(0);
+    if sides != 0 && !(3..=MAX_COLUMN_SIDES).contains(&sides) {
+        return Err(ServeError::BadRequest(format!(
+            "\"columns\" must be 0 (the wireframe) or the sides of each column, 3 to {MAX_COLUMN_SIDES}"
+        )));
+    }
     let [v, e, _] = counts(mesh).map(|n| n as usize);
     // Wireframe: F' = 4E + 2V. Columns: F' ≤ nE + 2E + 2V (Σ(k + 2) over
     // the vertices is at most 2E + 2V).
@@ -291,15 +299,15 @@ fn wireframe_job(mesh: &Mesh, req: &Value, max_faces: usize) -> Result<(Job, Str
 
 /// `tool`: `tool` and what it acts on (`faces` for planarize, `faces` or
 /// `vertices` for spherical, `distance` for splitting valence 2).
-fn tool_job(doc: &Document, req: &Value) -> Result<(Job, String), ServeError> {
-    doc.check_version(req)?;
-    let name = str_field(req, "tool")?;
+fn tool_job(doc: &Document, req: &ToolRequest) -> Result<(Job, String), ServeError> {
+    doc.check_version(req.version)?;
+    let name = req.tool.as_str();
     let tool = match name {
-        "planarize" => Tool::Planarize(faces_of(doc, req, "faces")?),
+        "planarize" => Tool::Planarize(faces_of(doc, req.faces.as_deref())?),
         "spherical" => {
-            let mut vs = vertices_of(doc, req, "vertices")?;
+            let mut vs = vertices_of(doc, req.vertices.as_deref())?;
             let mesh = doc.model("spherical")?;
-            for f in faces_of(doc, req, "faces")? {
+            for f in faces_of(doc, req.faces.as_deref())? {
                 let ring = mesh
                     .face_vertices(f)
                     .map_err(|e| ServeError::Refused(e.to_string()))?;
@@ -313,7 +321,9 @@ fn tool_job(doc: &Document, req: &Value) -> Result<(Job, String), ServeError> {
         }
         "cleanup" => Tool::CleanupTwoGons,
         "remove-valence-2" => Tool::RemoveValenceTwo,
-        "split-valence-2" => Tool::SplitValenceTwo(num_field(req, "distance")?),
+        "split-valence-2" => {
+            Tool::SplitValenceTwo(req.distance.ok_or_else(|| missing("tool", "distance"))?)
+        }
         other => {
             return Err(ServeError::BadRequest(format!(
                 "unknown tool {other:?} (planarize, spherical, cleanup, remove-valence-2, split-valence-2)"
@@ -323,20 +333,10 @@ fn tool_job(doc: &Document, req: &Value) -> Result<(Job, String), ServeError> {
     Ok((Job::Tool(tool), name.replace('-', " ")))
 }
 
-/// `hull`: `dual` (optional, default false) chooses TopMod's dual convex
-/// hull. Neither can outgrow the cap by much: the hull has at most
-/// 2V − 4 faces and its dual one face per hull corner; the result is
-/// checked against the cap when built.
-fn hull_job(req: &Value) -> Result<(Job, String), ServeError> {
-    let dual = match req.get("dual") {
-        None | Some(Value::Null) => false,
-        Some(v) => v
-            .as_bool()
-            .ok_or_else(|| ServeError::BadRequest("\"dual\" must be true or false".into()))?,
-    };
-    Ok((Job::Hull(dual), hull_name(dual).into()))
-}
-
+/// `hull`'s name; with `dual`, TopMod's dual convex hull. Neither can
+/// outgrow the cap by much: the hull has at most 2V − 4 faces and its
+/// dual one face per hull corner; the result is checked against the cap
+/// when built.
 fn hull_name(dual: bool) -> &'static str {
     if dual {
         "dual convex hull"

@@ -8,9 +8,10 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use holey_geom::position_key;
-use serde_json::{Value, json};
+use holey_topo::TriMesh;
+use serde_json::json;
 
-use super::fields::num_field;
+use super::request::{MaskPaint, missing};
 use super::{Reply, Shared};
 use crate::ServeError;
 use crate::doc::{Document, Mask};
@@ -20,48 +21,60 @@ use crate::doc::{Document, Mask};
 pub const MAX_MASK_POINTS: usize = 100_000;
 
 impl Shared {
-    /// `mask_paint` (`points` or `point`, `radius`, `erase`), `mask_clear`
-    /// or `mask_invert` (`op`): one undo step when the mask changes.
-    /// Answers with `"masked"`, the number of the mesh's vertices masked
-    /// now.
-    pub(super) fn mask_edit(&self, doc: &mut Document, op: &str, req: &Value) -> Reply {
+    /// `mask_paint`: masks (with `erase`, unmasks) every vertex within the
+    /// radius of a dab centre (`points`, or one `point`).
+    pub(super) fn mask_paint(&self, doc: &mut Document, req: &MaskPaint) -> Reply {
+        let mesh = self.mask_mesh(doc)?;
+        if req.radius <= 0.0 {
+            return Err(ServeError::BadRequest(
+                "the mask brush's radius must be positive".into(),
+            ));
+        }
+        let dabs = Dabs::new(dab_points(req)?, req.radius);
+        let erase = req.erase == Some(true);
+        let mut mask = Mask::clone(doc.mask());
+        for &p in &mesh.positions {
+            if dabs.cover(p) {
+                let key = position_key(p);
+                if erase {
+                    mask.remove(&key);
+                } else {
+                    mask.insert(key);
+                }
+            }
+        }
+        self.commit_mask(doc, mask)
+    }
+
+    /// `mask_clear` or `mask_invert` (`op`).
+    pub(super) fn mask_clear_or_invert(&self, doc: &mut Document, op: &str) -> Reply {
+        let mesh = self.mask_mesh(doc)?;
+        let mask: Mask = if op == "mask_clear" {
+            Mask::new()
+        } else {
+            mesh.positions
+                .iter()
+                .map(|&p| position_key(p))
+                .filter(|k| !doc.mask().contains(k))
+                .collect()
+        };
+        self.commit_mask(doc, mask)
+    }
+
+    /// The sculpt mesh a mask edit applies to.
+    fn mask_mesh<'a>(&self, doc: &'a Document) -> Result<&'a TriMesh, ServeError> {
         let mesh = doc.sculpt_mesh("masking")?;
         if doc.rind.is_some() {
             return Err(ServeError::Refused(
                 "finish or cancel the rind first".into(),
             ));
         }
-        let mask: Mask = match op {
-            "mask_clear" => Mask::new(),
-            "mask_invert" => mesh
-                .positions
-                .iter()
-                .map(|&p| position_key(p))
-                .filter(|k| !doc.mask().contains(k))
-                .collect(),
-            _ => {
-                let radius = num_field(req, "radius")?;
-                if radius <= 0.0 {
-                    return Err(ServeError::BadRequest(
-                        "the mask brush's radius must be positive".into(),
-                    ));
-                }
-                let dabs = Dabs::new(dab_points(req)?, radius);
-                let erase = req.get("erase").and_then(Value::as_bool).unwrap_or(false);
-                let mut mask = Mask::clone(doc.mask());
-                for &p in &mesh.positions {
-                    if dabs.cover(p) {
-                        let key = position_key(p);
-                        if erase {
-                            mask.remove(&key);
-                        } else {
-                            mask.insert(key);
-                        }
-                    }
-                }
-                mask
-            }
-        };
+        Ok(mesh)
+    }
+
+    /// One undo step when the mask changes. Answers with `"masked"`, the
+    /// number of the mesh's vertices masked now.
+    fn commit_mask(&self, doc: &mut Document, mask: Mask) -> Reply {
         if doc.commit_mask(mask) {
             self.publish(doc);
         }
@@ -120,32 +133,20 @@ fn cell(p: DVec3, radius: f64) -> [i64; 3] {
         .map(|c| c as i64)
 }
 
-/// The dab centres of a `mask_paint`: `points` (`[[x, y, z], …]`) or one
-/// `point`.
-fn dab_points(req: &Value) -> Result<Vec<DVec3>, ServeError> {
-    let bad = || {
-        ServeError::BadRequest(
-            "\"points\" must be a list of [x, y, z] of finite numbers (or give one \"point\")"
-                .into(),
-        )
+/// The dab centres of a `mask_paint`: `points` or one `point`.
+fn dab_points(req: &MaskPaint) -> Result<Vec<DVec3>, ServeError> {
+    let list = match (&req.points, &req.point) {
+        (Some(list), _) => list.as_slice(),
+        (None, Some(point)) => std::slice::from_ref(point),
+        (None, None) => return Err(missing("mask_paint", "points")),
     };
-    let Some(list) = req.get("points") else {
-        return super::fields::point_field(req).map(|p| vec![p]);
-    };
-    let list = list.as_array().ok_or_else(bad)?;
     if list.is_empty() || list.len() > MAX_MASK_POINTS {
         return Err(ServeError::BadRequest(format!(
             "\"points\" holds 1 to {MAX_MASK_POINTS} dab centres, got {}",
             list.len()
         )));
     }
-    list.iter()
-        .map(|p| {
-            let a = p.as_array().filter(|a| a.len() == 3).ok_or_else(bad)?;
-            let c = |i: usize| a[i].as_f64().filter(|v| v.is_finite()).ok_or_else(bad);
-            Ok(DVec3::new(c(0)?, c(1)?, c(2)?))
-        })
-        .collect()
+    Ok(list.iter().map(|&p| DVec3::from_array(p)).collect())
 }
 
 #[cfg(test)]

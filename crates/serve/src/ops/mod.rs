@@ -14,7 +14,7 @@
 //! clean-up tools and the convex hulls), `mask` (the sculpt mask), `remesh` (TopMod's remeshing schemes and their
 //! parameters), `toolbox` (extrusions, cuts and truncation of the
 //! selection), `select` (selection queries), `files` (uploads and
-//! downloads), and `fields` (reading a request).
+//! downloads), and `request` (the requests as types, read by serde).
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -22,19 +22,22 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 use serde_json::{Value, json};
 
+use holey_model::cut::CutOffset;
+
 use crate::auth::Gate;
 use crate::doc::{Content, Document};
 use crate::frame::encode_masked;
 use crate::persist::Saver;
 use crate::{Config, ConnId, ServeError};
+use request::Request;
 
 mod document;
-mod fields;
 mod files;
 mod long;
 mod mask;
 mod model;
 mod remesh;
+mod request;
 mod rind;
 mod sculpt;
 mod select;
@@ -173,34 +176,48 @@ impl Shared {
 
     /// Handles one request message.
     pub fn request(self: &Arc<Self>, conn: ConnId, text: &str) {
-        let req: Value = match serde_json::from_str(text) {
+        let message: Value = match serde_json::from_str(text) {
             Ok(v) => v,
             Err(e) => return self.reply_error(conn, None, &format!("bad request: {e}")),
         };
-        let id = req.get("id").cloned();
-        let op = req.get("op").and_then(Value::as_str).unwrap_or("");
-        let result = match op {
-            "sierpinski" | "menger" | "subdivide" | "remesh" | "wireframe" | "tool" | "hull" => {
-                return self.start_long(conn, id, op, &req);
+        let id = message.get("id").cloned();
+        let request = match request::parse(&message) {
+            Ok(r) => r,
+            Err(e) => return self.reply(conn, id.as_ref(), Err(e)),
+        };
+        // `parse` accepted it, so the op is one of `request::OPS`.
+        let op = message
+            .get("op")
+            .and_then(Value::as_str)
+            .unwrap_or_default();
+        let result = match request {
+            Request::Sierpinski { .. }
+            | Request::Menger { .. }
+            | Request::Subdivide { .. }
+            | Request::Remesh(_)
+            | Request::Wireframe { .. }
+            | Request::Tool(_)
+            | Request::Hull { .. } => {
+                return self.start_long(conn, id, op, request);
             }
-            "cancel" => self.cancel(),
-            "hello" => {
+            Request::Cancel => self.cancel(),
+            Request::Hello => {
                 self.hello(conn);
                 Ok(json!({}))
             }
-            "primitives" => Ok(primitives()),
-            "remesh_schemes" => Ok(remesh::schemes_json()),
-            _ => self.edit(conn, op, &req),
+            Request::Primitives => Ok(primitives()),
+            Request::RemeshSchemes => Ok(remesh::schemes_json()),
+            edit => self.edit(conn, op, edit),
         };
         self.reply(conn, id.as_ref(), result);
     }
 
     /// The requests that read or change the document under its lock.
-    fn edit(&self, conn: ConnId, op: &str, req: &Value) -> Reply {
+    fn edit(&self, conn: ConnId, op: &str, request: Request) -> Reply {
         let mut doc = self.doc();
-        let stroking = matches!(op, "stroke_frame" | "stroke_end");
+        let stroking = matches!(request, Request::StrokeFrame(_) | Request::StrokeEnd);
         if let Some((owner, what)) = &doc.busy
-            && !matches!(op, "set_remesh")
+            && !matches!(request, Request::SetRemesh { .. })
         {
             let who = if *owner == conn {
                 "this tab"
@@ -219,25 +236,69 @@ impl Shared {
             ));
         }
         let doc = &mut *doc;
-        match op {
-            "primitive" => self.create_primitive(doc, req),
-            "workspace" => self.switch_workspace(doc, req),
-            "undo" | "redo" => self.undo_redo(doc, op),
-            "insert_edge" | "delete_edge" | "handle" => self.model_edit(conn, doc, op, req),
-            "extrude" => self.extrude(doc, req),
-            "cut" | "truncate" => self.cut_or_truncate(doc, op, req),
-            "select" => self.select(doc, req),
-            "rind_begin" => self.rind_begin(doc, req),
-            "rind_punch" => self.rind_punch(doc, req),
-            "rind_end" => self.rind_end(doc, req),
-            "weld" | "make_manifold" => self.repair(doc, op, req),
-            "set_remesh" => self.set_remesh(doc, req),
-            "stroke_begin" => self.stroke_begin(conn, doc, req),
-            "stroke_frame" => self.stroke_frame(doc, req),
-            "stroke_end" => self.stroke_end(doc),
-            "mask_paint" | "mask_clear" | "mask_invert" => self.mask_edit(doc, op, req),
-            "" => Err(ServeError::BadRequest("the request has no \"op\"".into())),
-            _ => Err(ServeError::BadRequest(format!("unknown op {op:?}"))),
+        match request {
+            Request::Primitive { spec } => self.create_primitive(doc, &spec),
+            Request::Workspace { workspace } => self.switch_workspace(doc, &workspace),
+            Request::Undo | Request::Redo => self.undo_redo(doc, op),
+            Request::InsertEdge { version, corners } => {
+                self.model_edit(conn, doc, op, version, false, |doc, mesh| {
+                    model::insert_edge(doc, mesh, corners)
+                })
+            }
+            Request::DeleteEdge { version, edge } => {
+                self.model_edit(conn, doc, op, version, false, |doc, mesh| {
+                    model::delete_edge(doc, mesh, edge)
+                })
+            }
+            Request::Handle(h) => {
+                let preview = h.preview == Some(true);
+                self.model_edit(conn, doc, op, h.version, preview, |doc, mesh| {
+                    model::handle(doc, mesh, &h)
+                })
+            }
+            Request::Extrude(e) => self.extrude(doc, &e),
+            Request::Cut(c) => {
+                let offset = CutOffset::Distance(c.distance);
+                self.cut_or_truncate(doc, op, c.version, &c.targets(), offset)
+            }
+            Request::Truncate(t) => {
+                let offset = CutOffset::Fraction(t.fraction);
+                if t.all == Some(true) {
+                    self.truncate_all(doc, t.version, offset)
+                } else {
+                    self.cut_or_truncate(doc, op, t.version, &t.targets(), offset)
+                }
+            }
+            Request::Select(s) => self.select(doc, &s),
+            Request::RindBegin { thickness } => self.rind_begin(doc, thickness),
+            Request::RindPunch {
+                version,
+                face,
+                peel,
+            } => self.rind_punch(doc, version, face, peel == Some(true)),
+            Request::RindEnd { commit } => self.rind_end(doc, commit == Some(true)),
+            Request::Weld { distance } => self.repair(doc, Some(distance)),
+            Request::MakeManifold => self.repair(doc, None),
+            Request::SetRemesh { detail } => self.set_remesh(doc, detail),
+            Request::StrokeBegin(s) => self.stroke_begin(conn, doc, &s),
+            Request::StrokeFrame(f) => self.stroke_frame(doc, &f),
+            Request::StrokeEnd => self.stroke_end(doc),
+            Request::MaskPaint(p) => self.mask_paint(doc, &p),
+            Request::MaskClear | Request::MaskInvert => self.mask_clear_or_invert(doc, op),
+            // `request` answers these without the document's lock.
+            Request::Hello
+            | Request::Primitives
+            | Request::RemeshSchemes
+            | Request::Cancel
+            | Request::Sierpinski { .. }
+            | Request::Menger { .. }
+            | Request::Subdivide { .. }
+            | Request::Remesh(_)
+            | Request::Wireframe { .. }
+            | Request::Tool(_)
+            | Request::Hull { .. } => Err(ServeError::BadRequest(format!(
+                "{op:?} is not an edit of the document"
+            ))),
         }
     }
 

@@ -6,6 +6,7 @@
 use holey_subdiv::{RemeshParams, RemeshScheme};
 use serde_json::{Map, Value, json};
 
+use super::request::RemeshRequest;
 use crate::ServeError;
 
 /// The most levels the modeler runs in one request (each level of most
@@ -113,37 +114,22 @@ pub(super) fn schemes_json() -> Value {
 /// A `remesh` request: `scheme`, optional `levels` (1) and `params` (an
 /// object of the scheme's parameters; the others are refused, so that a
 /// typo does not pass silently).
-pub(super) fn read_request(req: &Value) -> Result<(RemeshScheme, RemeshParams, usize), ServeError> {
-    let name = req
-        .get("scheme")
-        .and_then(Value::as_str)
-        .ok_or_else(|| ServeError::BadRequest("\"scheme\" must be a string".into()))?;
-    let scheme: RemeshScheme = name
+pub(super) fn read_request(
+    req: &RemeshRequest,
+) -> Result<(RemeshScheme, RemeshParams, usize), ServeError> {
+    let scheme: RemeshScheme = req
+        .scheme
         .parse()
         .map_err(|e: holey_subdiv::SubdivError| ServeError::BadRequest(e.to_string()))?;
-    let levels = match req.get("levels") {
-        None | Some(Value::Null) => 1,
-        Some(v) => v
-            .as_u64()
-            .and_then(|n| usize::try_from(n).ok())
-            .filter(|n| (1..=MAX_REMESH_LEVELS).contains(n))
-            .ok_or_else(|| {
-                ServeError::BadRequest(format!(
-                    "\"levels\" must be an integer from 1 to {MAX_REMESH_LEVELS}"
-                ))
-            })?,
-    };
+    let levels = req.levels.unwrap_or(1);
+    if !(1..=MAX_REMESH_LEVELS).contains(&levels) {
+        return Err(ServeError::BadRequest(format!(
+            "\"levels\" must be an integer from 1 to {MAX_REMESH_LEVELS}"
+        )));
+    }
     let mut params = RemeshParams::default();
     let empty = Map::new();
-    let given = match req.get("params") {
-        None | Some(Value::Null) => &empty,
-        Some(Value::Object(m)) => m,
-        Some(_) => {
-            return Err(ServeError::BadRequest(
-                "\"params\" must be an object of parameter names and values".into(),
-            ));
-        }
-    };
+    let given = req.params.as_ref().unwrap_or(&empty);
     let reads = params_of(scheme);
     for (key, value) in given {
         let Some(p) = reads.iter().find(|p| p.name == key) else {
@@ -194,17 +180,27 @@ mod tests {
         assert_eq!(sf["params"][0]["default"], true);
     }
 
+    /// A `remesh` message read as the server reads it: the request's
+    /// types first, then the scheme's table.
+    fn read(message: Value) -> Result<(RemeshScheme, RemeshParams, usize), ServeError> {
+        let mut message = message;
+        message["op"] = json!("remesh");
+        match super::super::request::parse(&message)? {
+            super::super::request::Request::Remesh(r) => read_request(&r),
+            other => panic!("{other:?}"),
+        }
+    }
+
     #[test]
     fn requests_are_read_and_bad_ones_refused() {
-        let (s, p, n) = read_request(&json!({"scheme": "corner-cutting", "levels": 2,
+        let (s, p, n) = read(json!({"scheme": "corner-cutting", "levels": 2,
             "params": {"corner_cutting_alpha": 0.6}}))
         .unwrap();
         assert_eq!((s, n), (RemeshScheme::CornerCutting, 2));
         assert_eq!(p.corner_cutting_alpha, 0.6);
-        let (_, p, _) = read_request(
-            &json!({"scheme": "subdivide-face", "params": {"subdivide_face_quads": false}}),
-        )
-        .unwrap();
+        let (_, p, _) =
+            read(json!({"scheme": "subdivide-face", "params": {"subdivide_face_quads": false}}))
+                .unwrap();
         assert!(!p.subdivide_face_quads);
         for (req, says) in [
             (json!({}), "\"scheme\""),
@@ -220,9 +216,13 @@ mod tests {
                 json!({"scheme": "corner-cutting", "params": {"corner_cutting_alpha": "a"}}),
                 "finite number",
             ),
-            (json!({"scheme": "dual", "params": [1]}), "object"),
+            (
+                json!({"scheme": "subdivide-face", "params": {"subdivide_face_quads": 1}}),
+                "true or false",
+            ),
+            (json!({"scheme": "dual", "params": [1]}), "field \"params\""),
         ] {
-            let e = read_request(&req).unwrap_err().to_string();
+            let e = read(req.clone()).unwrap_err().to_string();
             assert!(e.contains(says), "{req}: {e:?} does not say {says:?}");
         }
     }

@@ -2,17 +2,15 @@
 //! thickness, punch or peel faces, end by committing or cancelling.
 
 use holey_model::rind::{PunchOutcome, Rind};
-use serde_json::{Value, json};
+use serde_json::json;
 
-use super::fields::{index_field, num_field};
 use super::{Reply, Shared};
 use crate::ServeError;
 use crate::doc::{Content, Document, RindMode};
 
 impl Shared {
     /// `rind_begin`: the model's rind of a thickness, shown until it ends.
-    pub(super) fn rind_begin(&self, doc: &mut Document, req: &Value) -> Reply {
-        let thickness = num_field(req, "thickness")?;
+    pub(super) fn rind_begin(&self, doc: &mut Document, thickness: f64) -> Reply {
         if doc.rind.is_some() {
             return Err(ServeError::Refused("already in rind mode".into()));
         }
@@ -25,10 +23,14 @@ impl Shared {
     }
 
     /// `rind_punch`: a face of the rind punched (or, with `peel`, peeled).
-    pub(super) fn rind_punch(&self, doc: &mut Document, req: &Value) -> Reply {
-        doc.check_version(req)?;
-        let face = index_field(req, "face")?;
-        let peel = req.get("peel").and_then(Value::as_bool) == Some(true);
+    pub(super) fn rind_punch(
+        &self,
+        doc: &mut Document,
+        version: Option<u64>,
+        face: usize,
+        peel: bool,
+    ) -> Reply {
+        doc.check_version(version)?;
         let f = *doc
             .index()
             .faces
@@ -55,11 +57,11 @@ impl Shared {
     }
 
     /// `rind_end`: the rind committed (`commit: true`) or cancelled.
-    pub(super) fn rind_end(&self, doc: &mut Document, req: &Value) -> Reply {
+    pub(super) fn rind_end(&self, doc: &mut Document, commit: bool) -> Reply {
         let Some(mode) = doc.rind.take() else {
             return Err(ServeError::Refused("not in rind mode".into()));
         };
-        if req.get("commit").and_then(Value::as_bool) == Some(true) {
+        if commit {
             let t = mode.thickness;
             doc.commit(Content::Model(mode.rind.into_mesh()));
             self.publish(doc);

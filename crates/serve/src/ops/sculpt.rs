@@ -3,14 +3,13 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use holey_sculpt::brush::ALL_BRUSHES;
 use holey_sculpt::{
     About, Brush, BrushSettings, LiveStroke, Remesh, RemeshOptions, Symmetry, default_range,
 };
 use holey_topo::Options;
-use serde_json::{Value, json};
+use serde_json::json;
 
-use super::fields::{num_field, point_field, str_field};
+use super::request::{StrokeBegin, StrokeFrame, missing};
 use super::{Out, Reply, Shared};
 use crate::doc::{ActiveStroke, Content, Document, Mask, mask_flags};
 use crate::frame::{
@@ -19,20 +18,21 @@ use crate::frame::{
 use crate::{ConnId, ServeError};
 
 impl Shared {
-    pub(super) fn stroke_begin(&self, conn: ConnId, doc: &mut Document, req: &Value) -> Reply {
+    /// `stroke_begin`: a stroke of a brush, its first frame included.
+    pub(super) fn stroke_begin(
+        &self,
+        conn: ConnId,
+        doc: &mut Document,
+        req: &StrokeBegin,
+    ) -> Reply {
         let mesh = doc.sculpt_mesh("sculpting")?;
-        let name = str_field(req, "brush")?;
-        let Some(brush) = Brush::from_name(name) else {
-            let known: Vec<&str> = ALL_BRUSHES.iter().map(|b| b.name()).collect();
-            return Err(ServeError::BadRequest(format!(
-                "unknown brush {name:?} ({})",
-                known.join(", ")
-            )));
-        };
-        let radius = num_field(req, "radius")?;
+        let brush = req.brush;
+        let radius = req.radius;
         let strength = match brush {
             Brush::Move => 1.0,
-            _ => num_field(req, "strength")?,
+            _ => req
+                .strength
+                .ok_or_else(|| missing("stroke_begin", "strength"))?,
         };
         if brush != Brush::Move && radius <= 0.0 {
             return Err(ServeError::BadRequest("the radius must be positive".into()));
@@ -42,7 +42,7 @@ impl Shared {
                 "a move's radius must be 0 (the whole piece) or positive".into(),
             ));
         }
-        let point = point_field(req)?;
+        let point = DVec3::from_array(req.point);
         // A frame that pushes the surface farther than a fraction of the
         // brush folds it over itself many times at once; every tab would
         // wait for that frame. The modeler's slider stays far below.
@@ -64,9 +64,9 @@ impl Shared {
             )));
         }
         let settings = BrushSettings {
-            falloff: optional(req, "falloff")?.unwrap_or_default(),
+            falloff: req.falloff.unwrap_or_default(),
             symmetry: symmetry(req, mesh)?,
-            pressure: optional(req, "pressure_drives")?.unwrap_or_default(),
+            pressure: req.pressure_drives.unwrap_or_default(),
             ..BrushSettings::new(brush, radius, strength)
         };
         let mut live = LiveStroke::begin(mesh, settings, point, Options::default())?;
@@ -83,7 +83,7 @@ impl Shared {
             display,
             sent,
         });
-        self.stroke_frame(doc, req)
+        self.stroke_frame(doc, &req.first_frame())
     }
 
     /// `stroke_end`: the stroke finished and committed if it changed the mesh; a release the guard refused says why in plain words.
@@ -118,15 +118,16 @@ impl Shared {
         Ok(reply)
     }
 
-    pub(super) fn stroke_frame(&self, doc: &mut Document, req: &Value) -> Reply {
-        let point = point_field(req)?;
+    /// `stroke_frame`: the stroke's next frame, sent to every tab.
+    pub(super) fn stroke_frame(&self, doc: &mut Document, req: &StrokeFrame) -> Reply {
+        let point = req.point();
         let version = doc.version();
         let mask = Arc::clone(doc.mask());
         let Some(stroke) = doc.stroke.as_mut() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
         // Pen pressure, when the pointer has one (a mouse sends none).
-        let pressure = req.get("pressure").and_then(Value::as_f64).unwrap_or(1.0);
+        let pressure = req.pressure.unwrap_or(1.0);
         let frame = stroke.live.frame_pressed(point, pressure)?;
         let ms = frame.seconds * 1e3;
         let vanish = frame.corrected_odd.as_deref();
@@ -159,26 +160,12 @@ impl Shared {
     }
 }
 
-/// An optional field decoded by its own `Deserialize` (a falloff name or
-/// `{"custom": [five values]}`, a pressure target); `None` when absent.
-fn optional<T: serde::de::DeserializeOwned>(
-    req: &Value,
-    name: &str,
-) -> Result<Option<T>, ServeError> {
-    match req.get(name) {
-        None | Some(Value::Null) => Ok(None),
-        Some(v) => serde_json::from_value(v.clone())
-            .map(Some)
-            .map_err(|e| ServeError::BadRequest(format!("{name}: {e}"))),
-    }
-}
-
 /// The stroke's mirror planes: `symmetry` names the axes (`"xz"`),
 /// `symmetry_about` is `origin` (the default) or `centre` (the centre of
 /// the mesh's bounding box).
-fn symmetry(req: &Value, mesh: &holey_topo::TriMesh) -> Result<Symmetry, ServeError> {
-    let axes = req.get("symmetry").and_then(Value::as_str).unwrap_or("");
-    let about: About = optional(req, "symmetry_about")?.unwrap_or_default();
+fn symmetry(req: &StrokeBegin, mesh: &holey_topo::TriMesh) -> Result<Symmetry, ServeError> {
+    let axes = req.symmetry.as_deref().unwrap_or("");
+    let about: About = req.symmetry_about.unwrap_or_default();
     let centre = match about {
         About::Origin => DVec3::ZERO,
         About::Centre => {

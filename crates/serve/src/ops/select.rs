@@ -8,9 +8,9 @@ use holey_model::select::{
     checkerboard, edge_loop, edge_ring, face_loop, grow_faces, invert_edges, invert_faces,
     shrink_faces, similar_faces,
 };
-use serde_json::{Value, json};
+use serde_json::json;
 
-use super::fields::str_field;
+use super::request::SelectRequest;
 use super::toolbox::{display_edges, display_faces, edges_of, faces_of, plain_ids};
 use super::{Reply, Shared};
 use crate::ServeError;
@@ -38,17 +38,17 @@ impl Shared {
     /// `select`: a query on the current selection (`faces`, `edges`);
     /// answers `faces` or `edges`, display indices of the document's
     /// `version`.
-    pub(super) fn select(&self, doc: &Document, req: &Value) -> Reply {
-        doc.check_version(req)?;
+    pub(super) fn select(&self, doc: &Document, req: &SelectRequest) -> Reply {
+        doc.check_version(req.version)?;
         if doc.rind.is_some() {
             return Err(ServeError::Refused(
                 "finish or cancel the rind first".into(),
             ));
         }
-        let query = str_field(req, "query")?;
+        let query = req.query.as_str();
         let mesh = doc.model("selection")?;
-        let faces = faces_of(doc, req, "faces")?;
-        let edges = edges_of(doc, req, "edges")?;
+        let faces = faces_of(doc, req.faces.as_deref())?;
+        let edges = edges_of(doc, req.edges.as_deref())?;
         let found = run(mesh, query, &faces, &edges).map_err(|e| match e {
             Why::Bad(m) => ServeError::BadRequest(m),
             Why::Refused(m) => {

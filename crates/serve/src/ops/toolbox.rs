@@ -16,9 +16,9 @@ use holey_model::cut::{CutOffset, CutTarget, cut};
 use holey_model::extrude::{
     ExtrudeError, ExtrudeKind, ExtrudeOption, ExtrudeOptions, RegionDirection, extrude_selection,
 };
-use serde_json::{Value, json};
+use serde_json::json;
 
-use super::fields::num_field;
+use super::request::{Direction, ExtrudeRequest, Targets};
 use super::{Reply, Shared};
 use crate::ServeError;
 use crate::doc::{Content, Document};
@@ -34,9 +34,9 @@ const TOGETHER: &str = "together";
 impl Shared {
     /// `extrude`: the selected faces, each by itself (or all together,
     /// kind `together`); the reply names the new top faces.
-    pub(super) fn extrude(&self, doc: &mut Document, req: &Value) -> Reply {
-        let mut mesh = self.model_for_edit(doc, req, "extrude")?;
-        let faces = faces_of(doc, req, "faces")?;
+    pub(super) fn extrude(&self, doc: &mut Document, req: &ExtrudeRequest) -> Reply {
+        let mut mesh = self.model_for_edit(doc, req.version, "extrude")?;
+        let faces = faces_of(doc, req.faces.as_deref())?;
         if faces.is_empty() {
             return Err(ServeError::Refused(
                 "select the faces to extrude first".into(),
@@ -57,47 +57,69 @@ impl Shared {
     }
 
     /// `cut` (by a distance in model units) or `truncate` (by a fraction
-    /// of each edge, or every vertex with `all`): the selected vertices,
+    /// of each edge), `op` as the request named it: the selected vertices,
     /// edges and faces cut off at once, each by one new face.
-    pub(super) fn cut_or_truncate(&self, doc: &mut Document, op: &str, req: &Value) -> Reply {
-        let mut mesh = self.model_for_edit(doc, req, op)?;
-        let truncate = op == "truncate";
+    pub(super) fn cut_or_truncate(
+        &self,
+        doc: &mut Document,
+        op: &str,
+        version: Option<u64>,
+        selected: &Targets<'_>,
+        offset: CutOffset,
+    ) -> Reply {
+        let mesh = self.model_for_edit(doc, version, op)?;
         let mut targets: Vec<CutTarget> = Vec::new();
-        if truncate && req.get("all").and_then(Value::as_bool) == Some(true) {
-            for v in mesh.vertices() {
-                if mesh.valence(v).map_err(kernel)? > 0 {
-                    targets.push(CutTarget::Vertex(v));
-                }
-            }
-        } else {
-            targets.extend(
-                vertices_of(doc, req, "vertices")?
-                    .into_iter()
-                    .map(CutTarget::Vertex),
-            );
-            targets.extend(
-                edges_of(doc, req, "edges")?
-                    .into_iter()
-                    .map(CutTarget::Edge),
-            );
-            targets.extend(
-                faces_of(doc, req, "faces")?
-                    .into_iter()
-                    .map(CutTarget::Face),
-            );
-        }
+        targets.extend(
+            vertices_of(doc, selected.vertices)?
+                .into_iter()
+                .map(CutTarget::Vertex),
+        );
+        targets.extend(
+            edges_of(doc, selected.edges)?
+                .into_iter()
+                .map(CutTarget::Edge),
+        );
+        targets.extend(
+            faces_of(doc, selected.faces)?
+                .into_iter()
+                .map(CutTarget::Face),
+        );
         if targets.is_empty() {
             return Err(ServeError::Refused(format!(
                 "select the vertices (corners), edges or faces to {op} first"
             )));
         }
-        let offset = if truncate {
-            CutOffset::Fraction(num_field(req, "fraction")?)
-        } else {
-            CutOffset::Distance(num_field(req, "distance")?)
-        };
+        self.cut_targets(doc, op, mesh, &targets, offset)
+    }
+
+    /// `truncate` with `all`: every vertex that has an edge.
+    pub(super) fn truncate_all(
+        &self,
+        doc: &mut Document,
+        version: Option<u64>,
+        offset: CutOffset,
+    ) -> Reply {
+        let mesh = self.model_for_edit(doc, version, "truncate")?;
+        let mut targets: Vec<CutTarget> = Vec::new();
+        for v in mesh.vertices() {
+            if mesh.valence(v).map_err(kernel)? > 0 {
+                targets.push(CutTarget::Vertex(v));
+            }
+        }
+        self.cut_targets(doc, "truncate", mesh, &targets, offset)
+    }
+
+    /// Cuts `targets` off a copy of the model and commits it.
+    fn cut_targets(
+        &self,
+        doc: &mut Document,
+        op: &str,
+        mut mesh: Mesh,
+        targets: &[CutTarget],
+        offset: CutOffset,
+    ) -> Reply {
         let before = counts(&mesh);
-        let made = cut(&mut mesh, &targets, offset)
+        let made = cut(&mut mesh, targets, offset)
             .map_err(|e| ServeError::Refused(format!("{op}: {}", plain_ids(&e, doc.index()))))?;
         let message = format!(
             "{op}: {} new face{}, {}",
@@ -113,8 +135,13 @@ impl Shared {
 
     /// A copy of the model to edit, after the checks every selection edit
     /// makes: the picture's version, no rind being punched.
-    fn model_for_edit(&self, doc: &Document, req: &Value, what: &str) -> Result<Mesh, ServeError> {
-        doc.check_version(req)?;
+    fn model_for_edit(
+        &self,
+        doc: &Document,
+        version: Option<u64>,
+        what: &str,
+    ) -> Result<Mesh, ServeError> {
+        doc.check_version(version)?;
         if doc.rind.is_some() {
             return Err(ServeError::Refused(
                 "finish or cancel the rind first".into(),
@@ -147,14 +174,9 @@ struct Extrusion<'a> {
 /// or null is not given (the library's default applies); whether the kind
 /// reads the options given is the library's to say, except `direction`,
 /// which only `together` reads.
-fn extrusion_of(req: &Value) -> Result<Extrusion<'_>, ServeError> {
+fn extrusion_of(req: &ExtrudeRequest) -> Result<Extrusion<'_>, ServeError> {
     let refused = |why: String| ServeError::Refused(format!("extrude: {why}"));
-    let name = match req.get("kind") {
-        None | Some(Value::Null) => ExtrudeKind::Plain.name(),
-        Some(v) => v
-            .as_str()
-            .ok_or_else(|| ServeError::BadRequest("\"kind\" must be a string".into()))?,
-    };
+    let name = req.kind.as_deref().unwrap_or(ExtrudeKind::Plain.name());
     let together = name == TOGETHER;
     let kind = if together {
         ExtrudeKind::Plain
@@ -171,55 +193,29 @@ fn extrusion_of(req: &Value) -> Result<Extrusion<'_>, ServeError> {
             ))
         })?
     };
-    let given = |field: &str| !matches!(req.get(field), None | Some(Value::Null));
-    let number = |field: &str| -> Result<Option<f64>, ServeError> {
-        if given(field) {
-            num_field(req, field)
-                .map(Some)
-                .map_err(|e| refused(e.to_string()))
-        } else {
-            Ok(None)
-        }
-    };
-    let count = if given("count") {
-        let n = req
-            .get("count")
-            .and_then(Value::as_u64)
-            .and_then(|n| usize::try_from(n).ok())
-            .filter(|n| (1..=MAX_COUNT).contains(n))
-            .ok_or_else(|| {
-                refused(format!(
-                    "\"count\" must be an integer from 1 to {MAX_COUNT}"
-                ))
-            })?;
-        Some(n)
-    } else {
-        None
-    };
-    let direction = match req.get("direction") {
-        None | Some(Value::Null) => None,
-        Some(v) => match v.as_str() {
-            Some("average") => Some(RegionDirection::Average),
-            Some("normals") => Some(RegionDirection::VertexNormals),
-            _ => {
-                return Err(refused(format!(
-                    "unknown direction {v} (average or normals)"
-                )));
-            }
-        },
-    };
+    if let Some(n) = req.count
+        && !(1..=MAX_COUNT).contains(&n)
+    {
+        return Err(refused(format!(
+            "\"count\" must be an integer from 1 to {MAX_COUNT}"
+        )));
+    }
+    let direction = req.direction.map(|d| match d {
+        Direction::Average => RegionDirection::Average,
+        Direction::Normals => RegionDirection::VertexNormals,
+    });
     if direction.is_some() && !together {
         return Err(refused(format!(
             "\"direction\" does not apply to the {name} extrusion (only to {TOGETHER})"
         )));
     }
     let options = ExtrudeOptions {
-        distance: number("distance")?,
-        scale: number("scale")?,
-        rotation_deg: number("rotation")?,
-        twist: number("twist")?,
-        height: number("height")?,
-        count,
+        distance: req.distance,
+        scale: req.scale,
+        rotation_deg: req.rotation,
+        twist: req.twist,
+        height: req.height,
+        count: req.count,
         together: together.then(|| direction.unwrap_or(RegionDirection::Average)),
     };
     Ok(Extrusion {
@@ -301,35 +297,15 @@ pub(super) fn delta(before: [i64; 3], mesh: &Mesh) -> String {
     )
 }
 
-/// A list of display indices (`name`, absent or null: none).
-fn indices(req: &Value, name: &str) -> Result<Vec<usize>, ServeError> {
-    let bad = || {
-        ServeError::BadRequest(format!(
-            "\"{name}\" must be a list of non-negative integers"
-        ))
-    };
-    match req.get(name) {
-        None | Some(Value::Null) => Ok(Vec::new()),
-        Some(Value::Array(a)) => a
-            .iter()
-            .map(|v| {
-                v.as_u64()
-                    .and_then(|n| usize::try_from(n).ok())
-                    .ok_or_else(bad)
-            })
-            .collect(),
-        Some(_) => Err(bad()),
-    }
-}
-
+/// The entries of `table` at the display indices `shown` (absent: none),
+/// repeats dropped; an index past the table is refused, naming it.
 fn lookup<T: Copy + PartialEq>(
     table: &[T],
-    req: &Value,
-    name: &str,
+    shown: Option<&[usize]>,
     what: &str,
 ) -> Result<Vec<T>, ServeError> {
     let mut out: Vec<T> = Vec::new();
-    for i in indices(req, name)? {
+    for &i in shown.unwrap_or_default() {
         let id = *table.get(i).ok_or_else(|| {
             ServeError::Refused(format!(
                 "{what} {i} does not exist ({} {what}s)",
@@ -344,22 +320,21 @@ fn lookup<T: Copy + PartialEq>(
 }
 
 /// The faces a request names by display index, repeats dropped.
-pub(super) fn faces_of(doc: &Document, req: &Value, name: &str) -> Result<Vec<FaceId>, ServeError> {
-    lookup(&doc.index().faces, req, name, "face")
+pub(super) fn faces_of(doc: &Document, shown: Option<&[usize]>) -> Result<Vec<FaceId>, ServeError> {
+    lookup(&doc.index().faces, shown, "face")
 }
 
 /// The edges a request names by display index, repeats dropped.
-pub(super) fn edges_of(doc: &Document, req: &Value, name: &str) -> Result<Vec<EdgeId>, ServeError> {
-    lookup(&doc.index().edges, req, name, "edge")
+pub(super) fn edges_of(doc: &Document, shown: Option<&[usize]>) -> Result<Vec<EdgeId>, ServeError> {
+    lookup(&doc.index().edges, shown, "edge")
 }
 
 /// The vertices a request names by display index, repeats dropped.
 pub(super) fn vertices_of(
     doc: &Document,
-    req: &Value,
-    name: &str,
+    shown: Option<&[usize]>,
 ) -> Result<Vec<VertexId>, ServeError> {
-    lookup(&doc.index().vertices, req, name, "vertex")
+    lookup(&doc.index().vertices, shown, "vertex")
 }
 
 /// The display indices of `faces` (faces not displayed, holes, left out).
@@ -463,6 +438,7 @@ mod tests {
     use super::*;
     use crate::frame::display_model;
     use holey_dlfl::convert::{ImportOptions, to_dlfl};
+    use serde_json::Value;
 
     fn mesh(spec: &str) -> Mesh {
         let soup = holey_shapes::parse_primitive(spec).unwrap();
@@ -495,10 +471,17 @@ mod tests {
     }
 
     /// Extrudes face `f` of `m` as an `extrude` request with `fields`
-    /// asks; a refusal in the words the user is shown.
+    /// asks, read as the server reads it; a refusal in the words the user
+    /// is shown.
     fn extrude_req(m: &mut Mesh, faces: &[FaceId], fields: &Value) -> Result<Vec<FaceId>, String> {
         let (_, index) = display_model(m);
-        let ext = extrusion_of(fields).map_err(|e| e.to_string())?;
+        let mut message = fields.clone();
+        message["op"] = json!("extrude");
+        let req = match super::super::request::parse(&message).map_err(|e| e.to_string())? {
+            super::super::request::Request::Extrude(req) => req,
+            other => panic!("{other:?}"),
+        };
+        let ext = extrusion_of(&req).map_err(|e| e.to_string())?;
         extrude_selection(m, faces, ext.kind, &ext.options).map_err(|e| refusal(&e, &index))
     }
 
