@@ -479,14 +479,21 @@ fn stats_json(info: &MeshInfo, triangles: usize) -> Value {
     })
 }
 
+/// The kernel mesh of a built-in primitive, for the server's unit tests.
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+pub(crate) fn primitive_mesh(spec: &str) -> Mesh {
+    let soup = holey_shapes::parse_primitive(spec).unwrap();
+    to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
 
     fn model(spec: &str) -> Content {
-        let soup = holey_shapes::parse_primitive(spec).unwrap();
-        Content::Model(to_dlfl(&soup, ImportOptions::default()).unwrap().mesh)
+        Content::Model(primitive_mesh(spec))
     }
 
     #[test]

@@ -33,6 +33,29 @@ fn start_with(config: Config) -> SocketAddr {
     addr
 }
 
+/// A server on a fresh state directory, which lives as long as the
+/// returned guard.
+fn server() -> (tempfile::TempDir, SocketAddr) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let addr = start(dir.path(), 1 << 20);
+    (dir, addr)
+}
+
+/// A server on a fresh state directory, and one tab on it. The directory
+/// lives as long as the returned guard.
+fn session() -> (tempfile::TempDir, SocketAddr, Tab) {
+    let (dir, addr) = server();
+    let tab = Tab::open(addr);
+    (dir, addr, tab)
+}
+
+/// [`session`] with the document made the primitive `spec` first.
+fn tab_on(spec: &str) -> (tempfile::TempDir, SocketAddr, Tab) {
+    let (dir, addr, mut tab) = session();
+    tab.ok(json!({"op": "primitive", "spec": spec}));
+    (dir, addr, tab)
+}
+
 /// A browser tab: it remembers the last state and counts frames.
 struct Tab {
     socket: Socket,
@@ -104,6 +127,16 @@ impl Tab {
         r
     }
 
+    /// Sends a request that must be refused with a message saying
+    /// `says`; returns the message.
+    fn refused(&mut self, req: Value, says: &str) -> String {
+        let r = self.call(req.clone());
+        assert_eq!(r["type"], "error", "{req} -> {r}");
+        let m = r["message"].as_str().unwrap_or("").to_owned();
+        assert!(m.contains(says), "{req}: {m:?} does not say {says:?}");
+        m
+    }
+
     fn genus(&self) -> Value {
         self.state["stats"]["genus"].clone()
     }
@@ -135,6 +168,15 @@ fn http(addr: SocketAddr, head: &str, body: &[u8]) -> (u16, Vec<u8>) {
     (status, body)
 }
 
+/// `GET target` as a script with the token asks it: status and body.
+fn get(addr: SocketAddr, target: &str) -> (u16, Vec<u8>) {
+    http(
+        addr,
+        &format!("GET {target} HTTP/1.1\r\nHost: {addr}\r\n{}\r\n", auth()),
+        &[],
+    )
+}
+
 /// The header that carries the token for a script.
 fn auth() -> String {
     format!("Authorization: token {TOKEN}\r\n")
@@ -152,9 +194,7 @@ fn upload(addr: SocketAddr, name: &str, body: &[u8]) -> (u16, Value) {
 
 #[test]
 fn modeling_sculpting_undo_and_two_tabs() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
+    let (_dir, addr, mut a) = session();
     let mut b = Tab::open(addr);
     assert_eq!(a.genus(), 0, "a new session is a cube");
 
@@ -259,9 +299,7 @@ fn modeling_sculpting_undo_and_two_tabs() {
 
 #[test]
 fn bad_requests_get_clear_errors() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
+    let (_dir, _, mut a) = session();
     for (req, says) in [
         (json!({"op": "nope"}), "unknown op"),
         (json!({}), "no \"op\""),
@@ -300,10 +338,7 @@ fn bad_requests_get_clear_errors() {
         (json!({"op": "undo"}), "nothing to undo"),
         (json!({"op": "rind_begin", "thickness": -1}), "rind"),
     ] {
-        let r = a.call(req.clone());
-        assert_eq!(r["type"], "error", "{req} -> {r}");
-        let m = r["message"].as_str().unwrap_or("");
-        assert!(m.contains(says), "{req}: {m:?} does not say {says:?}");
+        a.refused(req.clone(), says);
     }
     a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
     let r = a.call(json!({"op": "stroke_begin", "brush": "grab", "radius": 0.1,
@@ -346,10 +381,7 @@ fn bad_requests_get_clear_errors() {
 /// quads split in two.
 #[test]
 fn exports_and_imports_gltf_3mf_and_stl() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@torus"}));
+    let (_dir, addr, mut a) = tab_on("@torus");
     let torus = a.state["stats"].clone();
     let triangles = torus["triangles"].clone();
     assert_eq!(
@@ -401,35 +433,19 @@ fn exports_and_imports_gltf_3mf_and_stl() {
             .contains("not a readable ZIP archive"),
         "{r}"
     );
-    let (status, body) = http(
-        addr,
-        &format!(
-            "GET /api/export?format=fbx HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            auth()
-        ),
-        &[],
-    );
+    let (status, body) = get(addr, "/api/export?format=fbx");
     assert_eq!(status, 400);
     assert!(String::from_utf8_lossy(&body).contains("glb"));
 }
 
 #[test]
 fn uploads_downloads_limits_and_restart() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
+    let (dir, addr, mut a) = session();
 
     // A torus exported as OBJ comes back with the same counts and genus.
     a.ok(json!({"op": "primitive", "spec": "@torus"}));
     let stats = a.state["stats"].clone();
-    let (status, obj) = http(
-        addr,
-        &format!(
-            "GET /api/export?format=obj HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            auth()
-        ),
-        &[],
-    );
+    let (status, obj) = get(addr, "/api/export?format=obj");
     assert_eq!(status, 200);
     a.ok(json!({"op": "primitive", "spec": "@cube"}));
     let (status, r) = upload(addr, "back.obj", &obj);
@@ -438,14 +454,7 @@ fn uploads_downloads_limits_and_restart() {
         a.pump_one();
     }
     // The same through the DLFL format.
-    let (status, dlfl) = http(
-        addr,
-        &format!(
-            "GET /api/export?format=dlfl HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            auth()
-        ),
-        &[],
-    );
+    let (status, dlfl) = get(addr, "/api/export?format=dlfl");
     assert_eq!(status, 200);
     let (status, _) = upload(addr, "back.dlfl", &dlfl);
     assert_eq!(status, 200);
@@ -473,14 +482,7 @@ fn uploads_downloads_limits_and_restart() {
         &[],
     );
     assert_eq!(status, 403);
-    let (status, _) = http(
-        addr,
-        &format!(
-            "GET /../../etc/passwd HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            auth()
-        ),
-        &[],
-    );
+    let (status, _) = get(addr, "/../../etc/passwd");
     assert_ne!(status, 200);
     // A non-manifold soup opens in the sculpt workspace.
     let fan = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0.5\nf 1 2 3\nf 1 2 4\nf 1 2 5\n";
@@ -516,10 +518,7 @@ fn uploads_downloads_limits_and_restart() {
 
 #[test]
 fn long_operations_report_progress_and_cancel() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let (_dir, _, mut a) = tab_on("@cube");
     a.next += 1;
     let id = a.next;
     a.socket
@@ -562,9 +561,7 @@ fn long_operations_report_progress_and_cancel() {
 /// the model workspace refuses until Make manifold splits its vertex.
 #[test]
 fn weld_and_make_manifold_repair_what_the_model_refuses() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
+    let (_dir, addr, mut a) = session();
     let soup = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1.000001 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n";
     let (status, r) = upload(addr, "soup.obj", soup);
     assert_eq!(status, 200, "{r}");
@@ -619,14 +616,7 @@ const TETRAHEDRON: &[u8] =
 
 /// The document as OBJ, asked for properly: what "the model" is.
 fn model(addr: SocketAddr) -> Vec<u8> {
-    let (status, body) = http(
-        addr,
-        &format!(
-            "GET /api/export?format=obj HTTP/1.1\r\nHost: {addr}\r\n{}\r\n",
-            auth()
-        ),
-        &[],
-    );
+    let (status, body) = get(addr, "/api/export?format=obj");
     assert_eq!(status, 200);
     body
 }
@@ -653,6 +643,15 @@ fn upgrade(addr: SocketAddr, host: &str, extra: &str) -> String {
     String::from_utf8_lossy(&out).into_owned()
 }
 
+/// The refusals before were the Host's or the token's doing, not the
+/// body's: the same upload with this server's Host and the token goes
+/// through and changes the model.
+fn upload_goes_through(addr: SocketAddr, before: &[u8]) {
+    let (status, _) = http(addr, &import_head(&addr.to_string(), &auth()), TETRAHEDRON);
+    assert_eq!(status, 200);
+    assert_ne!(model(addr), before);
+}
+
 fn import_head(host: &str, extra: &str) -> String {
     format!(
         "POST /api/import?name=t.obj HTTP/1.1\r\nHost: {host}\r\nOrigin: http://{host}\r\n{extra}\
@@ -668,8 +667,7 @@ fn import_head(host: &str, extra: &str) -> String {
 /// only the Host check can refuse them.
 #[test]
 fn dns_rebinding_host_is_refused() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
+    let (_dir, addr) = server();
     let port = addr.port();
     let evil = format!("evil.example:{port}");
     let before = model(addr);
@@ -727,12 +725,7 @@ fn dns_rebinding_host_is_refused() {
         assert_eq!(status, expected, "Host: {host}");
     }
 
-    // The same upload with this server's Host goes through: the refusal
-    // above was the Host's doing, not the body's.
-    let host = addr.to_string();
-    let (status, _) = http(addr, &import_head(&host, &auth()), TETRAHEDRON);
-    assert_eq!(status, 200);
-    assert_ne!(model(addr), before);
+    upload_goes_through(addr, &before);
 }
 
 /// With the right Host but no token (or a wrong one), the API and the
@@ -740,8 +733,7 @@ fn dns_rebinding_host_is_refused() {
 /// `Authorization` header lets them through.
 #[test]
 fn api_and_socket_need_the_token() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
+    let (_dir, addr) = server();
     let host = addr.to_string();
     let port = addr.port();
     let before = model(addr);
@@ -818,9 +810,7 @@ fn api_and_socket_need_the_token() {
         let (_, response) = tungstenite::connect(request).expect("ws");
         assert_eq!(response.status(), 101, "{name}");
     }
-    let (status, _) = http(addr, &import_head(&host, &auth()), TETRAHEDRON);
-    assert_eq!(status, 200);
-    assert_ne!(model(addr), before);
+    upload_goes_through(addr, &before);
 }
 
 /// Opening the URL `holey serve` prints sets the cookie (HttpOnly,
@@ -971,9 +961,7 @@ fn vef(tab: &Tab) -> [u64; 3] {
 /// its definition, and undone.
 #[test]
 fn toolbox_requests_change_the_counts_their_definitions_give() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
+    let (_dir, _, mut a) = session();
     let listed = a.ok(json!({"op": "remesh_schemes"}));
     assert_eq!(
         listed["schemes"].as_array().map(Vec::len),
@@ -1108,10 +1096,7 @@ fn toolbox_requests_change_the_counts_their_definitions_give() {
 
 #[test]
 fn toolbox_refusals_are_clear_and_change_nothing() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@plane"}));
+    let (_dir, _, mut a) = tab_on("@plane");
     let open = vef(&a);
     for (req, says) in [
         (json!({"op": "remesh", "scheme": "dual"}), "boundary"),
@@ -1175,10 +1160,7 @@ fn toolbox_refusals_are_clear_and_change_nothing() {
             "changed since",
         ),
     ] {
-        let r = a.call(req.clone());
-        assert_eq!(r["type"], "error", "{req} -> {r}");
-        let m = r["message"].as_str().unwrap_or("");
-        assert!(m.contains(says), "{req}: {m:?} does not say {says:?}");
+        a.refused(req.clone(), says);
         assert_eq!(vef(&a), open, "{req} changed the mesh");
     }
     // An error naming a face names it by the number the page shows: face
@@ -1212,10 +1194,7 @@ fn toolbox_refusals_are_clear_and_change_nothing() {
 
 #[test]
 fn a_long_remesh_reports_progress_and_cancels() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let (_dir, _, mut a) = tab_on("@cube");
     a.next += 1;
     let id = a.next;
     a.socket
@@ -1250,10 +1229,7 @@ fn a_long_remesh_reports_progress_and_cancels() {
 /// step each, a flat mesh refused with the document unchanged.
 #[test]
 fn hull_and_dual_hull_replace_the_mesh_and_undo() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let (_dir, _, mut a) = tab_on("@cube");
     let (v, e, f) = (8u64, 12u64, 6u64);
     assert_eq!(vef(&a), [v, e, f]);
     // The cube's half side h, from the picture.
@@ -1326,11 +1302,7 @@ fn hull_and_dual_hull_replace_the_mesh_and_undo() {
         assert_eq!(a.state["busy"], Value::Null);
     }
     assert_eq!(a.frames.len(), frames, "a refusal sends no mesh");
-    let r = a.call(json!({"op": "hull", "dual": "yes"}));
-    assert!(
-        r["message"].as_str().unwrap_or("").contains("\"dual\""),
-        "{r}"
-    );
+    a.refused(json!({"op": "hull", "dual": "yes"}), "field \"dual\"");
     // The hull belongs to the model workspace, like the other whole-mesh tools.
     a.ok(json!({"op": "primitive", "spec": "@cube"}));
     a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
@@ -1421,8 +1393,7 @@ fn sculpt_sphere(addr: SocketAddr) -> Tab {
 
 #[test]
 fn mask_paint_invert_clear_and_masked_vertices_never_move() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
+    let (dir, addr) = server();
     let mut a = sculpt_sphere(addr);
     let start = last_whole(&a);
     assert!(start.mask.is_none(), "nothing masked at first");
@@ -1639,8 +1610,7 @@ fn displacements(a: &Decoded, b: &Decoded) -> Vec<f64> {
 
 #[test]
 fn strokes_read_falloff_symmetry_and_pressure() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
+    let (_dir, addr) = server();
     let mut a = sculpt_sphere(addr);
     let start = last_whole(&a);
     let (r, s) = (0.6, 0.03);
@@ -1825,10 +1795,7 @@ fn strokes_read_falloff_symmetry_and_pressure() {
 /// (counts, version, undo history) is as it was.
 #[test]
 fn extrusions_are_the_librarys_and_a_refusal_changes_nothing() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let addr = start(dir.path(), 1 << 20);
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@cube"}));
+    let (_dir, _, mut a) = tab_on("@cube");
     let cube = [8u64, 12, 6];
     assert_eq!(vef(&a), cube);
     let d = 4u64;

@@ -218,23 +218,25 @@ pub(crate) struct Targets<'a> {
     pub faces: Option<&'a [usize]>,
 }
 
+impl<'a> Targets<'a> {
+    fn of([vertices, edges, faces]: [&'a Option<Vec<usize>>; 3]) -> Targets<'a> {
+        Targets {
+            vertices: vertices.as_deref(),
+            edges: edges.as_deref(),
+            faces: faces.as_deref(),
+        }
+    }
+}
+
 impl CutRequest {
     pub fn targets(&self) -> Targets<'_> {
-        Targets {
-            vertices: self.vertices.as_deref(),
-            edges: self.edges.as_deref(),
-            faces: self.faces.as_deref(),
-        }
+        Targets::of([&self.vertices, &self.edges, &self.faces])
     }
 }
 
 impl TruncateRequest {
     pub fn targets(&self) -> Targets<'_> {
-        Targets {
-            vertices: self.vertices.as_deref(),
-            edges: self.edges.as_deref(),
-            faces: self.faces.as_deref(),
-        }
+        Targets::of([&self.vertices, &self.edges, &self.faces])
     }
 }
 

@@ -187,12 +187,8 @@ fn quad_beside(mesh: &Mesh, e: EdgeId) -> Result<Option<FaceId>, holey_dlfl::Err
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-    use holey_dlfl::convert::{ImportOptions, to_dlfl};
 
-    fn mesh(spec: &str) -> Mesh {
-        let soup = holey_shapes::parse_primitive(spec).unwrap();
-        to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
-    }
+    use crate::doc::primitive_mesh as mesh;
 
     fn faces(found: Found) -> Vec<FaceId> {
         match found {

@@ -437,13 +437,9 @@ fn handle_at(text: &str, i: usize, index: &ModelIndex) -> Option<(usize, String)
 mod tests {
     use super::*;
     use crate::frame::display_model;
-    use holey_dlfl::convert::{ImportOptions, to_dlfl};
     use serde_json::Value;
 
-    fn mesh(spec: &str) -> Mesh {
-        let soup = holey_shapes::parse_primitive(spec).unwrap();
-        to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
-    }
+    use crate::doc::primitive_mesh as mesh;
 
     #[test]
     fn handles_in_messages_become_display_indices() {
