@@ -40,39 +40,30 @@ pub(crate) fn from_polygons(positions: &[[f64; 3]], faces: &[&[u32]]) -> Mesh {
     Mesh::from_raw(&raw).expect("test mesh builds")
 }
 
+/// Builds the kernel mesh of testkit's plain arrays. (The fixtures stay
+/// arrays there: testkit depending on this crate would give its unit
+/// tests a second, different `Mesh` type.)
+fn of<const N: usize>(positions: &[[f64; 3]], faces: &[[u32; N]]) -> Mesh {
+    let refs: Vec<&[u32]> = faces.iter().map(|f| f.as_slice()).collect();
+    from_polygons(positions, &refs)
+}
+
+/// The tetrahedron of [`holey_testkit::tetrahedron`].
 pub(crate) fn tetrahedron() -> Mesh {
-    from_polygons(
-        &[[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]],
-        &[&[0, 1, 2], &[0, 3, 1], &[0, 2, 3], &[1, 3, 2]],
-    )
+    let (p, t) = holey_testkit::tetrahedron();
+    of(&p, &t)
 }
 
 /// The unit cube of [`holey_testkit::unit_cube`].
 pub(crate) fn cube() -> Mesh {
     let (p, quads) = holey_testkit::unit_cube();
-    let refs: Vec<&[u32]> = quads.iter().map(|q| q.as_slice()).collect();
-    from_polygons(&p, &refs)
+    of(&p, &quads)
 }
 
-/// An n×m quad torus.
+/// The n×m quad torus of [`holey_testkit::quad_torus`].
 pub(crate) fn torus(n: u32, m: u32) -> Mesh {
-    let mut pos = Vec::new();
-    for i in 0..n {
-        for j in 0..m {
-            let (a, b) = (
-                std::f64::consts::TAU * i as f64 / n as f64,
-                std::f64::consts::TAU * j as f64 / m as f64,
-            );
-            let r = 2.0 + 0.5 * b.cos();
-            pos.push([r * a.cos(), r * a.sin(), 0.5 * b.sin()]);
-        }
-    }
-    let id = |i: u32, j: u32| (i % n) * m + (j % m);
-    let quads: Vec<[u32; 4]> = (0..n)
-        .flat_map(|i| (0..m).map(move |j| [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]))
-        .collect();
-    let refs: Vec<&[u32]> = quads.iter().map(|q| q.as_slice()).collect();
-    from_polygons(&pos, &refs)
+    let (p, quads) = holey_testkit::quad_torus(n, m);
+    of(&p, &quads)
 }
 
 /// (V, E, F incl. holes, components, genus).

@@ -501,8 +501,8 @@ fn check_finite(pts: &[SymPoint]) -> Result<(), GeomError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testutil::BigInt;
     use holey_testkit::Rng;
+    use holey_testkit::exact::BigInt;
     use std::cmp::Ordering;
 
     fn sp(x: f64, y: f64, z: f64, id: u32) -> SymPoint {

@@ -234,8 +234,8 @@ pub(crate) fn exponent_of(x: f64) -> i32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testutil::BigInt;
     use holey_testkit::Rng;
+    use holey_testkit::exact::BigInt;
 
     fn big(e: &Expansion) -> BigInt {
         let mut acc = BigInt::zero();

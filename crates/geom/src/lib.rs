@@ -53,9 +53,6 @@ pub mod orient;
 pub mod ring;
 pub mod sos;
 
-#[cfg(test)]
-pub(crate) mod testutil;
-
 pub use bvh::{Aabb, Bvh};
 pub use construct::{EdgeTrianglePoint, TriplePoint, edge_triangle_point, triple_point};
 pub use error::{GeomError, NonFinite};

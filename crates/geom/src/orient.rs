@@ -264,8 +264,8 @@ mod tests {
     use super::*;
     use crate::ring::{Ring, V3, orient3};
     use crate::sos::{Poly, sos_sign};
-    use crate::testutil::{BigInt, EpsPolyRef};
     use holey_testkit::Rng;
+    use holey_testkit::exact::{BigInt, EpsPolyRef};
 
     const SCALE: i32 = 1100;
 

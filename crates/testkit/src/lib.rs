@@ -1,14 +1,17 @@
 //! Test support shared by holey's crates: a small seeded PRNG, so seeded
 //! property tests give the same sequence on every platform and version,
 //! small meshes as plain arrays ([`meshes`]), oracles on triangle index
-//! lists ([`oracles`]), and the location of the shared real-mesh data.
+//! lists ([`oracles`]), exact reference arithmetic ([`exact`]: big
+//! integers and polynomials in ε), and the location of the shared
+//! real-mesh data.
 
 use std::path::PathBuf;
 
+pub mod exact;
 pub mod meshes;
 pub mod oracles;
 
-pub use meshes::{octahedron, unit_cube, uv_sphere, uv_spheres};
+pub use meshes::{octahedron, quad_torus, tetrahedron, unit_cube, uv_sphere, uv_spheres};
 pub use oracles::{Groups, boundary, components, edge_degrees, pieces};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and fully

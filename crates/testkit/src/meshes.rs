@@ -54,6 +54,37 @@ pub fn octahedron() -> ([[f64; 3]; 6], [[u32; 3]; 8]) {
     )
 }
 
+/// The regular tetrahedron on alternate corners of `[−1, 1]³`, and its
+/// four triangles, outward.
+pub fn tetrahedron() -> ([[f64; 3]; 4], [[u32; 3]; 4]) {
+    (
+        [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]],
+        [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+    )
+}
+
+/// An `n × m` quad torus (`n` around the axis `z`, `m` around the tube;
+/// radii 2 and ½): vertex `i·m + j` is at angle `i` around the axis and
+/// `j` around the tube; `n·m` quads, outward.
+pub fn quad_torus(n: u32, m: u32) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
+    let mut pos = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            let (a, b) = (
+                std::f64::consts::TAU * i as f64 / n as f64,
+                std::f64::consts::TAU * j as f64 / m as f64,
+            );
+            let r = 2.0 + 0.5 * b.cos();
+            pos.push([r * a.cos(), r * a.sin(), 0.5 * b.sin()]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    let quads = (0..n)
+        .flat_map(|i| (0..m).map(move |j| [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]))
+        .collect();
+    (pos, quads)
+}
+
 /// A UV sphere of `2·nu·(nv−2)` triangles: `nu` meridians, `nv` parallels
 /// (poles included), welded, outward-oriented, centre `c`, radius `r`.
 /// Vertices: the north pole, the rings from north to south, the south
@@ -132,10 +163,37 @@ mod tests {
                 .all(|&(a, b)| edges.binary_search(&(b, a)).is_ok())
     }
 
+    /// Six times the signed volume a closed surface's faces bound, by the
+    /// divergence theorem over a fan of each face: positive when outward.
+    fn six_volume<const N: usize>(p: &[[f64; 3]], faces: &[[u32; N]]) -> f64 {
+        let det = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        };
+        faces
+            .iter()
+            .flat_map(|f| (1..N - 1).map(move |k| [f[0], f[k], f[k + 1]]))
+            .map(|[a, b, c]| det(p[a as usize], p[b as usize], p[c as usize]))
+            .sum()
+    }
+
     #[test]
     fn the_meshes_are_closed_and_oriented() {
         assert!(closed_oriented(&unit_cube().1));
         assert!(closed_oriented(&octahedron().1));
+        let (p, t) = tetrahedron();
+        assert!(closed_oriented(&t));
+        // Edge 2√2, volume (2√2)³/(6√2) = 8/3.
+        assert!((six_volume(&p, &t) - 16.0).abs() < 1e-12);
+        for (n, m) in [(3, 3), (4, 3), (8, 6)] {
+            let (p, q) = quad_torus(n, m);
+            assert_eq!((p.len(), q.len()), ((n * m) as usize, (n * m) as usize));
+            assert!(closed_oriented(&q), "{n}×{m}");
+            // Quads of a torus of revolution: the polyhedron's volume is
+            // positive and below the smooth torus's 2π²·R·r² = π².
+            let v = six_volume(&p, &q) / 6.0;
+            assert!(v > 0.0 && v < std::f64::consts::PI.powi(2), "{n}×{m}: {v}");
+        }
         let (p, t) = uv_sphere(12, 7, [1.0, 2.0, 3.0], 0.5);
         assert_eq!((p.len(), t.len()), (2 + 12 * 5, 2 * 12 * 5));
         assert!(closed_oriented(&t));

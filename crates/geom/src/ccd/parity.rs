@@ -384,8 +384,8 @@ pub fn vertex_triangle_parity(
 mod tests {
     use super::*;
     use crate::ccd::cubic::{collisions_float, inside_triangle};
-    use crate::testutil::BigInt;
     use glam::DVec3;
+    use holey_testkit::exact::BigInt;
     use holey_testkit::{Rng, octahedron};
 
     const S: i32 = 1100;

@@ -1,6 +1,9 @@
-//! Test-only reference arithmetic, written independently of the library's
-//! expansions: arbitrary-precision integers (sign and magnitude in base
-//! 2³²) and polynomials in a symbolic ε with big-integer coefficients.
+//! Reference arithmetic for exact predicates, written independently of
+//! holey-geom's floating-point expansions so that its tests check them
+//! against something else: arbitrary-precision integers (sign and
+//! magnitude in base 2³²) and polynomials in a symbolic ε with big-integer
+//! coefficients (the oracle for simulation of simplicity). Test use only:
+//! it asserts on misuse.
 
 use std::cmp::Ordering;
 
@@ -212,13 +215,21 @@ impl BigInt {
         let v = v * 2f64.powi(32 * low_limbs - s);
         if self.neg { -v } else { v }
     }
+}
 
-    pub fn cmp(&self, o: &BigInt) -> Ordering {
+impl Ord for BigInt {
+    fn cmp(&self, o: &BigInt) -> Ordering {
         match self.sub(o).sign() {
             -1 => Ordering::Less,
             0 => Ordering::Equal,
             _ => Ordering::Greater,
         }
+    }
+}
+
+impl PartialOrd for BigInt {
+    fn partial_cmp(&self, o: &BigInt) -> Option<Ordering> {
+        Some(self.cmp(o))
     }
 }
 
@@ -285,5 +296,65 @@ impl EpsPolyRef {
     /// Sign as ε → 0⁺.
     pub fn sign(&self) -> i8 {
         self.terms.first().map_or(0, |t| t.1.sign())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Rng;
+
+    /// `i128` is exact for sums and products of two `i64`: the oracle.
+    fn value(b: &BigInt) -> i128 {
+        let mut v: i128 = 0;
+        for &w in b.mag.iter().rev() {
+            v = (v << 32) | i128::from(w);
+        }
+        if b.neg { -v } else { v }
+    }
+
+    #[test]
+    fn big_integers_agree_with_i128() {
+        let mut rng = Rng::new(16);
+        let mut pick = || {
+            let r = rng.next_u64() as i64;
+            // Small values and edges too, where carries and signs turn.
+            match rng.below(4) {
+                0 => r >> 40,
+                1 => [0, 1, -1, i64::MIN, i64::MAX][rng.below(5)],
+                _ => r,
+            }
+        };
+        for _ in 0..2000 {
+            let (a, b) = (pick(), pick());
+            let (x, y) = (BigInt::from_i64(a), BigInt::from_i64(b));
+            let (a, b) = (i128::from(a), i128::from(b));
+            assert_eq!(value(&x.add(&y)), a + b, "{a} + {b}");
+            assert_eq!(value(&x.sub(&y)), a - b, "{a} - {b}");
+            assert_eq!(value(&x.mul(&y)), a * b, "{a} · {b}");
+            assert_eq!(x.cmp(&y), a.cmp(&b));
+            assert_eq!(i128::from(x.sign()), a.signum());
+            assert_eq!(value(&x.shl(7)), a * 128);
+        }
+        // 0.75 · 2⁴ = 12; −2⁻¹⁰⁷⁴ · 2¹⁰⁷⁴ = −1.
+        assert_eq!(value(&BigInt::from_f64_scaled(0.75, 4)), 12);
+        assert_eq!(
+            value(&BigInt::from_f64_scaled(-f64::from_bits(1), 1074)),
+            -1
+        );
+        assert_eq!(BigInt::from_i64(3).shl(100).to_f64_scaled(100), 3.0);
+    }
+
+    #[test]
+    fn the_sign_in_epsilon_is_the_lowest_terms() {
+        let one = || BigInt::from_i64(1);
+        // (2 − ε)(−1 + ε²) = −2 + ε + 2ε² − ε³: sign of −2.
+        let p = EpsPolyRef::constant(BigInt::from_i64(2)).sub(&EpsPolyRef::monomial(1));
+        let q = EpsPolyRef::constant(one().neg()).add(&EpsPolyRef::monomial(2));
+        assert_eq!(p.mul(&q).sign(), -1);
+        // ε − ε = 0, and ε² − ε is negative for small ε.
+        let e = EpsPolyRef::monomial(1);
+        assert_eq!(e.sub(&e).sign(), 0);
+        assert_eq!(EpsPolyRef::monomial(2).sub(&e).sign(), -1);
     }
 }
