@@ -36,7 +36,9 @@
 use glam::DVec3;
 
 use crate::cut::{Deletion, cut};
-use crate::engine::{Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches};
+use crate::engine::{
+    Geometry, Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches,
+};
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::regions;
 use crate::union_find::UnionFind;
@@ -135,13 +137,19 @@ pub(crate) fn by_containment(
     end: &[DVec3],
     options: &Options,
     surroundings: &Surroundings<'_>,
+    known: Option<Geometry>,
 ) -> Result<Option<Outcome>, TopoError> {
     let started = std::time::Instant::now();
     let edges = Edges::new(sub);
     if !piece_of_a_solid(sub, &edges) {
         return Ok(None);
     }
-    let g = geometry(sub, end, options)?;
+    // The end's intersections, unless the caller has them for this very
+    // submesh and end already.
+    let g = match known {
+        Some(g) => g,
+        None => geometry(sub, end, options)?,
+    };
     let (edges, ids, x) = (g.edges, g.ids, g.x);
     if x.pairs.is_empty() {
         // Nothing crosses at the end: the frame only moves the surface.

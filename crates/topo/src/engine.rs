@@ -741,16 +741,30 @@ fn collisions_and_geometry(
     )
 }
 
+/// What [`freedom`] found out about a motion.
+pub(crate) enum Freedom {
+    /// No collision and no crossing at the end: the motion only moves.
+    Free,
+    /// It collides or crosses; the static intersections at the end, for
+    /// a later stage that needs them on the same mesh.
+    Changes(Geometry),
+    /// One of the two halves failed (too many pairs, say): the full run
+    /// reports it.
+    Unknown,
+}
+
 /// Whether `mesh` moving to `end` neither collides (no vertex with an
 /// odd number of collisions, §3.2) nor crosses itself at the end (no
 /// intersecting pair, §3.3): then the engine can only move it, and a
-/// frame needs nothing more. An error (too many pairs, say) answers no,
-/// leaving the full run to report it.
-pub(crate) fn moves_freely(mesh: &TriMesh, end: &[DVec3], options: &Options) -> bool {
-    matches!(
-        collisions_and_geometry(mesh, end, options),
-        (Ok((c, _)), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true)
-    )
+/// frame needs nothing more. When it does collide or cross, the end's
+/// intersections are kept for the next stage; an error (too many pairs,
+/// say) answers [`Freedom::Unknown`], leaving the full run to report it.
+pub(crate) fn freedom(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Freedom {
+    match collisions_and_geometry(mesh, end, options) {
+        (Ok((c, _)), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true) => Freedom::Free,
+        (Ok(_), Ok(g)) => Freedom::Changes(g),
+        _ => Freedom::Unknown,
+    }
 }
 
 /// [`topology_change`] without the retry.

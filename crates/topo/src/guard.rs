@@ -39,7 +39,7 @@ use glam::DVec3;
 use crate::audit::SurfaceAudit;
 use crate::containment::{Surroundings, by_containment};
 use crate::engine::{
-    Options, Outcome, TopoError, check, finish, geometry, moves_freely, topology_change,
+    Freedom, Options, Outcome, TopoError, check, finish, freedom, geometry, topology_change,
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
@@ -203,15 +203,37 @@ fn run_with(
         if tight.worth_it() {
             let sub = tight.submesh(&mesh.positions);
             let moved = tight.submesh(end);
-            if moves_freely(&sub, &moved.positions, options) {
-                return Ok(Run {
-                    mesh: None,
-                    report: LocalReport {
-                        region_triangles: tight.count,
-                        ..LocalReport::no_motion(n)
-                    },
-                    worse: flat_growth(&sub, &moved).into_iter().collect(),
-                });
+            match freedom(&sub, &moved.positions, options) {
+                Freedom::Free => {
+                    return Ok(Run {
+                        mesh: None,
+                        report: LocalReport {
+                            region_triangles: tight.count,
+                            ..LocalReport::no_motion(n)
+                        },
+                        worse: flat_growth(&sub, &moved).into_iter().collect(),
+                    });
+                }
+                // The containment number needs no context around what
+                // moved (every curve the motion makes lies among the
+                // triangles the motion's box meets, and the rest of the
+                // surface enters through its winding number), so a piece
+                // of a solid is resolved on the tight region, with the
+                // intersections just found. Parity's correction does
+                // need the context: anything else goes on below.
+                Freedom::Changes(g) if containment && options.solid_guard => {
+                    let surroundings = Surroundings::new(mesh, &tight.mask, end);
+                    let local_end = moved.positions;
+                    if let Some(out) =
+                        by_containment(&sub, &local_end, options, &surroundings, Some(g))?
+                        && let Some(run) =
+                            spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
+                        && run.worse.is_empty()
+                    {
+                        return Ok(run);
+                    }
+                }
+                _ => {}
             }
         }
     }
@@ -219,19 +241,8 @@ fn run_with(
     if region.worth_it() {
         let sub = region.submesh(&mesh.positions);
         let out = resolve_frame(mesh, end, &region, &sub, options, motion, containment)?;
-        let (report, spliced) = region.resolve(mesh, end, &out, options.solid_guard);
-        let result = match spliced {
-            Spliced::PositionsOnly => Some(None),
-            Spliced::Mesh(m) => Some(Some(m)),
-            Spliced::NotExact => None,
-        };
-        if let Some(result) = result {
-            let worse = audit_region(mesh, end, &region, &sub, &out, &report, options)?;
-            return Ok(Run {
-                mesh: result,
-                report,
-                worse,
-            });
+        if let Some(run) = spliced_and_audited(mesh, end, &region, &sub, &out, options)? {
+            return Ok(run);
         }
     }
     // The whole mesh, as one region (so numbers work as above).
@@ -254,6 +265,31 @@ fn run_with(
     })
 }
 
+/// The engine's result `out` for `region` of `mesh` (submesh `sub`)
+/// spliced into the whole and audited; `None` when the splice is not
+/// exact (the caller runs the whole mesh instead).
+fn spliced_and_audited(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    region: &Region,
+    sub: &TriMesh,
+    out: &Outcome,
+    options: &Options,
+) -> Result<Option<Run>, TopoError> {
+    let (report, spliced) = region.resolve(mesh, end, out, options.solid_guard);
+    let result = match spliced {
+        Spliced::PositionsOnly => None,
+        Spliced::Mesh(m) => Some(m),
+        Spliced::NotExact => return Ok(None),
+    };
+    let worse = audit_region(mesh, end, region, sub, out, &report, options)?;
+    Ok(Some(Run {
+        mesh: result,
+        report,
+        worse,
+    }))
+}
+
 /// The engine's result for `region` of `mesh` (submesh `sub`) moving to
 /// `end`: by containment number where the region is a piece of a solid
 /// ([`crate::containment`]) and `containment` allows, by collision parity
@@ -270,7 +306,7 @@ fn resolve_frame(
     let local_end = region.gather(end);
     if containment && options.solid_guard {
         let surroundings = Surroundings::new(mesh, &region.mask, end);
-        if let Some(out) = by_containment(sub, &local_end, options, &surroundings)? {
+        if let Some(out) = by_containment(sub, &local_end, options, &surroundings, None)? {
             return Ok(out);
         }
     }
