@@ -154,6 +154,34 @@ async function createPrimitive(page, spec) {
   await waitVersionAbove(page, v);
 }
 
+/** Clicks the button `id` and waits for the document version it makes. */
+async function clickForNewVersion(page, id, timeout = 30000) {
+  const v = await version(page);
+  await page.click(tid(id));
+  await waitVersionAbove(page, v, timeout);
+}
+
+/** The model workspace showing the primitive `spec`, once the stats match
+ * `re`; returns the stats parsed. */
+async function modelOf(page, spec, re) {
+  await setWorkspace(page, 'model');
+  await createPrimitive(page, spec);
+  await waitStats(page, re);
+  return parseStats(await statsText(page));
+}
+
+/** Face picking, the view from `dir`, and a click on the surface at the
+ * world point `p`: one face selected. Returns the point clicked on screen. */
+async function pickFaceAt(page, dir, p) {
+  await page.check('[name=pick][value=face]');
+  await page.evaluate((d) => window.__holey.setView(d), dir);
+  await page.waitForTimeout(100);
+  const at = await page.evaluate((q) => window.__holey.project(q), p);
+  await page.mouse.click(at[0], at[1]);
+  await waitFor(page, 'one selected face', () => window.__holey.selection.faces.length === 1);
+  return at;
+}
+
 async function setRange(page, id, value) {
   await page.$eval(tid(id), (el, val) => {
     el.value = String(val);
@@ -380,9 +408,7 @@ const scenarios = [
     await createPrimitive(page, '@tetrahedron');
     await waitStats(page, genusRe(0));
     await page.fill(tid('sierpinski-level'), '1');
-    const v = await version(page);
-    await page.click(tid('op-sierpinski'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-sierpinski');
     await waitStats(page, genusRe(3));
   }],
 
@@ -422,9 +448,7 @@ const scenarios = [
   }],
 
   ['undo brings genus 0 back', async (page) => {
-    const v = await version(page);
-    await page.click(tid('undo'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'undo');
     await waitStats(page, genusRe(0));
     // Keyboard redo/undo too.
     await page.locator(tid('canvas')).focus();
@@ -744,9 +768,7 @@ const scenarios = [
     await waitFor(page, 'the sculpt workspace', () => window.__holey.state?.workspace === 'sculpt');
     await waitStats(page, /components 4 · .* · boundary loops 10/);
     await page.fill(tid('weld-distance'), '0.01');
-    const w = await version(page);
-    await page.click(tid('op-weld'));
-    await waitVersionAbove(page, w);
+    await clickForNewVersion(page, 'op-weld');
     // Welded: 3 pieces, 6 loops (the README's measurement).
     await waitStats(page, /components 3 · .* · boundary loops 6/);
     // The model tools refuse it until it is made a 2-manifold.
@@ -755,9 +777,7 @@ const scenarios = [
       [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /Make manifold/.test(t.textContent)));
     const toasts = await page.$$eval('[data-testid="toasts"] > *', (els) => els.length);
     if (toasts !== 1) throw new Error(`${toasts} toasts on screen; one at a time`);
-    const m = await version(page);
-    await page.click(tid('op-make-manifold'));
-    await waitVersionAbove(page, m);
+    await clickForNewVersion(page, 'op-make-manifold');
     await setWorkspace(page, 'model');
     await page.screenshot({ path: path.join(artifacts, '12-teapot-repaired.png') });
   }],
@@ -792,10 +812,7 @@ const scenarios = [
 
   ['Remesh panel: every scheme listed; dual and corner cutting of a cube; undo restores it', async (page) => {
     if (useMock) return 'SKIP'; // the mock server has no remeshing
-    await setWorkspace(page, 'model');
-    await createPrimitive(page, '@cube');
-    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
-    const cube = parseStats(await statsText(page));
+    const cube = await modelOf(page, '@cube', /\bV 8 · E 12 · F 6\b/);
     const C = 2 * cube.E; // corners of a closed mesh
     // The panel offers what the server lists, the issue's schemes among them.
     const offered = await page.$$eval(`${tid('remesh-scheme')} option`, (os) => os.map((o) => o.value));
@@ -810,15 +827,11 @@ const scenarios = [
     const apply = async (scheme, want, params = {}) => {
       await page.selectOption(tid('remesh-scheme'), scheme);
       for (const [name, value] of Object.entries(params)) await page.fill(tid(`remesh-param-${name}`), String(value));
-      const v = await version(page);
-      await page.click(tid('op-remesh'));
-      await waitVersionAbove(page, v);
+      await clickForNewVersion(page, 'op-remesh');
       await waitStats(page, new RegExp(`\\bV ${want[0]} · E ${want[1]} · F ${want[2]}\\b.*genus 0(?!\\d)`));
     };
     const undo = async () => {
-      const v = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, v);
+      await clickForNewVersion(page, 'undo');
       await waitStats(page, /\bV 8 · E 12 · F 6\b/);
     };
     // Dual: a vertex per face, a face per vertex, an edge across each edge.
@@ -849,17 +862,9 @@ const scenarios = [
 
   ['Extrude a selected face twice, then undo both', async (page) => {
     if (useMock) return 'SKIP';
-    await setWorkspace(page, 'model');
-    await createPrimitive(page, '@cube');
-    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
-    const cube = parseStats(await statsText(page));
-    await page.check('[name=pick][value=face]');
-    await page.evaluate(() => window.__holey.setView([0.3, 0.4, 1]));
-    await page.waitForTimeout(100);
+    const cube = await modelOf(page, '@cube', /\bV 8 · E 12 · F 6\b/);
     // Click the middle of the +z side.
-    const at = await page.evaluate(() => window.__holey.project([0, 0, 1]));
-    await page.mouse.click(at[0], at[1]);
-    await waitFor(page, 'one selected face', () => window.__holey.selection.faces.length === 1);
+    await pickFaceAt(page, [0.3, 0.4, 1], [0, 0, 1]);
     await page.selectOption(tid('extrude-kind'), 'plain');
     await page.fill(tid('extrude-distance'), '0.8');
     await page.fill(tid('extrude-scale'), '0.7');
@@ -867,26 +872,20 @@ const scenarios = [
     await page.fill(tid('extrude-count'), '1');
     // One plain extrusion of a d-gon adds d vertices, 2d edges, d faces.
     const d = 4;
-    let v = await version(page);
-    await page.click(tid('op-extrude'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-extrude');
     await waitStats(page, new RegExp(`\\bV ${cube.V + d} · E ${cube.E + 2 * d} · F ${cube.F + d}\\b.*genus 0(?!\\d)`));
     // The new top is selected, on the new version: extrude it again.
     await waitFor(page, 'the new top selected', () => {
       const s = window.__holey.selection;
       return s.faces.length === 1 && s.version === window.__holey.version;
     });
-    v = await version(page);
-    await page.click(tid('op-extrude'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-extrude');
     await waitStats(page, new RegExp(`\\bV ${cube.V + 2 * d} · E ${cube.E + 4 * d} · F ${cube.F + 2 * d}\\b`));
     await page.evaluate(() => window.__holey.setView([0.3, 0.4, 1]));
     await page.waitForTimeout(200);
     await page.screenshot({ path: path.join(artifacts, '15-extrude.png') });
     for (let i = 0; i < 2; i++) {
-      v = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, v);
+      await clickForNewVersion(page, 'undo');
     }
     await waitStats(page, /\bV 8 · E 12 · F 6\b/);
     // Nothing selected: the page says so instead of sending a request.
@@ -897,27 +896,18 @@ const scenarios = [
 
   ['Wireframe and columns of a cube: genus E − V + 1', async (page) => {
     if (useMock) return 'SKIP';
-    await setWorkspace(page, 'model');
-    await createPrimitive(page, '@cube');
-    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
-    const { V, E } = parseStats(await statsText(page));
+    const { V, E } = await modelOf(page, '@cube', /\bV 8 · E 12 · F 6\b/);
     await page.fill(tid('wireframe-thickness'), '0.25');
-    let v = await version(page);
-    await page.click(tid('op-wireframe'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-wireframe');
     // TopMod's wireframe: two vertices per corner (4E), ten edges per edge,
     // 4E + 2V faces; a tube per edge gives genus E − V + 1.
     await waitStats(page, new RegExp(`\\bV ${4 * E} · E ${10 * E} · F ${4 * E + 2 * V}\\b.*genus ${E - V + 1}(?!\\d)`));
     await page.evaluate(() => window.__holey.setView());
     await page.waitForTimeout(200);
     await page.screenshot({ path: path.join(artifacts, '16-wireframe.png') });
-    v = await version(page);
-    await page.click(tid('undo'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'undo');
     await page.fill(tid('columns-sides'), '6');
-    v = await version(page);
-    await page.click(tid('op-columns'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-columns');
     // Columns of n sides: 2nE vertices, the same genus.
     await waitStats(page, new RegExp(`\\bV ${2 * 6 * E} · .*genus ${E - V + 1}(?!\\d)`));
     await page.screenshot({ path: path.join(artifacts, '16-columns.png') });
@@ -925,10 +915,7 @@ const scenarios = [
 
   ['Cut a selected corner of a cube, then undo', async (page) => {
     if (useMock) return 'SKIP';
-    await setWorkspace(page, 'model');
-    await createPrimitive(page, '@cube');
-    await waitStats(page, /\bV 8 · E 12 · F 6\b/);
-    const { V, E, F } = parseStats(await statsText(page));
+    const { V, E, F } = await modelOf(page, '@cube', /\bV 8 · E 12 · F 6\b/);
     await page.evaluate(() => window.__holey.setView([1, 0.8, 1.2]));
     await page.waitForTimeout(100);
     // Shift-click on the +z side just inside its (1, 1, 1) corner picks
@@ -939,31 +926,22 @@ const scenarios = [
     await page.keyboard.up('Shift');
     await waitFor(page, 'one selected corner', () => window.__holey.selection.corners.length === 1);
     await page.fill(tid('cut-distance'), '0.5');
-    const v = await version(page);
-    await page.click(tid('op-cut'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-cut');
     // A vertex of valence k becomes a k-gon: +(k − 1) vertices, +k edges,
     // +1 face; a cube's corners have valence 3.
     const k = 3;
     await waitStats(page, new RegExp(`\\bV ${V + k - 1} · E ${E + k} · F ${F + 1}\\b`));
     await waitFor(page, 'the new triangle selected', () => window.__holey.selection.faces.length === 1);
     await page.screenshot({ path: path.join(artifacts, '17-cut-corner.png') });
-    const u = await version(page);
-    await page.click(tid('undo'));
-    await waitVersionAbove(page, u);
+    await clickForNewVersion(page, 'undo');
     await waitStats(page, /\bV 8 · E 12 · F 6\b/);
   }],
 
   ['Truncate every vertex of an icosahedron by a third: the soccer ball', async (page) => {
     if (useMock) return 'SKIP';
-    await setWorkspace(page, 'model');
-    await createPrimitive(page, '@icosahedron');
-    await waitStats(page, /\bV 12 · E 30 · F 20\b/);
-    const { V, E, F } = parseStats(await statsText(page));
+    const { V, E, F } = await modelOf(page, '@icosahedron', /\bV 12 · E 30 · F 20\b/);
     await page.fill(tid('truncate-fraction'), String(1 / 3));
-    const v = await version(page);
-    await page.click(tid('op-truncate-all'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-truncate-all');
     // Every vertex becomes a face: 2E vertices, 3E edges, F + V faces.
     await waitStats(page, new RegExp(`\\bV ${2 * E} · E ${3 * E} · F ${F + V}\\b`));
     // The twelve new pentagons are the selection.
@@ -978,13 +956,8 @@ const scenarios = [
     await page.evaluate(() => window.__holey.request('primitive', { spec: '@cube:2' }));
     await waitVersionAbove(page, v0);
     await waitStats(page, /\bF 24\b/);
-    await page.check('[name=pick][value=face]');
-    await page.evaluate(() => window.__holey.setView([0.3, 0.4, 1]));
-    await page.waitForTimeout(100);
     // A quad of the +z side, away from the side's middle vertex.
-    const at = await page.evaluate(() => window.__holey.project([0.5, 0.5, 1]));
-    await page.mouse.click(at[0], at[1]);
-    await waitFor(page, 'one selected face', () => window.__holey.selection.faces.length === 1);
+    const at = await pickFaceAt(page, [0.3, 0.4, 1], [0.5, 0.5, 1]);
     const seed = await page.evaluate(() => window.__holey.selection.faces[0]);
     const sel = () => page.evaluate(() => ({ faces: [...window.__holey.selection.faces], edges: [...window.__holey.selection.edges] }));
     const run = async (id, what, check) => {
@@ -1050,9 +1023,7 @@ const scenarios = [
       }
       if (Math.abs(sent.strength - expected[brush]) > 1e-9) throw new Error(`${brush}: sent strength ${sent.strength}, not ${expected[brush]}`);
       if (i === 0) await page.screenshot({ path: path.join(artifacts, '20-draw.png') });
-      const u = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, u);
+      await clickForNewVersion(page, 'undo');
     }
     // Ctrl inverts draw: a negative strength, and what moved went inwards.
     await page.click(tid('tool-draw'));
@@ -1317,9 +1288,7 @@ const scenarios = [
       await dragThrough(page, A, B, { steps: 1 });
       await waitVersionAbove(page, v);
       const frames = (await page.evaluate(() => window.__holey.framesSent)) - f0;
-      const u = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, u);
+      await clickForNewVersion(page, 'undo');
       return frames;
     };
     for (const spacing of [10, 50]) {
@@ -1412,9 +1381,7 @@ const scenarios = [
       return positions(page);
     };
     const undo = async () => {
-      const u = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, u);
+      await clickForNewVersion(page, 'undo');
     };
     // One pass: the middle of the path rises to the slab's height.
     const once = rise(await stroke([A, B]));
@@ -1592,9 +1559,7 @@ const scenarios = [
       const whole = /components 1 · genus 0 · boundary loops 5/.test(await statsText(page));
       results[tool] = { changedPixels: changed, movedShare: round(moved / diag, 4), whole, V: stats.V };
       await page.screenshot({ path: path.join(artifacts, `28-bunny-${tool}.png`) });
-      const u = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, u);
+      await clickForNewVersion(page, 'undo');
     }
     console.log(`  defaults ${JSON.stringify(defaults)}; per brush ${JSON.stringify(results)}`);
     // Visible: hundreds of pixels change. Not destructive: one piece, five
@@ -1633,9 +1598,7 @@ const scenarios = [
       if (worst > 1e-5) throw new Error(`across ${'xyz'[axis]} = 0, a vertex is ${worst} from the nearest mirror of another`);
     }
     await page.screenshot({ path: path.join(artifacts, '29-symmetry-yz.png') });
-    let u = await version(page);
-    await page.click(tid('undo'));
-    await waitVersionAbove(page, u);
+    await clickForNewVersion(page, 'undo');
     for (const a of ['y', 'z']) await page.uncheck(tid(`symmetry-${a}`));
 
     // Move the whole sphere to the right, then draw with symmetry X about
@@ -1666,9 +1629,7 @@ const scenarios = [
     await page.uncheck(tid('symmetry-x'));
     await page.selectOption(tid('symmetry-about'), 'origin');
     for (let i = 0; i < 2; i++) {
-      u = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, u);
+      await clickForNewVersion(page, 'undo');
     }
   }],
 
@@ -1684,24 +1645,18 @@ const scenarios = [
     const { V, E, F } = parseStats(await statsText(page));
     const width = await page.evaluate(() => window.__holey.bbox.max[0] - window.__holey.bbox.min[0]);
     const undo = async () => {
-      const u = await version(page);
-      await page.click(tid('undo'));
-      await waitVersionAbove(page, u);
+      await clickForNewVersion(page, 'undo');
       await waitStats(page, new RegExp(`\\bV ${V} · E ${E} · F ${F}\\b.*genus 0(?!\\d)`));
     };
     // The hull of a convex polyhedron's corners is the polyhedron: a new
     // version with the same counts.
-    let v = await version(page);
-    await page.click(tid('op-hull'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-hull');
     await waitStats(page, new RegExp(`\\bV ${V} · E ${E} · F ${F}\\b`));
     await undo();
     // The dual hull has one face per corner of the hull; on a regular
     // polyhedron it is the polar dual, so a vertex per face and an edge
     // per edge: F, E, V (the octahedron, 6 − 12 + 8 = 2, genus 0).
-    v = await version(page);
-    await page.click(tid('op-dual-hull'));
-    await waitVersionAbove(page, v);
+    await clickForNewVersion(page, 'op-dual-hull');
     await waitStats(page, new RegExp(`\\bV ${F} · E ${E} · F ${V}\\b.*genus 0(?!\\d)`));
     // The tangent plane at the corner (h, h, h) is x + y + z = 3h: the
     // octahedron's corners are on the axes, 3h out, three times as wide.
@@ -1716,7 +1671,7 @@ const scenarios = [
     // Points on one plane bound no solid: an error toast, the plane unchanged.
     await createPrimitive(page, '@plane');
     const flat = await statsText(page);
-    v = await version(page);
+    const v = await version(page);
     await page.click(tid('op-dual-hull'));
     await waitFor(page, 'an error toast saying the points lie on one plane', () =>
       [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /one plane/.test(t.textContent)));
