@@ -182,6 +182,38 @@ async function pickFaceAt(page, dir, p) {
   return at;
 }
 
+/** Each face of a frame's arrays (`window.__holey.frameArrays`) as its
+ * area vector (the sum of its triangles') and centroid direction (the sum
+ * of its triangles' corners), from the triangles alone. */
+function faceFrames({ positions: p, tris, triFace, nf }) {
+  const faces = Array.from({ length: nf }, () => ({ normal: [0, 0, 0], centre: [0, 0, 0] }));
+  for (let t = 0; t < triFace.length; t++) {
+    const [a, b, c] = [0, 1, 2].map((k) => [0, 1, 2].map((i) => p[3 * tris[3 * t + k] + i]));
+    const u = [0, 1, 2].map((i) => b[i] - a[i]), w = [0, 1, 2].map((i) => c[i] - a[i]);
+    const n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+    const f = faces[triFace[t]];
+    for (let i = 0; i < 3; i++) {
+      f.normal[i] += n[i];
+      f.centre[i] += a[i] + b[i] + c[i];
+    }
+  }
+  return faces;
+}
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+
+/** Six cubes of side 1 centred on the axes at distance 3, as OBJ text. */
+function sixCubesObj() {
+  const corners = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]];
+  const quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]];
+  let text = '';
+  for (let k = 0; k < 6; k++) {
+    const axis = k >> 1, side = k % 2 ? 3 : -3;
+    for (const c of corners) text += `v ${c.map((x, i) => x - 0.5 + (i === axis ? side : 0)).join(' ')}\n`;
+    for (const q of quads) text += `f ${q.map((i) => 8 * k + i + 1).join(' ')}\n`;
+  }
+  return text;
+}
+
 async function setRange(page, id, value) {
   await page.$eval(tid(id), (el, val) => {
     el.value = String(val);
@@ -1676,6 +1708,83 @@ const scenarios = [
     await waitFor(page, 'an error toast saying the points lie on one plane', () =>
       [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /one plane/.test(t.textContent)));
     if ((await version(page)) !== v || (await statsText(page)) !== flat) throw new Error('the refused hull changed the document');
+  }],
+  ['Handle tool: a Bézier tunnel through a cube of 3 × 3 quads a side; six cubes joined through a hub by a multi-face handle, previewed, then made with each curve; undo', async (page) => {
+    if (useMock) return 'SKIP';
+    // A cube of 3 × 3 quads a side (6n² + 2, 12n², 6n²), tunnelled between
+    // the middle quads of its +z and −z sides, found by their normals and
+    // centroids in the frame.
+    await setWorkspace(page, 'model');
+    const v0 = await version(page);
+    await page.evaluate(() => window.__holey.request('primitive', { spec: '@cube:3' }));
+    await waitVersionAbove(page, v0);
+    await waitStats(page, /\bV 56 · E 108 · F 54\b/);
+    const { V, E, F } = parseStats(await statsText(page));
+    let faces = faceFrames(await page.evaluate(() => window.__holey.frameArrays));
+    const middle = (z) => {
+      const off = (f) => Math.hypot(f.centre[0], f.centre[1]);
+      const side = faces.flatMap((f, i) => (f.normal[2] * z > 0 ? [i] : []));
+      return side.reduce((best, i) => (off(faces[i]) < off(faces[best]) ? i : best), side[0]);
+    };
+    await page.evaluate((f) => window.__holey.selectFaces(f), [middle(1), middle(-1)]);
+    // A handle of s segments between quads adds 4(s − 1) vertices,
+    // 4(2s − 1) edges and 4s − 2 faces; on one body, one to the genus.
+    const s = 3;
+    await page.fill(tid('handle-segments'), String(s));
+    await page.fill(tid('handle-w1'), '-1');
+    await page.fill(tid('handle-w2'), '-1');
+    await page.selectOption(tid('handle-curve'), 'bezier');
+    await clickForNewVersion(page, 'handle-commit');
+    await waitStats(page, new RegExp(`\\bV ${V + 4 * (s - 1)} · E ${E + 4 * (2 * s - 1)} · F ${F + 4 * s - 2}\\b.*genus 1(?!\\d)`));
+    await waitFor(page, 'a toast naming the Bézier handle', () =>
+      [...document.querySelectorAll('[data-testid="toast"]')].some((t) => /Bézier handle/.test(t.textContent)));
+    await page.evaluate(() => window.__holey.setView([0.5, 0.4, 1]));
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(artifacts, '31-bezier-tunnel.png') });
+
+    // Six cubes around the origin, each side looking at it selected.
+    const file = path.join(artifacts, 'six-cubes.obj');
+    fs.writeFileSync(file, sixCubesObj());
+    const v = await version(page);
+    await page.setInputFiles(tid('import-input'), file);
+    await waitVersionAbove(page, v);
+    await waitStats(page, /\bV 48 · E 72 · F 36 · components 6\b/);
+    faces = faceFrames(await page.evaluate(() => window.__holey.frameArrays));
+    const facing = faces.flatMap((f, i) => (dot(f.normal, f.centre) < 0 ? [i] : []));
+    if (facing.length !== 6) throw new Error(`${facing.length} faces look at the centre, not 6`);
+    // Three faces are neither a pair nor a hub's worth: the page says so.
+    await page.evaluate((f) => window.__holey.selectFaces(f), facing.slice(0, 3));
+    await page.click(tid('handle-commit'));
+    await waitFor(page, 'an error toast asking for two or four or more faces', () =>
+      [...document.querySelectorAll('[data-testid="toast-error"]')].some((t) => /four or more/.test(t.textContent)));
+    await page.evaluate((f) => window.__holey.selectFaces(f), facing);
+    await page.fill(tid('handle-w1'), '0.5');
+    await page.fill(tid('handle-w2'), '0.5');
+    await page.fill(tid('handle-hub-scale'), '0.5');
+    await page.selectOption(tid('handle-curve'), 'hermite');
+    // The preview shows the hub and handles and commits nothing.
+    const previews = await page.evaluate(() => window.__holey.previewFrames);
+    await page.click(tid('op-handle'));
+    await waitFor(page, 'the preview frame', (n) => window.__holey.previewFrames > n, previews);
+    await page.evaluate(() => window.__holey.setView([1, 0.8, 0.6]));
+    await page.waitForTimeout(200);
+    await page.screenshot({ path: path.join(artifacts, '31-multi-handle-preview.png') });
+    await waitStats(page, /\bV 48 · E 72 · F 36 · components 6\b/);
+    // The hub is the octahedron's dual, a cube (8 / 12 / 6), a quad facing
+    // each selected quad; seven bodies joined by six handles: one sphere.
+    const k = 6;
+    const joined = new RegExp(`\\bV ${48 + 8 + k * 4 * (s - 1)} · E ${72 + 12 + k * 4 * (2 * s - 1)} · F ${36 + 6 + k * (4 * s - 2)} · components 1 · genus 0(?!\\d)`);
+    for (const curve of ['hermite', 'bezier']) {
+      await page.selectOption(tid('handle-curve'), curve);
+      await page.evaluate((f) => window.__holey.selectFaces(f), facing);
+      await clickForNewVersion(page, 'handle-commit');
+      await waitStats(page, joined);
+      await page.evaluate(() => window.__holey.setView([1, 0.8, 0.6]));
+      await page.waitForTimeout(200);
+      await page.screenshot({ path: path.join(artifacts, `31-multi-handle-${curve}.png`) });
+      await clickForNewVersion(page, 'undo');
+      await waitStats(page, /\bV 48 · E 72 · F 36 · components 6\b/);
+    }
   }],
 ];
 

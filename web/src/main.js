@@ -99,6 +99,17 @@ const hook = {
     return { ortho: viewer.ortho, position: c.position.toArray(), target: t ? t.toArray() : null, zoom: c.zoom, material: viewer.materialName };
   },
   setView: (dir) => viewer?.setView(dir),
+  // For scenarios that select faces no click can reach (faces looking
+  // into a ring of bodies): the selection as a pick would make it, and
+  // the frame's arrays to find them by.
+  selectFaces(faces) {
+    app.sel = { version: app.frame?.version ?? -1, faces: [...faces], corners: [], edges: [] };
+    applySelection();
+  },
+  get frameArrays() {
+    const f = app.frame;
+    return f && { positions: Array.from(f.positions), tris: Array.from(f.tris), triFace: Array.from(f.triFace), nf: f.nf };
+  },
   project: (p) => viewer?.project(p),
   request: (op, fields) => conn.request(op, fields),
   get proxy() {
@@ -568,14 +579,17 @@ $('op-delete-edge').onclick = () => {
 
 function handleFields(preview) {
   const f = app.sel.faces;
-  if (f.length !== 2) {
-    toast('Select exactly two faces for the handle.', 'error');
+  if (f.length !== 2 && f.length < 4) {
+    toast('Select two faces for a handle, or four or more to join them through a hub.', 'error');
     return null;
   }
   const fields = {
     version: app.sel.version, faces: f, segments: num('handle-segments'),
-    w1: num('handle-w1'), w2: num('handle-w2'), preview,
+    w1: num('handle-w1'), w2: num('handle-w2'), curve: $('handle-curve').value, preview,
   };
+  // Four or more faces: a multi-face handle, which starts at each face's
+  // first corner; its hub's size is the one setting of its own.
+  if (f.length >= 4) return { ...fields, hub_scale: num('handle-hub-scale') };
   // A corner picked on each face fixes the twist of the handle.
   const ca = app.sel.corners.find(([face]) => face === f[0]);
   const cb = app.sel.corners.find(([face]) => face === f[1]);
@@ -586,9 +600,12 @@ $('op-handle').onclick = () => {
   const f = handleFields(true);
   if (f) long('handle', f, 'previewing handle');
 };
-$('handle-commit').onclick = () => {
+$('handle-commit').onclick = async () => {
   const f = handleFields(false);
-  if (f) long('handle', f, 'making handle');
+  if (!f) return;
+  // The answer says which curve and how the genus changed.
+  const ok = await long('handle', f, f.faces.length > 2 ? 'making multi-face handle' : 'making handle');
+  if (ok?.message) toast(ok.message);
 };
 $('handle-discard').onclick = () => call('hello'); // re-sends the committed mesh
 

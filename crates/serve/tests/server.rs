@@ -1874,3 +1874,148 @@ fn extrusions_are_the_librarys_and_a_refusal_changes_nothing() {
     a.ok(json!({"op": "undo"}));
     assert_eq!(vef(&a), cube);
 }
+
+// ---- issue 18: the handle tool's curve and multi-face handles ----------------
+
+/// Six cubes of side 1 (testkit's unit cube) centred on the axes at
+/// distance 3, as OBJ: one component each, 48 / 72 / 36.
+fn six_cubes_obj() -> String {
+    let (corners, quads) = holey_testkit::unit_cube();
+    let mut text = String::new();
+    for k in 0..6 {
+        let (axis, side) = (k / 2, if k % 2 == 0 { -3.0 } else { 3.0 });
+        for c in corners {
+            let p: Vec<String> = (0..3)
+                .map(|i| (c[i] - 0.5 + if i == axis { side } else { 0.0 }).to_string())
+                .collect();
+            text += &format!("v {}\n", p.join(" "));
+        }
+        for q in quads {
+            let v: Vec<String> = q
+                .iter()
+                .map(|&i| (8 * k + i as usize + 1).to_string())
+                .collect();
+            text += &format!("f {}\n", v.join(" "));
+        }
+    }
+    text
+}
+
+/// The display faces of a whole mesh frame whose outward normal points
+/// at the origin, worked out from the frame's own triangles (so the test
+/// does not lean on how the server numbers faces).
+fn faces_facing_origin(frame: &[u8]) -> Vec<usize> {
+    let word = |i: usize| u32::from_le_bytes(frame[4 * i..4 * i + 4].try_into().expect("4 bytes"));
+    let (nv, nt, nf) = (word(4) as usize, word(5) as usize, word(7) as usize);
+    let position = |v: usize| {
+        let at = 8 + 3 * v;
+        [0, 1, 2].map(|k| f64::from(f32::from_bits(word(at + k))))
+    };
+    let tris = 8 + 3 * nv;
+    let tri_face = tris + 3 * nt;
+    // Per face: the sum of its triangles' area vectors and of their
+    // corners (a centroid's direction is all that is compared).
+    let mut normal = vec![[0.0f64; 3]; nf];
+    let mut centre = vec![[0.0f64; 3]; nf];
+    for t in 0..nt {
+        let [a, b, c] = [0, 1, 2].map(|k| position(word(tris + 3 * t + k) as usize));
+        let (u, w) = (
+            [0, 1, 2].map(|i| b[i] - a[i]),
+            [0, 1, 2].map(|i| c[i] - a[i]),
+        );
+        let n = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        let f = word(tri_face + t) as usize;
+        for i in 0..3 {
+            normal[f][i] += n[i];
+            centre[f][i] += a[i] + b[i] + c[i];
+        }
+    }
+    (0..nf)
+        .filter(|&f| (0..3).map(|i| -normal[f][i] * centre[f][i]).sum::<f64>() > 0.0)
+        .collect()
+}
+
+#[test]
+fn bezier_and_multi_face_handles() {
+    // A Bézier tunnel through a cube, between opposite faces: a handle of
+    // s segments between quads adds 4(s − 1) / 4(2s − 1) / 4s − 2 and,
+    // on one component, one to the genus.
+    let (_dir, addr, mut a) = tab_on("@cube");
+    let s = 3;
+    let r = a.ok(
+        json!({"op": "handle", "version": a.state["version"], "faces": [0, 5],
+        "segments": s, "w1": -1, "w2": -1, "curve": "bezier"}),
+    );
+    assert!(
+        r["message"].as_str().unwrap_or("").contains("Bézier"),
+        "{r}"
+    );
+    assert_eq!(
+        vef(&a),
+        [8 + 4 * (s - 1), 12 + 4 * (2 * s - 1), 6 + 4 * s - 2]
+    );
+    assert_eq!(a.genus(), 1);
+    a.ok(json!({"op": "undo"}));
+
+    // Six cubes joined through a hub. Their directions from the centre are
+    // the octahedron's, so the hub is its dual, a cube (8 / 12 / 6) with a
+    // quad facing each selected quad; seven components joined by six
+    // handles make one sphere.
+    let (status, r) = upload(addr, "six.obj", six_cubes_obj().as_bytes());
+    assert_eq!(status, 200, "{r}");
+    // The state comes first, then the frame.
+    let vertices =
+        |frame: Option<&Vec<u8>>| frame.map(|f| u32::from_le_bytes([f[16], f[17], f[18], f[19]]));
+    while vef(&a) != [48, 72, 36] || vertices(a.frames.last()) != Some(48) {
+        a.pump_one();
+    }
+    assert_eq!(a.state["stats"]["components"], 6);
+    let version = a.state["version"].clone();
+    let facing = faces_facing_origin(a.frames.last().expect("a frame"));
+    assert_eq!(facing.len(), 6, "{facing:?}");
+    let refusals = [
+        (json!({"faces": &facing[..3]}), "four or more"),
+        (
+            json!({"faces": facing, "corners": [0, 0]}),
+            "\"corners\" choose the twist",
+        ),
+        (json!({"faces": facing, "curve": "spline"}), "spline"),
+        (json!({"faces": facing, "hub_scale": 0}), "hub scale"),
+        (json!({"faces": [0, 1], "hub_scale": 0.5}), "four or more"),
+        (json!({"faces": [facing[0], 99999, 1, 2]}), "face 99999"),
+    ];
+    for (mut req, says) in refusals {
+        req["op"] = json!("handle");
+        req["version"] = version.clone();
+        a.refused(req, says);
+        assert_eq!(vef(&a), [48, 72, 36], "a refusal changes nothing");
+    }
+    for curve in ["hermite", "bezier"] {
+        // Undo brings the faces back under a new version number.
+        let version = a.state["version"].clone();
+        let r = a.ok(json!({"op": "handle", "version": version, "faces": facing,
+            "segments": s, "w1": 0.5, "w2": 0.5, "curve": curve, "hub_scale": 0.5}));
+        assert!(
+            r["message"].as_str().unwrap_or("").contains("of 6 faces"),
+            "{r}"
+        );
+        let k = 6;
+        assert_eq!(
+            vef(&a),
+            [
+                48 + 8 + k * 4 * (s - 1),
+                72 + 12 + k * 4 * (2 * s - 1),
+                36 + 6 + k * (4 * s - 2)
+            ],
+            "{curve}"
+        );
+        assert_eq!(a.state["stats"]["components"], 1, "{curve}");
+        assert_eq!(a.genus(), 0, "{curve}");
+        a.ok(json!({"op": "undo"}));
+        assert_eq!(vef(&a), [48, 72, 36]);
+    }
+}

@@ -1,10 +1,14 @@
 //! The thesis's edits on the model workspace.
 
 use holey_dlfl::Mesh;
-use holey_model::handle::{HandleParams, create_handle};
+use holey_model::handle::{
+    HandleCurve, HandleParams, MultiHandleParams, UnknownHandleCurve, create_handle,
+    create_multi_face_handle,
+};
 use serde_json::json;
 
 use super::request::HandleRequest;
+use super::toolbox::plain_ids;
 use super::{Out, Reply, Shared};
 use crate::doc::{Content, Document};
 use crate::frame::{FLAG_PREVIEW, display_model, encode};
@@ -80,13 +84,63 @@ pub(super) fn delete_edge(doc: &Document, mesh: &mut Mesh, e: usize) -> Result<S
     ))
 }
 
-/// `handle`: a curved handle between two faces.
+/// The hub scale of a multi-face handle when the request gives none (the
+/// CLI's `--hub-scale` default).
+pub(super) const DEFAULT_HUB_SCALE: f64 = 0.5;
+
+/// `handle`: a curved handle between two faces, or with four or more
+/// faces a multi-face handle joining them through a hub.
 pub(super) fn handle(
     doc: &Document,
     mesh: &mut Mesh,
     req: &HandleRequest,
 ) -> Result<String, ServeError> {
-    let [fa, fb] = req.faces;
+    let segments = req.segments.unwrap_or(4);
+    if !(1..=64).contains(&segments) {
+        return Err(ServeError::BadRequest("segments must be 1 to 64".into()));
+    }
+    let curve: HandleCurve = match &req.curve {
+        Some(name) => name
+            .parse()
+            .map_err(|e: UnknownHandleCurve| ServeError::BadRequest(e.to_string()))?,
+        None => HandleCurve::default(),
+    };
+    let params =
+        HandleParams::new(segments, req.w1.unwrap_or(1.0), req.w2.unwrap_or(1.0)).with_curve(curve);
+    match req.faces.as_slice() {
+        &[fa, fb] => {
+            if req.hub_scale.is_some() {
+                return Err(ServeError::BadRequest(
+                    "\"hub_scale\" is for a handle of four or more faces".into(),
+                ));
+            }
+            pair_handle(doc, mesh, [fa, fb], req.corners, &params)
+        }
+        faces if faces.len() >= 4 => {
+            if req.corners.is_some() {
+                return Err(ServeError::BadRequest(
+                    "\"corners\" choose the twist of a two-face handle; a multi-face handle starts at each face's first corner".into(),
+                ));
+            }
+            let hub_scale = req.hub_scale.unwrap_or(DEFAULT_HUB_SCALE);
+            multi_handle(doc, mesh, faces, MultiHandleParams::new(params, hub_scale))
+        }
+        faces => Err(ServeError::Refused(format!(
+            "a handle joins two faces, or four or more through a hub; {} selected",
+            faces.len()
+        ))),
+    }
+}
+
+/// A handle between two faces, from the corners given (a vertex of each
+/// face) or the faces' first corners.
+fn pair_handle(
+    doc: &Document,
+    mesh: &mut Mesh,
+    [fa, fb]: [usize; 2],
+    corners: Option<[usize; 2]>,
+    params: &HandleParams,
+) -> Result<String, ServeError> {
     let corner = |face: usize, vertex: Option<usize>| -> Result<_, ServeError> {
         match vertex {
             Some(v) => doc.corner(mesh, face, v),
@@ -102,18 +156,59 @@ pub(super) fn handle(
             }
         }
     };
-    let vs = match req.corners {
+    let vs = match corners {
         Some([a, b]) => [Some(a), Some(b)],
         None => [None, None],
     };
     let a = corner(fa, vs[0])?;
     let b = corner(fb, vs[1])?;
-    let segments = req.segments.unwrap_or(4);
-    if !(1..=64).contains(&segments) {
-        return Err(ServeError::BadRequest("segments must be 1 to 64".into()));
-    }
-    let params = HandleParams::new(segments, req.w1.unwrap_or(1.0), req.w2.unwrap_or(1.0));
     let before = mesh.genus();
-    create_handle(mesh, a, b, &params).map_err(|e| ServeError::Refused(format!("handle: {e}")))?;
-    Ok(format!("handle (genus {} → {})", before, mesh.genus()))
+    create_handle(mesh, a, b, params).map_err(|e| ServeError::Refused(format!("handle: {e}")))?;
+    Ok(format!(
+        "{} handle (genus {} → {})",
+        curve_title(params.curve),
+        before,
+        mesh.genus()
+    ))
+}
+
+/// A multi-face handle: the faces (display indices) joined through a hub.
+/// The library leaves the mesh unchanged on a refusal, whose faces are
+/// named back by their display indices.
+fn multi_handle(
+    doc: &Document,
+    mesh: &mut Mesh,
+    shown: &[usize],
+    params: MultiHandleParams,
+) -> Result<String, ServeError> {
+    let index = doc.index();
+    let faces = shown
+        .iter()
+        .map(|&i| {
+            index.faces.get(i).copied().ok_or_else(|| {
+                ServeError::Refused(format!(
+                    "face {i} does not exist ({} faces)",
+                    index.faces.len()
+                ))
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let before = mesh.genus();
+    create_multi_face_handle(mesh, &faces, &params)
+        .map_err(|e| ServeError::Refused(format!("multi-face handle: {}", plain_ids(&e, index))))?;
+    Ok(format!(
+        "multi-face {} handle of {} faces (genus {} → {})",
+        curve_title(params.handle.curve),
+        faces.len(),
+        before,
+        mesh.genus()
+    ))
+}
+
+/// The curve as the modeler's menu names it.
+fn curve_title(curve: HandleCurve) -> &'static str {
+    match curve {
+        HandleCurve::Hermite => "Hermite",
+        HandleCurve::Bezier => "Bézier",
+    }
 }

@@ -129,13 +129,19 @@ pub(crate) const OPS: &[&str] = &[
     "make_manifold",
 ];
 
-/// `handle`: two faces joined by a curved handle.
+/// `handle`: two faces joined by a curved handle, or four or more joined
+/// through a hub (a multi-face handle).
 #[derive(Debug, Deserialize)]
 pub(crate) struct HandleRequest {
     pub version: Option<u64>,
-    pub faces: [usize; 2],
-    /// A vertex of each face, choosing the twist; the first corners when absent.
+    pub faces: Vec<usize>,
+    /// A vertex of each of two faces, choosing the twist; the first
+    /// corners when absent.
     pub corners: Option<[usize; 2]>,
+    /// `"hermite"` (the default) or `"bezier"`, as the library names them.
+    pub curve: Option<String>,
+    /// The hub's size (multi-face handles).
+    pub hub_scale: Option<f64>,
     pub segments: Option<usize>,
     pub w1: Option<f64>,
     pub w2: Option<f64>,
@@ -420,6 +426,7 @@ mod tests {
             panic!("{r:?}")
         };
         assert_eq!(h.faces, [1, 4]);
+        assert_eq!((h.curve, h.hub_scale), (None, None));
         assert_eq!((h.segments, h.w1, h.w2), (Some(6), None, Some(1.5)));
         assert_eq!(
             (h.version, h.corners, h.preview),
@@ -476,8 +483,8 @@ mod tests {
                 vec!["\"handle\" request", "field \"segments\"", "invalid type"],
             ),
             (
-                json!({"op": "handle", "faces": [0, 1, 2]}),
-                vec!["field \"faces\"", "length"],
+                json!({"op": "handle", "faces": 2}),
+                vec!["field \"faces\"", "sequence"],
             ),
             (
                 json!({"op": "insert_edge", "corners": [[0, 7], [0]]}),
