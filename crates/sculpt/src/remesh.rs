@@ -336,7 +336,7 @@ pub fn remesh_in_place_checked(
         let crossings = holey_topo::intersect::crossing_pairs_involving;
         if grew(crossings(mesh, region, &made), &|| {
             crossings(&saved, region, &unmade)
-        }) || grew(flat_within(mesh, region), &|| flat_within(&saved, region))
+        }) || grew(flat_among(mesh, &made), &|| flat_among(&saved, &unmade))
         {
             *mesh = saved;
             report.undone = true;
@@ -365,17 +365,15 @@ fn changed_triangles(before: &TriMesh, after: &TriMesh) -> (Vec<bool>, Vec<bool>
     (made, unmade)
 }
 
-/// Triangles with exactly collinear corners (zero area) among those whose
-/// boxes meet the box `region`.
-fn flat_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
+/// Triangles with exactly collinear corners (zero area) among those
+/// `marked` flags: the made (or unmade) triangles of a run. The triangles
+/// a run left alone are the same before and after, so the counts of the
+/// whole surface compare as these do.
+fn flat_among(mesh: &TriMesh, marked: &[bool]) -> usize {
     mesh.triangles
         .iter()
-        .filter(|t| {
-            let p = t.map(|v| mesh.positions[v as usize]);
-            let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
-            !(lo.cmpgt(region.1).any() || hi.cmplt(region.0).any())
-                && holey_topo::audit::is_degenerate(mesh, **t)
-        })
+        .zip(marked)
+        .filter(|(t, m)| **m && holey_topo::audit::is_degenerate(mesh, **t))
         .count()
 }
 

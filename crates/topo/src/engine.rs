@@ -747,7 +747,7 @@ pub(crate) enum Freedom {
     Free,
     /// It collides or crosses; the static intersections at the end, for
     /// a later stage that needs them on the same mesh.
-    Changes(Geometry),
+    Changes(Box<Geometry>),
     /// One of the two halves failed (too many pairs, say): the full run
     /// reports it.
     Unknown,
@@ -762,7 +762,7 @@ pub(crate) enum Freedom {
 pub(crate) fn freedom(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Freedom {
     match collisions_and_geometry(mesh, end, options) {
         (Ok((c, _)), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true) => Freedom::Free,
-        (Ok(_), Ok(g)) => Freedom::Changes(g),
+        (Ok(_), Ok(g)) => Freedom::Changes(Box::new(g)),
         _ => Freedom::Unknown,
     }
 }

@@ -225,7 +225,7 @@ fn run_with(
                     let surroundings = Surroundings::new(mesh, &tight.mask, end);
                     let local_end = moved.positions;
                     if let Some(out) =
-                        by_containment(&sub, &local_end, options, &surroundings, Some(g))?
+                        by_containment(&sub, &local_end, options, &surroundings, Some(*g))?
                         && let Some(run) =
                             spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
                         && run.worse.is_empty()
