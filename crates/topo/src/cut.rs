@@ -182,10 +182,14 @@ fn on_side(k: usize, s: f64) -> [f64; 2] {
 
 /// Chart position of barycentric coordinates (weights of the corners).
 /// Symbolically such points lie strictly inside; if rounding put one
-/// outside, it is moved exactly onto the nearest chart edge.
+/// outside, it is moved exactly onto the nearest chart edge. A sum `u + v`
+/// that rounds to 1 is on the hypotenuse too: its exact value can exceed
+/// 1 by less than an ulp (a first weight of 0: a point whose limit is on
+/// that side), which would put the point outside the chart, neither on the
+/// side (so the neighbour across it never hears of it) nor inside.
 fn from_bary(b: [f64; 3]) -> [f64; 2] {
     let (u, v) = (b[1].max(0.0), b[2].max(0.0));
-    if u + v > 1.0 {
+    if u + v >= 1.0 {
         on_hypotenuse(v / (u + v))
     } else {
         [u, v]

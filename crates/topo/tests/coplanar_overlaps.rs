@@ -1,0 +1,195 @@
+//! Coplanar overlaps in the arrangement (issue 14): reduced reproductions
+//! of what breaks `holey union openscad-nonmanifold-crash.obj`, the
+//! 3D-print repair of one self-overlapping solid (a plate with a relief
+//! whose faces lie in the plate's planes).
+//!
+//! The triangles and boxes are written here (taken from the mesh, or the
+//! smallest case a random search over boxes found); the oracles are
+//! computed in the test: lengths of the arrangement's unpaired edges
+//! against the input's boundary, and box volumes by inclusion–exclusion.
+
+mod common;
+
+use common::{closed_oriented, join, volume};
+use glam::DVec3;
+use holey_topo::{Operation, Options, TriMesh, boolean_by_winding, resolve};
+use std::collections::HashMap;
+
+/// The directed edges of `triangles` without a partner running the other
+/// way (with multiplicity), as vertex pairs.
+fn unpaired(triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    let mut net: HashMap<(u32, u32), i64> = HashMap::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *net.entry((a.min(b), a.max(b))).or_insert(0) += if a < b { 1 } else { -1 };
+        }
+    }
+    let mut out = Vec::new();
+    for ((a, b), n) in net {
+        let e = if n > 0 { (a, b) } else { (b, a) };
+        out.extend(std::iter::repeat_n(e, n.unsigned_abs() as usize));
+    }
+    out
+}
+
+fn length(m: &TriMesh, edges: &[(u32, u32)]) -> f64 {
+    edges
+        .iter()
+        .map(|&(a, b)| (m.positions[a as usize] - m.positions[b as usize]).length())
+        .sum()
+}
+
+/// Three triangles of openscad-nonmanifold-crash.obj (1-based faces 1255,
+/// 1265 and 1274 of its second component, vertices renumbered): `t1`, a
+/// vertical wall; `t3`, a floor at z = −204 sharing the side `v₁v₅` with
+/// it; `t2`, a wall nearly coplanar with `t1` whose bottom edge lies in
+/// the floor's plane and crosses `t1`. The crossing point lies on the
+/// shared side in the limit: its first barycentric weight in `t1` is
+/// exactly 0, the other two sum to 1 only after rounding.
+fn openscad_three_triangles() -> TriMesh {
+    TriMesh {
+        positions: vec![
+            DVec3::new(-16.5374, 7.45003, -210.0),
+            DVec3::new(-16.5849, 7.32133, -207.606),
+            DVec3::new(-16.9113, 6.436599999999999, -204.0),
+            DVec3::new(-16.793, 6.75718, -204.0),
+            DVec3::new(-16.5624, 7.38235, -204.0),
+            DVec3::new(-16.5374, 7.45003, -204.0),
+            DVec3::new(-16.4881, 7.55709, -204.0),
+        ],
+        triangles: vec![[0, 2, 5], [1, 3, 4], [2, 6, 5]],
+    }
+}
+
+/// A point that lies on a triangle's side in the limit, constructed with
+/// barycentric weights summing to 1 only after rounding, is put on that
+/// side of the triangle's chart, so the neighbour across the side is
+/// split at the same point: the arrangement is glued along the side, and
+/// its only unpaired edges subdivide the input's own boundary.
+///
+/// Before the fix the point landed a fraction of an ulp outside the chart:
+/// the wall was split at it along the shared side, the floor was not, and
+/// 431 edges of the arrangement of the mesh's second component were
+/// unpaired (3 after; those sit at its one zero-area triangle).
+#[test]
+fn a_point_rounded_onto_a_shared_side_splits_both_triangles() {
+    let mesh = openscad_three_triangles();
+    let (arrangement, x, _) = resolve(&mesh).expect("resolve");
+    assert_eq!(x.pairs.len(), 1, "the two walls cross, nothing else");
+    let boundary = length(&mesh, &unpaired(&mesh.triangles));
+    let open = length(&arrangement, &unpaired(&arrangement.triangles));
+    assert!(
+        (open - boundary).abs() <= 1e-12 * boundary,
+        "unpaired edges of the arrangement: length {open}, the input's boundary {boundary}"
+    );
+    // The floor is split where the wall's crossing curve meets it.
+    let floor_corners = [2u32, 6, 5].map(|v| mesh.positions[v as usize]);
+    let split_floor = arrangement
+        .triangles
+        .iter()
+        .filter(|t| {
+            t.iter()
+                .any(|&v| arrangement.positions[v as usize] == floor_corners[1])
+        })
+        .count();
+    assert!(
+        split_floor >= 2,
+        "the floor is split at the point on its side"
+    );
+}
+
+/// Volume of the union of axis-aligned boxes, by inclusion–exclusion.
+fn union_of_boxes(boxes: &[(DVec3, DVec3)]) -> f64 {
+    let n = boxes.len();
+    let mut total = 0.0;
+    for subset in 1u32..(1 << n) {
+        let (mut lo, mut hi) = (DVec3::splat(f64::NEG_INFINITY), DVec3::splat(f64::INFINITY));
+        for (i, b) in boxes.iter().enumerate() {
+            if subset & (1 << i) != 0 {
+                lo = lo.max(b.0);
+                hi = hi.min(b.1);
+            }
+        }
+        let d = (hi - lo).max(DVec3::ZERO);
+        let v = d.x * d.y * d.z;
+        total += if subset.count_ones() % 2 == 1 { v } else { -v };
+    }
+    total
+}
+
+/// A box triangulated as the random search built them (the diagonals
+/// decide which limit lines the perturbed crossings follow).
+fn search_box(lo: DVec3, hi: DVec3) -> TriMesh {
+    let (a, b) = (lo, hi);
+    TriMesh {
+        positions: vec![
+            DVec3::new(a.x, a.y, a.z),
+            DVec3::new(b.x, a.y, a.z),
+            DVec3::new(b.x, b.y, a.z),
+            DVec3::new(a.x, b.y, a.z),
+            DVec3::new(a.x, a.y, b.z),
+            DVec3::new(b.x, a.y, b.z),
+            DVec3::new(b.x, b.y, b.z),
+            DVec3::new(a.x, b.y, b.z),
+        ],
+        triangles: vec![
+            [0, 2, 1],
+            [0, 3, 2],
+            [4, 5, 6],
+            [4, 6, 7],
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+            [3, 0, 4],
+            [3, 4, 7],
+        ],
+    }
+}
+
+/// Three boxes in one input whose faces overlap in the planes y = 0.1,
+/// y = 0.3 and z = 0 (the smallest failing case of a random search over
+/// boxes on a coarse grid; two boxes never failed): the union by the
+/// exact arrangement, without the nudges of `boolean_by_winding_robust`
+/// (which rescue separate pieces, but not one connected solid such as the
+/// OpenSCAD plate, where the same thing happens).
+///
+/// Ignored: the result has 3 unpaired edges. Cause: the perturbed world
+/// tilts each coplanar face its own way, so overlapping faces cross along
+/// lines that in the limit run along the other faces' edges; constructed
+/// points that coincide in the limit are one vertex in the arrangement
+/// (`cut::place_points`, the charts' merges), so cells that are apart in
+/// the perturbed world meet there, and a region's one perturbed sample
+/// does not speak for all its triangles. Here box 3's cell of the plane
+/// y = 0.1 beside the curve x = 1 falls in one region with box 3's faces
+/// inside box 2 (joined across an edge no curve of the arrangement runs
+/// along) and is deleted with them, while box 2's cell across the curve
+/// is deleted as behind box 3: nothing is kept on one side of the curve.
+/// The fix is the coplanar overlay of issue 14: overlapping coplanar
+/// triangles cut along each other's edges in exact 2D and sharing their
+/// cells, classified in the limit.
+#[test]
+#[ignore = "coplanar overlay not built yet: 3 unpaired edges (see the doc comment)"]
+fn three_boxes_overlapping_in_shared_planes_unite_closed() {
+    let boxes = [
+        (DVec3::new(0.0, 0.1, 0.0), DVec3::new(0.7, 0.3, 0.3)),
+        (DVec3::new(0.1, 0.1, 0.0), DVec3::new(1.3, 0.7, 1.3)),
+        (DVec3::new(0.0, 0.1, 0.1), DVec3::new(1.0, 0.3, 1.0)),
+    ];
+    let mut solid = TriMesh::default();
+    for (lo, hi) in boxes {
+        solid = join(&solid, &search_box(lo, hi));
+    }
+    let out = boolean_by_winding(&[&solid], Operation::Union, &Options::default()).expect("union");
+    assert_eq!(out.report.unpaired_edges, 0, "open");
+    assert!(closed_oriented(&out.mesh), "not closed and oriented");
+    let expected = union_of_boxes(&boxes);
+    let got = volume(&out.mesh);
+    assert!(
+        (got - expected).abs() <= 1e-12 * expected,
+        "volume {got}, boxes' union {expected}"
+    );
+}
