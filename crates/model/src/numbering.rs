@@ -490,15 +490,54 @@ impl Numbering {
         match e {
             MultiHandleError::DuplicateFace(f) => format!("{} is selected twice", face(*f)),
             MultiHandleError::AtCentre(f) => format!(
-                "{} has its centroid at the centre of the selected faces, so no direction from the hub",
+                "{} has its centroid at the hub's centre, so no direction from the hub",
                 face(*f)
             ),
             MultiHandleError::SameDirection(f, g) => format!(
-                "{} and {} lie in the same direction from the centre of the selected faces",
+                "{} and {} lie in the same direction from the hub's centre",
                 face(*f),
                 face(*g)
             ),
+            MultiHandleError::NoCommonView(faces) => format!(
+                "{} look away from each other: no point near the selection (within four times its radius) lies in front of all of them, so a hub would sit inside the surface and the handles would pass through it; select faces that look at a common point from outside",
+                self.face_list(mesh, faces)
+            ),
+            MultiHandleError::OneSided(faces) => format!(
+                "{} all look into one side: every point in front of all of them sees them to one side, and a hub needs selected faces all around it",
+                self.face_list(mesh, faces)
+            ),
+            MultiHandleError::Blind { faces, hub } => format!(
+                "the hub's centre {hub} is not strictly in front of {}",
+                self.face_list(mesh, faces)
+            ),
+            MultiHandleError::Blocked { face: f, by, hub } => format!(
+                "{} cannot see the hub at {hub}: {} is in the way",
+                face(*f),
+                face(*by)
+            ),
+            MultiHandleError::Crosses { faces, pairs } => format!(
+                "the handles from {} would cross the surface or each other ({pairs} crossing triangle pairs); try a smaller hub scale, smaller weights or more segments",
+                self.face_list(mesh, faces)
+            ),
             other => other.to_string(),
+        }
+    }
+
+    /// Faces named in these numbers: "faces 3, 7 and 9" (one: "face 3").
+    fn face_list(&self, mesh: &Mesh, faces: &[FaceId]) -> String {
+        let names: Vec<String> = faces
+            .iter()
+            .map(|&f| {
+                let name = self.face_name(mesh, f);
+                name.strip_prefix("face ")
+                    .map(str::to_string)
+                    .unwrap_or(name)
+            })
+            .collect();
+        match names.as_slice() {
+            [] => "no faces".to_string(),
+            [one] => format!("face {one}"),
+            [rest @ .., last] => format!("faces {} and {last}", rest.join(", ")),
         }
     }
 

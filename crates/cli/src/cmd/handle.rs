@@ -26,9 +26,13 @@ w1 and w2 above the faces along their normals (the Hermite curve with
 three times the weights).
 --faces F,F,F,F[,...] instead joins four or more faces through a hub (a
 multi-face handle, TopMod's): the dual convex hull of points in the
-faces' directions from their centre, --hub-scale times the nearest
-centroid's distance, one handle from each face to its hub face. Genus
-rises by k - m for k faces in m pieces.
+faces' directions from a centre that every face sees from outside and
+that has faces all around it, --hub-scale times the nearest centroid's
+distance, one handle from each face to its hub face. Genus rises by
+k - m for k faces in m pieces. Faces with no such centre (all around one
+body, looking outward), a face whose view of it is blocked, and handles
+that would cross anything (checked exactly, as holey selfint counts) are
+refused, naming the faces.
 
 Examples:
   holey handle @torus out.obj --from 0:0 --to 150:2 --segments 6 --w1 2 --w2 2

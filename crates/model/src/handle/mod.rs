@@ -79,13 +79,17 @@
 //!   faces of zero area (no normal) or weights so large that positions
 //!   overflow.
 
+mod crossing;
 pub mod geometry;
+mod hub;
 mod matching;
 mod multi;
+mod simplex;
 
 use glam::DVec3;
 use holey_dlfl::{CornerId, EdgeId, FaceId, Mesh, NonFinite, VertexId};
 
+pub use crossing::CrossingError;
 pub use geometry::{BezierCurve, HandlePath, HermiteCurve};
 use geometry::{Morph, centroid, rotation_between, vector_area};
 use matching::{Matching, plan_matching};

@@ -8,27 +8,42 @@
 //! builds its hub from the convex hull of the selected faces, and this is
 //! that natural reading:
 //!
-//! 1. `p_i` are the selected faces' centroids, `c` their average, and
-//!    `d_i = (p_i − c)/|p_i − c|` the directions from `c` to them.
+//! 1. `p_i` are the selected faces' centroids and `h` the hub's centre:
+//!    a point strictly in front of every selected face and strictly
+//!    inside the convex hull of the centroids, chosen by a linear program
+//!    and checked exactly ([`super::hub`]; the centroids' average `c`
+//!    when it is good enough). `d_i = (p_i − h)/|p_i − h|` are the
+//!    directions from `h` to the faces; being inside the centroids' hull
+//!    makes them span space positively, so the hub below is bounded.
 //! 2. The hub is the dual convex hull ([`crate::hull::dual_convex_hull`])
-//!    of the points `c + r·d_i`, `r = hub_scale · min_i |p_i − c|`: the
+//!    of the points `h + r·d_i`, `r = hub_scale · min_i |p_i − h|`: the
 //!    points lie on one sphere, so each is a corner of their hull and the
 //!    dual has exactly one face per selected face, touching the sphere at
-//!    `c + r·d_i` and facing along (nearly) `d_i`. Each hub face is paired
+//!    `h + r·d_i` and facing along (nearly) `d_i`. Each hub face is paired
 //!    with the direction its unit normal is closest to; the pairing must be
 //!    one-to-one.
 //! 3. The hub is added to the mesh as a new component, then handle `i`
-//!    runs from the first corner of selected face `i` to the first corner
-//!    of its hub face (the corners' choice sets the twist).
+//!    runs from the first corner of selected face `i` to the hub corner
+//!    that lines up best with it (the corners' choice sets the twist).
+//! 4. The faces made or changed are checked for crossings with the whole
+//!    surface and with each other, exactly, as `holey selfint` counts them
+//!    ([`super::crossing`]); any crossing refuses the handle.
 //!
-//! The hub's faces face away from `c`, so the construction is meant for
-//! faces turned towards a common point outside the surface (say, one face
-//! of each of several bodies arranged around a gap, or faces lining the
-//! inside of a ring). Where `c` lies inside the solid (faces all around
-//! one convex body) the counts and the genus below still hold, and
-//! `validate()` stays true, but the hub lies inside the solid and the
-//! handles pass through the surface: no weights make that an embedding.
-//!
+//! So the result never passes through itself where the input did not.
+//! Faces all around one body, each looking outward (TopMod's hub then
+//! sits inside the solid and every handle runs through the surface), are
+//! refused with [`MultiHandleError::NoCommonView`], naming at most four
+//! faces that have no common point in front of them; faces that all look
+//! one way (the top of a slab) with [`MultiHandleError::OneSided`]; a face
+//! whose straight view of the hub is blocked with
+//! [`MultiHandleError::Blocked`]; and handles that would still cross
+//! (faces too large for the gap between them, weights too large) with
+//! [`MultiHandleError::Crosses`]. The construction is for faces that look
+//! at a common point from outside: one face of each of several bodies
+//! arranged around a gap, faces lining the inside of a ring, or the
+//! faces around a saddle of one body (a cow's horn, ears, neck and back
+//! around a point above its head).
+
 //! ## Counts
 //! With a hub of `V_h / E_h / k` (for points in general position
 //! `V_h = 2k − 4`, `E_h = 3k − 6`), handle `i` of `s` segments with `N_i`
@@ -53,17 +68,21 @@
 //!
 //! ## Refused input (mesh unchanged)
 //! Fewer than four faces, a face given twice, hole or point-sphere faces,
-//! a centroid at `c`, two faces in one direction from `c`, directions on
-//! one plane (their hull is flat), a hub scale that is not finite and
-//! positive, a hub whose faces do not pair one-to-one with the
-//! directions, and whatever the two-face handle refuses.
+//! faces with no common point in front or all to one side of every such
+//! point, a blocked view of the hub, a centroid at `h`, two faces in one
+//! direction from `h`, directions on one plane (their hull is flat), a
+//! hub scale that is not finite and positive, a hub whose faces do not
+//! pair one-to-one with the directions, whatever the two-face handle
+//! refuses, and a result whose new faces cross anything.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use glam::DVec3;
-use holey_dlfl::{BuildError, CornerId, FaceId, Mesh, RawMesh};
+use holey_dlfl::{BuildError, CornerId, FaceId, Mesh, RawMesh, VertexId};
 
+use super::crossing::{CrossingError, crossings};
 use super::geometry::{centroid, vector_area};
+use super::hub::{Selection, hub_centre};
 use super::{HandleError, HandleParams, HandleReport, create_handle};
 use crate::hull::{HullError, dual_convex_hull};
 
@@ -86,15 +105,13 @@ pub enum MultiHandleError {
     /// [`MultiHandleParams::hub_scale`] is not finite and positive.
     #[error("the hub scale is {0}; it must be finite and positive")]
     BadHubScale(f64),
-    /// This face's centroid is the centre of all the centroids, so it has
-    /// no direction from the hub.
-    #[error(
-        "face {0} has its centroid at the centre of the selected faces, so no direction from the hub"
-    )]
+    /// This face's centroid is the hub's centre, so it has no direction
+    /// from the hub.
+    #[error("face {0} has its centroid at the hub's centre, so no direction from the hub")]
     AtCentre(FaceId),
-    /// Two faces lie in the same direction from the centre; one hub face
+    /// Two faces lie in the same direction from the hub's centre; one hub face
     /// cannot serve both.
-    #[error("faces {0} and {1} lie in the same direction from the centre of the selected faces")]
+    #[error("faces {0} and {1} lie in the same direction from the hub's centre")]
     SameDirection(FaceId, FaceId),
     /// The hub could not be built: the directions lie on one plane
     /// ([`HullError::Flat`]) or a numerical failure.
@@ -122,6 +139,72 @@ pub enum MultiHandleError {
         /// Why.
         source: HandleError,
     },
+    /// No point within four selection radii of the centroids' average lies
+    /// in front of all these faces (a smallest such set, at most four by
+    /// Helly's theorem; the same four may share a point far away): a hub they
+    /// could all reach from outside does not exist, as for faces all
+    /// around one body looking outward.
+    #[error(
+        "faces {} look away from each other: no point near the selection (within four times its radius) lies in front of all of them, so a hub would sit inside the surface and the handles would pass through it; select faces that look at a common point from outside",
+        list(.0)
+    )]
+    NoCommonView(Vec<FaceId>),
+    /// Points in front of every selected face exist, but from each of them
+    /// all the faces lie to one side, so the hub (one face turned to each
+    /// selected face) would be unbounded.
+    #[error(
+        "faces {} all look into one side: every point in front of all of them sees them to one side, and a hub needs selected faces all around it",
+        list(.0)
+    )]
+    OneSided(Vec<FaceId>),
+    /// The hub's centre proposed by the (floating-point) choice is not
+    /// strictly in front of every fan triangle of these faces by the exact
+    /// test (a margin lost to rounding).
+    #[error(
+        "the hub's centre {hub} is not strictly in front of faces {}",
+        list(faces)
+    )]
+    Blind {
+        /// The faces that do not see the centre.
+        faces: Vec<FaceId>,
+        /// The centre proposed.
+        hub: DVec3,
+    },
+    /// The straight line from a selected face's centroid to the hub's
+    /// centre passes through another face.
+    #[error("face {face} cannot see the hub at {hub}: face {by} is in the way")]
+    Blocked {
+        /// The selected face.
+        face: FaceId,
+        /// The face crossed first found.
+        by: FaceId,
+        /// The hub's centre.
+        hub: DVec3,
+    },
+    /// The handles built cross the surface or each other (exact count of
+    /// crossing triangle pairs, as `holey selfint` counts them).
+    #[error(
+        "the handles from faces {} would cross the surface or each other ({pairs} crossing triangle pairs); try a smaller hub scale, smaller weights or more segments",
+        list(faces)
+    )]
+    Crosses {
+        /// The selected faces whose handles cross something.
+        faces: Vec<FaceId>,
+        /// Crossing triangle pairs involving the new faces.
+        pairs: usize,
+    },
+    /// The exact crossing check could not run (non-finite positions).
+    #[error("the crossing check failed: {0}")]
+    Check(#[from] CrossingError),
+}
+
+/// Faces as a comma-separated list.
+fn list(faces: &[FaceId]) -> String {
+    faces
+        .iter()
+        .map(|f| f.to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The parameters of a multi-face handle.
@@ -130,8 +213,8 @@ pub struct MultiHandleParams {
     /// The parameters of each handle from a selected face to the hub
     /// (segments, weights, curve).
     pub handle: HandleParams,
-    /// The hub's size: it touches the sphere about the centre `c` of
-    /// radius `hub_scale · min_i |p_i − c|`.
+    /// The hub's size: it touches the sphere about its centre `h` of
+    /// radius `hub_scale · min_i |p_i − h|`.
     pub hub_scale: f64,
 }
 
@@ -145,7 +228,7 @@ impl MultiHandleParams {
 /// What [`create_multi_face_handle`] built.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MultiHandleReport {
-    /// The hub's centre `c`.
+    /// The hub's centre `h`.
     pub centre: DVec3,
     /// The hub's vertex, edge and face counts before the handles.
     pub hub_counts: (usize, usize, usize),
@@ -163,9 +246,106 @@ pub fn create_multi_face_handle(
     faces: &[FaceId],
     params: &MultiHandleParams,
 ) -> Result<MultiHandleReport, MultiHandleError> {
+    let (joined, report, untouched) = assemble(mesh, faces, params)?;
+    check_crossings(&joined, &untouched, faces, &report.handles)?;
+    *mesh = joined;
+    Ok(report)
+}
+
+/// The input's faces (in the rebuilt mesh) with their vertices before the
+/// handles ran. A face keeps its id when a pipe reshapes it (the selected
+/// face becomes one of the pipe's quadrilaterals) or a subdivision adds a
+/// corner, so only the same vertices in the same order count as untouched.
+type Untouched = HashMap<FaceId, Vec<VertexId>>;
+
+/// Steps 1–3 of the module docs on a copy of `mesh`: the mesh with the hub
+/// and handles, the report, and the input's faces as they were.
+fn assemble(
+    mesh: &Mesh,
+    faces: &[FaceId],
+    params: &MultiHandleParams,
+) -> Result<(Mesh, MultiHandleReport, Untouched), MultiHandleError> {
+    check_selection(mesh, faces, params)?;
     let k = faces.len();
-    if k < 4 {
-        return Err(MultiHandleError::TooFewFaces(k));
+    let mut centroids = Vec::with_capacity(k);
+    for &f in faces {
+        let pts = mesh.face_positions(f).map_err(HandleError::from)?;
+        if vector_area(&pts).length() == 0.0 {
+            return Err(HandleError::DegenerateFace(f).into());
+        }
+        centroids.push(centroid(&pts));
+    }
+    let selection = Selection {
+        faces,
+        centroids: &centroids,
+    };
+    let centre = hub_centre(mesh, &selection)?;
+    let directions = directions(faces, &centroids, centre)?;
+    let nearest = centroids
+        .iter()
+        .map(|p| p.distance(centre))
+        .fold(f64::INFINITY, f64::min);
+    let (hub, pairing) = build_hub(centre, &directions, params.hub_scale * nearest)?;
+    let hub_counts = (hub.vertex_count(), hub.edge_count(), hub.face_count());
+    // The selected faces' and hub faces' positions in the rebuilt mesh.
+    let slot: Vec<usize> = {
+        let order: HashMap<FaceId, usize> = mesh.faces().enumerate().map(|(i, f)| (f, i)).collect();
+        faces
+            .iter()
+            .map(|f| order.get(f).copied().unwrap_or(usize::MAX))
+            .collect()
+    };
+    let before = mesh.face_count();
+    let mut joined = Mesh::from_raw(&disjoint_union(&mesh.to_raw(), &hub.to_raw())?)?;
+    // Every face of the input as it was, to tell the faces the handles
+    // made or changed (subdivided neighbours) from the untouched ones.
+    let untouched: Untouched = joined
+        .faces()
+        .take(before)
+        .filter_map(|f| joined.face_vertices(f).ok().map(|v| (f, v)))
+        .collect();
+    let mut hub_faces = Vec::with_capacity(k);
+    let mut ends = Vec::with_capacity(k);
+    for (i, (&s, &j)) in slot.iter().zip(&pairing).enumerate() {
+        let (Some(f), Some(h)) = (joined.face_at(s), joined.face_at(before + j)) else {
+            return Err(MultiHandleError::Handle {
+                index: i,
+                source: HandleError::Kernel(holey_dlfl::Error::Invalid(
+                    "internal: a face was lost adding the hub".into(),
+                )),
+            });
+        };
+        hub_faces.push(h);
+        ends.push((f, h));
+    }
+    let mut handles = Vec::with_capacity(k);
+    for (index, (f, h)) in ends.into_iter().enumerate() {
+        let handle = (|| {
+            let c1 = joined.face_corner(f)?;
+            let c2 = least_twisted(&joined, c1, h)?;
+            create_handle(&mut joined, c1, c2, &params.handle)
+        })()
+        .map_err(|source| MultiHandleError::Handle { index, source })?;
+        handles.push(handle);
+    }
+    let report = MultiHandleReport {
+        centre,
+        hub_counts,
+        hub_faces,
+        handles,
+    };
+    Ok((joined, report, untouched))
+}
+
+/// The refusals that need no geometry: too few faces, duplicates, holes,
+/// point-spheres, a bad hub scale.
+fn check_selection(
+    mesh: &Mesh,
+    faces: &[FaceId],
+    params: &MultiHandleParams,
+) -> Result<(), MultiHandleError> {
+    if faces.len() < 4 {
+        return Err(MultiHandleError::TooFewFaces(faces.len()));
     }
     for (i, &f) in faces.iter().enumerate() {
         if faces[..i].contains(&f) {
@@ -181,46 +361,54 @@ pub fn create_multi_face_handle(
     if !(params.hub_scale.is_finite() && params.hub_scale > 0.0) {
         return Err(MultiHandleError::BadHubScale(params.hub_scale));
     }
-    let mut centroids = Vec::with_capacity(k);
-    for &f in faces {
-        let pts = mesh.face_positions(f).map_err(HandleError::from)?;
-        if vector_area(&pts).length() == 0.0 {
-            return Err(HandleError::DegenerateFace(f).into());
-        }
-        centroids.push(centroid(&pts));
-    }
-    let centre = centroid(&centroids);
+    Ok(())
+}
+
+/// The unit directions from `centre` to the centroids, refusing a centroid
+/// at the centre and two faces in one direction.
+fn directions(
+    faces: &[FaceId],
+    centroids: &[DVec3],
+    centre: DVec3,
+) -> Result<Vec<DVec3>, MultiHandleError> {
     let scale = centroids
         .iter()
         .map(|p| p.distance(centre))
         .fold(0.0, f64::max);
-    let mut directions = Vec::with_capacity(k);
-    let mut nearest = f64::INFINITY;
-    for (&f, &p) in faces.iter().zip(&centroids) {
+    let mut directions = Vec::with_capacity(faces.len());
+    for (&f, &p) in faces.iter().zip(centroids) {
         let d = p - centre;
         if d.length() <= 1e-12 * scale {
             return Err(MultiHandleError::AtCentre(f));
         }
-        nearest = nearest.min(d.length());
         directions.push(d.normalize());
     }
-    for i in 0..k {
+    for i in 0..faces.len() {
         for j in 0..i {
             if directions[i].dot(directions[j]) >= 1.0 - 1e-12 {
                 return Err(MultiHandleError::SameDirection(faces[j], faces[i]));
             }
         }
     }
-    let radius = params.hub_scale * nearest;
+    Ok(directions)
+}
+
+/// The hub touching the sphere of `radius` about `centre` in each of
+/// `directions` (module docs, step 2), and the hub face paired with each
+/// direction (the one whose normal is closest to it, one-to-one).
+fn build_hub(
+    centre: DVec3,
+    directions: &[DVec3],
+    radius: f64,
+) -> Result<(Mesh, Vec<usize>), MultiHandleError> {
+    let k = directions.len();
     let mut seeds = Mesh::new();
-    for d in &directions {
+    for d in directions {
         seeds
             .create_vertex(centre + *d * radius)
             .map_err(HandleError::from)?;
     }
     let hub = dual_convex_hull(&seeds)?;
-    let hub_counts = (hub.vertex_count(), hub.edge_count(), hub.face_count());
-    // Pair each hub face with the direction its normal is closest to.
     let mismatch = MultiHandleError::HubMismatch {
         hub_faces: hub.face_count(),
         faces: k,
@@ -244,49 +432,50 @@ pub fn create_multi_face_handle(
             _ => return Err(mismatch),
         }
     }
-    // The selected faces' and hub faces' positions in the rebuilt mesh.
-    let slot: Vec<usize> = {
-        let order: HashMap<FaceId, usize> = mesh.faces().enumerate().map(|(i, f)| (f, i)).collect();
-        faces
-            .iter()
-            .map(|f| order.get(f).copied().unwrap_or(usize::MAX))
-            .collect()
-    };
-    let before = mesh.face_count();
-    let mut joined = Mesh::from_raw(&disjoint_union(&mesh.to_raw(), &hub.to_raw())?)?;
-    let mut hub_faces = Vec::with_capacity(k);
-    let mut ends = Vec::with_capacity(k);
-    for (i, (&s, j)) in slot.iter().zip(&pairing).enumerate() {
-        let (Some(f), Some(h)) = (
-            joined.face_at(s),
-            j.and_then(|j| joined.face_at(before + j)),
-        ) else {
-            return Err(MultiHandleError::Handle {
-                index: i,
-                source: HandleError::Kernel(holey_dlfl::Error::Invalid(
-                    "internal: a face was lost adding the hub".into(),
-                )),
-            });
-        };
-        hub_faces.push(h);
-        ends.push((f, h));
+    let pairing = pairing.into_iter().collect::<Option<Vec<usize>>>();
+    Ok((hub, pairing.ok_or(mismatch)?))
+}
+
+/// Refuses the result when a face the handles made or changed crosses
+/// anything (exactly, as `holey selfint` counts), naming the selected
+/// faces whose handles are involved (a handle owns the faces along its
+/// pipes' edges; a crossing of the hub alone names every face).
+fn check_crossings(
+    joined: &Mesh,
+    untouched: &Untouched,
+    faces: &[FaceId],
+    handles: &[HandleReport],
+) -> Result<(), MultiHandleError> {
+    let made: HashSet<FaceId> = joined
+        .faces()
+        .filter(|f| untouched.get(f) != joined.face_vertices(*f).ok().as_ref())
+        .collect();
+    let pairs = crossings(joined, &made)?;
+    if pairs.is_empty() {
+        return Ok(());
     }
-    let mut handles = Vec::with_capacity(k);
-    for (index, (f, h)) in ends.into_iter().enumerate() {
-        let handle = (|| {
-            let c1 = joined.face_corner(f)?;
-            let c2 = least_twisted(&joined, c1, h)?;
-            create_handle(&mut joined, c1, c2, &params.handle)
-        })()
-        .map_err(|source| MultiHandleError::Handle { index, source })?;
-        handles.push(handle);
+    let mut owner = HashMap::new();
+    for (i, h) in handles.iter().enumerate() {
+        for e in h.pipes.iter().flatten() {
+            for f in joined.edge_faces(*e).into_iter().flatten() {
+                owner.entry(f).or_insert(i);
+            }
+        }
     }
-    *mesh = joined;
-    Ok(MultiHandleReport {
-        centre,
-        hub_counts,
-        hub_faces,
-        handles,
+    let mut named: Vec<usize> = pairs
+        .iter()
+        .flat_map(|(a, b)| [owner.get(a), owner.get(b)])
+        .flatten()
+        .copied()
+        .collect();
+    named.sort_unstable();
+    named.dedup();
+    if named.is_empty() {
+        named = (0..faces.len()).collect();
+    }
+    Err(MultiHandleError::Crosses {
+        faces: named.into_iter().map(|i| faces[i]).collect(),
+        pairs: pairs.len(),
     })
 }
 
@@ -591,24 +780,37 @@ mod tests {
     }
 
     #[test]
-    fn a_triangular_hub_is_subdivided_to_meet_quads() {
+    fn quads_against_a_triangular_hub_cross_and_are_refused() {
         // Four cubes instead: quads against the tetrahedral hub's
         // triangles. Every hub triangle is brought to four corners before
         // its handle (by its own subdivision or by a neighbour's, which
-        // splits a shared edge), so each handle has N = 4; the sum of the
-        // subdivisions depends on the order, and whatever it is, the
-        // result is one valid sphere with V − E + F = 2.
+        // splits a shared edge), so each handle has N = 4 and the result
+        // is one valid sphere with V − E + F = 2. But the hub's triangles
+        // are large beside the cubes' faces and meet at sharp edges, and
+        // the handles leaving neighbouring hub faces run into each other:
+        // the topology engine counts crossing pairs in what is built (this
+        // was accepted silently before the crossing check), so the handle
+        // is refused and the mesh left as it was.
         let (m0, faces) = tetrahedral("@cube");
-        let mut m = m0.clone();
         let p = MultiHandleParams::new(HandleParams::new(3, 0.5, 0.5), 0.5);
-        let r = create_multi_face_handle(&mut m, &faces, &p).unwrap();
-        m.validate().unwrap();
+        let (built, r, _) = assemble(&m0, &faces, &p).unwrap();
+        built.validate().unwrap();
         assert_eq!(r.hub_counts, (4, 6, 4));
         for h in &r.handles {
             assert_eq!(h.plan.corners, 4);
         }
-        assert_eq!((m.topology().component_count(), m.genus()), (1, 0));
-        assert_eq!(m.euler_characteristic(), 2);
+        assert_eq!((built.topology().component_count(), built.genus()), (1, 0));
+        assert_eq!(built.euler_characteristic(), 2);
+        let tri = holey_dlfl::convert::to_poly(&built).poly.triangulated();
+        let engine = holey_topo::self_intersections(&tri).unwrap().pairs.len();
+        assert!(engine > 0);
+        let mut m = m0.clone();
+        let err = create_multi_face_handle(&mut m, &faces, &p).unwrap_err();
+        assert_eq!(m.to_raw(), m0.to_raw());
+        assert!(
+            matches!(&err, MultiHandleError::Crosses { pairs, .. } if *pairs == engine),
+            "{err}; the engine counts {engine}"
+        );
     }
 
     #[test]
