@@ -11,7 +11,9 @@
 //! - no degenerate (exactly zero-area) triangle appears;
 //! - the exact count of intersecting triangle pairs never grows;
 //! - where a scenario has a topology (a tunnel, a join), its genus and
-//!   components.
+//!   components;
+//! - with remeshing, the triangles a stroke adds are bounded by the area
+//!   it made over (√3/4)·min_edge² (item 2: the remesher never blows up).
 //!
 //! The oracle is written here, apart from the crate: edges and fans by
 //! hash maps, components by a union-find, degeneracy by exact orientation
@@ -221,9 +223,18 @@ fn sculpt(
     let mut before = measure(s.mesh());
     let mut reports = Vec::new();
     for (i, st) in strokes.iter().enumerate() {
+        let start = s.mesh().clone();
         let r = s
             .apply_stroke(st)
             .unwrap_or_else(|e| panic!("{what}: stroke {i}: {e}"));
+        if let Some(range) = s.remesh() {
+            growth_bounded_by_area(
+                &format!("{what}, stroke {i}"),
+                &start,
+                s.mesh(),
+                range.min_edge,
+            );
+        }
         let after = measure(s.mesh());
         eprintln!(
             "{what}, stroke {i} ({}): {} frames, {} topology changes, {} guarded frames, \
@@ -249,6 +260,36 @@ fn sculpt(
         before = after;
     }
     (s, reports, before)
+}
+
+/// Issue 15, item 2: remeshing never blows up. The triangles a stroke
+/// added are at most the area of the triangles it made (those not in the
+/// surface before, bit for bit) over the area of an equilateral triangle
+/// of the remesher's shortest edge, (√3/4)·min_edge²: the count a tiling
+/// of that area by the smallest triangles remeshing aims for would have.
+fn growth_bounded_by_area(what: &str, before: &TriMesh, after: &TriMesh, min_edge: f64) {
+    let key = |m: &TriMesh, t: &[u32; 3]| {
+        let mut k = t.map(|v| m.positions[v as usize].to_array().map(f64::to_bits));
+        k.sort_unstable();
+        k
+    };
+    let old: HashSet<[[u64; 3]; 3]> = before.triangles.iter().map(|t| key(before, t)).collect();
+    let made_area: f64 = after
+        .triangles
+        .iter()
+        .filter(|t| !old.contains(&key(after, t)))
+        .map(|t| {
+            let [a, b, c] = t.map(|v| after.positions[v as usize]);
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .sum();
+    let bound = made_area / (3f64.sqrt() / 4.0 * min_edge * min_edge);
+    let grew = after.triangles.len() as f64 - before.triangles.len() as f64;
+    eprintln!("{what}: {grew} triangles added, area bound {bound:.0}");
+    assert!(
+        grew <= bound.ceil(),
+        "{what}: remeshing added {grew} triangles over a made area allowing {bound:.1}"
+    );
 }
 
 fn paint(brush: Brush, radius: f64, strength: f64, path: Vec<DVec3>) -> Stroke {
