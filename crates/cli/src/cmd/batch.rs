@@ -21,7 +21,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::cmd::{
-    convert, cut, info, menger, remesh, resolve, selfint, sierpinski, subdivide, union, wireframe,
+    MeshToFile, convert, cut, info, menger, remesh, resolve, selfint, sierpinski, subdivide, union,
+    wireframe,
 };
 use crate::error::{bad_input, exit_status};
 
@@ -370,18 +371,18 @@ impl Job {
     fn run_file(&self, input: &str, output: Option<&str>) -> Result<Option<String>> {
         let out = || output.ok_or_else(|| anyhow!("no output path for {input}"));
         match self {
-            Job::Convert(o) => convert::run_file(input, out()?, o)?,
-            Job::Subdivide(o) => subdivide::run_file(input, out()?, o)?,
+            Job::Convert(o) => o.run_file(input, out()?)?,
+            Job::Subdivide(o) => o.run_file(input, out()?)?,
             Job::Remesh(o) => remesh::run_file(input, out()?, o)?,
-            Job::Wireframe(o) => wireframe::run_file(input, out()?, o)?,
+            Job::Wireframe(o) => o.run_file(input, out()?)?,
             Job::Truncate(o) => cut::run_truncate_file(input, out()?, o)?,
             Job::Resolve => {
                 // What -v would print; it does not name the file.
                 let _summary = resolve::run_file(input, out()?)?;
             }
             Job::Union(o) => union::unite(&[input], out()?, o)?,
-            Job::Sierpinski(o) => sierpinski::run_file(input, out()?, o)?,
-            Job::Menger(o) => menger::run_file(input, out()?, o)?,
+            Job::Sierpinski(o) => o.run_file(input, out()?)?,
+            Job::Menger(o) => o.run_file(input, out()?)?,
             Job::Info(o) => return Ok(Some(serde_json::to_string(&info::measure(input, o)?)?)),
             Job::Selfint(o) => {
                 let found = selfint::find(input)?;

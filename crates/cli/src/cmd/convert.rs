@@ -3,11 +3,11 @@
 use anyhow::Result;
 use holey_io::WriteOptions;
 
+use crate::cmd::{FileArgs, MeshToFile};
 use crate::input::{Input, WeldDistance, load, weld};
 use crate::output::{write_kernel, write_soup};
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 The output format is the output file's extension: .obj, .off, .ply, .stl,
 .gltf, .glb (glTF 2.0), .3mf or .dlfl. Converting between soup formats
 keeps the mesh as it is (non-manifold, open or unwelded meshes included).
@@ -26,15 +26,9 @@ Examples:
   holey convert bracket.3mf bracket.obj --weld 0
   holey convert part.stl part.dlfl --split-nonmanifold
   holey convert sierpinski.dlfl sierpinski.obj
-  holey convert teapot.obj teapot.ply --weld 0.01%")]
-pub struct Args {
-    /// Input mesh: a file or a primitive such as @torus.
-    pub input: String,
-    /// Output file; its extension names the format.
-    pub output: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey convert teapot.obj teapot.ply --weld 0.01%";
+
+pub type Args = FileArgs<Options>;
 
 /// The options besides the two files, which `holey batch convert` shares.
 #[derive(clap::Args)]
@@ -53,25 +47,26 @@ pub struct Options {
     pub weld: Option<WeldDistance>,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    run_file(&args.input, &args.output, &args.options)
-}
-
-/// Converts the mesh `input` names into the file `output`.
-pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
-    let opts = WriteOptions {
-        ascii: options.ascii,
-        ..WriteOptions::default()
-    };
-    let mut loaded = load(input)?;
-    if let (Some(d), Input::Soup(soup)) = (options.weld, &loaded.input) {
-        loaded.input = Input::Soup(weld(input, soup, d)?);
-    }
-    match loaded.input {
-        Input::Soup(ref soup) => write_soup(output, soup, &opts, options.split_nonmanifold),
-        Input::Dlfl(_) => {
-            let kernel = loaded.into_kernel(false)?;
-            write_kernel(output, &kernel.mesh, &opts)
+impl MeshToFile for Options {
+    /// Converts the mesh `input` names into the file `output`.
+    fn run_file(&self, input: &str, output: &str) -> Result<()> {
+        let opts = WriteOptions {
+            ascii: self.ascii,
+            ..WriteOptions::default()
+        };
+        let mut loaded = load(input)?;
+        if let (Some(d), Input::Soup(soup)) = (self.weld, &loaded.input) {
+            loaded.input = Input::Soup(weld(input, soup, d)?);
+        }
+        match loaded.input {
+            Input::Soup(ref soup) => write_soup(output, soup, &opts, self.split_nonmanifold),
+            Input::Dlfl(_) => {
+                let kernel = loaded.into_kernel(false)?;
+                write_kernel(output, &kernel.mesh, &opts)
+            }
         }
     }
+
+    const INPUT: &str = "Input mesh: a file or a primitive such as @torus";
+    const AFTER_HELP: &str = AFTER_HELP;
 }

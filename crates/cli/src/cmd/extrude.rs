@@ -8,6 +8,7 @@ use holey_model::extrude::{
 };
 use holey_model::numbering::parse_index_list;
 
+use crate::cmd::{FileArgs, MeshToFile};
 use crate::error::bad_input;
 use crate::input::load;
 use crate::output::write_kernel;
@@ -20,8 +21,7 @@ fn kind_parser() -> impl TypedValueParser<Value = ExtrudeKind> {
     .try_map(|name| name.parse::<ExtrudeKind>())
 }
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Extrudes each face of --faces (numbered in file order, as `holey info`
 counts them) one after the other, or, with --together, lifts the faces
 as one region so that neighbouring selected faces keep their shared
@@ -50,15 +50,9 @@ Examples:
   holey extrude @cube tower.obj --faces 0 --distance 1 --count 3 --scale 0.8 --rotation 15
   holey extrude @cube spikes.obj --faces 0,1,2,3,4,5 --kind stellate --distance 1
   holey extrude @dodecahedron d.obj --faces 0 --kind dodecahedral
-  holey extrude @plane:4:4 slab.obj --faces 5,6,9,10 --together --distance 0.5")]
-pub struct Args {
-    /// Input mesh (a file or a primitive).
-    pub input: String,
-    /// Output file; its extension names the format.
-    pub output: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey extrude @plane:4:4 slab.obj --faces 5,6,9,10 --together --distance 0.5";
+
+pub type Args = FileArgs<Options>;
 
 /// The options besides the two files.
 #[derive(clap::Args)]
@@ -132,38 +126,39 @@ fn flag_refusal(e: &ExtrudeError) -> Option<String> {
     })
 }
 
-pub fn run(args: Args) -> Result<()> {
-    run_file(&args.input, &args.output, &args.options)
-}
-
-/// Extrudes the faces of the mesh `input` names into the file `output`.
-pub fn run_file(input: &str, output: &str, o: &Options) -> Result<()> {
-    let options = o.library();
-    // Refused before the input is read.
-    options
-        .check(o.kind)
-        .map_err(|e| bad_input(flag_refusal(&e).unwrap_or_else(|| e.to_string())))?;
-    let numbers = parse_index_list(&o.faces, "face").map_err(bad_input)?;
-    if numbers.is_empty() {
-        return Err(bad_input("--faces names no face"));
-    }
-    let mut kernel = load(input)?.into_kernel(false)?;
-    // Every id is resolved before the first extrusion, so the numbers
-    // are those of the input whatever the earlier extrusions made.
-    let faces = kernel
-        .numbering
-        .faces(&numbers)
-        .map_err(|e| bad_input(format!("{input}: --faces: {e}")))?;
-    let ids: Vec<_> = faces.iter().map(|&(_, f)| f).collect();
-    // A refusal leaves the mesh unchanged, and nothing is written; one by
-    // one, it names the face refused.
-    extrude_selection(&mut kernel.mesh, &ids, o.kind, &options).map_err(|e| {
-        let why = kernel.numbering.describe_extrude(&kernel.mesh, &e);
-        if o.together {
-            bad_input(format!("{input}: faces {}: {why}", o.faces))
-        } else {
-            bad_input(format!("{input}: {why}"))
+impl MeshToFile for Options {
+    /// Extrudes the faces of the mesh `input` names into the file `output`.
+    fn run_file(&self, input: &str, output: &str) -> Result<()> {
+        let options = self.library();
+        // Refused before the input is read.
+        options
+            .check(self.kind)
+            .map_err(|e| bad_input(flag_refusal(&e).unwrap_or_else(|| e.to_string())))?;
+        let numbers = parse_index_list(&self.faces, "face").map_err(bad_input)?;
+        if numbers.is_empty() {
+            return Err(bad_input("--faces names no face"));
         }
-    })?;
-    write_kernel(output, &kernel.mesh, &WriteOptions::default())
+        let mut kernel = load(input)?.into_kernel(false)?;
+        // Every id is resolved before the first extrusion, so the numbers
+        // are those of the input whatever the earlier extrusions made.
+        let faces = kernel
+            .numbering
+            .faces(&numbers)
+            .map_err(|e| bad_input(format!("{input}: --faces: {e}")))?;
+        let ids: Vec<_> = faces.iter().map(|&(_, f)| f).collect();
+        // A refusal leaves the mesh unchanged, and nothing is written; one by
+        // one, it names the face refused.
+        extrude_selection(&mut kernel.mesh, &ids, self.kind, &options).map_err(|e| {
+            let why = kernel.numbering.describe_extrude(&kernel.mesh, &e);
+            if self.together {
+                bad_input(format!("{input}: faces {}: {why}", self.faces))
+            } else {
+                bad_input(format!("{input}: {why}"))
+            }
+        })?;
+        write_kernel(output, &kernel.mesh, &WriteOptions::default())
+    }
+
+    const INPUT: &str = "Input mesh (a file or a primitive)";
+    const AFTER_HELP: &str = AFTER_HELP;
 }

@@ -4,13 +4,13 @@ use anyhow::Result;
 use holey_io::WriteOptions;
 use holey_model::menger::{MengerParams, Thickness, menger};
 
+use crate::cmd::{FileArgs, MeshToFile};
 use crate::error::bad_input;
 use crate::input::load;
 use crate::output::write_kernel;
 use crate::progress::Progress;
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Each level remeshes every face around a smaller copy, offsets the copies
 inwards by the thickness D, connects them along the original edges and
 pipes each copy to its offset, drilling a tunnel through every face. D is
@@ -27,15 +27,9 @@ Examples:
   holey menger @cube sponge.obj -n 2
   holey menger @cube sponge.dlfl -n 2 --thickness 0.2
   holey menger @cube true3.obj -n 3 --exact
-  holey menger @dodecahedron dodeca.obj --thickness-ratio 0.25")]
-pub struct Args {
-    /// Input mesh: a closed 2-manifold (a file or a primitive such as @cube).
-    pub input: String,
-    /// Output file; its extension names the format.
-    pub output: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey menger @dodecahedron dodeca.obj --thickness-ratio 0.25";
+
+pub type Args = FileArgs<Options>;
 
 /// The options besides the two files, which `holey batch menger` shares.
 #[derive(clap::Args)]
@@ -57,25 +51,26 @@ pub struct Options {
     pub exact: bool,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    run_file(&args.input, &args.output, &args.options)
-}
+impl MeshToFile for Options {
+    /// The Menger sponge of the mesh `input` names, into the file `output`.
+    fn run_file(&self, input: &str, output: &str) -> Result<()> {
+        let thickness = match (self.thickness, self.thickness_ratio) {
+            (Some(d), _) => Thickness::Absolute(d),
+            (None, Some(r)) => Thickness::RatioOfMeanEdge(r),
+            (None, None) => Thickness::RatioOfMeanEdge(1.0 / 3.0),
+        };
+        let params = MengerParams {
+            iterations: self.iterations,
+            thickness,
+            collapse_angle_deg: self.collapse_angle,
+            exact: self.exact,
+        };
+        let mut kernel = load(input)?.into_kernel(false)?;
+        let _p = Progress::start(format!("Menger sponge, {} level(s)", self.iterations));
+        menger(&mut kernel.mesh, &params).map_err(|e| bad_input(format!("{input}: {e}")))?;
+        write_kernel(output, &kernel.mesh, &WriteOptions::default())
+    }
 
-/// The Menger sponge of the mesh `input` names, into the file `output`.
-pub fn run_file(input: &str, output: &str, args: &Options) -> Result<()> {
-    let thickness = match (args.thickness, args.thickness_ratio) {
-        (Some(d), _) => Thickness::Absolute(d),
-        (None, Some(r)) => Thickness::RatioOfMeanEdge(r),
-        (None, None) => Thickness::RatioOfMeanEdge(1.0 / 3.0),
-    };
-    let params = MengerParams {
-        iterations: args.iterations,
-        thickness,
-        collapse_angle_deg: args.collapse_angle,
-        exact: args.exact,
-    };
-    let mut kernel = load(input)?.into_kernel(false)?;
-    let _p = Progress::start(format!("Menger sponge, {} level(s)", args.iterations));
-    menger(&mut kernel.mesh, &params).map_err(|e| bad_input(format!("{input}: {e}")))?;
-    write_kernel(output, &kernel.mesh, &WriteOptions::default())
+    const INPUT: &str = "Input mesh: a closed 2-manifold (a file or a primitive such as @cube)";
+    const AFTER_HELP: &str = AFTER_HELP;
 }

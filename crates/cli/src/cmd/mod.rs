@@ -24,3 +24,37 @@ pub mod topo;
 pub mod union;
 pub mod winding;
 pub mod wireframe;
+
+/// A command that reads one mesh and writes one file, and that `holey
+/// batch` can run on many files: its options are the clap struct that
+/// implements this, flattened both into the command run alone
+/// ([`FileArgs`]) and into its batch subcommand, so both parse the same
+/// flags and run the same [`MeshToFile::run_file`].
+pub trait MeshToFile: clap::Args {
+    /// The input argument's help: what kind of mesh the command takes.
+    const INPUT: &'static str;
+    /// What `--help` prints after the options: what the command does,
+    /// what it refuses, examples.
+    const AFTER_HELP: &'static str;
+    /// Runs on the mesh `input` names and writes the result to `output`.
+    fn run_file(&self, input: &str, output: &str) -> anyhow::Result<()>;
+}
+
+/// The arguments of a [`MeshToFile`] command run alone: the two files,
+/// then the command's options.
+#[derive(clap::Args)]
+#[command(after_help = O::AFTER_HELP)]
+pub struct FileArgs<O: MeshToFile> {
+    #[arg(help = O::INPUT)]
+    pub input: String,
+    /// Output file; its extension names the format.
+    pub output: String,
+    #[command(flatten)]
+    pub options: O,
+}
+
+impl<O: MeshToFile> FileArgs<O> {
+    pub fn run(self) -> anyhow::Result<()> {
+        self.options.run_file(&self.input, &self.output)
+    }
+}

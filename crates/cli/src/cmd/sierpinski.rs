@@ -4,13 +4,13 @@ use anyhow::Result;
 use holey_io::WriteOptions;
 use holey_model::sierpinski::sierpinski;
 
+use crate::cmd::{FileArgs, MeshToFile};
 use crate::error::bad_input;
 use crate::input::load;
 use crate::output::write_kernel;
 use crate::progress::Progress;
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Each iteration subdivides every edge that is not a self-loop, cuts every
 corner off each face, and joins the cuts with self-loops, so the result
 stays one connected 2-manifold. On a tetrahedron iterations 1, 2 and 3
@@ -23,15 +23,9 @@ written as the triangle it looks like.
 
 Examples:
   holey sierpinski @tetrahedron tetra3.dlfl -n 3
-  holey sierpinski @cube cube2.obj -n 2")]
-pub struct Args {
-    /// Input mesh: a closed 2-manifold (a file or a primitive such as @tetrahedron).
-    pub input: String,
-    /// Output file; its extension names the format.
-    pub output: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey sierpinski @cube cube2.obj -n 2";
+
+pub type Args = FileArgs<Options>;
 
 /// The options besides the two files, which `holey batch sierpinski` shares.
 #[derive(clap::Args)]
@@ -44,16 +38,18 @@ pub struct Options {
     pub split_nonmanifold: bool,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    run_file(&args.input, &args.output, &args.options)
-}
+impl MeshToFile for Options {
+    /// The Sierpinski polyhedron of the mesh `input` names, into the file `output`.
+    fn run_file(&self, input: &str, output: &str) -> Result<()> {
+        let mut kernel = load(input)?.into_kernel(self.split_nonmanifold)?;
+        let _p = Progress::start(format!("Sierpinski, {} iteration(s)", self.iterations));
+        let report = sierpinski(&mut kernel.mesh, self.iterations)
+            .map_err(|e| bad_input(format!("{input}: {e}")))?;
+        drop(report);
+        write_kernel(output, &kernel.mesh, &WriteOptions::default())
+    }
 
-/// The Sierpinski polyhedron of the mesh `input` names, into the file `output`.
-pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
-    let mut kernel = load(input)?.into_kernel(options.split_nonmanifold)?;
-    let _p = Progress::start(format!("Sierpinski, {} iteration(s)", options.iterations));
-    let report = sierpinski(&mut kernel.mesh, options.iterations)
-        .map_err(|e| bad_input(format!("{input}: {e}")))?;
-    drop(report);
-    write_kernel(output, &kernel.mesh, &WriteOptions::default())
+    const INPUT: &str =
+        "Input mesh: a closed 2-manifold (a file or a primitive such as @tetrahedron)";
+    const AFTER_HELP: &str = AFTER_HELP;
 }

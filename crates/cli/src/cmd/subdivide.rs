@@ -5,6 +5,7 @@ use clap::ValueEnum;
 use holey_io::WriteOptions;
 use holey_subdiv::{Scheme, subdivide};
 
+use crate::cmd::{FileArgs, MeshToFile};
 use crate::error::bad_input;
 use crate::input::load;
 use crate::output::write_kernel;
@@ -17,8 +18,7 @@ pub enum SchemeArg {
     DooSabin,
 }
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Works on any mesh the kernel holds, including the self-loops, two-gons
 and point-spheres that Sierpinski and Menger produce. Open meshes keep
 B-spline boundary curves (Catmull–Clark: cubic, with corners kept sharp;
@@ -27,15 +27,9 @@ under Catmull–Clark and 24/48/26 under Doo–Sabin.
 
 Examples:
   holey subdivide @cube smooth.obj --scheme catmull-clark -n 3
-  holey sierpinski @tetrahedron s.dlfl -n 3 && holey subdivide s.dlfl fig43.obj --scheme doo-sabin -n 2")]
-pub struct Args {
-    /// Input mesh (a file or a primitive).
-    pub input: String,
-    /// Output file; its extension names the format.
-    pub output: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey sierpinski @tetrahedron s.dlfl -n 3 && holey subdivide s.dlfl fig43.obj --scheme doo-sabin -n 2";
+
+pub type Args = FileArgs<Options>;
 
 /// The options besides the two files, which `holey batch subdivide` shares.
 #[derive(clap::Args)]
@@ -51,19 +45,20 @@ pub struct Options {
     pub split_nonmanifold: bool,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    run_file(&args.input, &args.output, &args.options)
-}
+impl MeshToFile for Options {
+    /// Subdivides the mesh `input` names into the file `output`.
+    fn run_file(&self, input: &str, output: &str) -> Result<()> {
+        let scheme = match self.scheme {
+            SchemeArg::CatmullClark => Scheme::CatmullClark,
+            SchemeArg::DooSabin => Scheme::DooSabin,
+        };
+        let kernel = load(input)?.into_kernel(self.split_nonmanifold)?;
+        let _p = Progress::start(format!("subdividing, {} level(s)", self.levels));
+        let out = subdivide(&kernel.mesh, scheme, self.levels)
+            .map_err(|e| bad_input(format!("{input}: {e}")))?;
+        write_kernel(output, &out, &WriteOptions::default())
+    }
 
-/// Subdivides the mesh `input` names into the file `output`.
-pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
-    let scheme = match options.scheme {
-        SchemeArg::CatmullClark => Scheme::CatmullClark,
-        SchemeArg::DooSabin => Scheme::DooSabin,
-    };
-    let kernel = load(input)?.into_kernel(options.split_nonmanifold)?;
-    let _p = Progress::start(format!("subdividing, {} level(s)", options.levels));
-    let out = subdivide(&kernel.mesh, scheme, options.levels)
-        .map_err(|e| bad_input(format!("{input}: {e}")))?;
-    write_kernel(output, &out, &WriteOptions::default())
+    const INPUT: &str = "Input mesh (a file or a primitive)";
+    const AFTER_HELP: &str = AFTER_HELP;
 }

@@ -4,13 +4,13 @@ use anyhow::Result;
 use holey_io::WriteOptions;
 use holey_model::wireframe::{ColumnParams, columns, wireframe};
 
+use crate::cmd::{FileArgs, MeshToFile};
 use crate::error::bad_input;
 use crate::input::load;
 use crate::output::write_kernel;
 use crate::progress::Progress;
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Turns every edge into a tube and every vertex into a joint: the surface
 of the thickened edge graph, a closed 2-manifold of genus E - V + C (C
 the components of the graph); a closed genus-g surface gives F - 1 + 2g,
@@ -34,15 +34,9 @@ columns of fewer than 3 sides, edges too short for their joints.
 Examples:
   holey wireframe @dodecahedron frame.obj --thickness 0.1
   holey wireframe @dodecahedron f.dlfl --thickness 0.08 && holey subdivide f.dlfl smooth.obj --scheme catmull-clark -n 2
-  holey wireframe @cube columns.obj --thickness 0.1 --columns 6")]
-pub struct Args {
-    /// Input mesh (a file or a primitive).
-    pub input: String,
-    /// Output file; its extension names the format.
-    pub output: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey wireframe @cube columns.obj --thickness 0.1 --columns 6";
+
+pub type Args = FileArgs<Options>;
 
 /// The options besides the two files, which `holey batch wireframe` shares.
 #[derive(clap::Args)]
@@ -58,27 +52,28 @@ pub struct Options {
     pub split_nonmanifold: bool,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    run_file(&args.input, &args.output, &args.options)
-}
-
-/// The wireframe (or columns) of the mesh `input` names, into `output`.
-pub fn run_file(input: &str, output: &str, options: &Options) -> Result<()> {
-    let kernel = load(input)?.into_kernel(options.split_nonmanifold)?;
-    let _p = Progress::start("building the wireframe");
-    let out = match options.columns {
-        None => wireframe(&kernel.mesh, options.thickness),
-        Some(sides) => columns(
-            &kernel.mesh,
-            &ColumnParams {
-                sides,
-                radius: options.thickness,
-            },
-        ),
+impl MeshToFile for Options {
+    /// The wireframe (or columns) of the mesh `input` names, into `output`.
+    fn run_file(&self, input: &str, output: &str) -> Result<()> {
+        let kernel = load(input)?.into_kernel(self.split_nonmanifold)?;
+        let _p = Progress::start("building the wireframe");
+        let out = match self.columns {
+            None => wireframe(&kernel.mesh, self.thickness),
+            Some(sides) => columns(
+                &kernel.mesh,
+                &ColumnParams {
+                    sides,
+                    radius: self.thickness,
+                },
+            ),
+        }
+        .map_err(|e| {
+            let why = kernel.numbering.describe_wireframe(&kernel.mesh, &e);
+            bad_input(format!("{input}: {why}"))
+        })?;
+        write_kernel(output, &out, &WriteOptions::default())
     }
-    .map_err(|e| {
-        let why = kernel.numbering.describe_wireframe(&kernel.mesh, &e);
-        bad_input(format!("{input}: {why}"))
-    })?;
-    write_kernel(output, &out, &WriteOptions::default())
+
+    const INPUT: &str = "Input mesh (a file or a primitive)";
+    const AFTER_HELP: &str = AFTER_HELP;
 }
