@@ -25,7 +25,7 @@ use holey_mesh::{DVec3, NonFinite};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_point, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_u64};
 
 const NONE: u32 = u32::MAX;
 
@@ -397,23 +397,13 @@ pub fn check_raw(raw: &RawMesh) -> Result<(), String> {
 /// Writes a [`RawMesh`] as `.dlfl`. Fails with
 /// [`io::ErrorKind::InvalidInput`] if [`check_raw`] rejects it.
 pub fn write<W: Write>(w: W, raw: &RawMesh) -> io::Result<()> {
-    check_raw(raw).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
+    check_raw(raw).map_err(crate::invalid_input)?;
     let mut out = Lines::new(w, b"# written by holey\ndlfl 1\n");
-    for &p in &raw.positions {
-        out.line(|b| {
-            b.extend_from_slice(b"v ");
-            push_point(b, p);
-        })?;
-    }
-    for f in 0..raw.face_count() {
-        out.line(|b| {
-            b.push(if raw.is_hole(f) { b'h' } else { b'f' });
-            for &v in raw.face(f) {
-                b.push(b' ');
-                push_u64(b, u64::from(v));
-            }
-        })?;
-    }
+    out.points(b"v ", &raw.positions)?;
+    let faces = (0..raw.face_count()).map(|f| raw.face(f));
+    out.faces(faces, 0, |b, f, _| {
+        b.push(if raw.is_hole(f) { b'h' } else { b'f' });
+    })?;
     for &[a, b] in &raw.edges {
         out.line(|buf| {
             buf.push(b'e');

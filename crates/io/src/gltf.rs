@@ -1028,16 +1028,14 @@ pub fn encode_glb(mesh: &PolyMesh) -> Result<Vec<u8>, String> {
 
 /// Writes the mesh as `.glb` (see the module docs). A mesh glTF cannot
 /// hold is an [`io::ErrorKind::InvalidInput`] error.
-pub fn write_glb<W: Write>(mut w: W, mesh: &PolyMesh) -> io::Result<()> {
-    let bytes = encode_glb(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    w.write_all(&bytes)
+pub fn write_glb<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
+    crate::write_encoded(w, encode_glb(mesh))
 }
 
 /// Writes the mesh as a self-contained `.gltf` (see the module docs). A
 /// mesh glTF cannot hold is an [`io::ErrorKind::InvalidInput`] error.
-pub fn write_gltf<W: Write>(mut w: W, mesh: &PolyMesh) -> io::Result<()> {
-    let bytes = encode_gltf(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    w.write_all(&bytes)
+pub fn write_gltf<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
+    crate::write_encoded(w, encode_gltf(mesh))
 }
 
 #[cfg(test)]
@@ -1048,12 +1046,7 @@ mod tests {
     use std::fs;
 
     use super::*;
-    use crate::{MeshFile, WriteOptions, read_path, write_poly};
-
-    /// Corners as lists of indices, face by face.
-    fn faces(m: &PolyMesh) -> Vec<Vec<u32>> {
-        m.faces().map(<[u32]>::to_vec).collect()
-    }
+    use crate::{MeshFile, WriteOptions, face_lists, read_path, write_poly};
 
     /// Triangles, a quad (fanned on writing) and an unused vertex, at
     /// coordinates f32 does not hold exactly.
@@ -1078,7 +1071,7 @@ mod tests {
         assert_eq!(back.positions, rounded);
         let (tris, _) = m.fan_triangles();
         let want: Vec<Vec<u32>> = tris.iter().map(|t| t.to_vec()).collect();
-        assert_eq!(faces(back), want);
+        assert_eq!(face_lists(back), want);
     }
 
     /// A GLB of a JSON document and a BIN chunk.
@@ -1229,7 +1222,7 @@ mod tests {
         assert_eq!(m.positions, want);
         // The mirrored copy has its triangles turned over.
         assert_eq!(
-            faces(&m),
+            face_lists(&m),
             vec![
                 vec![0, 1, 2],
                 vec![0, 2, 3],
@@ -1287,7 +1280,7 @@ mod tests {
         );
         assert_eq!(m.positions[3], DVec3::new(1.0, 1.0, 0.0));
         assert_eq!(
-            faces(&m),
+            face_lists(&m),
             vec![
                 vec![0, 1, 2],
                 // The strip 0 1 2 3: (0 1 2), then (2 1 3) keeping the winding.

@@ -316,6 +316,27 @@ pub fn write_bytes_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
     write_atomic(path, |w| w.write_all(bytes))
 }
 
+/// A mesh a writer's format cannot hold (malformed, or past the format's
+/// limits), as the error every writer returns for it.
+pub(crate) fn invalid_input(why: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, why)
+}
+
+/// Writes the bytes a binary encoder (glTF, GLB, 3MF) made of a mesh; its
+/// refusal is an [`io::ErrorKind::InvalidInput`] error.
+pub(crate) fn write_encoded<W: Write>(
+    mut w: W,
+    encoded: Result<Vec<u8>, String>,
+) -> io::Result<()> {
+    w.write_all(&encoded.map_err(invalid_input)?)
+}
+
+/// A mesh's faces as lists of vertex indices, for tests to compare.
+#[cfg(test)]
+pub(crate) fn face_lists(m: &PolyMesh) -> Vec<Vec<u32>> {
+    m.faces().map(<[u32]>::to_vec).collect()
+}
+
 /// Runs `body` on a temporary file in the destination's directory, then
 /// flushes, syncs and renames it over `path`. On any failure the temporary
 /// file is removed and `path` is untouched.

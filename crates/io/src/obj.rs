@@ -26,7 +26,7 @@ use std::io::{self, Write};
 use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
-use crate::text::{Cursor, Lines, push_indices, push_point};
+use crate::text::{Cursor, Lines};
 
 /// The statements of the OBJ format (Wavefront's Appendix B1): geometry,
 /// free-form curves and surfaces, grouping, display and rendering. Only
@@ -232,20 +232,10 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
 /// Fails with [`io::ErrorKind::InvalidInput`] if the mesh is malformed
 /// (see [`crate::check_poly`]).
 pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
-    crate::check_poly(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
+    crate::check_poly(mesh).map_err(crate::invalid_input)?;
     let mut out = Lines::new(w, b"# written by holey\n");
-    for &p in &mesh.positions {
-        out.line(|b| {
-            b.extend_from_slice(b"v ");
-            push_point(b, p);
-        })?;
-    }
-    for face in mesh.faces() {
-        out.line(|b| {
-            b.push(b'f');
-            push_indices(b, face, 1);
-        })?;
-    }
+    out.points(b"v ", &mesh.positions)?;
+    out.faces(mesh.faces(), 1, |b, _, _| b.push(b'f'))?;
     out.finish()
 }
 

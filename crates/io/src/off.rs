@@ -19,7 +19,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_indices, push_point, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_u64};
 
 /// True for a header keyword this reader handles.
 fn is_off_keyword(word: &[u8]) -> bool {
@@ -213,7 +213,7 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
 /// Writes `mesh` as OFF. Faces are written as given, whatever their size.
 /// Fails with [`io::ErrorKind::InvalidInput`] if the mesh is malformed.
 pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
-    crate::check_poly(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
+    crate::check_poly(mesh).map_err(crate::invalid_input)?;
     let mut out = Lines::new(w, b"OFF\n# written by holey\n");
     out.line(|b| {
         push_u64(b, mesh.positions.len() as u64);
@@ -221,15 +221,8 @@ pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
         push_u64(b, mesh.face_count() as u64);
         b.extend_from_slice(b" 0");
     })?;
-    for &p in &mesh.positions {
-        out.line(|b| push_point(b, p))?;
-    }
-    for face in mesh.faces() {
-        out.line(|b| {
-            push_u64(b, face.len() as u64);
-            push_indices(b, face, 0);
-        })?;
-    }
+    out.points(b"", &mesh.positions)?;
+    out.faces(mesh.faces(), 0, |b, _, face| push_u64(b, face.len() as u64))?;
     out.finish()
 }
 

@@ -654,7 +654,7 @@ pub fn write<W: Write>(
     ascii: bool,
     colors: Option<&[[u8; 3]]>,
 ) -> io::Result<()> {
-    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
+    let invalid = crate::invalid_input;
     crate::check_poly(mesh).map_err(invalid)?;
     if let Some(colors) = colors
         && colors.len() != mesh.positions.len()

@@ -312,7 +312,7 @@ fn triangles(mesh: &PolyMesh) -> impl Iterator<Item = [DVec3; 3]> + '_ {
 /// docs. Fails with [`io::ErrorKind::InvalidInput`] if the mesh is
 /// malformed or has more than 2³² − 1 triangles (binary).
 pub fn write<W: Write>(mut w: W, mesh: &PolyMesh, ascii: bool) -> io::Result<()> {
-    let invalid = |m: String| io::Error::new(io::ErrorKind::InvalidInput, m);
+    let invalid = crate::invalid_input;
     crate::check_poly(mesh).map_err(invalid)?;
     let mut buf = Vec::with_capacity(crate::CHUNK + 512);
     if ascii {

@@ -398,6 +398,40 @@ impl<W: std::io::Write> Lines<W> {
         Ok(())
     }
 
+    /// One line per position: `prefix` (OBJ's and .dlfl's `v `, nothing
+    /// in OFF), then its coordinates.
+    pub(crate) fn points(
+        &mut self,
+        prefix: &[u8],
+        positions: &[holey_mesh::DVec3],
+    ) -> std::io::Result<()> {
+        for &p in positions {
+            self.line(|b| {
+                b.extend_from_slice(prefix);
+                push_point(b, p);
+            })?;
+        }
+        Ok(())
+    }
+
+    /// One line per face: `lead` writes what precedes the vertex indices
+    /// (given the face's number and its indices: OBJ's `f`, OFF's count,
+    /// .dlfl's `f` or `h`), then the indices plus `base`.
+    pub(crate) fn faces<'f>(
+        &mut self,
+        faces: impl IntoIterator<Item = &'f [u32]>,
+        base: u64,
+        mut lead: impl FnMut(&mut Vec<u8>, usize, &[u32]),
+    ) -> std::io::Result<()> {
+        for (i, face) in faces.into_iter().enumerate() {
+            self.line(|b| {
+                lead(b, i, face);
+                push_indices(b, face, base);
+            })?;
+        }
+        Ok(())
+    }
+
     /// Writes what is left and flushes.
     pub(crate) fn finish(mut self) -> std::io::Result<()> {
         self.out.write_all(&self.buf)?;
@@ -407,7 +441,7 @@ impl<W: std::io::Write> Lines<W> {
 
 /// Appends the three coordinates of `p`, each as [`push_f64`] writes it,
 /// separated by spaces.
-pub(crate) fn push_point(out: &mut Vec<u8>, p: holey_mesh::DVec3) {
+fn push_point(out: &mut Vec<u8>, p: holey_mesh::DVec3) {
     push_f64(out, p.x);
     out.push(b' ');
     push_f64(out, p.y);
@@ -431,7 +465,7 @@ pub(crate) fn push_f64(out: &mut Vec<u8>, x: f64) {
 
 /// Appends ` i` for every vertex index `i` of `face`, plus `base` (1 for
 /// OBJ's numbering from one).
-pub(crate) fn push_indices(out: &mut Vec<u8>, face: &[u32], base: u64) {
+fn push_indices(out: &mut Vec<u8>, face: &[u32], base: u64) {
     for &i in face {
         out.push(b' ');
         push_u64(out, u64::from(i) + base);

@@ -657,9 +657,8 @@ pub fn encode(mesh: &PolyMesh) -> Result<Vec<u8>, String> {
 
 /// Writes the mesh as 3MF (see the module docs). A mesh that cannot be
 /// written is an [`io::ErrorKind::InvalidInput`] error.
-pub fn write<W: Write>(mut w: W, mesh: &PolyMesh) -> io::Result<()> {
-    let bytes = encode(mesh).map_err(|m| io::Error::new(io::ErrorKind::InvalidInput, m))?;
-    w.write_all(&bytes)
+pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
+    crate::write_encoded(w, encode(mesh))
 }
 
 #[cfg(test)]
@@ -670,11 +669,7 @@ mod tests {
     use std::fs;
 
     use super::*;
-    use crate::{MeshFile, WriteOptions, read_path, write_poly};
-
-    fn faces(m: &PolyMesh) -> Vec<Vec<u32>> {
-        m.faces().map(<[u32]>::to_vec).collect()
-    }
+    use crate::{MeshFile, WriteOptions, face_lists, read_path, write_poly};
 
     fn bits(m: &PolyMesh) -> Vec<[u64; 3]> {
         m.positions
@@ -739,7 +734,7 @@ mod tests {
         let back = parse(&encode(&m).unwrap(), "t.3mf").unwrap();
         assert_eq!(bits(&back), bits(&m), "every bit of every coordinate");
         assert_eq!(
-            faces(&back),
+            face_lists(&back),
             vec![vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 1]]
         );
         // Through files; the package holds the parts a 3MF consumer looks for.
@@ -794,7 +789,7 @@ mod tests {
         want.extend(corners.iter().map(|&p| p + 6.0 * DVec3::Z));
         want.extend(corners.iter().map(|&p| DVec3::new(-p.x, p.y, p.z)));
         assert_eq!(m.positions, want);
-        let f = faces(&m);
+        let f = face_lists(&m);
         assert_eq!(f.len(), 8);
         assert_eq!(f[2..4], [vec![4, 5, 6], vec![4, 6, 7]]);
         // The mirrored copy is turned over, so it still faces outwards.
