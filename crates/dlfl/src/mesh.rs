@@ -153,9 +153,15 @@ impl Mesh {
         if e == NONE {
             return i;
         }
+        self.c(self.mate(i, e)).next
+    }
+
+    /// The other corner of edge `e`, one of whose two corners is `i`: the
+    /// corner that starts `e` on its other side.
+    #[inline]
+    pub(crate) fn mate(&self, i: u32, e: u32) -> u32 {
         let [a, b] = self.e(e).corners;
-        let other = if a == i { b } else { a };
-        self.c(other).next
+        if a == i { b } else { a }
     }
 }
 

@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::{Mesh, RawMesh};
+use crate::{CornerId, EdgeId, Mesh, RawMesh, VertexId};
 
 /// Builds a closed mesh from polygons by pairing each half-edge u→v with
 /// the single v→u. Test meshes only: panics on anything non-manifold.
@@ -64,6 +64,16 @@ pub(crate) fn cube() -> Mesh {
 pub(crate) fn torus(n: u32, m: u32) -> Mesh {
     let (p, quads) = holey_testkit::quad_torus(n, m);
     of(&p, &quads)
+}
+
+/// A self-loop between the first two corners of the mesh's first vertex
+/// (in two faces: a handle), that vertex, and its corners in rotation
+/// order.
+pub(crate) fn loop_at_first_vertex(m: &mut Mesh) -> (EdgeId, VertexId, Vec<CornerId>) {
+    let v0 = m.vertices().next().expect("a vertex");
+    let cs: Vec<_> = m.vertex_corners(v0).expect("a live vertex").collect();
+    let e = m.insert_edge(cs[0], cs[1]).expect("the loop inserts");
+    (e, v0, cs)
 }
 
 /// (V, E, F incl. holes, components, genus).

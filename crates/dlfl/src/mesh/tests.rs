@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::test_util::{canonical, check, counts, cube, tetrahedron, torus};
+use crate::test_util::{canonical, check, counts, cube, loop_at_first_vertex, tetrahedron, torus};
 use crate::{Error, Mesh};
 
 #[test]
@@ -140,9 +140,7 @@ fn insert_edge_makes_self_loops_between_corners_of_one_vertex() {
     // has three corners, in three faces; join two faces first so that a
     // face holds two corners of vertex 0.
     let mut m = tetrahedron();
-    let v0 = m.vertices().next().unwrap();
-    let cs: Vec<_> = m.vertex_corners(v0).unwrap().collect();
-    let e = m.insert_edge(cs[0], cs[1]).unwrap();
+    let (e, v0, _) = loop_at_first_vertex(&mut m);
     check(&m);
     assert!(m.is_self_loop(e).unwrap());
     // Two different faces: a handle made of a self-loop.
@@ -259,10 +257,8 @@ fn monogons_bounded_by_self_loops_are_represented() {
     // edge is a self-loop: make a loop at a cube vertex, then a two-gon
     // beside it, then delete the two-gon's other edge.
     let mut m = cube();
-    let v0 = m.vertices().next().unwrap();
-    let cs: Vec<_> = m.vertex_corners(v0).unwrap().collect();
     // Loop between two corners of v0 in different faces (a handle).
-    let l = m.insert_edge(cs[0], cs[1]).unwrap();
+    let (l, v0, _) = loop_at_first_vertex(&mut m);
     check(&m);
     let f = m.edge_faces(l).unwrap()[0];
     let at: Vec<_> = m

@@ -84,8 +84,7 @@ impl Mesh {
         for _ in 0..self.f(f).len {
             let cc = self.c(c);
             let e = cc.edge;
-            let [a, b] = self.e(e).corners;
-            let far = if a == c { b } else { a };
+            let far = self.mate(c, e);
             let g = self.c(far).face;
             if g != f && g != other {
                 let len = self

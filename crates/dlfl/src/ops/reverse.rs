@@ -28,8 +28,7 @@ impl Mesh {
             for _ in 0..fx.len {
                 let e = self.c(c).edge;
                 if e != NONE {
-                    let [a, b] = self.e(e).corners;
-                    let far = if a == c { b } else { a };
+                    let far = self.mate(c, e);
                     if !in_set[self.c(far).face as usize] {
                         return Err(Error::NotWholeComponents(self.fid(f)));
                     }
@@ -73,8 +72,7 @@ impl Mesh {
             for _ in 0..fx.len {
                 let e = self.c(c).edge;
                 if e != NONE {
-                    let [a, b] = self.e(e).corners;
-                    let g = self.c(if a == c { b } else { a }).face;
+                    let g = self.c(self.mate(c, e)).face;
                     if !seen[g as usize] {
                         seen[g as usize] = true;
                         stack.push(g);

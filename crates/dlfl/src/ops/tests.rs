@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::test_util::{canonical, check, counts, cube, tetrahedron, torus};
+use crate::test_util::{canonical, check, counts, cube, loop_at_first_vertex, tetrahedron, torus};
 use crate::{Error, Mesh};
 
 #[test]
@@ -66,9 +66,7 @@ fn subdivide_edge_matches_the_thesis_sequence() {
 #[test]
 fn subdivide_self_loop() {
     let mut m = tetrahedron();
-    let v0 = m.vertices().next().unwrap();
-    let cs: Vec<_> = m.vertex_corners(v0).unwrap().collect();
-    let lp = m.insert_edge(cs[0], cs[1]).unwrap();
+    let (lp, v0, _) = loop_at_first_vertex(&mut m);
     let before = counts(&m);
     let s = m.subdivide_edge(lp).unwrap();
     check(&m);
@@ -303,9 +301,7 @@ fn collapse_keeps_genus_on_a_torus_everywhere() {
 #[test]
 fn collapse_refuses_self_loops_and_handles_dangling_edges() {
     let mut m = tetrahedron();
-    let v0 = m.vertices().next().unwrap();
-    let cs: Vec<_> = m.vertex_corners(v0).unwrap().collect();
-    let lp = m.insert_edge(cs[0], cs[1]).unwrap();
+    let (lp, _, _) = loop_at_first_vertex(&mut m);
     assert_eq!(m.collapse_edge(lp), Err(Error::SelfLoop(lp)));
     let mut d = cube();
     let c = d.corners().next().unwrap();
@@ -358,9 +354,7 @@ fn reverse_faces_needs_whole_components() {
     // A point-sphere and a self-loop handle reverse too.
     let (_, ps, _) = m.create_vertex(DVec3::ZERO).unwrap();
     m.reverse_faces(&[ps]).unwrap();
-    let v0 = m.vertices().next().unwrap();
-    let cs: Vec<_> = m.vertex_corners(v0).unwrap().collect();
-    m.insert_edge(cs[0], cs[1]).unwrap();
+    let (_, _, cs) = loop_at_first_vertex(&mut m);
     let f = m.corner_face(cs[0]).unwrap();
     m.reverse_component(f).unwrap();
     check(&m);

@@ -22,8 +22,7 @@ impl Mesh {
             let y = self.c(x).next;
             for c in [x, y] {
                 let e = self.c(c).edge;
-                let [a, b] = self.e(e).corners;
-                let far = if a == c { b } else { a };
+                let far = self.mate(c, e);
                 let g = self.c(far).face;
                 if g == f || self.f(g).hole {
                     continue;
