@@ -38,6 +38,17 @@ fn primitive(folder: &Path, primitive: &str, name: &str) -> PathBuf {
     path
 }
 
+/// A folder `models` in `dir` with the given primitives written into it,
+/// as (primitive, file name).
+fn models_folder(dir: &Path, files: &[(&str, &str)]) -> PathBuf {
+    let models = dir.join("models");
+    std::fs::create_dir(&models).unwrap();
+    for (name, file) in files {
+        primitive(&models, name, file);
+    }
+    models
+}
+
 /// An OBJ whose third face names a vertex that does not exist.
 fn malformed(folder: &Path, name: &str) -> PathBuf {
     let path = folder.join(name);
@@ -48,24 +59,17 @@ fn malformed(folder: &Path, name: &str) -> PathBuf {
 /// Two unit cubes overlapping by half, as one OBJ: a surface crossing
 /// itself, which a union of one input repairs.
 fn overlapping_cubes(folder: &Path, name: &str) -> PathBuf {
+    let (corners, quads) = holey_testkit::unit_cube();
     let mut text = String::new();
     for offset in [0.0, 0.5] {
-        for i in 0..8 {
-            let c = |bit: usize| f64::from(u8::from(i & bit != 0)) + offset;
-            text += &format!("v {} {} {}\n", c(1), c(2), c(4));
+        for [x, y, z] in corners {
+            text += &format!("v {} {} {}\n", x + offset, y + offset, z + offset);
         }
     }
     for base in [0, 8] {
-        for [a, b, c, d] in [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ] {
-            let v = |k: usize| k + base + 1;
-            text += &format!("f {} {} {} {}\n", v(a), v(b), v(c), v(d));
+        for quad in quads {
+            let [a, b, c, d] = quad.map(|k| k + base + 1);
+            text += &format!("f {a} {b} {c} {d}\n");
         }
     }
     let path = folder.join(name);
@@ -108,11 +112,14 @@ fn files_of(lines: &[Value]) -> Vec<String> {
 #[test]
 fn a_malformed_file_fails_alone() {
     let dir = tmp();
-    let models = dir.path().join("models");
-    std::fs::create_dir(&models).unwrap();
-    primitive(&models, "@cube", "cube.obj");
-    primitive(&models, "@torus:12:8", "torus.off");
-    primitive(&models, "@tetrahedron", "tet.ply");
+    let models = models_folder(
+        dir.path(),
+        &[
+            ("@cube", "cube.obj"),
+            ("@torus:12:8", "torus.off"),
+            ("@tetrahedron", "tet.ply"),
+        ],
+    );
     malformed(&models, "bad.obj");
     // Not a mesh file: a folder gives only files with mesh extensions.
     std::fs::write(models.join("notes.txt"), "not a mesh").unwrap();
@@ -246,12 +253,15 @@ fn patterns_folders_and_recursion_pick_the_right_files() {
 #[test]
 fn one_job_and_two_jobs_give_identical_outputs() {
     let dir = tmp();
-    let models = dir.path().join("models");
-    std::fs::create_dir(&models).unwrap();
-    primitive(&models, "@cube:2", "cube.obj");
-    primitive(&models, "@torus:16:8", "torus.obj");
-    primitive(&models, "@tetrahedron", "tet.ply");
-    primitive(&models, "@sphere:2", "sphere.off");
+    let models = models_folder(
+        dir.path(),
+        &[
+            ("@cube:2", "cube.obj"),
+            ("@torus:16:8", "torus.obj"),
+            ("@tetrahedron", "tet.ply"),
+            ("@sphere:2", "sphere.off"),
+        ],
+    );
     overlapping_cubes(&models, "crossing.obj");
     let mut runs = Vec::new();
     for jobs in ["1", "2"] {

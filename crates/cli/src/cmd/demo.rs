@@ -255,7 +255,17 @@ fn honeycomb_sphere() -> Result<Mesh> {
     Ok(remesh(&dual, RemeshScheme::Honeycomb, &params, 1)?)
 }
 
+/// The gallery in the order of the table: the thesis's models, then
+/// TopMod's tools, then topology change by motion.
 fn models() -> Vec<Model> {
+    let mut all = thesis_models();
+    all.extend(toolbox_models());
+    all.extend(motion_models());
+    all
+}
+
+/// Sierpinski, Menger, rind, handle, tunnel and cup (thesis chapters IV–VII).
+fn thesis_models() -> Vec<Model> {
     let iso = View::Iso;
     let tetra_view = View::Direction(DVec3::new(1.0, 0.25, 0.35));
     vec![
@@ -394,6 +404,13 @@ fn models() -> Vec<Model> {
             edges: false,
             smooth: true,
         },
+    ]
+}
+
+/// Wireframe, extrusion and remeshing (TopMod's tools, issue 18).
+fn toolbox_models() -> Vec<Model> {
+    let iso = View::Iso;
+    vec![
         Model {
             name: "wireframe-dodecahedron",
             title: "Wireframe dodecahedron",
@@ -444,6 +461,12 @@ fn models() -> Vec<Model> {
             edges: true,
             smooth: false,
         },
+    ]
+}
+
+/// Unions by moving one solid into another (Bernstein & Wojtan, Theorem 5.2).
+fn motion_models() -> Vec<Model> {
+    vec![
         Model {
             name: "union-two-tori",
             title: "Two tori moved into each other",
