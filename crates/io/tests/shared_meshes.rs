@@ -52,6 +52,17 @@ fn poly(file: MeshFile) -> PolyMesh {
     }
 }
 
+/// Writes `m` to `path` (as text or binary, in the format its extension
+/// names) and reads it back.
+fn round_trip(m: &PolyMesh, path: &Path, ascii: bool) -> PolyMesh {
+    let options = WriteOptions {
+        ascii,
+        ..Default::default()
+    };
+    write_poly(path, m, &options).unwrap();
+    poly(read_path(path).unwrap())
+}
+
 fn bits(p: DVec3) -> [u64; 3] {
     p.to_array().map(f64::to_bits)
 }
@@ -102,16 +113,7 @@ fn check_conversions(name: &str, m: &PolyMesh, tmp: &Path) {
         ("ply", true),
     ] {
         let path = tmp.join(format!("{name}.{ext}"));
-        write_poly(
-            &path,
-            m,
-            &WriteOptions {
-                ascii,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let back = poly(read_path(&path).unwrap());
+        let back = round_trip(m, &path, ascii);
         assert!(
             back == *m,
             "{name} via {ext} (ascii {ascii}) changed the mesh"
@@ -121,16 +123,7 @@ fn check_conversions(name: &str, m: &PolyMesh, tmp: &Path) {
     // triangles' corner positions survive (as f32 in binary).
     for ascii in [false, true] {
         let path = tmp.join(format!("{name}.stl"));
-        write_poly(
-            &path,
-            m,
-            &WriteOptions {
-                ascii,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let back = poly(read_path(&path).unwrap());
+        let back = round_trip(m, &path, ascii);
         let mut want = triangles(m);
         if !ascii {
             let f32_tris: Vec<Vec<[u64; 3]>> = want
