@@ -784,6 +784,73 @@ fn cutting_a_vertex_an_edge_and_a_face() {
     assert_eq!(vef(counts(&out)), (k.v + 2, k.e + 3, k.f + 1));
 }
 
+/// TopMod's cut by edge-vertex with an offset for each: edge 0-1 of the
+/// cube (side 2) at 0.3 and the far corner 7 at 0.7. Each cut alone adds
+/// 2 / 3 / 1; every new point lies on a cube edge at its own target's
+/// offset from the corner it replaced (read back from the written file).
+#[test]
+fn an_edge_and_a_vertex_cut_at_offsets_of_their_own() {
+    let d = Dir::new();
+    let k = counts("@cube");
+    let out = d.path("ev.obj");
+    ok(&[
+        "cut",
+        "@cube",
+        &out,
+        "--edge",
+        "0-1",
+        "--vertex",
+        "7",
+        "--offset",
+        "0.3",
+        "--vertex-offset",
+        "0.7",
+    ]);
+    assert_eq!(vef(counts(&out)), (k.v + 4, k.e + 6, k.f + 2));
+    let text = std::fs::read_to_string(&out).expect("the cut was written");
+    let corner = |p: [f64; 3]| {
+        let mut best = f64::INFINITY;
+        for i in 0..8 {
+            let c = [0, 1, 2].map(|a| if i >> a & 1 == 1 { 1.0 } else { -1.0 });
+            let d2: f64 = (0..3).map(|a| (p[a] - c[a]) * (p[a] - c[a])).sum();
+            best = best.min(d2.sqrt());
+        }
+        best
+    };
+    let mut dist: Vec<f64> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let x: Vec<f64> = l
+                .split_whitespace()
+                .map(|t| t.parse().expect("a number"))
+                .collect();
+            corner([x[0], x[1], x[2]])
+        })
+        .collect();
+    dist.sort_by(f64::total_cmp);
+    let want = [0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 0.3, 0.3, 0.7, 0.7, 0.7];
+    assert_eq!(dist.len(), want.len());
+    for (got, want) in dist.iter().zip(want) {
+        assert!((got - want).abs() < 1e-9, "{dist:?}");
+    }
+    // The vertices' offset is checked on their own spokes (length 2).
+    let err = refused(&[
+        "cut",
+        "@cube",
+        &out,
+        "--edge",
+        "0-1",
+        "--vertex",
+        "7",
+        "--offset",
+        "0.3",
+        "--vertex-offset",
+        "1.0",
+    ]);
+    assert!(err.contains("reaches the middle"), "{err}");
+}
+
 #[test]
 fn cut_and_truncate_refusals() {
     let d = Dir::new();

@@ -189,16 +189,26 @@ pub fn cut_edges(
 }
 
 /// TopMod's "cut by edge-vertex": the given edges and vertices in one
-/// cut (no two sharing a vertex).
+/// cut (no two sharing a vertex), the edges' spokes cut at `edge_distance`
+/// and the vertices' at `vertex_distance` (TopMod's "Offset (Edge)" and
+/// "Offset (Vertex)"). The counts are those of each cut alone, summed.
 pub fn cut_edges_and_vertices(
     mesh: &mut Mesh,
     edges: &[EdgeId],
     vertices: &[VertexId],
-    distance: f64,
+    edge_distance: f64,
+    vertex_distance: f64,
 ) -> Result<Vec<FaceId>, CutError> {
-    let mut targets: Vec<CutTarget> = edges.iter().map(|&e| CutTarget::Edge(e)).collect();
-    targets.extend(vertices.iter().map(|&v| CutTarget::Vertex(v)));
-    cut(mesh, &targets, CutOffset::Distance(distance))
+    let mut targets: Vec<(CutTarget, CutOffset)> = edges
+        .iter()
+        .map(|&e| (CutTarget::Edge(e), CutOffset::Distance(edge_distance)))
+        .collect();
+    targets.extend(
+        vertices
+            .iter()
+            .map(|&v| (CutTarget::Vertex(v), CutOffset::Distance(vertex_distance))),
+    );
+    cut_each(mesh, &targets)
 }
 
 fn one(faces: Vec<FaceId>) -> Result<FaceId, CutError> {
@@ -221,21 +231,35 @@ pub fn cut(
     targets: &[CutTarget],
     offset: CutOffset,
 ) -> Result<Vec<FaceId>, CutError> {
-    let amount = match offset {
-        CutOffset::Distance(x) | CutOffset::Fraction(x) => x,
-    };
-    if !(amount.is_finite() && amount > 0.0) {
-        return Err(CutError::InvalidOffset(amount));
+    let each: Vec<(CutTarget, CutOffset)> = targets.iter().map(|&t| (t, offset)).collect();
+    cut_each(mesh, &each)
+}
+
+/// [`cut`] with an offset of its own for each target (the first given
+/// for a target named twice): a spoke between two regions is cut at each
+/// end by its own region's offset, each below half the spoke.
+pub fn cut_each(
+    mesh: &mut Mesh,
+    targets: &[(CutTarget, CutOffset)],
+) -> Result<Vec<FaceId>, CutError> {
+    for (_, offset) in targets {
+        let amount = match *offset {
+            CutOffset::Distance(x) | CutOffset::Fraction(x) => x,
+        };
+        if !(amount.is_finite() && amount > 0.0) {
+            return Err(CutError::InvalidOffset(amount));
+        }
     }
     let mut seen = HashSet::new();
-    let unique: Vec<CutTarget> = targets
+    let unique: Vec<(CutTarget, CutOffset)> = targets
         .iter()
         .copied()
-        .filter(|t| seen.insert(*t))
+        .filter(|(t, _)| seen.insert(*t))
         .collect();
+    let offsets: Vec<CutOffset> = unique.iter().map(|&(_, o)| o).collect();
     let mut owner: HashMap<VertexId, usize> = HashMap::new();
     let mut regions = Vec::with_capacity(unique.len());
-    for (i, &t) in unique.iter().enumerate() {
+    for (i, &(t, _)) in unique.iter().enumerate() {
         let region = plan_region(mesh, t)?;
         for &v in &region.vertices {
             if owner.insert(v, i).is_some() {
@@ -244,7 +268,7 @@ pub fn cut(
         }
         regions.push(region);
     }
-    let spokes = plan_spokes(mesh, &regions, &owner, offset)?;
+    let spokes = plan_spokes(mesh, &regions, &owner, &offsets)?;
     apply(mesh, &regions, &spokes)
 }
 
@@ -353,7 +377,7 @@ fn plan_spokes(
     mesh: &Mesh,
     regions: &[Region],
     owner: &HashMap<VertexId, usize>,
-    offset: CutOffset,
+    offsets: &[CutOffset],
 ) -> Result<Vec<Spoke>, CutError> {
     let mut edges = BTreeSet::new();
     for r in regions {
@@ -381,26 +405,29 @@ fn plan_spokes(
             continue;
         }
         let length = mesh.position(a)?.distance(mesh.position(b)?);
-        let x = match offset {
-            CutOffset::Distance(x) => x,
-            CutOffset::Fraction(t) => t * length,
-        };
-        // Half the spoke, whether or not its other end is cut now: a point
-        // past the middle would leave the far end's own cut (now or later)
-        // nowhere to go.
-        let limit = length / 2.0;
-        if x.is_nan() || x >= limit {
-            return Err(CutError::OffsetTooLarge {
-                edge: e,
-                length,
-                offset: x,
-                limit,
-            });
+        let mut cuts = Vec::with_capacity(2);
+        for v in ends {
+            let offset = owner.get(&v).and_then(|&i| offsets.get(i));
+            let x = match offset {
+                Some(CutOffset::Distance(x)) => *x,
+                Some(CutOffset::Fraction(t)) => t * length,
+                None => return Err(internal("a spoke's end has no region")),
+            };
+            // Half the spoke, whether or not its other end is cut now: a
+            // point past the middle would leave the far end's own cut (now
+            // or later) nowhere to go.
+            let limit = length / 2.0;
+            if x.is_nan() || x >= limit {
+                return Err(CutError::OffsetTooLarge {
+                    edge: e,
+                    length,
+                    offset: x,
+                    limit,
+                });
+            }
+            cuts.push((v, x));
         }
-        spokes.push(Spoke {
-            edge: e,
-            cuts: ends.into_iter().map(|v| (v, x)).collect(),
-        });
+        spokes.push(Spoke { edge: e, cuts });
     }
     Ok(spokes)
 }

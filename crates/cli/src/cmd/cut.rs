@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use holey_io::WriteOptions;
-use holey_model::cut::{CutOffset, CutTarget, cut};
+use holey_model::cut::{CutOffset, CutTarget, cut_each};
 use holey_model::numbering::{parse_edge_list, parse_index_list};
 
 use crate::error::bad_input;
@@ -23,7 +23,9 @@ edge leaving corner C of face F). Counts:
   edge between valences a, b  +(a+b-4), +(a+b-3), +1
   face with s spokes, d sides +(s-d), +(s-d), +0 (the face moves in)
 A cube corner: 8/12/6 -> 10/15/7. Several targets are cut at once (no
-two may share a vertex); --vertex with --edge is TopMod's edge-vertex cut.
+two may share a vertex); --vertex with --edge is TopMod's edge-vertex cut,
+and --vertex-offset (or --vertex-fraction) gives the vertices an offset of
+their own, TopMod's Offset (Vertex) beside the edges' Offset (Edge).
 
 Refused (nothing written): an offset that is not positive and finite or
 reaches the middle of a spoke, a target whose neighbourhood is not a
@@ -33,7 +35,8 @@ sharing a vertex.
 Examples:
   holey cut @cube corner.obj --vertex 0 --offset 0.5
   holey cut @cube wedge.obj --edge 0-1 --fraction 0.25
-  holey cut @octahedron c.obj --vertex 0 --edge 1-2 --offset 0.3")]
+  holey cut @octahedron c.obj --vertex 0 --edge 1-2 --offset 0.3
+  holey cut @cube ev.obj --edge 0-1 --vertex 6 --offset 0.3 --vertex-offset 0.7")]
 pub struct Args {
     /// Input mesh (a file or a primitive).
     pub input: String,
@@ -54,6 +57,17 @@ pub struct Args {
     /// Distance of the cut along each spoke, as a fraction of its length (below 0.5).
     #[arg(long, allow_hyphen_values = true)]
     pub fraction: Option<f64>,
+    /// The vertices' own offset in model units [default: as the others].
+    #[arg(
+        long,
+        requires = "vertex",
+        conflicts_with = "vertex_fraction",
+        allow_hyphen_values = true
+    )]
+    pub vertex_offset: Option<f64>,
+    /// The vertices' own offset as a fraction of each spoke's length.
+    #[arg(long, requires = "vertex", allow_hyphen_values = true)]
+    pub vertex_fraction: Option<f64>,
 }
 
 #[derive(clap::Args)]
@@ -124,16 +138,16 @@ fn targets(
     Ok(out)
 }
 
-/// Cuts `targets` off `kernel` and writes it to `output`.
+/// Cuts `targets` off `kernel`, each at its own offset, and writes it to
+/// `output`.
 fn cut_and_write(
     input: &str,
     output: &str,
     mut kernel: Kernel,
-    targets: &[CutTarget],
-    offset: CutOffset,
+    targets: &[(CutTarget, CutOffset)],
 ) -> Result<()> {
     // A refused cut leaves the mesh unchanged, so its ids still describe it.
-    cut(&mut kernel.mesh, targets, offset).map_err(|e| {
+    cut_each(&mut kernel.mesh, targets).map_err(|e| {
         let why = kernel.numbering.describe_cut(&kernel.mesh, &e);
         bad_input(format!("{input}: {why}"))
     })?;
@@ -154,7 +168,19 @@ pub fn run(args: Args) -> Result<()> {
         args.face.as_deref(),
     )
     .map_err(|e| bad_input(format!("{}: {e}", args.input)))?;
-    cut_and_write(&args.input, &args.output, kernel, &targets, offset)
+    let vertex_offset = match (args.vertex_offset, args.vertex_fraction) {
+        (Some(x), _) => CutOffset::Distance(x),
+        (None, Some(t)) => CutOffset::Fraction(t),
+        (None, None) => offset,
+    };
+    let each: Vec<(CutTarget, CutOffset)> = targets
+        .into_iter()
+        .map(|t| match t {
+            CutTarget::Vertex(_) => (t, vertex_offset),
+            _ => (t, offset),
+        })
+        .collect();
+    cut_and_write(&args.input, &args.output, kernel, &each)
 }
 
 pub fn run_truncate(args: TruncateArgs) -> Result<()> {
@@ -192,11 +218,9 @@ pub fn run_truncate_file(input: &str, output: &str, o: &TruncateOptions) -> Resu
         targets(&kernel, o.vertex.as_deref(), o.edge.as_deref(), None)
             .map_err(|e| bad_input(format!("{input}: {e}")))?
     };
-    cut_and_write(
-        input,
-        output,
-        kernel,
-        &targets,
-        CutOffset::Fraction(o.fraction),
-    )
+    let each: Vec<(CutTarget, CutOffset)> = targets
+        .into_iter()
+        .map(|t| (t, CutOffset::Fraction(o.fraction)))
+        .collect();
+    cut_and_write(input, output, kernel, &each)
 }

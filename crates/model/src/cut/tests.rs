@@ -172,10 +172,57 @@ fn truncating_edges_and_mixed_cuts() {
         .unwrap()
         .unwrap();
     let v = m.vertex_at(0).unwrap();
-    let faces = cut_edges_and_vertices(&mut m, &[e], &[v], 0.3).unwrap();
+    let faces = cut_edges_and_vertices(&mut m, &[e], &[v], 0.3, 0.3).unwrap();
     check(&m);
     assert_eq!(counts(&m), (12, 18, 8));
     assert_eq!(faces.len(), 2);
+}
+
+#[test]
+fn edge_vertex_cuts_take_an_offset_each() {
+    // TopMod's cut by edge-vertex with "Offset (Edge)" 0.3 and "Offset
+    // (Vertex)" 0.7 on the cube of side 2: an edge and a corner far from
+    // it, +2/+3/+1 each (12/18/8). Every new point lies on a cube edge at
+    // its own target's offset from the corner it replaced: three at 0.7
+    // (the corner's spokes), four at 0.3 (the edge's), and the five
+    // untouched corners stay at distance 0.
+    let mut m = prim("@cube");
+    let corners: Vec<DVec3> = m.vertices().map(|v| m.position(v).unwrap()).collect();
+    let e = m
+        .corner_edge(m.face_corner(m.face_at(5).unwrap()).unwrap())
+        .unwrap()
+        .unwrap();
+    let v = m.vertex_at(0).unwrap();
+    let faces = cut_edges_and_vertices(&mut m, &[e], &[v], 0.3, 0.7).unwrap();
+    check(&m);
+    assert_eq!(counts(&m), (12, 18, 8));
+    assert_eq!(faces.len(), 2);
+    let mut d: Vec<f64> = m
+        .vertices()
+        .map(|v| {
+            let p = m.position(v).unwrap();
+            corners
+                .iter()
+                .map(|c| c.distance(p))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    d.sort_by(f64::total_cmp);
+    let want = [0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 0.3, 0.3, 0.7, 0.7, 0.7];
+    for (got, want) in d.iter().zip(want) {
+        assert!((got - want).abs() < 1e-12, "{d:?}");
+    }
+    // Each offset is checked against its own spokes: 1.0 reaches the
+    // middle of the corner's edges (length 2) even though the edge's 0.3
+    // does not, and nothing changes.
+    let m0 = prim("@cube");
+    let mut m = m0.clone();
+    let err = cut_edges_and_vertices(&mut m, &[e], &[v], 0.3, 1.0).unwrap_err();
+    assert!(
+        matches!(err, CutError::OffsetTooLarge { offset, .. } if offset == 1.0),
+        "{err}"
+    );
+    unchanged(&m, &m0);
 }
 
 #[test]
@@ -232,7 +279,7 @@ fn overlapping_and_impossible_regions_are_refused() {
     unchanged(&m, &m0);
     let mut m = m0.clone();
     assert_eq!(
-        cut_edges_and_vertices(&mut m, &edges[..1], &[v], 0.2),
+        cut_edges_and_vertices(&mut m, &edges[..1], &[v], 0.2, 0.2),
         Err(CutError::Overlap(v))
     );
     unchanged(&m, &m0);
