@@ -505,6 +505,36 @@ class Mesh:
             self._native.handle(tuple(faces), tuple(corners), segments=segments, w1=w1, w2=w2, curve=curve)
         )
 
+    def multi_face_handle(
+        self,
+        faces: Sequence[int],
+        segments: int = 4,
+        w1: float = 1.0,
+        w2: float = 1.0,
+        curve: str = "hermite",
+        hub_scale: float = 0.5,
+    ) -> "Mesh":
+        """Joins four or more ``faces`` (numbered as :meth:`to_arrays`
+        lists them) through a hub, one handle of ``segments`` segments from
+        each (TopMod's multi-face handle, ``holey handle --faces``): the
+        hub touches the sphere of ``hub_scale`` times the nearest face's
+        distance about a centre that every face sees from outside, with
+        one face turned to each selected face. ``k`` faces in ``m`` pieces
+        raise the genus by ``k - m``. Faces with no such centre (all round
+        one body, looking outward), a face whose view of it is blocked, and
+        handles that would cross anything (an exact check, as ``holey
+        selfint`` counts) raise ``ValueError`` naming the faces."""
+        return Mesh(
+            self._native.multi_face_handle(
+                [int(f) for f in faces],
+                segments=segments,
+                w1=w1,
+                w2=w2,
+                curve=curve,
+                hub_scale=hub_scale,
+            )
+        )
+
     def rind(self, thickness: float, punch: Sequence[int] = (), peel: Sequence[int] = ()) -> "Mesh":
         """A crust of ``thickness`` (thesis chapter V): two shells; each
         face in ``punch`` becomes a pipe from the outer shell to the inner,
@@ -609,6 +639,8 @@ class Mesh:
         faces: Sequence[int] = (),
         offset: Optional[float] = None,
         fraction: Optional[float] = None,
+        vertex_offset: Optional[float] = None,
+        vertex_fraction: Optional[float] = None,
     ) -> "Mesh":
         """Cuts each vertex, edge and face off with one new face (TopMod's
         conical cuts, ``holey cut``): every edge leaving the target is cut
@@ -616,7 +648,9 @@ class Mesh:
         ``fraction=0.25``) and the cut points joined. Vertices and faces
         are numbered as :meth:`to_arrays` lists them; an edge is a pair of
         vertex numbers. A vertex of valence ``k`` adds ``k - 1`` vertices,
-        ``k`` edges and one face."""
+        ``k`` edges and one face. ``vertex_offset`` or ``vertex_fraction``
+        gives the vertices an offset of their own (TopMod's cut by
+        edge-vertex: edges at one offset, vertices at another)."""
         return Mesh(
             self._native.cut(
                 vertices=[int(v) for v in vertices],
@@ -624,6 +658,8 @@ class Mesh:
                 faces=[int(f) for f in faces],
                 offset=offset,
                 fraction=fraction,
+                vertex_offset=vertex_offset,
+                vertex_fraction=vertex_fraction,
             )
         )
 

@@ -71,6 +71,16 @@ class Mesh:
         w2: float = ...,
         curve: str = ...,
     ) -> Mesh: ...
+    def multi_face_handle(
+        self,
+        faces: List[int],
+        *,
+        segments: int = ...,
+        w1: float = ...,
+        w2: float = ...,
+        curve: str = ...,
+        hub_scale: float = ...,
+    ) -> Mesh: ...
     def rind(
         self, thickness: float, *, punch: List[int] = ..., peel: List[int] = ...
     ) -> Tuple[Mesh, List[str]]: ...
@@ -105,6 +115,8 @@ class Mesh:
         faces: List[int] = ...,
         offset: Optional[float] = ...,
         fraction: Optional[float] = ...,
+        vertex_offset: Optional[float] = ...,
+        vertex_fraction: Optional[float] = ...,
     ) -> Mesh: ...
     def truncate(
         self,

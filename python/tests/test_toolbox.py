@@ -219,3 +219,95 @@ def test_convex_hull_and_dual_convex_hull():
                 m.convex_hull()
             with pytest.raises(holey.HoleyError, match="one plane"):
                 m.dual_convex_hull()
+
+
+def test_multi_face_handle_on_spot(shared):
+    # The finer cow: six quads around a point above its head (a horn, both
+    # ears, the head, the neck, the back) joined through a hub. One closed
+    # piece before and after, genus 0 + 6 - 1, and no crossing pair by the
+    # exact self-intersection count of the fan triangles.
+    spot = holey.Mesh.read(str(shared / "spot_quadrangulated.obj"))
+    V, F = spot.to_arrays(triangulate=True)
+    assert holey.self_intersections(V, F)["intersecting_pairs"] == 0
+    m = spot.multi_face_handle(
+        [609, 2067, 2676, 651, 2136, 933], segments=4, w1=0.2, w2=0.2, hub_scale=0.3
+    )
+    m.validate()
+    assert topology(m) == (5, 1, 0)
+    V, F = m.to_arrays(triangulate=True)
+    assert holey.self_intersections(V, F)["intersecting_pairs"] == 0
+    # The faces of the coarse cow look outward all around it: a
+    # hub would sit inside. Refused, naming faces of the selection in the
+    # same numbers.
+    coarse = holey.Mesh.read(str(shared / "spot_control_mesh.obj"))
+    with pytest.raises(holey.HoleyError, match="look away from each other") as e:
+        coarse.multi_face_handle([39, 129, 59, 26, 89, 56], segments=3, hub_scale=0.3)
+    named = [int(n) for n in e.value.args[0].split(" look away")[0].replace("faces ", "").replace(" and", ",").split(",")]
+    assert 2 <= len(named) <= 4 and set(named) <= {39, 129, 59, 26, 89, 56}
+
+
+def test_multi_face_handle_counts_and_refusals():
+    # Six cubes (side 2) at distance 4 on the axes, the face of each that
+    # looks at the origin joined through a hub: the six directions are the
+    # octahedron's, so the hub is a cube (8 / 12 / 6), each handle of s
+    # segments between squares adds 4(s - 1) / 4(2s - 1) / 4s - 2, and
+    # seven pieces become one sphere.
+    import numpy as np
+
+    cube = holey.Mesh.primitive("cube")
+    cv, cf = cube.to_arrays()
+    axes = [np.array(a, float) for a in [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]]
+    V = np.concatenate([cv + 4 * a for a in axes])
+    F = np.concatenate([cf + 8 * k for k in range(6)])
+    six = holey.Mesh.from_polygons(V, F)
+    faces = []
+    for k, a in enumerate(axes):
+        for j, f in enumerate(cf):
+            p = cv[f]
+            n = np.cross(p[1] - p[0], p[2] - p[0])
+            if np.dot(n / np.linalg.norm(n), -a) > 0.999:
+                faces.append(6 * k + j)
+    assert len(faces) == 6
+    v, e, f = counts(six)
+    s, k = 3, 6
+    m = six.multi_face_handle(faces, segments=s, hub_scale=0.5, curve="bezier")
+    m.validate()
+    assert counts(m) == (v + 8 + k * 4 * (s - 1), e + 12 + k * 4 * (2 * s - 1), f + 6 + k * (4 * s - 2))
+    assert topology(m) == (0, 1, 0)
+    # Refusals: too few faces, a face twice, a face that does not exist,
+    # a bad curve or hub scale; each a HoleyError (a ValueError).
+    with pytest.raises(holey.HoleyError, match="at least four"):
+        six.multi_face_handle(faces[:3])
+    with pytest.raises(holey.HoleyError, match=f"face {faces[0]} is selected twice"):
+        six.multi_face_handle([faces[0]] + faces[:3])
+    with pytest.raises(ValueError, match="does not exist"):
+        six.multi_face_handle(faces[:5] + [999])
+    with pytest.raises(holey.HoleyError, match="curve"):
+        six.multi_face_handle(faces, curve="spline")
+    with pytest.raises(holey.HoleyError, match="hub scale"):
+        six.multi_face_handle(faces, hub_scale=-1.0)
+    # The six faces of one cube look away from each other.
+    with pytest.raises(holey.HoleyError, match="look away from each other"):
+        cube.multi_face_handle([0, 1, 2, 3, 4, 5])
+
+
+def test_cut_by_edge_vertex_with_an_offset_each():
+    # TopMod's cut by edge-vertex: edge 0-1 of the cube (side 2) at 0.3,
+    # the far corner 7 at 0.7. Each cut alone adds 2 / 3 / 1; every new
+    # point lies on a cube edge at its own target's offset from the corner
+    # it replaced.
+    import numpy as np
+
+    cube = holey.Mesh.primitive("cube")
+    V0, _ = cube.to_arrays()
+    v, e, f = counts(cube)
+    m = cube.cut(edges=[(0, 1)], vertices=[7], offset=0.3, vertex_offset=0.7)
+    m.validate()
+    assert counts(m) == (v + 4, e + 6, f + 2)
+    V, _ = m.to_arrays()
+    d = sorted(np.min(np.linalg.norm(V[:, None, :] - V0[None, :, :], axis=2), axis=1))
+    assert np.allclose(d, [0] * 5 + [0.3] * 4 + [0.7] * 3)
+    with pytest.raises(holey.HoleyError, match="vertex_offset or vertex_fraction"):
+        cube.cut(vertices=[7], vertex_offset=0.3, vertex_fraction=0.2)
+    with pytest.raises(holey.HoleyError, match="middle"):
+        cube.cut(edges=[(0, 1)], vertices=[7], offset=0.3, vertex_offset=1.0)

@@ -12,7 +12,7 @@ use std::path::Path;
 use holey::dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey::dlfl::{CornerId, FaceId, dlfl_info};
 use holey::model::extrude::{ExtrudeOptions, RegionDirection};
-use holey::model::handle::{HandleCurve, HandleParams, create_handle};
+use holey::model::handle::{HandleCurve, HandleParams, MultiHandleParams, create_handle};
 use holey::model::menger::{MengerParams, Thickness, menger};
 use holey::model::rind::{PunchOutcome, Rind};
 use holey::model::sierpinski::sierpinski;
@@ -182,6 +182,30 @@ impl Mesh {
         Ok(Mesh::wrap(m))
     }
 
+    /// Joins the faces numbered `faces` (four or more) through a hub, one
+    /// handle of `segments` segments from each (`holey handle --faces`):
+    /// the hub's centre is a point every face sees from outside; faces
+    /// with none, a blocked view, or handles that would cross anything are
+    /// refused naming the faces.
+    #[pyo3(signature = (faces, *, segments=4, w1=1.0, w2=1.0, curve="hermite", hub_scale=0.5))]
+    #[allow(clippy::too_many_arguments)]
+    fn multi_face_handle(
+        &self,
+        py: Python<'_>,
+        faces: Vec<usize>,
+        segments: usize,
+        w1: f64,
+        w2: f64,
+        curve: &str,
+        hub_scale: f64,
+    ) -> PyResult<Mesh> {
+        let curve: HandleCurve = curve.parse().map_err(bad)?;
+        let handle = HandleParams::new(segments, w1, w2).with_curve(curve);
+        let params = MultiHandleParams::new(handle, hub_scale);
+        py.detach(|| toolbox::run_multi_face_handle(&self.mesh, &faces, &params))
+            .map(Mesh::wrap)
+    }
+
     /// A rind of `thickness` (thesis ch. V): the outer faces made from
     /// faces `punch` get a pipe to their inner copies, those of `peel`
     /// also lose the thin walls between neighbouring holes. Returns the
@@ -267,7 +291,10 @@ impl Mesh {
     }
 
     /// Cuts the vertices, edges (vertex pairs) and faces off (`holey cut`).
-    #[pyo3(signature = (*, vertices=Vec::new(), edges=Vec::new(), faces=Vec::new(), offset=None, fraction=None))]
+    /// `vertex_offset` or `vertex_fraction` cut the vertices at an offset
+    /// of their own (TopMod's cut by edge-vertex).
+    #[pyo3(signature = (*, vertices=Vec::new(), edges=Vec::new(), faces=Vec::new(), offset=None, fraction=None, vertex_offset=None, vertex_fraction=None))]
+    #[allow(clippy::too_many_arguments)]
     fn cut(
         &self,
         vertices: Vec<usize>,
@@ -275,8 +302,20 @@ impl Mesh {
         faces: Vec<usize>,
         offset: Option<f64>,
         fraction: Option<f64>,
+        vertex_offset: Option<f64>,
+        vertex_fraction: Option<f64>,
     ) -> PyResult<Mesh> {
-        toolbox::run_cut(&self.mesh, &vertices, &edges, &faces, offset, fraction).map(Mesh::wrap)
+        let targets = toolbox::CutTargets {
+            vertices: &vertices,
+            edges: &edges,
+            faces: &faces,
+        };
+        let how = toolbox::cut_offset(offset, fraction, "")?;
+        let vertex_how = match (vertex_offset, vertex_fraction) {
+            (None, None) => how,
+            _ => toolbox::cut_offset(vertex_offset, vertex_fraction, "vertex_")?,
+        };
+        toolbox::run_cut(&self.mesh, &targets, how, vertex_how).map(Mesh::wrap)
     }
 
     /// Truncates the vertices and edges named (every vertex when neither

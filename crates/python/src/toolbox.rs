@@ -1,12 +1,14 @@
 //! TopMod's toolbox for `holey.Mesh` (issue 18): remeshing schemes,
-//! extrusions, wireframes and columns, cuts and truncations. Each function
+//! extrusions, wireframes and columns, cuts and truncations, multi-face
+//! handles. Each function
 //! takes the mesh and returns a new one; `kernel.rs` exposes them as
 //! methods. Faces and vertices are numbered as `Mesh.to_arrays` lists
 //! them; an edge is named by its two vertices.
 
 use holey::dlfl::{FaceId, Mesh};
-use holey::model::cut::{CutOffset, CutTarget, cut};
+use holey::model::cut::{CutOffset, CutTarget, cut, cut_each};
 use holey::model::extrude::{ExtrudeError, ExtrudeKind, ExtrudeOptions, extrude_selection};
+use holey::model::handle::{MultiHandleParams, create_multi_face_handle};
 use holey::model::numbering::{EdgeSpec, Numbering};
 use holey::model::wireframe::{ColumnParams, columns, wireframe};
 use holey::subdiv::{RemeshParams, RemeshScheme, SubdivError, remesh};
@@ -124,31 +126,57 @@ pub fn run_wireframe(mesh: &Mesh, thickness: f64, sides: Option<usize>) -> PyRes
     }
 }
 
-/// Cuts the named vertices, edges and faces off, at `offset` model units
-/// or at `fraction` of each spoke.
-pub fn run_cut(
-    mesh: &Mesh,
-    vertices: &[usize],
-    edges: &[(usize, usize)],
-    faces: &[usize],
-    offset: Option<f64>,
-    fraction: Option<f64>,
-) -> PyResult<Mesh> {
-    let how = match (offset, fraction) {
-        (Some(_), Some(_)) => return Err(bad("give offset or fraction, not both")),
+/// The vertices, edges (vertex pairs) and faces named to cut.
+pub struct CutTargets<'a> {
+    pub vertices: &'a [usize],
+    pub edges: &'a [(usize, usize)],
+    pub faces: &'a [usize],
+}
+
+/// `offset` model units or `fraction` of each spoke (a quarter by
+/// default); `prefix` names the keywords in the refusal.
+pub fn cut_offset(offset: Option<f64>, fraction: Option<f64>, prefix: &str) -> PyResult<CutOffset> {
+    Ok(match (offset, fraction) {
+        (Some(_), Some(_)) => {
+            return Err(bad(format!(
+                "give {prefix}offset or {prefix}fraction, not both"
+            )));
+        }
         (Some(x), None) => CutOffset::Distance(x),
         (None, Some(t)) => CutOffset::Fraction(t),
         (None, None) => CutOffset::Fraction(0.25),
-    };
+    })
+}
+
+/// Cuts the named vertices, edges and faces off, the vertices at `vertex`
+/// and the others at `how`.
+pub fn run_cut(
+    mesh: &Mesh,
+    targets: &CutTargets<'_>,
+    how: CutOffset,
+    vertex: CutOffset,
+) -> PyResult<Mesh> {
     let numbering = numbering(mesh)?;
     let list = numbering
-        .cut_targets(mesh, vertices, &edge_specs(edges), faces)
+        .cut_targets(
+            mesh,
+            targets.vertices,
+            &edge_specs(targets.edges),
+            targets.faces,
+        )
         .map_err(bad)?;
     if list.is_empty() {
         return Err(bad("no vertex, edge or face was given to cut"));
     }
+    let each: Vec<(CutTarget, CutOffset)> = list
+        .into_iter()
+        .map(|t| match t {
+            CutTarget::Vertex(_) => (t, vertex),
+            _ => (t, how),
+        })
+        .collect();
     let mut m = mesh.clone();
-    cut(&mut m, &list, how).map_err(|e| bad(numbering.describe_cut(mesh, &e)))?;
+    cut_each(&mut m, &each).map_err(|e| bad(numbering.describe_cut(mesh, &e)))?;
     Ok(m)
 }
 
@@ -186,5 +214,25 @@ pub fn run_truncate(
     let mut m = mesh.clone();
     cut(&mut m, &list, CutOffset::Fraction(fraction))
         .map_err(|e| bad(numbering.describe_cut(mesh, &e)))?;
+    Ok(m)
+}
+
+/// Joins the faces numbered `faces` through a hub (a multi-face handle),
+/// refusals naming the faces in the same numbers.
+pub fn run_multi_face_handle(
+    mesh: &Mesh,
+    faces: &[usize],
+    params: &MultiHandleParams,
+) -> PyResult<Mesh> {
+    let numbering = numbering(mesh)?;
+    // One by one, not `Numbering::faces`, which drops repeats: a face
+    // given twice is the library's refusal to name.
+    let ids: Vec<FaceId> = faces
+        .iter()
+        .map(|&n| numbering.face(n).map_err(bad))
+        .collect::<PyResult<_>>()?;
+    let mut m = mesh.clone();
+    create_multi_face_handle(&mut m, &ids, params)
+        .map_err(|e| bad(numbering.describe_multi_handle(mesh, &e)))?;
     Ok(m)
 }
