@@ -300,20 +300,8 @@ impl Projector {
                 let t0 = (opts.fov.to_radians() / 2.0).tan();
                 let alpha = (FILL * t0).atan();
                 let dist = 1.0 / alpha.sin();
-                let mut p = Projector {
-                    eye: d * dist,
-                    right,
-                    up,
-                    fwd,
-                    tan_half: t0,
-                    shift: DVec2::ZERO,
-                    scale: 0.0,
-                    cx: 0.0,
-                    cy: 0.0,
-                    near: 1e-3,
-                    width,
-                    height,
-                };
+                let mut p =
+                    Self::unframed(d * dist, (right, up, fwd), t0, DVec2::ZERO, width, height);
                 if framing == Framing::Fit {
                     p.fit(prep, width / height);
                 }
@@ -347,20 +335,8 @@ impl Projector {
         let fwd = unit(target - eye).ok_or_else(|| bad("eye and target coincide"))?;
         let (right, up, fwd) =
             basis(fwd, cam.up).ok_or_else(|| bad("up is parallel to the line of sight"))?;
-        let mut p = Projector {
-            eye,
-            right,
-            up,
-            fwd,
-            tan_half: (cam.fov.to_radians() / 2.0).tan(),
-            shift: cam.shift,
-            scale: 0.0,
-            cx: 0.0,
-            cy: 0.0,
-            near: 1e-3,
-            width,
-            height,
-        };
+        let tan_half = (cam.fov.to_radians() / 2.0).tan();
+        let mut p = Self::unframed(eye, (right, up, fwd), tan_half, cam.shift, width, height);
         p.finish();
         Ok(p)
     }
@@ -395,6 +371,32 @@ impl Projector {
         if k.is_finite() && k > 1e-6 {
             self.tan_half *= k;
             self.shift = (lo + hi) / 2.0 / k;
+        }
+    }
+
+    /// A camera at `eye` with the axes (right, up, forward), before its
+    /// framing: [`Projector::finish`] sets the scale and the image origin.
+    fn unframed(
+        eye: DVec3,
+        (right, up, fwd): (DVec3, DVec3, DVec3),
+        tan_half: f64,
+        shift: DVec2,
+        width: f64,
+        height: f64,
+    ) -> Projector {
+        Projector {
+            eye,
+            right,
+            up,
+            fwd,
+            tan_half,
+            shift,
+            scale: 0.0,
+            cx: 0.0,
+            cy: 0.0,
+            near: 1e-3,
+            width,
+            height,
         }
     }
 

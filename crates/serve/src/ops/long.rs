@@ -345,6 +345,27 @@ fn hull_name(dual: bool) -> &'static str {
     }
 }
 
+/// Runs `n` levels of a scheme one at a time, so that progress and cancel
+/// work between them. A level costs about its output, which grows about
+/// fourfold per level for subdivision and most remeshing schemes, so level
+/// `k` weighs `4^k` in the progress.
+fn by_levels(
+    mut mesh: Mesh,
+    n: usize,
+    progress: &dyn Fn(Option<f64>, String),
+    stage: impl Fn(usize) -> String,
+    mut level: impl FnMut(&Mesh, usize) -> Result<Mesh, ServeError>,
+) -> Result<Mesh, ServeError> {
+    let total: f64 = (0..n).map(|k| 4f64.powi(k as i32)).sum();
+    let mut finished = 0.0;
+    for k in 0..n {
+        progress(Some(finished / total.max(1.0)), stage(k));
+        mesh = level(&mesh, k)?;
+        finished += 4f64.powi(k as i32);
+    }
+    Ok(mesh)
+}
+
 impl Job {
     fn run(
         self,
@@ -371,41 +392,24 @@ impl Job {
                 done(mesh)
             }
             Job::Subdivide(scheme, n) => {
-                // Level by level: each costs about four times the last.
-                let total: f64 = (0..n).map(|k| 4f64.powi(k as i32)).sum();
-                let mut done = 0.0;
-                for k in 0..n {
-                    progress(
-                        Some(done / total.max(1.0)),
-                        format!("subdivision level {} of {n}", k + 1),
-                    );
-                    mesh = subdivide_capped(&mesh, scheme, 1, max_faces)
-                        .map_err(|e| refused(e.to_string()))?;
-                    done += 4f64.powi(k as i32);
-                }
-                Ok((mesh, String::new()))
+                let stage = |k: usize| format!("subdivision level {} of {n}", k + 1);
+                let out = by_levels(mesh, n, progress, stage, |mesh, _| {
+                    subdivide_capped(mesh, scheme, 1, max_faces).map_err(|e| refused(e.to_string()))
+                })?;
+                done(out)
             }
             Job::Remesh(scheme, params, n) => {
-                // Level by level, so that progress and cancel work between
-                // them; the cost of a level is about its output, which
-                // grows about fourfold per level for most schemes.
-                let total: f64 = (0..n).map(|k| 4f64.powi(k as i32)).sum();
-                let mut finished = 0.0;
-                for k in 0..n {
-                    progress(
-                        Some(finished / total.max(1.0)),
-                        format!("{scheme}: level {} of {n}", k + 1),
-                    );
-                    mesh = remesh_capped(&mesh, scheme, &params, 1, max_faces).map_err(|e| {
+                let stage = |k: usize| format!("{scheme}: level {} of {n}", k + 1);
+                let out = by_levels(mesh, n, progress, stage, |mesh, k| {
+                    remesh_capped(mesh, scheme, &params, 1, max_faces).map_err(|e| {
                         refused(if n == 1 {
                             e.to_string()
                         } else {
                             format!("level {} of {n}: {e}", k + 1)
                         })
-                    })?;
-                    finished += 4f64.powi(k as i32);
-                }
-                done(mesh)
+                    })
+                })?;
+                done(out)
             }
             Job::Wireframe(thickness) => {
                 progress(None, "wireframe".into());
