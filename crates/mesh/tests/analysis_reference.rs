@@ -235,11 +235,7 @@ fn random_soup(rng: &mut Rng) -> PolyMesh {
             if rng.chance(0.05) {
                 DVec3::new(f64::NAN, 0.0, f64::INFINITY)
             } else {
-                DVec3::new(
-                    rng.range(-1.0, 1.0),
-                    rng.range(-1.0, 1.0),
-                    rng.range(-1.0, 1.0),
-                )
+                DVec3::from_array(rng.point(-1.0, 1.0))
             }
         })
         .collect();

@@ -389,13 +389,7 @@ mod tests {
         let mut trig = Vec::new();
         for n in 2..=40 {
             let p: Vec<DVec3> = (0..n)
-                .map(|_| {
-                    DVec3::new(
-                        rng.range(-1.0, 1.0),
-                        rng.range(-1.0, 1.0),
-                        rng.range(-1.0, 1.0),
-                    )
-                })
+                .map(|_| DVec3::from_array(rng.point(-1.0, 1.0)))
                 .collect();
             let mut out = vec![DVec3::ZERO; n];
             corner_points(&p, &mut out, &mut trig);

@@ -271,6 +271,43 @@ fn monogon_and_a_face_visiting_a_vertex_twice() {
     }
 }
 
+/// Joins two random corners of `corners` by an edge, unless the same
+/// corner is drawn twice.
+pub(crate) fn join_random_corners(m: &mut Mesh, rng: &mut Rng, corners: &[CornerId]) {
+    let a = *rng.pick(corners);
+    let b = *rng.pick(corners);
+    if a != b {
+        m.insert_edge(a, b).unwrap();
+    }
+}
+
+/// A self-loop between a random corner of `corners` and a random corner of
+/// the same vertex, unless that is the same corner.
+pub(crate) fn random_self_loop(m: &mut Mesh, rng: &mut Rng, corners: &[CornerId]) {
+    let c = *rng.pick(corners);
+    let v = m.corner_vertex(c).unwrap();
+    let at: Vec<_> = m.vertex_corners(v).unwrap().collect();
+    let d = *rng.pick(&at);
+    if c != d {
+        m.insert_edge(c, d).unwrap();
+    }
+}
+
+/// A point-sphere at `p`, joined by an edge to a random corner of
+/// `corners` with probability `joined`.
+pub(crate) fn add_random_vertex(
+    m: &mut Mesh,
+    rng: &mut Rng,
+    corners: &[CornerId],
+    p: DVec3,
+    joined: f64,
+) {
+    let (_, _, c) = m.create_vertex(p).unwrap();
+    if rng.chance(joined) {
+        m.insert_edge(*rng.pick(corners), c).unwrap();
+    }
+}
+
 /// Applies random fundamental operators, then flags random faces as
 /// holes: self-loops, multi-edges, two-gons, handles, merged and split
 /// components, point-spheres, dangling edges, pinched boundaries, wires.
@@ -281,13 +318,7 @@ fn random_mesh(rng: &mut Rng) -> Mesh {
     for _ in 0..rng.below(40) + 5 {
         let corners: Vec<CornerId> = m.corners().collect();
         match rng.below(10) {
-            0..=4 => {
-                let a = *rng.pick(&corners);
-                let b = *rng.pick(&corners);
-                if a != b {
-                    m.insert_edge(a, b).unwrap();
-                }
-            }
+            0..=4 => join_random_corners(&mut m, rng, &corners),
             5 => {
                 let edges: Vec<_> = m.edges().collect();
                 if !edges.is_empty() {
@@ -295,15 +326,8 @@ fn random_mesh(rng: &mut Rng) -> Mesh {
                 }
             }
             6 => {
-                let p = DVec3::new(
-                    rng.range(-2.0, 2.0),
-                    rng.range(-2.0, 2.0),
-                    rng.range(-2.0, 2.0),
-                );
-                let (_, _, c) = m.create_vertex(p).unwrap();
-                if rng.chance(0.7) {
-                    m.insert_edge(*rng.pick(&corners), c).unwrap();
-                }
+                let p = DVec3::from_array(rng.point(-2.0, 2.0));
+                add_random_vertex(&mut m, rng, &corners, p, 0.7);
             }
             7 => {
                 let edges: Vec<_> = m.edges().collect();
@@ -311,16 +335,7 @@ fn random_mesh(rng: &mut Rng) -> Mesh {
                     m.delete_edge(*rng.pick(&edges)).unwrap();
                 }
             }
-            _ => {
-                // Two corners of one vertex: a self-loop.
-                let c = *rng.pick(&corners);
-                let v = m.corner_vertex(c).unwrap();
-                let at: Vec<_> = m.vertex_corners(v).unwrap().collect();
-                let d = *rng.pick(&at);
-                if c != d {
-                    m.insert_edge(c, d).unwrap();
-                }
-            }
+            _ => random_self_loop(&mut m, rng, &corners),
         }
     }
     let faces: Vec<_> = m.faces().collect();

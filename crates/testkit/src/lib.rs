@@ -47,6 +47,15 @@ impl Rng {
         lo + (hi - lo) * self.unit()
     }
 
+    /// Uniform in the cube [lo, hi)³, drawn x, then y, then z (so it gives
+    /// the numbers three calls of [`Rng::range`] would).
+    pub fn point(&mut self, lo: f64, hi: f64) -> [f64; 3] {
+        let x = self.range(lo, hi);
+        let y = self.range(lo, hi);
+        let z = self.range(lo, hi);
+        [x, y, z]
+    }
+
     pub fn chance(&mut self, p: f64) -> bool {
         self.unit() < p
     }

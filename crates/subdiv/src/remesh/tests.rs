@@ -11,7 +11,9 @@ use holey_testkit::Rng;
 
 use super::{RemeshParams, RemeshScheme, remesh, remesh_capped, remesh_to_raw};
 use crate::SubdivError;
-use crate::tests::{counts, prim, signature};
+use crate::tests::{
+    add_random_vertex, counts, join_random_corners, prim, random_self_loop, signature,
+};
 
 use RemeshScheme as S;
 
@@ -1075,32 +1077,16 @@ fn random_mesh(rng: &mut Rng) -> Mesh {
     for _ in 0..rng.below(8) {
         let corners: Vec<CornerId> = m.corners().collect();
         match rng.below(5) {
-            0 | 1 => {
-                let (a, b) = (*rng.pick(&corners), *rng.pick(&corners));
-                if a != b {
-                    m.insert_edge(a, b).unwrap();
-                }
-            }
+            0 | 1 => join_random_corners(&mut m, rng, &corners),
             2 => {
                 let edges: Vec<_> = m.edges().collect();
                 m.subdivide_edge(*rng.pick(&edges)).unwrap();
             }
             3 => {
                 let q = DVec3::new(rng.unit(), rng.unit(), rng.unit());
-                let (_, _, c) = m.create_vertex(q).unwrap();
-                if rng.chance(0.8) {
-                    m.insert_edge(*rng.pick(&corners), c).unwrap();
-                }
+                add_random_vertex(&mut m, rng, &corners, q, 0.8);
             }
-            _ => {
-                let c = *rng.pick(&corners);
-                let v = m.corner_vertex(c).unwrap();
-                let at: Vec<_> = m.vertex_corners(v).unwrap().collect();
-                let d = *rng.pick(&at);
-                if c != d {
-                    m.insert_edge(c, d).unwrap(); // a self-loop
-                }
-            }
+            _ => random_self_loop(&mut m, rng, &corners),
         }
     }
     if rng.chance(0.2) {
