@@ -28,16 +28,31 @@ fn primitive(spec: &str) -> Mesh {
         .mesh
 }
 
+/// Times `run` on a fresh copy of `base` per sample: the copy is made, and
+/// what `run` returns is dropped, outside the timing.
+fn on_copies<O>(bencher: Bencher, base: &Mesh, run: impl Fn(Mesh) -> O) {
+    bencher.with_inputs(|| base.clone()).bench_local_values(run);
+}
+
+/// Times rendering the primitive `spec` at `width` × `height`.
+fn render_primitive(bencher: Bencher, spec: &str, width: u32, height: u32) {
+    let soup = holey_shapes::parse_primitive(spec).unwrap_or_else(|e| panic!("{e}"));
+    let opts = RenderOptions {
+        width,
+        height,
+        ..RenderOptions::default()
+    };
+    bencher.bench(|| black_box(render(&soup, &opts)).map(|i| i.width()));
+}
+
 /// Nine Sierpinski iterations of a tetrahedron: 1,048,576 faces.
 #[divan::bench(sample_count = 5)]
 fn sierpinski_tetrahedron_9(bencher: Bencher) {
     let base = primitive("@tetrahedron");
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let _ = black_box(sierpinski(&mut m, 9));
-            m
-        });
+    on_copies(bencher, &base, |mut m| {
+        let _ = black_box(sierpinski(&mut m, 9));
+        m
+    });
 }
 
 /// One Menger level on a finely divided cube: about 0.9M faces.
@@ -45,12 +60,10 @@ fn sierpinski_tetrahedron_9(bencher: Bencher) {
 fn menger_one_level_on_cube_100(bencher: Bencher) {
     let base = primitive("@cube:100");
     let params = MengerParams::default();
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let _ = black_box(menger(&mut m, &params));
-            m
-        });
+    on_copies(bencher, &base, |mut m| {
+        let _ = black_box(menger(&mut m, &params));
+        m
+    });
 }
 
 /// Menger levels 1–4 of a cube at a third of the mean edge (186k faces).
@@ -62,12 +75,10 @@ fn menger_cube_4_levels(bencher: Bencher) {
         thickness: Thickness::RatioOfMeanEdge(1.0 / 3.0),
         ..MengerParams::default()
     };
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let _ = black_box(menger(&mut m, &params));
-            m
-        });
+    on_copies(bencher, &base, |mut m| {
+        let _ = black_box(menger(&mut m, &params));
+        m
+    });
 }
 
 /// The true sponge, level 5: 6.5M faces (level 4: 336k).
@@ -79,12 +90,10 @@ fn menger_exact(bencher: Bencher, level: usize) {
         exact: true,
         ..MengerParams::default()
     };
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let _ = black_box(menger(&mut m, &params));
-            m
-        });
+    on_copies(bencher, &base, |mut m| {
+        let _ = black_box(menger(&mut m, &params));
+        m
+    });
 }
 
 /// A 100-segment handle between the two caps of a 1000-gon cylinder (a
@@ -92,40 +101,36 @@ fn menger_exact(bencher: Bencher, level: usize) {
 #[divan::bench(sample_count = 10)]
 fn handle_100_segments_1000_gons(bencher: Bencher) {
     let base = primitive("@cylinder:1000:1");
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let (a, b) = (m.face_at(0), m.face_at(1));
-            if let (Some(a), Some(b)) = (a, b)
-                && let (Ok(ca), Ok(cb)) = (m.face_corner(a), m.face_corner(b))
-            {
-                let _ = black_box(create_handle(
-                    &mut m,
-                    ca,
-                    cb,
-                    &HandleParams::new(100, -1.0, -1.0),
-                ));
-            }
-            m
-        });
+    on_copies(bencher, &base, |mut m| {
+        let (a, b) = (m.face_at(0), m.face_at(1));
+        if let (Some(a), Some(b)) = (a, b)
+            && let (Ok(ca), Ok(cb)) = (m.face_corner(a), m.face_corner(b))
+        {
+            let _ = black_box(create_handle(
+                &mut m,
+                ca,
+                cb,
+                &HandleParams::new(100, -1.0, -1.0),
+            ));
+        }
+        m
+    });
 }
 
 /// A rind of a 100k-face cube, then every outer face punched.
 #[divan::bench(sample_count = 5)]
 fn rind_100k_faces_punch_all(bencher: Bencher) {
     let base = primitive("@cube:129");
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|m| {
-            let faces = m.face_count();
-            let Ok(mut rind) = Rind::new(m, 0.001) else {
-                return 0;
-            };
-            for i in 0..faces {
-                let _ = rind.punch_index(i);
-            }
-            rind.mesh().face_count()
-        });
+    on_copies(bencher, &base, |m| {
+        let faces = m.face_count();
+        let Ok(mut rind) = Rind::new(m, 0.001) else {
+            return 0;
+        };
+        for i in 0..faces {
+            let _ = rind.punch_index(i);
+        }
+        rind.mesh().face_count()
+    });
 }
 
 /// Subdivision to about a million faces from a 4k-face torus.
@@ -153,15 +158,13 @@ fn torus_128() -> Mesh {
 fn extrude_every_face_15_rings_to_1m(bencher: Bencher) {
     let base = torus_128();
     let faces: Vec<_> = base.faces().collect();
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let params = ExtrudeParams::new(0.001, 15);
-            for &f in &faces {
-                let _ = black_box(extrude_face(&mut m, f, &params));
-            }
-            m.face_count()
-        });
+    on_copies(bencher, &base, |mut m| {
+        let params = ExtrudeParams::new(0.001, 15);
+        for &f in &faces {
+            let _ = black_box(extrude_face(&mut m, f, &params));
+        }
+        m.face_count()
+    });
 }
 
 /// Every face of a 256 × 256 torus stellated (each quad fans into 4
@@ -170,14 +173,12 @@ fn extrude_every_face_15_rings_to_1m(bencher: Bencher) {
 fn stellate_every_face_of_a_256_torus(bencher: Bencher) {
     let base = primitive("@torus:256:256");
     let faces: Vec<_> = base.faces().collect();
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            for &f in &faces {
-                let _ = black_box(stellate_face(&mut m, f, 0.001));
-            }
-            m.face_count()
-        });
+    on_copies(bencher, &base, |mut m| {
+        for &f in &faces {
+            let _ = black_box(stellate_face(&mut m, f, 0.001));
+        }
+        m.face_count()
+    });
 }
 
 /// The wireframe of a 320 × 320 torus: 4E + 2V = 10 · 320² ≈ 1.02M
@@ -204,36 +205,22 @@ fn columns_6_on_every_edge(bencher: Bencher) {
 #[divan::bench(sample_count = 3)]
 fn truncate_every_vertex_of_a_512_torus(bencher: Bencher) {
     let base = primitive("@torus:512:512");
-    bencher
-        .with_inputs(|| base.clone())
-        .bench_local_values(|mut m| {
-            let _ = black_box(truncate_all_vertices(&mut m, 1.0 / 3.0));
-            m.face_count()
-        });
+    on_copies(bencher, &base, |mut m| {
+        let _ = black_box(truncate_all_vertices(&mut m, 1.0 / 3.0));
+        m.face_count()
+    });
 }
 
 /// A 1M-triangle icosphere at 1024×768 (flat shading, 3×3 supersampling).
 #[divan::bench(sample_count = 5)]
 fn render_1m_triangles(bencher: Bencher) {
-    let soup = holey_shapes::parse_primitive("@sphere:8").unwrap_or_else(|e| panic!("{e}"));
-    let opts = RenderOptions {
-        width: 1024,
-        height: 768,
-        ..RenderOptions::default()
-    };
-    bencher.bench(|| black_box(render(&soup, &opts)).map(|i| i.width()));
+    render_primitive(bencher, "@sphere:8", 1024, 768);
 }
 
 /// A 10k-face mesh at 640×480, as for a sculpting frame.
 #[divan::bench(sample_count = 10)]
 fn render_10k_triangles(bencher: Bencher) {
-    let soup = holey_shapes::parse_primitive("@sphere:5").unwrap_or_else(|e| panic!("{e}"));
-    let opts = RenderOptions {
-        width: 640,
-        height: 480,
-        ..RenderOptions::default()
-    };
-    bencher.bench(|| black_box(render(&soup, &opts)).map(|i| i.width()));
+    render_primitive(bencher, "@sphere:5", 640, 480);
 }
 
 /// Writing a Sierpinski result as a soup (self-loops dropped).
