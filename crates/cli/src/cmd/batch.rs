@@ -104,54 +104,19 @@ pub struct Args {
 pub enum Batched {
     /// Convert each file (to the format --format names).
     #[command(after_help = WRITES)]
-    Convert {
-        #[command(flatten)]
-        options: convert::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Convert(Writing<convert::Options>),
     /// Catmull–Clark or Doo–Sabin smoothing of each file.
     #[command(after_help = WRITES)]
-    Subdivide {
-        #[command(flatten)]
-        options: subdivide::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Subdivide(Writing<subdivide::Options>),
     /// TopMod's remeshing schemes on each file.
     #[command(after_help = WRITES)]
-    Remesh {
-        #[command(flatten)]
-        options: remesh::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Remesh(Writing<remesh::Options>),
     /// The wireframe (or columns) of each file.
     #[command(after_help = WRITES)]
-    Wireframe {
-        #[command(flatten)]
-        options: wireframe::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Wireframe(Writing<wireframe::Options>),
     /// Truncation of each file's vertices (--all) or of the ones named.
     #[command(after_help = WRITES)]
-    Truncate {
-        #[command(flatten)]
-        options: cut::TruncateOptions,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Truncate(Writing<cut::TruncateOptions>),
     /// Cut and glue each surface along its self-intersections.
     #[command(after_help = WRITES)]
     Resolve {
@@ -165,50 +130,48 @@ pub enum Batched {
     #[command(after_help = WRITES)]
     #[command(mut_arg("via_motion", |a| a.hide(true)), mut_arg("report", |a| a.hide(true)))]
     #[command(mut_arg("parity", |a| a.hide(true)), mut_arg("verbose", |a| a.hide(true)))]
-    Union {
-        #[command(flatten)]
-        options: union::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Union(Writing<union::Options>),
     /// Generalized Sierpinski polyhedra of each file.
     #[command(after_help = WRITES)]
-    Sierpinski {
-        #[command(flatten)]
-        options: sierpinski::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Sierpinski(Writing<sierpinski::Options>),
     /// Generalized Menger sponges of each file.
     #[command(after_help = WRITES)]
-    Menger {
-        #[command(flatten)]
-        options: menger::Options,
-        #[command(flatten)]
-        out: Outputs,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Menger(Writing<menger::Options>),
     /// Measure each file: one JSON line per file.
     #[command(after_help = REPORTS)]
-    Info {
-        #[command(flatten)]
-        options: info::Options,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Info(Reporting<info::Options>),
     /// Exact self-intersections of each file: one JSON line per file.
     #[command(after_help = REPORTS, mut_arg("curves", |a| a.hide(true)))]
-    Selfint {
-        #[command(flatten)]
-        options: selfint::Options,
-        #[command(flatten)]
-        inputs: Inputs,
-    },
+    Selfint(Reporting<selfint::Options>),
+}
+
+/// The arguments of a command that writes a mesh per file: its own
+/// options, where the results go, the files.
+#[derive(clap::Args)]
+pub struct Writing<O: clap::Args> {
+    #[command(flatten)]
+    options: O,
+    #[command(flatten)]
+    out: Outputs,
+    #[command(flatten)]
+    inputs: Inputs,
+}
+
+impl<O: clap::Args> Writing<O> {
+    /// The job `job` makes of the options, the inputs, the outputs.
+    fn split(self, job: impl FnOnce(O) -> Job) -> (Job, Inputs, Option<Outputs>) {
+        (job(self.options), self.inputs, Some(self.out))
+    }
+}
+
+/// The arguments of a command that reports on each file: its own options
+/// and the files.
+#[derive(clap::Args)]
+pub struct Reporting<O: clap::Args> {
+    #[command(flatten)]
+    options: O,
+    #[command(flatten)]
+    inputs: Inputs,
 }
 
 /// The files to run on, and how many at once.
@@ -271,49 +234,17 @@ impl Batched {
     /// The job, the inputs, and where results go (for commands that write).
     fn split(self) -> (Job, Inputs, Option<Outputs>) {
         match self {
-            Batched::Convert {
-                options,
-                out,
-                inputs,
-            } => (Job::Convert(options), inputs, Some(out)),
-            Batched::Subdivide {
-                options,
-                out,
-                inputs,
-            } => (Job::Subdivide(options), inputs, Some(out)),
-            Batched::Remesh {
-                options,
-                out,
-                inputs,
-            } => (Job::Remesh(options), inputs, Some(out)),
-            Batched::Wireframe {
-                options,
-                out,
-                inputs,
-            } => (Job::Wireframe(options), inputs, Some(out)),
-            Batched::Truncate {
-                options,
-                out,
-                inputs,
-            } => (Job::Truncate(options), inputs, Some(out)),
+            Batched::Convert(w) => w.split(Job::Convert),
+            Batched::Subdivide(w) => w.split(Job::Subdivide),
+            Batched::Remesh(w) => w.split(Job::Remesh),
+            Batched::Wireframe(w) => w.split(Job::Wireframe),
+            Batched::Truncate(w) => w.split(Job::Truncate),
             Batched::Resolve { out, inputs } => (Job::Resolve, inputs, Some(out)),
-            Batched::Union {
-                options,
-                out,
-                inputs,
-            } => (Job::Union(options), inputs, Some(out)),
-            Batched::Sierpinski {
-                options,
-                out,
-                inputs,
-            } => (Job::Sierpinski(options), inputs, Some(out)),
-            Batched::Menger {
-                options,
-                out,
-                inputs,
-            } => (Job::Menger(options), inputs, Some(out)),
-            Batched::Info { options, inputs } => (Job::Info(options), inputs, None),
-            Batched::Selfint { options, inputs } => (Job::Selfint(options), inputs, None),
+            Batched::Union(w) => w.split(Job::Union),
+            Batched::Sierpinski(w) => w.split(Job::Sierpinski),
+            Batched::Menger(w) => w.split(Job::Menger),
+            Batched::Info(r) => (Job::Info(r.options), r.inputs, None),
+            Batched::Selfint(r) => (Job::Selfint(r.options), r.inputs, None),
         }
     }
 }

@@ -64,6 +64,11 @@ fn yes(b: bool) -> &'static str {
     if b { "yes" } else { "no" }
 }
 
+/// A measure, or a dash and why the mesh has none.
+fn or_why(value: Option<impl ToString>, why: &str) -> String {
+    value.map_or_else(|| format!("- ({why})"), |v| v.to_string())
+}
+
 /// The human-readable report.
 pub fn render_text(name: &str, i: &MeshInfo) -> String {
     let sizes: Vec<String> = i
@@ -99,12 +104,8 @@ pub fn render_text(name: &str, i: &MeshInfo) -> String {
         i.misoriented_edges
     );
     s += &format!("euler:         {}\n", i.euler);
-    s += &format!(
-        "genus:         {}\n",
-        i.genus
-            .map_or("- (needs a manifold, oriented mesh)".into(), |g| g
-                .to_string())
-    );
+    let genus = or_why(i.genus, "needs a manifold, oriented mesh");
+    s += &format!("genus:         {genus}\n");
     s += &format!(
         "degenerate:    {} self-loops, {} two-gons, {} point-spheres\n",
         i.self_loops, i.two_gons, i.point_spheres
@@ -116,11 +117,7 @@ pub fn render_text(name: &str, i: &MeshInfo) -> String {
         );
     }
     s += &format!("area:          {}\n", i.area);
-    s += &format!(
-        "volume:        {}\n",
-        i.volume
-            .map_or("- (needs a closed, oriented mesh)".into(), |v| v
-                .to_string())
-    );
+    let volume = or_why(i.volume, "needs a closed, oriented mesh");
+    s += &format!("volume:        {volume}\n");
     s
 }
