@@ -192,59 +192,10 @@ pub(crate) fn by_containment(
     if touched.iter().filter(|&&t| t).count() > MAX_LABELLED_PIECES {
         return Ok(None);
     }
-    let area = |t: &[u32; 3]| {
-        let [a, b, c] = t.map(|v| arr.positions[v as usize]);
-        (b - a).cross(c - a).length()
-    };
-    let mut seed: Vec<Option<(f64, usize)>> = vec![None; count];
-    for (t, tri) in arr.triangles.iter().enumerate() {
-        let r = region[t] as usize;
-        let a = area(tri);
-        if touched[r] && seed[r].is_none_or(|(best, _)| a > best) {
-            seed[r] = Some((a, t));
-        }
-    }
-    // The sign interpretation: inside where the containment number,
-    // counted with the surface's own orientation, is at least 1.
     let inside = |w: f64| surroundings.orientation() * w >= 0.5;
-    let arr_at = |v: u32| arr.positions[v as usize];
-    let near = WindingField::new(&arr.triangles, &arr_at);
-    let outward = surroundings.orientation() > 0.0;
-    // Per region: keep, and flip (its inside lies on the other side of it
-    // than the rest of the surface's does).
-    let mut label = vec![(true, false); count];
-    // Pieces whose winding number is not within a twentieth of an
-    // integer are slivers between curves meeting at a point, whose sample
-    // lies within rounding of another sheet: they are decided by their
-    // neighbours below instead.
-    let mut unsure: Vec<usize> = Vec::new();
-    let samples: Vec<(usize, usize, DVec3)> = seed
-        .iter()
-        .enumerate()
-        .filter_map(|(r, s)| {
-            let (_, t) = (*s)?;
-            Some((
-                r,
-                t,
-                arr.triangles[t].map(arr_at).iter().sum::<DVec3>() / 3.0,
-            ))
-        })
-        .collect();
-    let points: Vec<DVec3> = samples.iter().map(|s| s.2).collect();
-    let far = surroundings.winding_numbers_at(&points);
-    for (&(r, t, c), far) in samples.iter().zip(far) {
-        let w = near.at(c, Some(t)) + far;
-        // The seed's own triangle adds ±1/2 on its two sides.
-        let (behind, front) = (w + 0.5, w - 0.5);
-        let off = (behind - behind.round()).abs();
-        if off > WINDING_SLACK {
-            return Ok(None);
-        }
-        if off > SURE {
-            unsure.push(r);
-        }
-        label[r] = (inside(behind) != inside(front), inside(behind) != outward);
-    }
+    let Some((mut label, unsure)) = label_pieces(arr, &region, &touched, surroundings) else {
+        return Ok(None);
+    };
     settle_unsure(arr, &arr_edges, &region, &unsure, &mut label);
     let mut keep: Vec<bool> = region.iter().map(|&r| label[r as usize].0).collect();
     // The triangles as they will be output: reversed where their inside
@@ -332,6 +283,80 @@ pub(crate) fn by_containment(
         intersections: x,
         vertex_origin: origin,
     }))
+}
+
+/// A piece's fate: keep it, and flip it.
+type Label = (bool, bool);
+
+/// Per piece of the arrangement `arr` (pieces `region`) that a curve
+/// `touched`: keep it, and flip it (its inside lies on the other side of
+/// it than the rest of the surface's does), from the containment number
+/// at a sample on its largest triangle (the arrangement's own near field
+/// plus the `surroundings`' far field); and the pieces whose sample was
+/// not sure (within rounding of another sheet), for their neighbours to
+/// decide. `None` when some piece's winding number is not near an
+/// integer.
+fn label_pieces(
+    arr: &TriMesh,
+    region: &[u32],
+    touched: &[bool],
+    surroundings: &Surroundings<'_>,
+) -> Option<(Vec<Label>, Vec<usize>)> {
+    let area = |t: &[u32; 3]| {
+        let [a, b, c] = t.map(|v| arr.positions[v as usize]);
+        (b - a).cross(c - a).length()
+    };
+    let count = touched.len();
+    let mut seed: Vec<Option<(f64, usize)>> = vec![None; count];
+    for (t, tri) in arr.triangles.iter().enumerate() {
+        let r = region[t] as usize;
+        let a = area(tri);
+        if touched[r] && seed[r].is_none_or(|(best, _)| a > best) {
+            seed[r] = Some((a, t));
+        }
+    }
+    // The sign interpretation: inside where the containment number,
+    // counted with the surface's own orientation, is at least 1.
+    let inside = |w: f64| surroundings.orientation() * w >= 0.5;
+    let arr_at = |v: u32| arr.positions[v as usize];
+    let near = WindingField::new(&arr.triangles, &arr_at);
+    let outward = surroundings.orientation() > 0.0;
+    // Per region: keep, and flip (its inside lies on the other side of it
+    // than the rest of the surface's does).
+    let mut label = vec![(true, false); count];
+    // Pieces whose winding number is not within a twentieth of an
+    // integer are slivers between curves meeting at a point, whose sample
+    // lies within rounding of another sheet: they are decided by their
+    // neighbours below instead.
+    let mut unsure: Vec<usize> = Vec::new();
+    let samples: Vec<(usize, usize, DVec3)> = seed
+        .iter()
+        .enumerate()
+        .filter_map(|(r, s)| {
+            let (_, t) = (*s)?;
+            Some((
+                r,
+                t,
+                arr.triangles[t].map(arr_at).iter().sum::<DVec3>() / 3.0,
+            ))
+        })
+        .collect();
+    let points: Vec<DVec3> = samples.iter().map(|s| s.2).collect();
+    let far = surroundings.winding_numbers_at(&points);
+    for (&(r, t, c), far) in samples.iter().zip(far) {
+        let w = near.at(c, Some(t)) + far;
+        // The seed's own triangle adds ±1/2 on its two sides.
+        let (behind, front) = (w + 0.5, w - 0.5);
+        let off = (behind - behind.round()).abs();
+        if off > WINDING_SLACK {
+            return None;
+        }
+        if off > SURE {
+            unsure.push(r);
+        }
+        label[r] = (inside(behind) != inside(front), inside(behind) != outward);
+    }
+    Some((label, unsure))
 }
 
 /// Decides the pieces in `unsure` by the pieces around them: at an edge
