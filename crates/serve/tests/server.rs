@@ -103,22 +103,41 @@ impl Tab {
         }
     }
 
-    /// Sends a request and waits for its reply.
-    fn call(&mut self, mut req: Value) -> Value {
+    /// Sends a request under the next id; returns the id.
+    fn send(&mut self, mut req: Value) -> u64 {
         self.next += 1;
         req["id"] = json!(self.next);
         self.socket
             .send(Message::text(req.to_string()))
             .expect("send");
-        let deadline = Instant::now() + Duration::from_secs(120);
+        self.next
+    }
+
+    /// Waits for the reply to request `id`.
+    fn reply_to(&mut self, id: u64, within: Duration) -> Value {
+        let deadline = Instant::now() + within;
         loop {
-            assert!(Instant::now() < deadline, "no reply to {req}");
+            assert!(Instant::now() < deadline, "no reply to request {id}");
             if let Some(v) = self.pump_one()
-                && v["id"] == json!(self.next)
+                && v["id"] == json!(id)
             {
                 return v;
             }
         }
+    }
+
+    /// Sends a request and waits for its reply.
+    fn call(&mut self, req: Value) -> Value {
+        let id = self.send(req);
+        self.reply_to(id, Duration::from_secs(120))
+    }
+
+    /// Starts a long operation and cancels it at once; returns the
+    /// operation's reply.
+    fn start_and_cancel(&mut self, req: Value) -> Value {
+        let id = self.send(req);
+        self.send(json!({"op": "cancel"}));
+        self.reply_to(id, Duration::from_secs(60))
     }
 
     fn ok(&mut self, req: Value) -> Value {
@@ -506,32 +525,9 @@ fn uploads_downloads_limits_and_restart() {
 #[test]
 fn long_operations_report_progress_and_cancel() {
     let (_dir, _, mut a) = tab_on("@cube");
-    a.next += 1;
-    let id = a.next;
-    a.socket
-        .send(Message::text(
-            json!({"id": id, "op": "subdivide", "scheme": "catmull-clark", "levels": 8})
-                .to_string(),
-        ))
-        .expect("send");
-    a.next += 1;
-    a.socket
-        .send(Message::text(
-            json!({"id": a.next, "op": "cancel"}).to_string(),
-        ))
-        .expect("send");
-    let mut cancelled = false;
-    let deadline = Instant::now() + Duration::from_secs(60);
-    while Instant::now() < deadline && !cancelled {
-        if let Some(v) = a.pump_one()
-            && v["id"] == json!(id)
-        {
-            assert_eq!(v["type"], "error", "{v}");
-            assert_eq!(v["cancelled"], true, "{v}");
-            cancelled = true;
-        }
-    }
-    assert!(cancelled);
+    let v = a.start_and_cancel(json!({"op": "subdivide", "scheme": "catmull-clark", "levels": 8}));
+    assert_eq!(v["type"], "error", "{v}");
+    assert_eq!(v["cancelled"], true, "{v}");
     assert_eq!(
         a.state["stats"]["faces"], 6,
         "a cancelled operation changes nothing"
@@ -1161,29 +1157,7 @@ fn toolbox_refusals_are_clear_and_change_nothing() {
 #[test]
 fn a_long_remesh_reports_progress_and_cancels() {
     let (_dir, _, mut a) = tab_on("@cube");
-    a.next += 1;
-    let id = a.next;
-    a.socket
-        .send(Message::text(
-            json!({"id": id, "op": "remesh", "scheme": "loop", "levels": 8}).to_string(),
-        ))
-        .expect("send");
-    a.next += 1;
-    a.socket
-        .send(Message::text(
-            json!({"id": a.next, "op": "cancel"}).to_string(),
-        ))
-        .expect("send");
-    let deadline = Instant::now() + Duration::from_secs(60);
-    let mut answer = None;
-    while Instant::now() < deadline && answer.is_none() {
-        if let Some(v) = a.pump_one()
-            && v["id"] == json!(id)
-        {
-            answer = Some(v);
-        }
-    }
-    let v = answer.expect("an answer to the remesh");
+    let v = a.start_and_cancel(json!({"op": "remesh", "scheme": "loop", "levels": 8}));
     assert_eq!(v["type"], "error", "{v}");
     assert_eq!(v["cancelled"], true, "{v}");
     assert_eq!(vef(&a), [8, 12, 6], "a cancelled remesh changes nothing");
