@@ -81,55 +81,48 @@ fn menger_of(n: usize, exact: bool) -> Result<Mesh> {
     Ok(m)
 }
 
-/// The face whose centroid lies furthest along `dir`.
-fn face_towards(mesh: &Mesh, dir: DVec3) -> Result<FaceId> {
-    let mut best: Option<(f64, FaceId)> = None;
-    for f in mesh.faces() {
-        if mesh.is_hole(f)? {
-            continue;
-        }
+/// The key of the candidate face whose centroid scores highest (the first
+/// of equals), or `None` when there is no candidate.
+fn best_by_centroid<K>(
+    mesh: &Mesh,
+    candidates: impl Iterator<Item = (K, FaceId)>,
+    score: impl Fn(DVec3) -> f64,
+) -> Result<Option<K>> {
+    let mut best: Option<(f64, K)> = None;
+    for (key, f) in candidates {
         let ps = mesh.face_positions(f)?;
-        let c = ps.iter().copied().sum::<DVec3>() / ps.len() as f64;
-        let d = c.dot(dir);
-        if best.is_none_or(|(b, _)| d > b) {
-            best = Some((d, f));
+        let d = score(ps.iter().copied().sum::<DVec3>() / ps.len() as f64);
+        if best.as_ref().is_none_or(|(b, _)| d > *b) {
+            best = Some((d, key));
         }
     }
-    best.map(|(_, f)| f)
+    Ok(best.map(|(_, key)| key))
+}
+
+/// The face whose centroid lies furthest along `dir`.
+fn face_towards(mesh: &Mesh, dir: DVec3) -> Result<FaceId> {
+    let mut solid = Vec::new();
+    for f in mesh.faces() {
+        if !mesh.is_hole(f)? {
+            solid.push((f, f));
+        }
+    }
+    best_by_centroid(mesh, solid.into_iter(), |c| c.dot(dir))?
         .ok_or_else(|| anyhow!("the mesh has no face"))
 }
 
 /// The face whose centroid lies nearest to `p`.
 fn face_nearest(mesh: &Mesh, p: DVec3) -> Result<FaceId> {
-    let mut best: Option<(f64, FaceId)> = None;
-    for f in mesh.faces() {
-        let ps = mesh.face_positions(f)?;
-        let c = ps.iter().copied().sum::<DVec3>() / ps.len() as f64;
-        let d = c.distance_squared(p);
-        if best.is_none_or(|(b, _)| d < b) {
-            best = Some((d, f));
-        }
-    }
-    best.map(|(_, f)| f)
-        .ok_or_else(|| anyhow!("the mesh has no face"))
+    best_by_centroid(mesh, mesh.faces().map(|f| (f, f)), |c| {
+        -c.distance_squared(p)
+    })?
+    .ok_or_else(|| anyhow!("the mesh has no face"))
 }
 
 /// The outer face of a rind whose centroid lies furthest along `dir`.
 fn outer_towards(rind: &Rind, dir: DVec3) -> Result<usize> {
-    let mesh = rind.mesh();
-    let mut best: Option<(f64, usize)> = None;
-    for i in 0..rind.input_face_slots() {
-        let Some(f) = rind.outer_face(i) else {
-            continue;
-        };
-        let ps = mesh.face_positions(f)?;
-        let c = ps.iter().copied().sum::<DVec3>() / ps.len() as f64;
-        let d = c.dot(dir);
-        if best.is_none_or(|(b, _)| d > b) {
-            best = Some((d, i));
-        }
-    }
-    best.map(|(_, i)| i)
+    let outer = (0..rind.input_face_slots()).filter_map(|i| rind.outer_face(i).map(|f| (i, f)));
+    best_by_centroid(rind.mesh(), outer, |c| c.dot(dir))?
         .ok_or_else(|| anyhow!("the rind has no outer face"))
 }
 
