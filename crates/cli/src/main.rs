@@ -114,7 +114,7 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),
-        Command::Info(a) => cmd::info::run(a),
+        Command::Info(a) => a.run(),
         Command::Convert(a) => a.run(),
         Command::Primitive(a) => cmd::primitive::run(a),
         Command::Sierpinski(a) => a.run(),
@@ -133,7 +133,7 @@ fn main() {
         Command::Union(a) => cmd::union::run(a),
         Command::Intersection(a) => cmd::boolean::run(a, holey_topo::Operation::Intersection),
         Command::Difference(a) => cmd::boolean::run(a, holey_topo::Operation::Difference),
-        Command::Selfint(a) => cmd::selfint::run(a),
+        Command::Selfint(a) => a.run(),
         Command::Resolve(a) => cmd::resolve::run(a),
         Command::Sculpt(a) => cmd::sculpt::run(a),
         Command::Serve(a) => cmd::serve::run(a),

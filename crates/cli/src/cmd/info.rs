@@ -4,10 +4,10 @@ use anyhow::Result;
 use holey_dlfl::dlfl_info;
 use holey_mesh::analysis::{MeshInfo, analyze, weld_exact};
 
+use crate::cmd::{MeshReport, ReportArgs};
 use crate::input::{Input, load};
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Counts are of the mesh as stored: vertex indices as in the file, and
 unreferenced vertices not counted. For a .dlfl file they are of the DLFL
 structure itself: every edge record (self-loops and multiple edges
@@ -20,14 +20,9 @@ Examples:
   holey info bunny.obj
   holey info scene.glb            # the default scene's meshes, placed
   holey info --json @torus
-  holey info --weld soup.stl      # measure after merging identical positions")]
-pub struct Args {
-    /// The mesh: a file (OBJ, OFF, PLY, STL, glTF .gltf/.glb, 3MF, .dlfl)
-    /// or a primitive such as @cube.
-    pub mesh: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey info --weld soup.stl      # measure after merging identical positions";
+
+pub type Args = ReportArgs<Options>;
 
 /// The options besides the mesh, which `holey batch info` shares.
 #[derive(clap::Args)]
@@ -40,14 +35,19 @@ pub struct Options {
     pub weld: bool,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    let info = measure(&args.mesh, &args.options)?;
-    if args.options.json {
-        println!("{}", serde_json::to_string_pretty(&info)?);
-    } else {
-        print!("{}", render_text(&args.mesh, &info));
+impl MeshReport for Options {
+    fn report(&self, mesh: &str) -> Result<()> {
+        let info = measure(mesh, self)?;
+        if self.json {
+            println!("{}", serde_json::to_string_pretty(&info)?);
+        } else {
+            print!("{}", render_text(mesh, &info));
+        }
+        Ok(())
     }
-    Ok(())
+
+    const MESH: &str = "The mesh: a file (OBJ, OFF, PLY, STL, glTF .gltf/.glb, 3MF, .dlfl) or a primitive such as @cube";
+    const AFTER_HELP: &str = AFTER_HELP;
 }
 
 /// What `holey info` prints of the mesh `mesh` names.

@@ -58,3 +58,33 @@ impl<O: MeshToFile> FileArgs<O> {
         self.options.run_file(&self.input, &self.output)
     }
 }
+
+/// A command that reads one mesh and prints what it finds, and that
+/// `holey batch` can run on many files (printing JSON lines instead): its
+/// options are the clap struct that implements this, flattened into the
+/// command run alone ([`ReportArgs`]) and into its batch subcommand.
+pub trait MeshReport: clap::Args {
+    /// The mesh argument's help.
+    const MESH: &'static str;
+    /// What `--help` prints after the options.
+    const AFTER_HELP: &'static str;
+    /// Prints the report on the mesh `mesh` names.
+    fn report(&self, mesh: &str) -> anyhow::Result<()>;
+}
+
+/// The arguments of a [`MeshReport`] command run alone: the mesh, then the
+/// command's options.
+#[derive(clap::Args)]
+#[command(after_help = O::AFTER_HELP)]
+pub struct ReportArgs<O: MeshReport> {
+    #[arg(help = O::MESH)]
+    pub mesh: String,
+    #[command(flatten)]
+    pub options: O,
+}
+
+impl<O: MeshReport> ReportArgs<O> {
+    pub fn run(self) -> anyhow::Result<()> {
+        self.options.report(&self.mesh)
+    }
+}

@@ -4,12 +4,12 @@ use anyhow::Result;
 use holey_topo::self_intersections;
 use serde_json::json;
 
+use crate::cmd::{MeshReport, ReportArgs};
 use crate::error::bad_input;
 use crate::progress::Progress;
 use crate::tri::load_triangles;
 
-#[derive(clap::Args)]
-#[command(after_help = "\
+const AFTER_HELP: &str = "\
 Counts the pairs of triangles that intersect along a segment, decided by
 exact predicates with simulation of simplicity: triangles that only touch
 (share a vertex or an edge, or meet at a point of their boundaries in a
@@ -22,13 +22,9 @@ fan-triangulated; vertices with equal positions are the same point.
 Examples:
   holey selfint teapot.obj
   holey selfint soup.stl --json
-  holey selfint teapot.obj --curves curves.obj")]
-pub struct Args {
-    /// The mesh.
-    pub mesh: String,
-    #[command(flatten)]
-    pub options: Options,
-}
+  holey selfint teapot.obj --curves curves.obj";
+
+pub type Args = ReportArgs<Options>;
 
 /// The options besides the mesh, which `holey batch selfint` shares.
 #[derive(clap::Args)]
@@ -46,37 +42,44 @@ pub struct Options {
     pub curves: Option<String>,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    let options = &args.options;
-    if let Some(path) = &options.curves
-        && !path.to_ascii_lowercase().ends_with(".obj")
-    {
-        return Err(bad_input(format!("{path}: the curves are written as .obj")));
-    }
-    let found = find(&args.mesh)?;
-    let Found { mesh, x, .. } = &found;
-    if let Some(path) = &options.curves {
-        holey_io::write_bytes_atomic(std::path::Path::new(path), curves_obj(mesh, x).as_bytes())
+impl MeshReport for Options {
+    fn report(&self, name: &str) -> Result<()> {
+        if let Some(path) = &self.curves
+            && !path.to_ascii_lowercase().ends_with(".obj")
+        {
+            return Err(bad_input(format!("{path}: the curves are written as .obj")));
+        }
+        let found = find(name)?;
+        let Found { mesh, x, .. } = &found;
+        if let Some(path) = &self.curves {
+            holey_io::write_bytes_atomic(
+                std::path::Path::new(path),
+                curves_obj(mesh, x).as_bytes(),
+            )
             .map_err(crate::error::from_io)?;
-    }
-    let triple = x.triple_points();
-    if options.json {
-        let v = report_json(&args.mesh, &found, options.pairs);
-        println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
-        println!("mesh                {}", args.mesh);
-        println!("triangles           {}", mesh.triangles.len());
-        println!("intersecting pairs  {}", x.pairs.len());
-        println!("points              {} ({} triple)", x.points.len(), triple);
-        println!("edges               {}", x.pieces.len());
-        println!("curves              {}", x.curve_count);
-        if options.pairs {
-            for (a, b) in &x.pairs {
-                println!("pair {a} {b}");
+        }
+        let triple = x.triple_points();
+        if self.json {
+            let v = report_json(name, &found, self.pairs);
+            println!("{}", serde_json::to_string_pretty(&v)?);
+        } else {
+            println!("mesh                {name}");
+            println!("triangles           {}", mesh.triangles.len());
+            println!("intersecting pairs  {}", x.pairs.len());
+            println!("points              {} ({} triple)", x.points.len(), triple);
+            println!("edges               {}", x.pieces.len());
+            println!("curves              {}", x.curve_count);
+            if self.pairs {
+                for (a, b) in &x.pairs {
+                    println!("pair {a} {b}");
+                }
             }
         }
+        Ok(())
     }
-    Ok(())
+
+    const MESH: &str = "The mesh";
+    const AFTER_HELP: &str = AFTER_HELP;
 }
 
 /// A mesh's self-intersections, and the seconds finding them took.
