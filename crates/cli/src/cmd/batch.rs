@@ -103,19 +103,14 @@ pub struct Args {
 #[derive(clap::Subcommand)]
 pub enum Batched {
     /// Convert each file (to the format --format names).
-    #[command(after_help = WRITES)]
     Convert(Writing<convert::Options>),
     /// Catmull–Clark or Doo–Sabin smoothing of each file.
-    #[command(after_help = WRITES)]
     Subdivide(Writing<subdivide::Options>),
     /// TopMod's remeshing schemes on each file.
-    #[command(after_help = WRITES)]
     Remesh(Writing<remesh::Options>),
     /// The wireframe (or columns) of each file.
-    #[command(after_help = WRITES)]
     Wireframe(Writing<wireframe::Options>),
     /// Truncation of each file's vertices (--all) or of the ones named.
-    #[command(after_help = WRITES)]
     Truncate(Writing<cut::TruncateOptions>),
     /// Cut and glue each surface along its self-intersections.
     #[command(after_help = WRITES)]
@@ -127,27 +122,24 @@ pub enum Batched {
     },
     /// The solid each surface encloses (a union of one input).
     // The options batch refuses (see `Job::check`) are left out of its help.
-    #[command(after_help = WRITES)]
     #[command(mut_arg("via_motion", |a| a.hide(true)), mut_arg("report", |a| a.hide(true)))]
     #[command(mut_arg("parity", |a| a.hide(true)), mut_arg("verbose", |a| a.hide(true)))]
     Union(Writing<union::Options>),
     /// Generalized Sierpinski polyhedra of each file.
-    #[command(after_help = WRITES)]
     Sierpinski(Writing<sierpinski::Options>),
     /// Generalized Menger sponges of each file.
-    #[command(after_help = WRITES)]
     Menger(Writing<menger::Options>),
     /// Measure each file: one JSON line per file.
-    #[command(after_help = REPORTS)]
     Info(Reporting<info::Options>),
     /// Exact self-intersections of each file: one JSON line per file.
-    #[command(after_help = REPORTS, mut_arg("curves", |a| a.hide(true)))]
+    #[command(mut_arg("curves", |a| a.hide(true)))]
     Selfint(Reporting<selfint::Options>),
 }
 
 /// The arguments of a command that writes a mesh per file: its own
 /// options, where the results go, the files.
 #[derive(clap::Args)]
+#[command(after_help = WRITES)]
 pub struct Writing<O: clap::Args> {
     #[command(flatten)]
     options: O,
@@ -167,6 +159,7 @@ impl<O: clap::Args> Writing<O> {
 /// The arguments of a command that reports on each file: its own options
 /// and the files.
 #[derive(clap::Args)]
+#[command(after_help = REPORTS)]
 pub struct Reporting<O: clap::Args> {
     #[command(flatten)]
     options: O,
