@@ -7,6 +7,8 @@
 //! cargo run --release -p holey --example sculpt_bump -- [OUT.obj]
 //! ```
 
+use std::path::Path;
+
 use holey::prelude::*;
 use holey::sculpt::{Brush, Session, Stroke};
 
@@ -45,12 +47,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let mesh = session.into_mesh();
-    let poly = PolyMesh::from(&mesh);
-    io::write_poly(
-        std::path::Path::new(&out),
-        &poly,
-        &io::WriteOptions::default(),
-    )?;
+    let options = io::WriteOptions::default();
+    io::write_poly(Path::new(&out), &PolyMesh::from(&mesh), &options)?;
     println!("{out}: {} triangles", mesh.triangles.len());
     Ok(())
 }

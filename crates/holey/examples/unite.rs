@@ -9,6 +9,8 @@
 //!
 //! Without arguments it unites two overlapping icospheres.
 
+use std::path::Path;
+
 use holey::prelude::*;
 
 fn load(name: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
@@ -51,12 +53,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out.perturbation_retries()
     );
     let mesh = out.into_mesh();
-    let poly = PolyMesh::from(&mesh);
-    io::write_poly(
-        std::path::Path::new(&path),
-        &poly,
-        &io::WriteOptions::default(),
-    )?;
+    let options = io::WriteOptions::default();
+    io::write_poly(Path::new(&path), &PolyMesh::from(&mesh), &options)?;
     println!(
         "{path}: {} triangles, closed: {}",
         mesh.triangles.len(),
