@@ -21,7 +21,12 @@
 //! 2. Its *regions* are the triangles joined across edges that exactly two
 //!    triangles share in opposite directions; the curves (edges of four or
 //!    more) bound them, so the winding numbers on each side of a region
-//!    are constant along it.
+//!    are constant along it. Not so where an input triangle meets another
+//!    degenerately (a vertex of one exactly in the other's plane: coplanar
+//!    overlaps, an edge lying in a face): the perturbed world's curves
+//!    between them can run, in the limit, along arrangement edges that
+//!    are no curve, and the cut glues points that coincide only in the
+//!    limit; such a triangle's cells are regions of their own.
 //! 3. Each region gets them from one ray, decided exactly with simulation
 //!    of simplicity, from a point of its largest triangle: the point
 //!    `Σ wᵢ xᵢ` of its source triangle `x` at the cell's centroid, taken
@@ -36,9 +41,12 @@
 //!    by the signed count of the left-out sheets (each sheet changes w by
 //!    one across it, by its orientation).
 //! 4. A region whose two sides differ in being inside is kept, facing from
-//!    inside to outside. Identical coincident cells (duplicate triangles,
-//!    faces two solids share) are one sheet whose sheets' orientations
-//!    add: of opposite ones nothing or one is kept, of equal ones one.
+//!    inside to outside. Identical coincident cells of one symbolic source
+//!    triangle (duplicate triangles, faces two solids share) are one sheet
+//!    whose sheets' orientations add: of opposite ones nothing or one is
+//!    kept, of equal ones one. Identical cells of different sources are
+//!    apart in the perturbed world and classified each on its own. A cell
+//!    of no area (collinear corners) is never a sample.
 //! 5. Where coplanar sheets meet along an edge, a constructed point can
 //!    land on a kept triangle's side without being its vertex (a
 //!    T-junction); the side is split there (`repair_t_junctions`).
@@ -58,8 +66,11 @@
 //! crossing itself in the limit (merging needs the coplanar overlay). A
 //! constructed point within a few ulps of an input vertex it should be
 //! (nearly coincident shells) is not snapped to it, which can leave the
-//! result open there. The report counts both (`unpaired_edges`, and the
-//! CLI checks the result for crossings).
+//! result open there. Where three or more coplanar faces overlap, slivers
+//! of no area can still leave a few edges unpaired (45 on
+//! openscad-nonmanifold-crash.obj, whose volume is libigl's). The report
+//! counts these (`unpaired_edges`, and the CLI checks the result for
+//! crossings).
 
 use rustc_hash::FxHashMap as HashMap;
 use std::sync::atomic::AtomicBool;
@@ -238,6 +249,7 @@ pub fn boolean_by_winding(
     report.intersection_points = x.points.len();
     report.triple_points = x.triple_points();
     report.intersection_curves = x.curve_count;
+    let degenerate = degenerate_contacts(&joined, &ids, &x.pairs);
     report.seconds.intersections = started.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -277,7 +289,7 @@ pub fn boolean_by_winding(
         &report.inputs_closed,
         &corner,
     )?;
-    let mut faces = classify(&arrangement, &source, &rays, op, &mut report)?;
+    let mut faces = classify(&arrangement, &source, &degenerate, &rays, op, &mut report)?;
     report.t_junctions_repaired = repair_t_junctions(&arrangement.positions, &mut faces);
     report.unpaired_edges = unpaired_edges(&faces).len();
     report.seconds.classify = t.elapsed().as_secs_f64();
@@ -1039,48 +1051,118 @@ fn fate(op: Operation, sides: &Sides) -> Fate {
 /// region is left to [`close_unsampled`].
 const SAMPLE_TRIES: usize = 16;
 
-/// The result's triangles: each region and each group of identical
-/// coincident cells classified by one ray (module docs, steps 2–4).
-fn classify(
+/// Groups of identical coincident cells: cells with the same three
+/// vertices whose source triangles are the same symbolic triangle
+/// (duplicate triangles, faces two solids share exactly), which coincide
+/// in the perturbed world too. Identical cells of different source
+/// triangles are apart there (the cut glued points that coincide only in
+/// the limit) and are classified each on its own. Returns the groups and
+/// which cells are in one.
+fn coincident_groups(
     arr: &TriMesh,
     source: &[Source],
     rays: &Rays<'_>,
-    op: Operation,
-    report: &mut WindingReport,
-) -> Result<Vec<[u32; 3]>, WindingError> {
+) -> (Vec<Vec<u32>>, Vec<bool>) {
     let tris = &arr.triangles;
-    // Groups of identical cells (the same three vertices).
-    let mut keyed: Vec<([u32; 3], u32)> = tris
+    let symbolic = |t: u32| {
+        let mut k =
+            rays.joined.triangles[source[t as usize].0 as usize].map(|v| rays.ids[v as usize]);
+        k.sort_unstable();
+        k
+    };
+    let mut keyed: Vec<([u32; 3], [u32; 3], u32)> = tris
         .iter()
         .enumerate()
         .map(|(t, tri)| {
             let mut k = *tri;
             k.sort_unstable();
-            (k, t as u32)
+            (k, symbolic(t as u32), t as u32)
         })
         .collect();
     keyed.par_sort_unstable();
     let mut in_group = vec![false; tris.len()];
     let mut groups: Vec<Vec<u32>> = Vec::new();
-    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+    for run in keyed.chunk_by(|a, b| a.0 == b.0 && a.1 == b.1) {
         if run.len() > 1 {
-            groups.push(run.iter().map(|&(_, t)| t).collect());
-            for &(_, t) in run {
+            groups.push(run.iter().map(|&(_, _, t)| t).collect());
+            for &(_, _, t) in run {
                 in_group[t as usize] = true;
             }
         }
     }
+    (groups, in_group)
+}
+
+/// Per input triangle of `mesh`: whether it meets a triangle it
+/// intersects degenerately, a vertex of one lying exactly in the other's
+/// plane (coplanar overlaps, an edge lying in a face). There the perturbed
+/// world's curves between the two can run, in the limit, along edges of
+/// the arrangement that are no curve (a sliver between them has no area),
+/// and the cut glues points that only coincide in the limit; the cells of
+/// such a triangle are not joined into regions (module docs, step 2).
+fn degenerate_contacts(mesh: &TriMesh, ids: &[u32], pairs: &[(u32, u32)]) -> Vec<bool> {
+    let on_plane = |s: u32, t: u32| {
+        let [a, b, c] = mesh.triangles[s as usize];
+        let own = [ids[a as usize], ids[b as usize], ids[c as usize]];
+        let p = |v: u32| mesh.positions[v as usize];
+        mesh.triangles[t as usize].iter().any(|&v| {
+            !own.contains(&ids[v as usize])
+                && holey_geom::orient3d(p(a), p(b), p(c), p(v)) == holey_geom::Sign::Zero
+        })
+    };
+    let hits: Vec<(u32, u32)> = pairs
+        .par_iter()
+        .copied()
+        .filter(|&(s, t)| on_plane(s, t) || on_plane(t, s))
+        .collect();
+    let mut degenerate = vec![false; mesh.triangles.len()];
+    for (s, t) in hits {
+        degenerate[s as usize] = true;
+        degenerate[t as usize] = true;
+    }
+    degenerate
+}
+
+/// Whether the triangle's three corners are collinear (exactly, in every
+/// coordinate projection): a cell of no area, whose centroid lies where
+/// other sheets meet and says nothing of its sides.
+fn flat(arr: &TriMesh, t: u32) -> bool {
+    let [a, b, c] = arr.corners(t as usize);
+    crate::intersect::COORDINATE_PLANES
+        .iter()
+        .all(|proj| holey_geom::orient2d(proj(a), proj(b), proj(c)) == holey_geom::Sign::Zero)
+}
+
+/// The result's triangles: each region and each group of identical
+/// coincident cells classified by one ray (module docs, steps 2–4).
+/// `degenerate` flags the input triangles whose cells are regions of
+/// their own ([`degenerate_contacts`]); cells of no area are never
+/// samples, and a region of only such cells is left to
+/// [`close_unsampled`].
+fn classify(
+    arr: &TriMesh,
+    source: &[Source],
+    degenerate: &[bool],
+    rays: &Rays<'_>,
+    op: Operation,
+    report: &mut WindingReport,
+) -> Result<Vec<[u32; 3]>, WindingError> {
+    let tris = &arr.triangles;
+    let (groups, in_group) = coincident_groups(arr, source, rays);
     report.coincident_groups = groups.len();
 
     // Regions: joined across edges two triangles share in opposite
-    // directions.
+    // directions, unless either comes from a triangle met degenerately.
     let edges = Edges::new(arr);
     let through = vertices_on_edges(arr, &edges);
+    let alone = |t: u32| degenerate[source[t as usize].0 as usize];
     let mut sets = UnionFind::new(tris.len());
     for (e, &t_junction) in through.iter().enumerate() {
         if !t_junction
             && edges.opposite(tris, e)
             && let [t, u] = *edges.triangles(e)
+            && !alone(t)
+            && !alone(u)
         {
             sets.union(t, u);
         }
@@ -1093,19 +1175,33 @@ fn classify(
         .collect();
     order.par_sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
 
-    let mut region_fate: HashMap<u32, Fate> = HashMap::default();
-    for run in order.chunk_by(|a, b| a.0 == b.0) {
-        let mut decided = None;
-        for &(_, _, t) in run.iter().take(SAMPLE_TRIES) {
-            report.rays += 1;
-            let x = source[t as usize];
-            if let Some(sides) = rays.sides(x, &[(x.0, 1)])? {
-                decided = Some(fate(op, &sides));
-                break;
+    // One ray per region (more where a sample is not inside its
+    // triangle), the regions in parallel: degenerate contacts make many
+    // small ones, and their rays decide ties symbolically.
+    let runs: Vec<&[(u32, f64, u32)]> = order.chunk_by(|a, b| a.0 == b.0).collect();
+    let decided: Vec<(u32, usize, Option<Fate>)> = runs
+        .par_iter()
+        .map(|run| {
+            let mut tried = 0;
+            for &(_, _, t) in run
+                .iter()
+                .filter(|&&(_, _, t)| !flat(arr, t))
+                .take(SAMPLE_TRIES)
+            {
+                tried += 1;
+                let x = source[t as usize];
+                if let Some(sides) = rays.sides(x, &[(x.0, 1)])? {
+                    return Ok((run[0].0, tried, Some(fate(op, &sides))));
+                }
             }
-        }
-        if let Some(f) = decided {
-            region_fate.insert(run[0].0, f);
+            Ok((run[0].0, tried, None))
+        })
+        .collect::<Result<_, WindingError>>()?;
+    let mut region_fate: HashMap<u32, Fate> = HashMap::default();
+    for (root, tried, f) in decided {
+        report.rays += tried;
+        if let Some(f) = f {
+            region_fate.insert(root, f);
         }
     }
     report.regions = order.chunk_by(|a, b| a.0 == b.0).count() + groups.len();
