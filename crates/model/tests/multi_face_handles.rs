@@ -291,3 +291,34 @@ fn faces_all_looking_one_way_are_refused_as_one_sided() {
     };
     assert!(n(named[0]).dot(n(named[1])) < -0.999, "opposite faces");
 }
+
+#[test]
+fn faces_lining_a_torus_hole_become_a_wheel() {
+    // Six quads of a 64 × 32 torus (major radius 1, minor 0.4) on the
+    // inside of its hole, every 60° around, alternately just above and
+    // just below the equator: each looks at the axis, and their average
+    // lies on it, inside their hull. The hub sits in the hole and six
+    // spokes join it to the rim: one closed piece of genus 1 + 6 − 1 = 6,
+    // so V − E + F = 2 − 2·6, with no crossing pair.
+    let torus = holey_shapes::parse_primitive("@torus:64:32").unwrap();
+    let (m0, numbering) =
+        Numbering::from_import(to_dlfl(&torus, ImportOptions::default()).unwrap());
+    let sel = faces(&numbering, &[14, 336, 686, 1008, 1358, 1712]);
+    for &f in &sel {
+        // Inner side: the outward normal points at the axis.
+        let p = m0.face_positions(f).unwrap();
+        let c = p.iter().sum::<DVec3>() / 4.0;
+        let n = (p[1] - p[0]).cross(p[2] - p[0]);
+        assert!(n.dot(DVec3::new(-c.x, -c.y, 0.0)) > 0.0);
+    }
+    assert_eq!(euler(&m0), 0);
+    let mut m = m0.clone();
+    let p = MultiHandleParams::new(HandleParams::new(4, 0.2, 0.2), 0.2);
+    let r = create_multi_face_handle(&mut m, &sel, &p).unwrap();
+    m.validate().unwrap();
+    assert!(r.centre.truncate().length() < 0.6, "{}", r.centre);
+    assert_eq!(crossing_pairs(&m), 0);
+    assert_eq!(euler(&m), 2 - 2 * 6);
+    let tris = soup(&m).triangulated().triangles;
+    assert_eq!(holey_testkit::oracles::components(&tris), 1);
+}
