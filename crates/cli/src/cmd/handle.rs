@@ -38,7 +38,8 @@ Examples:
   holey handle @torus out.obj --from 0:0 --to 150:2 --segments 6 --w1 2 --w2 2
   holey handle @cube tunnel.obj --from 0:0 --to 5:0 --segments 4 --w1 -1 --w2 -1
   holey handle @cube arch.obj --from 0:0 --to 2:0 --segments 6 --curve bezier
-  holey handle six_cubes.obj star.obj --faces 0,11,22,33,44,55 --hub-scale 0.5")]
+  holey handle six_cubes.obj star.obj --faces 0,11,22,33,44,55 --hub-scale 0.5
+  holey handle @torus:64:32 wheel.obj --faces 14,336,686,1008,1358,1712 --segments 4 --hub-scale 0.2 --w1 0.2 --w2 0.2")]
 pub struct Args {
     /// Input mesh (a file or a primitive).
     pub input: String,
