@@ -115,6 +115,10 @@ impl Selection<'_> {
 pub(super) fn hub_centre(mesh: &Mesh, sel: &Selection<'_>) -> Result<DVec3, MultiHandleError> {
     let k = sel.len();
     let (c, l) = sel.frame();
+    if !(l > 0.0 && l.is_finite()) {
+        // Every centroid at one point: no face has a direction from it.
+        return Err(MultiHandleError::AtCentre(sel.faces[0]));
+    }
     let q: Vec<DVec3> = sel.centroids.iter().map(|&p| (p - c) / l).collect();
     let planes = sel.planes(mesh, c, l)?;
     let Some((h_lp, t_lp)) = surrounded_view(&planes, &q) else {

@@ -844,6 +844,14 @@ mod tests {
                 MultiHandleError::BadHubScale(_)
             ));
         }
+        // Four copies of one cube, the same face of each: every centroid
+        // at one point, so no direction from any hub centre.
+        let stacked = cubes(&[DVec3::ZERO; 4]);
+        let same: Vec<FaceId> = (0..4).map(|i| stacked.face_at(6 * i).unwrap()).collect();
+        let mut m = stacked.clone();
+        let err = create_multi_face_handle(&mut m, &same, &ok).unwrap_err();
+        assert_eq!(err, MultiHandleError::AtCentre(same[0]));
+        assert_eq!(m.to_raw(), stacked.to_raw());
         let zero = MultiHandleParams::new(HandleParams::new(0, 1.0, 1.0), 0.5);
         assert!(matches!(
             refuse(&faces, &zero),
