@@ -22,6 +22,11 @@ fn bad(args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
+/// The JSON a command wrote to `path` (its --report).
+fn json_file(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 fn tmp() -> tempfile::TempDir {
     tempfile::tempdir().expect("a temporary directory")
 }
@@ -963,13 +968,11 @@ fn union_of_lattice_aligned_cubes() {
     assert_eq!(m["genus"], 0);
     let v = m["volume"].as_f64().unwrap();
     assert!((v - 12.0).abs() < 1e-6, "volume {v}");
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["perturbation_retries"], 1);
     // --exact keeps the first attempt, whatever it gives.
     ok(&["union", s(&a), s(&b), s(&u), "--exact", "--report", s(&r)]);
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["perturbation_retries"], 0);
 }
 
@@ -1004,7 +1007,7 @@ fn intersection_and_difference_of_two_cubes() {
         );
         let si: Value = serde_json::from_str(&ok(&["selfint", "--json", s(&out)])).unwrap();
         assert_eq!(si["intersecting_pairs"], 0, "{cmd}");
-        let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+        let report = json_file(&r);
         assert!(
             report["intersection_curves"].as_u64().unwrap() >= 1,
             "{cmd}"
@@ -1021,7 +1024,7 @@ fn intersection_and_difference_of_two_cubes() {
     let out = dir.path().join("open.ply");
     let r = dir.path().join("open.json");
     ok(&["difference", s(&a), s(&open), s(&out), "--report", s(&r)]);
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["inputs_closed"], serde_json::json!([true, false]));
 }
 
@@ -1089,7 +1092,7 @@ fn crossing_and_many_solids_by_the_winding_number() {
     let r = dir.path().join("one.json");
     ok(&["union", s(&shells), s(&out), "--report", s(&r)]);
     check(&out, united, "one input");
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["method"], "winding");
     assert_eq!(report["output_intersecting_pairs"], 0);
     assert!(report["cells"].as_u64().unwrap() >= 2);
@@ -1102,7 +1105,7 @@ fn crossing_and_many_solids_by_the_winding_number() {
     let r = dir.path().join("minus.json");
     ok(&["difference", s(&shells), s(&c), s(&out), "--report", s(&r)]);
     check(&out, united, "crossing minus apart");
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["method"], "winding");
 
     // An open input counts by its generalized winding number, and the
@@ -1115,7 +1118,7 @@ fn crossing_and_many_solids_by_the_winding_number() {
     let out = dir.path().join("open_union.obj");
     let r = dir.path().join("open_union.json");
     ok(&["union", s(&a), s(&b), s(&open), s(&out), "--report", s(&r)]);
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(
         report["inputs_closed"],
         serde_json::json!([true, true, false])
@@ -1163,7 +1166,7 @@ fn union_of_two_spheres_is_one_closed_solid() {
     );
     // Closed solids: the parity is computed by containment rays, not by
     // simulating the motion.
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["collisions"], 0);
     assert!(report["containment_rays"].as_u64().unwrap() >= 2);
     assert_eq!(report["intersection_curves"], 1);
@@ -1188,7 +1191,7 @@ fn union_of_two_spheres_is_one_closed_solid() {
         s(&rm),
     ]);
     let mm = info(s(&um), &[]);
-    let motion: Value = serde_json::from_str(&std::fs::read_to_string(&rm).unwrap()).unwrap();
+    let motion = json_file(&rm);
     // The library's choice, named in the report.
     assert_eq!(report["method"], "containment");
     assert_eq!(motion["method"], "motion");
@@ -1227,7 +1230,7 @@ fn union_with_an_open_surface() {
     let last_face = text.rfind("\nf ").unwrap();
     std::fs::write(&b, &text[..last_face + 1]).unwrap();
     ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert_eq!(report["method"], "winding");
     assert_eq!(report["inputs_closed"], serde_json::json!([true, false]));
     assert_eq!(report["intersection_curves"], 1);
@@ -1246,7 +1249,7 @@ fn union_with_an_open_surface() {
         s(&r),
         "--via-motion",
     ]);
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+    let report = json_file(&r);
     assert!(report["collisions"].as_u64().unwrap() > 0);
     assert_eq!(report["containment_rays"], 0);
     assert_eq!(report["intersection_curves"], 1);
@@ -1417,7 +1420,7 @@ fn topo_punches_a_tunnel_and_reports_it() {
         assert_eq!(m["closed"], true, "{extra:?}");
         assert_eq!(m["manifold"], true, "{extra:?}");
         assert_eq!(m["genus"], 1, "{extra:?}: a tunnel");
-        let report: Value = serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap();
+        let report = json_file(&r);
         assert!(report["collisions"].as_u64().unwrap() > 0, "{extra:?}");
         assert!(
             report["intersection_curves"].as_u64().unwrap() >= 1,
