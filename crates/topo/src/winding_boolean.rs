@@ -49,7 +49,9 @@
 //!    of no area (collinear corners) is never a sample.
 //! 5. Where coplanar sheets meet along an edge, a constructed point can
 //!    land on a kept triangle's side without being its vertex (a
-//!    T-junction); the side is split there (`repair_t_junctions`).
+//!    T-junction); the side is split there (`repair_t_junctions`, and
+//!    `split_open_sides` where the points come in different orders on the
+//!    sheets that meet along the line).
 //!
 //! **Open inputs.** The winding number of a surface with holes is not an
 //! integer; it is the generalized winding number (Jacobson, Kavan &
@@ -66,11 +68,8 @@
 //! crossing itself in the limit (merging needs the coplanar overlay). A
 //! constructed point within a few ulps of an input vertex it should be
 //! (nearly coincident shells) is not snapped to it, which can leave the
-//! result open there. Where three or more coplanar faces overlap, slivers
-//! of no area can still leave a few edges unpaired (45 on
-//! openscad-nonmanifold-crash.obj, whose volume is libigl's). The report
-//! counts these (`unpaired_edges`, and the CLI checks the result for
-//! crossings).
+//! result open there. The report counts both (`unpaired_edges`, and the
+//! CLI checks the result for crossings).
 
 use rustc_hash::FxHashMap as HashMap;
 use std::sync::atomic::AtomicBool;
@@ -290,7 +289,8 @@ pub fn boolean_by_winding(
         &corner,
     )?;
     let mut faces = classify(&arrangement, &source, &degenerate, &rays, op, &mut report)?;
-    report.t_junctions_repaired = repair_t_junctions(&arrangement.positions, &mut faces);
+    report.t_junctions_repaired = repair_t_junctions(&arrangement.positions, &mut faces)
+        + split_open_sides(&arrangement.positions, &mut faces);
     report.unpaired_edges = unpaired_edges(&faces).len();
     report.seconds.classify = t.elapsed().as_secs_f64();
     let mesh = TriMesh {
@@ -655,20 +655,10 @@ fn repair_t_junctions(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
         for &(a, b) in &open {
             from.entry(a).or_default().push(b);
         }
-        let between = |u: u32, v: u32, w: u32| {
-            let (pu, pv, pw) = (
-                positions[u as usize],
-                positions[v as usize],
-                positions[w as usize],
-            );
-            let d = pv - pu;
-            let t = (pw - pu).dot(d);
-            // On the side up to rounding: within a relative 2⁻³⁰ of its
-            // length from its line (a constructed point rounded onto it; a
-            // hole's corner is nowhere near).
-            let off = (pw - pu).cross(d).length();
-            t > 0.0 && t < d.dot(d) && off <= d.dot(d) * T_JUNCTION_OFFSET
-        };
+        // On the side up to rounding: within a relative 2⁻³⁰ of its length
+        // from its line (a constructed point rounded onto it; a hole's
+        // corner is nowhere near).
+        let between = |u: u32, v: u32, w: u32| on_side_between(positions, u, v, w);
         // The chain v → … → u of unpaired sides through points between u
         // and v, ordered from v towards u.
         let chain = |u: u32, v: u32| -> Option<Vec<u32>> {
@@ -724,6 +714,82 @@ fn repair_t_junctions(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
         if !split_any {
             return repaired;
         }
+    }
+    repaired
+}
+
+/// Whether `w` lies strictly between `u` and `v` on their line, up to the
+/// rounding of a constructed point ([`T_JUNCTION_OFFSET`] of the side's
+/// length from its line).
+fn on_side_between(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
+    let (pu, pv, pw) = (
+        positions[u as usize],
+        positions[v as usize],
+        positions[w as usize],
+    );
+    let d = pv - pu;
+    let t = (pw - pu).dot(d);
+    let off = (pw - pu).cross(d).length();
+    t > 0.0 && t < d.dot(d) && off <= d.dot(d) * T_JUNCTION_OFFSET
+}
+
+/// Closes what [`repair_t_junctions`] leaves where a curve runs along a
+/// line in the limit and its constructed points, rounded onto it, come in
+/// different orders on the sheets that meet there (the unpaired sides
+/// zigzag along the line instead of forming one chain): every unpaired
+/// side of a result triangle is split at the ends of unpaired sides that
+/// lie on it, so that both sheets' sides run through the same points and
+/// pair up. A pass that leaves more sides unpaired than it found is
+/// undone. Returns how many sides were split.
+fn split_open_sides(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
+    let mut repaired = 0;
+    for _ in 0..T_JUNCTION_PASSES {
+        let open = unpaired_edges(faces);
+        if open.is_empty() {
+            break;
+        }
+        let mut loose: Vec<u32> = open.iter().flat_map(|&(a, b)| [a, b]).collect();
+        loose.sort_unstable();
+        loose.dedup();
+        let open_set: rustc_hash::FxHashSet<(u32, u32)> = open.iter().copied().collect();
+        let mut out = Vec::with_capacity(faces.len());
+        let mut split = 0;
+        for &f in faces.iter() {
+            let side = (0..3).find_map(|k| {
+                let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+                if !open_set.contains(&(u, v)) {
+                    return None;
+                }
+                let mut on: Vec<u32> = loose
+                    .iter()
+                    .copied()
+                    .filter(|&w| w != u && w != v && w != x && on_side_between(positions, u, v, w))
+                    .collect();
+                (!on.is_empty()).then(|| {
+                    let pu = positions[u as usize];
+                    on.sort_by(|&a, &b| {
+                        let d = |w: u32| (positions[w as usize] - pu).length_squared();
+                        d(a).total_cmp(&d(b))
+                    });
+                    (k, on)
+                })
+            });
+            let Some((k, on)) = side else {
+                out.push(f);
+                continue;
+            };
+            let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+            let mut along = vec![u];
+            along.extend(on);
+            along.push(v);
+            out.extend(along.windows(2).map(|w| [w[0], w[1], x]));
+            split += 1;
+        }
+        if split == 0 || unpaired_edges(&out).len() > open.len() {
+            break;
+        }
+        *faces = out;
+        repaired += split;
     }
     repaired
 }

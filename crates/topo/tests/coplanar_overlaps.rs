@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::{closed_oriented, join, read_shared, volume};
+use common::{closed_oriented, closedness_defects, join, read_shared, volume};
 use glam::DVec3;
 use holey_topo::{Operation, Options, TriMesh, boolean_by_winding, resolve};
 use std::collections::HashMap;
@@ -200,12 +200,13 @@ const OPENSCAD_UNION_LIBIGL: f64 = 381.1737100008513;
 
 /// The 3D-print repair of openscad-nonmanifold-crash.obj (a plate and a
 /// relief in one self-overlapping solid, coplanar faces everywhere) by the
-/// exact arrangement: its volume is libigl's within 1e-8 relative (it was
-/// open with 858 unpaired edges, its volume meaningless).
+/// exact arrangement: closed and consistently oriented along every edge
+/// (it had 858 unpaired edges), and its volume is libigl's within 1e-8
+/// relative.
 ///
-/// Not yet closed: 45 edges stay unpaired (slivers of no area where three
-/// or more coplanar faces overlap; the coplanar overlay would give them
-/// shared cells). The bound below only keeps what was reached.
+/// Not yet: coplanar faces of opposite orientation that touch are kept as
+/// walls of no thickness (about a thousand crossing pairs, 177 edges of
+/// four faces); merging them needs the coplanar overlay.
 #[test]
 fn openscad_union_matches_libigl() {
     let Some(dir) = holey_testkit::shared_meshes_or_skip("openscad_union_matches_libigl") else {
@@ -213,14 +214,16 @@ fn openscad_union_matches_libigl() {
     };
     let mesh = read_shared(&dir, "openscad-nonmanifold-crash.obj");
     let out = boolean_by_winding(&[&mesh], Operation::Union, &Options::default()).expect("union");
+    assert_eq!(out.report.unpaired_edges, 0, "open");
+    let (boundary, _, misoriented) = closedness_defects(&out.mesh);
+    assert_eq!(
+        (boundary, misoriented),
+        (0, 0),
+        "boundary and misoriented edges"
+    );
     let got = volume(&out.mesh);
     assert!(
         (got - OPENSCAD_UNION_LIBIGL).abs() <= 1e-8 * OPENSCAD_UNION_LIBIGL,
         "volume {got}, libigl {OPENSCAD_UNION_LIBIGL}"
-    );
-    assert!(
-        out.report.unpaired_edges <= 45,
-        "unpaired edges: {}",
-        out.report.unpaired_edges
     );
 }
