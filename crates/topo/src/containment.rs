@@ -262,18 +262,13 @@ pub(crate) fn by_containment(
     let corrected: Vec<bool> = kept.iter().zip(&used).map(|(&k, &u)| u && !k).collect();
     let report = Report {
         corrected_odd_vertices: corrected.iter().filter(|&&o| o).count(),
-        intersection_points: x.points.len(),
-        triple_points: x.triple_points(),
-        intersection_edges: x.pieces.len(),
-        intersection_curves: x.curve_count,
-        intersecting_pairs: x.pairs.len(),
         cut: cut_report,
         solid_input: true,
         timings: crate::engine::Timings {
             total: started.elapsed().as_secs_f64(),
             ..Default::default()
         },
-        ..Report::default()
+        ..Report::of_intersections(&x)
     };
     Ok(Some(Outcome {
         mesh,

@@ -170,6 +170,22 @@ pub struct Report {
     pub timings: Timings,
 }
 
+impl Report {
+    /// A report holding only the counts of the static intersections `x`
+    /// (points, triple points, pieces, curves, pairs), for a run to fill
+    /// in the rest.
+    pub(crate) fn of_intersections(x: &Intersections) -> Report {
+        Report {
+            intersection_points: x.points.len(),
+            triple_points: x.triple_points(),
+            intersection_edges: x.pieces.len(),
+            intersection_curves: x.curve_count,
+            intersecting_pairs: x.pairs.len(),
+            ..Report::default()
+        }
+    }
+}
+
 /// The result of a topology change.
 #[derive(Clone, Debug, Default)]
 pub struct Outcome {
@@ -548,11 +564,6 @@ pub(crate) fn finish(
         containment_rays: 0,
         raw_odd_vertices: raw.iter().filter(|&&o| o).count(),
         corrected_odd_vertices: s.corrected.iter().filter(|&&o| o).count(),
-        intersection_points: s.geometry.x.points.len(),
-        triple_points: s.geometry.x.triple_points(),
-        intersection_edges: s.geometry.x.pieces.len(),
-        intersection_curves: s.geometry.x.curve_count,
-        intersecting_pairs: s.geometry.x.pairs.len(),
         cut: cut_report,
         solved_components: s.solved,
         unsolved_components: s.unsolved,
@@ -566,6 +577,7 @@ pub(crate) fn finish(
             cut: t_cut,
             total: started.elapsed().as_secs_f64(),
         },
+        ..Report::of_intersections(&s.geometry.x)
     };
     Ok(Outcome {
         mesh: out,

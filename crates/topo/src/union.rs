@@ -723,11 +723,6 @@ fn unite(
         containment_rays: cast + cut_report.sampled_regions,
         raw_odd_vertices: odd_count,
         corrected_odd_vertices: odd_count,
-        intersection_points: x.points.len(),
-        triple_points: x.triple_points(),
-        intersection_edges: x.pieces.len(),
-        intersection_curves: x.curve_count,
-        intersecting_pairs: x.pairs.len(),
         cut: cut_report,
         solved_components: 0,
         unsolved_components: 0,
@@ -741,6 +736,7 @@ fn unite(
             cut: t_cut,
             total: started.elapsed().as_secs_f64(),
         },
+        ..Report::of_intersections(&x)
     };
     Ok(Outcome {
         mesh: out,

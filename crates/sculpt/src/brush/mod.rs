@@ -382,14 +382,10 @@ mod tests {
     use super::*;
 
     fn tetra() -> TriMesh {
+        let (positions, triangles) = holey_testkit::meshes::tetrahedron();
         TriMesh {
-            positions: vec![
-                DVec3::new(1.0, 1.0, 1.0),
-                DVec3::new(1.0, -1.0, -1.0),
-                DVec3::new(-1.0, 1.0, -1.0),
-                DVec3::new(-1.0, -1.0, 1.0),
-            ],
-            triangles: vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+            positions: positions.map(DVec3::from_array).to_vec(),
+            triangles: triangles.to_vec(),
         }
     }
 
