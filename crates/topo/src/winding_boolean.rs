@@ -289,6 +289,7 @@ pub fn boolean_by_winding(
         &corner,
     )?;
     let mut faces = classify(&arrangement, &source, &degenerate, &rays, op, &mut report)?;
+    cancel_opposite_twins(&mut faces);
     report.t_junctions_repaired = repair_t_junctions(&arrangement.positions, &mut faces)
         + split_open_sides(&arrangement.positions, &mut faces);
     report.unpaired_edges = unpaired_edges(&faces).len();
@@ -716,6 +717,42 @@ fn repair_t_junctions(positions: &[DVec3], faces: &mut Vec<[u32; 3]>) -> usize {
         }
     }
     repaired
+}
+
+/// Removes kept triangles in pairs where one is the other turned over
+/// (the same three vertices in the opposite order): cells of different
+/// source triangles that the perturbed world keeps apart, facing away
+/// from each other, but that coincide in the limit, a wall of no
+/// thickness with the same side on both faces. They bound no volume, and
+/// each pair's sides pair up among themselves, so the result stays as
+/// closed as it was.
+fn cancel_opposite_twins(faces: &mut Vec<[u32; 3]>) {
+    // Each triangle in its rotation starting at its smallest vertex.
+    let canonical = |f: [u32; 3]| {
+        let k = (0..3).min_by_key(|&k| f[k]).unwrap_or(0);
+        [f[k], f[(k + 1) % 3], f[(k + 2) % 3]]
+    };
+    let mut count: HashMap<[u32; 3], usize> = HashMap::default();
+    for &f in faces.iter() {
+        *count.entry(canonical(f)).or_insert(0) += 1;
+    }
+    let mut cancel: HashMap<[u32; 3], usize> = HashMap::default();
+    for (&f, &n) in &count {
+        let turned = canonical([f[0], f[2], f[1]]);
+        if let Some(&m) = count.get(&turned) {
+            cancel.insert(f, n.min(m));
+        }
+    }
+    if cancel.is_empty() {
+        return;
+    }
+    faces.retain(|&f| match cancel.get_mut(&canonical(f)) {
+        Some(n) if *n > 0 => {
+            *n -= 1;
+            false
+        }
+        _ => true,
+    });
 }
 
 /// Whether `w` lies strictly between `u` and `v` on their line, up to the
