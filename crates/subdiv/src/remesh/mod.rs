@@ -52,6 +52,7 @@
 mod build;
 mod checkerboard;
 mod corner_cut;
+mod doo_sabin_bc_new;
 mod dual;
 mod extrude;
 mod honeycomb;
@@ -370,6 +371,23 @@ schemes! {
     /// midpoint by one edge instead of a two-gon.
     /// `V' = 2C, E' = 4C − E, F' = V + 2E + F`.
     DooSabinBc = "doo-sabin-bc",
+    /// **Doo–Sabin BC New** (TopMod `dooSabinSubdivideBCNew`, Bei &
+    /// Cansin): every edge split at its midpoint; every face replaced by a
+    /// copy of its `2n`-gon through Doo–Sabin's points of it (TopMod's
+    /// Doo–Sabin extrusion at distance 0: corner `i` of the `2n`-gon goes
+    /// to `Σⱼ wᵢⱼ pⱼ`, `wᵢᵢ = 1/4 + 5/(8n)`, `wᵢⱼ = (3 + 2cos(π(i−j)/n))/(8n)`),
+    /// scaled about its centroid by [`doo_sabin_bc_new_scale`]; the old
+    /// edges deleted; at each midpoint its two edges replaced by one edge
+    /// between its neighbours. Each old vertex stays, joined to its copy
+    /// points, and moves to `ℓ p + (1 − ℓ) avg(its copy points)`,
+    /// `ℓ` = [`doo_sabin_bc_new_length`]. Each old edge becomes two
+    /// pentagons. `V' = V + 2C, E' = 4C − E, F' = F + 2E` (an `n`-gon
+    /// becomes a `2n`-gon). An edge next to a hole is kept and gets one
+    /// pentagon; the hole keeps its corners and boundary vertices stay.
+    ///
+    /// [`doo_sabin_bc_new_scale`]: RemeshParams::doo_sabin_bc_new_scale
+    /// [`doo_sabin_bc_new_length`]: RemeshParams::doo_sabin_bc_new_length
+    DooSabinBcNew = "doo-sabin-bc-new",
     /// **Dome** (TopMod `domeSubdivide`, Bei & Cansin): every edge cut in
     /// quarters, then every face extruded seven times by TopMod's
     /// Doo–Sabin extrusion (each ring the Doo–Sabin corner points of the
@@ -492,6 +510,13 @@ pub struct RemeshParams {
     /// Global extrude's scale of the moved faces (TopMod's extrusion
     /// default, 1).
     pub extrude_scale: f64,
+    /// Doo–Sabin BC New's scale of each face's copy about its centroid
+    /// (TopMod's `sf`, default 1; `|sf|` is used and 0 leaves the copies
+    /// unscaled, as in TopMod).
+    pub doo_sabin_bc_new_scale: f64,
+    /// Doo–Sabin BC New's length factor, the weight of each old vertex's
+    /// own position: 1 keeps it (TopMod's `length`, default 1).
+    pub doo_sabin_bc_new_length: f64,
     /// Subdivide face: quads (true, TopMod's default) or triangles.
     pub subdivide_face_quads: bool,
 }
@@ -517,6 +542,8 @@ impl Default for RemeshParams {
             loop_style_length: 1.0,
             extrude_length: 1.0,
             extrude_scale: 1.0,
+            doo_sabin_bc_new_scale: 1.0,
+            doo_sabin_bc_new_length: 1.0,
             subdivide_face_quads: true,
         }
     }
@@ -673,6 +700,18 @@ const EXTRUDE: &[RemeshOption] = &[
         "scale of each moved face about its centroid",
     ),
 ];
+const DOO_SABIN_BC_NEW: &[RemeshOption] = &[
+    opt(
+        "scale",
+        "doo_sabin_bc_new_scale",
+        "scale of each face's copy about its centroid (TopMod's sf; 0 and ±1: unscaled)",
+    ),
+    opt(
+        "length",
+        "doo_sabin_bc_new_length",
+        "weight of each old vertex's own position (1 keeps it)",
+    ),
+];
 
 impl RemeshScheme {
     /// The numeric options this scheme reads, in the order it lists them
@@ -695,6 +734,7 @@ impl RemeshScheme {
             Dual12_6_4 | TwelveSixFour => OMNITRUNCATION,
             LoopStyle => LOOP_STYLE,
             GlobalExtrude | DualGlobalExtrude => EXTRUDE,
+            DooSabinBcNew => DOO_SABIN_BC_NEW,
             _ => &[],
         }
     }
@@ -731,6 +771,8 @@ impl RemeshParams {
             "loop_style_length" => (&mut p.loop_style_length, Finite),
             "extrude_length" => (&mut p.extrude_length, Finite),
             "extrude_scale" => (&mut p.extrude_scale, Finite),
+            "doo_sabin_bc_new_scale" => (&mut p.doo_sabin_bc_new_scale, Finite),
+            "doo_sabin_bc_new_length" => (&mut p.doo_sabin_bc_new_length, Finite),
             _ => return None,
         })
     }
@@ -827,6 +869,7 @@ enum Op {
     CornerCutting { alpha: f64 },
     InsetCornerCutting { thickness: f64 },
     DooSabinBc,
+    DooSabinBcNew { scale: f64, length: f64 },
     Honeycomb,
     Root4 { weight: f64, twist: f64 },
     Pentagonal { offset: f64 },
@@ -937,6 +980,10 @@ fn plan(scheme: RemeshScheme, p: &RemeshParams) -> Vec<Op> {
             },
         ],
         S::DooSabinBc => vec![Op::DooSabinBc],
+        S::DooSabinBcNew => vec![Op::DooSabinBcNew {
+            scale: p.doo_sabin_bc_new_scale,
+            length: p.doo_sabin_bc_new_length,
+        }],
         S::Dome => vec![Op::Dome {
             length: p.dome_length,
             scale: p.dome_scale,
@@ -977,6 +1024,9 @@ impl Op {
                 corner_cut::step(src, budget, corner_cut::Rule::Inset(thickness))
             }
             Op::DooSabinBc => corner_cut::doo_sabin_bc(src, budget),
+            Op::DooSabinBcNew { scale, length } => {
+                doo_sabin_bc_new::step(src, budget, scale, length)
+            }
             Op::Honeycomb => honeycomb::step(src, budget),
             Op::Root4 { weight, twist } => root4::step(src, budget, weight, twist),
             Op::Pentagonal { offset } => pentagonal::pentagonalize(src, budget, offset),

@@ -76,6 +76,7 @@ fn expected(s: RemeshScheme, k: K, quads: bool) -> (i64, i64, i64) {
         S::Fractal => (v + e + f, 2 * e + 2 * c, 2 * c),
         S::ModifiedDoubleStellate => (v + f + c, 2 * e + 2 * c, e + c),
         S::DooSabinBc => (2 * c, 4 * c - e, v + 2 * e + f),
+        S::DooSabinBcNew => (v + 2 * c, 4 * c - e, f + 2 * e),
         S::Dome => (v + 3 * e + 28 * c, 4 * e + 56 * c, f + 28 * c),
     }
 }
@@ -208,6 +209,7 @@ fn names_parse_back_and_cover_the_issue() {
         "dome",
         "fractal",
         "doo-sabin-bc",
+        "doo-sabin-bc-new",
     ] {
         assert!(names.contains(&wanted), "{wanted}");
     }
@@ -1060,6 +1062,154 @@ fn doo_sabin_bc_joins_the_edge_faces_at_each_midpoint() {
     assert_eq!(sizes, [vec![3; 8], vec![4; 24], vec![8; 6]].concat());
 }
 
+#[test]
+fn doo_sabin_bc_new_counts_from_its_steps() {
+    // TopMod's steps on a closed mesh: splitting the edges gives V + E
+    // vertices, 2E edges and 2C corners. Each face's zero-length Doo–Sabin
+    // extrusion adds its 2n copy points, 2n copy edges and 2n joining
+    // edges, and 2n quads in place of the face: V + E + 2C, 2E + 4C,
+    // F + 2C. Deleting the 2E split edges merges quads in pairs:
+    // 4C edges, F + 2C − 2E faces. At each of the E midpoints one edge is
+    // inserted and two deleted and the midpoint goes: V + 2C, 4C − E,
+    // F + 2C − 2E = F + 2E (C = 2E): each face's 2n-gon copy and two
+    // pentagons per edge.
+    let p = params();
+    for (spec, v, e, f) in [
+        ("@cube", 8, 12, 6),
+        ("@tetrahedron", 4, 6, 4),
+        ("@torus:6:4", 24, 48, 24),
+    ] {
+        let m = prim(spec);
+        assert_eq!(counts(&m), (v, e, f), "{spec}");
+        let c = 2 * e;
+        let out = checked(&m, S::DooSabinBcNew, &p, 1);
+        assert_eq!(counts(&out), (v + 2 * c, 4 * c - e, f + 2 * e), "{spec}");
+        assert_eq!(out.genus(), m.genus(), "{spec}");
+        let mut sizes: Vec<usize> = out.faces().map(|x| out.face_len(x).unwrap()).collect();
+        sizes.sort_unstable();
+        let n = m.face_len(m.faces().next().unwrap()).unwrap();
+        assert!(m.faces().all(|x| m.face_len(x).unwrap() == n), "{spec}");
+        assert_eq!(sizes, [vec![5; 2 * e], vec![2 * n; f]].concat(), "{spec}");
+        // Old vertices keep their valence (one spoke per corner), the
+        // copy points have three edges each.
+        let mut valences: Vec<usize> = out.vertices().map(|x| out.valence(x).unwrap()).collect();
+        valences.sort_unstable();
+        let old: Vec<usize> = m.vertices().map(|x| m.valence(x).unwrap()).collect();
+        let mut want = [old, vec![3; 2 * c]].concat();
+        want.sort_unstable();
+        assert_eq!(valences, want, "{spec}");
+    }
+    // The cube: 56 vertices, 84 edges, 30 faces.
+    assert_eq!(
+        counts(&checked(&prim("@cube"), S::DooSabinBcNew, &p, 1)),
+        (56, 84, 30)
+    );
+}
+
+#[test]
+fn doo_sabin_bc_new_keeps_a_grid_boundary() {
+    // A 2×2 grid: V = 9, E = 12 (4 between two quads, 8 on the boundary),
+    // 4 quads (C = 16) and a hole of 8 corners. Every quad's corner gets
+    // two copy points, 3 edges per normal corner plus the old edges, two
+    // pentagons per inner edge, one per boundary edge, the hole kept:
+    // V' = 9 + 32, E' = 48 + 12, F' = 4 + 8 + 8 + 1.
+    let m = prim("@plane:2:2");
+    assert_eq!((counts(&m), m.hole_count()), ((9, 12, 5), 1));
+    let p = RemeshParams {
+        doo_sabin_bc_new_length: 0.0,
+        ..params()
+    };
+    for levels in 1..=2 {
+        let out = checked(&m, S::DooSabinBcNew, &p, levels);
+        assert_eq!(out.genus(), 0);
+        if levels == 1 {
+            assert_eq!(counts(&out), (41, 60, 21));
+        }
+    }
+    let out = checked(&m, S::DooSabinBcNew, &p, 1);
+    // The hole has its 8 corners where they were, even at length 0.
+    let hole = |x: &Mesh| {
+        let h = x.faces().find(|&f| x.is_hole(f).unwrap()).unwrap();
+        let mut ps: Vec<[i64; 3]> = x
+            .face_positions(h)
+            .unwrap()
+            .iter()
+            .map(|q| [q.x, q.y, q.z].map(|t| (t * 1e9).round() as i64))
+            .collect();
+        ps.sort_unstable();
+        ps
+    };
+    assert_eq!(hole(&out), hole(&m));
+    assert_eq!(
+        out.face_len(out.faces().find(|&f| out.is_hole(f).unwrap()).unwrap())
+            .unwrap(),
+        8
+    );
+}
+
+#[test]
+fn doo_sabin_bc_new_places_doo_sabin_points_and_moves_old_vertices() {
+    let cube = prim("@cube");
+    let input = cube.to_raw();
+    let nv = input.positions.len();
+    // Doo–Sabin's mask of the split 2n-gon, from the weights of Doo &
+    // Sabin (1978): own 1/4 + 5/(4N), others (3 + 2cos(2π(i−j)/N))/(4N).
+    let ds = |poly: &[DVec3], i: usize| {
+        let n = poly.len() as f64;
+        let mut q = DVec3::ZERO;
+        for (j, x) in poly.iter().enumerate() {
+            let w = if i == j {
+                0.25 + 5.0 / (4.0 * n)
+            } else {
+                let t = std::f64::consts::TAU * (i as f64 - j as f64) / n;
+                (3.0 + 2.0 * t.cos()) / (4.0 * n)
+            };
+            q += w * *x;
+        }
+        q
+    };
+    for (scale, length) in [(1.0, 1.0), (0.5, 0.0), (-1.5, 0.25)] {
+        let p = RemeshParams {
+            doo_sabin_bc_new_scale: scale,
+            doo_sabin_bc_new_length: length,
+            ..params()
+        };
+        let r = remesh_to_raw(&cube, S::DooSabinBcNew, &p, 1).unwrap();
+        // Copy points follow the old vertices, face by face, two per
+        // corner (the vertex's, then its edge midpoint's).
+        let mut o = nv;
+        let mut copies = vec![Vec::new(); nv];
+        for f in 0..input.face_count() {
+            let (lo, hi) = (
+                input.face_offsets[f] as usize,
+                input.face_offsets[f + 1] as usize,
+            );
+            let vs = &input.face_vertices[lo..hi];
+            let at = |i: usize| input.positions[vs[i % vs.len()] as usize];
+            let poly: Vec<DVec3> = (0..vs.len())
+                .flat_map(|i| [at(i), (at(i) + at(i + 1)) / 2.0])
+                .collect();
+            let pts: Vec<DVec3> = (0..poly.len()).map(|i| ds(&poly, i)).collect();
+            let z = pts.iter().sum::<DVec3>() / pts.len() as f64;
+            for (i, q) in pts.iter().enumerate() {
+                let want = z + scale.abs() * (*q - z);
+                close(raw_pos(&r, o + i), want, "copy point");
+                if i % 2 == 0 {
+                    copies[vs[i / 2] as usize].push(want);
+                }
+            }
+            o += poly.len();
+        }
+        assert_eq!(o, r.positions.len());
+        for (i, mine) in copies.iter().enumerate() {
+            assert_eq!(mine.len(), 3, "a cube vertex is in three faces");
+            let avg = mine.iter().sum::<DVec3>() / 3.0;
+            let want = length * input.positions[i] + (1.0 - length) * avg;
+            close(raw_pos(&r, i), want, "old vertex");
+        }
+    }
+}
+
 // ------------------------------------------------- random sequences
 
 /// A small random DLFL: a primitive (open or closed) changed by random
@@ -1117,6 +1267,8 @@ fn random_params(rng: &mut Rng) -> RemeshParams {
         loop_style_length: rng.range(0.0, 1.0),
         extrude_length: rng.range(-1.0, 2.0),
         extrude_scale: rng.range(0.2, 1.5),
+        doo_sabin_bc_new_scale: rng.range(0.0, 2.0),
+        doo_sabin_bc_new_length: rng.range(0.0, 1.0),
         subdivide_face_quads: rng.chance(0.5),
     }
 }
@@ -1126,7 +1278,7 @@ fn random_sequences_of_schemes_keep_every_component_and_stay_valid() {
     let mut rng = Rng::new(0x7e5e_5eed);
     let (mut runs, mut refused_open, mut capped) = (0, 0, 0);
     let mut used = vec![false; RemeshScheme::ALL.len()];
-    for _ in 0..120 {
+    for _ in 0..160 {
         let mut m = random_mesh(&mut rng);
         let sig = signature(&m);
         for _ in 0..1 + rng.below(3) {
@@ -1204,8 +1356,8 @@ fn every_option_in_the_table_is_read_by_its_scheme() {
         }
         assert_eq!(s.reads().count(), s.options().len());
     }
-    // 18 fields, some shared by several schemes, each under two names.
-    assert!(listed >= 2 * 18, "{listed}");
+    // 20 fields, some shared by several schemes, each under two names.
+    assert!(listed >= 2 * 20, "{listed}");
 }
 
 #[test]
