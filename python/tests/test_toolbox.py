@@ -68,6 +68,7 @@ def test_every_scheme_keeps_a_torus_a_torus():
         "corner-cutting", "modified-corner-cutting", "simplest", "honeycomb", "12.6.4",
         "dual-12.6.4", "pentagonalization", "dual-pentagonalization", "checkerboard",
         "dual-checkerboard", "global-extrude", "dual-global-extrude", "dome", "fractal",
+        "doo-sabin-bc", "doo-sabin-bc-new",
     ]
     for scheme in schemes:
         r = torus.remesh(scheme)

@@ -206,6 +206,7 @@ const SCHEMES: &[&str] = &[
     "stellate-edge-removal",
     "modified-double-stellate",
     "doo-sabin-bc",
+    "doo-sabin-bc-new",
     "subdivide-face",
     "catmull-clark",
     "doo-sabin",
@@ -296,6 +297,9 @@ const RULES: &[(&str, Rule)] = &[
     ("doo-sabin", |v, e, f, c| (c, 2 * c, f + e + v)),
     ("doo-sabin-bc", |v, e, f, c| {
         (2 * c, 4 * c - e, v + 2 * e + f)
+    }),
+    ("doo-sabin-bc-new", |v, e, f, c| {
+        (v + 2 * c, 4 * c - e, f + 2 * e)
     }),
     ("honeycomb", |v, e, f, c| (c, e + c, f + v)),
     ("12.6.4", |v, e, f, c| (v + e + f, 3 * c, 2 * c)),

@@ -37,6 +37,7 @@ edges, faces and corners (C = 2E on a closed mesh):
   modified-corner-cutting   faces inset: C, 2C, F+E+V        [--thickness]
   doo-sabin                 C, 2C, F+E+V
   doo-sabin-bc              2C, 4C-E, V+2E+F
+  doo-sabin-bc-new          old vertices kept: V+2C, 4C-E, F+2E [--scale --length]
   honeycomb                 C, E+C, F+V
   12.6.4                    barycentric: V+E+F, 3C, 2C (closed only) [--scale]
   dual-12.6.4               omnitruncation: 2C, 2E+2C, F+E+V     [--scale]
@@ -96,11 +97,12 @@ pub struct Options {
     #[arg(long, allow_hyphen_values = true)]
     pub offset: Option<f64>,
     /// pentagon-preserving: inner face scale [default: 0.75]; 12.6.4, dual-12.6.4:
-    /// face scale [default: 0.7]; global-extrude: top scale [default: 1]; dome [default: 1].
+    /// face scale [default: 0.7]; global-extrude: top scale [default: 1]; dome [default: 1];
+    /// doo-sabin-bc-new: face copy scale (TopMod's sf) [default: 1].
     #[arg(long, allow_hyphen_values = true)]
     pub scale: Option<f64>,
     /// global-extrude, dual-global-extrude, dome: height in units of each face's
-    /// size √(area) [default: 1]; loop-style: old vertex weight [default: 1].
+    /// size √(area) [default: 1]; loop-style, doo-sabin-bc-new: old vertex weight [default: 1].
     #[arg(long, allow_hyphen_values = true)]
     pub length: Option<f64>,
     /// root4, hexagon-preserving, dual-hexagon-preserving: smoothing weight [default: 0].
