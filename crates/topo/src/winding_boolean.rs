@@ -313,7 +313,9 @@ pub fn boolean_by_winding(
 /// moved its own generic way by the next step of
 /// [`crate::union::NUDGES`] (scale-relative: 2⁻³⁰ of the scene's
 /// diagonal first, then 2⁻²⁶ and 2⁻²²) and the operation redone, up to
-/// three times. The first clean result is returned, else the exact one
+/// three times, while each nudge lessens the defects (open edges and
+/// crossing pairs; one that does not ends the retries). The first clean
+/// result is returned, else the exact one
 /// (a nudge moves the answer by its size: worth it only for a clean
 /// result); the report says how many nudges it took and how many pairs of
 /// its triangles cross.
@@ -324,6 +326,7 @@ pub fn boolean_by_winding_robust(
 ) -> Result<WindingOutcome, WindingError> {
     let started = Instant::now();
     let mut best: Option<(usize, WindingOutcome)> = None;
+    let mut previous: Option<usize> = None;
     let parts: Vec<Vec<u32>> = inputs.iter().map(|m| vertex_components(m)).collect();
     let (lo, hi) = inputs
         .iter()
@@ -374,9 +377,15 @@ pub fn boolean_by_winding_robust(
         if best.is_none() || defects == 0 {
             best = Some((defects, out));
         }
-        if defects == 0 || !closed {
+        // A nudge that does not lessen the defects is futile: they do not
+        // come from where the pieces sit against each other (coplanar
+        // faces within one piece, say), and larger nudges move the same
+        // pieces the same ways further.
+        let futile = previous.is_some_and(|p| defects >= p);
+        if defects == 0 || !closed || futile {
             break;
         }
+        previous = Some(defects);
     }
     let mut out = best.map(|(_, out)| out).ok_or(WindingError::NoInput)?;
     // Every attempt and check counts.
@@ -854,6 +863,22 @@ struct Rays<'a> {
     start_id: u32,
 }
 
+/// A closed box that holds the exact axis-parallel ray from the exact
+/// start `Σ wᵢ xᵢ` (its float `p`) to `far`. The float sum is within
+/// `3u·Σ|wᵢ||xᵢ|` of the exact one per coordinate and the weights sum to
+/// 1 within `3u` (`u = 2⁻⁵³`), so a margin of `16u·Σ|wᵢ||xᵢ|` (plus the
+/// smallest normal number, for sums that underflow) holds the exact start;
+/// the ray moves along one axis only. Triangles whose exact boxes miss it
+/// miss the ray, in the perturbed world too (perturbations are
+/// infinitesimal).
+fn ray_box(xc: &[DVec3; 3], weights: [f64; 3], p: DVec3, far: DVec3) -> Aabb {
+    let size = xc[0].abs() * weights[0].abs()
+        + xc[1].abs() * weights[1].abs()
+        + xc[2].abs() * weights[2].abs();
+    let margin = size * (16.0 * f64::EPSILON / 2.0) + DVec3::splat(f64::MIN_POSITIVE);
+    Aabb::new(p.min(far) - margin, p.max(far) + margin)
+}
+
 /// Which side of a region is inside: the inputs' winding numbers on its
 /// front (where its normal points) and back.
 struct Sides {
@@ -956,8 +981,10 @@ impl<'a> Rays<'a> {
         left.sort_unstable();
         let left_out = |t: u32| left.binary_search(&t).is_ok();
         let mut count = vec![0i64; self.inputs];
-        // The exact start lies in `x`, so this box holds the whole ray.
-        let reach = Aabb::from_points(&[xc[0], xc[1], xc[2], far]);
+        // A thin box around the ray: only triangles whose boxes meet the
+        // line can be crossed, and the triangles of a coplanar stack all
+        // meet `x`'s own box, not the line.
+        let reach = ray_box(&xc, weights, p, far);
         self.tree.for_each_overlap(&reach, |t| {
             let input = self.owner[t as usize] as usize;
             if left_out(t) || self.fields[input].is_some() {
