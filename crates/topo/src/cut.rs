@@ -24,10 +24,12 @@
 //! 4. **Delete.** A sub-triangle takes the parity of its original corners;
 //!    one with none (all its corners on curves) is decided by 50 rounds of
 //!    diffusion across sub-triangle edges that are not curve edges, and an
-//!    undecided one is kept (even). Odd sub-triangles are deleted. For
-//!    one frame of motion, a curve edge left with three kept
-//!    sub-triangles (a T where a curve ends at a sheet's boundary) has the
-//!    two halves of its uncut sheet sampled, and the swept one deleted
+//!    undecided one is kept (even). Odd sub-triangles are deleted. A
+//!    curve edge left with three kept sub-triangles (a T where a curve
+//!    ends at a sheet's boundary) has, for one frame of motion, the two
+//!    halves of its uncut sheet sampled, and the swept one deleted; where
+//!    neither was swept (or over a drag), the half that runs against the
+//!    crossing sheet's orientation goes when curve edges enclose it
 //!    (`cut/junctions.rs`).
 //!
 //! In *resolve* mode (no parity field) every curve is kept and nothing is
@@ -305,7 +307,16 @@ pub enum Deletion<'a> {
     /// The odd part of a per-vertex parity field (`true` = odd), as in
     /// §3.5: a curve whose triangles' vertices all have one parity is not
     /// cut.
-    Odd(&'a [bool]),
+    Odd {
+        /// Parity per input vertex (`true` = odd).
+        odd: &'a [bool],
+        /// Whether an open sheet's end that parity leaves standing on
+        /// another sheet (a T-junction neither half of which was swept)
+        /// opens into it: the enclosed half against its orientation is
+        /// deleted (`cut/junctions.rs`). Off, the T stays: the paper's
+        /// part assembly (Figure 9), with its occluded cap.
+        open_ends: bool,
+    },
     /// As [`Deletion::Odd`], for one frame of linear motion: a sampled
     /// point then follows the surface exactly (it is a fixed barycentric
     /// point of a triangle whose corners move linearly), so the sampler
@@ -329,6 +340,8 @@ pub enum Deletion<'a> {
         /// [`Intersections::curve_of_piece`]): whether this frame made it; a
         /// curve past the end of the slice counts as not new.
         new_curve: &'a [bool],
+        /// As in [`Deletion::Odd`].
+        open_ends: bool,
     },
     /// The odd part of an exact parity field (containment numbers, in the
     /// union of two solids): every curve then separates odd from even,
@@ -342,9 +355,9 @@ impl<'a> Deletion<'a> {
     fn odd(self) -> Option<&'a [bool]> {
         match self {
             Deletion::Nothing => None,
-            Deletion::Odd(o) | Deletion::OddOneFrame { odd: o, .. } | Deletion::OddExact(o) => {
-                Some(o)
-            }
+            Deletion::Odd { odd: o, .. }
+            | Deletion::OddOneFrame { odd: o, .. }
+            | Deletion::OddExact(o) => Some(o),
         }
     }
 }
@@ -423,8 +436,8 @@ fn curves_to_resolve(
 ) -> (Vec<bool>, Vec<bool>) {
     let keep_curve: Vec<bool> = match deletion {
         Deletion::Nothing | Deletion::OddExact(_) => vec![true; x.curve_count],
-        Deletion::Odd(odd) => mixed_curves(tris, x, odd),
-        Deletion::OddOneFrame { odd, new_curve } => mixed_curves(tris, x, odd)
+        Deletion::Odd { odd, .. } => mixed_curves(tris, x, odd),
+        Deletion::OddOneFrame { odd, new_curve, .. } => mixed_curves(tris, x, odd)
             .iter()
             .enumerate()
             .map(|(c, &mixed)| mixed || (sampling && new_curve.get(c).copied().unwrap_or(false)))
@@ -1036,7 +1049,16 @@ fn trim(
                 sample,
             );
             let mut keep: Vec<bool> = labels.iter().map(|&o| !o).collect();
-            if let (Deletion::OddOneFrame { .. }, Some(sample)) = (deletion, sample) {
+            // The motion's samples speak for one frame's straight motion
+            // only; a drag's T-junctions go by orientation alone.
+            let junctions = match deletion {
+                Deletion::OddOneFrame { open_ends, .. } => Some((sample, open_ends)),
+                Deletion::Odd { open_ends, .. } => Some((None, open_ends)),
+                _ => None,
+            };
+            if let Some((sample, open_ends)) = junctions
+                && (sample.is_some() || open_ends)
+            {
                 let mut curve = sub.curve_edges.clone();
                 curve.sort_unstable();
                 curve.dedup();
@@ -1048,7 +1070,7 @@ fn trim(
                     input_positions,
                     curve: &curve,
                 }
-                .repair(&mut keep, sample, MAX_SAMPLED_REGIONS as u32);
+                .repair(&mut keep, sample, open_ends, MAX_SAMPLED_REGIONS as u32);
             }
             keep
         }

@@ -511,9 +511,13 @@ pub(crate) fn finish(
             Deletion::OddOneFrame {
                 odd: &s.corrected,
                 new_curve: &new_curve,
+                open_ends: !options.nonmanifold_joins,
             }
         } else {
-            Deletion::Odd(&s.corrected)
+            Deletion::Odd {
+                odd: &s.corrected,
+                open_ends: !options.nonmanifold_joins,
+            }
         },
         if options.refine { Some(&sample) } else { None },
     );

@@ -72,9 +72,27 @@ fn cylinder_through_one_giant_triangle() {
         .count();
     assert_eq!(below, 0, "a part of the cylinder below the plane survived");
 
-    // Without the extra sample: the paper's failure, the disc kept and a
-    // non-manifold junction where the cylinder meets it.
+    // Without the extra sample and with T-junctions left as parity makes
+    // them: the paper's failure, the disc kept and a non-manifold
+    // junction where the cylinder meets it.
     let paper = run(
+        &start,
+        &end,
+        &Options {
+            refine: false,
+            nonmanifold_joins: true,
+            ..Options::default()
+        },
+    );
+    assert_eq!(paper.report.cut.sampled_regions, 0);
+    assert!(paper.report.cut.undecided > 0);
+    assert!(euler_and_max_edge_degree(&paper.mesh).1 > 2);
+
+    // Without the sample, orientation alone also opens the disc: the
+    // cylinder's kept wall runs each curve edge as one half of the
+    // triangle does, and the other half, the disc, is enclosed by the
+    // curve (cut/junctions.rs).
+    let oriented = run(
         &start,
         &end,
         &Options {
@@ -82,7 +100,9 @@ fn cylinder_through_one_giant_triangle() {
             ..Options::default()
         },
     );
-    assert_eq!(paper.report.cut.sampled_regions, 0);
-    assert!(paper.report.cut.undecided > 0);
-    assert!(euler_and_max_edge_degree(&paper.mesh).1 > 2);
+    assert_eq!(oriented.report.cut.sampled_regions, 0);
+    assert!(oriented.report.cut.junctions_repaired > 0);
+    let (chi, max_degree) = euler_and_max_edge_degree(&oriented.mesh);
+    assert_eq!((chi, max_degree), (1, 2), "not one manifold disc");
+    assert_eq!(boundary(&oriented.mesh), (3, 1));
 }

@@ -12,8 +12,19 @@
 //! just beside the curve edge on each half is tested as if it were a
 //! vertex ([`Sampler`], the refinement of §7). When exactly one half is
 //! odd its sub-triangle at that edge is deleted, and the edge joins the
-//! kept half of each sheet. When the motion says both halves are even the
-//! edge is left as it is: the parity field then really has a T there.
+//! kept half of each sheet.
+//!
+//! When the motion says both halves are even, the parity field really has
+//! a T there: an open sheet's end pushed into another sheet (a spout into
+//! a teapot's body, a tube into a sphere: the tube has no lid, so nothing
+//! sweeps the part of the other sheet inside its loop). Orientation then
+//! decides. Of the uncut sheet's two halves, the one that runs the curve
+//! edge the same way as the crossing sheet's kept half cannot pair with
+//! it into a consistently oriented surface; its region (reached across
+//! everything but curve edges) is deleted when curve edges enclose it on
+//! every side, so the tube opens into the sheet it entered. A region that
+//! reaches an open boundary is left: nothing encloses it, and deleting it
+//! would remove surface far from the contact.
 
 use rustc_hash::FxHashMap as HashMap;
 
@@ -114,10 +125,18 @@ impl Junctions<'_> {
     }
 
     /// Deletes (`keep[s] = false`) the swept half at every curve edge with
-    /// three kept sub-triangles where the motion tells the halves apart.
-    /// Returns the number of sub-triangles deleted. `first_call` numbers
-    /// the samples after those the labelling made.
-    pub fn repair(&self, keep: &mut [bool], sample: &Sampler<'_>, first_call: u32) -> usize {
+    /// three kept sub-triangles where the motion tells the halves apart
+    /// (`sample`: one frame's straight motion), else the enclosed half
+    /// against the crossing sheet's orientation (module docs). Returns the
+    /// number of sub-triangles deleted. `first_call` numbers the samples
+    /// after those the labelling made.
+    pub fn repair(
+        &self,
+        keep: &mut [bool],
+        sample: Option<&Sampler<'_>>,
+        open_ends: bool,
+        first_call: u32,
+    ) -> usize {
         // Sub-triangles around each curve edge.
         if self.curve.is_empty() {
             return 0;
@@ -165,6 +184,8 @@ impl Junctions<'_> {
         }
         let mut call = first_call;
         let mut deleted = 0;
+        // Built once, only if orientation has to decide.
+        let mut sides: Option<EdgeSides> = None;
         for ((a, b), ss) in junctions.into_iter().take(MAX_JUNCTION_EDGES) {
             // Still a T after the repairs so far?
             if ss.iter().filter(|&&s| keep[s]).count() != 3 {
@@ -182,17 +203,118 @@ impl Junctions<'_> {
             }) else {
                 continue;
             };
-            let odd0 = self.side_parity(sample, call, s0, a, b);
-            let odd1 = self.side_parity(sample, call + 1, s1, a, b);
-            call += 2;
-            let swept = match (odd0, odd1) {
-                (Some(true), Some(false)) => s0,
-                (Some(false), Some(true)) => s1,
-                _ => continue,
+            let (odd0, odd1) = match sample {
+                Some(sample) => {
+                    call += 2;
+                    (
+                        self.side_parity(sample, call - 2, s0, a, b),
+                        self.side_parity(sample, call - 1, s1, a, b),
+                    )
+                }
+                None => (None, None),
             };
-            deleted += self.delete_side(keep, swept, &by_source);
+            match (odd0, odd1) {
+                (Some(true), Some(false)) => deleted += self.delete_side(keep, s0, &by_source),
+                (Some(false), Some(true)) => deleted += self.delete_side(keep, s1, &by_source),
+                _ if open_ends => {
+                    let Some(&crossing) = ss.iter().find(|&&s| keep[s] && s != s0 && s != s1)
+                    else {
+                        continue;
+                    };
+                    let runs = |s: usize| runs_forward(self.tris[s], a, b);
+                    let (against, with) = if runs(s0) == runs(crossing) {
+                        (s0, s1)
+                    } else {
+                        (s1, s0)
+                    };
+                    let sides = sides.get_or_insert_with(|| EdgeSides::new(self.tris, keep));
+                    deleted += self.delete_enclosed(keep, against, with, sides);
+                }
+                _ => {}
+            }
         }
         deleted
+    }
+
+    /// Deletes the kept region of `from` (reached across kept triangles'
+    /// shared edges that are not curve edges) when curve edges bound it on
+    /// every side and part it from `other`, the far side of the curve
+    /// edge; returns the number deleted (0 when it reaches an open
+    /// boundary or `other`: a curve that does not enclose it, such as a
+    /// sheet's edge pushed into a ball, Figure 11).
+    fn delete_enclosed(
+        &self,
+        keep: &mut [bool],
+        from: usize,
+        other: usize,
+        sides: &EdgeSides,
+    ) -> usize {
+        let is_curve = |a: u32, b: u32| self.curve.binary_search(&(a.min(b), a.max(b))).is_ok();
+        let mut region = vec![from];
+        let mut seen: rustc_hash::FxHashSet<usize> = std::iter::once(from).collect();
+        let mut at = 0;
+        while let Some(&s) = region.get(at) {
+            at += 1;
+            let t = self.tris[s];
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                if is_curve(a, b) {
+                    continue;
+                }
+                let mut alone = true;
+                for &r in sides.of(a, b) {
+                    if r != s && keep[r] {
+                        alone = false;
+                        if seen.insert(r) {
+                            region.push(r);
+                        }
+                    }
+                }
+                if alone {
+                    return 0;
+                }
+            }
+            if seen.contains(&other) {
+                return 0;
+            }
+        }
+        for &s in &region {
+            keep[s] = false;
+        }
+        region.len()
+    }
+}
+
+/// Whether triangle `t` runs its edge from `a` to `b` (rather than from
+/// `b` to `a`).
+fn runs_forward(t: [u32; 3], a: u32, b: u32) -> bool {
+    (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b)
+}
+
+/// The triangles on each undirected edge of the kept triangles.
+struct EdgeSides {
+    on: HashMap<(u32, u32), Vec<usize>>,
+}
+
+impl EdgeSides {
+    fn new(tris: &[[u32; 3]], keep: &[bool]) -> Self {
+        let mut on: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
+        for (s, t) in tris.iter().enumerate() {
+            if !keep[s] {
+                continue;
+            }
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                on.entry((a.min(b), a.max(b))).or_default().push(s);
+            }
+        }
+        EdgeSides { on }
+    }
+
+    fn of(&self, a: u32, b: u32) -> &[usize] {
+        self.on
+            .get(&(a.min(b), a.max(b)))
+            .map_or(&[][..], Vec::as_slice)
     }
 }
 

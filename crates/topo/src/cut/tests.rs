@@ -106,7 +106,10 @@ fn deleting_the_odd_parts_of_two_octahedra_gives_their_union() {
         &edges,
         &ids,
         &x,
-        Deletion::Odd(&odd),
+        Deletion::Odd {
+            odd: &odd,
+            open_ends: false,
+        },
         None,
     );
     assert!(
@@ -163,7 +166,10 @@ fn false_edges_close_a_parity_change_that_no_curve_separates() {
         &edges,
         &ids,
         &x,
-        Deletion::Odd(&odd),
+        Deletion::Odd {
+            odd: &odd,
+            open_ends: false,
+        },
         None,
     );
     assert!(out.report.false_vertices > 0 && out.report.false_edges > 0);
