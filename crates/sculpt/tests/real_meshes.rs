@@ -570,6 +570,57 @@ fn teapot_inflate_smooth_and_spout_into_body() {
     );
 }
 
+/// The teapot welded where its patches share positions (three pieces:
+/// body with spout and handle, lid, knob; 156 crossing pairs, the spout's
+/// and the handle's roots crossing the body): the snake hook takes the
+/// spout's open end back into the body (radius 12%, 60 dabs). The end
+/// fuses: the spout's lip goes inside and is deleted, and the spout joins
+/// the body, so one piece and one boundary loop fewer (issue 15, item 3:
+/// "pushing a tip into a body fuses it"), and nothing else gets worse.
+#[test]
+fn teapot_spout_snake_hooked_into_the_body_fuses() {
+    let Some(dir) = shared_meshes_or_skip("teapot_spout_snake_hooked_into_the_body_fuses") else {
+        return;
+    };
+    let holey_io::MeshFile::Poly(p) = holey_io::read_path(&dir.join("teapot.obj")).unwrap() else {
+        panic!("teapot.obj: not a polygon mesh");
+    };
+    let teapot = holey_mesh::analysis::weld_exact(&p).triangulated();
+    let start = measure(&teapot);
+    let used = || {
+        teapot
+            .triangles
+            .iter()
+            .flatten()
+            .map(|&v| teapot.positions[v as usize])
+    };
+    let (lo, hi) = bounds(&teapot);
+    // The spout's tip: the used vertex farthest along +x; the hook ends
+    // inside the body, 70% of the way across, below the tip.
+    let tip = used().max_by(|a, b| a.x.total_cmp(&b.x)).unwrap();
+    let into = DVec3::new(
+        lo.x + 0.7 * (hi.x - lo.x),
+        tip.y - 0.2 * (hi.y - lo.y),
+        tip.z,
+    );
+    let path: Vec<DVec3> = (0..60)
+        .map(|i| tip + (into - tip) * (f64::from(i) / 59.0))
+        .collect();
+    let radius = 0.12 * (hi - lo).length();
+    let (_, reports, end) = sculpt(
+        "teapot spout into body",
+        teapot.clone(),
+        &[paint(Brush::SnakeHook, radius, 1.0, path)],
+        true,
+    );
+    assert!(reports[0].changes >= 1, "the spout met the body");
+    assert_eq!(
+        (end.components, end.boundary_loops),
+        (start.components - 1, start.boundary_loops - 1),
+        "the spout's end fused into the body"
+    );
+}
+
 /// The beetle (open, 47 non-manifold edges, two pieces, crossing itself):
 /// one inflate stroke on the hood took it from 2 to 27 pieces with torn
 /// slits. Now it keeps its pieces and gets no worse.
