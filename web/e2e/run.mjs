@@ -714,7 +714,10 @@ const scenarios = [
     // the bunny's right side (+z): points just in front of the surface.
     const from = await page.evaluate((p) => window.__holey.project(p), [-0.01, 0.07, 0.07]);
     const to = await page.evaluate((p) => window.__holey.project(p), [0.04, 0.09, 0.07]);
-    await page.evaluate(() => { window.__holey.serverMs.length = 0; });
+    const PARTS = ['strokeLatencies', 'waitMs', 'roundTripMs', 'serverMs', 'clientMs', 'toRenderMs', 'renderMs'];
+    await page.evaluate((keys) => {
+      for (const k of keys) window.__holey[k].length = 0;
+    }, PARTS);
     const before = await version(page);
     for (const sign of [1, -1]) {
       const [a, b] = sign > 0 ? [from, to] : [to, from];
@@ -732,9 +735,23 @@ const scenarios = [
     await waitVersionAbove(page, before, 60000);
     await page.screenshot({ path: path.join(artifacts, '9-bunny-inflate.png') });
     await waitStats(page, /components 1 · genus 0 · boundary loops 5/);
-    const ms = await page.evaluate(() => [...window.__holey.serverMs]);
-    perf.bunnyInflate = { frames: ms.length, serverMsMedian: round(median(ms)), serverMsP95: round(pct(ms, 0.95)) };
+    const got = await page.evaluate((keys) => Object.fromEntries(keys.map((k) => [k, [...window.__holey[k]]])), PARTS);
+    const ms = got.serverMs;
+    const lat = got.strokeLatencies;
+    // Server time per frame, and pointer event to picture (issue 15's
+    // 33 ms target on the bunny; the drawing is not waited for here) with
+    // its parts' medians, as scenario 9 reports them.
+    perf.bunnyInflate = {
+      frames: ms.length, serverMsMedian: round(median(ms)), serverMsP95: round(pct(ms, 0.95)),
+      latencyMsMedian: round(median(lat)), latencyMsP95: round(pct(lat, 0.95)), latencyFrames: lat.length,
+      waitMsMedian: round(median(got.waitMs)), roundTripMsMedian: round(median(got.roundTripMs)),
+      clientMsMedian: round(median(got.clientMs)), toRenderMsMedian: round(median(got.toRenderMs)),
+      renderMsMedian: round(median(got.renderMs)),
+    };
     console.log(`  bunny inflate: ${JSON.stringify(perf.bunnyInflate)}`);
+    const perfFile = path.join(artifacts, 'perf.json');
+    const saved = fs.existsSync(perfFile) ? JSON.parse(fs.readFileSync(perfFile, 'utf8')) : {};
+    fs.writeFileSync(perfFile, JSON.stringify({ ...saved, bunnyInflate: perf.bunnyInflate }, null, 2) + '\n');
     if (!ms.length) throw new Error('no stroke frame was answered');
   }],
 
