@@ -171,6 +171,14 @@ fn no_worse(what: &str, before: &Shape, after: &Shape) {
 }
 
 /// Bounding box of the used vertices.
+/// The positions of the vertices some triangle uses (with repeats).
+fn used_positions(m: &TriMesh) -> impl Iterator<Item = DVec3> + '_ {
+    m.triangles
+        .iter()
+        .flatten()
+        .map(|&v| m.positions[v as usize])
+}
+
 fn bounds(m: &TriMesh) -> (DVec3, DVec3) {
     let mut lo = DVec3::INFINITY;
     let mut hi = DVec3::NEG_INFINITY;
@@ -360,11 +368,7 @@ fn stanford_bunny_back_through_belly_makes_a_tunnel() {
     // The highest point of the back on the vertical through (0.03, ·,
     // −0.015), clear of the ears and of the holes underneath.
     let (lo, _) = bounds(&bunny);
-    let top = bunny
-        .triangles
-        .iter()
-        .flatten()
-        .map(|&v| bunny.positions[v as usize])
+    let top = used_positions(&bunny)
         .filter(|p| (p.x - 0.03).abs() < 0.002 && (p.z + 0.015).abs() < 0.002)
         .max_by(|a, b| a.y.total_cmp(&b.y))
         .unwrap();
@@ -395,13 +399,7 @@ fn stanford_bunny_ear_snake_hooked_into_the_head_makes_a_handle() {
     let Some(bunny) = load("stanford_bunny_ear_into_head", "stanford-bunny.obj") else {
         return;
     };
-    let used = || {
-        bunny
-            .triangles
-            .iter()
-            .flatten()
-            .map(|&v| bunny.positions[v as usize])
-    };
+    let used = || used_positions(&bunny);
     // The back ear's tip is the bunny's highest point.
     let tip = used().max_by(|a, b| a.y.total_cmp(&b.y)).unwrap();
     // The crown of the head: the highest point on the vertical through
@@ -481,12 +479,7 @@ fn stanford_bunny_crease_through_the_ear_opens_a_slit() {
     };
     // The middle of the ear: the mean of the used vertices above y = 0.165
     // with x > −0.04 (the back ear), then the used vertex nearest it.
-    let used: Vec<DVec3> = bunny
-        .triangles
-        .iter()
-        .flatten()
-        .map(|&v| bunny.positions[v as usize])
-        .collect();
+    let used: Vec<DVec3> = used_positions(&bunny).collect();
     let ear: Vec<DVec3> = used
         .iter()
         .copied()
@@ -510,6 +503,22 @@ fn stanford_bunny_crease_through_the_ear_opens_a_slit() {
     assert_eq!(genus(&end), 1, "a slit through the ear");
 }
 
+/// The teapot's spout tip (the used vertex farthest along +x) and a point
+/// inside the body, 70% of the way across and below the tip, where the
+/// spout tests push it.
+fn spout_tip_and_body(teapot: &TriMesh) -> (DVec3, DVec3) {
+    let (lo, hi) = bounds(teapot);
+    let tip = used_positions(teapot)
+        .max_by(|a, b| a.x.total_cmp(&b.x))
+        .unwrap();
+    let into = DVec3::new(
+        lo.x + 0.7 * (hi.x - lo.x),
+        tip.y - 0.2 * (hi.y - lo.y),
+        tip.z,
+    );
+    (tip, into)
+}
+
 /// The teapot: patches stored unwelded, non-manifold vertices, 156 pairs
 /// crossing. Inflate along the spout and body, smooth, and grab the
 /// spout's tip into the body: nothing gets worse, and nothing far from
@@ -521,20 +530,7 @@ fn teapot_inflate_smooth_and_spout_into_body() {
     };
     let (r, k) = radius_and_strength(&teapot, 0.05, 1.0);
     let along = walk(&teapot, [0.85, 0.5, 0.6], [0.6, 0.5, 0.4], 30);
-    let (lo, hi) = bounds(&teapot);
-    // The spout's tip: the used vertex farthest along +x.
-    let tip = teapot
-        .triangles
-        .iter()
-        .flatten()
-        .map(|&v| teapot.positions[v as usize])
-        .max_by(|a, b| a.x.total_cmp(&b.x))
-        .unwrap();
-    let into = DVec3::new(
-        lo.x + 0.7 * (hi.x - lo.x),
-        tip.y - 0.2 * (hi.y - lo.y),
-        tip.z,
-    );
+    let (tip, into) = spout_tip_and_body(&teapot);
     let grab: Vec<DVec3> = (0..20)
         .map(|i| tip + (into - tip) * (i as f64 / 19.0))
         .collect();
@@ -556,11 +552,7 @@ fn teapot_inflate_smooth_and_spout_into_body() {
     };
     let key = |p: DVec3| p.to_array().map(f64::to_bits);
     let now: HashSet<[u64; 3]> = s.mesh().positions.iter().map(|&p| key(p)).collect();
-    let far: Vec<DVec3> = teapot
-        .triangles
-        .iter()
-        .flatten()
-        .map(|&v| teapot.positions[v as usize])
+    let far: Vec<DVec3> = used_positions(&teapot)
         .filter(|&p| reach(p) > 3.0 * r + (into - tip).length())
         .collect();
     assert!(!far.is_empty());
@@ -587,22 +579,8 @@ fn teapot_spout_snake_hooked_into_the_body_fuses() {
     };
     let teapot = holey_mesh::analysis::weld_exact(&p).triangulated();
     let start = measure(&teapot);
-    let used = || {
-        teapot
-            .triangles
-            .iter()
-            .flatten()
-            .map(|&v| teapot.positions[v as usize])
-    };
+    let (tip, into) = spout_tip_and_body(&teapot);
     let (lo, hi) = bounds(&teapot);
-    // The spout's tip: the used vertex farthest along +x; the hook ends
-    // inside the body, 70% of the way across, below the tip.
-    let tip = used().max_by(|a, b| a.x.total_cmp(&b.x)).unwrap();
-    let into = DVec3::new(
-        lo.x + 0.7 * (hi.x - lo.x),
-        tip.y - 0.2 * (hi.y - lo.y),
-        tip.z,
-    );
     let path: Vec<DVec3> = (0..60)
         .map(|i| tip + (into - tip) * (f64::from(i) / 59.0))
         .collect();
