@@ -78,6 +78,8 @@ impl WindingOutcome {
             "unsampled_regions": r.unsampled_regions,
             "perturbation_retries": r.perturbation_retries,
             "unpaired_edges": r.unpaired_edges,
+            "nonmanifold_edges": r.nonmanifold_edges,
+            "pinched_vertices": r.pinched_vertices,
             "output_triangles": self.mesh.triangles.len(),
             "output_intersecting_pairs": crossing,
             "seconds": {

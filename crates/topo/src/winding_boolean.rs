@@ -152,6 +152,13 @@ pub struct WindingReport {
     /// Directed edges of the result without a partner running the other
     /// way: 0 for a closed, consistently oriented result.
     pub unpaired_edges: usize,
+    /// Edges of the result on more than two triangles, and vertices whose
+    /// triangles form more than one fan: 0 for a 2-manifold result. (Both
+    /// appear where coplanar faces of opposite orientation overlap and are
+    /// kept as a wall of no thickness, until the coplanar overlay.)
+    pub nonmanifold_edges: usize,
+    /// See [`WindingReport::nonmanifold_edges`].
+    pub pinched_vertices: usize,
     /// Pairs of the result's triangles that cross, when they were counted
     /// ([`boolean_by_winding_robust`] does).
     pub output_intersecting_pairs: Option<usize>,
@@ -299,25 +306,40 @@ pub fn boolean_by_winding(
         triangles: faces,
     }
     .compacted();
+    report.nonmanifold_edges = nonmanifold_edges(&mesh.triangles);
+    report.pinched_vertices = mesh.pinched_vertices().iter().filter(|&&p| p).count();
     report.seconds.total = started.elapsed().as_secs_f64();
     Ok(WindingOutcome { mesh, report })
+}
+
+/// The undirected edges of `faces` that more than two faces share.
+fn nonmanifold_edges(faces: &[[u32; 3]]) -> usize {
+    let mut edges: Vec<(u32, u32)> = faces
+        .iter()
+        .flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]))))
+        .collect();
+    edges.sort_unstable();
+    edges
+        .chunk_by(|a, b| a == b)
+        .filter(|run| run.len() > 2)
+        .count()
 }
 
 /// [`boolean_by_winding`], robust to coplanar contact between inputs.
 /// Where faces of different inputs lie in one plane, the perturbed
 /// arrangement is embedded at the unperturbed coordinates and can come
 /// out open, or with coincident walls that cross in the limit. So when
-/// every input is closed and the result is open or crosses itself
+/// every input is closed and the result is open, not a 2-manifold (an
+/// edge on more than two triangles, a pinched vertex) or crosses itself
 /// (checked exactly: one self-intersection pass over the result), every
 /// connected piece of every input but the first piece of the first is
 /// moved its own generic way by the next step of
 /// [`crate::union::NUDGES`] (scale-relative: 2⁻³⁰ of the scene's
 /// diagonal first, then 2⁻²⁶ and 2⁻²²) and the operation redone, up to
-/// three times, while each nudge lessens the defects (open edges and
-/// crossing pairs; one that does not ends the retries). The first clean
-/// result is returned, else the exact one
-/// (a nudge moves the answer by its size: worth it only for a clean
-/// result); the report says how many nudges it took and how many pairs of
+/// three times, until two nudges in a row do not lessen the defects
+/// (open edges, non-manifold edges and vertices, and crossing pairs). The first clean result is returned, else the
+/// exact one (a nudge moves the answer by its size: worth it only for a
+/// clean result); the report says how many nudges it took and how many pairs of
 /// its triangles cross.
 pub fn boolean_by_winding_robust(
     inputs: &[&TriMesh],
@@ -327,6 +349,7 @@ pub fn boolean_by_winding_robust(
     let started = Instant::now();
     let mut best: Option<(usize, WindingOutcome)> = None;
     let mut previous: Option<usize> = None;
+    let mut stalled = 0;
     let parts: Vec<Vec<u32>> = inputs.iter().map(|m| vertex_components(m)).collect();
     let (lo, hi) = inputs
         .iter()
@@ -371,18 +394,28 @@ pub fn boolean_by_winding_robust(
         out.report.output_intersecting_pairs = Some(crossing);
         out.report.perturbation_retries = k;
         let closed = out.report.inputs_closed.iter().all(|&c| c);
-        let defects = out.report.unpaired_edges + crossing;
+        let defects = out.report.unpaired_edges
+            + crossing
+            + out.report.nonmanifold_edges
+            + out.report.pinched_vertices;
         // The exact attempt, unless a nudged one is clean: a nudge moves
         // the answer by its size, worth it only for a clean result.
         if best.is_none() || defects == 0 {
             best = Some((defects, out));
         }
-        // A nudge that does not lessen the defects is futile: they do not
-        // come from where the pieces sit against each other (coplanar
-        // faces within one piece, say), and larger nudges move the same
-        // pieces the same ways further.
-        let futile = previous.is_some_and(|p| defects >= p);
-        if defects == 0 || !closed || futile {
+        // Two nudges in a row that do not lessen the defects are futile:
+        // the defects do not come from where the pieces sit against each
+        // other (coplanar faces within one piece, say), and larger nudges
+        // move the same pieces the same ways further. One is not enough:
+        // the smallest nudge can turn a wall between two pieces into an
+        // overlap so thin that its rounded points cross, which the next,
+        // 16 times larger, clears.
+        if previous.is_some_and(|p| defects >= p) {
+            stalled += 1;
+        } else {
+            stalled = 0;
+        }
+        if defects == 0 || !closed || stalled == 2 {
             break;
         }
         previous = Some(defects);

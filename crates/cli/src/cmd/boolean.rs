@@ -34,8 +34,8 @@ one and stops.
 As for `holey union`, where coplanar faces of A and B overlap and the
 exactly placed result is not a closed surface, the run is retried with B
 moved by a deterministic nudge of 2^-30 of the scene's diagonal (then 16
-and 256 times that, while each nudge leaves fewer open edges and
-crossing pairs); --exact makes the first attempt the only one.
+and 256 times that, while each nudge leaves fewer open edges,
+non-manifold edges and vertices, and crossing pairs); --exact makes the first attempt the only one.
 
 Examples:
   holey intersection a.obj b.obj meet.obj

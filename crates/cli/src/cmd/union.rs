@@ -64,8 +64,8 @@ is not, the run is retried with B moved by a deterministic,
 scale-relative nudge: 2^-30 of the scene's diagonal along a fixed
 generic direction (about 1e-9 relative, far below any modelling
 precision), then 16 and 256 times that along other directions, while
-each nudge leaves fewer open edges and crossing pairs. The report
-counts the retries. Faces that merely touch from opposite sides
+each nudge leaves fewer open edges, non-manifold edges and vertices,
+and crossing pairs. The report counts the retries. Faces that merely touch from opposite sides
 come out exact on the first try (the wall between them is removed).
 --exact makes the first attempt the only one.
 
