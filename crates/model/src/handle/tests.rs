@@ -1,11 +1,7 @@
 use super::*;
+use crate::test_util::prim;
 use holey_dlfl::RawMesh;
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
-
-fn prim(spec: &str) -> Mesh {
-    let soup = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
-}
 
 fn corner(m: &Mesh, face: usize) -> CornerId {
     m.face_corner(m.face_at(face).unwrap()).unwrap()
