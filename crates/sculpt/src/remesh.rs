@@ -1315,9 +1315,9 @@ pub(crate) mod tests {
         curves_by_degree: Vec<(usize, usize)>,
     }
 
-    /// Duplicate triangles (the same three vertices) count once: they are
-    /// one simplex of the surface.
-    pub(crate) fn topology(m: &TriMesh) -> Topology {
+    /// The triangles of `m` as sorted vertex triples, in sorted order:
+    /// triangles with the same three vertices, however turned, are equal.
+    fn sorted_triangles(m: &TriMesh) -> Vec<[u32; 3]> {
         let mut keys: Vec<[u32; 3]> = m
             .triangles
             .iter()
@@ -1328,6 +1328,13 @@ pub(crate) mod tests {
             })
             .collect();
         keys.sort_unstable();
+        keys
+    }
+
+    /// Duplicate triangles (the same three vertices) count once: they are
+    /// one simplex of the surface.
+    pub(crate) fn topology(m: &TriMesh) -> Topology {
+        let mut keys = sorted_triangles(m);
         keys.dedup();
         let m = &TriMesh {
             positions: m.positions.clone(),
@@ -1379,16 +1386,7 @@ pub(crate) mod tests {
     /// No triangle repeats a vertex or another triangle unless the input
     /// already had such triangles.
     fn clean_triangles(m: &TriMesh) -> bool {
-        let mut keys: Vec<[u32; 3]> = m
-            .triangles
-            .iter()
-            .map(|t| {
-                let mut k = *t;
-                k.sort_unstable();
-                k
-            })
-            .collect();
-        keys.sort_unstable();
+        let keys = sorted_triangles(m);
         keys.windows(2).all(|w| w[0] != w[1]) && !m.triangles.iter().any(|&t| degenerate(t))
     }
 
