@@ -307,11 +307,7 @@ fn leading_int(s: &str) -> i64 {
 /// ../shared/data/meshes; skipped visibly when it is absent.
 #[test]
 fn info_agrees_with_the_shared_readme_table() {
-    let Some(dir) =
-        holey_testkit::shared_meshes_or_skip("info_agrees_with_the_shared_readme_table")
-    else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("info_agrees_with_the_shared_readme_table");
     let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
     let rows = readme_rows(&readme);
     assert_eq!(rows.len(), 16, "expected 16 meshes in the README table");
@@ -436,10 +432,7 @@ fn leading_int_trim(s: &str) -> i64 {
 /// Reads ../shared/data/meshes; skipped visibly when absent.
 #[test]
 fn shared_meshes_import_into_the_kernel() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip("shared_meshes_import_into_the_kernel")
-    else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("shared_meshes_import_into_the_kernel");
     let out = tmp();
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
