@@ -3,7 +3,7 @@ use holey_geom::position_classes;
 
 use super::*;
 use crate::intersect::intersections;
-use crate::intersect::tests::{join, octahedron};
+use crate::intersect::tests::{join, octahedron, two_octahedra};
 
 fn area(m: &TriMesh) -> f64 {
     m.triangles
@@ -88,10 +88,7 @@ fn inside_octahedron(p: DVec3, c: DVec3, r: f64) -> bool {
 
 #[test]
 fn resolve_cuts_and_glues_without_deleting() {
-    let m = join(
-        &octahedron(DVec3::ZERO, 1.0),
-        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
-    );
+    let m = two_octahedra();
     let s = setup(&m);
     let x = &s.x;
     let out = s.cut(&m, Deletion::Nothing);
