@@ -36,6 +36,24 @@ fn absolute(d: f64) -> MengerParams {
     }
 }
 
+/// The default parameters, `n` levels deep.
+fn levels(n: usize) -> MengerParams {
+    MengerParams {
+        iterations: n,
+        ..MengerParams::default()
+    }
+}
+
+/// `@cube` with its corner 0 pushed by `by` along (1, 1, 1), off the
+/// planes of its three faces (§VII.5.1's skewed faces).
+fn cube_with_a_corner_pushed(by: f64) -> Mesh {
+    let poly = holey_shapes::parse_primitive("@cube").unwrap();
+    let mut positions = poly.positions.clone();
+    positions[0] += DVec3::splat(by);
+    let faces: Vec<Vec<u32>> = poly.faces().map(|f| f.to_vec()).collect();
+    import(positions, faces)
+}
+
 /// Area of each face (Newell), smallest first.
 fn min_face_area(m: &Mesh) -> f64 {
     m.faces()
@@ -147,10 +165,7 @@ fn cube_volume_follows_the_thickness() {
 #[test]
 fn cube_level_two_has_genus_81_and_the_true_sponges_solid() {
     let mut m = prim("@cube");
-    let params = MengerParams {
-        iterations: 2,
-        ..MengerParams::default()
-    };
+    let params = levels(2);
     let report = menger(&mut m, &params).unwrap();
     m.validate().unwrap();
     assert_eq!(m.genus(), 81);
@@ -190,10 +205,7 @@ fn cube_level_three_follows_the_genus_formula() {
     // genus' = 2g + F − 1 = 2·81 + 960 − 1. (The true level 3 has genus
     // 1409: from level 3 on the thesis's sponge is a different surface.)
     let mut m = prim("@cube");
-    let params = MengerParams {
-        iterations: 3,
-        ..MengerParams::default()
-    };
+    let params = levels(3);
     menger(&mut m, &params).unwrap();
     m.validate().unwrap();
     assert_eq!(m.genus(), 1121);
@@ -352,11 +364,7 @@ fn a_torus_follows_the_genus_formula() {
 fn slightly_skewed_faces_are_counted_and_handled() {
     // §VII.5.1: a cube with one corner pushed a little off its three faces'
     // planes.
-    let poly = holey_shapes::parse_primitive("@cube").unwrap();
-    let mut positions = poly.positions.clone();
-    positions[0] += DVec3::splat(0.01);
-    let faces: Vec<Vec<u32>> = poly.faces().map(|f| f.to_vec()).collect();
-    let mut m = import(positions, faces);
+    let mut m = cube_with_a_corner_pushed(0.01);
     let before = m.clone();
     let report = menger(&mut m, &MengerParams::default()).unwrap();
     check_result(&before, &m);
@@ -368,11 +376,7 @@ fn slightly_skewed_faces_are_counted_and_handled() {
 fn strongly_skewed_faces_are_cut_into_planar_pieces() {
     // The same corner pushed far: its three quads are cut into triangles
     // first (the thesis's remedy), so the level sees 9 faces: genus 8.
-    let poly = holey_shapes::parse_primitive("@cube").unwrap();
-    let mut positions = poly.positions.clone();
-    positions[0] += DVec3::splat(0.3);
-    let faces: Vec<Vec<u32>> = poly.faces().map(|f| f.to_vec()).collect();
-    let mut m = import(positions, faces);
+    let mut m = cube_with_a_corner_pushed(0.3);
     let report = menger(&mut m, &absolute(0.25)).unwrap();
     m.validate().unwrap();
     assert_eq!(report.levels[0].skew_cuts, 3);
@@ -386,10 +390,7 @@ fn folded_hexagons_of_level_three_are_cut_in_two() {
     // After three levels on a cube, 48 offset faces are hexagons folded
     // over a box's inside corner (three re-entrant edges meet there).
     let mut m = prim("@cube");
-    let params = MengerParams {
-        iterations: 3,
-        ..MengerParams::default()
-    };
+    let params = levels(3);
     menger(&mut m, &params).unwrap();
     let hexagons = m.faces().filter(|&f| m.face_len(f).unwrap() == 6).count();
     assert_eq!(hexagons, 48);
@@ -462,10 +463,7 @@ fn interior_angles_and_cases() {
 fn zero_iterations_change_nothing() {
     let mut m = prim("@cube");
     let before = m.to_raw();
-    let params = MengerParams {
-        iterations: 0,
-        ..MengerParams::default()
-    };
+    let params = levels(0);
     let report = menger(&mut m, &params).unwrap();
     assert!(report.levels.is_empty() && report.exact.is_none());
     assert_eq!(m.to_raw(), before);
@@ -611,10 +609,7 @@ fn the_face_cap_is_checked_before_each_level() {
     // Level 2 is refused after level 1 ran on the copy: unchanged.
     let mut m = prim("@cube");
     let before = m.to_raw();
-    let params = MengerParams {
-        iterations: 2,
-        ..MengerParams::default()
-    };
+    let params = levels(2);
     let err = menger_capped(&mut m, &params, 1000).unwrap_err();
     assert!(
         matches!(err, MengerError::TooManyFaces { level: 2, .. }),
