@@ -15,11 +15,9 @@ fn json(args: &[&str]) -> Value {
 
 #[test]
 fn spot_gets_a_clean_hub_above_its_head_and_refuses_one_inside_it() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "spot_gets_a_clean_hub_above_its_head_and_refuses_one_inside_it",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "spot_gets_a_clean_hub_above_its_head_and_refuses_one_inside_it"
+    );
     let tmp = tempfile::tempdir().expect("a temporary directory");
     let out = tmp.path().join("spot_hub.obj");
     let out = out.to_str().expect("a UTF-8 path");

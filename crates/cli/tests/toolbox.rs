@@ -46,6 +46,23 @@ fn vef(c: Counts) -> (i64, i64, i64) {
     (c.v, c.e, c.f)
 }
 
+/// A command's refusals on `@cube`: for each case, `holey CMD @cube OUT
+/// ARGS…` is refused with a message containing every one of `needles`,
+/// and writes nothing to OUT.
+fn refused_on_the_cube(cmd: &str, cases: &[(&[&str], &[&str])]) {
+    let d = Dir::new();
+    let out = d.path("x.obj");
+    for &(args, needles) in cases {
+        let mut line = vec![cmd, "@cube", &out];
+        line.extend_from_slice(args);
+        let err = refused(&line);
+        for needle in needles {
+            assert!(err.contains(needle), "{line:?}: no {needle:?} in {err}");
+        }
+        assert!(!Path::new(&out).exists(), "a refused {line:?} wrote {out}");
+    }
+}
+
 struct Dir(tempfile::TempDir);
 
 impl Dir {
@@ -368,38 +385,27 @@ fn the_help_lists_every_scheme() {
 
 #[test]
 fn remesh_refusals() {
-    let d = Dir::new();
-    let out = d.path("x.obj");
-    let err = refused(&["remesh", "@cube", &out, "--scheme", "no-such-scheme"]);
-    assert!(
-        err.contains("no-such-scheme") && err.contains("12.6.4"),
-        "{err}"
+    refused_on_the_cube(
+        "remesh",
+        &[
+            (
+                &["--scheme", "no-such-scheme"],
+                &["no-such-scheme", "12.6.4"],
+            ),
+            (
+                &["--scheme", "corner-cutting", "--alpha", "NaN"],
+                &["NaN", "@cube"],
+            ),
+            (
+                &["--scheme", "dual", "--alpha", "0.6"],
+                &["--alpha", "dual"],
+            ),
+            (
+                &["--scheme", "vertex-truncation", "--offset", "0.75"],
+                &["0.75"],
+            ),
+        ],
     );
-    let err = refused(&[
-        "remesh",
-        "@cube",
-        &out,
-        "--scheme",
-        "corner-cutting",
-        "--alpha",
-        "NaN",
-    ]);
-    assert!(err.contains("NaN") && err.contains("@cube"), "{err}");
-    let err = refused(&[
-        "remesh", "@cube", &out, "--scheme", "dual", "--alpha", "0.6",
-    ]);
-    assert!(err.contains("--alpha") && err.contains("dual"), "{err}");
-    let err = refused(&[
-        "remesh",
-        "@cube",
-        &out,
-        "--scheme",
-        "vertex-truncation",
-        "--offset",
-        "0.75",
-    ]);
-    assert!(err.contains("0.75"), "{err}");
-    assert!(!Path::new(&out).exists(), "a refused remesh wrote {out}");
 }
 
 // ---------------------------------------------------------------- extrude
@@ -613,49 +619,24 @@ fn extrude_refuses_non_finite_parameters() {
 
 #[test]
 fn extrude_refusals() {
-    let d = Dir::new();
-    let out = d.path("x.obj");
-    let err = refused(&["extrude", "@cube", &out, "--faces", "6"]);
-    assert!(
-        err.contains("face 6") && err.contains("6 faces"),
-        "a bad face id: {err}"
-    );
-    let err = refused(&[
+    refused_on_the_cube(
         "extrude",
-        "@cube",
-        &out,
-        "--faces",
-        "0",
-        "--distance",
-        "nan",
-    ]);
-    assert!(
-        err.contains("distance") && err.contains("NaN") && err.contains("face 0"),
-        "{err}"
+        &[
+            // A bad face id.
+            (&["--faces", "6"], &["face 6", "6 faces"]),
+            (
+                &["--faces", "0", "--distance", "nan"],
+                &["distance", "NaN", "face 0"],
+            ),
+            (&["--faces", "0", "--scale", "-1"], &["scale"]),
+            (
+                &["--faces", "0", "--kind", "octahedral", "--rotation", "10"],
+                &["--rotation", "octahedral"],
+            ),
+            (&["--faces", "0,x"], &["\"x\""]),
+            (&["--faces", "0", "--kind", "pyramid"], &[]),
+        ],
     );
-    let err = refused(&["extrude", "@cube", &out, "--faces", "0", "--scale", "-1"]);
-    assert!(err.contains("scale"), "{err}");
-    let err = refused(&[
-        "extrude",
-        "@cube",
-        &out,
-        "--faces",
-        "0",
-        "--kind",
-        "octahedral",
-        "--rotation",
-        "10",
-    ]);
-    assert!(
-        err.contains("--rotation") && err.contains("octahedral"),
-        "{err}"
-    );
-    let err = refused(&["extrude", "@cube", &out, "--faces", "0,x"]);
-    assert!(err.contains("\"x\""), "{err}");
-    refused(&[
-        "extrude", "@cube", &out, "--faces", "0", "--kind", "pyramid",
-    ]);
-    assert!(!Path::new(&out).exists());
 }
 
 // ---------------------------------------------------------------- wireframe
@@ -719,26 +700,14 @@ fn columns_along_every_edge() {
 
 #[test]
 fn wireframe_refusals() {
-    let d = Dir::new();
-    let out = d.path("x.obj");
-    let err = refused(&["wireframe", "@cube", &out, "--thickness", "NaN"]);
-    assert!(err.contains("thickness") && err.contains("NaN"), "{err}");
-    let err = refused(&["wireframe", "@cube", &out, "--thickness", "5"]);
-    assert!(
-        err.contains("face 0") && err.contains("turns over"),
-        "{err}"
-    );
-    let err = refused(&[
+    refused_on_the_cube(
         "wireframe",
-        "@cube",
-        &out,
-        "--thickness",
-        "0.1",
-        "--columns",
-        "2",
-    ]);
-    assert!(err.contains("3 sides"), "{err}");
-    assert!(!Path::new(&out).exists());
+        &[
+            (&["--thickness", "NaN"], &["thickness", "NaN"]),
+            (&["--thickness", "5"], &["face 0", "turns over"]),
+            (&["--thickness", "0.1", "--columns", "2"], &["3 sides"]),
+        ],
+    );
 }
 
 // ---------------------------------------------------------------- cut, truncate
@@ -797,19 +766,23 @@ fn an_edge_and_a_vertex_cut_at_offsets_of_their_own() {
     let d = Dir::new();
     let k = counts("@cube");
     let out = d.path("ev.obj");
-    ok(&[
-        "cut",
-        "@cube",
-        &out,
-        "--edge",
-        "0-1",
-        "--vertex",
-        "7",
-        "--offset",
-        "0.3",
-        "--vertex-offset",
-        "0.7",
-    ]);
+    // Edge 0-1 at 0.3 and vertex 7 at `vertex_offset`.
+    let ev_cut = |vertex_offset| {
+        [
+            "cut",
+            "@cube",
+            out.as_str(),
+            "--edge",
+            "0-1",
+            "--vertex",
+            "7",
+            "--offset",
+            "0.3",
+            "--vertex-offset",
+            vertex_offset,
+        ]
+    };
+    ok(&ev_cut("0.7"));
     assert_eq!(vef(counts(&out)), (k.v + 4, k.e + 6, k.f + 2));
     let text = std::fs::read_to_string(&out).expect("the cut was written");
     let corner = |p: [f64; 3]| {
@@ -839,48 +812,29 @@ fn an_edge_and_a_vertex_cut_at_offsets_of_their_own() {
         assert!((got - want).abs() < 1e-9, "{dist:?}");
     }
     // The vertices' offset is checked on their own spokes (length 2).
-    let err = refused(&[
-        "cut",
-        "@cube",
-        &out,
-        "--edge",
-        "0-1",
-        "--vertex",
-        "7",
-        "--offset",
-        "0.3",
-        "--vertex-offset",
-        "1.0",
-    ]);
+    let err = refused(&ev_cut("1.0"));
     assert!(err.contains("reaches the middle"), "{err}");
 }
 
 #[test]
 fn cut_and_truncate_refusals() {
-    let d = Dir::new();
-    let out = d.path("x.obj");
-    let err = refused(&["cut", "@cube", &out, "--vertex", "8"]);
-    assert!(
-        err.contains("vertex 8") && err.contains("8 vertices"),
-        "{err}"
+    refused_on_the_cube(
+        "cut",
+        &[
+            (&["--vertex", "8"], &["vertex 8", "8 vertices"]),
+            (&["--face", "6"], &["face 6"]),
+            // The edge is named by its vertices.
+            (
+                &["--vertex", "0", "--offset", "5"],
+                &["reaches the middle", "edge 0-"],
+            ),
+            (&["--vertex", "0", "--offset", "NaN"], &["NaN"]),
+            (&["--edge", "0-7"], &["not joined"]),
+            (&["--edge", "0-1", "--vertex", "1"], &["share vertex 1"]),
+            (&[], &[]),
+        ],
     );
-    let err = refused(&["cut", "@cube", &out, "--face", "6"]);
-    assert!(err.contains("face 6"), "{err}");
-    let err = refused(&["cut", "@cube", &out, "--vertex", "0", "--offset", "5"]);
-    assert!(
-        err.contains("reaches the middle") && err.contains("edge 0-"),
-        "the edge is named by its vertices: {err}"
-    );
-    let err = refused(&["cut", "@cube", &out, "--vertex", "0", "--offset", "NaN"]);
-    assert!(err.contains("NaN"), "{err}");
-    let err = refused(&["cut", "@cube", &out, "--edge", "0-7"]);
-    assert!(err.contains("not joined"), "{err}");
-    let err = refused(&["cut", "@cube", &out, "--edge", "0-1", "--vertex", "1"]);
-    assert!(err.contains("share vertex 1"), "{err}");
-    refused(&["cut", "@cube", &out]);
-    let err = refused(&["truncate", "@cube", &out, "--all", "--fraction", "0.5"]);
-    assert!(err.contains("0.5"), "{err}");
-    assert!(!Path::new(&out).exists());
+    refused_on_the_cube("truncate", &[(&["--all", "--fraction", "0.5"], &["0.5"])]);
 }
 
 // ---------------------------------------------------------------- hull

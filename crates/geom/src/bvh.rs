@@ -749,6 +749,17 @@ mod tests {
             .collect()
     }
 
+    /// Checks `bvh.query(q)` against every box of `boxes` tried one by
+    /// one (the order of the answer aside).
+    fn assert_query_is_brute_force(bvh: &Bvh, boxes: &[Aabb], q: &Aabb) {
+        let mut got = bvh.query(q);
+        got.sort_unstable();
+        let want: Vec<u32> = (0..boxes.len() as u32)
+            .filter(|&i| boxes[i as usize].overlaps(q))
+            .collect();
+        assert_eq!(got, want);
+    }
+
     fn brute_pairs(b: &[Aabb]) -> Vec<(u32, u32)> {
         let mut out = Vec::new();
         for i in 0..b.len() {
@@ -771,12 +782,7 @@ mod tests {
             assert_eq!(bvh.len(), n);
             let queries = random_boxes(&mut rng, 300, 0.05);
             for q in &queries {
-                let mut got = bvh.query(q);
-                got.sort_unstable();
-                let want: Vec<u32> = (0..n as u32)
-                    .filter(|&i| boxes[i as usize].overlaps(q))
-                    .collect();
-                assert_eq!(got, want);
+                assert_query_is_brute_force(&bvh, &boxes, q);
             }
             let pairs = bvh.overlap_pairs(&queries);
             let mut want = Vec::new();
@@ -895,24 +901,14 @@ mod tests {
         bvh.refit_some(&boxes, &changed).expect("ok");
         assert!(bvh.validate());
         let q = Aabb::new(DVec3::splat(0.2), DVec3::splat(0.6));
-        let mut got = bvh.query(&q);
-        got.sort_unstable();
-        let want: Vec<u32> = (0..5000u32)
-            .filter(|&i| boxes[i as usize].overlaps(&q))
-            .collect();
-        assert_eq!(got, want);
+        assert_query_is_brute_force(&bvh, &boxes, &q);
         // Full refit after moving everything.
         for b in boxes.iter_mut() {
             *b = Aabb::new(b.min * 2.0, b.max * 2.0);
         }
         bvh.refit(&boxes).expect("ok");
         assert!(bvh.validate());
-        let mut got = bvh.query(&q);
-        got.sort_unstable();
-        let want: Vec<u32> = (0..5000u32)
-            .filter(|&i| boxes[i as usize].overlaps(&q))
-            .collect();
-        assert_eq!(got, want);
+        assert_query_is_brute_force(&bvh, &boxes, &q);
         assert!(bvh.refit(&boxes[..10]).is_err());
         assert!(bvh.refit_some(&boxes, &[9999]).is_err());
     }

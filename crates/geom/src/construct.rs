@@ -34,7 +34,7 @@ use crate::dd::{Dd, certified_div};
 use crate::error::{GeomError, NonFinite};
 use crate::expansion::{Expansion, pow2};
 use crate::ring::{Ring, V3, cross, dot, normal, orient3, scale3, sub3};
-use crate::sos::{EpsPoly, Poly, SymPoint, scale_exponent};
+use crate::sos::{EpsPoly, Poly, SymPoint, scale_exponent, scaled_by};
 use glam::DVec3;
 
 /// The correctly rounded quotient of two exact values (`d ≠ 0`).
@@ -93,19 +93,7 @@ pub fn div_round(n: &Expansion, d: &Expansion) -> f64 {
 /// expansions, and `k`.
 fn scaled_expansions(pts: &[SymPoint]) -> (Vec<V3<Expansion>>, i32) {
     let k = scale_exponent(pts.iter().map(|p| &p.pos));
-    let s = pow2(-k);
-    let ex = pts
-        .iter()
-        .map(|p| {
-            let q = p.pos * s;
-            [
-                Expansion::from_f64(q.x),
-                Expansion::from_f64(q.y),
-                Expansion::from_f64(q.z),
-            ]
-        })
-        .collect();
-    (ex, k)
+    (scaled_by(pts, pow2(-k)), k)
 }
 
 /// Evaluates `num/den` at the points, correctly rounded, taking the

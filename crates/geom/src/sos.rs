@@ -344,6 +344,22 @@ pub(crate) fn scale_exponent<'a>(pts: impl Iterator<Item = &'a DVec3>) -> i32 {
     exponent_of(m)
 }
 
+/// The positions of `pts` times `s` (a power of two, so exact) as exact
+/// expansions: the coordinates the exact stages evaluate their
+/// polynomials at.
+pub(crate) fn scaled_by(pts: &[SymPoint], s: f64) -> Vec<V3<Expansion>> {
+    pts.iter()
+        .map(|p| {
+            let q = p.pos * s;
+            [
+                Expansion::from_f64(q.x),
+                Expansion::from_f64(q.y),
+                Expansion::from_f64(q.z),
+            ]
+        })
+        .collect()
+}
+
 /// Sign of `poly` at the perturbed `pts` (see the module docs).
 /// More than [`MAX_POINTS`] points gives `Degenerate`.
 pub fn sos_sign<P: Poly>(poly: &P, pts: &[SymPoint]) -> SosSign {
@@ -364,17 +380,7 @@ pub fn sos_sign<P: Poly>(poly: &P, pts: &[SymPoint]) -> SosSign {
         return SosSign::from_i8(sg);
     }
     stats::EXACT.fetch_add(1, Relaxed);
-    let ex: Vec<V3<Expansion>> = pts
-        .iter()
-        .map(|p| {
-            let q = p.pos * s;
-            [
-                Expansion::from_f64(q.x),
-                Expansion::from_f64(q.y),
-                Expansion::from_f64(q.z),
-            ]
-        })
-        .collect();
+    let ex = scaled_by(pts, s);
     let sg = poly.eval(&ex).sign();
     if sg != 0 {
         return SosSign::from_i8(sg);

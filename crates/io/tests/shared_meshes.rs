@@ -184,11 +184,9 @@ fn check_conversions(name: &str, m: &PolyMesh, tmp: &Path) {
 
 #[test]
 fn shared_meshes_read_with_the_documented_counts_and_convert() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "shared_meshes_read_with_the_documented_counts_and_convert",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "shared_meshes_read_with_the_documented_counts_and_convert"
+    );
     let table: HashMap<&str, (usize, usize)> = TABLE.iter().map(|&(n, v, f)| (n, (v, f))).collect();
     let tmp = tempfile::tempdir().unwrap();
     let mut seen = Vec::new();

@@ -32,6 +32,8 @@ mod properties;
 pub mod rind;
 pub mod select;
 pub mod sierpinski;
+#[cfg(test)]
+mod test_util;
 pub mod tools;
 pub mod truncate;
 pub mod wireframe;

@@ -8,31 +8,13 @@
 
 use std::collections::HashSet;
 
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use crate::test_util::{State, prim, state};
 use holey_dlfl::{FaceId, Mesh, VertexId};
 use holey_testkit::Rng;
 
 use crate::cut::{self, CutError};
 use crate::extrude::{self, ExtrudeError, ExtrudeParams, MultiExtrudeParams, RegionDirection};
 use crate::{hull, tools, truncate, wireframe};
-
-fn prim(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
-
-type State = (i64, i64, i64, usize, i64);
-
-fn state(m: &Mesh) -> State {
-    let t = m.topology();
-    (
-        m.vertex_count() as i64,
-        m.edge_count() as i64,
-        m.face_count() as i64,
-        t.component_count(),
-        t.genus(),
-    )
-}
 
 fn plus(s: State, d: (i64, i64, i64)) -> State {
     (s.0 + d.0, s.1 + d.1, s.2 + d.2, s.3, s.4)

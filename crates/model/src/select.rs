@@ -89,13 +89,7 @@ pub fn face_loop(mesh: &Mesh, face: FaceId, edge: EdgeId) -> Result<Vec<FaceId>,
     }
     let start = corner_on(mesh, face, edge)?.ok_or(SelectError::NotOnFace { face, edge })?;
     let opposite = mesh.corner_next(mesh.corner_next(start)?)?;
-    let mut seen = HashSet::from([face]);
-    let forward = walk_strip(mesh, start, &mut seen)?;
-    let backward = walk_strip(mesh, opposite, &mut seen)?;
-    let mut out: Vec<FaceId> = backward.into_iter().rev().collect();
-    out.push(face);
-    out.extend(forward);
-    Ok(out)
+    both_ways(mesh, face, [start, opposite], walk_strip)
 }
 
 /// Crosses the edge leaving `c` and keeps going straight through quads.
@@ -124,23 +118,25 @@ pub fn edge_ring(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> 
     both_ways(mesh, edge, [a, b], walk_ring)
 }
 
-/// A walk from a corner, taking each edge at most once (`seen`).
-type Walk = fn(&Mesh, CornerId, &mut HashSet<EdgeId>) -> Result<Vec<EdgeId>, SelectError>;
+/// A walk from a corner, taking each face or edge at most once (`seen`).
+type Walk<T> = fn(&Mesh, CornerId, &mut HashSet<T>) -> Result<Vec<T>, SelectError>;
 
-/// The walks of `walk` from the corners `[ahead, behind]` of `edge`,
-/// joined through it in walking order: the walk from `behind` reversed,
-/// `edge`, then the walk from `ahead`. Each edge is taken once.
-fn both_ways(
+/// The walks of `walk` from the corners `[ahead, behind]` of `seed` (an
+/// edge of a ring or loop, the face of a face loop), joined through it in
+/// walking order: the walk from `behind` reversed, `seed`, then the walk
+/// from `ahead`. Each item is taken once, so a closed loop stops where it
+/// began.
+fn both_ways<T: Copy + Eq + std::hash::Hash>(
     mesh: &Mesh,
-    edge: EdgeId,
+    seed: T,
     [ahead, behind]: [CornerId; 2],
-    walk: Walk,
-) -> Result<Vec<EdgeId>, SelectError> {
-    let mut seen = HashSet::from([edge]);
+    walk: Walk<T>,
+) -> Result<Vec<T>, SelectError> {
+    let mut seen = HashSet::from([seed]);
     let one = walk(mesh, ahead, &mut seen)?;
     let two = walk(mesh, behind, &mut seen)?;
-    let mut out: Vec<EdgeId> = two.into_iter().rev().collect();
-    out.push(edge);
+    let mut out: Vec<T> = two.into_iter().rev().collect();
+    out.push(seed);
     out.extend(one);
     Ok(out)
 }

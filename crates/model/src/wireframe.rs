@@ -670,21 +670,7 @@ fn joints(
     pe: &dyn Fn(usize, usize) -> u64,
 ) {
     let bottom = n / 2;
-    let mut done = vec![false; cs.len()];
-    for start in 0..cs.len() {
-        if done[start] || cs.partner[start] == u32::MAX {
-            continue;
-        }
-        let mut ring = Vec::new();
-        let mut c = start;
-        loop {
-            done[c] = true;
-            ring.push(c);
-            c = cs.rot[c] as usize;
-            if c == start || ring.len() > cs.len() {
-                break;
-            }
-        }
+    for ring in joint_rings(cs) {
         let k = ring.len();
         if k == 1 {
             // Close the port: q(n−1) → … → q(0), each corner starting the

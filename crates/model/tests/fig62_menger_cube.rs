@@ -100,11 +100,7 @@ fn exact_mode_levels_one_to_three() {
 fn exact_level_three_matches_the_shared_mesh() {
     // Reads ../shared/data/meshes/menger_sponge_level3.obj (a level-3
     // sponge on [-0.5, 0.5]³ from the Manifold library, triangulated).
-    let Some(dir) =
-        holey_testkit::shared_meshes_or_skip("exact_level_three_matches_the_shared_mesh")
-    else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("exact_level_three_matches_the_shared_mesh");
     let file = match holey_io::read_path(&dir.join("menger_sponge_level3.obj")).unwrap() {
         holey_io::MeshFile::Poly(p) => p,
         holey_io::MeshFile::Dlfl(_) => panic!("expected a polygon mesh"),

@@ -1315,9 +1315,9 @@ pub(crate) mod tests {
         curves_by_degree: Vec<(usize, usize)>,
     }
 
-    /// Duplicate triangles (the same three vertices) count once: they are
-    /// one simplex of the surface.
-    pub(crate) fn topology(m: &TriMesh) -> Topology {
+    /// The triangles of `m` as sorted vertex triples, in sorted order:
+    /// triangles with the same three vertices, however turned, are equal.
+    fn sorted_triangles(m: &TriMesh) -> Vec<[u32; 3]> {
         let mut keys: Vec<[u32; 3]> = m
             .triangles
             .iter()
@@ -1328,6 +1328,13 @@ pub(crate) mod tests {
             })
             .collect();
         keys.sort_unstable();
+        keys
+    }
+
+    /// Duplicate triangles (the same three vertices) count once: they are
+    /// one simplex of the surface.
+    pub(crate) fn topology(m: &TriMesh) -> Topology {
+        let mut keys = sorted_triangles(m);
         keys.dedup();
         let m = &TriMesh {
             positions: m.positions.clone(),
@@ -1379,16 +1386,7 @@ pub(crate) mod tests {
     /// No triangle repeats a vertex or another triangle unless the input
     /// already had such triangles.
     fn clean_triangles(m: &TriMesh) -> bool {
-        let mut keys: Vec<[u32; 3]> = m
-            .triangles
-            .iter()
-            .map(|t| {
-                let mut k = *t;
-                k.sort_unstable();
-                k
-            })
-            .collect();
-        keys.sort_unstable();
+        let keys = sorted_triangles(m);
         keys.windows(2).all(|w| w[0] != w[1]) && !m.triangles.iter().any(|&t| degenerate(t))
     }
 
@@ -1406,6 +1404,17 @@ pub(crate) mod tests {
             .filter(|&&(a, b)| active[a as usize] || active[b as usize])
             .map(|&(a, b)| m.positions[a as usize].distance(m.positions[b as usize]))
             .collect()
+    }
+
+    /// `m` remeshed everywhere to `r` (see [`remesh_checked`]), with the
+    /// lengths of its edges: the remesher must have split or collapsed
+    /// something, and left no edge longer than `r.max_edge`.
+    fn remesh_all_within(m: &TriMesh, r: Remesh) -> (TriMesh, Vec<f64>) {
+        let (out, rep) = remesh_checked(m, &all(m), &RemeshOptions::new(r));
+        assert!(rep.splits + rep.collapses > 0);
+        let lengths = active_lengths(&out, &all(&out));
+        assert!(lengths.iter().all(|&l| l <= r.max_edge), "{lengths:?}");
+        (out, lengths)
     }
 
     /// The active flags of the output: input flags carried through the
@@ -1604,11 +1613,7 @@ pub(crate) mod tests {
     fn open_grid_keeps_its_boundary_and_faces_up() {
         let m = grid(20);
         for r in [range(0.15, 0.4), range(0.03, 0.07)] {
-            let opts = RemeshOptions::new(r);
-            let (out, rep) = remesh_checked(&m, &all(&m), &opts);
-            assert!(rep.splits + rep.collapses > 0);
-            let lengths = active_lengths(&out, &all(&out));
-            assert!(lengths.iter().all(|&l| l <= r.max_edge));
+            let (out, lengths) = remesh_all_within(&m, r);
             assert!(fraction_short(&lengths, r.min_edge) < 0.1);
             for t in 0..out.triangles.len() {
                 assert!(normal(out.corners(t)).z > 0.0, "inverted {t}");
@@ -1631,15 +1636,9 @@ pub(crate) mod tests {
     fn torus_keeps_genus() {
         let m = torus();
         for r in [range(0.2, 0.5), range(0.05, 0.12)] {
-            let (out, rep) = remesh_checked(&m, &all(&m), &RemeshOptions::new(r));
-            assert!(rep.splits + rep.collapses > 0);
+            let (out, _) = remesh_all_within(&m, r);
             assert_eq!(topology(&out).chi, 0);
             assert!(out.is_closed_manifold());
-            assert!(
-                active_lengths(&out, &all(&out))
-                    .iter()
-                    .all(|&l| l <= r.max_edge)
-            );
         }
     }
 
@@ -1647,8 +1646,7 @@ pub(crate) mod tests {
     fn three_sheets_keep_their_non_manifold_edge() {
         let m = three_sheets(8);
         for r in [range(0.4, 0.9), range(0.06, 0.15)] {
-            let (out, rep) = remesh_checked(&m, &all(&m), &RemeshOptions::new(r));
-            assert!(rep.splits + rep.collapses > 0);
+            let (out, _) = remesh_all_within(&m, r);
             let e = undirected(&out);
             // The spine is still there, split or not, on the x axis.
             let spine: Vec<_> = e.iter().filter(|&(_, &d)| d == 3).collect();
@@ -1660,11 +1658,6 @@ pub(crate) mod tests {
                 }
             }
             assert!(e.values().all(|&d| d <= 3));
-            assert!(
-                active_lengths(&out, &all(&out))
-                    .iter()
-                    .all(|&l| l <= r.max_edge)
-            );
         }
     }
 

@@ -68,19 +68,32 @@ fn plane(m: &TriMesh, c: DVec3, r: f64) -> Plane {
     }
 }
 
-fn one_frame(m: &TriMesh, brush: Brush, c: DVec3, r: f64, s: f64) -> TriMesh {
+/// `m` after `stroke`, applied with remeshing off: the vertices keep
+/// their indices, so the oracles can compare them one by one.
+fn brushed(m: &TriMesh, stroke: &Stroke) -> TriMesh {
     let mut session = Session::new(m.clone()).unwrap();
     session.set_remeshing(false);
-    session
-        .apply_stroke(&Stroke {
-            brush,
-            radius: r,
-            strength: s,
-            path: vec![c],
-            ..Stroke::default()
-        })
-        .unwrap();
+    session.apply_stroke(stroke).unwrap();
     session.into_mesh()
+}
+
+fn one_frame(m: &TriMesh, brush: Brush, c: DVec3, r: f64, s: f64) -> TriMesh {
+    let stroke = Stroke {
+        brush,
+        radius: r,
+        strength: s,
+        path: vec![c],
+        ..Stroke::default()
+    };
+    brushed(m, &stroke)
+}
+
+/// The highest vertex of `m`.
+fn highest_vertex(m: &TriMesh) -> DVec3 {
+    *m.positions
+        .iter()
+        .max_by(|a, b| a.z.total_cmp(&b.z))
+        .unwrap()
 }
 
 /// Each centred brush on an icosphere, one frame at the vertex nearest
@@ -89,11 +102,7 @@ fn one_frame(m: &TriMesh, brush: Brush, c: DVec3, r: f64, s: f64) -> TriMesh {
 #[test]
 fn each_brush_moves_vertices_as_its_displacement_field_says() {
     let m = sphere();
-    let top = *m
-        .positions
-        .iter()
-        .max_by(|a, b| a.z.total_cmp(&b.z))
-        .unwrap();
+    let top = highest_vertex(&m);
     // A centre a little off the vertex, so that pinch and crease have a
     // direction at every vertex.
     let c = top + DVec3::new(0.013, -0.007, 0.0);
@@ -194,24 +203,21 @@ fn a_stroke_with_symmetry_x_leaves_a_mirror_image() {
         (Brush::Pinch, 0.3),
         (Brush::Grab, 1.0),
     ] {
-        let mut s = Session::new(m.clone()).unwrap();
-        s.set_remeshing(false);
         let path = if brush == Brush::Grab {
             let start = on_one_side[0].normalize();
             vec![start, start * 1.15]
         } else {
             on_one_side.to_vec()
         };
-        s.apply_stroke(&Stroke {
+        let stroke = Stroke {
             brush,
             radius: 0.4,
             strength,
             path,
             symmetry: [true, false, false],
             ..Stroke::default()
-        })
-        .unwrap();
-        let out = s.mesh();
+        };
+        let out = &brushed(&m, &stroke);
         let moved = |x_sign: f64| {
             m.positions
                 .iter()
@@ -253,23 +259,20 @@ fn masked_vertices_do_not_move() {
         (Brush::Scale, 0.2),
         (Brush::Grab, 1.0),
     ] {
-        let mut s = Session::new(m.clone()).unwrap();
-        s.set_remeshing(false);
         let path = if brush == Brush::Grab {
             vec![c, c + DVec3::new(0.1, 0.0, 0.2)]
         } else {
             vec![c]
         };
-        s.apply_stroke(&Stroke {
+        let stroke = Stroke {
             brush,
             radius: 0.6,
             strength,
             path,
             mask: Some(ball.clone()),
             ..Stroke::default()
-        })
-        .unwrap();
-        let out = s.mesh();
+        };
+        let out = brushed(&m, &stroke);
         for &v in &masked {
             assert_eq!(
                 out.positions[v].to_array().map(f64::to_bits),
@@ -297,18 +300,15 @@ fn pressure_scales_the_strength() {
     let m = sphere();
     let c = DVec3::new(0.05, 0.0, 1.0);
     let run = |pressure: Vec<f64>| {
-        let mut s = Session::new(m.clone()).unwrap();
-        s.set_remeshing(false);
-        s.apply_stroke(&Stroke {
+        let stroke = Stroke {
             brush: Brush::Draw,
             radius: 0.5,
             strength: 0.02,
             path: vec![c],
             pressure,
             ..Stroke::default()
-        })
-        .unwrap();
-        s.into_mesh()
+        };
+        brushed(&m, &stroke)
     };
     let full = run(vec![]);
     let half = run(vec![0.5]);
@@ -324,18 +324,15 @@ fn pressure_scales_the_strength() {
 fn constant_falloff_moves_the_whole_disk_alike() {
     let m = sphere();
     let c = DVec3::new(0.0, 0.0, 1.0);
-    let mut s = Session::new(m.clone()).unwrap();
-    s.set_remeshing(false);
-    s.apply_stroke(&Stroke {
+    let stroke = Stroke {
         brush: Brush::Draw,
         radius: 0.5,
         strength: 0.02,
         path: vec![c],
         falloff: Falloff::Constant,
         ..Stroke::default()
-    })
-    .unwrap();
-    for (p, q) in m.positions.iter().zip(&s.mesh().positions) {
+    };
+    for (p, q) in m.positions.iter().zip(&brushed(&m, &stroke).positions) {
         let d = q.distance(*p);
         if p.distance(c) < 0.5 {
             assert!((d - 0.02).abs() < 1e-15, "{d}");
@@ -474,24 +471,17 @@ fn a_mirrored_crease_through_a_slab_opens_two_holes() {
 #[test]
 fn layer_rises_to_its_height_and_stops() {
     let m = sphere();
-    let top = *m
-        .positions
-        .iter()
-        .max_by(|a, b| a.z.total_cmp(&b.z))
-        .unwrap();
+    let top = highest_vertex(&m);
     let h = 0.03;
     let run = |frames: usize| {
-        let mut s = Session::new(m.clone()).unwrap();
-        s.set_remeshing(false);
-        s.apply_stroke(&Stroke {
+        let stroke = Stroke {
             brush: Brush::Layer,
             radius: 0.5,
             strength: h,
             path: vec![top; frames],
             ..Stroke::default()
-        })
-        .unwrap();
-        s.into_mesh()
+        };
+        brushed(&m, &stroke)
     };
     let (ten, twenty) = (run(10), run(20));
     assert_eq!(

@@ -384,6 +384,23 @@ fn hemisphere(r: f64, offset: DVec3) -> TriMesh {
     transformed(&cut, r, offset)
 }
 
+/// The part-assembly move: pick the tip of the nose (the hemisphere of
+/// radius 0.3 at x = 2, see the tests below), then push it in by 1.2: the
+/// rim ends at x = 0.8 (inside the unit body), the tip at 1.1 (outside).
+fn push_the_nose_in() -> Stroke {
+    stroke(
+        Brush::Move,
+        0.0,
+        1.0,
+        &[
+            [2.3, 0., 0.],
+            [1.9, 0.004, 0.002],
+            [1.5, 0.008, 0.004],
+            [1.1, 0.013, 0.007],
+        ],
+    )
+}
+
 /// §6, part assembly (Figure 9): move an open part (a nose: an open
 /// hemisphere, rim first) into a closed body. The part's rim and the
 /// portion inside the body cross the body once and are deleted, and the
@@ -405,20 +422,7 @@ fn part_assembly_glues_an_open_part_onto_a_body() {
         ..Options::default()
     };
     let mut s = Session::with_options(m, options).unwrap();
-    // Pick the tip of the nose, then push it in by 1.2: the rim ends at
-    // x = 0.8 (inside the unit body), the tip at 1.1 (outside).
-    let mv = stroke(
-        Brush::Move,
-        0.0,
-        1.0,
-        &[
-            [2.3, 0., 0.],
-            [1.9, 0.004, 0.002],
-            [1.5, 0.008, 0.004],
-            [1.1, 0.013, 0.007],
-        ],
-    );
-    let r = s.apply_stroke(&mv).unwrap();
+    let r = s.apply_stroke(&push_the_nose_in()).unwrap();
     assert_eq!(r.changes, 1);
     let m = s.mesh();
     assert!(valid(m));
@@ -499,18 +503,7 @@ fn part_assembly_by_default_leaves_no_occluded_cap() {
     let nose = hemisphere(0.3, DVec3::new(2.0, 0.0, 0.0));
     let m = join(&sphere(DVec3::ZERO), &nose);
     let mut s = Session::new(m).unwrap();
-    let mv = stroke(
-        Brush::Move,
-        0.0,
-        1.0,
-        &[
-            [2.3, 0., 0.],
-            [1.9, 0.004, 0.002],
-            [1.5, 0.008, 0.004],
-            [1.1, 0.013, 0.007],
-        ],
-    );
-    let r = s.apply_stroke(&mv).unwrap();
+    let r = s.apply_stroke(&push_the_nose_in()).unwrap();
     assert!(r.refused.is_empty(), "{:?}", r.refused);
     let m = s.mesh();
     assert!(valid(m));

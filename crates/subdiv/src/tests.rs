@@ -506,11 +506,9 @@ impl PointIndex {
 fn two_catmull_clark_steps_of_spot_reproduce_spot_quadrangulated() {
     // Reads the shared real meshes (../shared/data/meshes): Keenan Crane's
     // spot control cage and its published two-level Catmull–Clark result.
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "two_catmull_clark_steps_of_spot_reproduce_spot_quadrangulated",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "two_catmull_clark_steps_of_spot_reproduce_spot_quadrangulated"
+    );
     let read = |name: &str| match holey_io::read_path(&dir.join(name)).expect("reads") {
         holey_io::MeshFile::Poly(p) => p,
         holey_io::MeshFile::Dlfl(_) => unreachable!("OBJ reads as a soup"),

@@ -111,3 +111,28 @@ pub fn shared_meshes_or_skip(test: &str) -> Option<PathBuf> {
     }
     dir
 }
+
+/// In a test: the shared mesh folder, or — after the SKIP line of
+/// [`shared_meshes_or_skip`] naming `test` — a return from the test, which
+/// has nothing to check without it.
+#[macro_export]
+macro_rules! shared_meshes_or_return {
+    ($test:expr) => {
+        match $crate::shared_meshes_or_skip($test) {
+            Some(dir) => dir,
+            None => return,
+        }
+    };
+}
+
+/// In a test: the shared Boolean corpus, or — after the SKIP line of
+/// [`shared_corpus_or_skip`] naming `test` — a return from the test.
+#[macro_export]
+macro_rules! shared_corpus_or_return {
+    ($test:expr) => {
+        match $crate::shared_corpus_or_skip($test) {
+            Some(dir) => dir,
+            None => return,
+        }
+    };
+}

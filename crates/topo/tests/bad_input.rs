@@ -22,6 +22,19 @@ fn error_of(mesh: &TriMesh, end: &[DVec3]) -> String {
     }
 }
 
+/// The errors of the other entry points that take a mesh alone
+/// (`resolve`, `self_intersections`, `Accumulator::new`) on `mesh`, each
+/// of which must refuse it.
+fn errors_of_the_other_entries(mesh: &TriMesh) -> [String; 3] {
+    [
+        resolve(mesh).unwrap_err().to_string(),
+        self_intersections(mesh).unwrap_err().to_string(),
+        Accumulator::new(mesh.clone(), Options::default())
+            .unwrap_err()
+            .to_string(),
+    ]
+}
+
 #[test]
 fn non_finite_start_positions() {
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
@@ -33,13 +46,7 @@ fn non_finite_start_positions() {
             e.contains("non-finite") && e.contains("vertex 2") && e.contains("mesh"),
             "{e}"
         );
-        for e in [
-            resolve(&m).unwrap_err().to_string(),
-            self_intersections(&m).unwrap_err().to_string(),
-            Accumulator::new(m.clone(), Options::default())
-                .unwrap_err()
-                .to_string(),
-        ] {
+        for e in errors_of_the_other_entries(&m) {
             assert!(e.contains("non-finite") && e.contains("vertex 2"), "{e}");
         }
     }
@@ -73,13 +80,7 @@ fn index_out_of_range() {
     m.triangles[2] = [u32::MAX, 0, 1];
     let e = error_of(&m, &m.positions.clone());
     assert!(e.contains(&u32::MAX.to_string()), "{e}");
-    for e in [
-        resolve(&m).unwrap_err().to_string(),
-        self_intersections(&m).unwrap_err().to_string(),
-        Accumulator::new(m.clone(), Options::default())
-            .unwrap_err()
-            .to_string(),
-    ] {
+    for e in errors_of_the_other_entries(&m) {
         assert!(e.contains("triangle 2"), "{e}");
     }
 }

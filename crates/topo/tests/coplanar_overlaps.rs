@@ -211,9 +211,7 @@ const OPENSCAD_UNION_LIBIGL: f64 = 381.1737100008513;
 /// four faces); merging them needs the coplanar overlay.
 #[test]
 fn openscad_union_matches_libigl() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip("openscad_union_matches_libigl") else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("openscad_union_matches_libigl");
     let mesh = read_shared(&dir, "openscad-nonmanifold-crash.obj");
     let out = boolean_by_winding(&[&mesh], Operation::Union, &Options::default()).expect("union");
     assert_eq!(out.report.unpaired_edges, 0, "open");
@@ -237,11 +235,9 @@ fn openscad_union_matches_libigl() {
 /// libigl's volume, not a nudged one.
 #[test]
 fn openscad_repair_by_default_returns_the_exact_result() {
-    let Some(dir) =
-        holey_testkit::shared_meshes_or_skip("openscad_repair_by_default_returns_the_exact_result")
-    else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "openscad_repair_by_default_returns_the_exact_result"
+    );
     let mesh = read_shared(&dir, "openscad-nonmanifold-crash.obj");
     let out =
         boolean_by_winding_robust(&[&mesh], Operation::Union, &Options::default()).expect("union");

@@ -57,9 +57,7 @@ fn transformed(m: &TriMesh, matrix: &serde_json::Value) -> TriMesh {
 
 #[test]
 fn ember_pairs_difference_and_union_match_manifold3d() {
-    let Some(dir) = holey_testkit::shared_corpus_or_skip("ember_pairs") else {
-        return;
-    };
+    let dir = holey_testkit::shared_corpus_or_return!("ember_pairs");
     let list: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("ember_pairs.json")).unwrap())
             .unwrap();

@@ -28,13 +28,7 @@ const OFFSET: DVec3 = DVec3::new(0.013, 0.021, 0.1);
 
 fn plunge(from_z: f64) -> (TriMesh, TriMesh) {
     let (p, c) = (plane(), cylinder());
-    let start = join(&p, &translate(&c, OFFSET + DVec3::new(0.0, 0.0, from_z)));
-    let end: Vec<DVec3> = p
-        .positions
-        .iter()
-        .copied()
-        .chain(c.positions.iter().map(|&q| q + OFFSET))
-        .collect();
+    let (start, end) = still_and_moving(&p, &c, OFFSET + DVec3::new(0.0, 0.0, from_z), OFFSET);
     let out = run(&start, &end, &Options::default()).mesh;
     (start, out)
 }

@@ -38,13 +38,7 @@ fn jittered_soup(seed: u64) -> TriMesh {
 /// goes 0.6 under the plane.
 fn push_sphere(plane: &TriMesh) -> (TriMesh, usize) {
     let s = scale(&primitive("@sphere:3"), R);
-    let start = join(plane, &translate(&s, CENTRE + DVec3::new(0.0, 0.0, 1.5)));
-    let end: Vec<DVec3> = plane
-        .positions
-        .iter()
-        .copied()
-        .chain(s.positions.iter().map(|&p| p + CENTRE))
-        .collect();
+    let (start, end) = still_and_moving(plane, &s, CENTRE + DVec3::new(0.0, 0.0, 1.5), CENTRE);
     (
         run(&start, &end, &Options::default()).mesh,
         plane.positions.len(),
@@ -204,16 +198,12 @@ fn soups_of_many_sizes_and_jitters() {
                     std::f64::consts::PI * 0.25,
                 ),
             ] {
-                let start = join(
+                let (start, end) = still_and_moving(
                     &plane,
-                    &translate(solid, end_shift + DVec3::new(0.0, 0.0, 1.6)),
+                    solid,
+                    end_shift + DVec3::new(0.0, 0.0, 1.6),
+                    end_shift,
                 );
-                let end: Vec<DVec3> = plane
-                    .positions
-                    .iter()
-                    .copied()
-                    .chain(solid.positions.iter().map(|&p| p + end_shift))
-                    .collect();
                 let m = run(&start, &end, &Options::default()).mesh;
                 let tag = format!("{what} through a {n}×{n} soup jittered {share}");
                 let below: Vec<&[u32; 3]> = m

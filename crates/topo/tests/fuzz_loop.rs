@@ -134,6 +134,26 @@ fn random_motion(m: &TriMesh, rng: &mut Rng, lattice_ends: bool) -> Vec<DVec3> {
     }
 }
 
+/// Case `seed`: a random mesh, its motion's end positions and the options,
+/// all drawn from one generator seeded by `seed`, so a failing seed can be
+/// replayed (see [`dump`]).
+fn case(seed: u64, lattice_ends: bool) -> (TriMesh, Vec<DVec3>, Options) {
+    let mut rng = Rng::new(0xF00D + seed);
+    let m = random_mesh(&mut rng);
+    let end = random_motion(&m, &mut rng, lattice_ends);
+    let options = Options {
+        scheme: if rng.chance(0.3) {
+            Scheme::Majority
+        } else {
+            Scheme::Partition
+        },
+        float_ccd: rng.chance(0.3),
+        orient: rng.chance(0.8),
+        ..Options::default()
+    };
+    (m, end, options)
+}
+
 /// Runs the cases `seeds`, each in a thread given `limit` to finish;
 /// returns (accepted, failing seeds, seeds still running at the limit).
 fn fuzz(
@@ -143,19 +163,7 @@ fn fuzz(
 ) -> (u64, Vec<u64>, Vec<u64>) {
     let (mut ok, mut failures, mut hangs) = (0, Vec::new(), Vec::new());
     for seed in seeds {
-        let mut rng = Rng::new(0xF00D + seed);
-        let m = random_mesh(&mut rng);
-        let end = random_motion(&m, &mut rng, lattice_ends);
-        let options = Options {
-            scheme: if rng.chance(0.3) {
-                Scheme::Majority
-            } else {
-                Scheme::Partition
-            },
-            float_ccd: rng.chance(0.3),
-            orient: rng.chance(0.8),
-            ..Options::default()
-        };
+        let (m, end, options) = case(seed, lattice_ends);
         let (tx, rx) = mpsc::channel();
         thread::spawn(move || {
             let result = catch_unwind(AssertUnwindSafe(|| {
@@ -286,18 +294,6 @@ fn dump() {
         return;
     };
     let seed: u64 = seed.parse().expect("FUZZ_SEED");
-    let mut rng = Rng::new(0xF00D + seed);
-    let m = random_mesh(&mut rng);
-    let end = random_motion(&m, &mut rng, true);
-    let options = Options {
-        scheme: if rng.chance(0.3) {
-            Scheme::Majority
-        } else {
-            Scheme::Partition
-        },
-        float_ccd: rng.chance(0.3),
-        orient: rng.chance(0.8),
-        ..Options::default()
-    };
+    let (m, end, options) = case(seed, true);
     eprintln!("mesh {m:?}\nend {end:?}\n{options:?}");
 }

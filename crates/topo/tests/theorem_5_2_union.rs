@@ -127,9 +127,7 @@ fn sphere_and_torus() {
 /// ../shared/data/meshes; skipped visibly when it is absent.
 #[test]
 fn two_bunnies_match_the_peers() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip("two_bunnies_match_the_peers") else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("two_bunnies_match_the_peers");
     let Ok(holey_io::MeshFile::Poly(p)) = holey_io::read_path(&dir.join("bunny_oded.obj")) else {
         panic!("cannot read bunny_oded.obj")
     };

@@ -433,10 +433,7 @@ const OFFSET2_ALONE: f64 = 209026.7190249297;
 /// 1e-8, and the outputs follow the winding-number rule.
 #[test]
 fn self_intersect_a_and_b_match_libigl() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip("self_intersect_a_and_b_match_libigl")
-    else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("self_intersect_a_and_b_match_libigl");
     let a = read_shared(&dir, "self_intersectA.obj");
     let b = read_shared(&dir, "self_intersectB.obj");
     for (inputs, op, want, what) in [
@@ -489,9 +486,7 @@ fn self_intersect_a_and_b_match_libigl() {
 /// thickness, which need the coplanar overlay.
 #[test]
 fn offset1_and_offset2_match_libigl() {
-    let Some(dir) = holey_testkit::shared_corpus_or_skip("offset1_and_offset2_match_libigl") else {
-        return;
-    };
+    let dir = holey_testkit::shared_corpus_or_return!("offset1_and_offset2_match_libigl");
     let a = read_shared(&dir, "Offset1.obj");
     let b = read_shared(&dir, "Offset2.obj");
     for (inputs, op, want, what) in [

@@ -93,9 +93,7 @@ fn self_intersecting_generated_meshes() {
 /// Reads ../shared/data/meshes; skipped visibly when it is absent.
 #[test]
 fn shared_meshes() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip("zero_motion::shared_meshes") else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("zero_motion::shared_meshes");
     let teapot = read_shared(&dir, "teapot.obj");
     check_unchanged(&teapot, "teapot");
     let a = read_shared(&dir, "self_intersectA.obj");

@@ -6,12 +6,8 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, Mesh};
 
 use super::*;
+use crate::test_util::prim;
 use crate::truncate::{truncate_all_vertices, truncate_edges, truncate_vertices};
-
-fn prim(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
 
 fn counts(m: &Mesh) -> (usize, usize, usize) {
     (m.vertex_count(), m.edge_count(), m.face_count())

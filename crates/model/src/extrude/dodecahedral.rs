@@ -8,7 +8,7 @@ use holey_dlfl::{DVec3, EdgeId, FaceId, Mesh};
 
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
-use super::{ExtrudeError, Extruded, check_points, faces_around, half_step, solid_base};
+use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
 
 /// The golden ratio.
 pub(crate) const PHI: f64 = 1.618_033_988_749_895;
@@ -38,12 +38,8 @@ pub fn extrude_face_dodecahedral(
     let h = height_factor * frame.radius;
     let d = points.len();
     let ring1: Vec<DVec3> = points.iter().map(|&p| c + (p - c) * PHI + n * h).collect();
-    let mids: Vec<DVec3> = (0..d)
-        .map(|i| c + half_step(&points, c, i) * PHI + n * (PHI * h))
-        .collect();
-    let ring3: Vec<DVec3> = (0..d)
-        .map(|i| c + half_step(&points, c, i) + n * (PHI * PHI * h))
-        .collect();
+    let mids = turned_ring(&points, c, n, PHI, PHI * h);
+    let ring3 = turned_ring(&points, c, n, 1.0, PHI * PHI * h);
     for (k, ring) in [&ring1, &mids, &ring3].into_iter().enumerate() {
         check_points(face, k * d, ring)?;
     }

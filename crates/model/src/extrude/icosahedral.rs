@@ -10,7 +10,7 @@ use super::dodecahedral::{PHI, face_edges};
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
 use super::stellate::stellate_at;
-use super::{ExtrudeError, Extruded, check_points, faces_around, half_step, solid_base};
+use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
 
 /// Icosahedral extrusion of `face`.
 ///
@@ -35,15 +35,11 @@ pub fn extrude_face_icosahedral(
     let (c, n) = (frame.centroid, frame.normal);
     let h = height_factor * frame.radius;
     let d = points.len();
-    let mids: Vec<DVec3> = (0..d)
-        .map(|i| c + half_step(&points, c, i) * PHI + n * h)
-        .collect();
+    let mids = turned_ring(&points, c, n, PHI, h);
     let apexes: Vec<DVec3> = (0..d)
         .map(|i| c + (points[(i + 1) % d] - c) * PHI + n * (PHI * h))
         .collect();
-    let ring: Vec<DVec3> = (0..d)
-        .map(|i| c + half_step(&points, c, i) + n * (PHI * PHI * h))
-        .collect();
+    let ring = turned_ring(&points, c, n, 1.0, PHI * PHI * h);
     for (k, pts) in [&mids, &apexes, &ring].into_iter().enumerate() {
         check_points(face, k * d, pts)?;
     }

@@ -315,6 +315,22 @@ pub(crate) fn half_step(points: &[DVec3], centre: DVec3, i: usize) -> DVec3 {
     mid / (std::f64::consts::PI / d as f64).cos()
 }
 
+/// The base `points` turned by half a step about `centre` (see
+/// [`half_step`]), scaled by `scale` and lifted by `height` along the unit
+/// `normal`: the rings of the octahedral, dodecahedral and icosahedral
+/// extrusions, which differ only in these two numbers.
+pub(crate) fn turned_ring(
+    points: &[DVec3],
+    centre: DVec3,
+    normal: DVec3,
+    scale: f64,
+    height: f64,
+) -> Vec<DVec3> {
+    (0..points.len())
+        .map(|i| centre + half_step(points, centre, i) * scale + normal * height)
+        .collect()
+}
+
 /// The faces having a corner at any of `vertices`, except `top`, in slot
 /// order without repeats.
 pub(crate) fn faces_around(

@@ -5,7 +5,7 @@
 
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 
-use super::{ExtrudeError, Extruded, check_points, faces_around, half_step, solid_base};
+use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
 
 /// Octahedral extrusion of `face`: new vertex `m_i` over the midpoint of
 /// edge `i` (from corner `i` to `i + 1`), at the position of a regular
@@ -23,10 +23,8 @@ pub fn extrude_face_octahedral(
     height_factor: f64,
 ) -> Result<Extruded, ExtrudeError> {
     let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
-    let lift = frame.normal * (height_factor * std::f64::consts::SQRT_2 * frame.radius);
-    let mids: Vec<DVec3> = (0..points.len())
-        .map(|i| frame.centroid + half_step(&points, frame.centroid, i) + lift)
-        .collect();
+    let lift = height_factor * std::f64::consts::SQRT_2 * frame.radius;
+    let mids = turned_ring(&points, frame.centroid, frame.normal, 1.0, lift);
     check_points(face, 0, &mids)?;
     dual_extrude_at(mesh, corners[0], &mids)
 }

@@ -3,28 +3,11 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use crate::test_util::{prim, state};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
 use crate::polygon;
-
-fn prim(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
-
-/// (V, E, F, components, genus).
-fn state(m: &Mesh) -> (i64, i64, i64, usize, i64) {
-    let t = m.topology();
-    (
-        m.vertex_count() as i64,
-        m.edge_count() as i64,
-        m.face_count() as i64,
-        t.component_count(),
-        t.genus(),
-    )
-}
 
 fn face(m: &Mesh, i: usize) -> FaceId {
     m.face_at(i).unwrap()

@@ -141,11 +141,8 @@ mod tests {
         // places (26 pairs by the engine); with every face counted as new
         // each crossing pair is found once. Two cubes overlapping at a
         // corner cross too; one cube does not.
-        let Some(dir) =
-            holey_testkit::shared_meshes_or_skip("every_face_new_counts_what_selfint_counts")
-        else {
-            return;
-        };
+        let dir =
+            holey_testkit::shared_meshes_or_return!("every_face_new_counts_what_selfint_counts");
         let holey_io::MeshFile::Poly(soup) =
             holey_io::read_path(&dir.join("spot_control_mesh.obj")).unwrap()
         else {

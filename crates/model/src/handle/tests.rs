@@ -1,11 +1,7 @@
 use super::*;
+use crate::test_util::prim;
 use holey_dlfl::RawMesh;
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
-
-fn prim(spec: &str) -> Mesh {
-    let soup = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
-}
 
 fn corner(m: &Mesh, face: usize) -> CornerId {
     m.face_corner(m.face_at(face).unwrap()).unwrap()
@@ -291,8 +287,8 @@ fn faces_sharing_an_edge_or_a_vertex() {
             )
             .unwrap();
             assert_eq!(
-                (m.vertex_count(), m.edge_count(), m.face_count()),
-                (6 + 3 * (s - 1), 12 + 3 * (2 * s - 1), 8 + 3 * s - 2),
+                vef(&m),
+                vef_after_handle((6, 12, 8), 3, s),
                 "shared {want}, s={s}"
             );
             assert_eq!(m.genus(), 1);
@@ -330,6 +326,22 @@ fn handle_curve_names_round_trip_and_hermite_is_the_default() {
     assert!(err.to_string().contains("\"spline\""), "{err}");
 }
 
+/// V, E and F of `m`.
+fn vef(m: &Mesh) -> (usize, usize, usize) {
+    (m.vertex_count(), m.edge_count(), m.face_count())
+}
+
+/// V, E and F after a handle of `s` segments between two `d`-gons of a
+/// mesh with `(v, e, f)`: s − 1 sections (d vertices, d edges, 2 faces
+/// each) and s pipes (each d new edges, 2 faces replaced by d quads).
+fn vef_after_handle((v, e, f): (usize, usize, usize), d: usize, s: usize) -> (usize, usize, usize) {
+    (
+        v + d * (s - 1),
+        e + d * (s - 1) + d * s,
+        f + 2 * (s - 1) + (d - 2) * s,
+    )
+}
+
 #[test]
 fn bezier_handle_between_two_faces_of_a_cube() {
     // Two quads of one cube, s segments. A handle of s segments between
@@ -338,8 +350,7 @@ fn bezier_handle_between_two_faces_of_a_cube() {
     //   V' = V + d(s − 1), E' = E + d(s − 1) + d·s, F' = F + 2(s − 1) + (d − 2)s,
     // and the faces are in one component, so the genus rises by one.
     let m0 = prim("@cube");
-    let (v, e, f) = (m0.vertex_count(), m0.edge_count(), m0.face_count());
-    assert_eq!((v, e, f, m0.genus()), (8, 12, 6, 0));
+    assert_eq!((vef(&m0), m0.genus()), ((8, 12, 6), 0));
     let d = 4;
     // Faces 0 and 2 are adjacent (the bottom and a side): with positive
     // weights the handle arcs outside the cube. Faces 5 and 0 are the top
@@ -358,12 +369,8 @@ fn bezier_handle_between_two_faces_of_a_cube() {
             .unwrap();
             m.validate().unwrap();
             assert_eq!(
-                (m.vertex_count(), m.edge_count(), m.face_count()),
-                (
-                    v + d * (s - 1),
-                    e + d * (s - 1) + d * s,
-                    f + 2 * (s - 1) + (d - 2) * s
-                ),
+                vef(&m),
+                vef_after_handle(vef(&m0), d, s),
                 "faces {a},{b}, s={s}"
             );
             assert_eq!(m.genus(), 1);
@@ -428,8 +435,7 @@ fn bezier_handle_between_two_components_joins_them() {
     // (above), but the pipe chain joins the two spheres into one: the
     // genus sum stays 0 + 0 = 0 and V − E + F drops from 4 to 2.
     let m0 = two_cubes(3.0);
-    let (v, e, f) = (m0.vertex_count(), m0.edge_count(), m0.face_count());
-    assert_eq!((v, e, f), (16, 24, 12));
+    assert_eq!(vef(&m0), (16, 24, 12));
     assert_eq!(m0.topology().component_count(), 2);
     let faces: Vec<FaceId> = m0.faces().collect();
     let pick = |want: DVec3, x_range: (f64, f64)| {
@@ -450,14 +456,7 @@ fn bezier_handle_between_two_components_joins_them() {
     let p = HandleParams::new(s, w, w).with_curve(HandleCurve::Bezier);
     let r = create_handle(&mut m, c1, c2, &p).unwrap();
     m.validate().unwrap();
-    assert_eq!(
-        (m.vertex_count(), m.edge_count(), m.face_count()),
-        (
-            v + d * (s - 1),
-            e + d * (s - 1) + d * s,
-            f + 2 * (s - 1) + (d - 2) * s
-        )
-    );
+    assert_eq!(vef(&m), vef_after_handle(vef(&m0), d, s));
     assert_eq!(m.topology().component_count(), 1);
     assert_eq!(m.genus(), 0);
     let ring: Vec<DVec3> = r.sections[1]

@@ -4,16 +4,11 @@
 //! polytope, both by Euler's formula), convexity and containment checked
 //! face by face, refusals.
 
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use crate::test_util::prim;
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
 use super::*;
-
-fn prim(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
 
 fn counts(m: &Mesh) -> (usize, usize, usize) {
     (m.vertex_count(), m.edge_count(), m.face_count())

@@ -11,11 +11,7 @@ use holey_mesh::PolyMesh;
 
 use super::plan::{Decision, angle_tol, classify, interior_angle};
 use super::*;
-
-fn primitive(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
+use crate::test_util::prim;
 
 fn import(positions: Vec<DVec3>, faces: Vec<Vec<u32>>) -> Mesh {
     let poly = PolyMesh::from_faces(positions, faces);
@@ -38,6 +34,24 @@ fn absolute(d: f64) -> MengerParams {
         thickness: Thickness::Absolute(d),
         ..MengerParams::default()
     }
+}
+
+/// The default parameters, `n` levels deep.
+fn levels(n: usize) -> MengerParams {
+    MengerParams {
+        iterations: n,
+        ..MengerParams::default()
+    }
+}
+
+/// `@cube` with its corner 0 pushed by `by` along (1, 1, 1), off the
+/// planes of its three faces (§VII.5.1's skewed faces).
+fn cube_with_a_corner_pushed(by: f64) -> Mesh {
+    let poly = holey_shapes::parse_primitive("@cube").unwrap();
+    let mut positions = poly.positions.clone();
+    positions[0] += DVec3::splat(by);
+    let faces: Vec<Vec<u32>> = poly.faces().map(|f| f.to_vec()).collect();
+    import(positions, faces)
 }
 
 /// Area of each face (Newell), smallest first.
@@ -92,7 +106,7 @@ fn check_result(before: &Mesh, after: &Mesh) {
 
 #[test]
 fn cube_level_one_is_the_level_one_sponge() {
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     let before = m.clone();
     let report = menger(&mut m, &MengerParams::default()).unwrap();
     check_result(&before, &m);
@@ -107,7 +121,7 @@ fn cube_level_one_is_the_level_one_sponge() {
     // The solid is 20 of 27 sub-cubes.
     assert!((volume(&m) - 8.0 * 20.0 / 27.0).abs() < 1e-12);
     // It is the true level-1 sponge: the same points as exact mode.
-    let mut exact = primitive("@cube");
+    let mut exact = prim("@cube");
     menger(
         &mut exact,
         &MengerParams {
@@ -137,7 +151,7 @@ fn cube_volume_follows_the_thickness() {
     // D, and meet in a central cube of side s, so the volume is
     // 8 − 6·s²·D − s³.
     for d in [0.2, 0.5, 2.0 / 3.0, 0.9] {
-        let mut m = primitive("@cube");
+        let mut m = prim("@cube");
         let before = m.clone();
         menger(&mut m, &absolute(d)).unwrap();
         check_result(&before, &m);
@@ -150,11 +164,8 @@ fn cube_volume_follows_the_thickness() {
 
 #[test]
 fn cube_level_two_has_genus_81_and_the_true_sponges_solid() {
-    let mut m = primitive("@cube");
-    let params = MengerParams {
-        iterations: 2,
-        ..MengerParams::default()
-    };
+    let mut m = prim("@cube");
+    let params = levels(2);
     let report = menger(&mut m, &params).unwrap();
     m.validate().unwrap();
     assert_eq!(m.genus(), 81);
@@ -175,7 +186,7 @@ fn cube_level_two_has_genus_81_and_the_true_sponges_solid() {
     }
     // With the figure-61 bends the thesis's level 2 encloses exactly the
     // true level-2 sponge (same volume and area), with coarser faces.
-    let mut exact = primitive("@cube");
+    let mut exact = prim("@cube");
     menger(
         &mut exact,
         &MengerParams {
@@ -193,11 +204,8 @@ fn cube_level_two_has_genus_81_and_the_true_sponges_solid() {
 fn cube_level_three_follows_the_genus_formula() {
     // genus' = 2g + F − 1 = 2·81 + 960 − 1. (The true level 3 has genus
     // 1409: from level 3 on the thesis's sponge is a different surface.)
-    let mut m = primitive("@cube");
-    let params = MengerParams {
-        iterations: 3,
-        ..MengerParams::default()
-    };
+    let mut m = prim("@cube");
+    let params = levels(3);
     menger(&mut m, &params).unwrap();
     m.validate().unwrap();
     assert_eq!(m.genus(), 1121);
@@ -207,7 +215,7 @@ fn cube_level_three_follows_the_genus_formula() {
 #[test]
 fn subdivided_cube_keeps_flat_strips() {
     // @cube:2 has 24 flat edges (case 4): their strips stay, 2D wide.
-    let mut m = primitive("@cube:2");
+    let mut m = prim("@cube:2");
     let before = m.clone();
     let report = menger(&mut m, &ratio(1.0 / 3.0)).unwrap();
     check_result(&before, &m);
@@ -219,7 +227,7 @@ fn subdivided_cube_keeps_flat_strips() {
 fn dodecahedron_keeps_or_collapses_case_three_as_asked() {
     // φ = 116.57° at every edge: case 3, decided by the threshold.
     for (angle, collapsed) in [(90.0, 0), (116.0, 0), (117.0, 30), (180.0, 30)] {
-        let mut m = primitive("@dodecahedron");
+        let mut m = prim("@dodecahedron");
         let before = m.clone();
         let params = MengerParams {
             collapse_angle_deg: angle,
@@ -241,7 +249,7 @@ fn dodecahedron_keeps_or_collapses_case_three_as_asked() {
 fn tetrahedron_collapses_case_one() {
     // φ = 70.53°: case 1. Each of the 4 vertex faces and 6 strips vanish:
     // V = 4 + 12 + 12 + 4, E = 90 − 12 − 6, F = 36.
-    let mut m = primitive("@tetrahedron");
+    let mut m = prim("@tetrahedron");
     let before = m.clone();
     let report = menger(&mut m, &ratio(0.25)).unwrap();
     check_result(&before, &m);
@@ -342,7 +350,7 @@ fn winged_corners_move_into_the_face() {
 
 #[test]
 fn a_torus_follows_the_genus_formula() {
-    let mut m = primitive("@torus:8:6");
+    let mut m = prim("@torus:8:6");
     let before = m.clone();
     let report = menger(&mut m, &ratio(0.15)).unwrap();
     check_result(&before, &m);
@@ -356,11 +364,7 @@ fn a_torus_follows_the_genus_formula() {
 fn slightly_skewed_faces_are_counted_and_handled() {
     // §VII.5.1: a cube with one corner pushed a little off its three faces'
     // planes.
-    let poly = holey_shapes::parse_primitive("@cube").unwrap();
-    let mut positions = poly.positions.clone();
-    positions[0] += DVec3::splat(0.01);
-    let faces: Vec<Vec<u32>> = poly.faces().map(|f| f.to_vec()).collect();
-    let mut m = import(positions, faces);
+    let mut m = cube_with_a_corner_pushed(0.01);
     let before = m.clone();
     let report = menger(&mut m, &MengerParams::default()).unwrap();
     check_result(&before, &m);
@@ -372,11 +376,7 @@ fn slightly_skewed_faces_are_counted_and_handled() {
 fn strongly_skewed_faces_are_cut_into_planar_pieces() {
     // The same corner pushed far: its three quads are cut into triangles
     // first (the thesis's remedy), so the level sees 9 faces: genus 8.
-    let poly = holey_shapes::parse_primitive("@cube").unwrap();
-    let mut positions = poly.positions.clone();
-    positions[0] += DVec3::splat(0.3);
-    let faces: Vec<Vec<u32>> = poly.faces().map(|f| f.to_vec()).collect();
-    let mut m = import(positions, faces);
+    let mut m = cube_with_a_corner_pushed(0.3);
     let report = menger(&mut m, &absolute(0.25)).unwrap();
     m.validate().unwrap();
     assert_eq!(report.levels[0].skew_cuts, 3);
@@ -389,11 +389,8 @@ fn strongly_skewed_faces_are_cut_into_planar_pieces() {
 fn folded_hexagons_of_level_three_are_cut_in_two() {
     // After three levels on a cube, 48 offset faces are hexagons folded
     // over a box's inside corner (three re-entrant edges meet there).
-    let mut m = primitive("@cube");
-    let params = MengerParams {
-        iterations: 3,
-        ..MengerParams::default()
-    };
+    let mut m = prim("@cube");
+    let params = levels(3);
     menger(&mut m, &params).unwrap();
     let hexagons = m.faces().filter(|&f| m.face_len(f).unwrap() == 6).count();
     assert_eq!(hexagons, 48);
@@ -464,12 +461,9 @@ fn interior_angles_and_cases() {
 
 #[test]
 fn zero_iterations_change_nothing() {
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     let before = m.to_raw();
-    let params = MengerParams {
-        iterations: 0,
-        ..MengerParams::default()
-    };
+    let params = levels(0);
     let report = menger(&mut m, &params).unwrap();
     assert!(report.levels.is_empty() && report.exact.is_none());
     assert_eq!(m.to_raw(), before);
@@ -493,7 +487,7 @@ fn bad_thickness_is_refused() {
                 thickness: t,
                 ..MengerParams::default()
             };
-            let err = refused(primitive("@cube"), &params);
+            let err = refused(prim("@cube"), &params);
             assert!(matches!(err, MengerError::InvalidThickness { .. }), "{err}");
         }
     }
@@ -506,7 +500,7 @@ fn bad_collapse_angle_is_refused() {
             collapse_angle_deg: angle,
             ..MengerParams::default()
         };
-        let err = refused(primitive("@cube"), &params);
+        let err = refused(prim("@cube"), &params);
         assert!(
             matches!(err, MengerError::InvalidCollapseAngle { .. }),
             "{err}"
@@ -517,7 +511,7 @@ fn bad_collapse_angle_is_refused() {
 #[test]
 fn too_thick_is_refused_naming_the_face() {
     // The cube's edges are 2 long: D = 1 leaves no middle segment.
-    let m = primitive("@cube");
+    let m = prim("@cube");
     let first = m.faces().next().unwrap();
     let err = refused(m, &absolute(1.0));
     match err {
@@ -527,7 +521,7 @@ fn too_thick_is_refused_naming_the_face() {
         other => panic!("{other}"),
     }
     assert!(
-        refused(primitive("@cube"), &absolute(1.0))
+        refused(prim("@cube"), &absolute(1.0))
             .to_string()
             .contains("f0")
     );
@@ -535,7 +529,7 @@ fn too_thick_is_refused_naming_the_face() {
     // vanish. At R = 0.32 they survive, but the offset faces would pass
     // the centre and come out inside out.
     for r in [1.0 / 3.0, 0.32] {
-        let err = refused(primitive("@tetrahedron"), &ratio(r));
+        let err = refused(prim("@tetrahedron"), &ratio(r));
         assert!(
             matches!(err, MengerError::ThicknessTooLarge { .. }),
             "{err}"
@@ -547,7 +541,7 @@ fn too_thick_is_refused_naming_the_face() {
         thickness: Thickness::Absolute(2.0 / 3.0),
         ..MengerParams::default()
     };
-    let err = refused(primitive("@cube"), &params);
+    let err = refused(prim("@cube"), &params);
     assert!(
         matches!(err, MengerError::ThicknessTooLarge { level: 2, .. }),
         "{err}"
@@ -556,18 +550,18 @@ fn too_thick_is_refused_naming_the_face() {
 
 #[test]
 fn unsupported_inputs_are_refused() {
-    let err = refused(primitive("@plane"), &MengerParams::default());
+    let err = refused(prim("@plane"), &MengerParams::default());
     assert!(
         matches!(err, MengerError::OpenSurface { holes: 1 }),
         "{err}"
     );
     // A Sierpinski polyhedron has self-loops.
-    let mut s = primitive("@tetrahedron");
+    let mut s = prim("@tetrahedron");
     crate::sierpinski::sierpinski(&mut s, 1).unwrap();
     let err = refused(s, &ratio(0.1));
     assert!(matches!(err, MengerError::SelfLoop { .. }), "{err}");
     // A point-sphere.
-    let mut p = primitive("@cube");
+    let mut p = prim("@cube");
     p.create_vertex(DVec3::splat(4.0)).unwrap();
     let err = refused(p, &MengerParams::default());
     assert!(
@@ -575,7 +569,7 @@ fn unsupported_inputs_are_refused() {
         "{err}"
     );
     // A two-gon: an edge doubled inside a face of the cube.
-    let mut two_gon = primitive("@cube");
+    let mut two_gon = prim("@cube");
     let c = two_gon.corners().next().unwrap();
     let next = two_gon.corner_next(c).unwrap();
     two_gon.insert_edge(c, next).unwrap();
@@ -593,7 +587,7 @@ fn unsupported_inputs_are_refused() {
 fn the_face_cap_is_checked_before_each_level() {
     // Level 1 of a cube may make up to 8·12 + 8 = 104 faces.
     let err = {
-        let mut m = primitive("@cube");
+        let mut m = prim("@cube");
         let before = m.to_raw();
         let err = menger_capped(&mut m, &MengerParams::default(), 103).unwrap_err();
         assert_eq!(m.to_raw(), before);
@@ -610,15 +604,12 @@ fn the_face_cap_is_checked_before_each_level() {
         ),
         "{err}"
     );
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     menger_capped(&mut m, &MengerParams::default(), 104).unwrap();
     // Level 2 is refused after level 1 ran on the copy: unchanged.
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     let before = m.to_raw();
-    let params = MengerParams {
-        iterations: 2,
-        ..MengerParams::default()
-    };
+    let params = levels(2);
     let err = menger_capped(&mut m, &params, 1000).unwrap_err();
     assert!(
         matches!(err, MengerError::TooManyFaces { level: 2, .. }),
@@ -736,7 +727,7 @@ fn exact_counts_match_a_brute_force_count() {
 #[test]
 fn exact_levels_are_true_sponges() {
     for level in 1..=3usize {
-        let mut m = primitive("@cube");
+        let mut m = prim("@cube");
         let report = menger(&mut m, &exact(level)).unwrap();
         m.validate().unwrap();
         let (v, e, f, genus) = exact_counts(level).unwrap();
@@ -795,7 +786,7 @@ fn exact_mode_maps_a_parallelepiped_and_keeps_orientation() {
     menger(&mut m, &exact(1)).unwrap();
     assert!(volume(&m) > 0.0);
     // An inside-out cube gives an inside-out sponge.
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     let f = m.faces().next().unwrap();
     m.reverse_component(f).unwrap();
     menger(&mut m, &exact(1)).unwrap();
@@ -805,7 +796,7 @@ fn exact_mode_maps_a_parallelepiped_and_keeps_orientation() {
 #[test]
 fn exact_mode_refuses_other_shapes() {
     for spec in ["@tetrahedron", "@cube:2", "@octahedron"] {
-        let err = refused(primitive(spec), &exact(1));
+        let err = refused(prim(spec), &exact(1));
         assert!(
             matches!(err, MengerError::NotAParallelepiped { .. }),
             "{spec}: {err}"
@@ -840,7 +831,7 @@ fn random_parameters_give_a_valid_sponge_or_a_clean_refusal() {
     let (mut ok, mut refused_count) = (0, 0);
     for _ in 0..60 {
         let spec = *rng.pick(&specs);
-        let mut m = primitive(spec);
+        let mut m = prim(spec);
         let before = m.clone();
         let params = MengerParams {
             iterations: 1 + rng.below(2),

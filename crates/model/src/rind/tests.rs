@@ -1,11 +1,6 @@
 use super::*;
+use crate::test_util::prim;
 use glam::DVec3;
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
-
-fn prim(spec: &str) -> Mesh {
-    let soup = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
-}
 
 fn counts(m: &Mesh) -> (usize, usize, usize) {
     (m.vertex_count(), m.edge_count(), m.face_count())

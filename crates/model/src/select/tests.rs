@@ -1,15 +1,10 @@
 //! Selection tests on grids, tori and solids whose loops, rings and
 //! colourings are known by construction.
 
+use crate::test_util::prim;
 use holey_dlfl::Mesh;
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
 
 use super::*;
-
-fn prim(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
 
 fn first_edge(m: &Mesh, f: FaceId) -> EdgeId {
     m.corner_edge(m.face_corner(f).unwrap()).unwrap().unwrap()

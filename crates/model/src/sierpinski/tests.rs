@@ -6,11 +6,7 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, Mesh, RawMesh};
 
 use super::*;
-
-fn primitive(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
+use crate::test_util::prim;
 
 fn loops(m: &Mesh) -> usize {
     m.edges().filter(|&e| m.is_self_loop(e).unwrap()).count()
@@ -37,7 +33,7 @@ fn predicted(m: &Mesh) -> (usize, usize, usize, usize) {
 
 #[test]
 fn tetrahedron_matches_the_thesis_counts() {
-    let mut m = primitive("@tetrahedron");
+    let mut m = prim("@tetrahedron");
     let expected = [
         (10, 30, 16, 3, 6),
         (34, 126, 64, 15, 30),
@@ -58,7 +54,7 @@ fn tetrahedron_matches_the_thesis_counts() {
 
 #[test]
 fn three_iterations_at_once_equal_three_single_ones() {
-    let mut once = primitive("@tetrahedron");
+    let mut once = prim("@tetrahedron");
     let report = sierpinski(&mut once, 3).unwrap();
     once.validate().unwrap();
     assert_eq!(counts(&once), (130, 510, 256, 63, 126));
@@ -73,7 +69,7 @@ fn three_iterations_at_once_equal_three_single_ones() {
 fn cube_follows_the_closed_form() {
     // Derived by hand from the closed form (module docs), starting from
     // (V, E, F, L) = (8, 12, 6, 0): n = 12, 48, 192.
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     let expected = [
         (20, 60, 32, 5, 12),
         (68, 252, 128, 29, 60),
@@ -91,7 +87,7 @@ fn genus_grows_by_a_factor_approaching_four() {
     // §VI.4: after the first iteration the genus grows by a factor of four
     // with every iteration. Exactly, genus' = genus + n/2 with n = 4^k·n0,
     // so the ratio falls towards 4 from above.
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     sierpinski(&mut m, 1).unwrap();
     let mut genus = m.genus();
     let mut last_ratio = f64::INFINITY;
@@ -107,7 +103,7 @@ fn genus_grows_by_a_factor_approaching_four() {
 
 #[test]
 fn every_step_leaves_a_valid_mesh() {
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     for _ in 0..3 {
         let (corners, mids) = subdivide_step(&mut m).unwrap();
         m.validate().unwrap();
@@ -130,7 +126,7 @@ fn closed_form_holds_on_other_solids_and_a_torus() {
         "@torus:6:4",
         "@cube:2",
     ] {
-        let mut m = primitive(spec);
+        let mut m = prim(spec);
         let g0 = m.genus();
         let f0 = m.face_count() as i64;
         for k in 0..3 {
@@ -203,7 +199,7 @@ fn visible(m: &Mesh, f: holey_dlfl::FaceId) -> Vec<DVec3> {
 fn tetrahedron_faces_are_equilateral_triangles_of_halving_size() {
     // Every face, corner piece or back face, looks like a triangle (its
     // self-loops ignored, §VI.6) whose side halves at every iteration.
-    let mut m = primitive("@tetrahedron");
+    let mut m = prim("@tetrahedron");
     let side0 = 8f64.sqrt();
     for k in 1..=4 {
         sierpinski(&mut m, 1).unwrap();
@@ -230,7 +226,7 @@ fn tetrahedron_faces_are_equilateral_triangles_of_halving_size() {
 
 #[test]
 fn zero_iterations_change_nothing() {
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     let before = m.to_raw();
     let report = sierpinski(&mut m, 0).unwrap();
     assert!(report.steps.is_empty());
@@ -239,7 +235,7 @@ fn zero_iterations_change_nothing() {
 
 #[test]
 fn open_surfaces_are_refused_unchanged() {
-    let mut m = primitive("@plane");
+    let mut m = prim("@plane");
     let before = m.to_raw();
     let err = sierpinski(&mut m, 1).unwrap_err();
     assert!(
@@ -251,7 +247,7 @@ fn open_surfaces_are_refused_unchanged() {
 
 #[test]
 fn the_face_cap_is_checked_before_anything_changes() {
-    let mut m = primitive("@tetrahedron");
+    let mut m = prim("@tetrahedron");
     let before = m.to_raw();
     // Bound after one iteration: 4 + (12 sides + 6 edges) = 22 ≥ 16 real.
     let err = sierpinski_capped(&mut m, 1, 21).unwrap_err();
@@ -276,7 +272,7 @@ fn the_face_cap_is_checked_before_anything_changes() {
 
 #[test]
 fn point_spheres_are_left_alone() {
-    let mut m = primitive("@tetrahedron");
+    let mut m = prim("@tetrahedron");
     m.create_vertex(DVec3::splat(5.0)).unwrap();
     sierpinski(&mut m, 1).unwrap();
     m.validate().unwrap();
@@ -288,7 +284,7 @@ fn point_spheres_are_left_alone() {
 fn sierpinski_applies_to_a_menger_sponge() {
     // Figure 66 combines the two tools. A level-1 sponge has no loops:
     // genus' = 2g + F − 1 = 10 + 72 − 1.
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     crate::menger::menger(&mut m, &crate::menger::MengerParams::default()).unwrap();
     let (v, e, f, l) = predicted(&m);
     sierpinski(&mut m, 1).unwrap();

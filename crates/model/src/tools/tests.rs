@@ -2,16 +2,11 @@
 //! definitions, counts worked out per tool, refusals leaving the mesh
 //! unchanged.
 
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use crate::test_util::prim;
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
 use super::*;
-
-fn prim(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
 
 fn counts(m: &Mesh) -> (usize, usize, usize) {
     (m.vertex_count(), m.edge_count(), m.face_count())

@@ -3,7 +3,7 @@ use holey_geom::position_classes;
 
 use super::*;
 use crate::intersect::intersections;
-use crate::intersect::tests::{join, octahedron};
+use crate::intersect::tests::{join, octahedron, two_octahedra};
 
 fn area(m: &TriMesh) -> f64 {
     m.triangles
@@ -50,11 +50,35 @@ fn closed_oriented(m: &TriMesh) -> bool {
         .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
 }
 
-fn setup(m: &TriMesh) -> (Edges, Vec<u32>, Intersections) {
+/// What [`cut`] takes besides a mesh at rest: its edges, position classes
+/// and intersections.
+struct Setup {
+    edges: Edges,
+    ids: Vec<u32>,
+    x: Intersections,
+}
+
+fn setup(m: &TriMesh) -> Setup {
     let edges = Edges::new(m);
     let ids = position_classes(&m.positions).unwrap();
     let x = intersections(m, &m.positions, &edges, &ids).unwrap();
-    (edges, ids, x)
+    Setup { edges, ids, x }
+}
+
+impl Setup {
+    /// [`cut`] of `m` (the mesh this was set up for) at its own positions,
+    /// with no sampler.
+    fn cut(&self, m: &TriMesh, deletion: Deletion<'_>) -> Cut {
+        cut(
+            m,
+            &m.positions,
+            &self.edges,
+            &self.ids,
+            &self.x,
+            deletion,
+            None,
+        )
+    }
 }
 
 fn inside_octahedron(p: DVec3, c: DVec3, r: f64) -> bool {
@@ -64,12 +88,10 @@ fn inside_octahedron(p: DVec3, c: DVec3, r: f64) -> bool {
 
 #[test]
 fn resolve_cuts_and_glues_without_deleting() {
-    let m = join(
-        &octahedron(DVec3::ZERO, 1.0),
-        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
-    );
-    let (edges, ids, x) = setup(&m);
-    let out = cut(&m, &m.positions, &edges, &ids, &x, Deletion::Nothing, None);
+    let m = two_octahedra();
+    let s = setup(&m);
+    let x = &s.x;
+    let out = s.cut(&m, Deletion::Nothing);
     assert_eq!(out.report.curves_kept, 1);
     assert_eq!(out.report.triangles_deleted, 0);
     assert!((area(&out.mesh) - area(&m)).abs() < 1e-12 * area(&m));
@@ -86,7 +108,7 @@ fn resolve_cuts_and_glues_without_deleting() {
 fn deleting_the_odd_parts_of_two_octahedra_gives_their_union() {
     let (ca, cb) = (DVec3::ZERO, DVec3::new(0.7, 0.1, 0.05));
     let m = join(&octahedron(ca, 1.0), &octahedron(cb, 1.0));
-    let (edges, ids, x) = setup(&m);
+    let s = setup(&m);
     // Odd: vertices of one solid inside the other.
     let odd: Vec<bool> = m
         .positions
@@ -100,17 +122,12 @@ fn deleting_the_odd_parts_of_two_octahedra_gives_their_union() {
             }
         })
         .collect();
-    let out = cut(
+    let out = s.cut(
         &m,
-        &m.positions,
-        &edges,
-        &ids,
-        &x,
         Deletion::Odd {
             odd: &odd,
             open_ends: false,
         },
-        None,
     );
     assert!(
         closed_oriented(&out.mesh),
@@ -156,21 +173,16 @@ fn false_edges_close_a_parity_change_that_no_curve_separates() {
             m.triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
         }
     }
-    let (edges, ids, x) = setup(&m);
-    assert_eq!(x.curve_count, 0);
+    let s = setup(&m);
+    assert_eq!(s.x.curve_count, 0);
     let c = DVec3::new(4.0, 4.0, 0.0);
     let odd: Vec<bool> = m.positions.iter().map(|p| p.distance(c) < 2.5).collect();
-    let out = cut(
+    let out = s.cut(
         &m,
-        &m.positions,
-        &edges,
-        &ids,
-        &x,
         Deletion::Odd {
             odd: &odd,
             open_ends: false,
         },
-        None,
     );
     assert!(out.report.false_vertices > 0 && out.report.false_edges > 0);
     // A hole opened, and the remaining surface is a disk with one hole:

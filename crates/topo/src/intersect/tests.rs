@@ -44,6 +44,15 @@ pub(crate) fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
     m
 }
 
+/// Two unit octahedra, the second moved by (0.7, 0.1, 0.05) (general
+/// position): their surfaces cross in one closed curve.
+pub(crate) fn two_octahedra() -> TriMesh {
+    join(
+        &octahedron(DVec3::ZERO, 1.0),
+        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
+    )
+}
+
 #[test]
 fn two_crossing_triangles() {
     let m = soup(&[
@@ -67,10 +76,7 @@ fn two_crossing_triangles() {
 
 #[test]
 fn two_octahedra_meet_in_one_closed_curve() {
-    let m = join(
-        &octahedron(DVec3::ZERO, 1.0),
-        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
-    );
+    let m = two_octahedra();
     let x = run(&m);
     assert_eq!(x.curve_count, 1);
     // A closed curve: every node has two pieces.
@@ -89,10 +95,7 @@ fn two_octahedra_meet_in_one_closed_curve() {
 /// outside stops it too.
 #[test]
 fn the_pair_limit_stops_the_stage() {
-    let m = join(
-        &octahedron(DVec3::ZERO, 1.0),
-        &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
-    );
+    let m = two_octahedra();
     let pairs = run(&m).pairs.len();
     assert!(pairs > 2);
     let edges = Edges::new(&m);
@@ -190,10 +193,7 @@ fn large_offset_and_tiny_coordinates() {
         (1.0, 1e12),
         (1e-6, 1e6),
     ] {
-        let mut m = join(
-            &octahedron(DVec3::ZERO, 1.0),
-            &octahedron(DVec3::new(0.7, 0.1, 0.05), 1.0),
-        );
+        let mut m = two_octahedra();
         for p in &mut m.positions {
             *p = *p * scale + DVec3::splat(offset);
         }
@@ -224,11 +224,7 @@ fn read(path: &std::path::Path) -> TriMesh {
 /// the shared folder; skipped visibly when it is absent.
 #[test]
 fn intersecting_pairs_match_the_shared_readme() {
-    let Some(dir) =
-        holey_testkit::shared_meshes_or_skip("intersecting_pairs_match_the_shared_readme")
-    else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!("intersecting_pairs_match_the_shared_readme");
     for (file, pairs) in [
         ("self_intersectA.obj", 338),
         ("self_intersectB.obj", 338),

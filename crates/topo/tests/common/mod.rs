@@ -58,6 +58,25 @@ pub fn join(a: &TriMesh, b: &TriMesh) -> TriMesh {
     m
 }
 
+/// One frame in which `still` stays where it is and `moving` goes from
+/// its positions moved by `from` to its positions moved by `to`: the
+/// joined start mesh (`still`'s vertices first) and the end positions.
+pub fn still_and_moving(
+    still: &TriMesh,
+    moving: &TriMesh,
+    from: DVec3,
+    to: DVec3,
+) -> (TriMesh, Vec<DVec3>) {
+    let start = join(still, &translate(moving, from));
+    let end = still
+        .positions
+        .iter()
+        .copied()
+        .chain(moving.positions.iter().map(|&p| p + to))
+        .collect();
+    (start, end)
+}
+
 pub fn volume(m: &TriMesh) -> f64 {
     let c = m.positions.first().copied().unwrap_or(DVec3::ZERO);
     m.triangles

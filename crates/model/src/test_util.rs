@@ -1,0 +1,27 @@
+//! Fixtures the unit tests of several modules share.
+
+use holey_dlfl::Mesh;
+use holey_dlfl::convert::{ImportOptions, to_dlfl};
+
+/// The built-in primitive `spec` (`@cube`, `@torus:8:4`, …) as a kernel
+/// mesh, imported with the default options.
+pub(crate) fn prim(spec: &str) -> Mesh {
+    let poly = holey_shapes::parse_primitive(spec).unwrap();
+    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
+}
+
+/// (V, E, F, components, genus) of `m`: what an operator's counting
+/// formula predicts.
+pub(crate) type State = (i64, i64, i64, usize, i64);
+
+/// The [`State`] of `m`.
+pub(crate) fn state(m: &Mesh) -> State {
+    let t = m.topology();
+    (
+        m.vertex_count() as i64,
+        m.edge_count() as i64,
+        m.face_count() as i64,
+        t.component_count(),
+        t.genus(),
+    )
+}
