@@ -771,13 +771,28 @@ const scenarios = [
       return { ne: f.ne, distinct: got.size, fromTriangles: want.size, same: got.size === f.ne && got.size === want.size && [...got].every((k) => want.has(k)) };
     });
     const c2 = await counts();
+    const v2 = await version(page);
+    await page.evaluate(() => {
+      const f = window.__holey.viewer.frame;
+      window.__midStroke = { positions: Float32Array.from(f.positions), tris: Uint32Array.from(f.tris) };
+    });
     await page.mouse.up();
     await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+    await waitVersionAbove(page, v2, 60000);
+    await waitFor(page, 'the committed frame', () => window.__holey.frameVersion === window.__holey.version && !window.__holey.viewer.frame.preview);
+    // An inflate commits its last frame's mesh: the whole frame of the
+    // commit holds what the patches built on the page.
+    check.commitMatchesPatches = await page.evaluate(() => {
+      const f = window.__holey.viewer.frame, m = window.__midStroke;
+      const same = (a, b) => a.length === b.length && a.every((x, i) => x === b[i]);
+      return same(m.positions, f.positions) && same(m.tris, f.tris);
+    });
     await page.click(tid('wireframe'));
     check.partialRendersInStroke = check.partialRenders - p0.renders;
     check.patchFrames = c2.patch - c1.patch;
     console.log(`  bunny patch check: ${JSON.stringify(check)}`);
     if (!(c1.patch - c0.patch > 0) || !(check.patchFrames > 0)) throw new Error(`no patch frame during the remeshing strokes: ${JSON.stringify({ c0, c1, c2 })}`);
+    if (!check.commitMatchesPatches) throw new Error('the committed whole frame differs from the mesh the patches built');
     if (!check.edges.same) throw new Error(`the patched edges are not the patched triangles' edges: ${JSON.stringify(check.edges)}`);
     if (p0.enabled) {
       if (!(check.partialRendersInStroke > 0)) throw new Error('no partial redraw during the bunny check stroke');
