@@ -719,6 +719,8 @@ const scenarios = [
       for (const k of keys) window.__holey[k].length = 0;
     }, PARTS);
     const before = await version(page);
+    const counts = () => page.evaluate(() => ({ patch: window.__holey.patchFrames, preview: window.__holey.previewFrames, frames: window.__holey.frames }));
+    const c0 = await counts();
     for (const sign of [1, -1]) {
       const [a, b] = sign > 0 ? [from, to] : [to, from];
       await page.mouse.move(a[0], a[1]);
@@ -736,6 +738,69 @@ const scenarios = [
     await page.screenshot({ path: path.join(artifacts, '9-bunny-inflate.png') });
     await waitStats(page, /components 1 · genus 0 · boundary loops 5/);
     const got = await page.evaluate((keys) => Object.fromEntries(keys.map((k) => [k, [...window.__holey[k]]])), PARTS);
+    const c1 = await counts();
+    // Remeshing changes connectivity at most frames: those travel as
+    // patches (PROTOCOL.md, bit 5). Mid-stroke, the picture built from
+    // patches and partial redraws must equal a full redraw of that state.
+    const p0 = await page.evaluate(() => window.__holey.partial);
+    // With the wireframe on: patches carry the edges too.
+    await page.click(tid('wireframe'));
+    await page.mouse.move(from[0], from[1] + 20);
+    await page.mouse.down();
+    for (let i = 1; i <= 25; i++) {
+      await page.mouse.move(from[0] + ((to[0] - from[0]) * i) / 25, from[1] + 20 + ((to[1] - from[1]) * i) / 25);
+      await page.waitForTimeout(20);
+    }
+    await waitFor(page, 'the stroke frames to be answered', () => {
+      const s = window.__holey.strokeInfo;
+      return s && !s.inflight && !s.queued;
+    }, undefined, 60000);
+    await page.waitForTimeout(100);
+    const check = await page.evaluate(() => window.__holey.comparePartialToFull());
+    await page.screenshot({ path: path.join(artifacts, '10-bunny-patch-check.png') });
+    // The patched edge list is the set of the patched triangles' edges.
+    check.edges = await page.evaluate(() => {
+      const f = window.__holey.viewer.frame, t = f.tris, e = f.edges;
+      const key = (a, b) => (a < b ? a * 4294967296 + b : b * 4294967296 + a);
+      const want = new Set();
+      for (let i = 0; i < t.length; i += 3) {
+        want.add(key(t[i], t[i + 1])).add(key(t[i + 1], t[i + 2])).add(key(t[i + 2], t[i]));
+      }
+      const got = new Set();
+      for (let i = 0; i < e.length; i += 2) got.add(key(e[i], e[i + 1]));
+      return { ne: f.ne, distinct: got.size, fromTriangles: want.size, same: got.size === f.ne && got.size === want.size && [...got].every((k) => want.has(k)) };
+    });
+    const c2 = await counts();
+    const v2 = await version(page);
+    await page.evaluate(() => {
+      const f = window.__holey.viewer.frame;
+      window.__midStroke = { positions: Float32Array.from(f.positions), tris: Uint32Array.from(f.tris) };
+    });
+    await page.mouse.up();
+    await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
+    await waitVersionAbove(page, v2, 60000);
+    await waitFor(page, 'the committed frame', () => window.__holey.frameVersion === window.__holey.version && !window.__holey.viewer.frame.preview);
+    // An inflate commits its last frame's mesh: the whole frame of the
+    // commit holds what the patches built on the page.
+    check.commitMatchesPatches = await page.evaluate(() => {
+      const f = window.__holey.viewer.frame, m = window.__midStroke;
+      const same = (a, b) => a.length === b.length && a.every((x, i) => x === b[i]);
+      return same(m.positions, f.positions) && same(m.tris, f.tris);
+    });
+    await page.click(tid('wireframe'));
+    check.partialRendersInStroke = check.partialRenders - p0.renders;
+    check.patchFrames = c2.patch - c1.patch;
+    console.log(`  bunny patch check: ${JSON.stringify(check)}`);
+    if (!(c1.patch - c0.patch > 0) || !(check.patchFrames > 0)) throw new Error(`no patch frame during the remeshing strokes: ${JSON.stringify({ c0, c1, c2 })}`);
+    if (!check.commitMatchesPatches) throw new Error('the committed whole frame differs from the mesh the patches built');
+    if (!check.edges.same) throw new Error(`the patched edges are not the patched triangles' edges: ${JSON.stringify(check.edges)}`);
+    if (p0.enabled) {
+      if (!(check.partialRendersInStroke > 0)) throw new Error('no partial redraw during the bunny check stroke');
+      if (check.differ > 0.0005 * check.pixels) {
+        throw new Error(`the picture built from patches differs from a full redraw in ${check.differ} of ${check.pixels} pixels (max ${check.maxDiff})`);
+      }
+    }
+    await waitStats(page, /components 1 · genus 0 · boundary loops 5/);
     const ms = got.serverMs;
     const lat = got.strokeLatencies;
     // Server time per frame, and pointer event to picture (issue 15's
@@ -747,6 +812,8 @@ const scenarios = [
       waitMsMedian: round(median(got.waitMs)), roundTripMsMedian: round(median(got.roundTripMs)),
       clientMsMedian: round(median(got.clientMs)), toRenderMsMedian: round(median(got.toRenderMs)),
       renderMsMedian: round(median(got.renderMs)),
+      // Frames of the two strokes, and of them connectivity patches.
+      previewFrames: c1.preview - c0.preview, patchFrames: c1.patch - c0.patch,
     };
     console.log(`  bunny inflate: ${JSON.stringify(perf.bunnyInflate)}`);
     const perfFile = path.join(artifacts, 'perf.json');

@@ -9,6 +9,7 @@ export const FLAG_MASK = 2;
 export const FLAG_POSITIONS_ONLY = 4;
 export const FLAG_SPARSE = 8;
 export const FLAG_SCULPT_MASK = 16;
+export const FLAG_PATCH = 32;
 const MAGIC = 0x48534d48; // 'HMSH' read as a little-endian u32
 
 const pad4 = (n) => (n + 3) & ~3;
@@ -45,6 +46,7 @@ export function parseFrame(buf, prev) {
     off += pad4(bytes);
     return at;
   };
+  if (flags & FLAG_PATCH) return parsePatch(buf, dv, prev, take, { flags, version, nv, nt, ne, nf });
   const sparse = positionsOnly && (flags & FLAG_SPARSE) !== 0;
   let positions, sparseIdx = null, sparsePos = null;
   if (sparse) {
@@ -79,6 +81,92 @@ export function parseFrame(buf, prev) {
     preview: (flags & FLAG_PREVIEW) !== 0,
     positionsOnly, sparse, sparseIdx, sparsePos,
   };
+}
+
+/**
+ * A connectivity patch (bit 5): the slots of the previous frame's arrays
+ * that changed. Like a sparse frame it borrows the previous arrays, NOT yet
+ * updated: `patch` holds the changes (applyPatch writes them).
+ */
+function parsePatch(buf, dv, prev, take, h) {
+  if (!prev) throw new FrameError('patch frame before any full frame');
+  const from = [dv.getUint32(take(4), true), dv.getUint32(take(4), true), dv.getUint32(take(4), true)];
+  if (from[0] !== prev.nv || from[1] !== prev.nt || from[2] !== prev.ne) {
+    throw new FrameError('patch frame does not apply to the mesh on screen');
+  }
+  const list = (count, limit, what) => {
+    const k = dv.getUint32(take(4), true);
+    if (k > count) throw new FrameError(`patch frame: ${k} ${what} of ${count}`);
+    const idx = new Uint32Array(buf, take(4 * k), k);
+    let fresh = 0;
+    for (let i = 0; i < k; i++) {
+      if (idx[i] >= count || (i && idx[i] <= idx[i - 1])) throw new FrameError(`patch frame: bad ${what} list`);
+      if (idx[i] >= limit) fresh++;
+    }
+    // Every slot beyond the old count is new: all must be listed.
+    if (count > limit && fresh !== count - limit) throw new FrameError(`patch frame: new ${what} missing`);
+    return idx;
+  };
+  const vIdx = list(h.nv, prev.nv, 'vertices');
+  const vPos = new Float32Array(buf, take(12 * vIdx.length), 3 * vIdx.length);
+  const tIdx = list(h.nt, prev.nt, 'triangles');
+  const m = tIdx.length;
+  const tVerts = new Uint32Array(buf, take(12 * m), 3 * m);
+  const tFace = new Uint32Array(buf, take(4 * m), m);
+  for (let i = 0; i < 3 * m; i++) if (tVerts[i] >= h.nv) throw new FrameError('patch frame: vertex index out of range');
+  const eIdx = list(h.ne, prev.ne, 'edges');
+  const eVerts = new Uint32Array(buf, take(8 * eIdx.length), 2 * eIdx.length);
+  for (let i = 0; i < eVerts.length; i++) if (eVerts[i] >= h.nv) throw new FrameError('patch frame: edge index out of range');
+  const vMask = h.flags & FLAG_SCULPT_MASK ? new Uint8Array(buf, take(vIdx.length), vIdx.length) : null;
+  return {
+    ...h, positions: prev.positions, tris: prev.tris, triFace: prev.triFace, edges: prev.edges,
+    mask: null, sculptMask: null, preview: (h.flags & FLAG_PREVIEW) !== 0,
+    positionsOnly: false, sparse: false, sparseIdx: null, sparsePos: null,
+    patch: { from, vIdx, vPos, tIdx, tVerts, tFace, eIdx, eVerts, vMask },
+  };
+}
+
+/**
+ * Write a patch frame's changes into arrays: `store` holds the arrays the
+ * previous frame's views live in ({ positions, tris, triFace, edges }, each
+ * possibly longer than its count). Arrays without room for the new counts
+ * are replaced by larger ones (old content copied). Returns the store
+ * (`grown` says whether any array is new) and sets the frame's views.
+ */
+export function applyPatch(f, store) {
+  const p = f.patch;
+  const out = {
+    positions: grow(Float32Array, store.positions, f.nv, 3, p.from[0]),
+    tris: grow(Uint32Array, store.tris, f.nt, 3, p.from[1]),
+    triFace: grow(Uint32Array, store.triFace, f.nt, 1, p.from[1]),
+    edges: grow(Uint32Array, store.edges, f.ne, 2, p.from[2]),
+  };
+  out.grown = out.positions !== store.positions || out.tris !== store.tris || out.triFace !== store.triFace || out.edges !== store.edges;
+  applySparse(out.positions, p.vIdx, p.vPos);
+  const { tIdx, tVerts, tFace, eIdx, eVerts } = p;
+  for (let i = 0; i < tIdx.length; i++) {
+    const t = tIdx[i];
+    out.tris[3 * t] = tVerts[3 * i]; out.tris[3 * t + 1] = tVerts[3 * i + 1]; out.tris[3 * t + 2] = tVerts[3 * i + 2];
+    out.triFace[t] = tFace[i];
+  }
+  for (let i = 0; i < eIdx.length; i++) {
+    const e = eIdx[i];
+    out.edges[2 * e] = eVerts[2 * i]; out.edges[2 * e + 1] = eVerts[2 * i + 1];
+  }
+  f.positions = out.positions.subarray(0, 3 * f.nv);
+  f.tris = out.tris.subarray(0, 3 * f.nt);
+  f.triFace = out.triFace.subarray(0, f.nt);
+  f.edges = out.edges.subarray(0, 2 * f.ne);
+  return out;
+}
+
+/** `old` (holding `had` items of `size`) when it has room for `n`, else a
+ * larger array holding its first items. */
+function grow(Type, old, n, size, had) {
+  if (old.length >= size * n) return old;
+  const out = new Type(size * (Math.ceil(1.25 * n) + 1024));
+  out.set(old.subarray(0, size * Math.min(had, n)));
+  return out;
 }
 
 /** Write a sparse frame's moved vertices into a full position array. */

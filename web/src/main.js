@@ -4,7 +4,7 @@
 
 import { Viewer } from './viewer.js';
 import { Connection } from './connection.js';
-import { parseFrame, applySparse } from './frame.js';
+import { parseFrame, applySparse, applyPatch } from './frame.js';
 
 const $ = (id) => document.querySelector(`[data-testid="${id}"]`);
 const num = (id) => Number($(id).value);
@@ -64,6 +64,7 @@ const hook = {
   frames: 0,
   positionsOnlyFrames: 0,
   sparseFrames: 0,
+  patchFrames: 0, // connectivity patches (remeshing strokes)
   previewFrames: 0,
   // Per stroke frame, in ms: pointer event → picture (strokeLatencies), and
   // its parts: waiting for the previous frame's answer (waitMs), request
@@ -240,8 +241,9 @@ function onState(s) {
 function onFrame(buf) {
   const t0 = performance.now();
   let f;
+  const prev = app.frame;
   try {
-    f = parseFrame(buf, app.frame);
+    f = parseFrame(buf, prev);
   } catch (e) {
     toast(`Could not read a mesh frame: ${e.message}`, 'error');
     return;
@@ -250,9 +252,11 @@ function onFrame(buf) {
   hook.frames++;
   if (f.positionsOnly) hook.positionsOnlyFrames++;
   if (f.sparse) hook.sparseFrames++;
+  if (f.patch) hook.patchFrames++;
   if (f.preview) hook.previewFrames++;
   if (!viewer) {
     if (f.sparse) applySparse(f.positions, f.sparseIdx, f.sparsePos);
+    if (f.patch) applyPatch(f, { positions: prev.positions, tris: prev.tris, triFace: prev.triFace, edges: prev.edges });
     return;
   }
   let newTopology;

@@ -7,7 +7,7 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { applySparse } from './frame.js';
+import { applySparse, applyPatch } from './frame.js';
 import { vertexTriangles, indexRuns, clusterDecimate, areaNormals } from './proxy.js';
 
 /** Meshes above this many triangles are drawn as a decimated proxy while the
@@ -361,7 +361,7 @@ export class Viewer {
   /** Project every vertex (O(nv)); false if one is behind the camera. */
   projectAll() {
     const f = this.frame, p = f.positions, nv = f.nv;
-    if (!this.screen || this.screen.length !== 2 * nv) this.screen = new Float32Array(2 * nv);
+    if (!this.screen || this.screen.length < 2 * nv) this.screen = new Float32Array(2 * nv);
     const e = this.viewProjection(), s = this.screen;
     this.renderer.getDrawingBufferSize(this._size);
     const W = this._size.x / 2, H = this._size.y / 2;
@@ -460,7 +460,7 @@ export class Viewer {
     if (!(x1 > x0 && y1 > y0)) return true; // nothing on screen changed
     if ((x1 - x0) * (y1 - y0) > PARTIAL_MAX_AREA * bw * bh) return false;
     const f = this.frame, t = f.tris, s = this.screen, nt = f.nt;
-    if (!this.partMesh || this.partMesh.userData.for !== this.mesh) this.makePartMesh();
+    if (!this.partMesh || this.partMesh.userData.for !== this.mesh || this.partMesh.geometry.index.array.length < 3 * nt) this.makePartMesh();
     const idxAttr = this.partMesh.geometry.index, out = idxAttr.array;
     let k = 0;
     for (let i = 0; i < 3 * nt; i += 3) {
@@ -503,7 +503,7 @@ export class Viewer {
     geo.setAttribute('position', g.attributes.position);
     geo.setAttribute('normal', g.attributes.normal);
     geo.setAttribute('masked', g.attributes.masked);
-    geo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * this.frame.nt)), 1));
+    geo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, g.index.array.length)), 1));
     geo.setDrawRange(0, 0);
     this.partMesh = new THREE.Mesh(geo, this.material);
     this.partMesh.frustumCulled = false;
@@ -529,6 +529,7 @@ export class Viewer {
   /** Show a parsed frame. Returns true when connectivity changed. */
   setFrame(f) {
     const prev = this.frame;
+    if (f.patch) return this.setPatch(f, prev);
     this.frame = f;
     if (f.positionsOnly && this.mesh && prev && prev.nv === f.nv) {
       if (this.proxy) this.disposeProxy(); // the surface moved
@@ -539,7 +540,7 @@ export class Viewer {
         let damage = this.partialEnabled && !this.forceFull && f.sparseIdx.length <= f.nv / 4
           ? this.oldDamage(f.sparseIdx) : null;
         applySparse(attr.array, f.sparseIdx, f.sparsePos);
-        f.positions = attr.array;
+        f.positions = prev.positions;
         const moved = this.touchedVertices(f.sparseIdx, false);
         markRanges(attr, moved.list, moved.n, 3);
         let ring = null;
@@ -563,7 +564,7 @@ export class Viewer {
         attr.array.set(f.positions);
         markWhole(attr);
         // Keep the frame pointing at the live arrays so picking sees them.
-        f.positions = attr.array;
+        f.positions = prev.positions;
         if (!this.flat) this.updateNormals();
         this.screenFor = null;
         this.keepMask(f.mask);
@@ -576,15 +577,43 @@ export class Viewer {
     this.screenFor = null;
     this.keepMask(f.mask);
     this.requestRender();
+    // A triangle display (the sculpt workspace) may next come as patches
+    // that add vertices and triangles: its arrays get room to grow into.
+    const roomy = f.nf === f.nt && f.nt > 0;
+    const copy = (Type, a, size, n) => {
+      if (!roomy) return a;
+      const out = new Type(size * (Math.ceil(1.25 * n) + 1024));
+      out.set(a);
+      return out;
+    };
+    const store = {
+      positions: copy(Float32Array, f.positions, 3, f.nv), tris: copy(Uint32Array, f.tris, 3, f.nt),
+      triFace: copy(Uint32Array, f.triFace, 1, f.nt), edges: copy(Uint32Array, f.edges, 2, f.ne),
+    };
+    f.positions = store.positions.subarray(0, 3 * f.nv);
+    f.tris = store.tris.subarray(0, 3 * f.nt);
+    f.triFace = store.triFace.subarray(0, f.nt);
+    f.edges = store.edges.subarray(0, 2 * f.ne);
+    this.buildMesh(f, store);
+    this.setSculptMask(f.sculptMask);
+    return true;
+  }
+
+  /** The mesh objects of frame `f` over the arrays `store` holds its views
+   * in (each possibly longer: room for patches). */
+  buildMesh(f, store) {
     this.disposeMesh();
     this.disposeProxy();
     this.adj = null;
-    const pos = liveAttribute(f.positions, 3);
+    this.store = store;
+    const cap = store.positions.length / 3;
+    const pos = liveAttribute(store.positions, 3);
     const geo = new THREE.BufferGeometry();
     geo.setAttribute('position', pos);
-    geo.setAttribute('normal', liveAttribute(new Float32Array(3 * f.nv), 3));
-    geo.setAttribute('masked', new THREE.BufferAttribute(new Float32Array(f.nv), 1));
-    geo.setIndex(new THREE.BufferAttribute(f.tris, 1));
+    geo.setAttribute('normal', liveAttribute(new Float32Array(3 * cap), 3));
+    geo.setAttribute('masked', liveAttribute(new Float32Array(cap), 1));
+    geo.setIndex(liveAttribute(store.tris, 1));
+    geo.setDrawRange(0, 3 * f.nt);
     this.mesh = new THREE.Mesh(geo, this.material);
     // Bounds are tracked by hand (computeBoundingSphere would allocate); the
     // whole mesh is always on screen anyway.
@@ -593,7 +622,8 @@ export class Viewer {
 
     const wgeo = new THREE.BufferGeometry();
     wgeo.setAttribute('position', pos);
-    wgeo.setIndex(new THREE.BufferAttribute(f.edges, 1));
+    wgeo.setIndex(liveAttribute(store.edges, 1));
+    wgeo.setDrawRange(0, 2 * f.ne);
     this.wire = new THREE.LineSegments(wgeo, this.wireMaterial);
     this.wire.frustumCulled = false;
     this.wire.visible = this.showWire;
@@ -607,7 +637,7 @@ export class Viewer {
 
     const mgeo = new THREE.BufferGeometry();
     mgeo.setAttribute('position', pos);
-    mgeo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, 3 * f.nt)), 1));
+    mgeo.setIndex(new THREE.BufferAttribute(new Uint32Array(Math.max(3, store.tris.length)), 1));
     this.maskMesh = new THREE.Mesh(mgeo, this.maskMaterial);
     this.maskMesh.frustumCulled = false;
     this.maskMesh.visible = false;
@@ -616,17 +646,106 @@ export class Viewer {
     this.scene.add(this.mesh, this.wire, this.selMesh, this.maskMesh);
     this.computeBounds();
     this.updateMask();
-    this.setSculptMask(f.sculptMask);
     if (this.motion.size) this.applyMotion();
     this.scheduleProxy();
-    return true;
+  }
+
+  /** A connectivity patch (PROTOCOL.md, bit 5) over the mesh on screen: the
+   * changed slots are written into the arrays in place, only their ranges
+   * go to the GPU, normals are computed again around them, and the picture
+   * is redrawn over the old and new screen bounds of what changed. Arrays
+   * without room for the new counts are replaced, and the mesh built again. */
+  setPatch(f, prev) {
+    const p = f.patch;
+    if (!this.mesh || !this.store || !prev || prev.nv !== p.from[0] || prev.nt !== p.from[1] || prev.ne !== p.from[2]) {
+      throw new Error('a patch frame needs the previous mesh on screen');
+    }
+    if (this.proxy) this.disposeProxy(); // the surface changed
+    // The vertices whose triangles change: the corners, old and new, of
+    // the changed slots, and those of the slots dropped.
+    const t0 = prev.tris, nOld = p.tIdx.length + Math.max(0, prev.nt - f.nt);
+    const seeds = new Uint32Array(p.vIdx.length + 3 * p.tIdx.length + 3 * nOld);
+    let ns = 0;
+    seeds.set(p.vIdx, 0);
+    ns = p.vIdx.length;
+    seeds.set(p.tVerts, ns);
+    ns += p.tVerts.length;
+    const oldStart = ns;
+    for (let i = 0; i < p.tIdx.length; i++) {
+      const t = p.tIdx[i];
+      if (t < prev.nt) for (let c = 0; c < 3; c++) seeds[ns++] = t0[3 * t + c];
+    }
+    for (let t = f.nt; t < prev.nt; t++) for (let c = 0; c < 3; c++) seeds[ns++] = t0[3 * t + c];
+    // The old bounds: listed vertices where they were, and old corners.
+    let damage = null;
+    if (this.partialEnabled && !this.forceFull && p.tIdx.length <= f.nt / 4 && p.vIdx.length <= f.nv / 4) {
+      let k = 0;
+      while (k < p.vIdx.length && p.vIdx[k] < prev.nv) k++;
+      damage = this.oldDamage(p.vIdx.subarray(0, k));
+      if (damage) damage = this.screenBounds(seeds.subarray(oldStart, ns), ns - oldStart, damage);
+    }
+    // Old corners gone beyond the new vertex count need no normals.
+    let nSeeds = oldStart;
+    for (let i = oldStart; i < ns; i++) if (seeds[i] < f.nv) seeds[nSeeds++] = seeds[i];
+    const g = this.mesh.geometry, posAttr = g.attributes.position, idxAttr = g.index, wireIdx = this.wire.geometry.index;
+    const out = applyPatch(f, this.store);
+    this.store = out;
+    this.frame = f;
+    this.adj = null;
+    const maskAttr = g.attributes.masked;
+    if (this.sculptMask || p.vMask) {
+      let m = this.sculptMask;
+      if (!m || m.length !== f.nv) {
+        m = new Uint8Array(f.nv);
+        if (this.sculptMask) m.set(this.sculptMask.subarray(0, Math.min(f.nv, this.sculptMask.length)));
+      }
+      for (let i = 0; i < p.vIdx.length; i++) m[p.vIdx[i]] = p.vMask ? p.vMask[i] : 0;
+      this.sculptMask = m;
+    }
+    this.keepMask(null);
+    if (out.positions !== posAttr.array || out.tris !== idxAttr.array || out.edges !== wireIdx.array) {
+      // No room left in the GPU's buffers: built again around the new arrays.
+      this.screenFor = null;
+      this.requestRender();
+      this.buildMesh(f, out);
+      this.updateSculptMask();
+      return false;
+    }
+    markRanges(posAttr, p.vIdx, p.vIdx.length, 3);
+    markRanges(idxAttr, p.tIdx, p.tIdx.length, 3);
+    markRanges(wireIdx, p.eIdx, p.eIdx.length, 2);
+    g.setDrawRange(0, 3 * f.nt);
+    this.wire.geometry.setDrawRange(0, 2 * f.ne);
+    if (this.sculptMask) {
+      const a = maskAttr.array, m = this.sculptMask;
+      for (let i = 0; i < p.vIdx.length; i++) a[p.vIdx[i]] = m[p.vIdx[i]];
+      markRanges(maskAttr, p.vIdx, p.vIdx.length, 1);
+    }
+    const seedList = seeds.subarray(0, nSeeds);
+    let ring = null;
+    if (!this.flat) ring = this.updateNormalsAround(seedList);
+    if (damage) {
+      if (this.screen.length < 2 * f.nv) {
+        const s = new Float32Array(2 * Math.ceil(1.25 * f.nv));
+        s.set(this.screen);
+        this.screen = s;
+      }
+      if (!this.projectSome(p.vIdx)) damage = null;
+      else {
+        if (!ring) ring = this.touchedVertices(seedList, true);
+        damage = this.ringBounds(ring.list, ring.n, damage);
+      }
+    }
+    this.screenFor = damage ? f.positions : null;
+    this.updateMask();
+    this.requestRender(damage);
+    return false;
   }
 
   /** Screen bounds, before a sparse frame moves them, of the moved vertices
    * (projecting the whole mesh first when the view changed). Null: unknown. */
   oldDamage(idx) {
     const f = this.frame;
-    if (!this.adj) this.adj = vertexTriangles(f.nv, f.tris);
     this.camera.updateMatrixWorld();
     if (!this.screen || this.screenFor !== f.positions || this.screenSig !== this.viewSig()) {
       if (!this.projectAll()) return null;
@@ -697,9 +816,9 @@ export class Viewer {
    * with `ring` every vertex of a triangle around them. Sorted. */
   touchedVertices(idx, ring) {
     const f = this.frame, nv = f.nv;
-    if (!this.stamp || this.stamp.length !== nv) {
-      this.stamp = new Uint32Array(nv);
-      this.touched = new Uint32Array(nv);
+    if (!this.stamp || this.stamp.length < nv) {
+      this.stamp = new Uint32Array(Math.ceil(1.25 * nv));
+      this.touched = new Uint32Array(this.stamp.length);
       this.epoch = 0;
     }
     if (++this.epoch === 0xffffffff) {
@@ -838,9 +957,9 @@ export class Viewer {
     const attr = this.mesh?.geometry.attributes.masked;
     if (!attr) return;
     const m = this.sculptMask, out = attr.array;
-    if (m && m.length === out.length) for (let v = 0; v < out.length; v++) out[v] = m[v];
-    else out.fill(0);
-    attr.needsUpdate = true;
+    out.fill(0);
+    if (m && m.length <= out.length) for (let v = 0; v < m.length; v++) out[v] = m[v];
+    markWhole(attr);
     // The orbit proxy carries the mask too: built again when next needed.
     if (this.proxy && !this.proxyShown) this.disposeProxy();
     this.requestRender();

@@ -196,6 +196,8 @@ pub struct ActiveStroke {
     pub display: Display,
     /// The positions the browser has (sparse frames are relative to them).
     pub sent: Vec<DVec3>,
+    /// The slots of `display`'s edges, once a patch frame needed them.
+    pub book: Option<crate::frame::EdgeBook>,
 }
 
 /// The document the server edits.

@@ -5,6 +5,8 @@
 //! handles behind them ([`ModelIndex`]) so that a click on face 12 of the
 //! picture names the same face when the request comes back.
 
+use std::collections::HashMap;
+
 use glam::DVec3;
 use holey_dlfl::{EdgeId, FaceId, Mesh, VertexId};
 use holey_topo::TriMesh;
@@ -21,6 +23,9 @@ pub const FLAG_SPARSE: u32 = 8;
 /// Frame flag (full frames only): the sculpt mask follows the vanish mask,
 /// one byte per vertex, 1 where no brush moves the vertex.
 pub const FLAG_SCULPT_MASK: u32 = 16;
+/// Frame flag: a connectivity patch of the previous frame (see
+/// [`encode_patch`]): the vertices, triangles and edges whose slots changed.
+pub const FLAG_PATCH: u32 = 32;
 
 const MAGIC: &[u8; 4] = b"HMSH";
 const FORMAT_VERSION: u32 = 1;
@@ -282,6 +287,253 @@ pub fn encode_sparse(
     Some(out)
 }
 
+/// The slots of a triangle mesh's display that changed from one frame to
+/// the next: what a patch frame carries (each list ascending).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Patch {
+    /// The counts the patch starts from: vertices, triangles, edges.
+    pub before: [usize; 3],
+    /// Vertices whose position changed, and every new one.
+    pub vertices: Vec<u32>,
+    /// Triangle slots whose corners changed, and every new one.
+    pub triangles: Vec<u32>,
+    /// Edge slots whose endpoints changed, and every new one.
+    pub edges: Vec<u32>,
+}
+
+/// The edges of a triangle display by endpoints (smaller first): their
+/// slot in [`Display::edges`] and how many triangles have them. Kept
+/// across a stroke's frames, so an edge keeps its slot while it lives.
+#[derive(Clone, Debug, Default)]
+pub struct EdgeBook {
+    edges: HashMap<[u32; 2], (u32, u32)>,
+}
+
+fn edge_key(a: u32, b: u32) -> [u32; 2] {
+    if a < b { [a, b] } else { [b, a] }
+}
+
+fn triangle_edges([a, b, c]: [u32; 3]) -> [[u32; 2]; 3] {
+    [edge_key(a, b), edge_key(b, c), edge_key(c, a)]
+}
+
+impl EdgeBook {
+    /// The book of a triangle display (its edges those of its triangles,
+    /// as [`display_triangles`] makes them, in any order); `None` when the
+    /// edge list is not that.
+    pub fn of(display: &Display) -> Option<EdgeBook> {
+        let mut edges: HashMap<[u32; 2], (u32, u32)> = HashMap::with_capacity(display.edges.len());
+        for (slot, e) in display.edges.iter().enumerate() {
+            if edges
+                .insert(edge_key(e[0], e[1]), (slot as u32, 0))
+                .is_some()
+            {
+                return None;
+            }
+        }
+        for &t in &display.triangles {
+            for e in triangle_edges(t) {
+                edges.get_mut(&e)?.1 += 1;
+            }
+        }
+        edges
+            .values()
+            .all(|&(_, n)| n > 0)
+            .then_some(EdgeBook { edges })
+    }
+}
+
+/// Turns `display` (a triangle display, as [`display_triangles`] makes
+/// it, whose edge slots `book` records) into the display of `mesh`,
+/// keeping every slot whose content survived: triangles and vertices
+/// stay where the mesh has them, an edge keeps its slot while it lives,
+/// new edges take the slots of removed ones, and the last edges move
+/// into the slots left over. Returns the slots that changed, or `None`
+/// (leaving both unchanged) when more than `max_share` of the mesh's
+/// vertices or triangles changed: a whole frame is then the better deal.
+pub fn patch_triangles(
+    display: &mut Display,
+    book: &mut EdgeBook,
+    mesh: &TriMesh,
+    max_share: f64,
+) -> Option<Patch> {
+    let (nv0, nv1) = (display.positions.len(), mesh.positions.len());
+    let (nt0, nt1) = (display.triangles.len(), mesh.triangles.len());
+    let vertices: Vec<u32> = (0..nv1)
+        .filter(|&i| i >= nv0 || display.positions[i] != mesh.positions[i])
+        .map(|i| i as u32)
+        .collect();
+    let triangles: Vec<u32> = (0..nt1)
+        .filter(|&i| i >= nt0 || display.triangles[i] != mesh.triangles[i])
+        .map(|i| i as u32)
+        .collect();
+    let too_many = |n: usize, of: usize| n as f64 > max_share * of.max(1) as f64;
+    if too_many(vertices.len(), nv1) || too_many(triangles.len() + nt0.saturating_sub(nt1), nt1) {
+        return None;
+    }
+    let before = [nv0, nt0, display.edges.len()];
+    // Edge counts: the old triangles of the changed slots (and of the
+    // slots dropped) out, the new ones in.
+    let mut delta: HashMap<[u32; 2], i64> = HashMap::new();
+    let old = triangles
+        .iter()
+        .map(|&i| i as usize)
+        .filter(|&i| i < nt0)
+        .chain(nt1..nt0);
+    for i in old {
+        for e in triangle_edges(display.triangles[i]) {
+            *delta.entry(e).or_default() -= 1;
+        }
+    }
+    for &i in &triangles {
+        for e in triangle_edges(mesh.triangles[i as usize]) {
+            *delta.entry(e).or_default() += 1;
+        }
+    }
+    let mut freed = Vec::new();
+    let mut added = Vec::new();
+    for (e, d) in delta {
+        if d == 0 {
+            continue;
+        }
+        match book.edges.get_mut(&e) {
+            Some((slot, n)) => {
+                let left = i64::from(*n) + d;
+                if left <= 0 {
+                    freed.push(*slot);
+                    book.edges.remove(&e);
+                } else {
+                    *n = left as u32;
+                }
+            }
+            None if d > 0 => added.push((e, d as u32)),
+            // An edge no triangle had cannot lose one; the book is wrong.
+            None => return None,
+        }
+    }
+    freed.sort_unstable();
+    added.sort_unstable();
+    let mut edges = Vec::with_capacity(freed.len().max(added.len()));
+    let mut free = freed.into_iter();
+    for (e, n) in added {
+        let slot = match free.next() {
+            Some(slot) => {
+                display.edges[slot as usize] = e;
+                slot
+            }
+            None => {
+                display.edges.push(e);
+                (display.edges.len() - 1) as u32
+            }
+        };
+        book.edges.insert(e, (slot, n));
+        edges.push(slot);
+    }
+    // Slots still free: the last edges move into them.
+    let holes: Vec<u32> = free.collect();
+    let (mut i, mut j) = (0, holes.len());
+    let mut len = display.edges.len();
+    while i < j {
+        let last = len - 1;
+        if holes[j - 1] as usize == last {
+            j -= 1;
+            len -= 1;
+            continue;
+        }
+        let h = holes[i];
+        let e = display.edges[last];
+        display.edges[h as usize] = e;
+        if let Some(entry) = book.edges.get_mut(&e) {
+            entry.0 = h;
+        }
+        edges.push(h);
+        len -= 1;
+        i += 1;
+    }
+    display.edges.truncate(len);
+    edges.retain(|&s| (s as usize) < len);
+    edges.sort_unstable();
+    edges.dedup();
+    display.positions.clone_from(&mesh.positions);
+    display.triangles.clone_from(&mesh.triangles);
+    display.triangle_face = (0..nt1 as u32).collect();
+    display.faces = nt1;
+    Some(Patch {
+        before,
+        vertices,
+        triangles,
+        edges,
+    })
+}
+
+/// A patch frame ([`FLAG_PATCH`]): the header's counts are the new
+/// display's; then the counts it applies to (vertices, triangles,
+/// edges), the changed vertices (count, indices, positions), triangle
+/// slots (count, indices, corners, faces) and edge slots (count,
+/// indices, endpoints), and with `masked` (the sculpt mask of the listed
+/// vertices, in their order; none when none is masked) a byte per
+/// listed vertex.
+pub fn encode_patch(
+    display: &Display,
+    patch: &Patch,
+    flags: u32,
+    version: u64,
+    masked: Option<&[bool]>,
+) -> Vec<u8> {
+    let nv = display.positions.len();
+    let (k, m, q) = (
+        patch.vertices.len(),
+        patch.triangles.len(),
+        patch.edges.len(),
+    );
+    let flags = (flags
+        | FLAG_PATCH
+        | if masked.is_some() {
+            FLAG_SCULPT_MASK
+        } else {
+            0
+        })
+        & !(FLAG_POSITIONS_ONLY | FLAG_SPARSE);
+    let mut out = Vec::with_capacity(60 + 16 * k + 20 * m + 12 * q + k + 4);
+    header(&mut out, flags, version, display.counts(nv), None);
+    for c in patch.before {
+        put(&mut out, c as u32);
+    }
+    put(&mut out, k as u32);
+    for &v in &patch.vertices {
+        put(&mut out, v);
+    }
+    for &v in &patch.vertices {
+        let p = display.positions[v as usize];
+        for c in [p.x, p.y, p.z] {
+            out.extend_from_slice(&(c as f32).to_le_bytes());
+        }
+    }
+    put(&mut out, m as u32);
+    for &t in &patch.triangles {
+        put(&mut out, t);
+    }
+    for &t in &patch.triangles {
+        for v in display.triangles[t as usize] {
+            put(&mut out, v);
+        }
+    }
+    for &t in &patch.triangles {
+        put(&mut out, display.triangle_face[t as usize]);
+    }
+    put(&mut out, q as u32);
+    for &e in &patch.edges {
+        put(&mut out, e);
+    }
+    for &e in &patch.edges {
+        let [a, b] = display.edges[e as usize];
+        put(&mut out, a);
+        put(&mut out, b);
+    }
+    vanish_mask(&mut out, masked, k);
+    out
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
 mod tests {
@@ -364,6 +616,236 @@ mod tests {
         assert_eq!(&b[arrays + 8..arrays + 13], &[1, 0, 0, 1, 1]);
         // Without a mask the frame is the plain one.
         assert_eq!(encode_masked(&d, 0, 2, None, None), encode(&d, 0, 2, None));
+    }
+
+    /// Applies a patch frame to what a page holds (`old`): an oracle
+    /// written from the layout in PROTOCOL.md, apart from the encoder.
+    /// Slots the patch must fill start as `u32::MAX`/NaN, so a new slot it
+    /// forgot shows.
+    fn apply_patch(old: &Display, b: &[u8]) -> Display {
+        let flags = word(b, 2);
+        assert_eq!(flags & FLAG_PATCH, FLAG_PATCH);
+        assert_eq!(flags & (FLAG_POSITIONS_ONLY | FLAG_SPARSE | FLAG_VANISH), 0);
+        let [nv, nt, ne, nf] = [4, 5, 6, 7].map(|i| word(b, i) as usize);
+        assert_eq!(
+            [word(b, 8), word(b, 9), word(b, 10)].map(|n| n as usize),
+            [old.positions.len(), old.triangles.len(), old.edges.len()],
+            "the counts the patch applies to"
+        );
+        let f32_at = |i: usize| f32::from_le_bytes(b[4 * i..4 * i + 4].try_into().unwrap());
+        let mut d = old.clone();
+        d.positions.resize(nv, DVec3::NAN);
+        d.triangles.resize(nt, [u32::MAX; 3]);
+        d.triangle_face.resize(nt, u32::MAX);
+        d.edges.resize(ne, [u32::MAX; 2]);
+        d.faces = nf;
+        let mut at = 11;
+        let k = word(b, at) as usize;
+        at += 1;
+        for j in 0..k {
+            let v = word(b, at + j) as usize;
+            let p = at + k + 3 * j;
+            d.positions[v] = DVec3::new(
+                f64::from(f32_at(p)),
+                f64::from(f32_at(p + 1)),
+                f64::from(f32_at(p + 2)),
+            );
+        }
+        at += 4 * k;
+        let m = word(b, at) as usize;
+        at += 1;
+        for j in 0..m {
+            let t = word(b, at + j) as usize;
+            let c = at + m + 3 * j;
+            d.triangles[t] = [word(b, c), word(b, c + 1), word(b, c + 2)];
+            d.triangle_face[t] = word(b, at + 4 * m + j);
+        }
+        at += 5 * m;
+        let q = word(b, at) as usize;
+        at += 1;
+        for j in 0..q {
+            let e = word(b, at + j) as usize;
+            let c = at + q + 2 * j;
+            d.edges[e] = [word(b, c), word(b, c + 1)];
+        }
+        at += 3 * q;
+        let mask_bytes = if flags & FLAG_SCULPT_MASK != 0 {
+            k.div_ceil(4) * 4
+        } else {
+            0
+        };
+        assert_eq!(b.len(), 4 * at + mask_bytes, "nothing after the sections");
+        d
+    }
+
+    /// `d` shows `mesh` (positions to f32, every edge of a triangle once).
+    fn shows(d: &Display, mesh: &TriMesh) {
+        let f = |p: &DVec3| p.to_array().map(|c| c as f32);
+        assert_eq!(
+            d.positions.iter().map(f).collect::<Vec<_>>(),
+            mesh.positions.iter().map(f).collect::<Vec<_>>()
+        );
+        assert_eq!(d.triangles, mesh.triangles);
+        assert_eq!(
+            d.triangle_face,
+            (0..mesh.triangles.len() as u32).collect::<Vec<_>>()
+        );
+        assert_eq!(d.faces, mesh.triangles.len());
+        let mut edges = d.edges.clone();
+        edges.sort_unstable();
+        assert_eq!(edges, display_triangles(mesh).edges, "the edge set");
+    }
+
+    fn f32_display(d: &Display) -> Display {
+        let mut d = d.clone();
+        for p in &mut d.positions {
+            *p = p.as_vec3().as_dvec3();
+        }
+        d
+    }
+
+    #[test]
+    fn remeshing_frames_travel_as_patches_a_page_can_apply() {
+        use holey_sculpt::{Remesh, RemeshOptions, default_range, remesh_in_place};
+        let mut mesh = holey_shapes::parse_primitive("@sphere:3")
+            .unwrap()
+            .triangulated();
+        let base = default_range(&mesh).unwrap();
+        let mut server = display_triangles(&mesh);
+        let mut book = EdgeBook::of(&server).unwrap();
+        // What the page holds: the whole frame's f32 positions.
+        let mut page = f32_display(&server);
+        let mut patches = 0;
+        let (mut splits, mut collapses) = (0, 0);
+        for frame in 0..12 {
+            // A bump pushed out and back with edges kept short (splits)
+            // then long (collapses) around the top, as a remeshing stroke.
+            let centre = DVec3::new(0.3 * (frame as f64 * 0.5).sin(), 0.0, 1.0);
+            let active: Vec<bool> = mesh
+                .positions
+                .iter()
+                .map(|p| p.distance(centre) < 0.4)
+                .collect();
+            for (p, &a) in mesh.positions.iter_mut().zip(&active) {
+                if a {
+                    *p *= 1.0 + 0.03 * if frame < 6 { 1.0 } else { -1.0 };
+                }
+            }
+            // Edges a little short of what the sphere has, then long.
+            let scale = if frame < 6 { 0.6 } else { 2.0 };
+            let (lo, hi) = (scale * base.min_edge, scale * base.max_edge);
+            let r = remesh_in_place(
+                &mut mesh,
+                &active,
+                &RemeshOptions::new(Remesh {
+                    min_edge: lo,
+                    max_edge: hi,
+                }),
+            )
+            .unwrap();
+            splits += r.splits;
+            collapses += r.collapses;
+            let Some(patch) = patch_triangles(&mut server, &mut book, &mesh, 0.25) else {
+                // Too much changed: a whole frame, and a new book.
+                server = display_triangles(&mesh);
+                book = EdgeBook::of(&server).unwrap();
+                page = f32_display(&server);
+                continue;
+            };
+            patches += 1;
+            shows(&server, &mesh);
+            let bytes = encode_patch(&server, &patch, FLAG_PREVIEW, 9, None);
+            assert_eq!(word(&bytes, 2), FLAG_PREVIEW | FLAG_PATCH);
+            page = apply_patch(&page, &bytes);
+            assert_eq!(
+                page,
+                f32_display(&server),
+                "frame {frame}: the page holds the server's display"
+            );
+            shows(&page, &mesh);
+            // Every list ascending, and small next to the mesh.
+            for list in [&patch.vertices, &patch.triangles, &patch.edges] {
+                assert!(list.windows(2).all(|w| w[0] < w[1]));
+            }
+            assert!(patch.triangles.len() * 4 <= mesh.triangles.len());
+        }
+        assert!(patches >= 6, "{patches} patches");
+        assert!(
+            splits > 0 && collapses > 0,
+            "{splits} splits, {collapses} collapses"
+        );
+    }
+
+    #[test]
+    fn a_patch_lists_edge_slots_freed_refilled_and_moved() {
+        // Two triangles, then one removed and one added elsewhere, then
+        // the count shrinking: the edge book keeps what lives in place.
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE, DVec3::Z];
+        let a = TriMesh {
+            positions: p.clone(),
+            triangles: vec![[0, 1, 2], [2, 1, 3], [0, 2, 4], [1, 0, 4]],
+        };
+        let mut server = display_triangles(&a);
+        let mut book = EdgeBook::of(&server).unwrap();
+        let mut page = server.clone();
+        let steps = [
+            TriMesh {
+                positions: p.clone(),
+                triangles: vec![[0, 1, 2], [2, 1, 3], [0, 2, 4], [3, 1, 4]],
+            },
+            TriMesh {
+                positions: p[..4].to_vec(),
+                triangles: vec![[0, 1, 2], [2, 1, 3]],
+            },
+            TriMesh {
+                positions: [&p[..4], &[DVec3::NEG_ONE, DVec3::NEG_X]].concat(),
+                triangles: vec![[0, 1, 2], [2, 1, 3], [0, 4, 5], [5, 4, 1], [2, 3, 5]],
+            },
+        ];
+        for next in &steps {
+            let patch = patch_triangles(&mut server, &mut book, next, 1.0).unwrap();
+            shows(&server, next);
+            page = apply_patch(&page, &encode_patch(&server, &patch, 0, 1, None));
+            assert_eq!(page, server);
+        }
+        // The mask section: a byte per listed vertex, padded.
+        let last = steps[2].clone();
+        let mut with = TriMesh {
+            positions: last.positions.clone(),
+            triangles: last.triangles.clone(),
+        };
+        with.positions[4].x += 1.0;
+        let patch = patch_triangles(&mut server, &mut book, &with, 1.0).unwrap();
+        assert_eq!(
+            (patch.vertices.clone(), patch.triangles.len()),
+            (vec![4], 0)
+        );
+        let b = encode_patch(&server, &patch, 0, 1, Some(&[true]));
+        assert_eq!(word(&b, 2), FLAG_PATCH | FLAG_SCULPT_MASK);
+        assert_eq!(&b[b.len() - 4..], &[1, 0, 0, 0]);
+        assert_eq!(apply_patch(&page, &b), f32_display(&server));
+    }
+
+    #[test]
+    fn wholesale_renumbering_is_no_patch() {
+        let m = holey_shapes::parse_primitive("@sphere:2")
+            .unwrap()
+            .triangulated();
+        let mut server = display_triangles(&m);
+        let mut book = EdgeBook::of(&server).unwrap();
+        let mut reversed = m.clone();
+        reversed.triangles.reverse();
+        let before = server.clone();
+        assert!(patch_triangles(&mut server, &mut book, &reversed, 0.25).is_none());
+        assert_eq!(server, before, "left as it was");
+        // A model display (polygon edges, no fan diagonals) has no book.
+        let cube = holey_dlfl::convert::to_dlfl(
+            &holey_shapes::parse_primitive("@cube").unwrap(),
+            Default::default(),
+        )
+        .unwrap()
+        .mesh;
+        assert!(EdgeBook::of(&display_model(&cube).0).is_none());
     }
 
     #[test]

@@ -1280,13 +1280,13 @@ fn decode(b: &[u8]) -> Decoded {
     }
 }
 
-/// The last whole (not positions-only) frame a tab received.
+/// The last whole (not positions-only, not patch) frame a tab received.
 fn last_whole(tab: &Tab) -> Decoded {
     let b = tab
         .frames
         .iter()
         .rev()
-        .find(|f| u32::from_le_bytes(f[8..12].try_into().expect("flags")) & 4 == 0)
+        .find(|f| u32::from_le_bytes(f[8..12].try_into().expect("flags")) & (4 | 32) == 0)
         .expect("a whole frame");
     decode(b)
 }
@@ -1926,4 +1926,143 @@ fn bezier_and_multi_face_handles() {
         a.ok(json!({"op": "undo"}));
         assert_eq!(vef(&a), [48, 72, 36]);
     }
+}
+
+/// What a page holds after the frames it was sent: positions (f32 bits),
+/// triangles and their faces, edges in slot order.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Shown {
+    positions: Vec<[u32; 3]>,
+    triangles: Vec<[u32; 3]>,
+    faces: Vec<u32>,
+    edges: Vec<[u32; 2]>,
+}
+
+impl Shown {
+    /// Takes one frame as PROTOCOL.md says a page does: whole, positions
+    /// only (dense or sparse), or a connectivity patch (bit 5).
+    fn take(&mut self, b: &[u8]) {
+        let w = |i: usize| u32::from_le_bytes(b[4 * i..4 * i + 4].try_into().expect("word"));
+        let flags = w(2);
+        let [nv, nt, ne] = [w(4), w(5), w(6)].map(|n| n as usize);
+        let mut at = 8;
+        let mut next = || {
+            at += 1;
+            w(at - 1)
+        };
+        if flags & 32 != 0 {
+            assert_eq!(flags & (2 | 4 | 8), 0, "a patch is nothing else");
+            let from = [next(), next(), next()].map(|n| n as usize);
+            assert_eq!(
+                from,
+                [self.positions.len(), self.triangles.len(), self.edges.len()]
+            );
+            self.positions.resize(nv, [u32::MAX; 3]);
+            self.triangles.resize(nt, [u32::MAX; 3]);
+            self.faces.resize(nt, u32::MAX);
+            self.edges.resize(ne, [u32::MAX; 2]);
+            let k = next() as usize;
+            let vs: Vec<u32> = (0..k).map(|_| next()).collect();
+            for &v in &vs {
+                self.positions[v as usize] = [next(), next(), next()];
+            }
+            let m = next() as usize;
+            let ts: Vec<u32> = (0..m).map(|_| next()).collect();
+            for &t in &ts {
+                self.triangles[t as usize] = [next(), next(), next()];
+            }
+            for &t in &ts {
+                self.faces[t as usize] = next();
+            }
+            let q = next() as usize;
+            let es: Vec<u32> = (0..q).map(|_| next()).collect();
+            for &e in &es {
+                self.edges[e as usize] = [next(), next()];
+            }
+        } else if flags & 8 != 0 {
+            assert_eq!(nv, self.positions.len());
+            let k = next() as usize;
+            let vs: Vec<u32> = (0..k).map(|_| next()).collect();
+            for &v in &vs {
+                self.positions[v as usize] = [next(), next(), next()];
+            }
+        } else {
+            self.positions = (0..nv).map(|_| [next(), next(), next()]).collect();
+            if flags & 4 == 0 {
+                self.triangles = (0..nt).map(|_| [next(), next(), next()]).collect();
+                self.faces = (0..nt).map(|_| next()).collect();
+                self.edges = (0..ne).map(|_| [next(), next()]).collect();
+            }
+        }
+    }
+
+    /// The edges as a sorted list (a patch keeps slots, not the order).
+    fn edge_set(&self) -> Vec<[u32; 2]> {
+        let mut e = self.edges.clone();
+        e.sort_unstable();
+        e
+    }
+}
+
+#[test]
+fn remeshing_strokes_send_patches_that_build_the_committed_mesh() {
+    let (_dir, addr) = server();
+    let mut a = Tab::open(addr);
+    let mut b = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    // Finer than the mesh: the brush splits edges at every frame.
+    a.ok(json!({"op": "set_remesh", "detail": 0.8}));
+    let mut shown = Shown::default();
+    let first = a.frames.len() - 1;
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
+                "strength": 0.02, "point": [0, 0, 1]}),
+    );
+    for i in 1..=12 {
+        let x = 0.05 * f64::from(i);
+        let z = (1.0 - x * x).sqrt();
+        a.ok(json!({"op": "stroke_frame", "point": [x, 0, z]}));
+    }
+    let before_end = a.frames.len();
+    a.ok(json!({"op": "stroke_end"}));
+    let flags = |f: &Vec<u8>| u32::from_le_bytes(f[8..12].try_into().expect("flags"));
+    let patches = a.frames[first..before_end]
+        .iter()
+        .filter(|f| flags(f) & 32 != 0)
+        .count();
+    assert!(patches >= 3, "remeshing frames went as patches: {patches}");
+    for f in &a.frames[first..before_end] {
+        shown.take(f);
+        // Every index names a vertex; every triangle's edges are edges.
+        let nv = shown.positions.len() as u32;
+        assert!(shown.triangles.iter().flatten().all(|&v| v < nv));
+        assert!(shown.edges.iter().flatten().all(|&v| v < nv));
+        assert_eq!(
+            shown.faces,
+            (0..shown.triangles.len() as u32).collect::<Vec<_>>()
+        );
+    }
+    // The commit is a whole frame of the stroke's last mesh: what the
+    // patches built, edges as a set.
+    let mut committed = Shown::default();
+    committed.take(a.frames.last().expect("the commit"));
+    assert_eq!(shown.positions, committed.positions);
+    assert_eq!(shown.triangles, committed.triangles);
+    assert_eq!(shown.edge_set(), committed.edges);
+    assert!(
+        committed.triangles.len() > 1280,
+        "remeshed finer: {}",
+        committed.triangles.len()
+    );
+    // The other tab was sent the same frames.
+    while b.frames.len() < a.frames.len() {
+        b.pump_one();
+    }
+    let mut other = Shown::default();
+    let tail = &b.frames[b.frames.len() - (a.frames.len() - first)..];
+    for f in &tail[..tail.len() - 1] {
+        other.take(f);
+    }
+    assert_eq!(other, shown);
 }

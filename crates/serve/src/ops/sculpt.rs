@@ -13,7 +13,8 @@ use super::request::{StrokeBegin, StrokeFrame, missing};
 use super::{Out, Reply, Shared};
 use crate::doc::{ActiveStroke, Content, Document, Mask, mask_flags};
 use crate::frame::{
-    FLAG_PREVIEW, display_triangles, encode_masked, encode_positions, encode_sparse,
+    EdgeBook, FLAG_PREVIEW, Patch, display_triangles, encode_masked, encode_patch,
+    encode_positions, encode_sparse, patch_triangles,
 };
 use crate::{ConnId, ServeError};
 
@@ -82,6 +83,7 @@ impl Shared {
             live,
             display,
             sent,
+            book: None,
         });
         self.stroke_frame(doc, &req.first_frame())
     }
@@ -133,12 +135,49 @@ impl Shared {
         let vanish = frame.corrected_odd.as_deref();
         let moved = &frame.mesh.positions;
         let bytes = if frame.connectivity_changed {
-            let display = display_triangles(frame.mesh);
-            // New vertex numbers: the mask is sent again with them.
-            let masked = mask_flags(&mask, &display.positions);
-            let bytes = encode_masked(&display, FLAG_PREVIEW, version, vanish, masked.as_deref());
-            stroke.display = display;
-            bytes
+            // Remeshing keeps most vertex and triangle numbers: only the
+            // slots that changed travel (drag previews, whose vanish mask
+            // covers every vertex, go whole).
+            let patched = if vanish.is_none() {
+                stroke
+                    .book
+                    .take()
+                    .or_else(|| EdgeBook::of(&stroke.display))
+                    .and_then(|mut book| {
+                        let patch = patch_triangles(
+                            &mut stroke.display,
+                            &mut book,
+                            frame.mesh,
+                            MAX_PATCH_SHARE,
+                        )?;
+                        Some((patch, book))
+                    })
+            } else {
+                None
+            };
+            match patched {
+                Some((patch, book)) => {
+                    stroke.book = Some(book);
+                    let masked = patch_mask(&mask, &stroke.display.positions, &patch);
+                    encode_patch(
+                        &stroke.display,
+                        &patch,
+                        FLAG_PREVIEW,
+                        version,
+                        masked.as_deref(),
+                    )
+                }
+                None => {
+                    let display = display_triangles(frame.mesh);
+                    // New vertex numbers: the mask is sent again with them.
+                    let masked = mask_flags(&mask, &display.positions);
+                    let bytes =
+                        encode_masked(&display, FLAG_PREVIEW, version, vanish, masked.as_deref());
+                    stroke.display = display;
+                    stroke.book = None;
+                    bytes
+                }
+            }
         } else {
             // A brush moves few vertices: send those only.
             encode_sparse(
@@ -158,6 +197,20 @@ impl Shared {
         self.hub.broadcast(&Out::Binary(bytes));
         Ok(json!({"ms": ms, "vanishing": vanishing}))
     }
+}
+
+/// The sculpt mask of the vertices a patch lists, in its order; `None`
+/// when none of them is masked.
+fn patch_mask(mask: &Mask, positions: &[DVec3], patch: &Patch) -> Option<Vec<bool>> {
+    if mask.is_empty() {
+        return None;
+    }
+    let flags: Vec<bool> = patch
+        .vertices
+        .iter()
+        .map(|&v| mask.contains(&holey_geom::position_key(positions[v as usize])))
+        .collect();
+    flags.contains(&true).then_some(flags)
 }
 
 /// The stroke's mirror planes: `symmetry` names the axes (`"xz"`),
@@ -206,3 +259,7 @@ pub(super) fn remesh_options(mesh: &holey_topo::TriMesh, detail: f64) -> Option<
 /// The largest inflate displacement per frame the server accepts, as a
 /// share of the brush radius.
 pub const MAX_INFLATE_PER_RADIUS: f64 = 0.25;
+
+/// A connectivity-changing frame goes as a patch while at most this share
+/// of the vertices and of the triangles changed; whole beyond.
+pub const MAX_PATCH_SHARE: f64 = 0.25;
