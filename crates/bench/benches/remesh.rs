@@ -119,3 +119,10 @@ fn dual_12_6_4_1m(bencher: Bencher) {
 fn dual_loop_1m(bencher: Bencher) {
     run(bencher, RemeshScheme::DualLoop, 578, 577);
 }
+
+/// Doo–Sabin BC New (its own one-pass step): `F' = F + 2E = 5F` on a quad
+/// torus (`E = 2F`).
+#[divan::bench(sample_count = 3)]
+fn doo_sabin_bc_new_1m(bencher: Bencher) {
+    run(bencher, RemeshScheme::DooSabinBcNew, 500, 400);
+}
