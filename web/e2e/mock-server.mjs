@@ -186,19 +186,22 @@ function handle(ws, msg) {
     case 'stroke_frame': {
       if (!stroke) return err('no stroke');
       const t0 = performance.now();
-      const [x, y, z] = msg.point, r = stroke.radius;
-      const moved = [];
-      for (const [i, v] of stroke.mesh.p.entries()) {
-        const d = Math.hypot(v[0] - x, v[1] - y, v[2] - z);
-        if (d >= r || doc.mask.has(v.join(','))) continue;
-        moved.push(i);
-        const l = Math.hypot(...v) || 1, w = (1 - d / r) ** 2 * stroke.strength * 0.05 * r;
-        v[0] += (v[0] / l) * w; v[1] += (v[1] / l) * w; v[2] += (v[2] / l) * w;
+      const r = stroke.radius;
+      const moved = new Set();
+      // `points`: further dabs after `point`, applied in order (PROTOCOL.md).
+      for (const [x, y, z] of [msg.point, ...(msg.points ?? [])]) {
+        for (const [i, v] of stroke.mesh.p.entries()) {
+          const d = Math.hypot(v[0] - x, v[1] - y, v[2] - z);
+          if (d >= r || doc.mask.has(v.join(','))) continue;
+          moved.add(i);
+          const l = Math.hypot(...v) || 1, w = (1 - d / r) ** 2 * stroke.strength * 0.05 * r;
+          v[0] += (v[0] / l) * w; v[1] += (v[1] / l) * w; v[2] += (v[2] / l) * w;
+        }
       }
       doc.mesh = stroke.mesh;
       // Like the real server: only the moved vertices when few of them moved.
-      const sparse = moved.length < 0.75 * stroke.mesh.p.length;
-      ws.send(frameOf(doc.mesh, doc.version, FLAG_POSITIONS_ONLY, sparse ? moved : null));
+      const sparse = moved.size < 0.75 * stroke.mesh.p.length;
+      ws.send(frameOf(doc.mesh, doc.version, FLAG_POSITIONS_ONLY, sparse ? [...moved].sort((a, b) => a - b) : null));
       return ok({ ms: performance.now() - t0 });
     }
     case 'stroke_end': {

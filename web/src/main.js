@@ -86,8 +86,9 @@ const hook = {
   errors: [],
   // The sculpt workspace (issue 19): what strokes sent, the mask shown.
   strokesSent: [], // stroke_begin fields
-  framesSent: 0, // stroke_frame requests
-  pressuresSent: [], // the pen pressure each stroke_frame carried
+  framesSent: 0, // stroke frames (dabs) sent with stroke_frame requests
+  batchSizes: [], // dabs per stroke_frame request (queued dabs go together)
+  pressuresSent: [], // the pen pressure each stroke frame (dab) carried
   maskPaints: [], // mask_paint fields
   maskReplies: [], // `masked` of each mask request's answer
   sizing: null, // 'radius' or 'strength' while F sizes the brush
@@ -287,7 +288,11 @@ function onFrame(buf) {
   const inflight = app.stroke?.inflight;
   if (inflight && !inflight.measured) {
     inflight.measured = true;
-    pendingMeasures.push({ ev: inflight.t, sent: inflight.sent ?? inflight.t, recv: t0, applied });
+    // A batch of dabs shows in this one picture: each dab's latency runs
+    // from its own pointer event.
+    for (const d of inflight.batch ?? [inflight]) {
+      pendingMeasures.push({ ev: d.t, sent: d.sent ?? d.t, recv: t0, applied });
+    }
   }
   updateBadge();
 }
@@ -900,8 +905,9 @@ $('op-make-manifold').onclick = () => repair('make_manifold');
 // ---- strokes ------------------------------------------------------------------
 
 /** Stroke protocol: stroke_begin, then stroke_frame with at most one request
- * in flight (the dabs waiting in `queue`), then stroke_end once everything
- * sent has been answered. */
+ * in flight (the dabs waiting in `queue`, sent together up to MAX_BATCH
+ * when the answer comes), then stroke_end once everything sent has been
+ * answered. */
 /** Inflate, draw, clay and crease: displacement per frame at full strength,
  * as a share of the radius (the server's strength is in world units). */
 const INFLATE_PER_FRAME = 0.05;
@@ -927,6 +933,8 @@ const STRENGTH_PX = 200;
  * brush at most that many frames behind the pointer. */
 const MAX_DABS_PER_EVENT = 400;
 const MAX_QUEUE = 64;
+/** The most queued dabs one stroke_frame request carries. */
+const MAX_BATCH = 8;
 
 /** The strength the server takes for `brush`: world units per frame for
  * the displacing brushes (scaled to the radius, as inflate always was; for
@@ -1042,13 +1050,23 @@ function strokeAnswered(stroke) {
     return;
   }
   if (stroke.queue.length) {
-    const q = stroke.queue.shift();
-    stroke.inflight = q;
-    q.sent = performance.now();
+    // The dabs that piled up while the last request was answered go
+    // together (at most MAX_BATCH): one frame each on the server, in
+    // order, and one picture of the last here.
+    const batch = stroke.queue.splice(0, MAX_BATCH);
+    const sent = performance.now();
+    for (const q of batch) q.sent = sent;
+    stroke.inflight = { batch, t: batch[0].t, sent };
+    const [q, ...rest] = batch;
     const fields = { point: q.point };
     if (q.pressure !== undefined) fields.pressure = q.pressure;
-    hook.framesSent++;
-    if (q.pressure !== undefined) pushCapped(hook.pressuresSent, q.pressure);
+    if (rest.length) {
+      fields.points = rest.map((r) => r.point);
+      if (rest.some((r) => r.pressure !== undefined)) fields.pressures = rest.map((r) => r.pressure ?? 1);
+    }
+    hook.framesSent += batch.length;
+    pushCapped(hook.batchSizes, batch.length);
+    for (const r of batch) if (r.pressure !== undefined) pushCapped(hook.pressuresSent, r.pressure);
     conn.request('stroke_frame', fields).then(
       (ok) => {
         if (ok.ms != null) pushCapped(hook.serverMs, ok.ms);

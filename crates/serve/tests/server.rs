@@ -2066,3 +2066,126 @@ fn remeshing_strokes_send_patches_that_build_the_committed_mesh() {
     }
     assert_eq!(other, shown);
 }
+
+/// A stroke on a fresh `@sphere:3` (remeshing at `detail`): `begin`, then
+/// `path` sent as `stroke_frame` requests of `sizes` dabs each (the first
+/// as `point`, the others as `points`), then `stroke_end`. Gives the
+/// committed document as OBJ (exact `f64`s), what the frames built on the
+/// page before the commit, the commit's whole frame, and the genus.
+fn stroke_in_batches(
+    begin: &Value,
+    detail: f64,
+    path: &[[f64; 3]],
+    sizes: &[usize],
+) -> (Vec<u8>, Shown, Shown, Value) {
+    assert_eq!(sizes.iter().sum::<usize>(), path.len());
+    let (_dir, addr) = server();
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    a.ok(json!({"op": "set_remesh", "detail": detail}));
+    let first = a.frames.len() - 1;
+    a.ok(begin.clone());
+    let mut at = 0;
+    for &k in sizes {
+        let batch = &path[at..at + k];
+        at += k;
+        let mut req = json!({"op": "stroke_frame", "point": batch[0]});
+        if k > 1 {
+            req["points"] = json!(batch[1..]);
+        }
+        let r = a.ok(req);
+        assert_eq!(r["frames"], k, "{r}");
+    }
+    let before_end = a.frames.len();
+    a.ok(json!({"op": "stroke_end"}));
+    let mut shown = Shown::default();
+    for f in &a.frames[first..before_end] {
+        shown.take(f);
+    }
+    let mut committed = Shown::default();
+    committed.take(a.frames.last().expect("the commit"));
+    (model(addr), shown, committed, a.genus())
+}
+
+/// Issue 15 item 6: a `stroke_frame` carrying several dabs applies them as
+/// that many single-point requests would, bit for bit, and its one frame
+/// (positions, a patch or whole) brings the page to the state after the
+/// last; also when a frame in the middle of a batch remeshes or cuts the
+/// surface (a topology change).
+#[test]
+fn a_batch_of_dabs_is_the_same_stroke_as_single_frames() {
+    // Inflate with remeshing finer than the mesh: the connectivity
+    // changes within batches.
+    let inflate = json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
+                          "strength": 0.02, "point": [0, 0, 1]});
+    let arc: Vec<[f64; 3]> = (1..=12)
+        .map(|i| {
+            let x = 0.05 * f64::from(i);
+            [x, 0.0, (1.0 - x * x).sqrt()]
+        })
+        .collect();
+    // The snake hook pulled through the far side (as in holey-sculpt's
+    // brush tests): the surface opens into a tunnel at some frame.
+    let hook = json!({"op": "stroke_begin", "brush": "snake_hook", "radius": 0.45,
+                       "strength": 1, "point": [0, 0, 1]});
+    let through: Vec<[f64; 3]> = (1..=20)
+        .map(|i| [0.0, 0.0, 1.0 - 2.4 * f64::from(i) / 20.0])
+        .collect();
+    // A grab dragged down through the bottom: the preview's vanish mask
+    // is the last frame's, the topology changes at release.
+    let grab = json!({"op": "stroke_begin", "brush": "grab", "radius": 0.5,
+                       "strength": 1, "point": [0, 0, 1]});
+    let down = [[0.0, 0.0, 0.5], [0.0, 0.0, -0.5], [0.0, 0.0, -1.6]];
+    for (begin, detail, path, batches, genus) in [
+        (&inflate, 0.8, &arc[..], vec![3, 1, 8], 0),
+        (&hook, 0.0, &through[..], vec![7, 8, 5], 1),
+        (&hook, 0.5, &through[..], vec![2, 8, 8, 2], 1),
+        (&grab, 0.5, &down[..], vec![3], 1),
+    ] {
+        let singles = vec![1; path.len()];
+        let (one, one_shown, one_committed, one_genus) =
+            stroke_in_batches(begin, detail, path, &singles);
+        let (many, shown, committed, g) = stroke_in_batches(begin, detail, path, &batches);
+        assert_eq!(one_genus, genus, "{begin}");
+        assert_eq!(g, genus, "{begin}");
+        assert!(
+            one == many,
+            "{begin} at detail {detail}: the batches {batches:?} committed another mesh"
+        );
+        assert_eq!(one_committed, committed, "{begin}");
+        // What the batched frames built on the page is the last frame's
+        // surface (a paint stroke commits it as it is; a drag's preview
+        // is its start moved).
+        assert_eq!(shown.positions.len(), one_shown.positions.len(), "{begin}");
+        assert_eq!(shown.positions, one_shown.positions, "{begin}");
+        assert_eq!(shown.triangles, one_shown.triangles, "{begin}");
+        assert_eq!(shown.edge_set(), one_shown.edge_set(), "{begin}");
+        if begin["brush"] != "grab" {
+            assert_eq!(shown.positions, committed.positions, "{begin}");
+            assert_eq!(shown.triangles, committed.triangles, "{begin}");
+            assert_eq!(shown.edge_set(), committed.edges, "{begin}");
+        }
+    }
+}
+
+#[test]
+fn a_batch_of_dabs_is_refused_when_malformed() {
+    let (_dir, addr) = server();
+    let mut a = sculpt_sphere(addr);
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
+                "strength": 0.02, "point": [0, 0, 1]}),
+    );
+    a.refused(
+        json!({"op": "stroke_frame", "point": [0, 0, 1], "points": [[0, 0, 1]], "pressures": [0.5, 0.5]}),
+        "2 pressures for 1 points",
+    );
+    a.refused(
+        json!({"op": "stroke_frame", "point": [0, 0, 1], "points": vec![[0, 0, 1]; 64]}),
+        "at most 64 points",
+    );
+    let r = a.ok(json!({"op": "stroke_frame", "point": [0, 0, 1], "points": [[0, 0.1, 1]], "pressures": [0.5]}));
+    assert_eq!(r["frames"], 2, "{r}");
+    a.ok(json!({"op": "stroke_end"}));
+}

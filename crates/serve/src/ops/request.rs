@@ -277,20 +277,53 @@ impl StrokeBegin {
         StrokeFrame {
             point: self.point,
             pressure: self.pressure,
+            points: None,
+            pressures: None,
         }
     }
 }
 
-/// `stroke_frame`: where the pointer is, and the pen's pressure if any.
+/// `stroke_frame`: where the pointer is, and the pen's pressure if any;
+/// `points` (with `pressures`, one each) are further dabs after it, which
+/// a page sends together when they piled up while it waited for an answer.
 #[derive(Debug, Deserialize)]
 pub(crate) struct StrokeFrame {
     pub point: [f64; 3],
     pub pressure: Option<f64>,
+    pub points: Option<Vec<[f64; 3]>>,
+    pub pressures: Option<Vec<f64>>,
 }
 
+/// The most dabs one `stroke_frame` may carry (`point` and `points`).
+pub const MAX_STROKE_POINTS: usize = 64;
+
 impl StrokeFrame {
-    pub fn point(&self) -> DVec3 {
-        DVec3::from_array(self.point)
+    /// Every dab of the request in order, with its pen pressure (1 when
+    /// none was given); refused when `pressures` does not match `points`
+    /// or there are more than [`MAX_STROKE_POINTS`].
+    pub fn dabs(&self) -> Result<Vec<(DVec3, f64)>, ServeError> {
+        let more = self.points.as_deref().unwrap_or_default();
+        if more.len() + 1 > MAX_STROKE_POINTS {
+            return Err(ServeError::BadRequest(format!(
+                "a stroke_frame carries at most {MAX_STROKE_POINTS} points; got {}",
+                more.len() + 1
+            )));
+        }
+        if let Some(p) = &self.pressures
+            && p.len() != more.len()
+        {
+            return Err(ServeError::BadRequest(format!(
+                "stroke_frame: {} pressures for {} points",
+                p.len(),
+                more.len()
+            )));
+        }
+        let first = (DVec3::from_array(self.point), self.pressure.unwrap_or(1.0));
+        let rest = more.iter().enumerate().map(|(i, &q)| {
+            let p = self.pressures.as_ref().map_or(1.0, |p| p[i]);
+            (DVec3::from_array(q), p)
+        });
+        Ok(std::iter::once(first).chain(rest).collect())
     }
 }
 
@@ -453,7 +486,10 @@ mod tests {
             panic!("{r:?}")
         };
         assert_eq!(s.brush, Brush::SnakeHook);
-        assert_eq!(s.first_frame().point(), DVec3::new(0.0, 1.0, 2.0));
+        assert_eq!(
+            s.first_frame().dabs().unwrap(),
+            vec![(DVec3::new(0.0, 1.0, 2.0), 1.0)]
+        );
         // Every brush by the name it gives itself.
         for b in holey_sculpt::brush::ALL_BRUSHES {
             let r = parse(

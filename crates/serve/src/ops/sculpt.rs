@@ -120,19 +120,55 @@ impl Shared {
         Ok(reply)
     }
 
-    /// `stroke_frame`: the stroke's next frame, sent to every tab.
+    /// `stroke_frame`: the stroke's next frame, sent to every tab; with
+    /// `points`, one frame per dab in order, sent as one frame message
+    /// of the state after the last (against what the tabs were sent).
     pub(super) fn stroke_frame(&self, doc: &mut Document, req: &StrokeFrame) -> Reply {
-        let point = req.point();
+        let dabs = req.dabs()?;
         let version = doc.version();
         let mask = Arc::clone(doc.mask());
         let Some(stroke) = doc.stroke.as_mut() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
-        // Pen pressure, when the pointer has one (a mouse sends none).
-        let pressure = req.pressure.unwrap_or(1.0);
-        let frame = stroke.live.frame_pressed(point, pressure)?;
-        let ms = frame.seconds * 1e3;
-        let vanish = frame.corrected_odd.as_deref();
+        // Every dab is a frame of its own (the brush's spacing is the
+        // page's); the tabs see the state after the last one, so the
+        // connectivity counts as changed if any frame changed it, and the
+        // vanish mask is the last frame's.
+        let mut seconds = 0.0;
+        let mut connectivity_changed = false;
+        let mut vanish_mask: Option<Vec<bool>> = None;
+        let mut applied = 0;
+        let mut failed = None;
+        for &(point, pressure) in &dabs {
+            // Pen pressure, when the pointer has one (a mouse sends none).
+            match stroke.live.frame_pressed(point, pressure) {
+                Ok(frame) => {
+                    seconds += frame.seconds;
+                    connectivity_changed |= frame.connectivity_changed;
+                    vanish_mask = frame.corrected_odd;
+                    applied += 1;
+                }
+                // The failed frame left the stroke as it was: the frames
+                // before it are sent, the request answers the error.
+                Err(e) => {
+                    failed = Some(e);
+                    break;
+                }
+            }
+        }
+        if applied == 0 {
+            return Err(failed.map_or_else(
+                || ServeError::BadRequest("stroke_frame without a point".into()),
+                Into::into,
+            ));
+        }
+        let ms = seconds * 1e3;
+        let mesh = stroke.live.mesh();
+        let frame = Batch {
+            mesh,
+            connectivity_changed,
+        };
+        let vanish = vanish_mask.as_deref();
         let moved = &frame.mesh.positions;
         let bytes = if frame.connectivity_changed {
             // Remeshing keeps most vertex and triangle numbers: only the
@@ -195,8 +231,18 @@ impl Shared {
         stroke.sent.clone_from(moved);
         let vanishing = vanish.map_or(0, |m| m.iter().filter(|&&b| b).count());
         self.hub.broadcast(&Out::Binary(bytes));
-        Ok(json!({"ms": ms, "vanishing": vanishing}))
+        if let Some(e) = failed {
+            return Err(e.into());
+        }
+        Ok(json!({"ms": ms, "vanishing": vanishing, "frames": applied}))
     }
+}
+
+/// What a `stroke_frame` request's frames came to: the surface after the
+/// last, and whether any changed the triangles.
+struct Batch<'a> {
+    mesh: &'a holey_topo::TriMesh,
+    connectivity_changed: bool,
 }
 
 /// The sculpt mask of the vertices a patch lists, in its order; `None`
