@@ -7,6 +7,8 @@
 //! Booleans and sculpting take it ([`tri`]: checks, edge tables,
 //! closedness, pinches, compaction); the two convert into each other.
 //!
+//! - [`slots`] removes entries of a numbered array by filling the gaps
+//!   from its end (what the sculpt remesher and the modeler's frames do).
 //! - [`analysis`] measures any soup (`holey info`): counts, boundary,
 //!   non-manifold edges and vertices, orientation, Euler characteristic,
 //!   genus and volume.
@@ -19,6 +21,7 @@
 pub mod analysis;
 mod finite;
 mod poly;
+pub mod slots;
 pub mod tri;
 pub mod union_find;
 

@@ -34,6 +34,7 @@
 //! flip only within a nearly planar quad.
 
 use glam::DVec3;
+use holey_mesh::slots::fill_holes;
 use holey_topo::TriMesh;
 use holey_topo::audit::is_flat;
 use holey_topo::mesh::MeshError;
@@ -1163,27 +1164,6 @@ impl Work {
         }
         report.renumbered = moves;
     }
-}
-
-/// Removes the slots `holes` (ascending) from `items` by moving the last
-/// items into them; `moved(from, to)` is told of every move.
-fn fill_holes<T: Copy>(items: &mut Vec<T>, holes: &[u32], mut moved: impl FnMut(usize, usize)) {
-    let mut len = items.len();
-    let (mut i, mut j) = (0, holes.len());
-    while i < j {
-        let last = len - 1;
-        if holes[j - 1] as usize == last {
-            j -= 1;
-            len -= 1;
-            continue;
-        }
-        let h = holes[i] as usize;
-        items[h] = items[last];
-        moved(last, h);
-        len -= 1;
-        i += 1;
-    }
-    items.truncate(len);
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use holey_dlfl::{EdgeId, FaceId, Mesh, VertexId};
+use holey_mesh::slots::fill_holes;
 use holey_topo::TriMesh;
 
 /// Frame flag: a preview, not the committed document.
@@ -431,26 +432,15 @@ pub fn patch_triangles(
     }
     // Slots still free: the last edges move into them.
     let holes: Vec<u32> = free.collect();
-    let (mut i, mut j) = (0, holes.len());
-    let mut len = display.edges.len();
-    while i < j {
-        let last = len - 1;
-        if holes[j - 1] as usize == last {
-            j -= 1;
-            len -= 1;
-            continue;
-        }
-        let h = holes[i];
-        let e = display.edges[last];
-        display.edges[h as usize] = e;
-        if let Some(entry) = book.edges.get_mut(&e) {
+    let mut moves = Vec::new();
+    fill_holes(&mut display.edges, &holes, |_, to| moves.push(to as u32));
+    for h in moves {
+        if let Some(entry) = book.edges.get_mut(&display.edges[h as usize]) {
             entry.0 = h;
         }
         edges.push(h);
-        len -= 1;
-        i += 1;
     }
-    display.edges.truncate(len);
+    let len = display.edges.len();
     edges.retain(|&s| (s as usize) < len);
     edges.sort_unstable();
     edges.dedup();
