@@ -384,8 +384,14 @@ fn glue<T: Copy + Send + Sync>(a: &[T], b: &[T], shift: impl Fn(T) -> T + Sync +
 impl Edges {
     /// Collects the edges of `mesh` (indices are assumed checked).
     pub fn new(mesh: &TriMesh) -> Edges {
-        let nt = mesh.triangles.len();
-        let (start, sides) = bucketed_sides(&mesh.triangles);
+        Edges::of_triangles(&mesh.triangles)
+    }
+
+    /// Collects the edges of `triangles` (indices are assumed checked;
+    /// no positions needed).
+    pub fn of_triangles(triangles: &[[u32; 3]]) -> Edges {
+        let nt = triangles.len();
+        let (start, sides) = bucketed_sides(triangles);
         let mut ends = Vec::with_capacity(sides.len() / 2 + 1);
         let mut of_triangle = vec![[0u32; 3]; nt];
         let mut offsets = Vec::with_capacity(sides.len() / 2 + 2);
@@ -406,7 +412,7 @@ impl Edges {
                     let side = bucket[i].1 as usize;
                     of_triangle[side / 3][side % 3] = e;
                     let t = (side / 3) as u32;
-                    runs[usize::from(mesh.triangles[side / 3][side % 3] != a as u32)] += 1;
+                    runs[usize::from(triangles[side / 3][side % 3] != a as u32)] += 1;
                     // A triangle with a repeated vertex may use one edge twice.
                     if tris.len() == first || tris.last() != Some(&t) {
                         tris.push(t);

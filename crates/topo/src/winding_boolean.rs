@@ -314,14 +314,9 @@ pub fn boolean_by_winding(
 
 /// The undirected edges of `faces` that more than two faces share.
 fn nonmanifold_edges(faces: &[[u32; 3]]) -> usize {
-    let mut edges: Vec<(u32, u32)> = faces
-        .iter()
-        .flat_map(|f| (0..3).map(move |k| (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]))))
-        .collect();
-    edges.sort_unstable();
-    edges
-        .chunk_by(|a, b| a == b)
-        .filter(|run| run.len() > 2)
+    let edges = Edges::of_triangles(faces);
+    (0..edges.len())
+        .filter(|&e| edges.triangles(e).len() > 2)
         .count()
 }
 

@@ -31,6 +31,7 @@ use rustc_hash::FxHashMap as HashMap;
 use glam::DVec3;
 
 use super::{Sampler, Sources};
+use crate::mesh::Edges;
 
 /// Most junction edges examined per cut: each costs two moving-point
 /// queries, and past a few thousand the surface is crumpled beyond what
@@ -185,7 +186,7 @@ impl Junctions<'_> {
         let mut call = first_call;
         let mut deleted = 0;
         // Built once, only if orientation has to decide.
-        let mut sides: Option<EdgeSides> = None;
+        let mut edges: Option<Edges> = None;
         for ((a, b), ss) in junctions.into_iter().take(MAX_JUNCTION_EDGES) {
             // Still a T after the repairs so far?
             if ss.iter().filter(|&&s| keep[s]).count() != 3 {
@@ -227,8 +228,8 @@ impl Junctions<'_> {
                     } else {
                         (s1, s0)
                     };
-                    let sides = sides.get_or_insert_with(|| EdgeSides::new(self.tris, keep));
-                    deleted += self.delete_enclosed(keep, against, with, sides);
+                    let edges = edges.get_or_insert_with(|| Edges::of_triangles(self.tris));
+                    deleted += self.delete_enclosed(keep, against, with, edges);
                 }
                 _ => {}
             }
@@ -247,7 +248,7 @@ impl Junctions<'_> {
         keep: &mut [bool],
         from: usize,
         other: usize,
-        sides: &EdgeSides,
+        edges: &Edges,
     ) -> usize {
         let is_curve = |a: u32, b: u32| self.curve.binary_search(&(a.min(b), a.max(b))).is_ok();
         let mut region = vec![from];
@@ -262,7 +263,8 @@ impl Junctions<'_> {
                     continue;
                 }
                 let mut alone = true;
-                for &r in sides.of(a, b) {
+                for &r in edges.triangles(edges.of_triangle[s][i] as usize) {
+                    let r = r as usize;
                     if r != s && keep[r] {
                         alone = false;
                         if seen.insert(r) {
@@ -289,33 +291,6 @@ impl Junctions<'_> {
 /// `b` to `a`).
 fn runs_forward(t: [u32; 3], a: u32, b: u32) -> bool {
     (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b)
-}
-
-/// The triangles on each undirected edge of the kept triangles.
-struct EdgeSides {
-    on: HashMap<(u32, u32), Vec<usize>>,
-}
-
-impl EdgeSides {
-    fn new(tris: &[[u32; 3]], keep: &[bool]) -> Self {
-        let mut on: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
-        for (s, t) in tris.iter().enumerate() {
-            if !keep[s] {
-                continue;
-            }
-            for i in 0..3 {
-                let (a, b) = (t[i], t[(i + 1) % 3]);
-                on.entry((a.min(b), a.max(b))).or_default().push(s);
-            }
-        }
-        EdgeSides { on }
-    }
-
-    fn of(&self, a: u32, b: u32) -> &[usize] {
-        self.on
-            .get(&(a.min(b), a.max(b)))
-            .map_or(&[][..], Vec::as_slice)
-    }
 }
 
 #[cfg(test)]
