@@ -164,13 +164,9 @@ impl Shared {
         }
         let ms = seconds * 1e3;
         let mesh = stroke.live.mesh();
-        let frame = Batch {
-            mesh,
-            connectivity_changed,
-        };
         let vanish = vanish_mask.as_deref();
-        let moved = &frame.mesh.positions;
-        let bytes = if frame.connectivity_changed {
+        let moved = &mesh.positions;
+        let bytes = if connectivity_changed {
             // Remeshing keeps most vertex and triangle numbers: only the
             // slots that changed travel (drag previews, whose vanish mask
             // covers every vertex, go whole).
@@ -183,7 +179,7 @@ impl Shared {
                         let patch = patch_triangles(
                             &mut stroke.display,
                             &mut book,
-                            frame.mesh,
+                            mesh,
                             MAX_PATCH_SHARE,
                         )?;
                         Some((patch, book))
@@ -204,7 +200,7 @@ impl Shared {
                     )
                 }
                 None => {
-                    let display = display_triangles(frame.mesh);
+                    let display = display_triangles(mesh);
                     // New vertex numbers: the mask is sent again with them.
                     let masked = mask_flags(&mask, &display.positions);
                     let bytes =
@@ -236,13 +232,6 @@ impl Shared {
         }
         Ok(json!({"ms": ms, "vanishing": vanishing, "frames": applied}))
     }
-}
-
-/// What a `stroke_frame` request's frames came to: the surface after the
-/// last, and whether any changed the triangles.
-struct Batch<'a> {
-    mesh: &'a holey_topo::TriMesh,
-    connectivity_changed: bool,
 }
 
 /// The sculpt mask of the vertices a patch lists, in its order; `None`
