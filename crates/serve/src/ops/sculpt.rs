@@ -176,12 +176,8 @@ impl Shared {
                     .take()
                     .or_else(|| EdgeBook::of(&stroke.display))
                     .and_then(|mut book| {
-                        let patch = patch_triangles(
-                            &mut stroke.display,
-                            &mut book,
-                            mesh,
-                            MAX_PATCH_SHARE,
-                        )?;
+                        let patch =
+                            patch_triangles(&mut stroke.display, &mut book, mesh, MAX_PATCH_SHARE)?;
                         Some((patch, book))
                     })
             } else {
