@@ -699,6 +699,89 @@ fn bunny_oded_move_into_a_copy() {
     assert_eq!(genus(&end), 0);
 }
 
+/// Move, an open scan onto a solid: the Stanford bunny (five holes in its
+/// base) moved whole down into a ball under it. A rim of one of its holes
+/// pierces the ball, so the intersection curve there ends on the rim and
+/// encloses nothing: vertex parity leaves a T-junction where it ends,
+/// which only the drag's own path can resolve (`holey_topo`'s kept
+/// keyframes; before them the release was undone). The bunny and the
+/// ball fuse into one piece of genus 0 (χ and loops counted here); the
+/// piercing rim's stretch outside the ball is still open (its vertices,
+/// found from the ball's equation, are boundary vertices of the result),
+/// and holes whose rims sank whole into the ball no longer bound it.
+#[test]
+fn stanford_bunny_moved_whole_onto_a_ball_fuses() {
+    let test = "stanford_bunny_moved_whole_onto_a_ball_fuses";
+    let Some(bunny) = load(test, "stanford-bunny.obj") else {
+        return;
+    };
+    let (lo, hi) = bounds(&bunny);
+    let radius = 0.15;
+    let centre = DVec3::new(
+        (lo.x + hi.x) / 2.0,
+        lo.y - 0.01 - radius,
+        (lo.z + hi.z) / 2.0,
+    );
+    let ball = holey_shapes::icosphere(5).unwrap().triangulated();
+    let mut scene = bunny.clone();
+    scene.append(&TriMesh {
+        positions: ball
+            .positions
+            .iter()
+            .map(|&p| centre + p * radius)
+            .collect(),
+        triangles: ball.triangles.clone(),
+    });
+    let drop = DVec3::new(0.0, -0.04, 0.0);
+    let pick = closest_point(&scene, DVec3::new(centre.x, hi.y, centre.z))
+        .unwrap()
+        .1;
+    let path: Vec<DVec3> = (0..11)
+        .map(|i| pick + drop * (f64::from(i) / 10.0))
+        .collect();
+    // The rim vertices of the bunny's holes, where the drop takes them,
+    // and whether the ball holds them.
+    let rim_ends: Vec<(DVec3, bool)> = edge_degrees(&bunny.triangles)
+        .into_iter()
+        .filter(|(_, d)| *d == 1)
+        .flat_map(|((a, b), _)| [a, b])
+        .collect::<HashSet<u32>>()
+        .into_iter()
+        .map(|v| {
+            let p = bunny.positions[v as usize] + drop;
+            (p, (p - centre).length() < radius)
+        })
+        .collect();
+    let outside: Vec<DVec3> = rim_ends.iter().filter(|e| !e.1).map(|e| e.0).collect();
+    assert!(!outside.is_empty() && outside.len() < rim_ends.len());
+    let (session, reports, end) = sculpt(
+        "bunny onto a ball",
+        scene,
+        &[paint(Brush::Move, 0.0, 1.0, path)],
+        false,
+    );
+    assert_eq!(reports[0].changes, 1, "the release changed the topology");
+    assert_eq!(end.components, 1, "the bunny and the ball fused");
+    assert_eq!(genus(&end), 0);
+    assert!(end.boundary_loops < 5, "holes sank into the ball: {end:?}");
+    let out = session.mesh();
+    let boundary: Vec<DVec3> = edge_degrees(&out.triangles)
+        .into_iter()
+        .filter(|(_, d)| *d == 1)
+        .flat_map(|((a, b), _)| [a, b])
+        .map(|v| out.positions[v as usize])
+        .collect();
+    // The move adds its steps one frame at a time: the same point to
+    // within rounding, a billionth of the bunny's size.
+    let tolerance = 1e-9 * (hi - lo).length();
+    for p in outside {
+        assert!(
+            boundary.iter().any(|q| (*q - p).length() < tolerance),
+            "rim vertex {p} outside the ball is no longer on the boundary"
+        );
+    }
+}
+
 /// A seeded fuzz loop of random strokes on the real meshes (inflate,
 /// deflate, dwell, smooth, grab; random radius 3–8% and strength): no
 /// panic, no refusal, every stroke no worse than the surface before it.

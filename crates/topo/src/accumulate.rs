@@ -8,8 +8,9 @@ use std::time::Instant;
 use glam::DVec3;
 use holey_geom::ccd::vertex_parities;
 
+use crate::drag_path::{DragPath, Numbering};
 use crate::engine::{
-    Options, Outcome, TopoError, ccd_options, check, finish, geometry, static_stage,
+    Options, Outcome, Path, TopoError, ccd_options, check, finish, geometry, static_stage,
 };
 use crate::guard::{Motion, run_once};
 use crate::local::{
@@ -36,6 +37,10 @@ pub struct Accumulator {
     /// The box of everything that moved so far: collisions, and so odd
     /// vertices and new intersections, lie inside it.
     swept: Option<Bounds>,
+    /// What moved in each frame, so that points sampled at release follow
+    /// the drag's true path (`crate::drag_path`); `None` once the drag
+    /// moved more than that keeps.
+    path: Option<DragPath>,
     /// The guarded release computed for the last preview, at frame
     /// `.0`: the release reuses it when nothing moved since.
     last_release: Option<(u64, std::sync::Arc<Release>)>,
@@ -70,6 +75,7 @@ impl Accumulator {
             seconds: 0.0,
             options,
             swept: None,
+            path: Some(DragPath::default()),
             last_release: None,
         })
     }
@@ -109,6 +115,11 @@ impl Accumulator {
             self.collisions += pairs;
             self.tests += tests;
             self.swept = union(self.swept, moved);
+        }
+        if let Some(path) = &mut self.path
+            && !path.record(&self.current, next)
+        {
+            self.path = None;
         }
         self.seconds += t.elapsed().as_secs_f64();
         self.current = next.to_vec();
@@ -179,6 +190,7 @@ impl Accumulator {
                 raw: &self.raw,
                 collisions: (self.collisions, self.tests, self.seconds),
                 frames: self.frame,
+                path: self.path.as_ref(),
             },
         )?;
         let release = if run.worse.is_empty() {
@@ -245,7 +257,14 @@ impl Accumulator {
                 &self.options,
                 started,
                 geometry(&sub, &end, &self.options)?,
-                self.frame <= 1,
+                Path::of_drag(
+                    self.frame,
+                    self.path.as_ref(),
+                    Numbering {
+                        global: &region.global,
+                        local: &region.local,
+                    },
+                ),
             )?;
             match region.resolve(&self.mesh, &self.current, &out, self.options.solid_guard) {
                 (report, Spliced::PositionsOnly) => {
@@ -276,7 +295,7 @@ impl Accumulator {
             &self.options,
             started,
             geometry,
-            self.frame <= 1,
+            Path::of_drag(self.frame, self.path.as_ref(), Numbering::WHOLE),
         )
     }
 }

@@ -317,15 +317,17 @@ pub enum Deletion<'a> {
         /// part assembly (Figure 9), with its occluded cap.
         open_ends: bool,
     },
-    /// As [`Deletion::Odd`], for one frame of linear motion: a sampled
-    /// point then follows the surface exactly (it is a fixed barycentric
-    /// point of a triangle whose corners move linearly), so the sampler
-    /// can also decide the T-junctions vertex parity leaves where a curve
-    /// ends at a sheet's boundary (Figure 7; `cut/junctions.rs`). Over a
-    /// drag of many frames the sampler's straight path is only an
-    /// approximation of the true one, too coarse beside a curve.
+    /// As [`Deletion::Odd`], where a sampled point follows the surface
+    /// exactly: one frame of linear motion (a fixed barycentric point of
+    /// a triangle whose corners move linearly), or a drag whose keyframes
+    /// were kept (`crate::drag_path`). The sampler can then also decide
+    /// the T-junctions vertex parity leaves where a curve ends at a
+    /// sheet's boundary (Figure 7; `cut/junctions.rs`). A drag's straight
+    /// path from its first positions to its last is only an approximation
+    /// of the true one, too coarse beside a curve: without keyframes a
+    /// drag deletes by [`Deletion::Odd`].
     ///
-    /// `new_curve` flags the curves the frame made (none of their
+    /// `new_curve` (one frame only; empty for a drag) flags the curves the frame made (none of their
     /// triangle pairs intersected at its start). Such a curve is cut even
     /// when every vertex around it has one parity: the parts of the
     /// surface it bounds swept through each other between vertices (two
@@ -333,7 +335,7 @@ pub enum Deletion<'a> {
     /// vertex to carry their parity, and their regions are sampled. Left
     /// whole, the surface would come out crossing itself where it did not
     /// before.
-    OddOneFrame {
+    OddTracked {
         /// Parity per input vertex (`true` = odd), as in [`Deletion::Odd`].
         odd: &'a [bool],
         /// Per intersection curve (numbered as in
@@ -356,7 +358,7 @@ impl<'a> Deletion<'a> {
         match self {
             Deletion::Nothing => None,
             Deletion::Odd { odd: o, .. }
-            | Deletion::OddOneFrame { odd: o, .. }
+            | Deletion::OddTracked { odd: o, .. }
             | Deletion::OddExact(o) => Some(o),
         }
     }
@@ -437,7 +439,7 @@ fn curves_to_resolve(
     let keep_curve: Vec<bool> = match deletion {
         Deletion::Nothing | Deletion::OddExact(_) => vec![true; x.curve_count],
         Deletion::Odd { odd, .. } => mixed_curves(tris, x, odd),
-        Deletion::OddOneFrame { odd, new_curve, .. } => mixed_curves(tris, x, odd)
+        Deletion::OddTracked { odd, new_curve, .. } => mixed_curves(tris, x, odd)
             .iter()
             .enumerate()
             .map(|(c, &mixed)| mixed || (sampling && new_curve.get(c).copied().unwrap_or(false)))
@@ -1049,10 +1051,11 @@ fn trim(
                 sample,
             );
             let mut keep: Vec<bool> = labels.iter().map(|&o| !o).collect();
-            // The motion's samples speak for one frame's straight motion
-            // only; a drag's T-junctions go by orientation alone.
+            // The samples follow the true motion only for a frame or a
+            // drag with its keyframes; otherwise T-junctions go by
+            // orientation alone.
             let junctions = match deletion {
-                Deletion::OddOneFrame { open_ends, .. } => Some((sample, open_ends)),
+                Deletion::OddTracked { open_ends, .. } => Some((sample, open_ends)),
                 Deletion::Odd { open_ends, .. } => Some((None, open_ends)),
                 _ => None,
             };

@@ -20,6 +20,7 @@ use holey_geom::{motion_classes, position_classes};
 
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, Deletion, cut, mixed_curves};
+use crate::drag_path::{DragPath, DragSampler, Numbering};
 use crate::intersect::{
     Intersections, Node, PointKind, default_pair_limit, intersections, intersections_limited,
     pair_count_at, pairs_intersect_at,
@@ -455,7 +456,7 @@ impl PointSampler<'_> {
 }
 
 /// Per curve of `x`: whether the frame made it, so that no vertex parity
-/// has to say it should be cut ([`Deletion::OddOneFrame`]): the curves
+/// has to say it should be cut ([`Deletion::OddTracked`]): the curves
 /// that are not `old` and whose vertices all have one parity under `odd`
 /// (the others are cut by §3.5's rule anyway).
 fn new_curves(mesh: &TriMesh, x: &Intersections, odd: &[bool], old: &[bool]) -> Vec<bool> {
@@ -466,10 +467,44 @@ fn new_curves(mesh: &TriMesh, x: &Intersections, odd: &[bool], old: &[bool]) -> 
         .collect()
 }
 
+/// How the points the cut samples (regions without a vertex, the sides
+/// of a T-junction) move over the motion `start` → `end` that
+/// [`finish`] resolves.
+#[derive(Clone, Copy)]
+pub(crate) enum Path<'a> {
+    /// One frame: every point moves straight from `start` to `end`, so
+    /// the samples follow the surface exactly.
+    Frame,
+    /// A drag whose keyframes were kept: the samples follow them exactly
+    /// (`crate::drag_path`); the mesh is numbered as `Numbering` says.
+    Drag(&'a DragPath, Numbering<'a>),
+    /// A drag whose keyframes were not kept: the samples go straight from
+    /// its first positions to its last, near enough for a region's
+    /// parity, too coarse beside a curve (junctions then go by
+    /// orientation alone).
+    Straight,
+}
+
+impl<'a> Path<'a> {
+    /// How samples follow a drag of `frames` frames whose keyframes are
+    /// `path` (if kept), its mesh numbered as `numbering` says.
+    pub(crate) fn of_drag(
+        frames: u64,
+        path: Option<&'a DragPath>,
+        numbering: Numbering<'a>,
+    ) -> Path<'a> {
+        match path {
+            _ if frames <= 1 => Path::Frame,
+            Some(p) => Path::Drag(p, numbering),
+            None => Path::Straight,
+        }
+    }
+}
+
 /// The rest of a frame once collisions and intersections are known:
 /// correction, cut, the solid guard, orientation and the report.
-/// `start` → `end` is the straight motion sampled points follow: the frame
-/// itself (`one_frame`), or for a drag its first and last positions.
+/// `start` → `end` is the motion (for a drag its first and last
+/// positions); `path` says how sampled points follow it.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn finish(
     mesh: &TriMesh,
@@ -480,17 +515,34 @@ pub(crate) fn finish(
     options: &Options,
     started: Instant,
     geometry: Geometry,
-    one_frame: bool,
+    path: Path<'_>,
 ) -> Result<Outcome, TopoError> {
     let s = correction_stage(geometry, mesh, end, &raw, options.scheme)?;
     let t = Instant::now();
-    let sampler = PointSampler {
+    let one_frame = matches!(path, Path::Frame);
+    let straight = PointSampler {
         start,
         end,
         tris: &mesh.triangles,
         bvh: std::sync::OnceLock::new(),
     };
-    let sample = |k: u32, t: u32, w: [f64; 3]| sampler.parity(k, t, w);
+    // With `nonmanifold_joins` a drag keeps the paper's behaviour, where
+    // an open part pushed rim first into a body stays glued along the
+    // curve with the occluded cap (Figure 9). The exact samples would say
+    // otherwise there: a dome narrowing past the body sweeps a thin ring
+    // beside the curve that no vertex sits in, and deleting it would cut
+    // the part and the cap off the body.
+    let along =
+        match path {
+            Path::Drag(keyframes, numbering) if !options.nonmanifold_joins => Some(
+                DragSampler::new(&mesh.triangles, start, numbering, keyframes),
+            ),
+            _ => None,
+        };
+    let sample = |k: u32, t: u32, w: [f64; 3]| match &along {
+        Some(drag) => drag.parity(k, t, w),
+        None => straight.parity(k, t, w),
+    };
     let new_curve = if one_frame && options.refine {
         new_curves(mesh, &s.geometry.x, &s.corrected, &s.old_curve)
     } else {
@@ -507,8 +559,8 @@ pub(crate) fn finish(
         &s.geometry.edges,
         &s.geometry.ids,
         &s.geometry.x,
-        if one_frame {
-            Deletion::OddOneFrame {
+        if one_frame || along.is_some() {
+            Deletion::OddTracked {
                 odd: &s.corrected,
                 new_curve: &new_curve,
                 open_ends: !options.nonmanifold_joins,
@@ -804,7 +856,7 @@ fn topology_change_once(
         options,
         started,
         geometry,
-        true,
+        Path::Frame,
     )
 }
 

@@ -38,8 +38,9 @@ use glam::DVec3;
 
 use crate::audit::SurfaceAudit;
 use crate::containment::{Surroundings, by_containment};
+use crate::drag_path::{DragPath, Numbering};
 use crate::engine::{
-    Freedom, Options, Outcome, TopoError, check, finish, freedom, geometry, topology_change,
+    Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
@@ -153,6 +154,8 @@ pub(crate) enum Motion<'a> {
         raw: &'a [bool],
         collisions: (usize, u64, f64),
         frames: u64,
+        /// Its keyframes, if kept (`crate::drag_path`).
+        path: Option<&'a DragPath>,
     },
 }
 
@@ -316,6 +319,7 @@ fn resolve_frame(
             raw,
             collisions,
             frames,
+            path,
         } => finish(
             sub,
             &sub.positions,
@@ -325,7 +329,14 @@ fn resolve_frame(
             options,
             std::time::Instant::now(),
             geometry(sub, &local_end, options)?,
-            *frames <= 1,
+            Path::of_drag(
+                *frames,
+                *path,
+                Numbering {
+                    global: &region.global,
+                    local: &region.local,
+                },
+            ),
         ),
     }
 }

@@ -10,6 +10,7 @@ pub mod audit;
 mod containment;
 mod correct;
 mod cut;
+mod drag_path;
 mod engine;
 mod guard;
 pub mod internals;
