@@ -4,7 +4,7 @@
 
 import { Viewer } from './viewer.js';
 import { Connection } from './connection.js';
-import { parseFrame, applySparse, applyPatch } from './frame.js';
+import { parseFrame, applySparse, applyPatch, FLAG_PATCH, FLAG_SPARSE } from './frame.js';
 
 const $ = (id) => document.querySelector(`[data-testid="${id}"]`);
 const num = (id) => Number($(id).value);
@@ -246,6 +246,12 @@ function onFrame(buf) {
   try {
     f = parseFrame(buf, prev);
   } catch (e) {
+    if (buf.byteLength >= 12 && new DataView(buf).getUint32(8, true) & (FLAG_PATCH | FLAG_SPARSE)) {
+      // A patch or sparse frame for a mesh this tab does not hold (it
+      // missed a frame): ask for the whole mesh again, quietly.
+      call('hello');
+      return;
+    }
     toast(`Could not read a mesh frame: ${e.message}`, 'error');
     return;
   }

@@ -2189,3 +2189,65 @@ fn a_batch_of_dabs_is_refused_when_malformed() {
     assert_eq!(r["frames"], 2, "{r}");
     a.ok(json!({"op": "stroke_end"}));
 }
+
+/// Words of a frame's header and what follows it (little-endian u32).
+fn frame_word(b: &[u8], i: usize) -> u32 {
+    u32::from_le_bytes(b[4 * i..4 * i + 4].try_into().expect("word"))
+}
+
+/// A tab opened in the middle of a remeshing stroke gets the stroke's
+/// mesh as the other tabs have it, so the stroke's next connectivity
+/// patches apply to what it holds: each patch starts from the counts
+/// (vertices, triangles, edges) of the frame before it, the new tab's
+/// last frame included. Before, it held the mesh from before the stroke
+/// and could apply none of them.
+#[test]
+fn a_tab_opened_mid_stroke_can_apply_its_patches() {
+    let (_dir, addr) = server();
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    a.ok(json!({"op": "set_remesh", "detail": 1.0}));
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.4, "strength": 0.02,
+                "point": [0, 0, 1]}),
+    );
+    const PATCH: u32 = 32;
+    const POSITIONS_ONLY: u32 = 4;
+    let is_patch = |f: &Vec<u8>| frame_word(f, 2) & PATCH != 0;
+    let mut x = 0.0;
+    while !a.frames.iter().any(is_patch) {
+        x += 0.02;
+        assert!(x < 1.0, "remeshing made no patch frame");
+        a.ok(json!({"op": "stroke_frame", "point": [x, 0, 1]}));
+    }
+    let mut b = Tab::open(addr);
+    // Greeted again, once the first greeting is read to its end (replies
+    // come in order): the document, then the stroke so far.
+    b.call(json!({"op": "primitives"}));
+    b.frames.clear();
+    b.call(json!({"op": "hello"}));
+    assert_eq!(b.frames.len(), 2, "the document and the stroke so far");
+    let mut patches = 0;
+    for _ in 0..20 {
+        x += 0.02;
+        a.ok(json!({"op": "stroke_frame", "point": [x, 0, 1]}));
+    }
+    // Let B read what the stroke broadcast.
+    b.call(json!({"op": "primitives"}));
+    let mut counts = None;
+    for f in &b.frames {
+        let flags = frame_word(f, 2);
+        let new = [frame_word(f, 4), frame_word(f, 5), frame_word(f, 6)];
+        if flags & PATCH != 0 {
+            let from = [frame_word(f, 8), frame_word(f, 9), frame_word(f, 10)];
+            assert_eq!(Some(from), counts, "a patch applies to what the tab holds");
+            patches += 1;
+        } else if flags & POSITIONS_ONLY != 0 {
+            assert_eq!(Some(new), counts, "positions for the mesh the tab holds");
+        }
+        counts = Some(new);
+    }
+    assert!(patches > 0, "the stroke went on remeshing");
+    a.ok(json!({"op": "stroke_end"}));
+}

@@ -26,7 +26,7 @@ use holey_model::cut::CutOffset;
 
 use crate::auth::Gate;
 use crate::doc::{Content, Document};
-use crate::frame::encode_masked;
+use crate::frame::{FLAG_PREVIEW, encode_masked};
 use crate::persist::Saver;
 use crate::{Config, ConnId, ServeError};
 use request::Request;
@@ -120,11 +120,17 @@ impl Shared {
         self.doc.lock().unwrap_or_else(|p| p.into_inner())
     }
 
-    /// A new tab: the state and the whole mesh.
+    /// A new tab: the state and the whole mesh; mid-stroke, then also
+    /// the stroke's mesh as the other tabs were last sent it, since the
+    /// stroke's next frames patch that (a tab without it could apply
+    /// none of them until the stroke ended).
     pub fn hello(&self, conn: ConnId) {
         let doc = self.doc();
         self.hub.send(conn, Out::Text(doc.state_json().to_string()));
         self.hub.send(conn, Out::Binary(whole_frame(&doc)));
+        if let Some(frame) = stroke_so_far(&doc) {
+            self.hub.send(conn, Out::Binary(frame));
+        }
     }
 
     /// A tab went away: a stroke it was dragging is abandoned.
@@ -322,6 +328,26 @@ impl Shared {
 fn whole_frame(doc: &Document) -> Vec<u8> {
     let masked = doc.mask_flags();
     encode_masked(doc.display(), 0, doc.version(), None, masked.as_deref())
+}
+
+/// The live stroke's mesh as a whole preview frame: its display's
+/// connectivity (what its patch frames apply to) at the positions the
+/// tabs were last sent (its sparse frames move those); `None` without a
+/// stroke.
+fn stroke_so_far(doc: &Document) -> Option<Vec<u8>> {
+    let stroke = doc.stroke.as_ref()?;
+    let mut display = stroke.display.clone();
+    if stroke.sent.len() == display.positions.len() {
+        display.positions.clone_from(&stroke.sent);
+    }
+    let masked = crate::doc::mask_flags(doc.mask(), &display.positions);
+    Some(encode_masked(
+        &display,
+        FLAG_PREVIEW,
+        doc.version(),
+        None,
+        masked.as_deref(),
+    ))
 }
 
 /// A model made while the sculpt workspace is open is sculpted too.
