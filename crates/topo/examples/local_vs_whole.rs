@@ -1,44 +1,46 @@
-//! Runs one frame (BEFORE.obj moving to AFTER.obj, same triangles) both on
-//! the region the motion reaches and on the whole mesh, and prints the
-//! audit of each result: a check that locality changes nothing.
+//! Runs one frame (BEFORE moving to AFTER, same triangles) both on the
+//! region the motion reaches and on the whole mesh, and prints the audit
+//! of each result: a check that locality changes nothing. With FRAMES, the
+//! same motion also runs as a drag of that many equal steps (an
+//! [`Accumulator`]), released whole and guarded (with what the guard
+//! refused): a check that a drag resolves as its one frame does.
 //!
-//! `cargo run --release -p holey-topo --example local_vs_whole -- BEFORE.obj AFTER.obj`
+//! `cargo run --release -p holey-topo --example local_vs_whole -- BEFORE.obj AFTER.obj [FRAMES]`
 
-use glam::DVec3;
-use holey_topo::{Options, SurfaceAudit, TriMesh, topology_change, topology_change_local};
+use holey_topo::{
+    Accumulator, Options, SurfaceAudit, TriMesh, topology_change, topology_change_local,
+};
 
-fn read_obj(path: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
-    let mut m = TriMesh::default();
-    for line in std::fs::read_to_string(path)?.lines() {
-        let mut w = line.split_whitespace();
-        match w.next() {
-            Some("v") => {
-                let c: Vec<f64> = w.take(3).map(str::parse).collect::<Result<_, _>>()?;
-                m.positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => {
-                let idx: Vec<u32> = w
-                    .map(|s| {
-                        s.split('/')
-                            .next()
-                            .unwrap_or("")
-                            .parse::<u32>()
-                            .map(|i| i - 1)
-                    })
-                    .collect::<Result<_, _>>()?;
-                for k in 1..idx.len() - 1 {
-                    m.triangles.push([idx[0], idx[k], idx[k + 1]]);
-                }
-            }
-            _ => {}
-        }
+/// The mesh of any file holey reads, fan-triangulated.
+fn read(path: &str) -> Result<TriMesh, Box<dyn std::error::Error>> {
+    match holey_io::read_path(std::path::Path::new(path))? {
+        holey_io::MeshFile::Poly(p) => Ok(p.triangulated()),
+        _ => Err(format!("{path}: not a polygon mesh").into()),
     }
-    Ok(m)
+}
+
+/// `a` dragged to `b` in `frames` equal linear steps.
+fn drag(a: &TriMesh, b: &TriMesh, frames: u32) -> Result<Accumulator, Box<dyn std::error::Error>> {
+    let mut acc = Accumulator::new(a.clone(), Options::default())?;
+    for f in 1..=frames {
+        let t = f64::from(f) / f64::from(frames);
+        let next: Vec<_> = a
+            .positions
+            .iter()
+            .zip(&b.positions)
+            .map(|(p, q)| p.lerp(*q, t))
+            .collect();
+        acc.advance(&next)?;
+    }
+    Ok(acc)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let (a, b) = (read_obj(&args[1])?, read_obj(&args[2])?);
+    if args.len() < 3 {
+        return Err("usage: local_vs_whole BEFORE AFTER [FRAMES]".into());
+    }
+    let (a, b) = (read(&args[1])?, read(&args[2])?);
     let options = Options::default();
     let whole = topology_change(&a, &b.positions, &options)?;
     println!("whole: {}", SurfaceAudit::of(&whole.mesh)?);
@@ -50,5 +52,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "  region {} triangles, whole {}, {:?}",
         r.region_triangles, r.whole_mesh, r.report.cut
     );
+    if let Some(frames) = args.get(3) {
+        let frames: u32 = frames.parse()?;
+        let released = drag(&a, &b, frames)?.release()?;
+        println!("drag released: {}", SurfaceAudit::of(&released.mesh)?);
+        println!("  {:?}", released.report.cut);
+        let guarded = drag(&a, &b, frames)?.release_guarded()?;
+        println!("drag guarded: {}", SurfaceAudit::of(&guarded.mesh)?);
+        println!("  refused {:?}", guarded.refused);
+    }
     Ok(())
 }

@@ -254,6 +254,23 @@ impl<'a> DragSampler<'a> {
 mod tests {
     use super::*;
 
+    /// A small triangle around the origin in z = 0 and a big one above
+    /// it in z = 1, both facing +z.
+    fn still_and_mover() -> [[DVec3; 3]; 2] {
+        [
+            [
+                DVec3::new(-0.1, -0.1, 0.0),
+                DVec3::new(0.2, -0.1, 0.0),
+                DVec3::new(-0.1, 0.2, 0.0),
+            ],
+            [
+                DVec3::new(-2.0, -2.0, 1.0),
+                DVec3::new(3.0, -2.0, 1.0),
+                DVec3::new(-2.0, 3.0, 1.0),
+            ],
+        ]
+    }
+
     /// A fixed point at the origin (the middle of a small still triangle)
     /// and a big triangle above it that, over four frames, drops through
     /// it, slides far aside, rises and slides back: it ends where it
@@ -263,16 +280,7 @@ mod tests {
     /// the drop through the point (down beside it): even.
     #[test]
     fn a_loop_that_crosses_a_point_once_is_odd() {
-        let small = [
-            DVec3::new(-0.1, -0.1, 0.0),
-            DVec3::new(0.2, -0.1, 0.0),
-            DVec3::new(-0.1, 0.2, 0.0),
-        ];
-        let big = [
-            DVec3::new(-2.0, -2.0, 1.0),
-            DVec3::new(3.0, -2.0, 1.0),
-            DVec3::new(-2.0, 3.0, 1.0),
-        ];
+        let [small, big] = still_and_mover();
         let tris = [[0, 1, 2], [3, 4, 5]];
         let third = [1.0 / 3.0; 3];
         for (through, expected) in [(true, true), (false, false)] {
@@ -324,16 +332,7 @@ mod tests {
         // Global vertices 0..6; the region holds 3, 4, 5 (the mover) and
         // 0, 1, 2 (the still triangle) as local 3, 4, 5 and 0, 1, 2 of a
         // numbering that swaps them: local v is global (v + 3) % 6.
-        let still = [
-            DVec3::new(-0.1, -0.1, 0.0),
-            DVec3::new(0.2, -0.1, 0.0),
-            DVec3::new(-0.1, 0.2, 0.0),
-        ];
-        let mover = [
-            DVec3::new(-2.0, -2.0, 1.0),
-            DVec3::new(3.0, -2.0, 1.0),
-            DVec3::new(-2.0, 3.0, 1.0),
-        ];
+        let [still, mover] = still_and_mover();
         let global_start: Vec<DVec3> = still.iter().chain(&mover).copied().collect();
         let global_end: Vec<DVec3> = still
             .iter()
