@@ -33,15 +33,20 @@ use glam::DVec3;
 use super::{Sampler, Sources};
 use crate::mesh::Edges;
 
-/// Most junction edges examined per cut: each costs two moving-point
-/// queries, and past a few thousand the surface is crumpled beyond what
+/// Most junction edges examined per cut: each costs two to six
+/// moving-point queries, and past a few thousand the surface is crumpled beyond what
 /// local repair can mend.
 pub const MAX_JUNCTION_EDGES: usize = 4096;
 
 /// How far into a sub-triangle, from its curve edge toward the opposite
 /// corner, a side's sample sits (a fraction of that corner's weight):
-/// close to the curve, where the swept half is swept, yet off it.
-const OFFSET: f64 = 1.0 / 64.0;
+/// close to the curve, where the swept half is swept, yet off it. The
+/// swept half narrows to nothing where the curve ends on a boundary (a
+/// rim edge pierced the sheet), so when the two samples agree they are
+/// taken again closer in; the last offset stays some ten orders of
+/// magnitude above the rounding of the curve's points, so a sample never
+/// lands on the wrong side of its edge.
+const OFFSETS: [f64; 3] = [1.0 / 64.0, 1.0 / 4096.0, 1.0 / 262_144.0];
 
 /// The sub-triangles and geometry one repair reads.
 pub(super) struct Junctions<'a> {
@@ -77,11 +82,18 @@ fn barycentric(p: [DVec3; 3], q: DVec3) -> Option<[f64; 3]> {
 impl Junctions<'_> {
     /// The parity of the point beside edge `(a, b)` inside sub-triangle
     /// `s`, sampled with call number `k`.
-    fn side_parity(&self, sample: &Sampler<'_>, k: u32, s: usize, a: u32, b: u32) -> Option<bool> {
+    fn side_parity(
+        &self,
+        sample: &Sampler<'_>,
+        k: u32,
+        s: usize,
+        (a, b): (u32, u32),
+        offset: f64,
+    ) -> Option<bool> {
         let t = self.tris[s];
         let c = *t.iter().find(|&&v| v != a && v != b)?;
         let at = |v: u32| self.positions.get(v as usize).copied();
-        let q = (at(a)? + at(b)?) * (0.5 * (1.0 - OFFSET)) + at(c)? * OFFSET;
+        let q = (at(a)? + at(b)?) * (0.5 * (1.0 - offset)) + at(c)? * offset;
         let src = self.source.triangle(s);
         let corners = *self.input_tris.get(src as usize)?;
         let p = corners.map(|v| self.input_positions[v as usize]);
@@ -204,16 +216,20 @@ impl Junctions<'_> {
             }) else {
                 continue;
             };
-            let (odd0, odd1) = match sample {
-                Some(sample) => {
+            let mut sides = (None, None);
+            if let Some(sample) = sample {
+                for offset in OFFSETS {
                     call += 2;
-                    (
-                        self.side_parity(sample, call - 2, s0, a, b),
-                        self.side_parity(sample, call - 1, s1, a, b),
-                    )
+                    sides = (
+                        self.side_parity(sample, call - 2, s0, (a, b), offset),
+                        self.side_parity(sample, call - 1, s1, (a, b), offset),
+                    );
+                    if matches!(sides, (Some(x), Some(y)) if x != y) {
+                        break;
+                    }
                 }
-                None => (None, None),
-            };
+            }
+            let (odd0, odd1) = sides;
             match (odd0, odd1) {
                 (Some(true), Some(false)) => deleted += self.delete_side(keep, s0, &by_source),
                 (Some(false), Some(true)) => deleted += self.delete_side(keep, s1, &by_source),
@@ -296,6 +312,64 @@ fn runs_forward(t: [u32; 3], a: u32, b: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A T where the swept half is thinner than the first sample's
+    /// offset reaches, as where a rim edge pierced a sheet: sheet A (one
+    /// source triangle in z = 0, corners 0, 1, 2) is crossed by a curve
+    /// from its edge 0–2 to its edge 1–2 (points 6, 7), and the motion
+    /// swept only a band 0.001 wide below the curve (the sampler here is
+    /// that band). A's two halves and sheet B's kept part (source 1) meet
+    /// at the curve edge. The first samples, 1/64 of the way to the far
+    /// corners, both miss the band; the closer ones find it, and A's
+    /// swept half is deleted.
+    #[test]
+    fn a_thin_swept_half_is_found_by_closer_samples() {
+        let input_positions = vec![
+            DVec3::new(-4.0, -4.0, 0.0),
+            DVec3::new(4.0, -4.0, 0.0),
+            DVec3::new(0.0, 4.0, 0.0),
+            DVec3::new(-3.0, 0.0, -1.0),
+            DVec3::new(3.0, 0.0, -1.0),
+            DVec3::new(0.0, 0.0, 2.0),
+        ];
+        let input_tris = vec![[0, 1, 2], [3, 4, 5]];
+        let mut positions = input_positions.clone();
+        positions.push(DVec3::new(-2.0, 0.0, 0.0));
+        positions.push(DVec3::new(2.0, 0.0, 0.0));
+        // A below the curve (two), A above it, B above A.
+        let tris = vec![[0, 1, 7], [0, 7, 6], [6, 7, 2], [7, 6, 5]];
+        let source = Sources {
+            whole: Vec::new(),
+            sub: vec![(0, [0.0; 2]), (0, [0.0; 2]), (0, [0.0; 2]), (1, [0.0; 2])],
+        };
+        let junctions = Junctions {
+            tris: &tris,
+            source: &source,
+            positions: &positions,
+            input_tris: &input_tris,
+            input_positions: &input_positions,
+            curve: &[(6, 7)],
+        };
+        let band = |_: u32, t: u32, w: [f64; 3]| -> Option<bool> {
+            let p = input_tris[t as usize]
+                .iter()
+                .zip(w)
+                .map(|(&v, wi)| input_positions[v as usize] * wi)
+                .sum::<DVec3>();
+            Some(t == 0 && p.y < 0.0 && p.y > -0.001)
+        };
+        // The first offset alone cannot tell the halves apart.
+        for s in [1, 2] {
+            assert_eq!(
+                junctions.side_parity(&band, 0, s, (6, 7), OFFSETS[0]),
+                Some(false)
+            );
+        }
+        let mut keep = vec![true; 4];
+        let deleted = junctions.repair(&mut keep, Some(&band), true, 0);
+        assert_eq!(deleted, 2);
+        assert_eq!(keep, [false, false, true, true]);
+    }
 
     #[test]
     fn barycentric_recovers_weights_and_refuses_degenerate() {
