@@ -91,6 +91,13 @@ impl Accumulator {
         let moved = swept_box(tris, &self.current, next);
         if let Some(bx) = moved {
             let region = Region::select(tris, &self.current, next, bx);
+            // Every vertex that moved is one of the region's.
+            let among = region.worth_it().then_some(region.global.as_slice());
+            if let Some(path) = &mut self.path
+                && !path.record(&self.current, next, among)
+            {
+                self.path = None;
+            }
             let opts = ccd_options(&self.options, self.frame);
             let (odd, pairs, tests) = if region.worth_it() {
                 let ccd = vertex_parities(
@@ -116,11 +123,7 @@ impl Accumulator {
             self.tests += tests;
             self.swept = union(self.swept, moved);
         }
-        if let Some(path) = &mut self.path
-            && !path.record(&self.current, next)
-        {
-            self.path = None;
-        }
+
         self.seconds += t.elapsed().as_secs_f64();
         self.current = next.to_vec();
         self.frame += 1;

@@ -45,17 +45,20 @@ pub(crate) struct DragPath {
 }
 
 impl DragPath {
-    /// Records a frame from `from` to `to` (same length). Returns `false`
-    /// when the drag has moved more than [`MAX_ENTRIES`] positions: the
-    /// path is then incomplete and must be dropped.
-    pub fn record(&mut self, from: &[DVec3], to: &[DVec3]) -> bool {
-        let (moved, ends): (Vec<u32>, Vec<DVec3>) = from
-            .iter()
-            .zip(to)
-            .enumerate()
-            .filter(|(_, (a, b))| a != b)
-            .map(|(v, (_, b))| (v as u32, *b))
-            .unzip();
+    /// Records a frame from `from` to `to` (same length), looking only at
+    /// the vertices `among` (increasing; every vertex of a triangle that
+    /// moved) or, with `None`, at all. Returns `false` when the drag has
+    /// moved more than [`MAX_ENTRIES`] positions: the path is then
+    /// incomplete and must be dropped.
+    pub fn record(&mut self, from: &[DVec3], to: &[DVec3], among: Option<&[u32]>) -> bool {
+        let moved_to = |v: u32| {
+            let (a, b) = (from.get(v as usize)?, to.get(v as usize)?);
+            (a != b).then_some((v, *b))
+        };
+        let (moved, ends): (Vec<u32>, Vec<DVec3>) = match among {
+            Some(vs) => vs.iter().filter_map(|&v| moved_to(v)).unzip(),
+            None => (0..from.len() as u32).filter_map(moved_to).unzip(),
+        };
         self.entries += moved.len();
         self.frames.push((moved, ends));
         self.entries <= MAX_ENTRIES
@@ -309,7 +312,7 @@ mod tests {
                     .enumerate()
                     .map(|(v, &p)| if v >= 3 { p + step } else { p })
                     .collect();
-                assert!(path.record(&at, &next));
+                assert!(path.record(&at, &next, None));
                 at = next;
             }
             assert_eq!(at, start, "the loop comes back");
@@ -340,7 +343,7 @@ mod tests {
             .chain(mover.iter().map(|p| *p - DVec3::new(0.0, 0.0, 2.0)))
             .collect();
         let mut path = DragPath::default();
-        assert!(path.record(&global_start, &global_end));
+        assert!(path.record(&global_start, &global_end, Some(&[3, 4, 5])));
         let global: Vec<u32> = (0..6).map(|v| (v + 3) % 6).collect();
         let mut local = vec![0; 6];
         for (l, &g) in global.iter().enumerate() {
