@@ -327,8 +327,8 @@ pub enum Deletion<'a> {
     /// of the true one, too coarse beside a curve: without keyframes a
     /// drag deletes by [`Deletion::Odd`].
     ///
-    /// `new_curve` (one frame only; empty for a drag) flags the curves the frame made (none of their
-    /// triangle pairs intersected at its start). Such a curve is cut even
+    /// `new_curve` flags the curves the frame (or the drag) made: none of
+    /// their triangle pairs intersected at its start. Such a curve is cut even
     /// when every vertex around it has one parity: the parts of the
     /// surface it bounds swept through each other between vertices (two
     /// edges crossing, a fold between a fan's triangles), so they hold no

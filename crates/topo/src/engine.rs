@@ -543,7 +543,10 @@ pub(crate) fn finish(
         Some(drag) => drag.parity(k, t, w),
         None => straight.parity(k, t, w),
     };
-    let new_curve = if one_frame && options.refine {
+    // A drag's keyframes let the samples follow it exactly too, so the
+    // curves it made between vertices are cut and their regions sampled
+    // as one frame's are (`old_curve` is taken at the drag's start).
+    let new_curve = if (one_frame || along.is_some()) && options.refine {
         new_curves(mesh, &s.geometry.x, &s.corrected, &s.old_curve)
     } else {
         Vec::new()
