@@ -8,7 +8,7 @@ use holey_dlfl::{DVec3, EdgeId, FaceId, Mesh};
 
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
-use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
+use super::{ExtrudeError, Extruded, check_points, solid_base, turned_ring};
 
 /// The golden ratio.
 pub(crate) const PHI: f64 = 1.618_033_988_749_895;
@@ -61,13 +61,7 @@ pub fn extrude_face_dodecahedral(
     let mut vertices = first.vertices;
     vertices.extend(second.vertices);
     vertices.extend(third.vertices);
-    let sides = faces_around(mesh, &vertices, third.top)?;
-    Ok(Extruded {
-        top: third.top,
-        top_start: third.top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, third.top, third.top_start, vertices)
 }
 
 /// The edges of a face in walk order.

@@ -11,9 +11,7 @@ use holey_dlfl::{DVec3, FaceId, Mesh};
 
 use super::plain::extrude_rings;
 use super::stellate::stellate_at;
-use super::{
-    ExtrudeError, Extruded, base_face, check_param, check_points, check_size, faces_around,
-};
+use super::{ExtrudeError, Extruded, base_face, check_param, check_points, check_size};
 
 /// The parameters of [`extrude_face_dome`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,11 +77,5 @@ pub fn extrude_face_dome(
     let cone = stellate_at(mesh, body.top, body.top_start, apex)?;
     let mut vertices = body.vertices;
     vertices.extend(cone.vertices);
-    let sides = faces_around(mesh, &vertices, cone.top)?;
-    Ok(Extruded {
-        top: cone.top,
-        top_start: cone.top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, cone.top, cone.top_start, vertices)
 }

@@ -10,7 +10,7 @@ use super::dodecahedral::{PHI, face_edges};
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
 use super::stellate::stellate_at;
-use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
+use super::{ExtrudeError, Extruded, check_points, solid_base, turned_ring};
 
 /// Icosahedral extrusion of `face`.
 ///
@@ -67,11 +67,5 @@ pub fn extrude_face_icosahedral(
         let start = mesh.face_corner(pentagon)?;
         vertices.extend(stellate_at(mesh, pentagon, start, apex)?.vertices);
     }
-    let sides = faces_around(mesh, &vertices, last.top)?;
-    Ok(Extruded {
-        top: last.top,
-        top_start: last.top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, last.top, last.top_start, vertices)
 }

@@ -331,19 +331,30 @@ pub(crate) fn turned_ring(
         .collect()
 }
 
-/// The faces having a corner at any of `vertices`, except `top`, in slot
-/// order without repeats.
-pub(crate) fn faces_around(
-    mesh: &Mesh,
-    vertices: &[VertexId],
-    top: FaceId,
-) -> Result<Vec<FaceId>, ExtrudeError> {
-    let mut faces = std::collections::BTreeSet::new();
-    for &v in vertices {
-        for c in mesh.vertex_corners(v)? {
-            faces.insert(mesh.corner_face(c)?);
+impl Extruded {
+    /// What an extrusion made that created `vertices` and ended at `top`
+    /// (read from `top_start`): its sides are every other face with a
+    /// corner at one of those vertices, in slot order without repeats.
+    /// Every extrusion reports its result this way, so `sides` means the
+    /// same for all of them.
+    pub(crate) fn around(
+        mesh: &Mesh,
+        top: FaceId,
+        top_start: CornerId,
+        vertices: Vec<VertexId>,
+    ) -> Result<Self, ExtrudeError> {
+        let mut faces = std::collections::BTreeSet::new();
+        for &v in &vertices {
+            for c in mesh.vertex_corners(v)? {
+                faces.insert(mesh.corner_face(c)?);
+            }
         }
+        faces.remove(&top);
+        Ok(Extruded {
+            top,
+            top_start,
+            sides: faces.into_iter().collect(),
+            vertices,
+        })
     }
-    faces.remove(&top);
-    Ok(faces.into_iter().collect())
 }

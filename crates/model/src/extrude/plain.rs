@@ -5,9 +5,7 @@
 
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 
-use super::{
-    ExtrudeError, Extruded, base_face, check_param, check_points, check_size, faces_around, region,
-};
+use super::{ExtrudeError, Extruded, base_face, check_param, check_points, check_size, region};
 use crate::polygon::{self, Frame};
 
 /// The parameters of [`extrude_face`].
@@ -123,13 +121,7 @@ pub(crate) fn extrude_rings(
         top = step.top;
         top_start = step.top_start;
     }
-    let sides = faces_around(mesh, &vertices, top)?;
-    Ok(Extruded {
-        top,
-        top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, top, top_start, vertices)
 }
 
 /// One ring: the corner read `k`-th from `start` gets a new vertex at
