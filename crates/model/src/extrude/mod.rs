@@ -280,6 +280,18 @@ pub(crate) fn check_surface_face(mesh: &Mesh, face: FaceId) -> Result<(), Extrud
     Ok(())
 }
 
+/// [`check_points`] for the rings of new points of one extrusion, in the
+/// order they are created: the points are numbered on from one ring to
+/// the next, so an error names the bad point as the extrusion counts it.
+pub(crate) fn check_rings(face: FaceId, rings: &[&[DVec3]]) -> Result<(), ExtrudeError> {
+    let mut first = 0;
+    for ring in rings {
+        check_points(face, first, ring)?;
+        first += ring.len();
+    }
+    Ok(())
+}
+
 /// Refuses non-finite points, naming the face they were computed for and
 /// the first bad point as `new point first + i`.
 pub(crate) fn check_points(
