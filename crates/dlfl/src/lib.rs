@@ -58,6 +58,6 @@ pub use glam::DVec3;
 pub use holey_mesh::NonFinite;
 pub use ids::{CornerId, EdgeId, EntityKind, FaceId, VertexId};
 pub use info::dlfl_info;
-pub use mesh::{FaceCorners, Mesh, VertexCorners, VertexRotation};
+pub use mesh::{CornerCycle, FaceCorners, Mesh, VertexCorners, VertexRotation};
 pub use topology::{ComponentTopology, Topology};
 pub use validate::ValidationError;

@@ -435,39 +435,23 @@ impl Mesh {
 }
 
 /// Corners of a face in cyclic order.
-pub struct FaceCorners<'a> {
-    mesh: &'a Mesh,
-    next: u32,
-    left: u32,
-}
-
-impl Iterator for FaceCorners<'_> {
-    type Item = CornerId;
-    #[inline]
-    fn next(&mut self) -> Option<CornerId> {
-        if self.left == 0 {
-            return None;
-        }
-        self.left -= 1;
-        let c = self.next;
-        self.next = self.mesh.c(c).next;
-        Some(self.mesh.cid(c))
-    }
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        (self.left as usize, Some(self.left as usize))
-    }
-}
-
-impl ExactSizeIterator for FaceCorners<'_> {}
+pub type FaceCorners<'a> = CornerCycle<'a, false>;
 
 /// Corners of a vertex in ring order.
-pub struct VertexCorners<'a> {
+pub type VertexCorners<'a> = CornerCycle<'a, true>;
+
+/// The corners met by following one link from corner to corner as many
+/// times as the cycle is long: the face links (`next`) for
+/// [`FaceCorners`], the vertex ring links (`vnext`) when `RING`, for
+/// [`VertexCorners`]. Both cycles know their length, so neither walk has
+/// to look for its start.
+pub struct CornerCycle<'a, const RING: bool> {
     mesh: &'a Mesh,
     next: u32,
     left: u32,
 }
 
-impl Iterator for VertexCorners<'_> {
+impl<const RING: bool> Iterator for CornerCycle<'_, RING> {
     type Item = CornerId;
     #[inline]
     fn next(&mut self) -> Option<CornerId> {
@@ -476,13 +460,16 @@ impl Iterator for VertexCorners<'_> {
         }
         self.left -= 1;
         let c = self.next;
-        self.next = self.mesh.c(c).vnext;
+        let corner = self.mesh.c(c);
+        self.next = if RING { corner.vnext } else { corner.next };
         Some(self.mesh.cid(c))
     }
     fn size_hint(&self) -> (usize, Option<usize>) {
         (self.left as usize, Some(self.left as usize))
     }
 }
+
+impl<const RING: bool> ExactSizeIterator for CornerCycle<'_, RING> {}
 
 /// Corners of a vertex in rotation order.
 pub struct VertexRotation<'a> {

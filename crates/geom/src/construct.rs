@@ -227,32 +227,77 @@ pub fn edge_triangle_point(
     b: SymPoint,
     c: SymPoint,
 ) -> Result<EdgeTrianglePoint, GeomError> {
-    let pts = [p, q, a, b, c];
-    check_finite(&pts)?;
-    if let Some(point) = edge_triangle_point_dd(&pts) {
+    construct(
+        &[p, q, a, b, c],
+        edge_triangle_point_dd,
+        edge_triangle_point_exact,
+    )
+}
+
+/// The way both constructions answer: refuse a non-finite point, take the
+/// double-double path when it certifies every quotient (bit-identical to
+/// the exact answer and far cheaper), and evaluate exactly otherwise.
+fn construct<const N: usize, R>(
+    pts: &[SymPoint; N],
+    dd: fn(&[SymPoint; N]) -> Option<R>,
+    exact: fn(&[SymPoint; N]) -> Result<R, GeomError>,
+) -> Result<R, GeomError> {
+    check_finite(pts)?;
+    if let Some(point) = dd(pts) {
         return Ok(point);
     }
-    edge_triangle_point_exact(&pts)
+    exact(pts)
+}
+
+/// The polynomials of an edge × triangle point, evaluated at the scaled
+/// points `[p, q, a, b, c]` in any ring, so that the exact and the
+/// double-double paths divide the very same numerators.
+struct EtTerms<T> {
+    /// The heights of `p` and `q` over `abc`.
+    hp: T,
+    hq: T,
+    /// `hp − hq`: the denominator of `t` and of the position.
+    den: T,
+    /// Barycentric numerators `V(p,q,b,c), V(p,q,c,a), V(p,q,a,b)`.
+    bary: [T; 3],
+    /// Their sum, the barycentric denominator.
+    bary_sum: T,
+}
+
+impl<T: Ring> EtTerms<T> {
+    fn new(ex: &[V3<T>]) -> Self {
+        let o = |i: usize, j: usize, l: usize, m: usize| orient3(&ex[i], &ex[j], &ex[l], &ex[m]);
+        let (hp, hq) = (o(2, 3, 4, 0), o(2, 3, 4, 1));
+        let den = hp.sub(&hq);
+        let bary = [o(0, 1, 3, 4), o(0, 1, 4, 2), o(0, 1, 2, 3)];
+        let bary_sum = bary[0].add(&bary[1]).add(&bary[2]);
+        EtTerms {
+            hp,
+            hq,
+            den,
+            bary,
+            bary_sum,
+        }
+    }
+
+    /// The numerator of coordinate `j` of the position, `hp·q − hq·p`.
+    fn pos(&self, ex: &[V3<T>], j: usize) -> T {
+        self.hp.mul(&ex[1][j]).sub(&self.hq.mul(&ex[0][j]))
+    }
 }
 
 /// [`edge_triangle_point`] by exact expansions only.
 fn edge_triangle_point_exact(pts: &[SymPoint; 5]) -> Result<EdgeTrianglePoint, GeomError> {
     // Every polynomial evaluated once, exactly.
     let (ex, k) = scaled_expansions(pts);
-    let o = |i: usize, j: usize, l: usize, m: usize| orient3(&ex[i], &ex[j], &ex[l], &ex[m]);
-    let (hp, hq) = (o(2, 3, 4, 0), o(2, 3, 4, 1));
-    let den = hp.sub(&hq);
-    let vb = [o(0, 1, 3, 4), o(0, 1, 4, 2), o(0, 1, 2, 3)];
-    let sum = vb[0].add(&vb[1]).add(&vb[2]);
-    if !den.is_zero() && !sum.is_zero() {
+    let et = EtTerms::new(&ex);
+    if !et.den.is_zero() && !et.bary_sum.is_zero() {
         let back = pow2(k);
-        let pos: [f64; 3] = std::array::from_fn(|j| {
-            div_round(&hp.mul(&ex[1][j]).sub(&hq.mul(&ex[0][j])), &den) * back
-        });
+        let pos: [f64; 3] = std::array::from_fn(|j| div_round(&et.pos(&ex, j), &et.den) * back);
         return Ok(EdgeTrianglePoint {
-            t: div_round(&hp, &den),
+            t: div_round(&et.hp, &et.den),
             pos: DVec3::from_array(pos),
-            bary: std::array::from_fn(|i| div_round(&vb[i], &sum)),
+            bary: std::array::from_fn(|i| div_round(&et.bary[i], &et.bary_sum)),
         });
     }
     // The point exists only as a perturbed limit.
@@ -356,11 +401,21 @@ pub fn triple_point(
     let pts = [
         t1[0], t1[1], t1[2], t2[0], t2[1], t2[2], t3[0], t3[1], t3[2],
     ];
-    check_finite(&pts)?;
-    if let Some(point) = triple_point_dd(&pts) {
-        return Ok(point);
-    }
-    triple_point_exact(&pts)
+    construct(&pts, triple_point_dd, triple_point_exact)
+}
+
+/// The barycentric coordinates of the triple point `X_h / w` in triangle
+/// `tri` of the scaled points, as numerators (one per corner, from the
+/// opposite edge) over their common denominator `w·|n|²`; shared by the
+/// exact and the double-double paths.
+fn tp_bary_terms<T: Ring>(ex: &[V3<T>], xh: &V3<T>, w: &T, tri: usize) -> ([T; 3], T) {
+    let t = &ex[3 * tri..3 * tri + 3];
+    let n = normal(&t[0], &t[1], &t[2]);
+    let den = w.mul(&dot(&n, &n));
+    let num = std::array::from_fn(|corner| {
+        edge_side(&t[(corner + 1) % 3], &t[(corner + 2) % 3], &n, xh, w)
+    });
+    (num, den)
 }
 
 /// [`triple_point`] by exact expansions only.
@@ -373,17 +428,13 @@ fn triple_point_exact(pts: &[SymPoint; 9]) -> Result<TriplePoint, GeomError> {
         let mut bary = [[0.0; 3]; 3];
         let mut ok = true;
         for (tri, b) in bary.iter_mut().enumerate() {
-            let t = &ex[3 * tri..3 * tri + 3];
-            let n = normal(&t[0], &t[1], &t[2]);
-            let den = w.mul(&dot(&n, &n));
+            let (num, den) = tp_bary_terms(&ex, &xh, &w, tri);
             if den.is_zero() {
                 ok = false;
                 break;
             }
-            for (corner, x) in b.iter_mut().enumerate() {
-                let u = &t[(corner + 1) % 3];
-                let v = &t[(corner + 2) % 3];
-                *x = div_round(&edge_side(u, v, &n, &xh, &w), &den);
+            for (x, n) in b.iter_mut().zip(&num) {
+                *x = div_round(n, &den);
             }
         }
         if ok {
@@ -429,22 +480,18 @@ fn scaled_dd(pts: &[SymPoint]) -> (Vec<V3<Dd>>, i32) {
 /// exact path.
 fn edge_triangle_point_dd(pts: &[SymPoint; 5]) -> Option<EdgeTrianglePoint> {
     let (ex, k) = scaled_dd(pts);
-    let o = |i: usize, j: usize, l: usize, m: usize| orient3(&ex[i], &ex[j], &ex[l], &ex[m]);
-    let (hp, hq) = (o(2, 3, 4, 0), o(2, 3, 4, 1));
-    let den = hp.sub(&hq);
-    let vb = [o(0, 1, 3, 4), o(0, 1, 4, 2), o(0, 1, 2, 3)];
-    let sum = vb[0].add(&vb[1]).add(&vb[2]);
+    let et = EtTerms::new(&ex);
     let back = pow2(k);
     let mut pos = [0.0; 3];
     for (j, x) in pos.iter_mut().enumerate() {
-        *x = certified_div(&hp.mul(&ex[1][j]).sub(&hq.mul(&ex[0][j])), &den)? * back;
+        *x = certified_div(&et.pos(&ex, j), &et.den)? * back;
     }
     let mut bary = [0.0; 3];
-    for (i, x) in bary.iter_mut().enumerate() {
-        *x = certified_div(&vb[i], &sum)?;
+    for (x, n) in bary.iter_mut().zip(&et.bary) {
+        *x = certified_div(n, &et.bary_sum)?;
     }
     Some(EdgeTrianglePoint {
-        t: certified_div(&hp, &den)?,
+        t: certified_div(&et.hp, &et.den)?,
         pos: DVec3::from_array(pos),
         bary,
     })
@@ -460,13 +507,9 @@ fn triple_point_dd(pts: &[SymPoint; 9]) -> Option<TriplePoint> {
     let back = pow2(k);
     let mut bary = [[0.0; 3]; 3];
     for (tri, b) in bary.iter_mut().enumerate() {
-        let t = &ex[3 * tri..3 * tri + 3];
-        let n = normal(&t[0], &t[1], &t[2]);
-        let den = w.mul(&dot(&n, &n));
-        for (corner, x) in b.iter_mut().enumerate() {
-            let u = &t[(corner + 1) % 3];
-            let v = &t[(corner + 2) % 3];
-            *x = certified_div(&edge_side(u, v, &n, &xh, &w), &den)?;
+        let (num, den) = tp_bary_terms(&ex, &xh, &w, tri);
+        for (x, n) in b.iter_mut().zip(&num) {
+            *x = certified_div(n, &den)?;
         }
     }
     let mut pos = [0.0; 3];

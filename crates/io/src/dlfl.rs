@@ -476,12 +476,7 @@ mod tests {
         assert_eq!(back.face_vertices, raw.face_vertices);
         assert_eq!(back.holes, raw.holes);
         assert_eq!(back.edges, raw.edges);
-        for (a, b) in back.positions.iter().zip(&raw.positions) {
-            assert_eq!(
-                a.to_array().map(f64::to_bits),
-                b.to_array().map(f64::to_bits)
-            );
-        }
+        crate::assert_positions_bit_exact(&back.positions, &raw.positions);
         Mesh::from_raw(&back).unwrap();
         // And through the kernel and back out.
         let again = Mesh::from_raw(&back).unwrap().to_raw();

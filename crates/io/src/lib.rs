@@ -337,6 +337,30 @@ pub(crate) fn face_lists(m: &PolyMesh) -> Vec<Vec<u32>> {
     m.faces().map(<[u32]>::to_vec).collect()
 }
 
+/// Asserts that two position lists are equal to the bit (so `-0.0` and
+/// `0.0` differ): what the round-trip tests of every format demand, since
+/// the writers print each coordinate as the shortest text that reads back
+/// to the same `f64`.
+#[cfg(test)]
+pub(crate) fn assert_positions_bit_exact(a: &[holey_mesh::DVec3], b: &[holey_mesh::DVec3]) {
+    assert_eq!(a.len(), b.len(), "position counts differ");
+    for (p, q) in a.iter().zip(b) {
+        assert_eq!(
+            p.to_array().map(f64::to_bits),
+            q.to_array().map(f64::to_bits)
+        );
+    }
+}
+
+/// Asserts that two polygon meshes are the same: the same faces in the
+/// same order and bit-identical positions.
+#[cfg(test)]
+pub(crate) fn assert_same_poly(a: &PolyMesh, b: &PolyMesh) {
+    assert_eq!(a.face_offsets, b.face_offsets);
+    assert_eq!(a.face_indices, b.face_indices);
+    assert_positions_bit_exact(&a.positions, &b.positions);
+}
+
 /// Runs `body` on a temporary file in the destination's directory, then
 /// flushes, syncs and renames it over `path`. On any failure the temporary
 /// file is removed and `path` is untouched.

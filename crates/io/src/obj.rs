@@ -325,14 +325,7 @@ mod tests {
         assert!(text.starts_with("# written by holey\n"));
         assert!(text.contains("v 2 3 4\n"), "{text}");
         let back = parse(&out, "rt.obj").unwrap();
-        assert_eq!(back.face_offsets, m.face_offsets);
-        assert_eq!(back.face_indices, m.face_indices);
-        for (a, b) in back.positions.iter().zip(&m.positions) {
-            assert_eq!(
-                a.to_array().map(f64::to_bits),
-                b.to_array().map(f64::to_bits)
-            );
-        }
+        crate::assert_same_poly(&back, &m);
     }
 
     #[test]

@@ -260,14 +260,7 @@ mod tests {
         let mut out = Vec::new();
         write(&mut out, &m).unwrap();
         let back = parse(&out, "rt.off").unwrap();
-        assert_eq!(back.face_offsets, m.face_offsets);
-        assert_eq!(back.face_indices, m.face_indices);
-        for (a, b) in back.positions.iter().zip(&m.positions) {
-            assert_eq!(
-                a.to_array().map(f64::to_bits),
-                b.to_array().map(f64::to_bits)
-            );
-        }
+        crate::assert_same_poly(&back, &m);
     }
 
     #[test]

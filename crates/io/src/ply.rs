@@ -755,18 +755,6 @@ mod tests {
         PolyMesh::from_faces(positions, [&[0u32, 1, 2][..], &[0, 2, 3, 1], &[3, 2, 1]])
     }
 
-    fn assert_same(a: &PolyMesh, b: &PolyMesh) {
-        assert_eq!(a.face_offsets, b.face_offsets);
-        assert_eq!(a.face_indices, b.face_indices);
-        assert_eq!(a.positions.len(), b.positions.len());
-        for (p, q) in a.positions.iter().zip(&b.positions) {
-            assert_eq!(
-                p.to_array().map(f64::to_bits),
-                q.to_array().map(f64::to_bits)
-            );
-        }
-    }
-
     fn err(bytes: &[u8]) -> String {
         parse(bytes, "m.ply").unwrap_err().to_string()
     }
@@ -779,7 +767,7 @@ mod tests {
             for c in [None, Some(&colors[..])] {
                 let mut out = Vec::new();
                 write(&mut out, &m, ascii, c).unwrap();
-                assert_same(&parse(&out, "rt.ply").unwrap(), &m);
+                crate::assert_same_poly(&parse(&out, "rt.ply").unwrap(), &m);
             }
         }
         let mut out = Vec::new();
@@ -799,7 +787,7 @@ mod tests {
         let m = PolyMesh::from_faces(positions, [(0..n).collect::<Vec<_>>()]);
         let mut out = Vec::new();
         write(&mut out, &m, false, None).unwrap();
-        assert_same(&parse(&out, "w.ply").unwrap(), &m);
+        crate::assert_same_poly(&parse(&out, "w.ply").unwrap(), &m);
     }
 
     /// A hand-made big-endian file with other elements, other properties

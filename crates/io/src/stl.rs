@@ -424,12 +424,7 @@ mod tests {
         write(&mut out, &m, true).unwrap();
         assert!(!is_binary(&out));
         let back = parse(&out, "a.stl").unwrap();
-        for (a, b) in back.positions.iter().zip(&m.positions) {
-            assert_eq!(
-                a.to_array().map(f64::to_bits),
-                b.to_array().map(f64::to_bits)
-            );
-        }
+        crate::assert_positions_bit_exact(&back.positions, &m.positions);
         assert_eq!(back.face_count(), 3);
     }
 

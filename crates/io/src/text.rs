@@ -339,25 +339,26 @@ pub(crate) fn parse_i64(tok: &[u8]) -> Option<i64> {
         [b'+', rest @ ..] => (false, rest),
         _ => (false, tok),
     };
-    if digits.is_empty() {
-        return None;
+    let magnitude = parse_digits(digits)?;
+    if neg {
+        // Subtracting the magnitude from 0 reaches i64::MIN too.
+        0i64.checked_sub_unsigned(magnitude)
+    } else {
+        i64::try_from(magnitude).ok()
     }
-    let mut v: i64 = 0;
-    for &c in digits {
-        let d = c.wrapping_sub(b'0');
-        if d > 9 {
-            return None;
-        }
-        v = v.checked_mul(10)?.checked_sub(i64::from(d))?;
-    }
-    // Accumulated negatively so that i64::MIN parses.
-    if neg { Some(v) } else { v.checked_neg() }
 }
 
 /// Parses an unsigned decimal integer (an optional `+` allowed).
 #[inline]
 pub(crate) fn parse_u64(tok: &[u8]) -> Option<u64> {
-    let digits = tok.strip_prefix(b"+").unwrap_or(tok);
+    parse_digits(tok.strip_prefix(b"+").unwrap_or(tok))
+}
+
+/// Parses one or more decimal digits and nothing else, for both integer
+/// parsers. `None` if any byte is not a digit, there is none, or the
+/// value does not fit in a `u64`.
+#[inline]
+fn parse_digits(digits: &[u8]) -> Option<u64> {
     if digits.is_empty() {
         return None;
     }
@@ -524,6 +525,8 @@ mod tests {
         assert_eq!(parse_i64(b"+7"), Some(7));
         assert_eq!(parse_i64(b"-9223372036854775808"), Some(i64::MIN));
         assert_eq!(parse_i64(b"9223372036854775808"), None);
+        assert_eq!(parse_i64(b"-9223372036854775809"), None);
+        assert_eq!(parse_i64(b"-+5"), None);
         assert_eq!(parse_i64(b"-"), None);
         assert_eq!(parse_i64(b"1.5"), None);
         assert_eq!(parse_u64(b"18446744073709551615"), Some(u64::MAX));

@@ -294,15 +294,14 @@ pub fn sides_by_edge(triangles: &[[u32; 3]]) -> Vec<(u64, u32)> {
         .collect()
 }
 
-/// [`sides_by_edge`] before the keys are spelled out: `bucketed[start[a]
-/// .. start[a + 1]]` holds `(larger end, side)` of the sides whose smaller
-/// end is `a`, sorted.
-fn bucketed_sides(triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<(u32, u32)>) {
-    let vertices = triangles
-        .iter()
-        .flatten()
-        .max()
-        .map_or(0, |&v| v as usize + 1);
+/// The row starts of a compressed table keyed by an edge's smaller end,
+/// with room in row `a` for every triangle side whose smaller end is `a`
+/// (a side shared by two triangles counts twice): row `a` is
+/// `start[a]..start[a + 1]`, for `a` in `0..vertices` (every index of
+/// `triangles` must be below `vertices`). The first step of a counting
+/// sort of the sides by edge; [`sides_by_edge`] fills such a table with
+/// the sides, icosphere subdivision with the edge midpoints.
+pub fn rows_by_smaller_end(triangles: &[[u32; 3]], vertices: usize) -> Vec<u32> {
     let mut start = vec![0u32; vertices + 1];
     for tri in triangles {
         for k in 0..3 {
@@ -312,6 +311,19 @@ fn bucketed_sides(triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<(u32, u32)>) {
     for v in 0..vertices {
         start[v + 1] += start[v];
     }
+    start
+}
+
+/// [`sides_by_edge`] before the keys are spelled out: `bucketed[start[a]
+/// .. start[a + 1]]` holds `(larger end, side)` of the sides whose smaller
+/// end is `a`, sorted.
+fn bucketed_sides(triangles: &[[u32; 3]]) -> (Vec<u32>, Vec<(u32, u32)>) {
+    let vertices = triangles
+        .iter()
+        .flatten()
+        .max()
+        .map_or(0, |&v| v as usize + 1);
+    let start = rows_by_smaller_end(triangles, vertices);
     let mut cursor = start.clone();
     let mut bucketed = vec![(0u32, 0u32); 3 * triangles.len()];
     for (t, tri) in triangles.iter().enumerate() {

@@ -235,6 +235,24 @@ pub fn cut(
     cut_each(mesh, &each)
 }
 
+/// The targets paired with their offsets for [`cut_each`]: each vertex
+/// cut at `vertex`, each edge or face cut at `other`. This is how the
+/// front ends (the command line, Python) take a cut's depth, as a vertex
+/// cut may want another offset than the edges and faces cut with it.
+pub fn offsets_by_kind(
+    targets: impl IntoIterator<Item = CutTarget>,
+    vertex: CutOffset,
+    other: CutOffset,
+) -> Vec<(CutTarget, CutOffset)> {
+    targets
+        .into_iter()
+        .map(|t| match t {
+            CutTarget::Vertex(_) => (t, vertex),
+            _ => (t, other),
+        })
+        .collect()
+}
+
 /// [`cut`] with an offset of its own for each target (the first given
 /// for a target named twice): a spoke between two regions is cut at each
 /// end by its own region's offset, each below half the spoke.

@@ -8,6 +8,7 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_dlfl::dlfl_info;
 use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::analysis::analyze;
+use holey_model::handle::geometry::vector_area;
 use holey_model::menger::{MengerParams, Thickness, exact_counts, menger};
 
 fn cube() -> Mesh {
@@ -31,16 +32,10 @@ fn exact(iterations: usize) -> MengerParams {
     }
 }
 
+/// The smallest face area (the length of the face's vector area).
 fn min_face_area(m: &Mesh) -> f64 {
     m.faces()
-        .map(|f| {
-            let p = m.face_positions(f).unwrap();
-            let mut s = DVec3::ZERO;
-            for k in 1..p.len() - 1 {
-                s += (p[k] - p[0]).cross(p[k + 1] - p[0]);
-            }
-            0.5 * s.length()
-        })
+        .map(|f| vector_area(&m.face_positions(f).unwrap()).length())
         .fold(f64::INFINITY, f64::min)
 }
 

@@ -6,7 +6,7 @@
 //! them; an edge is named by its two vertices.
 
 use holey::dlfl::{FaceId, Mesh};
-use holey::model::cut::{CutOffset, CutTarget, cut, cut_each};
+use holey::model::cut::{CutOffset, CutTarget, cut, cut_each, offsets_by_kind};
 use holey::model::extrude::{ExtrudeError, ExtrudeKind, ExtrudeOptions, extrude_selection};
 use holey::model::handle::{MultiHandleParams, create_multi_face_handle};
 use holey::model::numbering::{EdgeSpec, Numbering};
@@ -168,13 +168,7 @@ pub fn run_cut(
     if list.is_empty() {
         return Err(bad("no vertex, edge or face was given to cut"));
     }
-    let each: Vec<(CutTarget, CutOffset)> = list
-        .into_iter()
-        .map(|t| match t {
-            CutTarget::Vertex(_) => (t, vertex),
-            _ => (t, how),
-        })
-        .collect();
+    let each = offsets_by_kind(list, vertex, how);
     let mut m = mesh.clone();
     cut_each(&mut m, &each).map_err(|e| bad(numbering.describe_cut(mesh, &e)))?;
     Ok(m)

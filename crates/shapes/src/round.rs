@@ -3,6 +3,7 @@
 use std::cmp::Ordering;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
 
+use holey_mesh::tri::rows_by_smaller_end;
 use holey_mesh::{DVec3, PolyMesh};
 
 use crate::ShapeError;
@@ -76,15 +77,10 @@ fn subdivide(positions: &mut Vec<DVec3>, tris: &[[u32; 3]]) -> Vec<[u32; 3]> {
     // compressed table, as (hi, midpoint). Rows get room for every edge
     // that names their vertex as its lower end, counted per face corner.
     let v = positions.len();
-    let mut start = vec![0usize; v + 1];
-    for t in tris {
-        for k in 0..3 {
-            start[t[k].min(t[(k + 1) % 3]) as usize + 1] += 1;
-        }
-    }
-    for i in 0..v {
-        start[i + 1] += start[i];
-    }
+    let start: Vec<usize> = rows_by_smaller_end(tris, v)
+        .into_iter()
+        .map(|s| s as usize)
+        .collect();
     let mut end = start.clone();
     let mut slots = vec![(0u32, 0u32); start[v]];
     positions.reserve(tris.len() * 3 / 2);

@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 use holey_io::WriteOptions;
-use holey_model::cut::{CutOffset, CutTarget, cut_each};
+use holey_model::cut::{CutOffset, CutTarget, cut_each, offsets_by_kind};
 use holey_model::numbering::{parse_edge_list, parse_index_list};
 
 use crate::error::bad_input;
@@ -173,13 +173,7 @@ pub fn run(args: Args) -> Result<()> {
         (None, Some(t)) => CutOffset::Fraction(t),
         (None, None) => offset,
     };
-    let each: Vec<(CutTarget, CutOffset)> = targets
-        .into_iter()
-        .map(|t| match t {
-            CutTarget::Vertex(_) => (t, vertex_offset),
-            _ => (t, offset),
-        })
-        .collect();
+    let each = offsets_by_kind(targets, vertex_offset, offset);
     cut_and_write(&args.input, &args.output, kernel, &each)
 }
 

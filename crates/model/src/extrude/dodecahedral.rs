@@ -8,7 +8,7 @@ use holey_dlfl::{DVec3, EdgeId, FaceId, Mesh};
 
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
-use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
+use super::{ExtrudeError, Extruded, check_rings, solid_base, turned_ring};
 
 /// The golden ratio.
 pub(crate) const PHI: f64 = 1.618_033_988_749_895;
@@ -36,13 +36,10 @@ pub fn extrude_face_dodecahedral(
     let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
     let (c, n) = (frame.centroid, frame.normal);
     let h = height_factor * frame.radius;
-    let d = points.len();
     let ring1: Vec<DVec3> = points.iter().map(|&p| c + (p - c) * PHI + n * h).collect();
     let mids = turned_ring(&points, c, n, PHI, PHI * h);
     let ring3 = turned_ring(&points, c, n, 1.0, PHI * PHI * h);
-    for (k, ring) in [&ring1, &mids, &ring3].into_iter().enumerate() {
-        check_points(face, k * d, ring)?;
-    }
+    check_rings(face, &[&ring1, &mids, &ring3])?;
     let first = extrude_to(mesh, face, corners[0], &ring1)?;
     let first_top = face_edges(mesh, first.top)?;
     let second = dual_extrude_at(mesh, first.top_start, &mids)?;
@@ -61,13 +58,7 @@ pub fn extrude_face_dodecahedral(
     let mut vertices = first.vertices;
     vertices.extend(second.vertices);
     vertices.extend(third.vertices);
-    let sides = faces_around(mesh, &vertices, third.top)?;
-    Ok(Extruded {
-        top: third.top,
-        top_start: third.top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, third.top, third.top_start, vertices)
 }
 
 /// The edges of a face in walk order.

@@ -11,9 +11,7 @@ use holey_dlfl::{DVec3, FaceId, Mesh};
 
 use super::plain::extrude_rings;
 use super::stellate::stellate_at;
-use super::{
-    ExtrudeError, Extruded, base_face, check_param, check_points, check_size, faces_around,
-};
+use super::{ExtrudeError, Extruded, base_face, check_param, check_rings, check_size};
 
 /// The parameters of [`extrude_face_dome`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,21 +67,13 @@ pub fn extrude_face_dome(
                 .collect()
         })
         .collect();
-    let d = points.len();
-    for (j, ring) in rings.iter().enumerate() {
-        check_points(face, j * d, ring)?;
-    }
-    let apex = c + n * h;
-    check_points(face, k * d, &[apex])?;
+    let apex = [c + n * h];
+    let mut new_points: Vec<&[DVec3]> = rings.iter().map(Vec::as_slice).collect();
+    new_points.push(&apex);
+    check_rings(face, &new_points)?;
     let body = extrude_rings(mesh, face, corners[0], &rings)?;
-    let cone = stellate_at(mesh, body.top, body.top_start, apex)?;
+    let cone = stellate_at(mesh, body.top, body.top_start, apex[0])?;
     let mut vertices = body.vertices;
     vertices.extend(cone.vertices);
-    let sides = faces_around(mesh, &vertices, cone.top)?;
-    Ok(Extruded {
-        top: cone.top,
-        top_start: cone.top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, cone.top, cone.top_start, vertices)
 }

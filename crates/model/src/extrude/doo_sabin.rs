@@ -13,7 +13,7 @@
 
 use holey_dlfl::{DVec3, FaceId, Mesh};
 
-use super::{ExtrudeError, Extruded, base_face, check_param, check_points, check_size, plain};
+use super::{ExtrudeError, Extruded, base_face, plain};
 use crate::polygon;
 
 /// The parameters of [`extrude_face_doo_sabin`].
@@ -52,24 +52,16 @@ pub fn extrude_face_doo_sabin(
     face: FaceId,
     params: &DooSabinParams,
 ) -> Result<Extruded, ExtrudeError> {
-    check_param("distance", params.distance, "finite", |_| true)?;
-    check_param("twist", params.twist, "finite", |_| true)?;
-    check_param("scale", params.scale, "finite and greater than 0", |s| {
-        s > 0.0
-    })?;
-    check_param("count", params.count as f64, "at least 1", |_| {
-        params.count >= 1
-    })?;
+    plain::check_repeat_params(
+        params.distance,
+        ("twist", params.twist),
+        params.scale,
+        params.count,
+    )?;
     let (corners, points, frame) = base_face(mesh, face)?;
-    check_size(params.count as u64 * 5 * corners.len() as u64)?;
-    let mut rings = Vec::with_capacity(params.count);
-    let mut ring = points;
-    for k in 0..params.count {
-        ring = doo_sabin_ring(&ring, frame.normal, params);
-        check_points(face, k * ring.len(), &ring)?;
-        rings.push(ring.clone());
-    }
-    plain::extrude_rings(mesh, face, corners[0], &rings)
+    plain::extrude_repeated(mesh, face, &corners, points, params.count, |ring| {
+        doo_sabin_ring(ring, frame.normal, params)
+    })
 }
 
 /// One repetition's ring (see the module documentation).

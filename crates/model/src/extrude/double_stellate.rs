@@ -5,7 +5,7 @@
 use holey_dlfl::{FaceId, Mesh};
 
 use super::stellate::stellate_at;
-use super::{ExtrudeError, Extruded, base_face, check_param, check_points, faces_around};
+use super::{ExtrudeError, Extruded, base_face, check_param, check_points};
 use crate::polygon;
 
 /// Double stellation of `face`: the centroid `a` becomes a vertex joined
@@ -46,11 +46,5 @@ pub fn double_stellate_face(
         .face_corners(top)?
         .find(|&c| mesh.corner_vertex(c).is_ok_and(|v| v == apex))
         .ok_or(ExtrudeError::DegenerateFace(face))?;
-    let sides = faces_around(mesh, &vertices, top)?;
-    Ok(Extruded {
-        top,
-        top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, top, top_start, vertices)
 }

@@ -10,7 +10,7 @@ use super::dodecahedral::{PHI, face_edges};
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
 use super::stellate::stellate_at;
-use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
+use super::{ExtrudeError, Extruded, check_rings, solid_base, turned_ring};
 
 /// Icosahedral extrusion of `face`.
 ///
@@ -40,9 +40,7 @@ pub fn extrude_face_icosahedral(
         .map(|i| c + (points[(i + 1) % d] - c) * PHI + n * (PHI * h))
         .collect();
     let ring = turned_ring(&points, c, n, 1.0, PHI * PHI * h);
-    for (k, pts) in [&mids, &apexes, &ring].into_iter().enumerate() {
-        check_points(face, k * d, pts)?;
-    }
+    check_rings(face, &[&mids, &apexes, &ring])?;
     let dual = dual_extrude_at(mesh, corners[0], &mids)?;
     let dual_top = face_edges(mesh, dual.top)?;
     let last = extrude_to(mesh, dual.top, dual.top_start, &ring)?;
@@ -67,11 +65,5 @@ pub fn extrude_face_icosahedral(
         let start = mesh.face_corner(pentagon)?;
         vertices.extend(stellate_at(mesh, pentagon, start, apex)?.vertices);
     }
-    let sides = faces_around(mesh, &vertices, last.top)?;
-    Ok(Extruded {
-        top: last.top,
-        top_start: last.top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, last.top, last.top_start, vertices)
 }

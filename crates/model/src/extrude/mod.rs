@@ -280,6 +280,18 @@ pub(crate) fn check_surface_face(mesh: &Mesh, face: FaceId) -> Result<(), Extrud
     Ok(())
 }
 
+/// [`check_points`] for the rings of new points of one extrusion, in the
+/// order they are created: the points are numbered on from one ring to
+/// the next, so an error names the bad point as the extrusion counts it.
+pub(crate) fn check_rings(face: FaceId, rings: &[&[DVec3]]) -> Result<(), ExtrudeError> {
+    let mut first = 0;
+    for ring in rings {
+        check_points(face, first, ring)?;
+        first += ring.len();
+    }
+    Ok(())
+}
+
 /// Refuses non-finite points, naming the face they were computed for and
 /// the first bad point as `new point first + i`.
 pub(crate) fn check_points(
@@ -331,19 +343,30 @@ pub(crate) fn turned_ring(
         .collect()
 }
 
-/// The faces having a corner at any of `vertices`, except `top`, in slot
-/// order without repeats.
-pub(crate) fn faces_around(
-    mesh: &Mesh,
-    vertices: &[VertexId],
-    top: FaceId,
-) -> Result<Vec<FaceId>, ExtrudeError> {
-    let mut faces = std::collections::BTreeSet::new();
-    for &v in vertices {
-        for c in mesh.vertex_corners(v)? {
-            faces.insert(mesh.corner_face(c)?);
+impl Extruded {
+    /// What an extrusion made that created `vertices` and ended at `top`
+    /// (read from `top_start`): its sides are every other face with a
+    /// corner at one of those vertices, in slot order without repeats.
+    /// Every extrusion reports its result this way, so `sides` means the
+    /// same for all of them.
+    pub(crate) fn around(
+        mesh: &Mesh,
+        top: FaceId,
+        top_start: CornerId,
+        vertices: Vec<VertexId>,
+    ) -> Result<Self, ExtrudeError> {
+        let mut faces = std::collections::BTreeSet::new();
+        for &v in &vertices {
+            for c in mesh.vertex_corners(v)? {
+                faces.insert(mesh.corner_face(c)?);
+            }
         }
+        faces.remove(&top);
+        Ok(Extruded {
+            top,
+            top_start,
+            sides: faces.into_iter().collect(),
+            vertices,
+        })
     }
-    faces.remove(&top);
-    Ok(faces.into_iter().collect())
 }

@@ -5,7 +5,7 @@
 
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 
-use super::{ExtrudeError, Extruded, check_points, faces_around, solid_base, turned_ring};
+use super::{ExtrudeError, Extruded, check_points, solid_base, turned_ring};
 
 /// Octahedral extrusion of `face`: new vertex `m_i` over the midpoint of
 /// edge `i` (from corner `i` to `i + 1`), at the position of a regular
@@ -63,13 +63,7 @@ pub(crate) fn dual_extrude_at(
     //    (v_(i+1), m_(i+1), m_i) at every old corner; the m's are left.
     close_ring(mesh, &mut rest)?;
     let top = mesh.corner_face(rest[0])?;
-    let sides = faces_around(mesh, &vertices, top)?;
-    Ok(Extruded {
-        top,
-        top_start: rest[0],
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, top, rest[0], vertices)
 }
 
 /// Given corners `r_0 … r_(n−1)` of one face in walk order, with one

@@ -5,9 +5,7 @@
 
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 
-use super::{
-    ExtrudeError, Extruded, base_face, check_param, check_points, check_size, faces_around, region,
-};
+use super::{ExtrudeError, Extruded, base_face, check_param, check_points, check_size, region};
 use crate::polygon::{self, Frame};
 
 /// The parameters of [`extrude_face`].
@@ -50,15 +48,28 @@ impl ExtrudeParams {
     }
 
     pub(crate) fn check(&self) -> Result<(), ExtrudeError> {
-        check_param("distance", self.distance, "finite", |_| true)?;
-        check_param("rotation_deg", self.rotation_deg, "finite", |_| true)?;
-        check_param("scale", self.scale, "finite and greater than 0", |s| {
-            s > 0.0
-        })?;
-        check_param("count", self.count as f64, "at least 1", |_| {
-            self.count >= 1
-        })
+        check_repeat_params(
+            self.distance,
+            ("rotation_deg", self.rotation_deg),
+            self.scale,
+            self.count,
+        )
     }
+}
+
+/// Checks the parameters of a repeated extrusion (plain or Doo–Sabin), in
+/// this order: a finite `distance`, a finite turn (`turn` is its name and
+/// value), a finite `scale` greater than 0 and a `count` of at least 1.
+pub(crate) fn check_repeat_params(
+    distance: f64,
+    (turn_name, turn): (&'static str, f64),
+    scale: f64,
+    count: usize,
+) -> Result<(), ExtrudeError> {
+    check_param("distance", distance, "finite", |_| true)?;
+    check_param(turn_name, turn, "finite", |_| true)?;
+    check_param("scale", scale, "finite and greater than 0", |s| s > 0.0)?;
+    check_param("count", count as f64, "at least 1", |_| count >= 1)
 }
 
 /// Extrudes `face` `params.count` times (TopMod's cubical extrusion with
@@ -80,19 +91,37 @@ pub fn extrude_face(
 ) -> Result<Extruded, ExtrudeError> {
     params.check()?;
     let (corners, points, frame) = base_face(mesh, face)?;
-    // Each ring adds d quads (4d corners) and d top corners.
-    check_size(params.count as u64 * 5 * corners.len() as u64)?;
-    let mut rings = Vec::with_capacity(params.count);
-    let mut ring = points;
     let mut centre = frame.centroid;
-    for k in 0..params.count {
-        ring = ring
+    extrude_repeated(mesh, face, &corners, points, params.count, |ring| {
+        let next = ring
             .iter()
             .map(|&p| transform(p, centre, &frame, params))
             .collect();
         centre += frame.normal * params.distance;
+        next
+    })
+}
+
+/// Extrudes `face` (which passed [`base_face`], giving `corners` and
+/// their `points`) `count` times, each ring made by `next` from the one
+/// before (the first from `points`): the loop of every repeated
+/// extrusion. Refuses an oversized result and non-finite rings before
+/// changing the mesh.
+pub(crate) fn extrude_repeated(
+    mesh: &mut Mesh,
+    face: FaceId,
+    corners: &[CornerId],
+    points: Vec<DVec3>,
+    count: usize,
+    mut next: impl FnMut(&[DVec3]) -> Vec<DVec3>,
+) -> Result<Extruded, ExtrudeError> {
+    // Each ring adds d quads (4d corners) and d top corners.
+    check_size(count as u64 * 5 * corners.len() as u64)?;
+    let mut rings: Vec<Vec<DVec3>> = Vec::with_capacity(count);
+    for k in 0..count {
+        let ring = next(rings.last().unwrap_or(&points));
         check_points(face, k * ring.len(), &ring)?;
-        rings.push(ring.clone());
+        rings.push(ring);
     }
     extrude_rings(mesh, face, corners[0], &rings)
 }
@@ -123,13 +152,7 @@ pub(crate) fn extrude_rings(
         top = step.top;
         top_start = step.top_start;
     }
-    let sides = faces_around(mesh, &vertices, top)?;
-    Ok(Extruded {
-        top,
-        top_start,
-        sides,
-        vertices,
-    })
+    Extruded::around(mesh, top, top_start, vertices)
 }
 
 /// One ring: the corner read `k`-th from `start` gets a new vertex at

@@ -3,7 +3,7 @@
 
 use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
 
-use super::{ExtrudeError, Extruded, base_face, check_param, check_points, faces_around};
+use super::{ExtrudeError, Extruded, base_face, check_param, check_points};
 
 /// Replaces `face` by a cone: a new vertex at the centroid moved `height`
 /// along the unit normal (negative: inwards), joined to every corner.
@@ -51,11 +51,5 @@ pub(crate) fn stellate_at(
         .face_corners(top)?
         .find(|&c| mesh.corner_vertex(c).is_ok_and(|w| w == v))
         .ok_or(ExtrudeError::DegenerateFace(face))?;
-    let sides = faces_around(mesh, &[v], top)?;
-    Ok(Extruded {
-        top,
-        top_start,
-        sides,
-        vertices: vec![v],
-    })
+    Extruded::around(mesh, top, top_start, vec![v])
 }

@@ -11,6 +11,7 @@ use holey_mesh::PolyMesh;
 
 use super::plan::{Decision, angle_tol, classify, interior_angle};
 use super::*;
+use crate::handle::geometry::vector_area;
 use crate::test_util::prim;
 
 fn import(positions: Vec<DVec3>, faces: Vec<Vec<u32>>) -> Mesh {
@@ -54,17 +55,10 @@ fn cube_with_a_corner_pushed(by: f64) -> Mesh {
     import(positions, faces)
 }
 
-/// Area of each face (Newell), smallest first.
+/// The smallest face area (the length of the face's vector area).
 fn min_face_area(m: &Mesh) -> f64 {
     m.faces()
-        .map(|f| {
-            let p = m.face_positions(f).unwrap();
-            let mut s = DVec3::ZERO;
-            for k in 1..p.len() - 1 {
-                s += (p[k] - p[0]).cross(p[k + 1] - p[0]);
-            }
-            0.5 * s.length()
-        })
+        .map(|f| vector_area(&m.face_positions(f).unwrap()).length())
         .fold(f64::INFINITY, f64::min)
 }
 
