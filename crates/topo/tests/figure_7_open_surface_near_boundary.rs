@@ -190,18 +190,7 @@ fn flap_through_the_floor_with_graph_partitioning() {
 fn flap_through_the_floor_dragged_over_ten_frames() {
     let m = sheet();
     let end = push(&m);
-    let mut drag = holey_topo::Accumulator::new(m.clone(), Options::default()).unwrap();
-    for f in 1..=10 {
-        let t = f64::from(f) / 10.0;
-        let at: Vec<DVec3> = m
-            .positions
-            .iter()
-            .zip(&end)
-            .map(|(p, q)| p.lerp(*q, t))
-            .collect();
-        drag.advance(&at).unwrap();
-    }
-    verify(&m, &end, drag.release().unwrap());
+    verify(&m, &end, dragged(&m, &end, 10).release().unwrap());
 }
 
 /// The paper's point: majority voting cannot cut the strip out (it is one

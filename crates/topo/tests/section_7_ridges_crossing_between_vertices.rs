@@ -20,7 +20,7 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use holey_topo::{Accumulator, Options, TriMesh};
+use holey_topo::{Options, TriMesh};
 
 /// A tent over `[-a, a] × [-b, b]` (in its own x, y) with its crease along
 /// x at height `top` and its eaves at height `eave`, split into `n`
@@ -86,18 +86,7 @@ fn crests_crossing_in_one_frame_join_the_tents() {
 #[test]
 fn crests_crossing_over_a_drag_join_the_tents() {
     let (start, end) = tents();
-    let mut drag = Accumulator::new(start.clone(), Options::default()).unwrap();
-    for f in 1..=5 {
-        let t = f64::from(f) / 5.0;
-        let at: Vec<DVec3> = start
-            .positions
-            .iter()
-            .zip(&end)
-            .map(|(p, q)| p.lerp(*q, t))
-            .collect();
-        drag.advance(&at).unwrap();
-    }
-    let out = drag.release().unwrap();
+    let out = dragged(&start, &end, 5).release().unwrap();
     assert_eq!(out.report.raw_odd_vertices, 0, "no vertex crossed");
     check("drag", &out.mesh);
 }

@@ -6,7 +6,24 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use holey_testkit::Rng;
-use holey_topo::{Options, Outcome, TriMesh, self_intersections, topology_change};
+use holey_topo::{Accumulator, Options, Outcome, TriMesh, self_intersections, topology_change};
+
+/// The motion of `mesh` to `end` as a drag of §4: `frames` equal linear
+/// steps accumulated (default options), not yet released.
+pub fn dragged(mesh: &TriMesh, end: &[DVec3], frames: u32) -> Accumulator {
+    let mut drag = Accumulator::new(mesh.clone(), Options::default()).unwrap();
+    for f in 1..=frames {
+        let t = f64::from(f) / f64::from(frames);
+        let at: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .zip(end)
+            .map(|(p, q)| p.lerp(*q, t))
+            .collect();
+        drag.advance(&at).unwrap();
+    }
+    drag
+}
 
 /// A primitive as a triangle mesh (polygons fan-triangulated).
 pub fn primitive(spec: &str) -> TriMesh {
