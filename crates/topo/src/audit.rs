@@ -156,7 +156,7 @@ impl SurfaceAudit {
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {
-    const WORDS: [(&str, &str); 5] = [
+    const WORDS: [(&str, &str); 6] = [
         ("boundary loops", "open a hole"),
         (
             "non-manifold curves",
@@ -167,6 +167,10 @@ pub fn in_plain_words(regression: &str) -> &str {
         (
             "intersecting triangle pairs",
             "leave the surface passing through itself",
+        ),
+        (
+            "pieces hidden inside the surface",
+            "leave a piece cut loose inside the surface, out of sight",
         ),
     ];
     WORDS

@@ -14,7 +14,9 @@
 //!   non-manifold curve, no new pinched vertex;
 //! - no new degenerate (zero-area) triangle;
 //! - no more intersecting triangle pairs than before: every intersection
-//!   the motion makes is resolved.
+//!   the motion makes is resolved;
+//! - no piece cut loose and left hidden inside the surface
+//!   ([`crate::hidden`]).
 //!
 //! [`topology_change_guarded`] runs the frame on the region the motion
 //! reaches ([`crate::local`]) and audits that region and the ring of
@@ -42,6 +44,7 @@ use crate::drag_path::{DragPath, Numbering};
 use crate::engine::{
     Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
+use crate::hidden::hidden_pieces;
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
 use crate::mesh::TriMesh;
@@ -260,7 +263,10 @@ fn run_with(
     let (result, mut report) = from_whole(&sub, out.clone());
     report.raw_odd = everything.scatter(&report.raw_odd, n, false);
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
-    let worse = audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
+    let mut worse = audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
+    if !report.positions_only {
+        worse.extend(hidden_growth(mesh, &result, &|_| true, &|_| true));
+    }
     Ok(Run {
         mesh: Some(result),
         report,
@@ -285,12 +291,38 @@ fn spliced_and_audited(
         Spliced::Mesh(m) => Some(m),
         Spliced::NotExact => return Ok(None),
     };
-    let worse = audit_region(mesh, end, region, sub, out, &report, options)?;
+    let mut worse = audit_region(mesh, end, region, sub, out, &report, options)?;
+    if let Some(m) = &result {
+        // The spliced result keeps every input vertex's number; new ones
+        // follow.
+        let n = mesh.positions.len();
+        let near = |v: u32| region.local.get(v as usize).is_none_or(|&l| l != u32::MAX);
+        worse.extend(hidden_growth(mesh, m, &near, &|v| {
+            v as usize >= n || near(v)
+        }));
+    }
     Ok(Some(Run {
         mesh: result,
         report,
         worse,
     }))
+}
+
+/// Whether `after` holds more pieces hidden inside the surface than
+/// `before` ([`crate::hidden`]), among the components near what changed
+/// (`near_before`, `near_after` flag their vertices), in words.
+fn hidden_growth(
+    before: &TriMesh,
+    after: &TriMesh,
+    near_before: &dyn Fn(u32) -> bool,
+    near_after: &dyn Fn(u32) -> bool,
+) -> Option<String> {
+    let a = hidden_pieces(after, near_after);
+    if a == 0 {
+        return None;
+    }
+    let b = hidden_pieces(before, near_before);
+    (a > b).then(|| format!("pieces hidden inside the surface: {b} -> {a}"))
 }
 
 /// The engine's result for `region` of `mesh` (submesh `sub`) moving to

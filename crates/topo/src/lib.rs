@@ -13,6 +13,7 @@ mod cut;
 mod drag_path;
 mod engine;
 mod guard;
+mod hidden;
 pub mod internals;
 pub mod intersect;
 mod local;
