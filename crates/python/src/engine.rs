@@ -278,6 +278,7 @@ fn stroke_reports(reports: &[holey::sculpt::StrokeReport]) -> Value {
                     "held_vertices": r.held_vertices,
                     "subframes": r.subframes,
                     "refused": r.refused,
+                    "held_because": r.held_because,
                     "seconds": r.seconds,
                 })
             })

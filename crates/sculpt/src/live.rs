@@ -728,6 +728,11 @@ impl PaintStep<'_> {
                 Ok(guarded) => {
                     self.held
                         .extend(guarded.held_positions.iter().map(|&p| position_key(p)));
+                    for why in &guarded.refused {
+                        if !self.report.held_because.contains(why) {
+                            self.report.held_because.push(why.clone());
+                        }
+                    }
                     if guarded.attempts > 1 || guarded.held_vertices > 0 {
                         self.report.guarded_frames += 1;
                         self.report.held_vertices += guarded.held_vertices;

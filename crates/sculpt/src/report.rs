@@ -118,6 +118,9 @@ pub struct StrokeReport {
     /// For a drag the guard refused at release (the drag was undone): what
     /// the change would have made worse, in words.
     pub refused: Vec<String>,
+    /// What the frames the guard held would have made worse, in words,
+    /// each once, in the order first met (`guarded_frames` says how often).
+    pub held_because: Vec<String>,
     /// Frames split in two because the engine found the motion crumpled
     /// the surface too much for one frame (each split counts once).
     pub subframes: usize,

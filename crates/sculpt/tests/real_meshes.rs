@@ -599,6 +599,46 @@ fn teapot_spout_snake_hooked_into_the_body_fuses() {
     );
 }
 
+/// A dwell inflate on a rim vertex of one of the bunny's base holes
+/// (radius 5%, 40 frames): the rim's triangles fold through their
+/// neighbours and the guard holds frames there. The report says why, in
+/// the audit's words, each reason once, and only when frames were held.
+#[test]
+fn stanford_bunny_dwell_on_a_base_hole_rim_holds_and_says_why() {
+    let Some(bunny) = load(
+        "stanford_bunny_dwell_on_a_base_hole_rim",
+        "stanford-bunny.obj",
+    ) else {
+        return;
+    };
+    let rim = edge_degrees(&bunny.triangles)
+        .into_iter()
+        .filter(|(_, d)| *d == 1)
+        .flat_map(|((a, b), _)| [a, b])
+        .min()
+        .unwrap();
+    let (r, k) = radius_and_strength(&bunny, 0.05, 1.0);
+    let at = bunny.positions[rim as usize];
+    let (_, reports, end) = sculpt(
+        "bunny rim dwell",
+        bunny.clone(),
+        &[paint(Brush::Inflate, r, k, vec![at; 40])],
+        true,
+    );
+    let report = &reports[0];
+    assert!(report.guarded_frames > 0, "the rim folds: {report:?}");
+    assert!(!report.held_because.is_empty());
+    for why in &report.held_because {
+        assert_ne!(
+            holey_topo::audit::in_plain_words(why),
+            why.as_str(),
+            "a reason the audit gives: {why}"
+        );
+        assert_eq!(report.held_because.iter().filter(|w| *w == why).count(), 1);
+    }
+    assert_eq!((end.components, end.boundary_loops), (1, 5));
+}
+
 /// How many connected pieces of `m` lie inside the rest of it: the
 /// generalized winding number of every other piece, summed here from
 /// the solid angles of their triangles (Van Oosterom and Strackee), is at

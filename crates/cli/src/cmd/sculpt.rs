@@ -194,6 +194,12 @@ pub fn run(args: Args) -> Result<()> {
                 r.triangles_after,
                 r.seconds
             );
+            if !r.held_because.is_empty() {
+                eprintln!(
+                    "stroke {i} ({brush}) held frames that would have left {}",
+                    r.held_because.join(", ")
+                );
+            }
             if !r.refused.is_empty() {
                 eprintln!(
                     "stroke {i} ({brush}) was undone: it would have left {}",

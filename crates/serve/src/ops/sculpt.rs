@@ -106,15 +106,24 @@ impl Shared {
             "frames": r.frames,
             "ms": r.seconds * 1e3,
         });
-        if !r.refused.is_empty() {
-            let why: Vec<&str> = r
-                .refused
+        let plain = |reasons: &[String]| {
+            reasons
                 .iter()
                 .map(|w| holey_topo::audit::in_plain_words(w))
-                .collect();
+                .collect::<Vec<&str>>()
+                .join(" and ")
+        };
+        if !r.refused.is_empty() {
             reply["message"] = json!(format!(
                 "The drag was undone: releasing it here would {}.",
-                why.join(" and ")
+                plain(&r.refused)
+            ));
+        } else if !r.held_because.is_empty() {
+            // The brush stopped moving part of the surface: say why once
+            // per stroke.
+            reply["message"] = json!(format!(
+                "Part of the stroke held still where moving it would {}.",
+                plain(&r.held_because)
             ));
         }
         Ok(reply)
