@@ -562,6 +562,24 @@ fn teapot_inflate_smooth_and_spout_into_body() {
     );
 }
 
+/// The teapot welded where its patches share positions, the path of 60
+/// points from its spout's tip into its body, and a brush radius of 12%
+/// of its diagonal; `None` (with a SKIP line) without the shared meshes.
+fn welded_teapot_spout_into_body(test: &str) -> Option<(TriMesh, Vec<DVec3>, f64)> {
+    let dir = shared_meshes_or_skip(test)?;
+    let holey_io::MeshFile::Poly(p) = holey_io::read_path(&dir.join("teapot.obj")).unwrap() else {
+        panic!("teapot.obj: not a polygon mesh");
+    };
+    let teapot = holey_mesh::analysis::weld_exact(&p).triangulated();
+    let (tip, into) = spout_tip_and_body(&teapot);
+    let (lo, hi) = bounds(&teapot);
+    let path: Vec<DVec3> = (0..60)
+        .map(|i| tip + (into - tip) * (f64::from(i) / 59.0))
+        .collect();
+    let radius = 0.12 * (hi - lo).length();
+    Some((teapot, path, radius))
+}
+
 /// The teapot welded where its patches share positions (three pieces:
 /// body with spout and handle, lid, knob; 156 crossing pairs, the spout's
 /// and the handle's roots crossing the body): the snake hook takes the
@@ -571,20 +589,12 @@ fn teapot_inflate_smooth_and_spout_into_body() {
 /// "pushing a tip into a body fuses it"), and nothing else gets worse.
 #[test]
 fn teapot_spout_snake_hooked_into_the_body_fuses() {
-    let Some(dir) = shared_meshes_or_skip("teapot_spout_snake_hooked_into_the_body_fuses") else {
+    let Some((teapot, path, radius)) =
+        welded_teapot_spout_into_body("teapot_spout_snake_hooked_into_the_body_fuses")
+    else {
         return;
     };
-    let holey_io::MeshFile::Poly(p) = holey_io::read_path(&dir.join("teapot.obj")).unwrap() else {
-        panic!("teapot.obj: not a polygon mesh");
-    };
-    let teapot = holey_mesh::analysis::weld_exact(&p).triangulated();
     let start = measure(&teapot);
-    let (tip, into) = spout_tip_and_body(&teapot);
-    let (lo, hi) = bounds(&teapot);
-    let path: Vec<DVec3> = (0..60)
-        .map(|i| tip + (into - tip) * (f64::from(i) / 59.0))
-        .collect();
-    let radius = 0.12 * (hi - lo).length();
     let (_, reports, end) = sculpt(
         "teapot spout into body",
         teapot.clone(),
@@ -690,19 +700,11 @@ fn hidden_pieces(m: &TriMesh) -> usize {
 /// from winding numbers); this drag is undone instead.
 #[test]
 fn teapot_spout_grabbed_into_the_body_hides_nothing_inside() {
-    let Some(dir) = shared_meshes_or_skip("teapot_spout_grabbed_into_the_body") else {
+    let Some((teapot, path, radius)) =
+        welded_teapot_spout_into_body("teapot_spout_grabbed_into_the_body")
+    else {
         return;
     };
-    let holey_io::MeshFile::Poly(p) = holey_io::read_path(&dir.join("teapot.obj")).unwrap() else {
-        panic!("teapot.obj: not a polygon mesh");
-    };
-    let teapot = holey_mesh::analysis::weld_exact(&p).triangulated();
-    let (tip, into) = spout_tip_and_body(&teapot);
-    let (lo, hi) = bounds(&teapot);
-    let path: Vec<DVec3> = (0..60)
-        .map(|i| tip + (into - tip) * (f64::from(i) / 59.0))
-        .collect();
-    let radius = 0.12 * (hi - lo).length();
     let before = hidden_pieces(&teapot);
     let (session, _, _) = sculpt(
         "teapot spout grabbed into the body",

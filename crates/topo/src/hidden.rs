@@ -92,31 +92,19 @@ pub(crate) fn hidden_pieces(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> usize {
 mod tests {
     use super::*;
 
-    /// An axis-aligned box as 12 outward triangles.
+    /// An axis-aligned box as 12 outward triangles (testkit's unit cube
+    /// stretched over `lo`..`hi`).
     fn cube(lo: DVec3, hi: DVec3) -> TriMesh {
-        let p = |i: u32| {
-            DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        };
-        let positions = (0..8).map(p).collect();
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let triangles = quads
-            .iter()
-            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-            .collect();
+        let (corners, quads) = holey_testkit::unit_cube();
         TriMesh {
-            positions,
-            triangles,
+            positions: corners
+                .iter()
+                .map(|&c| lo + (hi - lo) * DVec3::from_array(c))
+                .collect(),
+            triangles: quads
+                .iter()
+                .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+                .collect(),
         }
     }
 
