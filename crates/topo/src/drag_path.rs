@@ -18,7 +18,8 @@
 //! `holey_geom::ccd`).
 //!
 //! Only what moved in each frame is kept, within [`MAX_ENTRIES`]; past
-//! that the drag forgets its keyframes and samples go straight.
+//! that the drag forgets its keyframes and samples go straight. One
+//! frame is sampled by the same [`PathSampler`], as a single straight step.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -105,56 +106,73 @@ impl Numbering<'_> {
     }
 }
 
-/// The parity of a point of a triangle, moving with the surface along a
-/// drag's keyframes (module docs). Built per release; the tree over the
-/// triangles' boxes over the whole drag and the vertices' keyframes are
-/// made on the first sample.
-pub(crate) struct DragSampler<'a> {
-    /// The triangles (local numbers) and their positions at the drag's
-    /// start (local).
-    pub tris: &'a [[u32; 3]],
-    pub start: &'a [DVec3],
-    pub numbering: Numbering<'a>,
-    pub path: &'a DragPath,
-    pub bvh: OnceLock<Option<Bvh>>,
-    /// Keyframe positions per local vertex, filled as samples need them.
-    pub keyframes: RefCell<HashMap<u32, Rc<[DVec3]>>>,
+/// How the vertices of a sampled mesh move.
+#[derive(Clone, Copy)]
+pub(crate) enum Keyframes<'a> {
+    /// One straight frame from the sampler's start to these positions.
+    Straight(&'a [DVec3]),
+    /// A drag's recorded frames, the mesh numbered as `Numbering` says.
+    Recorded(&'a DragPath, Numbering<'a>),
 }
 
-impl<'a> DragSampler<'a> {
-    pub fn new(
-        tris: &'a [[u32; 3]],
-        start: &'a [DVec3],
-        numbering: Numbering<'a>,
-        path: &'a DragPath,
-    ) -> Self {
-        DragSampler {
+/// The parity of a point of a triangle, moving with the surface along its
+/// keyframes: the number of times it hits the moving surface, mod 2, by
+/// the exact test (module docs). One straight frame is the path of one
+/// keyframe step. Built per cut; the tree over the triangles' boxes over
+/// every keyframe and the vertices' keyframes are made on the first
+/// sample.
+pub(crate) struct PathSampler<'a> {
+    /// The triangles (local numbers) and their positions at the start
+    /// (local).
+    tris: &'a [[u32; 3]],
+    start: &'a [DVec3],
+    keyframes: Keyframes<'a>,
+    bvh: OnceLock<Option<Bvh>>,
+    /// Keyframe positions per local vertex, filled as samples need them.
+    cache: RefCell<HashMap<u32, Rc<[DVec3]>>>,
+}
+
+impl<'a> PathSampler<'a> {
+    pub fn new(tris: &'a [[u32; 3]], start: &'a [DVec3], keyframes: Keyframes<'a>) -> Self {
+        PathSampler {
             tris,
             start,
-            numbering,
-            path,
+            keyframes,
             bvh: OnceLock::new(),
-            keyframes: RefCell::new(HashMap::default()),
+            cache: RefCell::new(HashMap::default()),
+        }
+    }
+
+    /// Keyframe steps (frames).
+    fn frames(&self) -> usize {
+        match self.keyframes {
+            Keyframes::Straight(_) => 1,
+            Keyframes::Recorded(path, _) => path.frames.len(),
         }
     }
 
     /// Keyframes `0..=F` of local vertex `v`.
     fn keyframes_of(&self, v: u32) -> Option<Rc<[DVec3]>> {
-        if let Some(k) = self.keyframes.borrow().get(&v) {
+        if let Some(k) = self.cache.borrow().get(&v) {
             return Some(k.clone());
         }
-        let g = self.numbering.global(v);
         let mut at = *self.start.get(v as usize)?;
-        let mut out = Vec::with_capacity(self.path.frames.len() + 1);
-        out.push(at);
-        for f in 0..self.path.frames.len() {
-            if let Some(p) = self.path.moved_to(f, g) {
-                at = p;
+        let out: Rc<[DVec3]> = match self.keyframes {
+            Keyframes::Straight(end) => [at, *end.get(v as usize)?].into(),
+            Keyframes::Recorded(path, numbering) => {
+                let g = numbering.global(v);
+                let mut out = Vec::with_capacity(path.frames.len() + 1);
+                out.push(at);
+                for f in 0..path.frames.len() {
+                    if let Some(p) = path.moved_to(f, g) {
+                        at = p;
+                    }
+                    out.push(at);
+                }
+                out.into()
             }
-            out.push(at);
-        }
-        let out: Rc<[DVec3]> = out.into();
-        self.keyframes.borrow_mut().insert(v, out.clone());
+        };
+        self.cache.borrow_mut().insert(v, out.clone());
         Some(out)
     }
 
@@ -164,13 +182,25 @@ impl<'a> DragSampler<'a> {
             .get_or_init(|| {
                 let mut lo = self.start.to_vec();
                 let mut hi = self.start.to_vec();
-                for (moved, ends) in &self.path.frames {
-                    for (&g, &p) in moved.iter().zip(ends) {
-                        if let Some(l) = self.numbering.local(g)
-                            && let Some(x) = lo.get_mut(l as usize)
-                        {
-                            *x = x.min(p);
-                            hi[l as usize] = hi[l as usize].max(p);
+                let mut grow = |l: usize, p: DVec3| {
+                    if let Some(x) = lo.get_mut(l) {
+                        *x = x.min(p);
+                        hi[l] = hi[l].max(p);
+                    }
+                };
+                match self.keyframes {
+                    Keyframes::Straight(end) => {
+                        for (l, &p) in end.iter().enumerate() {
+                            grow(l, p);
+                        }
+                    }
+                    Keyframes::Recorded(path, numbering) => {
+                        for (moved, ends) in &path.frames {
+                            for (&g, &p) in moved.iter().zip(ends) {
+                                if let Some(l) = numbering.local(g) {
+                                    grow(l as usize, p);
+                                }
+                            }
                         }
                     }
                 }
@@ -193,11 +223,9 @@ impl<'a> DragSampler<'a> {
     pub fn parity(&self, k: u32, t: u32, w: [f64; 3]) -> Option<bool> {
         let n = self.start.len();
         let corners = *self.tris.get(t as usize)?;
-        let own: Vec<Rc<[DVec3]>> = corners
-            .iter()
-            .map(|&c| self.keyframes_of(c))
-            .collect::<Option<_>>()?;
-        let frames = self.path.frames.len();
+        let [a, b, c] = corners.map(|c| self.keyframes_of(c));
+        let own = [a?, b?, c?];
+        let frames = self.frames();
         let point: Vec<DVec3> = (0..=frames)
             .map(|f| own[0][f] * w[0] + own[1][f] * w[1] + own[2][f] * w[2])
             .collect();
@@ -216,10 +244,8 @@ impl<'a> DragSampler<'a> {
         let mut odd = false;
         for u in candidates {
             let tri = self.tris[u as usize];
-            let ks: Vec<Rc<[DVec3]>> = tri
-                .iter()
-                .map(|&c| self.keyframes_of(c))
-                .collect::<Option<_>>()?;
+            let [a, b, c] = tri.map(|c| self.keyframes_of(c));
+            let ks = [a?, b?, c?];
             for f in 0..frames {
                 let still = |k: &[DVec3]| k[f] == k[f + 1];
                 if still(&point) && ks.iter().all(|k| still(k)) {
@@ -316,7 +342,8 @@ mod tests {
                 at = next;
             }
             assert_eq!(at, start, "the loop comes back");
-            let sampler = DragSampler::new(&tris, &start, Numbering::WHOLE, &path);
+            let sampler =
+                PathSampler::new(&tris, &start, Keyframes::Recorded(&path, Numbering::WHOLE));
             assert_eq!(
                 sampler.parity(0, 0, third),
                 Some(expected),
@@ -356,7 +383,7 @@ mod tests {
             global: &global,
             local: &local,
         };
-        let sampler = DragSampler::new(&tris, &start, numbering, &path);
+        let sampler = PathSampler::new(&tris, &start, Keyframes::Recorded(&path, numbering));
         assert_eq!(sampler.parity(0, 1, [1.0 / 3.0; 3]), Some(true));
     }
 }

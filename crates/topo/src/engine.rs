@@ -11,16 +11,12 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_geom::ccd::{
-    CcdOptions, CcdParity, Identities, MovingPoint, Narrow, vertex_parities_cancellable,
-    vertex_triangle_parity,
-};
-use holey_geom::{Aabb, Bvh, SymPoint};
+use holey_geom::ccd::{CcdOptions, Identities, Narrow, vertex_parities_cancellable};
 use holey_geom::{motion_classes, position_classes};
 
 use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, Deletion, cut, mixed_curves};
-use crate::drag_path::{DragPath, DragSampler, Numbering};
+use crate::drag_path::{DragPath, Keyframes, Numbering, PathSampler};
 use crate::intersect::{
     Intersections, Node, PointKind, default_pair_limit, intersections, intersections_limited,
     pair_count_at, pairs_intersect_at,
@@ -387,74 +383,6 @@ pub(crate) fn check(mesh: &TriMesh, end: &[DVec3]) -> Result<(), TopoError> {
     Ok(())
 }
 
-/// The parity of a point of triangle `t` with barycentric weights `w`,
-/// moving with the surface straight from `start` to `end`: the number of
-/// times it hits the moving surface, mod 2, by the exact test. The point
-/// is a vertex the mesh never had, placed where a region has no parity
-/// sample (Figure 13; §7's adaptive refinement, one vertex per region).
-struct PointSampler<'a> {
-    start: &'a [DVec3],
-    end: &'a [DVec3],
-    tris: &'a [[u32; 3]],
-    bvh: std::sync::OnceLock<Option<Bvh>>,
-}
-
-impl PointSampler<'_> {
-    fn parity(&self, k: u32, t: u32, w: [f64; 3]) -> Option<bool> {
-        let n = self.start.len();
-        let corners = *self.tris.get(t as usize)?;
-        let at = |p: &[DVec3]| {
-            corners
-                .iter()
-                .zip(w)
-                .map(|(&c, wi)| p[c as usize] * wi)
-                .sum::<DVec3>()
-        };
-        let (p0, p1) = (at(self.start), at(self.end));
-        let bvh = self
-            .bvh
-            .get_or_init(|| {
-                let boxes: Vec<Aabb> = self
-                    .tris
-                    .iter()
-                    .map(|tri| {
-                        Aabb::from_points(&[
-                            self.start[tri[0] as usize],
-                            self.start[tri[1] as usize],
-                            self.start[tri[2] as usize],
-                            self.end[tri[0] as usize],
-                            self.end[tri[1] as usize],
-                            self.end[tri[2] as usize],
-                        ])
-                    })
-                    .collect();
-                Bvh::build(&boxes).ok()
-            })
-            .as_ref()?;
-        // Identities after every vertex's two (frame_ids: 2v, 2v + 1).
-        let id = u32::try_from(2 * n + 2 * k as usize).ok()?;
-        let x = MovingPoint {
-            start: SymPoint::new(p0, id),
-            end: SymPoint::new(p1, id.checked_add(1)?),
-        };
-        let mp = |v: u32| MovingPoint {
-            start: SymPoint::new(self.start[v as usize], 2 * v),
-            end: SymPoint::new(self.end[v as usize], 2 * v + 1),
-        };
-        let mut odd = false;
-        bvh.for_each_overlap(&Aabb::new(p0.min(p1), p0.max(p1)), |u| {
-            if u == t {
-                return;
-            }
-            let [a, b, c] = self.tris[u as usize].map(mp);
-            if vertex_triangle_parity(x, a, b, c) == CcdParity::Odd {
-                odd = !odd;
-            }
-        });
-        Some(odd)
-    }
-}
-
 /// Per curve of `x`: whether the frame made it, so that no vertex parity
 /// has to say it should be cut ([`Deletion::OddTracked`]): the curves
 /// that are not `old` and whose vertices all have one parity under `odd`
@@ -519,34 +447,27 @@ pub(crate) fn finish(
 ) -> Result<Outcome, TopoError> {
     let s = correction_stage(geometry, mesh, end, &raw, options.scheme)?;
     let t = Instant::now();
-    let one_frame = matches!(path, Path::Frame);
-    let straight = PointSampler {
-        start,
-        end,
-        tris: &mesh.triangles,
-        bvh: std::sync::OnceLock::new(),
-    };
     // With `nonmanifold_joins` a drag keeps the paper's behaviour, where
     // an open part pushed rim first into a body stays glued along the
     // curve with the occluded cap (Figure 9). The exact samples would say
     // otherwise there: a dome narrowing past the body sweeps a thin ring
     // beside the curve that no vertex sits in, and deleting it would cut
-    // the part and the cap off the body.
-    let along =
-        match path {
-            Path::Drag(keyframes, numbering) if !options.nonmanifold_joins => Some(
-                DragSampler::new(&mesh.triangles, start, numbering, keyframes),
-            ),
-            _ => None,
-        };
-    let sample = |k: u32, t: u32, w: [f64; 3]| match &along {
-        Some(drag) => drag.parity(k, t, w),
-        None => straight.parity(k, t, w),
+    // the part and the cap off the body. So such a drag, like one whose
+    // keyframes were not kept, samples along its straight path and
+    // leaves its T-junctions to orientation.
+    let (keyframes, tracked) = match path {
+        Path::Frame => (Keyframes::Straight(end), true),
+        Path::Drag(recorded, numbering) if !options.nonmanifold_joins => {
+            (Keyframes::Recorded(recorded, numbering), true)
+        }
+        Path::Drag(..) | Path::Straight => (Keyframes::Straight(end), false),
     };
+    let sampler = PathSampler::new(&mesh.triangles, start, keyframes);
+    let sample = |k: u32, t: u32, w: [f64; 3]| sampler.parity(k, t, w);
     // A drag's keyframes let the samples follow it exactly too, so the
     // curves it made between vertices are cut and their regions sampled
     // as one frame's are (`old_curve` is taken at the drag's start).
-    let new_curve = if (one_frame || along.is_some()) && options.refine {
+    let new_curve = if tracked && options.refine {
         new_curves(mesh, &s.geometry.x, &s.corrected, &s.old_curve)
     } else {
         Vec::new()
@@ -562,7 +483,7 @@ pub(crate) fn finish(
         &s.geometry.edges,
         &s.geometry.ids,
         &s.geometry.x,
-        if one_frame || along.is_some() {
+        if tracked {
             Deletion::OddTracked {
                 odd: &s.corrected,
                 new_curve: &new_curve,
