@@ -360,7 +360,16 @@ fn rim_normals(
     }
     for (p, list) in &neighbours {
         let c = of_key[p];
-        let two_ring = list.iter().map(|q| around[q]).sum::<DVec3>() + sums[c as usize];
+        let own = sums[c as usize];
+        // A neighbour across a crease folded back past a right angle
+        // (a CAD part's thin wall, a sheet folded onto itself) is the
+        // other side, not more of this one.
+        let two_ring = list
+            .iter()
+            .map(|q| around[q])
+            .filter(|n| n.dot(own) > 0.0)
+            .sum::<DVec3>()
+            + own;
         found.insert(c, two_ring);
     }
     found
@@ -603,6 +612,38 @@ mod tests {
             }
         }
         assert!(rim_moved > 0, "rim vertices take the two-ring's normal");
+    }
+
+    /// A small square (two triangles facing +z) with a large sheet folded
+    /// back over it from one side (a hairpin: the sheet faces down). The
+    /// square's rim vertices take their two-ring's normal, but the
+    /// crease vertices' normals, dominated by the folded sheet, are the
+    /// other side: left out, the square's corners keep facing up (summed
+    /// in, the one away from the crease would face down).
+    #[test]
+    fn a_sheet_folded_back_is_not_averaged_in() {
+        let m = TriMesh {
+            positions: vec![
+                DVec3::new(0.0, 0.0, 0.0),  // w, on the crease
+                DVec3::new(1.0, 0.0, 0.0),  // v
+                DVec3::new(1.0, 1.0, 0.0),  // p
+                DVec3::new(0.0, 1.0, 0.0),  // u, on the crease
+                DVec3::new(10.0, 0.0, 0.5), // q, the folded sheet
+                DVec3::new(10.0, 1.0, 0.5), // s
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3], [0, 3, 5], [0, 5, 4]],
+        };
+        let n = vertex_normals(&m);
+        for v in [1, 2] {
+            assert!(n[v].z > 0.99, "corner {v} of the square faces {}", n[v]);
+        }
+        for v in [4, 5] {
+            assert!(
+                n[v].z < -0.99,
+                "corner {v} of the folded sheet faces {}",
+                n[v]
+            );
+        }
     }
 
     #[test]
