@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""Dwell inflates on the rims of the shared open meshes: how many frames
+the guard holds, and why.
+
+For each mesh with a rim (edges one triangle uses), six rim vertices
+spread along the rim each get a stroke of 40 frames of inflate at the
+vertex (radius 5% of the bounding-box diagonal, the modeler's strength
+for slider 1: 5% of the radius per frame), replayed in order with
+`holey sculpt -v` (remeshing on). Prints the held frames per stroke and
+the reasons the CLI gives. Usage:
+
+    cargo build --release -p holey-cli
+    python3 bench/sculpt/rim_dwells.py [--holey target/release/holey] [--shared ../shared]
+"""
+import argparse, json, os, re, subprocess, sys, tempfile
+from collections import Counter
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(__file__), "..", ".."))
+MESHES = ["stanford-bunny.obj", "bigguyhalf.obj", "suzanne.obj", "beetle.obj"]
+
+
+def read_obj(path):
+    v, f = [], []
+    with open(path) as fh:
+        for line in fh:
+            if line.startswith("v "):
+                v.append([float(x) for x in line.split()[1:4]])
+            elif line.startswith("f "):
+                idx = [int(x.split("/")[0]) - 1 for x in line.split()[1:]]
+                f.extend((idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1))
+    return v, f
+
+
+def dwell_strokes(v, f, strokes=6, frames=40):
+    used = sorted({i for t in f for i in t})
+    lo = [min(v[i][k] for i in used) for k in range(3)]
+    hi = [max(v[i][k] for i in used) for k in range(3)]
+    diagonal = sum((b - a) ** 2 for a, b in zip(lo, hi)) ** 0.5
+    sides = Counter()
+    for a, b, c in f:
+        for u, w in ((a, b), (b, c), (c, a)):
+            sides[(min(u, w), max(u, w))] += 1
+    rim = sorted({i for side, n in sides.items() if n == 1 for i in side})
+    if not rim:
+        return []
+    radius = 0.05 * diagonal
+    step = max(1, len(rim) // strokes)
+    return [
+        {"brush": "inflate", "radius": radius, "strength": 0.05 * radius, "path": [v[i]] * frames}
+        for i in rim[::step][:strokes]
+    ]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--holey", default=os.path.join(ROOT, "target", "release", "holey"))
+    ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
+    args = ap.parse_args()
+    total = 0
+    with tempfile.TemporaryDirectory() as d:
+        for name in MESHES:
+            path = os.path.join(args.shared, "data", "meshes", name)
+            if not os.path.exists(path):
+                print(f"{name}: not found, skipped", file=sys.stderr)
+                continue
+            strokes = dwell_strokes(*read_obj(path))
+            if not strokes:
+                continue
+            file = os.path.join(d, "strokes.json")
+            with open(file, "w") as fh:
+                json.dump({"strokes": strokes}, fh)
+            out = subprocess.run([args.holey, "sculpt", path, file, os.path.join(d, "out.obj"), "-v"],
+                                 capture_output=True, text=True, check=True).stderr
+            held = [int(x) for x in re.findall(r"(\d+) guarded frame", out)]
+            total += sum(held)
+            print(f"{name}: held frames per stroke {held}")
+            for line in out.splitlines():
+                if "held frames that would have left" in line:
+                    print("   ", line.strip())
+    print(f"held frames in all: {total}")
+
+
+if __name__ == "__main__":
+    main()
