@@ -357,6 +357,22 @@ fn stanford_bunny_dwell_inflate_and_smooth() {
     assert_eq!(end.components, 1);
 }
 
+/// The path of a grab from the highest point of the bunny's back on the
+/// vertical through (0.03, ·, −0.015), clear of the ears and of the
+/// holes underneath, straight down to 0.043 under its lowest point: 25
+/// points.
+fn back_through_belly(bunny: &TriMesh) -> Vec<DVec3> {
+    let (lo, _) = bounds(bunny);
+    let top = used_positions(bunny)
+        .filter(|p| (p.x - 0.03).abs() < 0.002 && (p.z + 0.015).abs() < 0.002)
+        .max_by(|a, b| a.y.total_cmp(&b.y))
+        .unwrap();
+    let below = DVec3::new(top.x, lo.y - 0.043, top.z);
+    (0..25)
+        .map(|i| top + (below - top) * (i as f64 / 24.0))
+        .collect()
+}
+
 /// Dragging the top of the bunny's back down through its belly (away
 /// from the holes underneath) makes a tunnel: genus 0 to 1, one piece,
 /// the five holes as they were.
@@ -365,17 +381,7 @@ fn stanford_bunny_back_through_belly_makes_a_tunnel() {
     let Some(bunny) = load("stanford_bunny_tunnel", "stanford-bunny.obj") else {
         return;
     };
-    // The highest point of the back on the vertical through (0.03, ·,
-    // −0.015), clear of the ears and of the holes underneath.
-    let (lo, _) = bounds(&bunny);
-    let top = used_positions(&bunny)
-        .filter(|p| (p.x - 0.03).abs() < 0.002 && (p.z + 0.015).abs() < 0.002)
-        .max_by(|a, b| a.y.total_cmp(&b.y))
-        .unwrap();
-    let below = DVec3::new(top.x, lo.y - 0.043, top.z);
-    let path: Vec<DVec3> = (0..25)
-        .map(|i| top + (below - top) * (i as f64 / 24.0))
-        .collect();
+    let path = back_through_belly(&bunny);
     let (_, reports, end) = sculpt(
         "bunny tunnel",
         bunny,
@@ -402,16 +408,8 @@ fn stanford_bunny_tunnel_preview_is_what_the_release_does() {
     let Some(bunny) = load("stanford_bunny_tunnel_preview", "stanford-bunny.obj") else {
         return;
     };
-    let (lo, _) = bounds(&bunny);
-    let top = used_positions(&bunny)
-        .filter(|p| (p.x - 0.03).abs() < 0.002 && (p.z + 0.015).abs() < 0.002)
-        .max_by(|a, b| a.y.total_cmp(&b.y))
-        .unwrap();
-    let below = DVec3::new(top.x, lo.y - 0.043, top.z);
-    let mut path: Vec<DVec3> = (0..25)
-        .map(|i| top + (below - top) * (i as f64 / 24.0))
-        .collect();
-    path.push(below);
+    let mut path = back_through_belly(&bunny);
+    path.extend(path.last().copied());
     let mut s = Session::new(bunny).unwrap();
     s.set_remeshing(false);
     s.set_preview(true);
