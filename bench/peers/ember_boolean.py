@@ -16,6 +16,14 @@ process, no file reading), and the whole process is timed too.
 By default holey first checks exactly that neither solid crosses itself
 (its winding-number arrangement takes those); `--no-check` skips that, as
 the peers do, for inputs known to be solids.
+
+With holey's Python package importable (`pip install .` from the
+repository), holey is also timed as the peers are: in this process, from
+the same float64 arrays, best of `--runs` (the call's whole wall time,
+array conversion included), the same method as the peers'. (A fresh CLI
+process touches its heap for the first time: in a profile of
+1706459 - 1514499 the kernel zeroing fresh pages was 27-34% of the
+samples. Timed in process, holey was not measurably faster, 2026-12-03.)
 """
 import argparse, json, os, subprocess, sys, tempfile, time
 
@@ -24,6 +32,11 @@ import manifold3d as m3d
 import trueform as tf
 
 from peer_io import best, read_stl, volume
+
+try:
+    import holey as holey_py
+except ImportError:
+    holey_py = None
 
 
 def transform(v, m):
@@ -98,13 +111,21 @@ def main():
                     shape = "closed manifold" if info.get("closed") and info.get("manifold") else "NOT closed manifold"
                 else:
                     v_h, shape = None, err
-                rows.append((name.format(sym), t_m3d, v_m3d, t_tf, v_tf, engine, wall, v_h, shape))
+                t_py = None
+                if holey_py is not None:
+                    call = getattr(holey_py, op)
+                    t_py, _ = best(lambda: call(va, fa, vb, fb, check="--no-check" not in args.holey_args), args.runs)
+                rows.append((name.format(sym), t_m3d, v_m3d, t_tf, v_tf, engine, wall, v_h, shape, t_py))
+                in_process = f"in process {t_py:.3f}s (/tf {t_py / t_tf:.2f}) | " if t_py is not None else ""
                 print(f"{name.format(sym):24} m3d {t_m3d:.3f}s vol {v_m3d:.6g} | tf {t_tf:.3f}s vol {v_tf:.6g} | "
                       f"holey {engine if engine is not None else float('nan'):.3f}s (process {wall if wall else float('nan'):.3f}s) "
-                      f"vol {v_h} {shape} | holey/tf {engine / t_tf if engine else float('nan'):.2f}", flush=True)
+                      f"vol {v_h} {shape} | {in_process}holey/tf {engine / t_tf if engine else float('nan'):.2f}", flush=True)
     ratios = [r[5] / r[3] for r in rows if r[5] is not None]
     if ratios:
         print(f"median holey/trueform (engine, from arrays): {np.median(ratios):.2f} over {len(ratios)} of {len(rows)}")
+    in_process = [r[9] / r[3] for r in rows if r[9] is not None]
+    if in_process:
+        print(f"median holey/trueform (both in process from arrays, best of {args.runs}): {np.median(in_process):.2f}")
 
 
 if __name__ == "__main__":
