@@ -96,32 +96,53 @@ fn scaled_expansions(pts: &[SymPoint]) -> (Vec<V3<Expansion>>, i32) {
     (scaled_by(pts, pow2(-k)), k)
 }
 
-/// Evaluates `num/den` at the points, correctly rounded, taking the
-/// perturbed limit when `den` vanishes exactly. `degree` is `deg(num) −
-/// deg(den)` (to undo the input scaling).
-pub(crate) fn ratio<N: Poly, D: Poly>(
-    num: &N,
+/// Several polynomials evaluated together, sharing what they have in
+/// common: the numerators of one constructed point's coordinates.
+trait Polys {
+    fn eval_all<T: Ring>(&self, p: &[V3<T>]) -> Vec<T>;
+}
+
+/// Evaluates every `num/den` of `nums` at the points, correctly rounded,
+/// taking the perturbed limit when `den` vanishes exactly. `degree[i]`
+/// is `deg(numᵢ) − deg(den)` (to undo the input scaling).
+///
+/// The numerators of one point share their denominator, so its lowest
+/// monomial in the perturbed world is searched for once for all of them
+/// (one call per coordinate searched it again each time: on the
+/// coplanar overlaps of an OpenSCAD export the search was a quarter of
+/// `holey selfint`).
+fn ratios<N: Polys, D: Poly>(
+    nums: &N,
     den: &D,
     pts: &[SymPoint],
-    degree: i32,
-) -> Result<f64, GeomError> {
+    degree: &[i32],
+) -> Result<Vec<f64>, GeomError> {
     let (ex, k) = scaled_expansions(pts);
     let s = pow2(-k);
     let d = den.eval(&ex);
     let q = if !d.is_zero() {
-        div_round(&num.eval(&ex), &d)
+        nums.eval_all(&ex)
+            .iter()
+            .map(|n| div_round(n, &d))
+            .collect()
     } else {
-        limit_ratio(num, den, pts, s)?
+        limit_ratios(nums, den, pts, s)?
     };
-    Ok(q * pow2(k * degree))
+    Ok(q.iter()
+        .zip(degree)
+        .map(|(q, &g)| q * pow2(k * g))
+        .collect())
 }
 
-fn limit_ratio<N: Poly, D: Poly>(
-    num: &N,
+/// The perturbed limits of `nums/den` where `den` vanishes exactly: the
+/// coefficients of the denominator's lowest monomial (see
+/// [`crate::sos`]) in each numerator and in the denominator, divided.
+fn limit_ratios<N: Polys, D: Poly>(
+    nums: &N,
     den: &D,
     pts: &[SymPoint],
     s: f64,
-) -> Result<f64, GeomError> {
+) -> Result<Vec<f64>, GeomError> {
     let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
     ids.sort_unstable();
     ids.dedup();
@@ -138,14 +159,18 @@ fn limit_ratio<N: Poly, D: Poly>(
             .collect();
         let d = den.eval(&ep);
         if let Some((m, dc)) = d.lowest() {
-            let n = num.eval(&ep);
-            if n.lowest().is_some_and(|(mn, _)| mn < m) {
-                return Err(GeomError::Degenerate(
-                    "the perturbed point goes to infinity (parallel planes)",
-                ));
-            }
-            let nc = n.coefficient(m);
-            return Ok(div_round(&nc, dc));
+            return nums
+                .eval_all(&ep)
+                .iter()
+                .map(|n| {
+                    if n.lowest().is_some_and(|(mn, _)| mn < m) {
+                        return Err(GeomError::Degenerate(
+                            "the perturbed point goes to infinity (parallel planes)",
+                        ));
+                    }
+                    Ok(div_round(&n.coefficient(m), dc))
+                })
+                .collect();
         }
     }
     Err(GeomError::Degenerate(
@@ -178,17 +203,14 @@ impl Poly for EtDen {
         hp.sub(&hq)
     }
 }
-struct EtT;
-impl Poly for EtT {
-    fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
-        et_h(p).0
-    }
-}
-struct EtPos(usize);
-impl Poly for EtPos {
-    fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
+/// The edge parameter's numerator and the three coordinates' (over
+/// [`EtDen`]): `h_p` and `h_p q_j − h_q p_j`.
+struct EtNums;
+impl Polys for EtNums {
+    fn eval_all<T: Ring>(&self, p: &[V3<T>]) -> Vec<T> {
         let (hp, hq) = et_h(p);
-        hp.mul(&p[1][self.0]).sub(&hq.mul(&p[0][self.0]))
+        let pos = |j: usize| hp.mul(&p[1][j]).sub(&hq.mul(&p[0][j]));
+        vec![hp.clone(), pos(0), pos(1), pos(2)]
     }
 }
 /// Barycentric numerators `V(p,q,b,c), V(p,q,c,a), V(p,q,a,b)`.
@@ -202,6 +224,13 @@ impl Poly for EtBary {
             _ => (a, b),
         };
         orient3(&p[0], &p[1], u, v)
+    }
+}
+/// The three barycentric numerators together.
+struct EtBarys;
+impl Polys for EtBarys {
+    fn eval_all<T: Ring>(&self, p: &[V3<T>]) -> Vec<T> {
+        (0..3).map(|i| EtBary(i).eval(p)).collect()
     }
 }
 struct EtBaryDen;
@@ -301,18 +330,13 @@ fn edge_triangle_point_exact(pts: &[SymPoint; 5]) -> Result<EdgeTrianglePoint, G
         });
     }
     // The point exists only as a perturbed limit.
-    let t = ratio(&EtT, &EtDen, pts, 0)?;
-    let pos = DVec3::new(
-        ratio(&EtPos(0), &EtDen, pts, 1)?,
-        ratio(&EtPos(1), &EtDen, pts, 1)?,
-        ratio(&EtPos(2), &EtDen, pts, 1)?,
-    );
-    let bary = [
-        ratio(&EtBary(0), &EtBaryDen, pts, 0)?,
-        ratio(&EtBary(1), &EtBaryDen, pts, 0)?,
-        ratio(&EtBary(2), &EtBaryDen, pts, 0)?,
-    ];
-    Ok(EdgeTrianglePoint { t, pos, bary })
+    let tp = ratios(&EtNums, &EtDen, pts, &[0, 1, 1, 1])?;
+    let b = ratios(&EtBarys, &EtBaryDen, pts, &[0, 0, 0])?;
+    Ok(EdgeTrianglePoint {
+        t: tp[0],
+        pos: DVec3::new(tp[1], tp[2], tp[3]),
+        bary: [b[0], b[1], b[2]],
+    })
 }
 
 /// Homogeneous intersection `(X_h, w)` of the planes of three triangles
@@ -360,26 +384,28 @@ impl Poly for TpW {
         triple_h(p).1
     }
 }
-struct TpPos(usize);
-impl Poly for TpPos {
-    fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
-        triple_h(p).0[self.0].clone()
+/// The homogeneous coordinates `X_h` (over [`TpW`]).
+struct TpPositions;
+impl Polys for TpPositions {
+    fn eval_all<T: Ring>(&self, p: &[V3<T>]) -> Vec<T> {
+        triple_h(p).0.to_vec()
     }
 }
-/// Barycentric weight of corner `corner` of triangle `tri`: numerator
-/// `((v−u)×(X_h − w u))·n` for the opposite edge `u→v`.
-struct TpBary {
-    tri: usize,
-    corner: usize,
-}
-impl Poly for TpBary {
-    fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
+/// The barycentric weights' numerators of the corners of triangle `.0`:
+/// `((v−u)×(X_h − w u))·n` for each corner's opposite edge `u→v`.
+struct TpBarys(usize);
+impl Polys for TpBarys {
+    fn eval_all<T: Ring>(&self, p: &[V3<T>]) -> Vec<T> {
         let (xh, w) = triple_h(p);
-        let t = &p[3 * self.tri..3 * self.tri + 3];
+        let t = &p[3 * self.0..3 * self.0 + 3];
         let n = normal(&t[0], &t[1], &t[2]);
-        let u = &t[(self.corner + 1) % 3];
-        let v = &t[(self.corner + 2) % 3];
-        edge_side(u, v, &n, &xh, &w)
+        (0..3)
+            .map(|corner| {
+                let u = &t[(corner + 1) % 3];
+                let v = &t[(corner + 2) % 3];
+                edge_side(u, v, &n, &xh, &w)
+            })
+            .collect()
     }
 }
 struct TpBaryDen(usize);
@@ -446,18 +472,16 @@ fn triple_point_exact(pts: &[SymPoint; 9]) -> Result<TriplePoint, GeomError> {
         }
     }
     // The point exists only as a perturbed limit (or not at all).
-    let pos = DVec3::new(
-        ratio(&TpPos(0), &TpW, pts, 1)?,
-        ratio(&TpPos(1), &TpW, pts, 1)?,
-        ratio(&TpPos(2), &TpW, pts, 1)?,
-    );
+    let x = ratios(&TpPositions, &TpW, pts, &[1, 1, 1])?;
     let mut bary = [[0.0; 3]; 3];
     for (tri, b) in bary.iter_mut().enumerate() {
-        for (corner, x) in b.iter_mut().enumerate() {
-            *x = ratio(&TpBary { tri, corner }, &TpBaryDen(tri), pts, 0)?;
-        }
+        let w = ratios(&TpBarys(tri), &TpBaryDen(tri), pts, &[0, 0, 0])?;
+        b.copy_from_slice(&w);
     }
-    Ok(TriplePoint { pos, bary })
+    Ok(TriplePoint {
+        pos: DVec3::new(x[0], x[1], x[2]),
+        bary,
+    })
 }
 
 /// The points scaled as [`scaled_expansions`] scales them, as
