@@ -105,13 +105,7 @@ fn statements(c: &mut Cursor<'_>, source: &str) -> Result<Statements, IoError> {
     let mut vertex_lines: Vec<usize> = Vec::new();
     let mut face_lines: Vec<usize> = Vec::new();
     let mut edges: Vec<WrittenEdge> = Vec::new();
-    loop {
-        c.skip_empty_lines();
-        if c.eof() {
-            break;
-        }
-        let line = c.line();
-        let Some(keyword) = c.token() else { break };
+    while let Some((line, keyword)) = c.next_statement() {
         match keyword {
             b"v" => {
                 raw.positions.push(vertex_statement(c, line, source)?);

@@ -190,13 +190,7 @@ pub fn parse_ascii(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
     let mut w = Welder::new(bytes.len() / 100);
     let mut state = State::Outside;
     let mut facet_line = 0;
-    loop {
-        c.skip_empty_lines();
-        if c.eof() {
-            break;
-        }
-        let line = c.line();
-        let Some(tok) = c.token() else { break };
+    while let Some((line, tok)) = c.next_statement() {
         let is = |word: &[u8]| tok.eq_ignore_ascii_case(word);
         let unexpected = |expected: &str| {
             Err(IoError::line(

@@ -253,6 +253,19 @@ impl<'a> Cursor<'a> {
             self.next_line();
         }
     }
+
+    /// Moves to the next line with content and reads its first token (the
+    /// statement's keyword), with that line's number; `None` at the end of
+    /// the file. The line-by-line readers (`.dlfl`, ASCII STL) start each
+    /// statement this way, so blank and comment lines are skipped alike.
+    pub(crate) fn next_statement(&mut self) -> Option<(usize, &'a [u8])> {
+        self.skip_empty_lines();
+        if self.eof() {
+            return None;
+        }
+        let line = self.line();
+        self.token().map(|keyword| (line, keyword))
+    }
 }
 
 /// Parses a decimal float (the standard library's syntax: `1`, `-2.5`,
