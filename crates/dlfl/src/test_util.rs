@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::{CornerId, EdgeId, Mesh, RawMesh, VertexId};
+use crate::{CornerId, EdgeId, FaceId, Mesh, RawMesh, VertexId};
 
 /// Builds a closed mesh from polygons by pairing each half-edge u→v with
 /// the single v→u. Test meshes only: panics on anything non-manifold.
@@ -64,6 +64,16 @@ pub(crate) fn cube() -> Mesh {
 pub(crate) fn torus(n: u32, m: u32) -> Mesh {
     let (p, quads) = holey_testkit::quad_torus(n, m);
     of(&p, &quads)
+}
+
+/// The unit cube, its face in slot `slot` and that face's corners in
+/// order: most edits in the kernel's tests start from one cube face's
+/// corners.
+pub(crate) fn cube_face(slot: usize) -> (Mesh, FaceId, Vec<CornerId>) {
+    let m = cube();
+    let f = m.face_at(slot).expect("the cube has six faces");
+    let cs = m.face_corners(f).expect("a live face").collect();
+    (m, f, cs)
 }
 
 /// A self-loop between the first two corners of the mesh's first vertex

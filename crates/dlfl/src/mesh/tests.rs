@@ -3,7 +3,9 @@
 
 use glam::DVec3;
 
-use crate::test_util::{canonical, check, counts, cube, loop_at_first_vertex, tetrahedron, torus};
+use crate::test_util::{
+    canonical, check, counts, cube, cube_face, loop_at_first_vertex, tetrahedron, torus,
+};
 use crate::{Error, Mesh};
 
 #[test]
@@ -55,9 +57,7 @@ fn delete_vertex_removes_only_point_spheres() {
 
 #[test]
 fn insert_edge_in_one_face_splits_it() {
-    let mut m = cube();
-    let f = m.faces().next().unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     let e = m.insert_edge(cs[0], cs[2]).unwrap();
     check(&m);
     assert_eq!(counts(&m), (8, 13, 7, 1, 0));
@@ -72,9 +72,7 @@ fn insert_edge_in_one_face_splits_it() {
 
 #[test]
 fn insert_edge_between_adjacent_corners_makes_a_two_gon() {
-    let mut m = cube();
-    let f = m.faces().next().unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     let e = m.insert_edge(cs[0], cs[1]).unwrap();
     check(&m);
     let lens: Vec<usize> = m
