@@ -76,6 +76,28 @@ pub(crate) fn cube_face(slot: usize) -> (Mesh, FaceId, Vec<CornerId>) {
     (m, f, cs)
 }
 
+/// The unit cube with an edge from the corner of its first face to the
+/// corner of its second (a handle: genus 1), and that edge.
+pub(crate) fn cube_with_handle() -> (Mesh, EdgeId) {
+    let mut m = cube();
+    let faces: Vec<_> = m.faces().collect();
+    let c1 = m.face_corner(faces[0]).expect("a live face");
+    let c2 = m.face_corner(faces[1]).expect("a live face");
+    let e = m.insert_edge(c1, c2).expect("the handle inserts");
+    (m, e)
+}
+
+/// The unit cube with a new vertex at `at` joined to its first corner by a
+/// dangling edge: the edge, the new vertex and the vertex's corner, where
+/// the tests of deleting and collapsing a dangling edge start.
+pub(crate) fn cube_with_dangling_edge(at: DVec3) -> (Mesh, EdgeId, VertexId, CornerId) {
+    let mut m = cube();
+    let c = m.corners().next().expect("a corner");
+    let (v, _, cv) = m.create_vertex(at).expect("a vertex");
+    let e = m.insert_edge(c, cv).expect("the dangling edge inserts");
+    (m, e, v, cv)
+}
+
 /// A self-loop between the first two corners of the mesh's first vertex
 /// (in two faces: a handle), that vertex, and its corners in rotation
 /// order.

@@ -4,7 +4,8 @@
 use glam::DVec3;
 
 use crate::test_util::{
-    canonical, check, counts, cube, cube_face, loop_at_first_vertex, tetrahedron, torus,
+    canonical, check, counts, cube, cube_face, cube_with_dangling_edge, cube_with_handle,
+    loop_at_first_vertex, tetrahedron, torus,
 };
 use crate::{Error, Mesh};
 
@@ -87,11 +88,7 @@ fn insert_edge_between_adjacent_corners_makes_a_two_gon() {
 
 #[test]
 fn insert_edge_between_faces_of_one_component_adds_a_handle() {
-    let mut m = cube();
-    let faces: Vec<_> = m.faces().collect();
-    let c1 = m.face_corner(faces[0]).unwrap();
-    let c2 = m.face_corner(faces[1]).unwrap();
-    let e = m.insert_edge(c1, c2).unwrap();
+    let (m, e) = cube_with_handle();
     check(&m);
     assert_eq!(counts(&m), (8, 13, 5, 1, 1));
     let [fa, fb] = m.edge_faces(e).unwrap();
@@ -224,11 +221,7 @@ fn insert_edge_is_the_inverse_of_delete_edge() {
 
 #[test]
 fn deleting_a_handle_edge_lowers_the_genus() {
-    let mut m = cube();
-    let faces: Vec<_> = m.faces().collect();
-    let c1 = m.face_corner(faces[0]).unwrap();
-    let c2 = m.face_corner(faces[1]).unwrap();
-    let e = m.insert_edge(c1, c2).unwrap();
+    let (mut m, e) = cube_with_handle();
     assert_eq!(m.genus(), 1);
     m.delete_edge(e).unwrap();
     check(&m);
@@ -237,10 +230,7 @@ fn deleting_a_handle_edge_lowers_the_genus() {
 
 #[test]
 fn deleting_a_dangling_edge_leaves_a_point_sphere() {
-    let mut m = cube();
-    let c1 = m.corners().next().unwrap();
-    let (v, _, c2) = m.create_vertex(DVec3::splat(3.0)).unwrap();
-    let e = m.insert_edge(c1, c2).unwrap();
+    let (mut m, e, v, c2) = cube_with_dangling_edge(DVec3::splat(3.0));
     m.delete_edge(e).unwrap();
     check(&m);
     assert_eq!(counts(&m), (9, 12, 7, 2, 0));

@@ -3,16 +3,14 @@
 use glam::DVec3;
 
 use crate::test_util::{
-    canonical, check, counts, cube, cube_face, loop_at_first_vertex, tetrahedron, torus,
+    canonical, check, counts, cube, cube_face, cube_with_dangling_edge, loop_at_first_vertex,
+    tetrahedron, torus,
 };
 use crate::{Error, Mesh};
 
 #[test]
 fn delete_edge_with_cleanup_removes_the_point_spheres_it_leaves() {
-    let mut m = cube();
-    let c = m.corners().next().unwrap();
-    let (v, _, cs) = m.create_vertex(DVec3::splat(2.0)).unwrap();
-    let e = m.insert_edge(c, cs).unwrap();
+    let (mut m, e, v, _) = cube_with_dangling_edge(DVec3::splat(2.0));
     let deleted = m.delete_edge_with_cleanup(e).unwrap();
     check(&m);
     assert_eq!(deleted, vec![v]);
@@ -297,10 +295,7 @@ fn collapse_refuses_self_loops_and_handles_dangling_edges() {
     let mut m = tetrahedron();
     let (lp, _, _) = loop_at_first_vertex(&mut m);
     assert_eq!(m.collapse_edge(lp), Err(Error::SelfLoop(lp)));
-    let mut d = cube();
-    let c = d.corners().next().unwrap();
-    let (v, _, ps) = d.create_vertex(DVec3::splat(5.0)).unwrap();
-    let e = d.insert_edge(c, ps).unwrap();
+    let (mut d, e, v, _) = cube_with_dangling_edge(DVec3::splat(5.0));
     let kept = d.collapse_edge(e).unwrap();
     check(&d);
     assert!(!d.contains_vertex(v));
