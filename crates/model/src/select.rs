@@ -89,25 +89,20 @@ pub fn face_loop(mesh: &Mesh, face: FaceId, edge: EdgeId) -> Result<Vec<FaceId>,
     }
     let start = corner_on(mesh, face, edge)?.ok_or(SelectError::NotOnFace { face, edge })?;
     let opposite = mesh.corner_next(mesh.corner_next(start)?)?;
-    both_ways(mesh, face, [start, opposite], walk_strip)
+    both_ways(mesh, face, [start, opposite], strip_step)
 }
 
-/// Crosses the edge leaving `c` and keeps going straight through quads.
-fn walk_strip(
-    mesh: &Mesh,
-    mut c: CornerId,
-    seen: &mut HashSet<FaceId>,
-) -> Result<Vec<FaceId>, SelectError> {
-    let mut out = Vec::new();
-    while let Some(entry) = across(mesh, c)? {
-        let f = mesh.corner_face(entry)?;
-        if !is_quad(mesh, f)? || !seen.insert(f) {
-            break;
-        }
-        out.push(f);
-        c = mesh.corner_next(mesh.corner_next(entry)?)?;
+/// A face loop's step: across the edge leaving `c` into a quad, then on
+/// from the corner that starts the quad's opposite edge.
+fn strip_step(mesh: &Mesh, c: CornerId) -> Result<Option<(FaceId, CornerId)>, SelectError> {
+    let Some(entry) = across(mesh, c)? else {
+        return Ok(None);
+    };
+    let f = mesh.corner_face(entry)?;
+    if !is_quad(mesh, f)? {
+        return Ok(None);
     }
-    Ok(out)
+    Ok(Some((f, mesh.corner_next(mesh.corner_next(entry)?)?)))
 }
 
 /// The edge ring through `edge`: on each side of it, while the face is a
@@ -115,13 +110,34 @@ fn walk_strip(
 /// at non-quads and holes, and when the ring closes. In walking order.
 pub fn edge_ring(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> {
     let [a, b] = mesh.edge_corners(edge)?;
-    both_ways(mesh, edge, [a, b], walk_ring)
+    both_ways(mesh, edge, [a, b], ring_step)
 }
 
-/// A walk from a corner, taking each face or edge at most once (`seen`).
-type Walk<T> = fn(&Mesh, CornerId, &mut HashSet<T>) -> Result<Vec<T>, SelectError>;
+/// One step of a walk from corner `c`: the next face or edge and the
+/// corner to go on from, or `None` where the walk stops.
+type Step<T> = fn(&Mesh, CornerId) -> Result<Option<(T, CornerId)>, SelectError>;
 
-/// The walks of `walk` from the corners `[ahead, behind]` of `seed` (an
+/// Walks from corner `c` by `step`, taking each face or edge at most once
+/// (`seen`): face loops, edge rings and edge loops differ only in their
+/// step, and all stop where the walk meets what it has taken.
+fn walk<T: Copy + Eq + std::hash::Hash>(
+    mesh: &Mesh,
+    mut c: CornerId,
+    seen: &mut HashSet<T>,
+    step: Step<T>,
+) -> Result<Vec<T>, SelectError> {
+    let mut out = Vec::new();
+    while let Some((item, next)) = step(mesh, c)? {
+        if !seen.insert(item) {
+            break;
+        }
+        out.push(item);
+        c = next;
+    }
+    Ok(out)
+}
+
+/// The walks by `step` from the corners `[ahead, behind]` of `seed` (an
 /// edge of a ring or loop, the face of a face loop), joined through it in
 /// walking order: the walk from `behind` reversed, `seed`, then the walk
 /// from `ahead`. Each item is taken once, so a closed loop stops where it
@@ -130,42 +146,28 @@ fn both_ways<T: Copy + Eq + std::hash::Hash>(
     mesh: &Mesh,
     seed: T,
     [ahead, behind]: [CornerId; 2],
-    walk: Walk<T>,
+    step: Step<T>,
 ) -> Result<Vec<T>, SelectError> {
     let mut seen = HashSet::from([seed]);
-    let one = walk(mesh, ahead, &mut seen)?;
-    let two = walk(mesh, behind, &mut seen)?;
+    let one = walk(mesh, ahead, &mut seen, step)?;
+    let two = walk(mesh, behind, &mut seen, step)?;
     let mut out: Vec<T> = two.into_iter().rev().collect();
     out.push(seed);
     out.extend(one);
     Ok(out)
 }
 
-fn walk_ring(
-    mesh: &Mesh,
-    mut c: CornerId,
-    seen: &mut HashSet<EdgeId>,
-) -> Result<Vec<EdgeId>, SelectError> {
-    let mut out = Vec::new();
-    loop {
-        let f = mesh.corner_face(c)?;
-        if !is_quad(mesh, f)? {
-            break;
-        }
-        let opposite = mesh.corner_next(mesh.corner_next(c)?)?;
-        let Some(e) = mesh.corner_edge(opposite)? else {
-            break;
-        };
-        if !seen.insert(e) {
-            break;
-        }
-        out.push(e);
-        match across(mesh, opposite)? {
-            Some(next) => c = next,
-            None => break,
-        }
+/// An edge ring's step: in the quad of `c`, the edge opposite the one
+/// `c` starts, then on from its other side.
+fn ring_step(mesh: &Mesh, c: CornerId) -> Result<Option<(EdgeId, CornerId)>, SelectError> {
+    if !is_quad(mesh, mesh.corner_face(c)?)? {
+        return Ok(None);
     }
-    Ok(out)
+    let opposite = mesh.corner_next(mesh.corner_next(c)?)?;
+    let Some(e) = mesh.corner_edge(opposite)? else {
+        return Ok(None);
+    };
+    Ok(across(mesh, opposite)?.map(|next| (e, next)))
 }
 
 /// The edge loop through `edge`: from each end of valence 4, on along
@@ -176,37 +178,26 @@ pub fn edge_loop(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> 
     let [a, b] = mesh.edge_corners(edge)?;
     // Corner a starts the edge at its first end; the walk beyond the
     // second end starts from b, the corner where the edge leaves that end.
-    both_ways(mesh, edge, [b, a], walk_loop)
+    both_ways(mesh, edge, [b, a], loop_step)
 }
 
-/// `c` is the corner at which the current edge leaves the vertex to walk
-/// through (going back along the edge); continues beyond that vertex.
-fn walk_loop(
-    mesh: &Mesh,
-    mut c: CornerId,
-    seen: &mut HashSet<EdgeId>,
-) -> Result<Vec<EdgeId>, SelectError> {
-    let mut out = Vec::new();
-    loop {
-        let v = mesh.corner_vertex(c)?;
-        if mesh.valence(v)? != 4 {
-            break;
-        }
-        let straight = mesh.corner_rotation_next(mesh.corner_rotation_next(c)?)?;
-        let Some(e) = mesh.corner_edge(straight)? else {
-            break;
-        };
-        if mesh.is_self_loop(e)? || !seen.insert(e) {
-            break;
-        }
-        out.push(e);
-        // Beyond e: the corner where e leaves its far end, back towards v.
-        match across(mesh, straight)? {
-            Some(back) => c = back,
-            None => break,
-        }
+/// An edge loop's step: `c` is the corner at which the current edge
+/// leaves the vertex to walk through (going back along the edge); through
+/// a vertex of valence 4, the edge straight on (not a self-loop).
+fn loop_step(mesh: &Mesh, c: CornerId) -> Result<Option<(EdgeId, CornerId)>, SelectError> {
+    if mesh.valence(mesh.corner_vertex(c)?)? != 4 {
+        return Ok(None);
     }
-    Ok(out)
+    let straight = mesh.corner_rotation_next(mesh.corner_rotation_next(c)?)?;
+    let Some(e) = mesh.corner_edge(straight)? else {
+        return Ok(None);
+    };
+    if mesh.is_self_loop(e)? {
+        return Ok(None);
+    }
+    // Beyond e: the corner where e leaves its far end, back towards the
+    // vertex walked through.
+    Ok(across(mesh, straight)?.map(|back| (e, back)))
 }
 
 /// Surface faces (not holes) in slot order.
