@@ -25,3 +25,17 @@ pub(crate) fn state(m: &Mesh) -> State {
         t.genus(),
     )
 }
+
+/// (V, E, F) of `m`, holes counted as faces: the counts most operators'
+/// tests compare with their formulas.
+pub(crate) fn counts(m: &Mesh) -> (usize, usize, usize) {
+    (m.vertex_count(), m.edge_count(), m.face_count())
+}
+
+/// Checks the mesh and that V − E + F (holes counted as faces) still
+/// equals 2·components − 2·genus: Euler's formula for the closed DLFL.
+pub(crate) fn check(m: &Mesh) {
+    m.validate().unwrap();
+    let (v, e, f, c, g) = state(m);
+    assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
+}

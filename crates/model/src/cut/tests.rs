@@ -6,19 +6,8 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, Mesh};
 
 use super::*;
-use crate::test_util::prim;
+use crate::test_util::{check, counts, prim};
 use crate::truncate::{truncate_all_vertices, truncate_edges, truncate_vertices};
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
-}
-
-fn check(m: &Mesh) {
-    m.validate().unwrap();
-    let t = m.topology();
-    let closed = m.vertex_count() as i64 - m.edge_count() as i64 + m.face_count() as i64;
-    assert_eq!(closed, 2 * t.component_count() as i64 - 2 * t.genus());
-}
 
 fn unchanged(m: &Mesh, before: &Mesh) {
     assert_eq!(m.to_raw(), before.to_raw());

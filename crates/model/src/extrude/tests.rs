@@ -3,7 +3,7 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use crate::test_util::{prim, state};
+use crate::test_util::{check, prim, state};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
@@ -11,14 +11,6 @@ use crate::polygon;
 
 fn face(m: &Mesh, i: usize) -> FaceId {
     m.face_at(i).unwrap()
-}
-
-/// Checks the mesh and that V − E + F (holes counted as faces) still
-/// equals 2·components − 2·genus: Euler's formula for the closed DLFL.
-fn check(m: &Mesh) {
-    m.validate().unwrap();
-    let (v, e, f, c, g) = state(m);
-    assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
 }
 
 /// Applies `op` and asserts the change (ΔV, ΔE, ΔF), and that genus and

@@ -12,15 +12,11 @@ use holey_mesh::PolyMesh;
 use super::plan::{Decision, angle_tol, classify, interior_angle};
 use super::*;
 use crate::handle::geometry::vector_area;
-use crate::test_util::prim;
+use crate::test_util::{counts, prim};
 
 fn import(positions: Vec<DVec3>, faces: Vec<Vec<u32>>) -> Mesh {
     let poly = PolyMesh::from_faces(positions, faces);
     to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
 }
 
 fn ratio(r: f64) -> MengerParams {

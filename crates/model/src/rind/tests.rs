@@ -1,10 +1,6 @@
 use super::*;
-use crate::test_util::prim;
+use crate::test_util::{counts, prim};
 use glam::DVec3;
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
-}
 
 fn area_vector(points: &[DVec3]) -> DVec3 {
     let n = points.len();

@@ -7,6 +7,7 @@ use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::PolyMesh;
 
 use super::*;
+use crate::test_util::{counts, prim};
 
 fn poly(spec: &str) -> PolyMesh {
     holey_shapes::parse_primitive(spec).unwrap()
@@ -14,10 +15,6 @@ fn poly(spec: &str) -> PolyMesh {
 
 fn mesh(p: &PolyMesh) -> Mesh {
     to_dlfl(p, ImportOptions::default()).unwrap().mesh
-}
-
-fn prim(spec: &str) -> Mesh {
-    mesh(&poly(spec))
 }
 
 /// `a` and `b` (moved by `offset`) as one soup: two components.
@@ -45,10 +42,6 @@ fn signed_volume(m: &Mesh) -> f64 {
         }
     }
     vol / 6.0
-}
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
 }
 
 /// The wireframe counts of the module documentation from E and the
