@@ -17,11 +17,12 @@ fn mesh(p: &PolyMesh) -> Mesh {
     to_dlfl(p, ImportOptions::default()).unwrap().mesh
 }
 
-/// `a` and `b` (moved by `offset`) as one soup: two components.
-fn union(a: &PolyMesh, b: &PolyMesh, offset: DVec3) -> PolyMesh {
-    let mut out = a.clone();
-    out.append(&b.translated(offset));
-    out
+/// The primitives `a` and `b`, the second moved 10 along x, as one mesh:
+/// two components, for the tests that run over many meshes.
+fn two_apart(a: &str, b: &str) -> Mesh {
+    let mut out = poly(a);
+    out.append(&poly(b).translated(DVec3::new(10.0, 0.0, 0.0)));
+    mesh(&out)
 }
 
 /// The cycle rank of the edge graph: E − V + C.
@@ -112,11 +113,7 @@ fn wireframe_of_a_cube() {
 
 #[test]
 fn wireframe_genus_is_the_cycle_rank_of_the_edge_graph() {
-    let two = mesh(&union(
-        &poly("@tetrahedron"),
-        &poly("@torus:6:4"),
-        DVec3::new(10.0, 0.0, 0.0),
-    ));
+    let two = two_apart("@tetrahedron", "@torus:6:4");
     for m in [
         prim("@tetrahedron"),
         prim("@octahedron"),
@@ -273,11 +270,7 @@ fn columns_of_a_cube() {
 
 #[test]
 fn columns_genus_and_counts_on_many_meshes() {
-    let two = mesh(&union(
-        &poly("@cube"),
-        &poly("@octahedron"),
-        DVec3::new(10.0, 0.0, 0.0),
-    ));
+    let two = two_apart("@cube", "@octahedron");
     for m in [
         prim("@tetrahedron"),
         prim("@dodecahedron"),
