@@ -46,6 +46,16 @@ pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
     (x, a.mul_add(b, -x))
 }
 
+/// Appends `x` to the components `h` unless it is zero: every operation
+/// here keeps an expansion free of zero components (zero elimination), so
+/// its length stays the number of components that carry value.
+#[inline]
+fn push_nonzero(h: &mut Vec<f64>, x: f64) {
+    if x != 0.0 {
+        h.push(x);
+    }
+}
+
 /// An exact real number as a nonoverlapping expansion (see module docs).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Expansion {
@@ -122,14 +132,10 @@ impl Expansion {
         let mut q = g[0];
         for &x in &g[1..] {
             let (s, err) = two_sum(q, x);
-            if err != 0.0 {
-                h.push(err);
-            }
+            push_nonzero(&mut h, err);
             q = s;
         }
-        if q != 0.0 {
-            h.push(q);
-        }
+        push_nonzero(&mut h, q);
         Expansion { c: h }
     }
 
@@ -152,24 +158,16 @@ impl Expansion {
         }
         let mut h = Vec::with_capacity(2 * self.c.len());
         let (mut q, lo) = two_prod(self.c[0], b);
-        if lo != 0.0 {
-            h.push(lo);
-        }
+        push_nonzero(&mut h, lo);
         for &e in &self.c[1..] {
             let (p1, p0) = two_prod(e, b);
             let (s, err) = two_sum(q, p0);
-            if err != 0.0 {
-                h.push(err);
-            }
+            push_nonzero(&mut h, err);
             let (s2, err2) = two_sum(p1, s);
-            if err2 != 0.0 {
-                h.push(err2);
-            }
+            push_nonzero(&mut h, err2);
             q = s2;
         }
-        if q != 0.0 {
-            h.push(q);
-        }
+        push_nonzero(&mut h, q);
         Expansion { c: h }
     }
 
@@ -191,12 +189,8 @@ impl Expansion {
     pub fn diff(a: f64, b: f64) -> Expansion {
         let (x, y) = two_sum(a, -b);
         let mut c = Vec::with_capacity(2);
-        if y != 0.0 {
-            c.push(y);
-        }
-        if x != 0.0 {
-            c.push(x);
-        }
+        push_nonzero(&mut c, y);
+        push_nonzero(&mut c, x);
         Expansion { c }
     }
 
