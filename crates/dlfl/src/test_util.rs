@@ -98,6 +98,15 @@ pub(crate) fn cube_with_dangling_edge(at: DVec3) -> (Mesh, EdgeId, VertexId, Cor
     (m, e, v, cv)
 }
 
+/// The corners of face `f` at vertex `v`, in face order: where a self-loop
+/// or a second loop at `v` can be inserted inside `f`.
+pub(crate) fn corners_at(m: &Mesh, f: FaceId, v: VertexId) -> Vec<CornerId> {
+    m.face_corners(f)
+        .expect("a live face")
+        .filter(|&c| m.corner_vertex(c).expect("a live corner") == v)
+        .collect()
+}
+
 /// A self-loop between the first two corners of the mesh's first vertex
 /// (in two faces: a handle), that vertex, and its corners in rotation
 /// order.

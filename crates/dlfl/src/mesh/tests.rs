@@ -4,8 +4,8 @@
 use glam::DVec3;
 
 use crate::test_util::{
-    canonical, check, counts, cube, cube_face, cube_with_dangling_edge, cube_with_handle,
-    loop_at_first_vertex, tetrahedron, torus,
+    canonical, check, corners_at, counts, cube, cube_face, cube_with_dangling_edge,
+    cube_with_handle, loop_at_first_vertex, tetrahedron, torus,
 };
 use crate::{Error, Mesh};
 
@@ -141,11 +141,7 @@ fn insert_edge_makes_self_loops_between_corners_of_one_vertex() {
     // Two different faces: a handle made of a self-loop.
     assert_eq!(counts(&m), (4, 7, 3, 1, 1));
     let f = m.edge_faces(e).unwrap()[0];
-    let at_v0: Vec<_> = m
-        .face_corners(f)
-        .unwrap()
-        .filter(|&c| m.corner_vertex(c).unwrap() == v0)
-        .collect();
+    let at_v0 = corners_at(&m, f, v0);
     assert!(at_v0.len() >= 2);
     let loop2 = m.insert_edge(at_v0[0], at_v0[1]).unwrap();
     check(&m);
@@ -249,11 +245,7 @@ fn monogons_bounded_by_self_loops_are_represented() {
     let (l, v0, _) = loop_at_first_vertex(&mut m);
     check(&m);
     let f = m.edge_faces(l).unwrap()[0];
-    let at: Vec<_> = m
-        .face_corners(f)
-        .unwrap()
-        .filter(|&c| m.corner_vertex(c).unwrap() == v0)
-        .collect();
+    let at = corners_at(&m, f, v0);
     // A second loop in the same face, adjacent: splits off a face made of loops.
     let l2 = m.insert_edge(at[0], at[1]).unwrap();
     check(&m);
