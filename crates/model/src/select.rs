@@ -233,21 +233,21 @@ pub fn grow_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectEr
 /// The selection without the faces on its border: those with a vertex
 /// that also touches an unselected face (or a hole).
 pub fn shrink_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
-    let selected: HashSet<FaceId> = faces.iter().copied().collect();
-    let mut out = BTreeSet::new();
-    'faces: for &f in &selected {
+    let mut out = Vec::new();
+    for f in inner(faces, |f| {
+        let mut around = Vec::new();
         for v in mesh.face_vertices(f)? {
             for c in mesh.vertex_corners(v)? {
-                if !selected.contains(&mesh.corner_face(c)?) {
-                    continue 'faces;
-                }
+                around.push(mesh.corner_face(c)?);
             }
         }
+        Ok(around)
+    })? {
         if !mesh.is_hole(f)? {
-            out.insert(f);
+            out.push(f);
         }
     }
-    Ok(out.into_iter().collect())
+    Ok(out)
 }
 
 /// Every surface face not in the selection.
@@ -273,15 +273,28 @@ pub fn grow_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>
 /// The selection without the vertices joined by an edge to an
 /// unselected vertex.
 pub fn shrink_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
-    let selected: HashSet<VertexId> = vertices.iter().copied().collect();
-    let mut out = BTreeSet::new();
-    'vertices: for &v in &selected {
+    inner(vertices, |v| {
+        let mut around = Vec::new();
         for c in mesh.vertex_corners(v)? {
-            if !selected.contains(&mesh.corner_vertex(mesh.corner_next(c)?)?) {
-                continue 'vertices;
-            }
+            around.push(mesh.corner_vertex(mesh.corner_next(c)?)?);
         }
-        out.insert(v);
+        Ok(around)
+    })
+}
+
+/// The items of `selection`, sorted and without repeats, whose neighbours
+/// (`around`) are all selected too: shrinking faces and vertices differ
+/// only in what counts as a neighbour.
+fn inner<T: Copy + Eq + std::hash::Hash + Ord>(
+    selection: &[T],
+    around: impl Fn(T) -> Result<Vec<T>, SelectError>,
+) -> Result<Vec<T>, SelectError> {
+    let selected: HashSet<T> = selection.iter().copied().collect();
+    let mut out = BTreeSet::new();
+    for &x in &selected {
+        if around(x)?.iter().all(|n| selected.contains(n)) {
+            out.insert(x);
+        }
     }
     Ok(out.into_iter().collect())
 }
