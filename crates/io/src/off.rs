@@ -19,7 +19,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_face_end, push_u64};
 
 /// True for a header keyword this reader handles.
 fn is_off_keyword(word: &[u8]) -> bool {
@@ -198,9 +198,7 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
             };
             indices.push(index);
         }
-        let end = u32::try_from(indices.len())
-            .map_err(|_| IoError::line(source, line, "too many face corners for 32-bit indices"))?;
-        offsets.push(end);
+        push_face_end(&mut offsets, &indices).map_err(|m| IoError::line(source, line, m))?;
         c.next_line();
     }
     Ok(PolyMesh {

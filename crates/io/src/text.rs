@@ -268,6 +268,16 @@ impl<'a> Cursor<'a> {
     }
 }
 
+/// Ends the face whose corners were just pushed to `indices` by pushing its
+/// end offset, or says why not: the polygon readers (OBJ, OFF, PLY) keep
+/// 32-bit offsets and refuse corners that outgrow them in the same words.
+pub(crate) fn push_face_end(offsets: &mut Vec<u32>, indices: &[u32]) -> Result<(), &'static str> {
+    let end =
+        u32::try_from(indices.len()).map_err(|_| "too many face corners for 32-bit indices")?;
+    offsets.push(end);
+    Ok(())
+}
+
 /// Parses a decimal float (the standard library's syntax: `1`, `-2.5`,
 /// `.5`, `1e-3`, and also `inf` and `nan`, which callers reject).
 #[inline]
