@@ -46,6 +46,30 @@ impl RawMesh {
     pub fn is_hole(&self, f: usize) -> bool {
         self.holes.get(f).copied().unwrap_or(false)
     }
+
+    /// Appends `other` as further components: its vertices, faces, hole
+    /// flags and edges after this mesh's, renumbered (as
+    /// `PolyMesh::append` does for soups). Nothing is checked here;
+    /// [`crate::Mesh::from_raw`] checks the result.
+    pub fn append(&mut self, other: &RawMesh) {
+        let nv = self.positions.len() as u32;
+        let nc = self.face_vertices.len() as u32;
+        if !self.holes.is_empty() || !other.holes.is_empty() {
+            let (mine, theirs) = (self.face_count(), other.face_count());
+            self.holes.resize(mine, false);
+            self.holes.extend((0..theirs).map(|f| other.is_hole(f)));
+        }
+        if self.face_offsets.is_empty() {
+            self.face_offsets.push(0);
+        }
+        self.positions.extend_from_slice(&other.positions);
+        self.face_vertices
+            .extend(other.face_vertices.iter().map(|v| v + nv));
+        self.face_offsets
+            .extend(other.face_offsets.iter().skip(1).map(|o| o + nc));
+        self.edges
+            .extend(other.edges.iter().map(|[a, b]| [a + nc, b + nc]));
+    }
 }
 
 /// Why raw parts do not form a valid DLFL.

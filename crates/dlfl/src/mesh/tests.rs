@@ -315,3 +315,25 @@ fn point_sphere_to_point_sphere_chain_and_back() {
     }
     assert_eq!(counts(&m), (5, 0, 5, 5, 0));
 }
+
+#[test]
+fn raw_append_renumbers_and_keeps_hole_flags() {
+    let a = cube().to_raw();
+    assert!(a.holes.is_empty(), "a closed cube has no hole flags");
+    // No flags on either side stay no flags.
+    let mut joined = a.clone();
+    joined.append(&a);
+    assert_eq!(joined.face_count(), 12);
+    assert!(joined.holes.is_empty());
+    let m = Mesh::from_raw(&joined).unwrap();
+    check(&m);
+    assert_eq!(counts(&m), (16, 24, 12, 2, 0));
+    // A flag on the appended side lands on its face, renumbered.
+    let mut flagged = a.clone();
+    flagged.holes = vec![false; 6];
+    flagged.holes[2] = true;
+    let mut x = a;
+    x.append(&flagged);
+    assert_eq!(x.holes.len(), 12);
+    assert_eq!((0..12).filter(|&f| x.is_hole(f)).collect::<Vec<_>>(), [8]);
+}

@@ -131,18 +131,8 @@ fn pipe_between_components_joins_them() {
             .unwrap();
     }
     // Append the second cube through raw parts.
-    let raw_a = m.to_raw();
-    let raw_b = other.to_raw();
-    let mut raw = raw_a.clone();
-    let nv = raw.positions.len() as u32;
-    let nc = raw.face_vertices.len() as u32;
-    raw.positions.extend(raw_b.positions);
-    raw.face_vertices
-        .extend(raw_b.face_vertices.iter().map(|v| v + nv));
-    raw.face_offsets
-        .extend(raw_b.face_offsets[1..].iter().map(|o| o + nc));
-    raw.edges
-        .extend(raw_b.edges.iter().map(|[a, b]| [a + nc, b + nc]));
+    let mut raw = m.to_raw();
+    raw.append(&other.to_raw());
     m = Mesh::from_raw(&raw).unwrap();
     assert_eq!(counts(&m), (16, 24, 12, 2, 0));
     let c1 = m.face_corner(m.face_at(1).unwrap()).unwrap(); // top of the first cube

@@ -256,16 +256,11 @@ fn faces_are_addressed_by_their_slot_in_an_edited_mesh() {
 fn each_component_gets_its_own_rind() {
     // Two cubes: four shells; one punch in each cube joins its two shells.
     let mut raw = prim("@cube").to_raw();
-    let b = raw.clone();
-    let (nv, nc) = (raw.positions.len() as u32, raw.face_vertices.len() as u32);
-    raw.positions
-        .extend(b.positions.iter().map(|p| *p + DVec3::X * 5.0));
-    raw.face_vertices
-        .extend(b.face_vertices.iter().map(|v| v + nv));
-    raw.face_offsets
-        .extend(b.face_offsets[1..].iter().map(|o| o + nc));
-    raw.edges
-        .extend(b.edges.iter().map(|[x, y]| [x + nc, y + nc]));
+    let mut b = raw.clone();
+    for p in &mut b.positions {
+        *p += DVec3::X * 5.0;
+    }
+    raw.append(&b);
     let m = Mesh::from_raw(&raw).unwrap();
     let mut rind = Rind::new(m, 0.2).unwrap();
     assert_eq!(rind.mesh().topology().component_count(), 4);
