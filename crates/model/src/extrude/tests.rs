@@ -3,7 +3,7 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use crate::test_util::{check, prim, state};
+use crate::test_util::{check, prim, shared_edge, state};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
@@ -283,20 +283,13 @@ fn two_adjacent_quads_share_their_walls() {
     // b = 6 boundary sides, so +6/+12/+6 (one by one would be 8/16/8).
     let mut m = prim("@cube:2");
     let (a, b) = (face(&m, 0), face(&m, 1));
-    assert!(shares_edge(&m, a, b));
+    assert!(shared_edge(&m, a, b).is_some());
     expect_delta(&mut m, (6, 12, 6), |m| {
         let out = extrude_faces(m, &[a, b], &MultiExtrudeParams::default()).unwrap();
         assert_eq!(out.tops.len(), 2);
         assert_eq!(out.walls.len(), 6);
-        assert!(shares_edge(m, out.tops[0], out.tops[1]));
+        assert!(shared_edge(m, out.tops[0], out.tops[1]).is_some());
     });
-}
-
-fn shares_edge(m: &Mesh, a: FaceId, b: FaceId) -> bool {
-    m.edges().any(|e| {
-        let [x, y] = m.edge_faces(e).unwrap();
-        (x == a && y == b) || (x == b && y == a)
-    })
 }
 
 /// Boundary sides of a selection, counted from the definition: edges

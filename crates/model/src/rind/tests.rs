@@ -1,5 +1,5 @@
 use super::*;
-use crate::test_util::{counts, prim};
+use crate::test_util::{counts, prim, shared_edge};
 use glam::DVec3;
 
 fn area_vector(points: &[DVec3]) -> DVec3 {
@@ -219,12 +219,7 @@ fn faces_are_addressed_by_their_slot_in_an_edited_mesh() {
     let cs: Vec<_> = m.face_corners(top).unwrap().collect();
     m.insert_edge(cs[0], cs[2]).unwrap();
     let (f0, f1) = (m.face_at(0).unwrap(), m.face_at(1).unwrap());
-    let shared = m
-        .face_corners(f0)
-        .unwrap()
-        .map(|c| m.corner_edge(c).unwrap().unwrap())
-        .find(|&e| m.edge_faces(e).unwrap().contains(&f1))
-        .unwrap();
+    let shared = shared_edge(&m, f0, f1).unwrap();
     m.delete_edge(shared).unwrap();
     m.validate().unwrap();
     let live: Vec<usize> = m.faces().map(|f| f.index()).collect();
