@@ -32,6 +32,12 @@ fn expect_delta(m: &mut Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)
     );
 }
 
+/// [`expect_delta`] on a copy of `m0`, leaving `m0` for the next
+/// operation tried on the same face.
+fn expect_delta_on_copy(m0: &Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)) {
+    expect_delta(&mut m0.clone(), delta, op);
+}
+
 fn unchanged(m: &Mesh, before: &Mesh) {
     assert_eq!(m.to_raw(), before.to_raw());
 }
@@ -516,40 +522,30 @@ fn polyhedral_extrusions_on_other_face_sizes() {
         let m0 = prim(spec);
         let f = face(&m0, idx);
         let d = m0.face_len(f).unwrap() as i64;
-        let mut m = m0.clone();
-        expect_delta(&mut m, (d, 3 * d, 2 * d), |m| {
+        expect_delta_on_copy(&m0, (d, 3 * d, 2 * d), |m| {
             extrude_face_octahedral(m, f, 0.7).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (3 * d, 5 * d, 2 * d), |m| {
+        expect_delta_on_copy(&m0, (3 * d, 5 * d, 2 * d), |m| {
             extrude_face_dodecahedral(m, f, 0.7).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (3 * d, 9 * d, 6 * d), |m| {
+        expect_delta_on_copy(&m0, (3 * d, 9 * d, 6 * d), |m| {
             extrude_face_icosahedral(m, f, 0.7).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (1, d, d - 1), |m| {
+        expect_delta_on_copy(&m0, (1, d, d - 1), |m| {
             stellate_face(m, f, 0.5).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (d + 1, 4 * d, 3 * d - 1), |m| {
+        expect_delta_on_copy(&m0, (d + 1, 4 * d, 3 * d - 1), |m| {
             double_stellate_face(m, f, 0.5).unwrap();
         });
         for k in [1usize, 3, 5] {
-            let mut m = m0.clone();
             let k64 = k as i64;
-            expect_delta(
-                &mut m,
-                (k64 * d + 1, 2 * k64 * d + d, k64 * d + d - 1),
-                |m| {
-                    let p = DomeParams {
-                        height_factor: 1.0,
-                        rings: k,
-                    };
-                    extrude_face_dome(m, f, &p).unwrap();
-                },
-            );
+            expect_delta_on_copy(&m0, (k64 * d + 1, 2 * k64 * d + d, k64 * d + d - 1), |m| {
+                let p = DomeParams {
+                    height_factor: 1.0,
+                    rings: k,
+                };
+                extrude_face_dome(m, f, &p).unwrap();
+            });
         }
     }
 }
