@@ -322,7 +322,7 @@ fn raw_append_renumbers_and_keeps_hole_flags() {
     assert!(a.holes.is_empty(), "a closed cube has no hole flags");
     // No flags on either side stay no flags.
     let mut joined = a.clone();
-    joined.append(&a);
+    joined.append(&a).unwrap();
     assert_eq!(joined.face_count(), 12);
     assert!(joined.holes.is_empty());
     let m = Mesh::from_raw(&joined).unwrap();
@@ -333,7 +333,7 @@ fn raw_append_renumbers_and_keeps_hole_flags() {
     flagged.holes = vec![false; 6];
     flagged.holes[2] = true;
     let mut x = a;
-    x.append(&flagged);
+    x.append(&flagged).unwrap();
     assert_eq!(x.holes.len(), 12);
     assert_eq!((0..12).filter(|&f| x.is_hole(f)).collect::<Vec<_>>(), [8]);
 }

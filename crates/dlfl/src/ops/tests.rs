@@ -132,7 +132,7 @@ fn pipe_between_components_joins_them() {
     }
     // Append the second cube through raw parts.
     let mut raw = m.to_raw();
-    raw.append(&other.to_raw());
+    raw.append(&other.to_raw()).unwrap();
     m = Mesh::from_raw(&raw).unwrap();
     assert_eq!(counts(&m), (16, 24, 12, 2, 0));
     let c1 = m.face_corner(m.face_at(1).unwrap()).unwrap(); // top of the first cube

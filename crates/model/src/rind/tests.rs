@@ -255,7 +255,7 @@ fn each_component_gets_its_own_rind() {
     for p in &mut b.positions {
         *p += DVec3::X * 5.0;
     }
-    raw.append(&b);
+    raw.append(&b).unwrap();
     let m = Mesh::from_raw(&raw).unwrap();
     let mut rind = Rind::new(m, 0.2).unwrap();
     assert_eq!(rind.mesh().topology().component_count(), 4);
