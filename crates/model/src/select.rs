@@ -200,17 +200,6 @@ fn loop_step(mesh: &Mesh, c: CornerId) -> Result<Option<(EdgeId, CornerId)>, Sel
     Ok(across(mesh, straight)?.map(|back| (e, back)))
 }
 
-/// Surface faces (not holes) in slot order.
-fn surface_faces(mesh: &Mesh) -> Result<Vec<FaceId>, SelectError> {
-    let mut out = Vec::new();
-    for f in mesh.faces() {
-        if !mesh.is_hole(f)? {
-            out.push(f);
-        }
-    }
-    Ok(out)
-}
-
 /// The selection with every surface face that shares a vertex with it.
 pub fn grow_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
     let mut out: BTreeSet<FaceId> = BTreeSet::new();
@@ -253,8 +242,8 @@ pub fn shrink_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, Select
 /// Every surface face not in the selection.
 pub fn invert_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
     let selected: HashSet<FaceId> = faces.iter().copied().collect();
-    Ok(surface_faces(mesh)?
-        .into_iter()
+    Ok(mesh
+        .surface_faces()
         .filter(|f| !selected.contains(f))
         .collect())
 }
@@ -318,7 +307,7 @@ pub fn similar_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, Selec
         sizes.insert(mesh.face_len(f)?);
     }
     let mut out = Vec::new();
-    for f in surface_faces(mesh)? {
+    for f in mesh.surface_faces() {
         if sizes.contains(&mesh.face_len(f)?) {
             out.push(f);
         }
@@ -358,7 +347,7 @@ pub struct Checkerboard {
 /// Otherwise names the edge where the breadth-first colouring first
 /// meets a conflict, and a face beside it.
 pub fn checkerboard(mesh: &Mesh) -> Result<Checkerboard, SelectError> {
-    let faces = surface_faces(mesh)?;
+    let faces: Vec<FaceId> = mesh.surface_faces().collect();
     let mut colour: HashMap<FaceId, bool> = HashMap::with_capacity(faces.len());
     for &seed in &faces {
         if colour.contains_key(&seed) {

@@ -337,3 +337,16 @@ fn raw_append_renumbers_and_keeps_hole_flags() {
     assert_eq!(x.holes.len(), 12);
     assert_eq!((0..12).filter(|&f| x.is_hole(f)).collect::<Vec<_>>(), [8]);
 }
+
+#[test]
+fn surface_faces_leave_out_holes_in_slot_order() {
+    let mut m = cube();
+    assert_eq!(
+        m.surface_faces().collect::<Vec<_>>(),
+        m.faces().collect::<Vec<_>>()
+    );
+    let f = m.face_at(2).unwrap();
+    m.set_hole(f, true).unwrap();
+    let want: Vec<_> = m.faces().filter(|&g| g != f).collect();
+    assert_eq!(m.surface_faces().collect::<Vec<_>>(), want);
+}
