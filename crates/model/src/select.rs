@@ -302,29 +302,30 @@ pub fn invert_edges(mesh: &Mesh, edges: &[EdgeId]) -> Vec<EdgeId> {
 
 /// Every surface face with as many corners as some face of the selection.
 pub fn similar_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
-    let mut sizes = HashSet::new();
-    for &f in faces {
-        sizes.insert(mesh.face_len(f)?);
-    }
-    let mut out = Vec::new();
-    for f in mesh.surface_faces() {
-        if sizes.contains(&mesh.face_len(f)?) {
-            out.push(f);
-        }
-    }
-    Ok(out)
+    similar(faces, mesh.surface_faces(), |f| Ok(mesh.face_len(f)?))
 }
 
 /// Every vertex with the valence of some vertex of the selection.
 pub fn similar_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
-    let mut valences = HashSet::new();
-    for &v in vertices {
-        valences.insert(mesh.valence(v)?);
+    similar(vertices, mesh.vertices(), |v| Ok(mesh.valence(v)?))
+}
+
+/// The `candidates`, in their order, whose `measure` (a face's size, a
+/// vertex's valence) some item of `selection` also has: the similar-face
+/// and similar-vertex selections differ only in what they measure.
+fn similar<T: Copy, K: Eq + std::hash::Hash>(
+    selection: &[T],
+    candidates: impl Iterator<Item = T>,
+    measure: impl Fn(T) -> Result<K, SelectError>,
+) -> Result<Vec<T>, SelectError> {
+    let mut wanted = HashSet::new();
+    for &x in selection {
+        wanted.insert(measure(x)?);
     }
     let mut out = Vec::new();
-    for v in mesh.vertices() {
-        if valences.contains(&mesh.valence(v)?) {
-            out.push(v);
+    for x in candidates {
+        if wanted.contains(&measure(x)?) {
+            out.push(x);
         }
     }
     Ok(out)
