@@ -32,6 +32,20 @@ fn expect_delta(m: &mut Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)
     );
 }
 
+/// [`expect_delta`] of one plain extrusion of face `f` by `distance`,
+/// `count` times.
+fn expect_plain_delta(
+    m: &mut Mesh,
+    f: FaceId,
+    distance: f64,
+    count: usize,
+    delta: (i64, i64, i64),
+) {
+    expect_delta(m, delta, |m| {
+        extrude_face(m, f, &ExtrudeParams::new(distance, count)).unwrap();
+    });
+}
+
 /// [`expect_delta`] on a copy of `m0`, leaving `m0` for the next
 /// operation tried on the same face.
 fn expect_delta_on_copy(m0: &Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)) {
@@ -146,9 +160,7 @@ fn extrusion_moves_turns_and_scales_the_top() {
 fn zero_distance_extrusion_is_valid() {
     let mut m = prim("@cube");
     let f = face(&m, 0);
-    expect_delta(&mut m, (4, 8, 4), |m| {
-        extrude_face(m, f, &ExtrudeParams::new(0.0, 1)).unwrap();
-    });
+    expect_plain_delta(&mut m, f, 0.0, 1, (4, 8, 4));
 }
 
 #[test]
@@ -241,9 +253,7 @@ fn faces_of_different_sizes_and_open_meshes() {
         let f = face(&m, idx);
         let d = m.face_len(f).unwrap() as i64;
         let holes = m.hole_count();
-        expect_delta(&mut m, (d, 2 * d, d), |m| {
-            extrude_face(m, f, &ExtrudeParams::new(0.25, 1)).unwrap();
-        });
+        expect_plain_delta(&mut m, f, 0.25, 1, (d, 2 * d, d));
         assert_eq!(m.hole_count(), holes, "{spec}");
     }
 }
@@ -253,9 +263,7 @@ fn extruding_a_face_next_to_a_hole() {
     // A corner quad of an open grid touches the boundary loop on two edges.
     let mut m = prim("@plane:2:2");
     let f = face(&m, 0);
-    expect_delta(&mut m, (8, 16, 8), |m| {
-        extrude_face(m, f, &ExtrudeParams::new(0.5, 2)).unwrap();
-    });
+    expect_plain_delta(&mut m, f, 0.5, 2, (8, 16, 8));
 }
 
 #[test]
@@ -274,9 +282,7 @@ fn a_face_with_a_dangling_edge_extrudes() {
     // Fans: the 3 plain corners, and at the attachment vertex one fan of
     // two corners (the dangling edge is inside the selection) — 4 fans,
     // as many as boundary edges. The loose end is interior and moves.
-    expect_delta(&mut m, (4, 8, 4), |m| {
-        extrude_face(m, f, &ExtrudeParams::new(1.0, 1)).unwrap();
-    });
+    expect_plain_delta(&mut m, f, 1.0, 1, (4, 8, 4));
     assert!((m.position(x).unwrap().z - 2.0).abs() < 1e-12);
 }
 
