@@ -46,6 +46,48 @@ impl RawMesh {
     pub fn is_hole(&self, f: usize) -> bool {
         self.holes.get(f).copied().unwrap_or(false)
     }
+
+    /// Appends `other` as further components: its vertices, faces, hole
+    /// flags and edges after this mesh's, renumbered (as
+    /// `PolyMesh::append` does for soups). Refused, with this mesh
+    /// unchanged, when the vertices or corners together would not fit the
+    /// 32-bit indices; nothing else is checked here
+    /// ([`crate::Mesh::from_raw`] checks the result).
+    pub fn append(&mut self, other: &RawMesh) -> Result<(), BuildError> {
+        for total in [
+            self.positions.len() + other.positions.len(),
+            self.face_vertices.len() + other.face_vertices.len(),
+        ] {
+            if total > u32::MAX as usize {
+                return Err(BuildError::TooLarge(total));
+            }
+        }
+        // Both totals fit in u32, so the shifts only saturate on indices
+        // that were out of range already (and stay so for from_raw).
+        let nv = self.positions.len() as u32;
+        let nc = self.face_vertices.len() as u32;
+        if !self.holes.is_empty() || !other.holes.is_empty() {
+            let (mine, theirs) = (self.face_count(), other.face_count());
+            self.holes.resize(mine, false);
+            self.holes.extend((0..theirs).map(|f| other.is_hole(f)));
+        }
+        if self.face_offsets.is_empty() {
+            self.face_offsets.push(0);
+        }
+        self.positions.extend_from_slice(&other.positions);
+        self.face_vertices
+            .extend(other.face_vertices.iter().map(|v| v.saturating_add(nv)));
+        self.face_offsets.extend(
+            other
+                .face_offsets
+                .iter()
+                .skip(1)
+                .map(|o| o.saturating_add(nc)),
+        );
+        self.edges
+            .extend(other.edges.iter().map(|e| e.map(|c| c.saturating_add(nc))));
+        Ok(())
+    }
 }
 
 /// Why raw parts do not form a valid DLFL.

@@ -714,10 +714,7 @@ pub fn to_poly(mesh: &Mesh) -> Exported {
     let mut faces: Vec<Vec<u32>> = Vec::with_capacity(mesh.face_count());
     let mut face_ids = Vec::with_capacity(mesh.face_count());
     let mut list = Vec::new();
-    for f in mesh.faces() {
-        if mesh.is_hole(f).unwrap_or(false) {
-            continue;
-        }
+    for f in mesh.surface_faces() {
         list.clear();
         if let Ok(corners) = mesh.face_corners(f) {
             list.extend(corners.filter_map(|c| mesh.corner_vertex(c).ok()));

@@ -39,10 +39,7 @@ pub fn dlfl_info(mesh: &Mesh) -> MeshInfo {
             boundary_edges += 1;
         }
     }
-    for f in mesh.faces() {
-        if mesh.is_hole(f).unwrap_or(false) {
-            continue;
-        }
+    for f in mesh.surface_faces() {
         faces += 1;
         let ps = mesh.face_positions(f).unwrap_or_default();
         *face_sizes.entry(ps.len()).or_insert(0) += 1;

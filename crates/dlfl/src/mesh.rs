@@ -213,6 +213,15 @@ impl Mesh {
     pub fn faces(&self) -> impl Iterator<Item = FaceId> + '_ {
         self.faces.live_indices().map(|i| self.fid(i))
     }
+    /// Live faces that are not holes (the surface's own faces), in slot
+    /// order: the faces exporters, displays and selections walk, without
+    /// each asking [`Mesh::is_hole`] of every face.
+    pub fn surface_faces(&self) -> impl Iterator<Item = FaceId> + '_ {
+        self.faces
+            .live_indices()
+            .filter(|&i| !self.f(i).hole)
+            .map(|i| self.fid(i))
+    }
     /// Live corners in slot order.
     pub fn corners(&self) -> impl Iterator<Item = CornerId> + '_ {
         self.corners.live_indices().map(|i| self.cid(i))

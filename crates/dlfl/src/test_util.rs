@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::{CornerId, EdgeId, Mesh, RawMesh, VertexId};
+use crate::{CornerId, EdgeId, FaceId, Mesh, RawMesh, VertexId};
 
 /// Builds a closed mesh from polygons by pairing each half-edge u→v with
 /// the single v→u. Test meshes only: panics on anything non-manifold.
@@ -64,6 +64,47 @@ pub(crate) fn cube() -> Mesh {
 pub(crate) fn torus(n: u32, m: u32) -> Mesh {
     let (p, quads) = holey_testkit::quad_torus(n, m);
     of(&p, &quads)
+}
+
+/// The unit cube, its face in slot `slot` and that face's corners in
+/// order: most edits in the kernel's tests start from one cube face's
+/// corners.
+pub(crate) fn cube_face(slot: usize) -> (Mesh, FaceId, Vec<CornerId>) {
+    let m = cube();
+    let f = m.face_at(slot).expect("the cube has six faces");
+    let cs = m.face_corners(f).expect("a live face").collect();
+    (m, f, cs)
+}
+
+/// The unit cube with an edge from the corner of its first face to the
+/// corner of its second (a handle: genus 1), and that edge.
+pub(crate) fn cube_with_handle() -> (Mesh, EdgeId) {
+    let mut m = cube();
+    let faces: Vec<_> = m.faces().collect();
+    let c1 = m.face_corner(faces[0]).expect("a live face");
+    let c2 = m.face_corner(faces[1]).expect("a live face");
+    let e = m.insert_edge(c1, c2).expect("the handle inserts");
+    (m, e)
+}
+
+/// The unit cube with a new vertex at `at` joined to its first corner by a
+/// dangling edge: the edge, the new vertex and the vertex's corner, where
+/// the tests of deleting and collapsing a dangling edge start.
+pub(crate) fn cube_with_dangling_edge(at: DVec3) -> (Mesh, EdgeId, VertexId, CornerId) {
+    let mut m = cube();
+    let c = m.corners().next().expect("a corner");
+    let (v, _, cv) = m.create_vertex(at).expect("a vertex");
+    let e = m.insert_edge(c, cv).expect("the dangling edge inserts");
+    (m, e, v, cv)
+}
+
+/// The corners of face `f` at vertex `v`, in face order: where a self-loop
+/// or a second loop at `v` can be inserted inside `f`.
+pub(crate) fn corners_at(m: &Mesh, f: FaceId, v: VertexId) -> Vec<CornerId> {
+    m.face_corners(f)
+        .expect("a live face")
+        .filter(|&c| m.corner_vertex(c).expect("a live corner") == v)
+        .collect()
 }
 
 /// A self-loop between the first two corners of the mesh's first vertex

@@ -27,6 +27,16 @@ fn best_of<T>(n: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     (best, out.expect("n > 0"))
 }
 
+/// `points` as symbolic points, each with its index as its identity: the
+/// inputs of the SoS predicates and constructions measured below.
+fn symbolic(points: &[DVec3]) -> Vec<SymPoint> {
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| SymPoint::new(p, i as u32))
+        .collect()
+}
+
 fn main() {
     // Orientation throughput and fallback rates.
     let mut r = Rng::new(1);
@@ -54,11 +64,7 @@ fn main() {
             (n - 3) as f64 / t / 1e6,
             100.0 * zeros as f64 / (n - 3) as f64
         );
-        let sp: Vec<SymPoint> = pts
-            .iter()
-            .enumerate()
-            .map(|(i, &p)| SymPoint::new(p, i as u32))
-            .collect();
+        let sp = symbolic(pts);
         let (t, s) = best_of(3, || {
             sp.windows(4)
                 .map(|w| orient3d_sos(w[0], w[1], w[2], w[3]).as_i8() as i64)
@@ -71,11 +77,7 @@ fn main() {
     }
 
     // Derived predicates and constructions on random input.
-    let sp: Vec<SymPoint> = rnd[..300_000]
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| SymPoint::new(p, i as u32))
-        .collect();
+    let sp = symbolic(&rnd[..300_000]);
     let (t, hits) = best_of(3, || {
         sp.chunks(5)
             .filter(|c| c.len() == 5 && segment_triangle_intersect(c[0], c[1], c[2], c[3], c[4]))

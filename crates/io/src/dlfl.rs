@@ -105,13 +105,7 @@ fn statements(c: &mut Cursor<'_>, source: &str) -> Result<Statements, IoError> {
     let mut vertex_lines: Vec<usize> = Vec::new();
     let mut face_lines: Vec<usize> = Vec::new();
     let mut edges: Vec<WrittenEdge> = Vec::new();
-    loop {
-        c.skip_empty_lines();
-        if c.eof() {
-            break;
-        }
-        let line = c.line();
-        let Some(keyword) = c.token() else { break };
+    while let Some((line, keyword)) = c.next_statement() {
         match keyword {
             b"v" => {
                 raw.positions.push(vertex_statement(c, line, source)?);
@@ -512,48 +506,56 @@ mod tests {
             err("# c\nv 0 0 0\n"),
             "m.dlfl:2: expected the header \"dlfl 1\""
         );
-        assert_eq!(e("v 1 x 0\n"), "m.dlfl:5: bad number \"x\"");
-        assert_eq!(
-            e("v 1 0 nan\n"),
-            "m.dlfl:5: coordinate \"nan\" is not a finite number"
-        );
-        assert_eq!(
-            e("f 0 1 2\nf 2 1 7\n"),
-            "m.dlfl:6: face refers to vertex 7, but only 3 vertices are defined"
-        );
-        assert_eq!(e("f 0 1\n"), "m.dlfl:4: vertex 2 is not used by any face");
-        assert_eq!(e("f\n"), "m.dlfl:5: a face needs at least one corner");
-        assert_eq!(e("f 0 1 2\nq 1\n"), "m.dlfl:6: unknown statement \"q\"");
-        assert_eq!(e("f 0 1 2 x\n"), "m.dlfl:5: bad vertex number \"x\"");
-        assert_eq!(
-            e("v 1 2 3 4\n"),
-            "m.dlfl:5: unexpected \"4\" at the end of the line"
-        );
+        for (input, want) in [
+            ("v 1 x 0\n", "m.dlfl:5: bad number \"x\""),
+            (
+                "v 1 0 nan\n",
+                "m.dlfl:5: coordinate \"nan\" is not a finite number",
+            ),
+            (
+                "f 0 1 2\nf 2 1 7\n",
+                "m.dlfl:6: face refers to vertex 7, but only 3 vertices are defined",
+            ),
+            ("f 0 1\n", "m.dlfl:4: vertex 2 is not used by any face"),
+            ("f\n", "m.dlfl:5: a face needs at least one corner"),
+            ("f 0 1 2\nq 1\n", "m.dlfl:6: unknown statement \"q\""),
+            ("f 0 1 2 x\n", "m.dlfl:5: bad vertex number \"x\""),
+            (
+                "v 1 2 3 4\n",
+                "m.dlfl:5: unexpected \"4\" at the end of the line",
+            ),
+        ] {
+            assert_eq!(e(input), want, "{input:?}");
+        }
         let tri = "f 0 1 2\nf 2 1 0\n";
-        assert_eq!(
-            e(&format!("{tri}e 0:0 1:1\ne 0-1 1:0\n")),
-            "m.dlfl:8: bad corner \"0-1\" (expected face:corner)"
-        );
-        assert_eq!(
-            e(&format!("{tri}e 0:0 2:1\n")),
-            "m.dlfl:7: edge names face 2, but there are only 2 faces"
-        );
-        assert_eq!(
-            e(&format!("{tri}e 0:0 1:3\n")),
-            "m.dlfl:7: edge names corner 1:3, but face 1 has only 3 corner(s)"
-        );
-        assert_eq!(
-            e(&format!("{tri}e 0:0 1:1\ne 1:1 0:0\n")),
-            "m.dlfl:8: corner 1:1 starts a second edge (the first is on line 7)"
-        );
-        assert_eq!(
-            e(&format!("{tri}e 0:0 1:0\n")),
-            "m.dlfl:7: the edge's sides do not run oppositely between the same two vertices (0→1 and 2→1)"
-        );
-        assert_eq!(
-            e(&format!("{tri}e 0:0 1:1\ne 0:1 1:0\n")),
-            "m.dlfl:5: corner 0:2 starts no edge (no \"e\" line names it)"
-        );
+        for (input, want) in [
+            (
+                "e 0:0 1:1\ne 0-1 1:0\n",
+                "m.dlfl:8: bad corner \"0-1\" (expected face:corner)",
+            ),
+            (
+                "e 0:0 2:1\n",
+                "m.dlfl:7: edge names face 2, but there are only 2 faces",
+            ),
+            (
+                "e 0:0 1:3\n",
+                "m.dlfl:7: edge names corner 1:3, but face 1 has only 3 corner(s)",
+            ),
+            (
+                "e 0:0 1:1\ne 1:1 0:0\n",
+                "m.dlfl:8: corner 1:1 starts a second edge (the first is on line 7)",
+            ),
+            (
+                "e 0:0 1:0\n",
+                "m.dlfl:7: the edge's sides do not run oppositely between the same two vertices (0→1 and 2→1)",
+            ),
+            (
+                "e 0:0 1:1\ne 0:1 1:0\n",
+                "m.dlfl:5: corner 0:2 starts no edge (no \"e\" line names it)",
+            ),
+        ] {
+            assert_eq!(e(&format!("{tri}{input}")), want, "{input:?}");
+        }
     }
 
     #[test]

@@ -26,7 +26,7 @@ use std::io::{self, Write};
 use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
-use crate::text::{Cursor, Lines};
+use crate::text::{Cursor, Lines, push_face_end};
 
 /// The statements of the OBJ format (Wavefront's Appendix B1): geometry,
 /// free-form curves and surfaces, grouping, display and rendering. Only
@@ -191,10 +191,8 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
                 if largest_forward > 0 {
                     forward.push((line, largest_forward));
                 }
-                let end = u32::try_from(indices.len()).map_err(|_| {
-                    IoError::line(source, line, "too many face corners for 32-bit indices")
-                })?;
-                offsets.push(end);
+                push_face_end(&mut offsets, &indices)
+                    .map_err(|m| IoError::line(source, line, m))?;
             }
             _ => {}
         }

@@ -19,7 +19,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_u64};
+use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_face_end, push_u64};
 
 /// True for a header keyword this reader handles.
 fn is_off_keyword(word: &[u8]) -> bool {
@@ -198,9 +198,7 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
             };
             indices.push(index);
         }
-        let end = u32::try_from(indices.len())
-            .map_err(|_| IoError::line(source, line, "too many face corners for 32-bit indices"))?;
-        offsets.push(end);
+        push_face_end(&mut offsets, &indices).map_err(|m| IoError::line(source, line, m))?;
         c.next_line();
     }
     Ok(PolyMesh {
@@ -265,53 +263,54 @@ mod tests {
 
     #[test]
     fn errors_name_the_line() {
-        assert_eq!(
-            err("OFF\n2 0 0\n0 0 0\n0 x 0\n"),
-            "m.off:4: bad number \"x\""
-        );
-        assert_eq!(
-            err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
-            "m.off:6: face refers to vertex 3, but only 3 vertices are defined (OFF counts from 0)"
-        );
-        assert_eq!(
-            err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n"),
-            "m.off:6: face has 2 corner(s), but at least 3 are needed"
-        );
-        assert_eq!(
-            err("OFF\n3 1 0\n0 0 0\n1 0 NaN\n0 1 0\n3 0 1 2\n"),
-            "m.off:4: coordinate \"NaN\" is not a finite number"
-        );
-        assert_eq!(
-            err("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
-            "m.off:7: file ends after 1 of 2 faces"
-        );
-        assert_eq!(
-            err("OFF\n5 0 0\n0 0 0\n"),
-            "m.off:4: file ends after 1 of 5 vertices"
-        );
-        assert_eq!(
-            err("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n"),
-            "m.off:6: face declares 4 corners but lists 3"
-        );
-        assert_eq!(err("OFF\n3 x 0\n"), "m.off:2: bad face count \"x\"");
-        assert_eq!(err("OFF BINARY\n"), "m.off:1: binary OFF is not supported");
-        assert_eq!(
-            err("4OFF\n"),
-            "m.off:1: unsupported OFF variant \"4OFF\" (only 3-D OFF is read)"
-        );
-        assert_eq!(
-            err("PLY\n"),
-            "m.off:1: expected the header \"OFF\", found \"PLY\""
-        );
-        assert_eq!(err(""), "m.off: the file is empty (expected an OFF header)");
-        // Huge declared counts do not allocate; the file simply ends.
-        assert_eq!(
-            err("OFF\n5000000000 1 0\n"),
-            "m.off:2: vertex count 5000000000 is too large"
-        );
-        assert_eq!(
-            err("OFF\n400000000 1 0\n0 0 0\n"),
-            "m.off:4: file ends after 1 of 400000000 vertices"
-        );
+        for (input, want) in [
+            ("OFF\n2 0 0\n0 0 0\n0 x 0\n", "m.off:4: bad number \"x\""),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+                "m.off:6: face refers to vertex 3, but only 3 vertices are defined (OFF counts from 0)",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+                "m.off:6: face has 2 corner(s), but at least 3 are needed",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 NaN\n0 1 0\n3 0 1 2\n",
+                "m.off:4: coordinate \"NaN\" is not a finite number",
+            ),
+            (
+                "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                "m.off:7: file ends after 1 of 2 faces",
+            ),
+            (
+                "OFF\n5 0 0\n0 0 0\n",
+                "m.off:4: file ends after 1 of 5 vertices",
+            ),
+            (
+                "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n",
+                "m.off:6: face declares 4 corners but lists 3",
+            ),
+            ("OFF\n3 x 0\n", "m.off:2: bad face count \"x\""),
+            ("OFF BINARY\n", "m.off:1: binary OFF is not supported"),
+            (
+                "4OFF\n",
+                "m.off:1: unsupported OFF variant \"4OFF\" (only 3-D OFF is read)",
+            ),
+            (
+                "PLY\n",
+                "m.off:1: expected the header \"OFF\", found \"PLY\"",
+            ),
+            ("", "m.off: the file is empty (expected an OFF header)"),
+            // Huge declared counts do not allocate; the file simply ends.
+            (
+                "OFF\n5000000000 1 0\n",
+                "m.off:2: vertex count 5000000000 is too large",
+            ),
+            (
+                "OFF\n400000000 1 0\n0 0 0\n",
+                "m.off:4: file ends after 1 of 400000000 vertices",
+            ),
+        ] {
+            assert_eq!(err(input), want, "{input:?}");
+        }
     }
 }

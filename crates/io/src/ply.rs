@@ -24,7 +24,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, parse_f64, parse_i64, push_f64, push_u64};
+use crate::text::{Cursor, parse_f64, parse_i64, push_f64, push_face_end, push_u64};
 
 /// A PLY scalar type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -370,10 +370,7 @@ impl Out {
                 "has {corners} corner(s), but at least 3 are needed"
             ));
         }
-        let end = u32::try_from(self.indices.len())
-            .map_err(|_| "too many face corners for 32-bit indices".to_string())?;
-        self.offsets.push(end);
-        Ok(())
+        push_face_end(&mut self.offsets, &self.indices).map_err(String::from)
     }
 }
 

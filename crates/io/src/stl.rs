@@ -190,13 +190,7 @@ pub fn parse_ascii(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
     let mut w = Welder::new(bytes.len() / 100);
     let mut state = State::Outside;
     let mut facet_line = 0;
-    loop {
-        c.skip_empty_lines();
-        if c.eof() {
-            break;
-        }
-        let line = c.line();
-        let Some(tok) = c.token() else { break };
+    while let Some((line, tok)) = c.next_statement() {
         let is = |word: &[u8]| tok.eq_ignore_ascii_case(word);
         let unexpected = |expected: &str| {
             Err(IoError::line(
@@ -472,27 +466,29 @@ mod tests {
             "m.stl: byte 150: triangle 2 of 3: coordinate NaN is not a finite number"
         );
 
-        let text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 zero 0\n";
-        assert_eq!(err(text.as_bytes()), "m.stl:5: bad number \"zero\"");
-        let text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n";
-        assert_eq!(
-            err(text.as_bytes()),
-            "m.stl:6: facet has 2 vertices, but at least 3 are needed"
-        );
-        let text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 0 inf\nendloop\n";
-        assert_eq!(
-            err(text.as_bytes()),
-            "m.stl:6: coordinate \"inf\" is not a finite number"
-        );
-        let text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 0 1\nendloop\n";
-        assert_eq!(
-            err(text.as_bytes()),
-            "m.stl:8: file ends inside the facet that starts on line 2"
-        );
-        let text = "solid x\nfacet normal 0 0 1\nvertex 0 0 0\n";
-        assert_eq!(
-            err(text.as_bytes()),
-            "m.stl:3: expected \"outer loop\", found \"vertex\""
-        );
+        for (text, want) in [
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 zero 0\n",
+                "m.stl:5: bad number \"zero\"",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n",
+                "m.stl:6: facet has 2 vertices, but at least 3 are needed",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 0 inf\nendloop\n",
+                "m.stl:6: coordinate \"inf\" is not a finite number",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 0 1\nendloop\n",
+                "m.stl:8: file ends inside the facet that starts on line 2",
+            ),
+            (
+                "solid x\nfacet normal 0 0 1\nvertex 0 0 0\n",
+                "m.stl:3: expected \"outer loop\", found \"vertex\"",
+            ),
+        ] {
+            assert_eq!(err(text.as_bytes()), want, "{text:?}");
+        }
     }
 }

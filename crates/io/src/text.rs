@@ -253,6 +253,29 @@ impl<'a> Cursor<'a> {
             self.next_line();
         }
     }
+
+    /// Moves to the next line with content and reads its first token (the
+    /// statement's keyword), with that line's number; `None` at the end of
+    /// the file. The line-by-line readers (`.dlfl`, ASCII STL) start each
+    /// statement this way, so blank and comment lines are skipped alike.
+    pub(crate) fn next_statement(&mut self) -> Option<(usize, &'a [u8])> {
+        self.skip_empty_lines();
+        if self.eof() {
+            return None;
+        }
+        let line = self.line();
+        self.token().map(|keyword| (line, keyword))
+    }
+}
+
+/// Ends the face whose corners were just pushed to `indices` by pushing its
+/// end offset, or says why not: the polygon readers (OBJ, OFF, PLY) keep
+/// 32-bit offsets and refuse corners that outgrow them in the same words.
+pub(crate) fn push_face_end(offsets: &mut Vec<u32>, indices: &[u32]) -> Result<(), &'static str> {
+    let end =
+        u32::try_from(indices.len()).map_err(|_| "too many face corners for 32-bit indices")?;
+    offsets.push(end);
+    Ok(())
 }
 
 /// Parses a decimal float (the standard library's syntax: `1`, `-2.5`,

@@ -141,29 +141,17 @@ struct Spoke {
 /// Cuts a vertex (see the module documentation): a valence-`k` vertex
 /// becomes a `k`-gon, `+(k − 1)/+k/+1`. Returns the new face.
 pub fn cut_vertex(mesh: &mut Mesh, v: VertexId, distance: f64) -> Result<FaceId, CutError> {
-    one(cut(
-        mesh,
-        &[CutTarget::Vertex(v)],
-        CutOffset::Distance(distance),
-    )?)
+    cut_single(mesh, CutTarget::Vertex(v), distance)
 }
 
 /// Cuts an edge: a `(k_u + k_w − 2)`-gon replaces it and its ends.
 pub fn cut_edge(mesh: &mut Mesh, e: EdgeId, distance: f64) -> Result<FaceId, CutError> {
-    one(cut(
-        mesh,
-        &[CutTarget::Edge(e)],
-        CutOffset::Distance(distance),
-    )?)
+    cut_single(mesh, CutTarget::Edge(e), distance)
 }
 
 /// Cuts a face off by (roughly) a parallel plane `distance` below it.
 pub fn cut_face(mesh: &mut Mesh, f: FaceId, distance: f64) -> Result<FaceId, CutError> {
-    one(cut(
-        mesh,
-        &[CutTarget::Face(f)],
-        CutOffset::Distance(distance),
-    )?)
+    cut_single(mesh, CutTarget::Face(f), distance)
 }
 
 /// Cuts several vertices at once (TopMod's global vertex cut when given
@@ -173,8 +161,12 @@ pub fn cut_vertices(
     vertices: &[VertexId],
     distance: f64,
 ) -> Result<Vec<FaceId>, CutError> {
-    let targets: Vec<CutTarget> = vertices.iter().map(|&v| CutTarget::Vertex(v)).collect();
-    cut(mesh, &targets, CutOffset::Distance(distance))
+    cut_all(
+        mesh,
+        vertices,
+        CutTarget::Vertex,
+        CutOffset::Distance(distance),
+    )
 }
 
 /// Cuts several edges at once; edges sharing a vertex are refused
@@ -184,8 +176,7 @@ pub fn cut_edges(
     edges: &[EdgeId],
     distance: f64,
 ) -> Result<Vec<FaceId>, CutError> {
-    let targets: Vec<CutTarget> = edges.iter().map(|&e| CutTarget::Edge(e)).collect();
-    cut(mesh, &targets, CutOffset::Distance(distance))
+    cut_all(mesh, edges, CutTarget::Edge, CutOffset::Distance(distance))
 }
 
 /// TopMod's "cut by edge-vertex": the given edges and vertices in one
@@ -209,6 +200,25 @@ pub fn cut_edges_and_vertices(
             .map(|&v| (CutTarget::Vertex(v), CutOffset::Distance(vertex_distance))),
     );
     cut_each(mesh, &targets)
+}
+
+/// Cuts the one `target` at `distance` and returns its new face: the
+/// single-target cuts differ only in the element they name.
+fn cut_single(mesh: &mut Mesh, target: CutTarget, distance: f64) -> Result<FaceId, CutError> {
+    one(cut(mesh, &[target], CutOffset::Distance(distance))?)
+}
+
+/// Cuts every one of `ids`, made a target by `target`, at the same
+/// `offset`: the several-target cuts and truncations
+/// ([`crate::truncate`]) differ only in the kind of element and offset.
+pub(crate) fn cut_all<T: Copy>(
+    mesh: &mut Mesh,
+    ids: &[T],
+    target: fn(T) -> CutTarget,
+    offset: CutOffset,
+) -> Result<Vec<FaceId>, CutError> {
+    let targets: Vec<CutTarget> = ids.iter().map(|&id| target(id)).collect();
+    cut(mesh, &targets, offset)
 }
 
 fn one(faces: Vec<FaceId>) -> Result<FaceId, CutError> {

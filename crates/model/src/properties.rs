@@ -21,7 +21,7 @@ fn plus(s: State, d: (i64, i64, i64)) -> State {
 }
 
 fn surface_faces(m: &Mesh) -> Vec<FaceId> {
-    m.faces().filter(|&f| !m.is_hole(f).unwrap()).collect()
+    m.surface_faces().collect()
 }
 
 fn any_face(m: &Mesh, rng: &mut Rng) -> Option<FaceId> {

@@ -89,25 +89,20 @@ pub fn face_loop(mesh: &Mesh, face: FaceId, edge: EdgeId) -> Result<Vec<FaceId>,
     }
     let start = corner_on(mesh, face, edge)?.ok_or(SelectError::NotOnFace { face, edge })?;
     let opposite = mesh.corner_next(mesh.corner_next(start)?)?;
-    both_ways(mesh, face, [start, opposite], walk_strip)
+    both_ways(mesh, face, [start, opposite], strip_step)
 }
 
-/// Crosses the edge leaving `c` and keeps going straight through quads.
-fn walk_strip(
-    mesh: &Mesh,
-    mut c: CornerId,
-    seen: &mut HashSet<FaceId>,
-) -> Result<Vec<FaceId>, SelectError> {
-    let mut out = Vec::new();
-    while let Some(entry) = across(mesh, c)? {
-        let f = mesh.corner_face(entry)?;
-        if !is_quad(mesh, f)? || !seen.insert(f) {
-            break;
-        }
-        out.push(f);
-        c = mesh.corner_next(mesh.corner_next(entry)?)?;
+/// A face loop's step: across the edge leaving `c` into a quad, then on
+/// from the corner that starts the quad's opposite edge.
+fn strip_step(mesh: &Mesh, c: CornerId) -> Result<Option<(FaceId, CornerId)>, SelectError> {
+    let Some(entry) = across(mesh, c)? else {
+        return Ok(None);
+    };
+    let f = mesh.corner_face(entry)?;
+    if !is_quad(mesh, f)? {
+        return Ok(None);
     }
-    Ok(out)
+    Ok(Some((f, mesh.corner_next(mesh.corner_next(entry)?)?)))
 }
 
 /// The edge ring through `edge`: on each side of it, while the face is a
@@ -115,13 +110,34 @@ fn walk_strip(
 /// at non-quads and holes, and when the ring closes. In walking order.
 pub fn edge_ring(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> {
     let [a, b] = mesh.edge_corners(edge)?;
-    both_ways(mesh, edge, [a, b], walk_ring)
+    both_ways(mesh, edge, [a, b], ring_step)
 }
 
-/// A walk from a corner, taking each face or edge at most once (`seen`).
-type Walk<T> = fn(&Mesh, CornerId, &mut HashSet<T>) -> Result<Vec<T>, SelectError>;
+/// One step of a walk from corner `c`: the next face or edge and the
+/// corner to go on from, or `None` where the walk stops.
+type Step<T> = fn(&Mesh, CornerId) -> Result<Option<(T, CornerId)>, SelectError>;
 
-/// The walks of `walk` from the corners `[ahead, behind]` of `seed` (an
+/// Walks from corner `c` by `step`, taking each face or edge at most once
+/// (`seen`): face loops, edge rings and edge loops differ only in their
+/// step, and all stop where the walk meets what it has taken.
+fn walk<T: Copy + Eq + std::hash::Hash>(
+    mesh: &Mesh,
+    mut c: CornerId,
+    seen: &mut HashSet<T>,
+    step: Step<T>,
+) -> Result<Vec<T>, SelectError> {
+    let mut out = Vec::new();
+    while let Some((item, next)) = step(mesh, c)? {
+        if !seen.insert(item) {
+            break;
+        }
+        out.push(item);
+        c = next;
+    }
+    Ok(out)
+}
+
+/// The walks by `step` from the corners `[ahead, behind]` of `seed` (an
 /// edge of a ring or loop, the face of a face loop), joined through it in
 /// walking order: the walk from `behind` reversed, `seed`, then the walk
 /// from `ahead`. Each item is taken once, so a closed loop stops where it
@@ -130,42 +146,28 @@ fn both_ways<T: Copy + Eq + std::hash::Hash>(
     mesh: &Mesh,
     seed: T,
     [ahead, behind]: [CornerId; 2],
-    walk: Walk<T>,
+    step: Step<T>,
 ) -> Result<Vec<T>, SelectError> {
     let mut seen = HashSet::from([seed]);
-    let one = walk(mesh, ahead, &mut seen)?;
-    let two = walk(mesh, behind, &mut seen)?;
+    let one = walk(mesh, ahead, &mut seen, step)?;
+    let two = walk(mesh, behind, &mut seen, step)?;
     let mut out: Vec<T> = two.into_iter().rev().collect();
     out.push(seed);
     out.extend(one);
     Ok(out)
 }
 
-fn walk_ring(
-    mesh: &Mesh,
-    mut c: CornerId,
-    seen: &mut HashSet<EdgeId>,
-) -> Result<Vec<EdgeId>, SelectError> {
-    let mut out = Vec::new();
-    loop {
-        let f = mesh.corner_face(c)?;
-        if !is_quad(mesh, f)? {
-            break;
-        }
-        let opposite = mesh.corner_next(mesh.corner_next(c)?)?;
-        let Some(e) = mesh.corner_edge(opposite)? else {
-            break;
-        };
-        if !seen.insert(e) {
-            break;
-        }
-        out.push(e);
-        match across(mesh, opposite)? {
-            Some(next) => c = next,
-            None => break,
-        }
+/// An edge ring's step: in the quad of `c`, the edge opposite the one
+/// `c` starts, then on from its other side.
+fn ring_step(mesh: &Mesh, c: CornerId) -> Result<Option<(EdgeId, CornerId)>, SelectError> {
+    if !is_quad(mesh, mesh.corner_face(c)?)? {
+        return Ok(None);
     }
-    Ok(out)
+    let opposite = mesh.corner_next(mesh.corner_next(c)?)?;
+    let Some(e) = mesh.corner_edge(opposite)? else {
+        return Ok(None);
+    };
+    Ok(across(mesh, opposite)?.map(|next| (e, next)))
 }
 
 /// The edge loop through `edge`: from each end of valence 4, on along
@@ -176,48 +178,26 @@ pub fn edge_loop(mesh: &Mesh, edge: EdgeId) -> Result<Vec<EdgeId>, SelectError> 
     let [a, b] = mesh.edge_corners(edge)?;
     // Corner a starts the edge at its first end; the walk beyond the
     // second end starts from b, the corner where the edge leaves that end.
-    both_ways(mesh, edge, [b, a], walk_loop)
+    both_ways(mesh, edge, [b, a], loop_step)
 }
 
-/// `c` is the corner at which the current edge leaves the vertex to walk
-/// through (going back along the edge); continues beyond that vertex.
-fn walk_loop(
-    mesh: &Mesh,
-    mut c: CornerId,
-    seen: &mut HashSet<EdgeId>,
-) -> Result<Vec<EdgeId>, SelectError> {
-    let mut out = Vec::new();
-    loop {
-        let v = mesh.corner_vertex(c)?;
-        if mesh.valence(v)? != 4 {
-            break;
-        }
-        let straight = mesh.corner_rotation_next(mesh.corner_rotation_next(c)?)?;
-        let Some(e) = mesh.corner_edge(straight)? else {
-            break;
-        };
-        if mesh.is_self_loop(e)? || !seen.insert(e) {
-            break;
-        }
-        out.push(e);
-        // Beyond e: the corner where e leaves its far end, back towards v.
-        match across(mesh, straight)? {
-            Some(back) => c = back,
-            None => break,
-        }
+/// An edge loop's step: `c` is the corner at which the current edge
+/// leaves the vertex to walk through (going back along the edge); through
+/// a vertex of valence 4, the edge straight on (not a self-loop).
+fn loop_step(mesh: &Mesh, c: CornerId) -> Result<Option<(EdgeId, CornerId)>, SelectError> {
+    if mesh.valence(mesh.corner_vertex(c)?)? != 4 {
+        return Ok(None);
     }
-    Ok(out)
-}
-
-/// Surface faces (not holes) in slot order.
-fn surface_faces(mesh: &Mesh) -> Result<Vec<FaceId>, SelectError> {
-    let mut out = Vec::new();
-    for f in mesh.faces() {
-        if !mesh.is_hole(f)? {
-            out.push(f);
-        }
+    let straight = mesh.corner_rotation_next(mesh.corner_rotation_next(c)?)?;
+    let Some(e) = mesh.corner_edge(straight)? else {
+        return Ok(None);
+    };
+    if mesh.is_self_loop(e)? {
+        return Ok(None);
     }
-    Ok(out)
+    // Beyond e: the corner where e leaves its far end, back towards the
+    // vertex walked through.
+    Ok(across(mesh, straight)?.map(|back| (e, back)))
 }
 
 /// The selection with every surface face that shares a vertex with it.
@@ -242,28 +222,28 @@ pub fn grow_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectEr
 /// The selection without the faces on its border: those with a vertex
 /// that also touches an unselected face (or a hole).
 pub fn shrink_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
-    let selected: HashSet<FaceId> = faces.iter().copied().collect();
-    let mut out = BTreeSet::new();
-    'faces: for &f in &selected {
+    let mut out = Vec::new();
+    for f in inner(faces, |f| {
+        let mut around = Vec::new();
         for v in mesh.face_vertices(f)? {
             for c in mesh.vertex_corners(v)? {
-                if !selected.contains(&mesh.corner_face(c)?) {
-                    continue 'faces;
-                }
+                around.push(mesh.corner_face(c)?);
             }
         }
+        Ok(around)
+    })? {
         if !mesh.is_hole(f)? {
-            out.insert(f);
+            out.push(f);
         }
     }
-    Ok(out.into_iter().collect())
+    Ok(out)
 }
 
 /// Every surface face not in the selection.
 pub fn invert_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
     let selected: HashSet<FaceId> = faces.iter().copied().collect();
-    Ok(surface_faces(mesh)?
-        .into_iter()
+    Ok(mesh
+        .surface_faces()
         .filter(|f| !selected.contains(f))
         .collect())
 }
@@ -282,15 +262,28 @@ pub fn grow_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>
 /// The selection without the vertices joined by an edge to an
 /// unselected vertex.
 pub fn shrink_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
-    let selected: HashSet<VertexId> = vertices.iter().copied().collect();
-    let mut out = BTreeSet::new();
-    'vertices: for &v in &selected {
+    inner(vertices, |v| {
+        let mut around = Vec::new();
         for c in mesh.vertex_corners(v)? {
-            if !selected.contains(&mesh.corner_vertex(mesh.corner_next(c)?)?) {
-                continue 'vertices;
-            }
+            around.push(mesh.corner_vertex(mesh.corner_next(c)?)?);
         }
-        out.insert(v);
+        Ok(around)
+    })
+}
+
+/// The items of `selection`, sorted and without repeats, whose neighbours
+/// (`around`) are all selected too: shrinking faces and vertices differ
+/// only in what counts as a neighbour.
+fn inner<T: Copy + Eq + std::hash::Hash + Ord>(
+    selection: &[T],
+    around: impl Fn(T) -> Result<Vec<T>, SelectError>,
+) -> Result<Vec<T>, SelectError> {
+    let selected: HashSet<T> = selection.iter().copied().collect();
+    let mut out = BTreeSet::new();
+    for &x in &selected {
+        if around(x)?.iter().all(|n| selected.contains(n)) {
+            out.insert(x);
+        }
     }
     Ok(out.into_iter().collect())
 }
@@ -309,29 +302,30 @@ pub fn invert_edges(mesh: &Mesh, edges: &[EdgeId]) -> Vec<EdgeId> {
 
 /// Every surface face with as many corners as some face of the selection.
 pub fn similar_faces(mesh: &Mesh, faces: &[FaceId]) -> Result<Vec<FaceId>, SelectError> {
-    let mut sizes = HashSet::new();
-    for &f in faces {
-        sizes.insert(mesh.face_len(f)?);
-    }
-    let mut out = Vec::new();
-    for f in surface_faces(mesh)? {
-        if sizes.contains(&mesh.face_len(f)?) {
-            out.push(f);
-        }
-    }
-    Ok(out)
+    similar(faces, mesh.surface_faces(), |f| Ok(mesh.face_len(f)?))
 }
 
 /// Every vertex with the valence of some vertex of the selection.
 pub fn similar_vertices(mesh: &Mesh, vertices: &[VertexId]) -> Result<Vec<VertexId>, SelectError> {
-    let mut valences = HashSet::new();
-    for &v in vertices {
-        valences.insert(mesh.valence(v)?);
+    similar(vertices, mesh.vertices(), |v| Ok(mesh.valence(v)?))
+}
+
+/// The `candidates`, in their order, whose `measure` (a face's size, a
+/// vertex's valence) some item of `selection` also has: the similar-face
+/// and similar-vertex selections differ only in what they measure.
+fn similar<T: Copy, K: Eq + std::hash::Hash>(
+    selection: &[T],
+    candidates: impl Iterator<Item = T>,
+    measure: impl Fn(T) -> Result<K, SelectError>,
+) -> Result<Vec<T>, SelectError> {
+    let mut wanted = HashSet::new();
+    for &x in selection {
+        wanted.insert(measure(x)?);
     }
     let mut out = Vec::new();
-    for v in mesh.vertices() {
-        if valences.contains(&mesh.valence(v)?) {
-            out.push(v);
+    for x in candidates {
+        if wanted.contains(&measure(x)?) {
+            out.push(x);
         }
     }
     Ok(out)
@@ -354,7 +348,7 @@ pub struct Checkerboard {
 /// Otherwise names the edge where the breadth-first colouring first
 /// meets a conflict, and a face beside it.
 pub fn checkerboard(mesh: &Mesh) -> Result<Checkerboard, SelectError> {
-    let faces = surface_faces(mesh)?;
+    let faces: Vec<FaceId> = mesh.surface_faces().collect();
     let mut colour: HashMap<FaceId, bool> = HashMap::with_capacity(faces.len());
     for &seed in &faces {
         if colour.contains_key(&seed) {

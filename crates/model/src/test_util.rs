@@ -1,7 +1,7 @@
 //! Fixtures the unit tests of several modules share.
 
-use holey_dlfl::Mesh;
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
+use holey_dlfl::{EdgeId, FaceId, Mesh};
 
 /// The built-in primitive `spec` (`@cube`, `@torus:8:4`, …) as a kernel
 /// mesh, imported with the default options.
@@ -24,4 +24,27 @@ pub(crate) fn state(m: &Mesh) -> State {
         t.component_count(),
         t.genus(),
     )
+}
+
+/// (V, E, F) of `m`, holes counted as faces: the counts most operators'
+/// tests compare with their formulas.
+pub(crate) fn counts(m: &Mesh) -> (usize, usize, usize) {
+    (m.vertex_count(), m.edge_count(), m.face_count())
+}
+
+/// Checks the mesh and that V − E + F (holes counted as faces) still
+/// equals 2·components − 2·genus: Euler's formula for the closed DLFL.
+pub(crate) fn check(m: &Mesh) {
+    m.validate().unwrap();
+    let (v, e, f, c, g) = state(m);
+    assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
+}
+
+/// An edge of face `a` that has face `b` on its other side, if the two
+/// faces are neighbours.
+pub(crate) fn shared_edge(m: &Mesh, a: FaceId, b: FaceId) -> Option<EdgeId> {
+    m.face_corners(a)
+        .unwrap()
+        .filter_map(|c| m.corner_edge(c).unwrap())
+        .find(|&e| m.edge_faces(e).unwrap().contains(&b))
 }

@@ -17,7 +17,7 @@
 
 use holey_dlfl::{EdgeId, FaceId, Mesh, VertexId};
 
-use crate::cut::{CutError, CutOffset, CutTarget, cut};
+use crate::cut::{CutError, CutOffset, CutTarget, cut_all};
 
 /// Truncates the given vertices at `fraction` of each incident edge.
 /// Returns the new face of each vertex, in order.
@@ -26,8 +26,12 @@ pub fn truncate_vertices(
     vertices: &[VertexId],
     fraction: f64,
 ) -> Result<Vec<FaceId>, CutError> {
-    let targets: Vec<CutTarget> = vertices.iter().map(|&v| CutTarget::Vertex(v)).collect();
-    cut(mesh, &targets, CutOffset::Fraction(fraction))
+    cut_all(
+        mesh,
+        vertices,
+        CutTarget::Vertex,
+        CutOffset::Fraction(fraction),
+    )
 }
 
 /// Truncates every vertex that has an edge (point-spheres are left).
@@ -48,6 +52,5 @@ pub fn truncate_edges(
     edges: &[EdgeId],
     fraction: f64,
 ) -> Result<Vec<FaceId>, CutError> {
-    let targets: Vec<CutTarget> = edges.iter().map(|&e| CutTarget::Edge(e)).collect();
-    cut(mesh, &targets, CutOffset::Fraction(fraction))
+    cut_all(mesh, edges, CutTarget::Edge, CutOffset::Fraction(fraction))
 }

@@ -260,18 +260,8 @@ fn figure_27_the_wall_is_a_handle_removed_by_four_edge_deletions() {
     let mb = rind.matching(b).unwrap();
     // The edge between outer faces 0 and 1, and its inner copy.
     let m = rind.mesh();
-    let e1 = m
-        .face_corners(a)
-        .unwrap()
-        .map(|c| m.corner_edge(c).unwrap().unwrap())
-        .find(|&e| m.edge_faces(e).unwrap().contains(&b))
-        .unwrap();
-    let e2 = m
-        .face_corners(ma.inner)
-        .unwrap()
-        .map(|c| m.corner_edge(c).unwrap().unwrap())
-        .find(|&e| m.edge_faces(e).unwrap().contains(&mb.inner))
-        .unwrap();
+    let e1 = shared_edge(m, a, b);
+    let e2 = shared_edge(m, ma.inner, mb.inner);
     rind.punch(a).unwrap();
     rind.punch(b).unwrap();
     let mut m = rind.into_mesh();

@@ -29,16 +29,17 @@ fn run(spec: &str, ratio: f64) -> (Mesh, Mesh) {
     (before, m)
 }
 
+/// (V, E, F, genus): what each figure's counts give.
+fn counts_and_genus(m: &Mesh) -> (usize, usize, usize, i64) {
+    (m.vertex_count(), m.edge_count(), m.face_count(), m.genus())
+}
+
 #[test]
 fn figure_64_dodecahedron() {
     // V, E, F = 20, 30, 12; every edge is case 3 (116.57°) and kept.
     // V + 6E, 15E, 7E + V; genus 2g + F − 1 = 11.
     let (_, m) = run("@dodecahedron", 1.0 / 3.0);
-    assert_eq!(
-        (m.vertex_count(), m.edge_count(), m.face_count()),
-        (200, 450, 230)
-    );
-    assert_eq!(m.genus(), 11);
+    assert_eq!(counts_and_genus(&m), (200, 450, 230, 11));
 }
 
 #[test]
@@ -46,11 +47,7 @@ fn figure_64_tetrahedron() {
     // Case 1 everywhere (70.53°): all strips and vertex faces collapse.
     // V = 4 + 2·6 + 2·6 + 4 (one inner vertex per corner), F = 6E, genus 3.
     let (_, m) = run("@tetrahedron", 0.25);
-    assert_eq!(
-        (m.vertex_count(), m.edge_count(), m.face_count()),
-        (32, 72, 36)
-    );
-    assert_eq!(m.genus(), 3);
+    assert_eq!(counts_and_genus(&m), (32, 72, 36, 3));
 }
 
 #[test]
@@ -58,11 +55,7 @@ fn figure_63_cube_with_another_thickness() {
     // D = a quarter of the edge: tunnels of side s = 1 and depth D = 0.5
     // meeting in a unit cube: volume 8 − 6·s²·D − s³ = 4.
     let (_, m) = run("@cube", 0.25);
-    assert_eq!(
-        (m.vertex_count(), m.edge_count(), m.face_count()),
-        (64, 144, 72)
-    );
-    assert_eq!(m.genus(), 5);
+    assert_eq!(counts_and_genus(&m), (64, 144, 72, 5));
     let info = analyze(&to_poly(&m).poly);
     assert!((info.volume.unwrap() - 4.0).abs() < 1e-12);
 }

@@ -11,16 +11,27 @@ use pyo3::types::PyBytes;
 
 use crate::errors::bad;
 
-/// Positions from `float64` triples.
-pub fn positions(bytes: &[u8], what: &str) -> PyResult<Vec<DVec3>> {
-    if !bytes.len().is_multiple_of(24) {
+/// `bytes` cut into rows of `size` bytes, or an error naming the input,
+/// `what`, when the length is not a whole number of rows (`noun` names
+/// them). Positions and indices refuse a ragged buffer the same way.
+fn rows<'b>(
+    bytes: &'b [u8],
+    size: usize,
+    what: &str,
+    noun: &str,
+) -> PyResult<std::slice::ChunksExact<'b, u8>> {
+    if !bytes.len().is_multiple_of(size) {
         return Err(bad(format!(
-            "{what}: {} bytes is not a whole number of float64 (x, y, z) rows",
+            "{what}: {} bytes is not a whole number of {noun}",
             bytes.len()
         )));
     }
-    Ok(bytes
-        .chunks_exact(24)
+    Ok(bytes.chunks_exact(size))
+}
+
+/// Positions from `float64` triples.
+pub fn positions(bytes: &[u8], what: &str) -> PyResult<Vec<DVec3>> {
+    Ok(rows(bytes, 24, what, "float64 (x, y, z) rows")?
         .map(|row| {
             let c = |i: usize| {
                 let mut b = [0u8; 8];
@@ -34,14 +45,7 @@ pub fn positions(bytes: &[u8], what: &str) -> PyResult<Vec<DVec3>> {
 
 /// Indices from `uint32` values.
 pub fn indices(bytes: &[u8], what: &str) -> PyResult<Vec<u32>> {
-    if !bytes.len().is_multiple_of(4) {
-        return Err(bad(format!(
-            "{what}: {} bytes is not a whole number of uint32 indices",
-            bytes.len()
-        )));
-    }
-    Ok(bytes
-        .chunks_exact(4)
+    Ok(rows(bytes, 4, what, "uint32 indices")?
         .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect())
 }

@@ -352,25 +352,27 @@ impl Document {
     }
 
     pub fn undo(&mut self) -> bool {
-        match self.undo.pop() {
-            Some(step) => {
-                let back = self.restore(step);
-                self.redo.push(back);
-                true
-            }
-            None => false,
-        }
+        self.travel(|d| &mut d.undo, |d| &mut d.redo)
     }
 
     pub fn redo(&mut self) -> bool {
-        match self.redo.pop() {
-            Some(step) => {
-                let back = self.restore(step);
-                self.undo.push(back);
-                true
-            }
-            None => false,
-        }
+        self.travel(|d| &mut d.redo, |d| &mut d.undo)
+    }
+
+    /// Restores the last step of the history `from` and files the step
+    /// that comes back here on the history `to`; false (nothing changed)
+    /// when `from` is empty. Undo and redo are this one move, mirrored.
+    fn travel(
+        &mut self,
+        from: fn(&mut Self) -> &mut Vec<Step>,
+        to: fn(&mut Self) -> &mut Vec<Step>,
+    ) -> bool {
+        let Some(step) = from(self).pop() else {
+            return false;
+        };
+        let back = self.restore(step);
+        to(self).push(back);
+        true
     }
 
     /// The state message every tab receives after a change.

@@ -76,10 +76,7 @@ pub fn display_model(mesh: &Mesh) -> (Display, ModelIndex) {
     let mut triangles = Vec::new();
     let mut triangle_face = Vec::new();
     let mut ring = Vec::new();
-    for f in mesh.faces() {
-        if mesh.is_hole(f).unwrap_or(false) {
-            continue;
-        }
+    for f in mesh.surface_faces() {
         ring.clear();
         if let Ok(vs) = mesh.face_vertices(f) {
             ring.extend(vs.into_iter().map(at));

@@ -101,14 +101,8 @@ fn best_by_centroid<K>(
 
 /// The face whose centroid lies furthest along `dir`.
 fn face_towards(mesh: &Mesh, dir: DVec3) -> Result<FaceId> {
-    let mut solid = Vec::new();
-    for f in mesh.faces() {
-        if !mesh.is_hole(f)? {
-            solid.push((f, f));
-        }
-    }
-    best_by_centroid(mesh, solid.into_iter(), |c| c.dot(dir))?
-        .ok_or_else(|| anyhow!("the mesh has no face"))
+    let solid = mesh.surface_faces().map(|f| (f, f));
+    best_by_centroid(mesh, solid, |c| c.dot(dir))?.ok_or_else(|| anyhow!("the mesh has no face"))
 }
 
 /// The face whose centroid lies nearest to `p`.

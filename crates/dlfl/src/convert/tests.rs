@@ -181,26 +181,14 @@ fn degenerate_and_short_faces() {
         to_dlfl(&soup, ImportOptions::default()).unwrap_err(),
         ImportError::DegenerateFace { face: 0, vertex: 1 }
     );
-    let fixed = to_dlfl(
-        &soup,
-        ImportOptions {
-            split_nonmanifold: true,
-        },
-    )
-    .unwrap();
+    let fixed = split(&soup);
     assert_eq!(summary(&fixed.mesh), (3, 3, 1, 1, 1, 0));
     let short = PolyMesh::from_faces(pos, [vec![0u32]]);
     assert_eq!(
         to_dlfl(&short, ImportOptions::default()).unwrap_err(),
         ImportError::ShortFace { face: 0, len: 1 }
     );
-    let dropped = to_dlfl(
-        &short,
-        ImportOptions {
-            split_nonmanifold: true,
-        },
-    )
-    .unwrap();
+    let dropped = split(&short);
     assert_eq!(dropped.report.dropped_faces, 1);
     assert_eq!(dropped.faces, vec![None]);
 }

@@ -3,7 +3,10 @@
 
 use glam::DVec3;
 
-use crate::test_util::{canonical, check, counts, cube, loop_at_first_vertex, tetrahedron, torus};
+use crate::test_util::{
+    canonical, check, corners_at, counts, cube, cube_face, cube_with_dangling_edge,
+    cube_with_handle, loop_at_first_vertex, tetrahedron, torus,
+};
 use crate::{Error, Mesh};
 
 #[test]
@@ -55,9 +58,7 @@ fn delete_vertex_removes_only_point_spheres() {
 
 #[test]
 fn insert_edge_in_one_face_splits_it() {
-    let mut m = cube();
-    let f = m.faces().next().unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     let e = m.insert_edge(cs[0], cs[2]).unwrap();
     check(&m);
     assert_eq!(counts(&m), (8, 13, 7, 1, 0));
@@ -72,9 +73,7 @@ fn insert_edge_in_one_face_splits_it() {
 
 #[test]
 fn insert_edge_between_adjacent_corners_makes_a_two_gon() {
-    let mut m = cube();
-    let f = m.faces().next().unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     let e = m.insert_edge(cs[0], cs[1]).unwrap();
     check(&m);
     let lens: Vec<usize> = m
@@ -89,11 +88,7 @@ fn insert_edge_between_adjacent_corners_makes_a_two_gon() {
 
 #[test]
 fn insert_edge_between_faces_of_one_component_adds_a_handle() {
-    let mut m = cube();
-    let faces: Vec<_> = m.faces().collect();
-    let c1 = m.face_corner(faces[0]).unwrap();
-    let c2 = m.face_corner(faces[1]).unwrap();
-    let e = m.insert_edge(c1, c2).unwrap();
+    let (m, e) = cube_with_handle();
     check(&m);
     assert_eq!(counts(&m), (8, 13, 5, 1, 1));
     let [fa, fb] = m.edge_faces(e).unwrap();
@@ -146,11 +141,7 @@ fn insert_edge_makes_self_loops_between_corners_of_one_vertex() {
     // Two different faces: a handle made of a self-loop.
     assert_eq!(counts(&m), (4, 7, 3, 1, 1));
     let f = m.edge_faces(e).unwrap()[0];
-    let at_v0: Vec<_> = m
-        .face_corners(f)
-        .unwrap()
-        .filter(|&c| m.corner_vertex(c).unwrap() == v0)
-        .collect();
+    let at_v0 = corners_at(&m, f, v0);
     assert!(at_v0.len() >= 2);
     let loop2 = m.insert_edge(at_v0[0], at_v0[1]).unwrap();
     check(&m);
@@ -226,11 +217,7 @@ fn insert_edge_is_the_inverse_of_delete_edge() {
 
 #[test]
 fn deleting_a_handle_edge_lowers_the_genus() {
-    let mut m = cube();
-    let faces: Vec<_> = m.faces().collect();
-    let c1 = m.face_corner(faces[0]).unwrap();
-    let c2 = m.face_corner(faces[1]).unwrap();
-    let e = m.insert_edge(c1, c2).unwrap();
+    let (mut m, e) = cube_with_handle();
     assert_eq!(m.genus(), 1);
     m.delete_edge(e).unwrap();
     check(&m);
@@ -239,10 +226,7 @@ fn deleting_a_handle_edge_lowers_the_genus() {
 
 #[test]
 fn deleting_a_dangling_edge_leaves_a_point_sphere() {
-    let mut m = cube();
-    let c1 = m.corners().next().unwrap();
-    let (v, _, c2) = m.create_vertex(DVec3::splat(3.0)).unwrap();
-    let e = m.insert_edge(c1, c2).unwrap();
+    let (mut m, e, v, c2) = cube_with_dangling_edge(DVec3::splat(3.0));
     m.delete_edge(e).unwrap();
     check(&m);
     assert_eq!(counts(&m), (9, 12, 7, 2, 0));
@@ -261,11 +245,7 @@ fn monogons_bounded_by_self_loops_are_represented() {
     let (l, v0, _) = loop_at_first_vertex(&mut m);
     check(&m);
     let f = m.edge_faces(l).unwrap()[0];
-    let at: Vec<_> = m
-        .face_corners(f)
-        .unwrap()
-        .filter(|&c| m.corner_vertex(c).unwrap() == v0)
-        .collect();
+    let at = corners_at(&m, f, v0);
     // A second loop in the same face, adjacent: splits off a face made of loops.
     let l2 = m.insert_edge(at[0], at[1]).unwrap();
     check(&m);
@@ -334,4 +314,39 @@ fn point_sphere_to_point_sphere_chain_and_back() {
         check(&m);
     }
     assert_eq!(counts(&m), (5, 0, 5, 5, 0));
+}
+
+#[test]
+fn raw_append_renumbers_and_keeps_hole_flags() {
+    let a = cube().to_raw();
+    assert!(a.holes.is_empty(), "a closed cube has no hole flags");
+    // No flags on either side stay no flags.
+    let mut joined = a.clone();
+    joined.append(&a).unwrap();
+    assert_eq!(joined.face_count(), 12);
+    assert!(joined.holes.is_empty());
+    let m = Mesh::from_raw(&joined).unwrap();
+    check(&m);
+    assert_eq!(counts(&m), (16, 24, 12, 2, 0));
+    // A flag on the appended side lands on its face, renumbered.
+    let mut flagged = a.clone();
+    flagged.holes = vec![false; 6];
+    flagged.holes[2] = true;
+    let mut x = a;
+    x.append(&flagged).unwrap();
+    assert_eq!(x.holes.len(), 12);
+    assert_eq!((0..12).filter(|&f| x.is_hole(f)).collect::<Vec<_>>(), [8]);
+}
+
+#[test]
+fn surface_faces_leave_out_holes_in_slot_order() {
+    let mut m = cube();
+    assert_eq!(
+        m.surface_faces().collect::<Vec<_>>(),
+        m.faces().collect::<Vec<_>>()
+    );
+    let f = m.face_at(2).unwrap();
+    m.set_hole(f, true).unwrap();
+    let want: Vec<_> = m.faces().filter(|&g| g != f).collect();
+    assert_eq!(m.surface_faces().collect::<Vec<_>>(), want);
 }

@@ -2,15 +2,15 @@
 
 use glam::DVec3;
 
-use crate::test_util::{canonical, check, counts, cube, loop_at_first_vertex, tetrahedron, torus};
+use crate::test_util::{
+    canonical, check, counts, cube, cube_face, cube_with_dangling_edge, loop_at_first_vertex,
+    tetrahedron, torus,
+};
 use crate::{Error, Mesh};
 
 #[test]
 fn delete_edge_with_cleanup_removes_the_point_spheres_it_leaves() {
-    let mut m = cube();
-    let c = m.corners().next().unwrap();
-    let (v, _, cs) = m.create_vertex(DVec3::splat(2.0)).unwrap();
-    let e = m.insert_edge(c, cs).unwrap();
+    let (mut m, e, v, _) = cube_with_dangling_edge(DVec3::splat(2.0));
     let deleted = m.delete_edge_with_cleanup(e).unwrap();
     check(&m);
     assert_eq!(deleted, vec![v]);
@@ -131,18 +131,8 @@ fn pipe_between_components_joins_them() {
             .unwrap();
     }
     // Append the second cube through raw parts.
-    let raw_a = m.to_raw();
-    let raw_b = other.to_raw();
-    let mut raw = raw_a.clone();
-    let nv = raw.positions.len() as u32;
-    let nc = raw.face_vertices.len() as u32;
-    raw.positions.extend(raw_b.positions);
-    raw.face_vertices
-        .extend(raw_b.face_vertices.iter().map(|v| v + nv));
-    raw.face_offsets
-        .extend(raw_b.face_offsets[1..].iter().map(|o| o + nc));
-    raw.edges
-        .extend(raw_b.edges.iter().map(|[a, b]| [a + nc, b + nc]));
+    let mut raw = m.to_raw();
+    raw.append(&other.to_raw()).unwrap();
     m = Mesh::from_raw(&raw).unwrap();
     assert_eq!(counts(&m), (16, 24, 12, 2, 0));
     let c1 = m.face_corner(m.face_at(1).unwrap()).unwrap(); // top of the first cube
@@ -156,9 +146,7 @@ fn pipe_between_components_joins_them() {
 fn pipe_matches_corner_counts_by_subdividing_the_smaller_face() {
     // A triangle and a quad of one mesh: split the cube's top into two
     // triangles, then pipe a triangle to the bottom quad.
-    let mut m = cube();
-    let top = m.face_at(1).unwrap();
-    let cs: Vec<_> = m.face_corners(top).unwrap().collect();
+    let (mut m, _, cs) = cube_face(1);
     m.insert_edge(cs[0], cs[2]).unwrap();
     let tri = m.corner_face(cs[0]).unwrap();
     assert_eq!(m.face_len(tri).unwrap(), 3);
@@ -174,9 +162,7 @@ fn pipe_matches_corner_counts_by_subdividing_the_smaller_face() {
 
 #[test]
 fn pipe_refuses_bad_operands() {
-    let mut m = cube();
-    let f = m.face_at(0).unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, f, cs) = cube_face(0);
     let before = canonical(&m);
     assert_eq!(m.create_pipe(cs[0], cs[1]), Err(Error::SameFace(f)));
     let (_, ps, pc) = m.create_vertex(DVec3::splat(3.0)).unwrap();
@@ -215,9 +201,7 @@ fn face_manifold_is_a_two_faced_sphere() {
 
 #[test]
 fn connect_edges_in_one_face_makes_three() {
-    let mut m = cube();
-    let f = m.face_at(0).unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     let (quad, es) = m.connect_edges(cs[0], cs[2]).unwrap();
     check(&m);
     assert_eq!(counts(&m), (8, 14, 8, 1, 0));
@@ -241,9 +225,7 @@ fn connect_edges_across_faces_adds_a_handle() {
 
 #[test]
 fn connect_edges_refuses_degenerate_pairs() {
-    let mut m = cube();
-    let f = m.face_at(0).unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     let e = m.corner_edge(cs[0]).unwrap().unwrap();
     let [a, b] = m.edge_corners(e).unwrap();
     assert_eq!(m.connect_edges(a, b), Err(Error::SameEdge(e)));
@@ -303,10 +285,7 @@ fn collapse_refuses_self_loops_and_handles_dangling_edges() {
     let mut m = tetrahedron();
     let (lp, _, _) = loop_at_first_vertex(&mut m);
     assert_eq!(m.collapse_edge(lp), Err(Error::SelfLoop(lp)));
-    let mut d = cube();
-    let c = d.corners().next().unwrap();
-    let (v, _, ps) = d.create_vertex(DVec3::splat(5.0)).unwrap();
-    let e = d.insert_edge(c, ps).unwrap();
+    let (mut d, e, v, _) = cube_with_dangling_edge(DVec3::splat(5.0));
     let kept = d.collapse_edge(e).unwrap();
     check(&d);
     assert!(!d.contains_vertex(v));
@@ -362,9 +341,7 @@ fn reverse_faces_needs_whole_components() {
 
 #[test]
 fn remove_two_gons_merges_chains_and_keeps_holes() {
-    let mut m = cube();
-    let f = m.face_at(0).unwrap();
-    let cs: Vec<_> = m.face_corners(f).unwrap().collect();
+    let (mut m, _, cs) = cube_face(0);
     // Stack three two-gons on one edge of face 0.
     m.insert_edge(cs[0], cs[1]).unwrap();
     let c0_face = m.corner_face(cs[0]).unwrap();
@@ -381,9 +358,7 @@ fn remove_two_gons_merges_chains_and_keeps_holes() {
     assert_eq!(counts(&m), (8, before.1 - 2, before.2 - 2, 1, 0));
     assert_eq!(canonical(&m), canonical(&cube()));
     // A two-gon hole is left alone.
-    let mut h = cube();
-    let f = h.face_at(0).unwrap();
-    let cs: Vec<_> = h.face_corners(f).unwrap().collect();
+    let (mut h, _, cs) = cube_face(0);
     let e = h.insert_edge(cs[0], cs[1]).unwrap();
     let two = h
         .edge_faces(e)

@@ -3,22 +3,11 @@
 //! positions of the cut points, refusals that leave the mesh unchanged.
 
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
-use holey_dlfl::{DVec3, Mesh};
+use holey_dlfl::{DVec3, EdgeId, Mesh, VertexId};
 
 use super::*;
-use crate::test_util::prim;
+use crate::test_util::{check, counts, prim};
 use crate::truncate::{truncate_all_vertices, truncate_edges, truncate_vertices};
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
-}
-
-fn check(m: &Mesh) {
-    m.validate().unwrap();
-    let t = m.topology();
-    let closed = m.vertex_count() as i64 - m.edge_count() as i64 + m.face_count() as i64;
-    assert_eq!(closed, 2 * t.component_count() as i64 - 2 * t.genus());
-}
 
 fn unchanged(m: &Mesh, before: &Mesh) {
     assert_eq!(m.to_raw(), before.to_raw());
@@ -162,16 +151,28 @@ fn truncating_edges_and_mixed_cuts() {
     assert_eq!(counts(&m), (12, 18, 8));
     assert_eq!(faces.len(), 2);
     // An edge and a vertex far from it.
-    let mut m = prim("@cube");
+    cut_top_edge_and_far_corner(&mut prim("@cube"), 0.3, 0.3);
+}
+
+/// Cuts an edge of the cube `m`'s top face at `edge_offset` and a corner
+/// far from it at `vertex_offset` in one cut, and checks the counts:
+/// +2/+3/+1 for each target, one new face each. Returns the edge and the
+/// corner cut.
+fn cut_top_edge_and_far_corner(
+    m: &mut Mesh,
+    edge_offset: f64,
+    vertex_offset: f64,
+) -> (EdgeId, VertexId) {
     let e = m
         .corner_edge(m.face_corner(m.face_at(5).unwrap()).unwrap())
         .unwrap()
         .unwrap();
     let v = m.vertex_at(0).unwrap();
-    let faces = cut_edges_and_vertices(&mut m, &[e], &[v], 0.3, 0.3).unwrap();
-    check(&m);
-    assert_eq!(counts(&m), (12, 18, 8));
+    let faces = cut_edges_and_vertices(m, &[e], &[v], edge_offset, vertex_offset).unwrap();
+    check(m);
+    assert_eq!(counts(m), (12, 18, 8));
     assert_eq!(faces.len(), 2);
+    (e, v)
 }
 
 #[test]
@@ -184,15 +185,7 @@ fn edge_vertex_cuts_take_an_offset_each() {
     // untouched corners stay at distance 0.
     let mut m = prim("@cube");
     let corners: Vec<DVec3> = m.vertices().map(|v| m.position(v).unwrap()).collect();
-    let e = m
-        .corner_edge(m.face_corner(m.face_at(5).unwrap()).unwrap())
-        .unwrap()
-        .unwrap();
-    let v = m.vertex_at(0).unwrap();
-    let faces = cut_edges_and_vertices(&mut m, &[e], &[v], 0.3, 0.7).unwrap();
-    check(&m);
-    assert_eq!(counts(&m), (12, 18, 8));
-    assert_eq!(faces.len(), 2);
+    let (e, v) = cut_top_edge_and_far_corner(&mut m, 0.3, 0.7);
     let mut d: Vec<f64> = m
         .vertices()
         .map(|v| {

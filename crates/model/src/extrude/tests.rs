@@ -3,7 +3,7 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use crate::test_util::{prim, state};
+use crate::test_util::{check, prim, shared_edge, state};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
@@ -11,14 +11,6 @@ use crate::polygon;
 
 fn face(m: &Mesh, i: usize) -> FaceId {
     m.face_at(i).unwrap()
-}
-
-/// Checks the mesh and that V − E + F (holes counted as faces) still
-/// equals 2·components − 2·genus: Euler's formula for the closed DLFL.
-fn check(m: &Mesh) {
-    m.validate().unwrap();
-    let (v, e, f, c, g) = state(m);
-    assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
 }
 
 /// Applies `op` and asserts the change (ΔV, ΔE, ΔF), and that genus and
@@ -38,6 +30,26 @@ fn expect_delta(m: &mut Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)
         (before.3, before.4),
         "components, genus"
     );
+}
+
+/// [`expect_delta`] of one plain extrusion of face `f` by `distance`,
+/// `count` times.
+fn expect_plain_delta(
+    m: &mut Mesh,
+    f: FaceId,
+    distance: f64,
+    count: usize,
+    delta: (i64, i64, i64),
+) {
+    expect_delta(m, delta, |m| {
+        extrude_face(m, f, &ExtrudeParams::new(distance, count)).unwrap();
+    });
+}
+
+/// [`expect_delta`] on a copy of `m0`, leaving `m0` for the next
+/// operation tried on the same face.
+fn expect_delta_on_copy(m0: &Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)) {
+    expect_delta(&mut m0.clone(), delta, op);
 }
 
 fn unchanged(m: &Mesh, before: &Mesh) {
@@ -148,9 +160,7 @@ fn extrusion_moves_turns_and_scales_the_top() {
 fn zero_distance_extrusion_is_valid() {
     let mut m = prim("@cube");
     let f = face(&m, 0);
-    expect_delta(&mut m, (4, 8, 4), |m| {
-        extrude_face(m, f, &ExtrudeParams::new(0.0, 1)).unwrap();
-    });
+    expect_plain_delta(&mut m, f, 0.0, 1, (4, 8, 4));
 }
 
 #[test]
@@ -243,9 +253,7 @@ fn faces_of_different_sizes_and_open_meshes() {
         let f = face(&m, idx);
         let d = m.face_len(f).unwrap() as i64;
         let holes = m.hole_count();
-        expect_delta(&mut m, (d, 2 * d, d), |m| {
-            extrude_face(m, f, &ExtrudeParams::new(0.25, 1)).unwrap();
-        });
+        expect_plain_delta(&mut m, f, 0.25, 1, (d, 2 * d, d));
         assert_eq!(m.hole_count(), holes, "{spec}");
     }
 }
@@ -255,9 +263,7 @@ fn extruding_a_face_next_to_a_hole() {
     // A corner quad of an open grid touches the boundary loop on two edges.
     let mut m = prim("@plane:2:2");
     let f = face(&m, 0);
-    expect_delta(&mut m, (8, 16, 8), |m| {
-        extrude_face(m, f, &ExtrudeParams::new(0.5, 2)).unwrap();
-    });
+    expect_plain_delta(&mut m, f, 0.5, 2, (8, 16, 8));
 }
 
 #[test]
@@ -276,9 +282,7 @@ fn a_face_with_a_dangling_edge_extrudes() {
     // Fans: the 3 plain corners, and at the attachment vertex one fan of
     // two corners (the dangling edge is inside the selection) — 4 fans,
     // as many as boundary edges. The loose end is interior and moves.
-    expect_delta(&mut m, (4, 8, 4), |m| {
-        extrude_face(m, f, &ExtrudeParams::new(1.0, 1)).unwrap();
-    });
+    expect_plain_delta(&mut m, f, 1.0, 1, (4, 8, 4));
     assert!((m.position(x).unwrap().z - 2.0).abs() < 1e-12);
 }
 
@@ -291,20 +295,13 @@ fn two_adjacent_quads_share_their_walls() {
     // b = 6 boundary sides, so +6/+12/+6 (one by one would be 8/16/8).
     let mut m = prim("@cube:2");
     let (a, b) = (face(&m, 0), face(&m, 1));
-    assert!(shares_edge(&m, a, b));
+    assert!(shared_edge(&m, a, b).is_some());
     expect_delta(&mut m, (6, 12, 6), |m| {
         let out = extrude_faces(m, &[a, b], &MultiExtrudeParams::default()).unwrap();
         assert_eq!(out.tops.len(), 2);
         assert_eq!(out.walls.len(), 6);
-        assert!(shares_edge(m, out.tops[0], out.tops[1]));
+        assert!(shared_edge(m, out.tops[0], out.tops[1]).is_some());
     });
-}
-
-fn shares_edge(m: &Mesh, a: FaceId, b: FaceId) -> bool {
-    m.edges().any(|e| {
-        let [x, y] = m.edge_faces(e).unwrap();
-        (x == a && y == b) || (x == b && y == a)
-    })
 }
 
 /// Boundary sides of a selection, counted from the definition: edges
@@ -531,40 +528,30 @@ fn polyhedral_extrusions_on_other_face_sizes() {
         let m0 = prim(spec);
         let f = face(&m0, idx);
         let d = m0.face_len(f).unwrap() as i64;
-        let mut m = m0.clone();
-        expect_delta(&mut m, (d, 3 * d, 2 * d), |m| {
+        expect_delta_on_copy(&m0, (d, 3 * d, 2 * d), |m| {
             extrude_face_octahedral(m, f, 0.7).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (3 * d, 5 * d, 2 * d), |m| {
+        expect_delta_on_copy(&m0, (3 * d, 5 * d, 2 * d), |m| {
             extrude_face_dodecahedral(m, f, 0.7).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (3 * d, 9 * d, 6 * d), |m| {
+        expect_delta_on_copy(&m0, (3 * d, 9 * d, 6 * d), |m| {
             extrude_face_icosahedral(m, f, 0.7).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (1, d, d - 1), |m| {
+        expect_delta_on_copy(&m0, (1, d, d - 1), |m| {
             stellate_face(m, f, 0.5).unwrap();
         });
-        let mut m = m0.clone();
-        expect_delta(&mut m, (d + 1, 4 * d, 3 * d - 1), |m| {
+        expect_delta_on_copy(&m0, (d + 1, 4 * d, 3 * d - 1), |m| {
             double_stellate_face(m, f, 0.5).unwrap();
         });
         for k in [1usize, 3, 5] {
-            let mut m = m0.clone();
             let k64 = k as i64;
-            expect_delta(
-                &mut m,
-                (k64 * d + 1, 2 * k64 * d + d, k64 * d + d - 1),
-                |m| {
-                    let p = DomeParams {
-                        height_factor: 1.0,
-                        rings: k,
-                    };
-                    extrude_face_dome(m, f, &p).unwrap();
-                },
-            );
+            expect_delta_on_copy(&m0, (k64 * d + 1, 2 * k64 * d + d, k64 * d + d - 1), |m| {
+                let p = DomeParams {
+                    height_factor: 1.0,
+                    rings: k,
+                };
+                extrude_face_dome(m, f, &p).unwrap();
+            });
         }
     }
 }

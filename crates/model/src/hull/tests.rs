@@ -4,15 +4,11 @@
 //! polytope, both by Euler's formula), convexity and containment checked
 //! face by face, refusals.
 
-use crate::test_util::prim;
+use crate::test_util::{counts, prim};
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
 use super::*;
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
-}
 
 fn points(m: &Mesh) -> Vec<DVec3> {
     m.vertices().map(|v| m.position(v).unwrap()).collect()

@@ -12,15 +12,11 @@ use holey_mesh::PolyMesh;
 use super::plan::{Decision, angle_tol, classify, interior_angle};
 use super::*;
 use crate::handle::geometry::vector_area;
-use crate::test_util::prim;
+use crate::test_util::{counts, prim};
 
 fn import(positions: Vec<DVec3>, faces: Vec<Vec<u32>>) -> Mesh {
     let poly = PolyMesh::from_faces(positions, faces);
     to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
 }
 
 fn ratio(r: f64) -> MengerParams {
@@ -83,6 +79,15 @@ fn prism(outline: &[(f64, f64)], height: f64) -> Mesh {
     import(pos, faces)
 }
 
+/// Runs [`menger`] on `m` and checks the result against the mesh it
+/// started from ([`check_result`]), as most of these tests do first.
+fn menger_checked(m: &mut Mesh, params: &MengerParams) -> MengerReport {
+    let before = m.clone();
+    let report = menger(m, params).unwrap();
+    check_result(&before, m);
+    report
+}
+
 /// Checks shared by every successful run: valid, closed, one component
 /// per input component, genus 2g + F − 1, no face without area.
 fn check_result(before: &Mesh, after: &Mesh) {
@@ -101,9 +106,7 @@ fn check_result(before: &Mesh, after: &Mesh) {
 #[test]
 fn cube_level_one_is_the_level_one_sponge() {
     let mut m = prim("@cube");
-    let before = m.clone();
-    let report = menger(&mut m, &MengerParams::default()).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &MengerParams::default());
     assert_eq!(counts(&m), (64, 144, 72));
     assert_eq!(m.genus(), 5);
     let level = &report.levels[0];
@@ -146,9 +149,7 @@ fn cube_volume_follows_the_thickness() {
     // 8 − 6·s²·D − s³.
     for d in [0.2, 0.5, 2.0 / 3.0, 0.9] {
         let mut m = prim("@cube");
-        let before = m.clone();
-        menger(&mut m, &absolute(d)).unwrap();
-        check_result(&before, &m);
+        menger_checked(&mut m, &absolute(d));
         assert_eq!(counts(&m), (64, 144, 72));
         let s = 2.0 - 2.0 * d;
         let expected = 8.0 - 6.0 * s * s * d - s * s * s;
@@ -210,9 +211,7 @@ fn cube_level_three_follows_the_genus_formula() {
 fn subdivided_cube_keeps_flat_strips() {
     // @cube:2 has 24 flat edges (case 4): their strips stay, 2D wide.
     let mut m = prim("@cube:2");
-    let before = m.clone();
-    let report = menger(&mut m, &ratio(1.0 / 3.0)).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &ratio(1.0 / 3.0));
     assert_eq!(report.levels[0].angle_cases, [0, 24, 0, 24, 0, 0]);
     assert_eq!(m.genus(), 23);
 }
@@ -222,13 +221,11 @@ fn dodecahedron_keeps_or_collapses_case_three_as_asked() {
     // φ = 116.57° at every edge: case 3, decided by the threshold.
     for (angle, collapsed) in [(90.0, 0), (116.0, 0), (117.0, 30), (180.0, 30)] {
         let mut m = prim("@dodecahedron");
-        let before = m.clone();
         let params = MengerParams {
             collapse_angle_deg: angle,
             ..MengerParams::default()
         };
-        let report = menger(&mut m, &params).unwrap();
-        check_result(&before, &m);
+        let report = menger_checked(&mut m, &params);
         assert_eq!(report.levels[0].angle_cases, [0, 0, 30, 0, 0, 0]);
         assert_eq!(report.levels[0].collapsed_edges, collapsed);
         assert_eq!(m.genus(), 11);
@@ -244,9 +241,7 @@ fn tetrahedron_collapses_case_one() {
     // φ = 70.53°: case 1. Each of the 4 vertex faces and 6 strips vanish:
     // V = 4 + 12 + 12 + 4, E = 90 − 12 − 6, F = 36.
     let mut m = prim("@tetrahedron");
-    let before = m.clone();
-    let report = menger(&mut m, &ratio(0.25)).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &ratio(0.25));
     assert_eq!(report.levels[0].angle_cases, [6, 0, 0, 0, 0, 0]);
     assert_eq!(counts(&m), (32, 72, 36));
     assert_eq!(m.genus(), 3);
@@ -265,9 +260,7 @@ fn non_convex_faces_and_a_reentrant_edge() {
         (0.0, 2.0),
     ];
     let mut m = prism(&outline, 1.0);
-    let before = m.clone();
-    let report = menger(&mut m, &absolute(0.25)).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &absolute(0.25));
     let level = &report.levels[0];
     assert_eq!(level.nonconvex_corners, 2);
     assert_eq!(level.angle_cases, [0, 17, 0, 0, 0, 1]);
@@ -292,9 +285,7 @@ fn an_edge_between_180_and_270_degrees_is_bent() {
         &[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (1.0, 1.5), (0.0, 2.0)],
         1.0,
     );
-    let before = m.clone();
-    let report = menger(&mut m, &ratio(0.15)).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &ratio(0.15));
     assert_eq!(report.levels[0].angle_cases, [2, 12, 0, 0, 1, 0]);
     assert_eq!(report.levels[0].bent_edges, 1);
     assert_eq!(m.genus(), 6);
@@ -322,10 +313,8 @@ fn winged_corners_move_into_the_face() {
     }
     let (positions_a, positions_b) = (positions[a as usize], positions[b as usize]);
     let mut m = import(positions, faces);
-    let before = m.clone();
     let d = 0.3;
-    let report = menger(&mut m, &absolute(d)).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &absolute(d));
     assert_eq!(report.levels[0].winged_corners, 2);
     assert_eq!(m.genus(), 5);
     // Each winged corner's remeshing point sits D from the midpoint,
@@ -345,9 +334,7 @@ fn winged_corners_move_into_the_face() {
 #[test]
 fn a_torus_follows_the_genus_formula() {
     let mut m = prim("@torus:8:6");
-    let before = m.clone();
-    let report = menger(&mut m, &ratio(0.15)).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &ratio(0.15));
     // The inner side of the torus is saddle-shaped: flat and re-entrant
     // edges (bent) besides the convex ones.
     assert_eq!(report.levels[0].angle_cases, [0, 0, 64, 16, 16, 0]);
@@ -359,9 +346,7 @@ fn slightly_skewed_faces_are_counted_and_handled() {
     // §VII.5.1: a cube with one corner pushed a little off its three faces'
     // planes.
     let mut m = cube_with_a_corner_pushed(0.01);
-    let before = m.clone();
-    let report = menger(&mut m, &MengerParams::default()).unwrap();
-    check_result(&before, &m);
+    let report = menger_checked(&mut m, &MengerParams::default());
     assert_eq!(report.levels[0].nonplanar_faces, 3);
     assert_eq!(report.levels[0].skew_cuts, 0);
 }

@@ -1,10 +1,6 @@
 use super::*;
-use crate::test_util::prim;
+use crate::test_util::{counts, prim, shared_edge};
 use glam::DVec3;
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
-}
 
 fn area_vector(points: &[DVec3]) -> DVec3 {
     let n = points.len();
@@ -223,12 +219,7 @@ fn faces_are_addressed_by_their_slot_in_an_edited_mesh() {
     let cs: Vec<_> = m.face_corners(top).unwrap().collect();
     m.insert_edge(cs[0], cs[2]).unwrap();
     let (f0, f1) = (m.face_at(0).unwrap(), m.face_at(1).unwrap());
-    let shared = m
-        .face_corners(f0)
-        .unwrap()
-        .map(|c| m.corner_edge(c).unwrap().unwrap())
-        .find(|&e| m.edge_faces(e).unwrap().contains(&f1))
-        .unwrap();
+    let shared = shared_edge(&m, f0, f1).unwrap();
     m.delete_edge(shared).unwrap();
     m.validate().unwrap();
     let live: Vec<usize> = m.faces().map(|f| f.index()).collect();
@@ -260,16 +251,11 @@ fn faces_are_addressed_by_their_slot_in_an_edited_mesh() {
 fn each_component_gets_its_own_rind() {
     // Two cubes: four shells; one punch in each cube joins its two shells.
     let mut raw = prim("@cube").to_raw();
-    let b = raw.clone();
-    let (nv, nc) = (raw.positions.len() as u32, raw.face_vertices.len() as u32);
-    raw.positions
-        .extend(b.positions.iter().map(|p| *p + DVec3::X * 5.0));
-    raw.face_vertices
-        .extend(b.face_vertices.iter().map(|v| v + nv));
-    raw.face_offsets
-        .extend(b.face_offsets[1..].iter().map(|o| o + nc));
-    raw.edges
-        .extend(b.edges.iter().map(|[x, y]| [x + nc, y + nc]));
+    let mut b = raw.clone();
+    for p in &mut b.positions {
+        *p += DVec3::X * 5.0;
+    }
+    raw.append(&b).unwrap();
     let m = Mesh::from_raw(&raw).unwrap();
     let mut rind = Rind::new(m, 0.2).unwrap();
     assert_eq!(rind.mesh().topology().component_count(), 4);

@@ -2,15 +2,11 @@
 //! definitions, counts worked out per tool, refusals leaving the mesh
 //! unchanged.
 
-use crate::test_util::prim;
+use crate::test_util::{counts, prim};
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
 use super::*;
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
-}
 
 fn unchanged(m: &Mesh, before: &Mesh) {
     assert_eq!(m.to_raw(), before.to_raw());

@@ -7,6 +7,7 @@ use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::PolyMesh;
 
 use super::*;
+use crate::test_util::{counts, prim};
 
 fn poly(spec: &str) -> PolyMesh {
     holey_shapes::parse_primitive(spec).unwrap()
@@ -16,15 +17,12 @@ fn mesh(p: &PolyMesh) -> Mesh {
     to_dlfl(p, ImportOptions::default()).unwrap().mesh
 }
 
-fn prim(spec: &str) -> Mesh {
-    mesh(&poly(spec))
-}
-
-/// `a` and `b` (moved by `offset`) as one soup: two components.
-fn union(a: &PolyMesh, b: &PolyMesh, offset: DVec3) -> PolyMesh {
-    let mut out = a.clone();
-    out.append(&b.translated(offset));
-    out
+/// The primitives `a` and `b`, the second moved 10 along x, as one mesh:
+/// two components, for the tests that run over many meshes.
+fn two_apart(a: &str, b: &str) -> Mesh {
+    let mut out = poly(a);
+    out.append(&poly(b).translated(DVec3::new(10.0, 0.0, 0.0)));
+    mesh(&out)
 }
 
 /// The cycle rank of the edge graph: E − V + C.
@@ -45,10 +43,6 @@ fn signed_volume(m: &Mesh) -> f64 {
         }
     }
     vol / 6.0
-}
-
-fn counts(m: &Mesh) -> (usize, usize, usize) {
-    (m.vertex_count(), m.edge_count(), m.face_count())
 }
 
 /// The wireframe counts of the module documentation from E and the
@@ -119,11 +113,7 @@ fn wireframe_of_a_cube() {
 
 #[test]
 fn wireframe_genus_is_the_cycle_rank_of_the_edge_graph() {
-    let two = mesh(&union(
-        &poly("@tetrahedron"),
-        &poly("@torus:6:4"),
-        DVec3::new(10.0, 0.0, 0.0),
-    ));
+    let two = two_apart("@tetrahedron", "@torus:6:4");
     for m in [
         prim("@tetrahedron"),
         prim("@octahedron"),
@@ -280,11 +270,7 @@ fn columns_of_a_cube() {
 
 #[test]
 fn columns_genus_and_counts_on_many_meshes() {
-    let two = mesh(&union(
-        &poly("@cube"),
-        &poly("@octahedron"),
-        DVec3::new(10.0, 0.0, 0.0),
-    ));
+    let two = two_apart("@cube", "@octahedron");
     for m in [
         prim("@tetrahedron"),
         prim("@dodecahedron"),

@@ -4,7 +4,7 @@
 #![allow(dead_code, clippy::unwrap_used)]
 
 use holey_dlfl::convert::{ImportOptions, to_dlfl};
-use holey_dlfl::{CornerId, DVec3, FaceId, Mesh};
+use holey_dlfl::{CornerId, DVec3, EdgeId, FaceId, Mesh};
 use holey_mesh::PolyMesh;
 
 pub fn poly(spec: &str) -> PolyMesh {
@@ -33,6 +33,16 @@ pub fn counts(m: &Mesh) -> (usize, usize, usize) {
 
 pub fn corner(m: &Mesh, face: usize) -> CornerId {
     m.face_corner(m.face_at(face).unwrap()).unwrap()
+}
+
+/// The edge of face `a` that has face `b` on its other side (the two
+/// faces must be neighbours).
+pub fn shared_edge(m: &Mesh, a: FaceId, b: FaceId) -> EdgeId {
+    m.face_corners(a)
+        .unwrap()
+        .filter_map(|c| m.corner_edge(c).unwrap())
+        .find(|&e| m.edge_faces(e).unwrap().contains(&b))
+        .unwrap()
 }
 
 /// The `k`-th corner of face `face` from its first corner.

@@ -10,6 +10,7 @@
 //! display indices, so that a refusal names what the user sees.
 
 use std::collections::HashMap;
+use std::hash::Hash;
 
 use holey_dlfl::{EdgeId, FaceId, Mesh, VertexId};
 use holey_model::cut::{CutOffset, CutTarget, cut};
@@ -339,24 +340,20 @@ pub(super) fn vertices_of(
 
 /// The display indices of `faces` (faces not displayed, holes, left out).
 pub(super) fn display_faces(index: &ModelIndex, faces: &[FaceId]) -> Vec<usize> {
-    let at: HashMap<FaceId, usize> = index
-        .faces
-        .iter()
-        .enumerate()
-        .map(|(i, &f)| (f, i))
-        .collect();
-    faces.iter().filter_map(|f| at.get(f).copied()).collect()
+    display_indices(&index.faces, faces)
 }
 
 /// The display indices of `edges`.
 pub(super) fn display_edges(index: &ModelIndex, edges: &[EdgeId]) -> Vec<usize> {
-    let at: HashMap<EdgeId, usize> = index
-        .edges
-        .iter()
-        .enumerate()
-        .map(|(i, &e)| (e, i))
-        .collect();
-    edges.iter().filter_map(|e| at.get(e).copied()).collect()
+    display_indices(&index.edges, edges)
+}
+
+/// Where each of `ids` stands in `shown`, the display order of one kind
+/// of element; ids not shown are left out. Faces and edges are mapped
+/// back to the indices the user sees the same way.
+fn display_indices<T: Copy + Eq + Hash>(shown: &[T], ids: &[T]) -> Vec<usize> {
+    let at: HashMap<T, usize> = shown.iter().enumerate().map(|(i, &id)| (id, i)).collect();
+    ids.iter().filter_map(|id| at.get(id).copied()).collect()
 }
 
 /// A library message with its kernel handles (`f12v3`, `e7v1`, `v4v1`)
