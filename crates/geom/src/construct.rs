@@ -143,6 +143,20 @@ fn limit_ratios<N: Polys, D: Poly>(
     pts: &[SymPoint],
     s: f64,
 ) -> Result<Vec<f64>, GeomError> {
+    let (ep, d) = lowest_level(den, pts, s)?;
+    nums.eval_all(&ep).iter().map(|n| limit_of(n, &d)).collect()
+}
+
+/// The points (scaled by `s`) as polynomials in the first `L`
+/// perturbation variables, for the least `L` at which `den` is not the
+/// zero polynomial, and `den` there. Its lowest monomial is then the
+/// lowest of the whole perturbed polynomial (every monomial in a later
+/// variable is larger), and so is every other polynomial's below it.
+fn lowest_level<D: Poly>(
+    den: &D,
+    pts: &[SymPoint],
+    s: f64,
+) -> Result<(Vec<V3<EpsPoly>>, EpsPoly), GeomError> {
     let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
     ids.sort_unstable();
     ids.dedup();
@@ -158,24 +172,30 @@ fn limit_ratios<N: Polys, D: Poly>(
             })
             .collect();
         let d = den.eval(&ep);
-        if let Some((m, dc)) = d.lowest() {
-            return nums
-                .eval_all(&ep)
-                .iter()
-                .map(|n| {
-                    if n.lowest().is_some_and(|(mn, _)| mn < m) {
-                        return Err(GeomError::Degenerate(
-                            "the perturbed point goes to infinity (parallel planes)",
-                        ));
-                    }
-                    Ok(div_round(&n.coefficient(m), dc))
-                })
-                .collect();
+        if !d.is_empty() {
+            return Ok((ep, d));
         }
     }
     Err(GeomError::Degenerate(
         "the denominator vanishes identically in the perturbed world",
     ))
+}
+
+/// The limit of `n/d` as ε → 0⁺, both restricted to the same variables
+/// with `d` not zero there: `n`'s coefficient of `d`'s lowest monomial
+/// over `d`'s; infinite (an error) when `n` has a lower monomial.
+fn limit_of(n: &EpsPoly, d: &EpsPoly) -> Result<f64, GeomError> {
+    let Some((m, dc)) = d.lowest() else {
+        return Err(GeomError::Degenerate(
+            "the denominator vanishes identically in the perturbed world",
+        ));
+    };
+    if n.lowest().is_some_and(|(mn, _)| mn < m) {
+        return Err(GeomError::Degenerate(
+            "the perturbed point goes to infinity (parallel planes)",
+        ));
+    }
+    Ok(div_round(&n.coefficient(m), dc))
 }
 
 /// Where segment `pq` crosses the plane of triangle `abc`.
@@ -391,21 +411,13 @@ impl Polys for TpPositions {
         triple_h(p).0.to_vec()
     }
 }
-/// The barycentric weights' numerators of the corners of triangle `.0`:
-/// `((v−u)×(X_h − w u))·n` for each corner's opposite edge `u→v`.
+/// The barycentric weights' numerators of the corners of triangle `.0`
+/// ([`tp_bary_terms`]).
 struct TpBarys(usize);
 impl Polys for TpBarys {
     fn eval_all<T: Ring>(&self, p: &[V3<T>]) -> Vec<T> {
         let (xh, w) = triple_h(p);
-        let t = &p[3 * self.0..3 * self.0 + 3];
-        let n = normal(&t[0], &t[1], &t[2]);
-        (0..3)
-            .map(|corner| {
-                let u = &t[(corner + 1) % 3];
-                let v = &t[(corner + 2) % 3];
-                edge_side(u, v, &n, &xh, &w)
-            })
-            .collect()
+        tp_bary_terms(p, &xh, &w, self.0).0.to_vec()
     }
 }
 struct TpBaryDen(usize);
@@ -472,6 +484,11 @@ fn triple_point_exact(pts: &[SymPoint; 9]) -> Result<TriplePoint, GeomError> {
         }
     }
     // The point exists only as a perturbed limit (or not at all).
+    if w.is_zero()
+        && let Some(point) = triple_point_limit(pts, k)?
+    {
+        return Ok(point);
+    }
     let x = ratios(&TpPositions, &TpW, pts, &[1, 1, 1])?;
     let mut bary = [[0.0; 3]; 3];
     for (tri, b) in bary.iter_mut().enumerate() {
@@ -482,6 +499,38 @@ fn triple_point_exact(pts: &[SymPoint; 9]) -> Result<TriplePoint, GeomError> {
         pos: DVec3::new(x[0], x[1], x[2]),
         bary,
     })
+}
+
+/// The triple point as a perturbed limit where `w` vanishes exactly
+/// (the points scaled by `2^-k`): `w`'s lowest perturbed monomial is
+/// searched for once, and at its level `X_h` and every triangle's
+/// barycentric numerators and denominator (`w |n|²`) are evaluated
+/// together, sharing `X_h` and `w` (a search per triangle, each
+/// evaluating them again, was most of `holey selfint` on coplanar
+/// overlaps). `None` when a barycentric denominator is still zero at that
+/// level (a triangle of no area), for the search per triangle to decide.
+fn triple_point_limit(pts: &[SymPoint; 9], k: i32) -> Result<Option<TriplePoint>, GeomError> {
+    let (ep, _) = lowest_level(&TpW, pts, pow2(-k))?;
+    let (xh, w) = triple_h(&ep);
+    let back = pow2(k);
+    let mut pos = [0.0; 3];
+    for (x, h) in pos.iter_mut().zip(&xh) {
+        *x = limit_of(h, &w)? * back;
+    }
+    let mut bary = [[0.0; 3]; 3];
+    for (tri, b) in bary.iter_mut().enumerate() {
+        let (num, den) = tp_bary_terms(&ep, &xh, &w, tri);
+        if den.is_empty() {
+            return Ok(None);
+        }
+        for (x, n) in b.iter_mut().zip(&num) {
+            *x = limit_of(n, &den)?;
+        }
+    }
+    Ok(Some(TriplePoint {
+        pos: DVec3::from_array(pos),
+        bary,
+    }))
 }
 
 /// The points scaled as [`scaled_expansions`] scales them, as
