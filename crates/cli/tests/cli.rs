@@ -1416,3 +1416,38 @@ fn convert_and_sculpt_weld_by_distance() {
     ok(&["sculpt", soup, s(&strokes), out, "--weld", "1e-5"]);
     assert_eq!(info(out, &[])["vertices"], 4);
 }
+
+/// `holey sculpt --audit -v` judges a grab by its release: Figure 1's
+/// poke-through (the top of a sphere grabbed down through its bottom)
+/// passes through itself while dragged, and those frames are shown as
+/// "dragging, before the release" without a verdict; the release, a
+/// closed torus-like solid that crosses nothing, is not worse than the
+/// sphere it came from (a stroke file written here).
+#[test]
+fn sculpt_audit_judges_a_grab_at_its_release() {
+    let dir = tmp();
+    let strokes = dir.path().join("grab.json");
+    std::fs::write(
+        &strokes,
+        r#"{"strokes": [{"brush": "grab", "radius": 0.7, "strength": 1,
+            "path": [[0,0,1], [0,0,0], [0,0,-1.5], [0,0,-2.5], [0,0,-2.5]]}]}"#,
+    )
+    .unwrap();
+    let out = dir.path().join("out.obj");
+    let run = holey(&["sculpt", "@sphere:3", s(&strokes), s(&out), "--audit", "-v"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{err}");
+    let dragging = err
+        .lines()
+        .filter(|l| l.contains("(dragging, before the release)"))
+        .count();
+    assert_eq!(dragging, 4, "{err}");
+    assert!(
+        err.lines()
+            .any(|l| l.contains("dragging") && !l.contains(" 0 intersecting pairs")),
+        "the dragged sphere passes through itself: {err}"
+    );
+    assert!(!err.contains("[worse"), "{err}");
+    assert!(!err.contains("worse than the input"), "{err}");
+    assert!(err.contains("stroke 0 frame 4: "), "{err}");
+}

@@ -137,17 +137,33 @@ pub fn run(args: Args) -> Result<()> {
             .replay(&file, &mut |stroke, frame| {
                 if args.audit && args.verbose {
                     let now = SurfaceAudit::of(frame.mesh).map_err(|e| e.to_string())?;
-                    let worse = previous.map(|p| p.regressions(&now)).unwrap_or_default();
-                    eprintln!(
-                        "stroke {stroke} frame {}: {now}{}",
-                        frame.index,
-                        if worse.is_empty() {
-                            String::new()
-                        } else {
-                            format!(" [worse: {}]", worse.join(", "))
-                        }
-                    );
-                    previous = Some(now);
+                    // A grab or move changes topology once, at the release
+                    // (its last frame): until then the dragged surface may
+                    // pass through itself, which the release resolves, so
+                    // those frames are shown but not judged, and the
+                    // release is judged against the surface before the drag.
+                    let dragging = file
+                        .strokes
+                        .get(stroke)
+                        .is_some_and(|s| s.brush.is_drag() && frame.index + 1 < s.path.len());
+                    if dragging {
+                        eprintln!(
+                            "stroke {stroke} frame {} (dragging, before the release): {now}",
+                            frame.index
+                        );
+                    } else {
+                        let worse = previous.map(|p| p.regressions(&now)).unwrap_or_default();
+                        eprintln!(
+                            "stroke {stroke} frame {}: {now}{}",
+                            frame.index,
+                            if worse.is_empty() {
+                                String::new()
+                            } else {
+                                format!(" [worse: {}]", worse.join(", "))
+                            }
+                        );
+                        previous = Some(now);
+                    }
                 }
                 if let Some(dir) = &frames_dir {
                     let path = dir.join(format!("stroke{stroke:03}_frame{:04}.png", frame.index));
