@@ -660,17 +660,48 @@ fn teapot_spout_snake_hooked_into_the_body_fuses() {
     );
 }
 
-/// The rim vertex of the bunny's base holes with the smallest index,
-/// and the modeler's inflate radius and strength at 5% of the diagonal.
-fn bunny_base_hole_rim(bunny: &TriMesh) -> (DVec3, f64, f64) {
+/// What [`dwell_on_a_base_hole_rim`] ran and left.
+struct RimDwell {
+    bunny: TriMesh,
+    /// The rim vertex dwelt on.
+    at: DVec3,
+    radius: f64,
+    strength: f64,
+    session: Session,
+    report: StrokeReport,
+    end: Shape,
+}
+
+/// A dwell inflate of 40 frames (radius 5% of the diagonal, the
+/// modeler's strength for slider 1) on the rim vertex of the bunny's base
+/// holes with the smallest index, with or without remeshing. `None` (a
+/// visible skip) without the shared meshes.
+fn dwell_on_a_base_hole_rim(test: &str, remesh: bool) -> Option<RimDwell> {
+    let bunny = load(test, "stanford-bunny.obj")?;
     let rim = edge_degrees(&bunny.triangles)
         .into_iter()
         .filter(|(_, d)| *d == 1)
         .flat_map(|((a, b), _)| [a, b])
         .min()
         .unwrap();
-    let (r, k) = radius_and_strength(bunny, 0.05, 1.0);
-    (bunny.positions[rim as usize], r, k)
+    let (radius, strength) = radius_and_strength(&bunny, 0.05, 1.0);
+    let at = bunny.positions[rim as usize];
+    let (session, reports, end) = sculpt(
+        test,
+        bunny.clone(),
+        &[paint(Brush::Inflate, radius, strength, vec![at; 40])],
+        remesh,
+    );
+    let report = reports.into_iter().next().unwrap();
+    Some(RimDwell {
+        bunny,
+        at,
+        radius,
+        strength,
+        session,
+        report,
+        end,
+    })
 }
 
 /// A dwell inflate on a rim vertex of one of the bunny's base holes
@@ -684,32 +715,20 @@ fn bunny_base_hole_rim(bunny: &TriMesh) -> (DVec3, f64, f64) {
 /// measured; the 11 frames before the old hold moved it 0.28 at most).
 #[test]
 fn stanford_bunny_dwell_on_a_base_hole_rim_bulges_it() {
-    let Some(bunny) = load(
-        "stanford_bunny_dwell_on_a_base_hole_rim",
-        "stanford-bunny.obj",
-    ) else {
+    let Some(d) = dwell_on_a_base_hole_rim("stanford_bunny_dwell_on_a_base_hole_rim", true) else {
         return;
     };
-    let (at, r, k) = bunny_base_hole_rim(&bunny);
-    let (s, reports, end) = sculpt(
-        "bunny rim dwell",
-        bunny.clone(),
-        &[paint(Brush::Inflate, r, k, vec![at; 40])],
-        true,
-    );
-    let report = &reports[0];
-    assert_eq!(report.guarded_frames, 0, "{report:?}");
-    assert!(report.held_because.is_empty());
-    assert_eq!((end.components, end.boundary_loops), (1, 5));
-    let out = s.mesh();
-    let bulge = used_positions(out)
-        .filter(|p| p.distance(at) < r)
-        .map(|p| closest_point(&bunny, p).unwrap().2)
+    assert_eq!(d.report.guarded_frames, 0, "{:?}", d.report);
+    assert!(d.report.held_because.is_empty());
+    assert_eq!((d.end.components, d.end.boundary_loops), (1, 5));
+    let bulge = used_positions(d.session.mesh())
+        .filter(|p| p.distance(d.at) < d.radius)
+        .map(|p| closest_point(&d.bunny, p).unwrap().2)
         .fold(0.0, f64::max);
+    let travel = 40.0 * d.strength;
     assert!(
-        bulge > 0.3 * 40.0 * k,
-        "the rim moved out by {bulge}, the brush's travel is {}",
-        40.0 * k
+        bulge > 0.3 * travel,
+        "the rim moved out by {bulge}, the brush's travel is {travel}"
     );
 }
 
@@ -720,20 +739,12 @@ fn stanford_bunny_dwell_on_a_base_hole_rim_bulges_it() {
 /// another stroke that holds.)
 #[test]
 fn stanford_bunny_dwell_on_a_base_hole_rim_unremeshed_holds_and_says_why() {
-    let Some(bunny) = load(
-        "stanford_bunny_dwell_on_a_base_hole_rim_unremeshed",
-        "stanford-bunny.obj",
-    ) else {
+    let Some(d) =
+        dwell_on_a_base_hole_rim("stanford_bunny_dwell_on_a_base_hole_rim_unremeshed", false)
+    else {
         return;
     };
-    let (at, r, k) = bunny_base_hole_rim(&bunny);
-    let (_, reports, end) = sculpt(
-        "bunny rim dwell without remeshing",
-        bunny.clone(),
-        &[paint(Brush::Inflate, r, k, vec![at; 40])],
-        false,
-    );
-    let report = &reports[0];
+    let report = &d.report;
     assert!(report.guarded_frames > 0, "the rim crosses: {report:?}");
     assert!(!report.held_because.is_empty());
     for why in &report.held_because {
@@ -744,7 +755,7 @@ fn stanford_bunny_dwell_on_a_base_hole_rim_unremeshed_holds_and_says_why() {
         );
         assert_eq!(report.held_because.iter().filter(|w| *w == why).count(), 1);
     }
-    assert_eq!((end.components, end.boundary_loops), (1, 5));
+    assert_eq!((d.end.components, d.end.boundary_loops), (1, 5));
 }
 
 /// How many connected pieces of `m` lie inside the rest of it: the
