@@ -18,23 +18,18 @@ intersecting pairs than its input had. Usage:
 """
 import argparse, json, os, random, re, subprocess, sys, tempfile
 
+from shared_obj import read_obj
+
 ROOT = os.path.normpath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MESHES = ["stanford-bunny.obj", "teapot.obj", "beetle.obj", "suzanne.obj", "spot_triangulated.obj",
           "bigguyhalf.obj", "fertility_poly.obj", "self_intersectA.obj",
           "thingi10k_65004_arduino_case_soup.obj"]
 
 
-def read_obj(path):
-    v, f = [], []
-    with open(path) as fh:
-        for line in fh:
-            if line.startswith("v "):
-                v.append([float(x) for x in line.split()[1:4]])
-            elif line.startswith("f "):
-                idx = [int(x.split("/")[0]) - 1 for x in line.split()[1:]]
-                f.extend((idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1))
-    used = sorted({i for t in f for i in t})
-    return [v[i] for i in used]
+def used_points(path):
+    """The positions some face of the OBJ at `path` uses."""
+    v, f = read_obj(path)
+    return [v[i] for i in sorted({i for t in f for i in t})]
 
 
 def strokes(points, rng):
@@ -84,7 +79,7 @@ def main():
             if not os.path.exists(path):
                 print(f"{name}: not found, skipped", file=sys.stderr)
                 continue
-            points = read_obj(path)
+            points = used_points(path)
             for seed in range(args.first_seed, args.first_seed + args.seeds):
                 file = os.path.join(d, f"s{seed}.json")
                 with open(file, "w") as fh:

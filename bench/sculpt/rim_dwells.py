@@ -15,27 +15,14 @@ the reasons the CLI gives. Usage:
 import argparse, json, os, re, subprocess, sys, tempfile
 from collections import Counter
 
+from shared_obj import read_obj, used_bounds
+
 ROOT = os.path.normpath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MESHES = ["stanford-bunny.obj", "bigguyhalf.obj", "suzanne.obj", "beetle.obj"]
 
 
-def read_obj(path):
-    v, f = [], []
-    with open(path) as fh:
-        for line in fh:
-            if line.startswith("v "):
-                v.append([float(x) for x in line.split()[1:4]])
-            elif line.startswith("f "):
-                idx = [int(x.split("/")[0]) - 1 for x in line.split()[1:]]
-                f.extend((idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1))
-    return v, f
-
-
 def dwell_strokes(v, f, strokes=6, frames=40):
-    used = sorted({i for t in f for i in t})
-    lo = [min(v[i][k] for i in used) for k in range(3)]
-    hi = [max(v[i][k] for i in used) for k in range(3)]
-    diagonal = sum((b - a) ** 2 for a, b in zip(lo, hi)) ** 0.5
+    _, _, diagonal = used_bounds(v, f)
     sides = Counter()
     for a, b, c in f:
         for u, w in ((a, b), (b, c), (c, a)):
