@@ -51,7 +51,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let mut mesh = poly.triangulated();
     let file = parse_strokes(&std::fs::read_to_string(&args[2])?)?;
-    let range = file.remesh.or_else(|| default_range(&mesh));
     let audit = |m: &TriMesh| -> Result<Option<SurfaceAudit>, holey_topo::IntersectError> {
         if no_audit {
             Ok(None)
@@ -76,6 +75,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;
         if !no_remesh {
+            // The file's range, or one derived from the mesh each stroke
+            // starts on, as the modeler does at its default detail.
+            let range = file.remesh.or_else(|| default_range(&mesh));
             live.set_remesh(range.map(RemeshOptions::new));
         }
         let mut before = audit(&mesh)?;
@@ -126,9 +128,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             frame_no += 1;
         }
         mesh = live.finish()?.mesh;
-        if let Some(a) = audit(&mesh)? {
-            println!("stroke {s} done: {a}");
-        }
+        // Each stroke's end is audited even with `--no-audit`.
+        println!("stroke {s} done: {}", SurfaceAudit::of(&mesh)?);
     }
     let summary = |v: &mut Vec<f64>| {
         v.sort_by(f64::total_cmp);
