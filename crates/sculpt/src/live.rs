@@ -724,7 +724,13 @@ impl PaintStep<'_> {
                     .map(|(p, q)| p != q && self.held.contains(&position_key(*p)))
                     .collect()
             };
-            match topology_change_guarded_holding(mesh, &end, self.options, &already) {
+            // An inflate only pushes the surface outward: it may join
+            // parts, never cut one loose (`Options::outward`).
+            let options = Options {
+                outward: brush == Brush::Inflate && strength > 0.0,
+                ..*self.options
+            };
+            match topology_change_guarded_holding(mesh, &end, &options, &already) {
                 Ok(guarded) => {
                     self.held
                         .extend(guarded.held_positions.iter().map(|&p| position_key(p)));

@@ -156,7 +156,7 @@ impl SurfaceAudit {
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {
-    const WORDS: [(&str, &str); 6] = [
+    const WORDS: [(&str, &str); 8] = [
         ("boundary loops", "open a hole"),
         (
             "non-manifold curves",
@@ -171,6 +171,11 @@ pub fn in_plain_words(regression: &str) -> &str {
         (
             "pieces hidden inside the surface",
             "leave a piece cut loose inside the surface, out of sight",
+        ),
+        ("pieces cut loose", "cut a piece loose from the surface"),
+        (
+            "specks cut off",
+            "leave specks of surface too small to see where it crosses itself",
         ),
     ];
     WORDS

@@ -61,6 +61,16 @@ pub struct Options {
     /// such a result (a frame holds the vertices that make it, a drag is
     /// undone).
     pub nonmanifold_joins: bool,
+    /// The motion only pushes the surface outward along its normals (an
+    /// inflate). Parts it sweeps into each other merge, as in a union
+    /// (Theorem 5.2): the solid only grows, so every part of it stays
+    /// joined to the rest, and a void it closes off is a piece hidden
+    /// inside ([`crate::hidden`]). A sculpting frame
+    /// ([`crate::topology_change_guarded`]) that leaves more connected
+    /// components than it found has then cut a piece loose that the
+    /// motion cannot have made, and the guard refuses it. Off by default:
+    /// a deflate, a pinch or a drag may split a piece off.
+    pub outward: bool,
 }
 
 impl Default for Options {
@@ -73,6 +83,7 @@ impl Default for Options {
             solid_guard: true,
             max_intersecting_pairs: None,
             nonmanifold_joins: false,
+            outward: false,
         }
     }
 }

@@ -44,7 +44,7 @@ use crate::drag_path::{DragPath, Numbering};
 use crate::engine::{
     Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
-use crate::hidden::hidden_pieces;
+use crate::hidden::{hidden_pieces, pieces, shortest_edge_near, specks};
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
 use crate::mesh::TriMesh;
@@ -265,7 +265,7 @@ fn run_with(
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
     let mut worse = audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
     if !report.positions_only {
-        worse.extend(hidden_growth(mesh, &result, &|_| true, &|_| true));
+        worse.extend(piece_growth(mesh, &result, &|_| true, &|_| true, options));
     }
     Ok(Run {
         mesh: Some(result),
@@ -297,9 +297,13 @@ fn spliced_and_audited(
         // follow.
         let n = mesh.positions.len();
         let near = |v: u32| region.local.get(v as usize).is_none_or(|&l| l != u32::MAX);
-        worse.extend(hidden_growth(mesh, m, &near, &|v| {
-            v as usize >= n || near(v)
-        }));
+        worse.extend(piece_growth(
+            mesh,
+            m,
+            &near,
+            &|v| v as usize >= n || near(v),
+            options,
+        ));
     }
     Ok(Some(Run {
         mesh: result,
@@ -308,21 +312,52 @@ fn spliced_and_audited(
     }))
 }
 
-/// Whether `after` holds more pieces hidden inside the surface than
-/// `before` ([`crate::hidden`]), among the components near what changed
-/// (`near_before`, `near_after` flag their vertices), in words.
-fn hidden_growth(
+/// What `after` has worse than `before` in its pieces, in words: more
+/// pieces hidden inside the surface ([`crate::hidden`]) or more specks
+/// (pieces smaller than the shortest edge the surface had there,
+/// [`crate::hidden::specks`]) among the components near what changed
+/// (`near_before`, `near_after` flag their vertices), and, for a motion
+/// that only pushes outward ([`Options::outward`]), more pieces at all. The whole surface is
+/// counted once (a union-find over its triangles); `before` only when
+/// `after` has more than one piece.
+fn piece_growth(
     before: &TriMesh,
     after: &TriMesh,
     near_before: &dyn Fn(u32) -> bool,
     near_after: &dyn Fn(u32) -> bool,
-) -> Option<String> {
-    let a = hidden_pieces(after, near_after);
-    if a == 0 {
-        return None;
+    options: &Options,
+) -> Vec<String> {
+    let (root_after, count_after) = pieces(after);
+    if count_after < 2 {
+        return Vec::new();
     }
-    let b = hidden_pieces(before, near_before);
-    (a > b).then(|| format!("pieces hidden inside the surface: {b} -> {a}"))
+    // `before` is counted only when something needs it.
+    let mut counted: Option<(Vec<u32>, usize)> = None;
+    let mut worse = Vec::new();
+    if options.outward {
+        let count_before = counted.get_or_insert_with(|| pieces(before)).1;
+        if count_after > count_before {
+            worse.push(format!("pieces cut loose: {count_before} -> {count_after}"));
+        }
+    }
+    let scale = shortest_edge_near(before, near_before);
+    let a = specks(after, (&root_after, count_after), near_after, scale);
+    if a > 0 {
+        let (root_before, count_before) = counted.get_or_insert_with(|| pieces(before));
+        let b = specks(before, (root_before, *count_before), near_before, scale);
+        if a > b {
+            worse.push(format!("specks cut off: {b} -> {a}"));
+        }
+    }
+    let a = hidden_pieces(after, (&root_after, count_after), near_after);
+    if a > 0 {
+        let (root_before, count_before) = counted.get_or_insert_with(|| pieces(before));
+        let b = hidden_pieces(before, (root_before, *count_before), near_before);
+        if a > b {
+            worse.push(format!("pieces hidden inside the surface: {b} -> {a}"));
+        }
+    }
+    worse
 }
 
 /// The engine's result for `region` of `mesh` (submesh `sub`) moving to

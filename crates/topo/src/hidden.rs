@@ -32,23 +32,35 @@ const MAX_CANDIDATES: usize = 16;
 /// Points sampled on each candidate piece.
 const SAMPLES: usize = 8;
 
-/// How many connected components of `m` with a vertex that `near` flags
-/// lie inside the rest of `m` (module docs), sampled at the centroids of
-/// up to [`SAMPLES`] of their triangles. Components are joined through
-/// shared vertices.
-pub(crate) fn hidden_pieces(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> usize {
-    let n = m.positions.len();
-    let mut uf = UnionFind::new(n);
+/// The connected component of every triangle of `m` (named by a root
+/// vertex; components are joined through shared vertices) and how many
+/// components there are.
+pub(crate) fn pieces(m: &TriMesh) -> (Vec<u32>, usize) {
+    let mut uf = UnionFind::new(m.positions.len());
     for t in &m.triangles {
         uf.union(t[0], t[1]);
         uf.union(t[0], t[2]);
     }
     let root: Vec<u32> = m.triangles.iter().map(|t| uf.find(t[0])).collect();
+    let mut seen = vec![false; m.positions.len()];
+    let count = root
+        .iter()
+        .filter(|&&r| !std::mem::replace(&mut seen[r as usize], true))
+        .count();
+    (root, count)
+}
+
+/// How many connected components of `m` with a vertex that `near` flags
+/// lie inside the rest of `m` (module docs), sampled at the centroids of
+/// up to [`SAMPLES`] of their triangles. `root` and `count` are
+/// [`pieces`] of `m`.
+pub(crate) fn hidden_pieces(
+    m: &TriMesh,
+    (root, count): (&[u32], usize),
+    near: &dyn Fn(u32) -> bool,
+) -> usize {
     // A single component has no rest to lie in.
-    let Some(&first) = root.first() else {
-        return 0;
-    };
-    if root.iter().all(|&r| r == first) {
+    if count < 2 {
         return 0;
     }
     // Candidates: the components near the change, with their triangles.
@@ -85,6 +97,59 @@ pub(crate) fn hidden_pieces(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> usize {
                 .all(|w| w.abs() >= 0.5)
         })
         .count()
+}
+
+/// How many connected components of `m` with a vertex that `near` flags
+/// are specks: the diagonal of their bounding box is shorter than
+/// `scale`. `root` and `count` are [`pieces`] of `m`.
+///
+/// Where many triangles cross near one point (a ring of vertices
+/// squeezed through its axis, a crumpled fold) the arrangement of their
+/// intersections has cells far smaller than any triangle, and parity
+/// can keep some of them as closed pieces of their own: specks no brush
+/// shaped and nobody can see or select. With `scale` the shortest edge
+/// the surface had near the change, a new speck is debris.
+pub(crate) fn specks(
+    m: &TriMesh,
+    (root, count): (&[u32], usize),
+    near: &dyn Fn(u32) -> bool,
+    scale: f64,
+) -> usize {
+    if count < 2 {
+        return 0;
+    }
+    let mut boxes: rustc_hash::FxHashMap<u32, (DVec3, DVec3)> = Default::default();
+    for (i, t) in m.triangles.iter().enumerate() {
+        if t.iter().any(|&v| near(v)) {
+            boxes
+                .entry(root[i])
+                .or_insert((DVec3::INFINITY, DVec3::NEG_INFINITY));
+        }
+    }
+    for (i, t) in m.triangles.iter().enumerate() {
+        if let Some((lo, hi)) = boxes.get_mut(&root[i]) {
+            for &v in t {
+                let p = m.positions[v as usize];
+                (*lo, *hi) = (lo.min(p), hi.max(p));
+            }
+        }
+    }
+    boxes
+        .values()
+        .filter(|(lo, hi)| (*hi - *lo).length() < scale)
+        .count()
+}
+
+/// The length of the shortest edge of the triangles of `m` with a vertex
+/// that `near` flags (infinite when there is none).
+pub(crate) fn shortest_edge_near(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> f64 {
+    let p = |v: u32| m.positions[v as usize];
+    m.triangles
+        .iter()
+        .filter(|t| t.iter().any(|&v| near(v)))
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| p(a).distance(p(b)))
+        .fold(f64::INFINITY, f64::min)
 }
 
 #[cfg(test)]
@@ -129,9 +194,15 @@ mod tests {
             &cube(DVec3::new(3.0, -0.5, -0.5), DVec3::new(4.0, 0.5, 0.5)),
         );
         let all = |_: u32| true;
-        assert_eq!(hidden_pieces(&inside, &all), 1);
-        assert_eq!(hidden_pieces(&beside, &all), 0);
-        assert_eq!(hidden_pieces(&big, &all), 0);
+        let hidden = |m: &TriMesh, near: &dyn Fn(u32) -> bool| {
+            let (root, count) = pieces(m);
+            hidden_pieces(m, (&root, count), near)
+        };
+        assert_eq!(pieces(&inside).1, 2);
+        assert_eq!(hidden(&inside, &all), 1);
+        assert_eq!(hidden(&beside, &all), 0);
+        assert_eq!(pieces(&big).1, 1);
+        assert_eq!(hidden(&big, &all), 0);
         // Inside-out (inward-facing) boxes count alike.
         let flipped = TriMesh {
             triangles: inside
@@ -141,8 +212,8 @@ mod tests {
                 .collect(),
             ..inside.clone()
         };
-        assert_eq!(hidden_pieces(&flipped, &all), 1);
+        assert_eq!(hidden(&flipped, &all), 1);
         // Only the big box near the change: the small one is not looked at.
-        assert_eq!(hidden_pieces(&inside, &|v| v < 8), 0);
+        assert_eq!(hidden(&inside, &|v| v < 8), 0);
     }
 }
