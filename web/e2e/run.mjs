@@ -413,6 +413,39 @@ function farthestMove(before, after, cell) {
   return worst;
 }
 
+// ---- the strokes a scenario sent -----------------------------------------------
+
+// Where a mouse stroke's dabs fall depends on the picture the page had
+// when each pointer event came, so a failing stroke is kept as sent: the
+// scenario's strokes, as a stroke file (crates/sculpt/src/strokes.rs),
+// are printed with a failure and written to artifacts, to be replayed
+// frame by frame with `frame_trace MESH FILE` (crates/sculpt/examples).
+const sentStrokes = [];
+
+function keepStroke(text) {
+  if (!text.includes('"op":"stroke_')) return;
+  let m;
+  try { m = JSON.parse(text); } catch { return; }
+  if (m.op === 'stroke_begin') {
+    const s = { brush: m.brush, radius: m.radius, path: [m.point] };
+    if (m.brush !== 'move' && m.strength !== undefined) s.strength = m.strength;
+    if (m.falloff) s.falloff = m.falloff;
+    if (m.symmetry) s.symmetry = m.symmetry;
+    if (m.symmetry_about) s.symmetry_about = m.symmetry_about;
+    sentStrokes.push(s);
+  } else if (m.op === 'stroke_frame' && sentStrokes.length) {
+    const s = sentStrokes[sentStrokes.length - 1];
+    s.path.push(m.point, ...(m.points || []));
+  }
+}
+
+function printStrokes(n) {
+  if (!sentStrokes.length) return;
+  const text = JSON.stringify({ strokes: sentStrokes });
+  fs.writeFileSync(path.join(artifacts, `scenario-${n}-strokes.json`), text + '\n');
+  console.log(`  the scenario's strokes as sent (scenario-${n}-strokes.json): ${text}`);
+}
+
 // ---- scenarios ------------------------------------------------------------------
 
 const consoleErrors = [];
@@ -723,11 +756,23 @@ const scenarios = [
     const c0 = await counts();
     for (const sign of [1, -1]) {
       const [a, b] = sign > 0 ? [from, to] : [to, from];
-      await page.mouse.move(a[0], a[1]);
-      await page.mouse.down({ modifiers: sign < 0 ? ['Control'] : [] });
+      // Ctrl held as the button goes down deflates (the way back), as
+      // the library test stanford_bunny_inflate_and_deflate_across_the_haunch.
+      // The press must land on the surface: one that misses orbits (with
+      // Ctrl: pans) the view and sends every later stroke elsewhere on
+      // the bunny. The first stroke's end lies near the haunch's outline,
+      // which its inflate moves: the way back starts at the first point of
+      // its path the committed picture has surface under.
+      await waitFor(page, 'the committed frame', () => window.__holey.frameVersion === window.__holey.version && !window.__holey.viewer.frame.preview);
+      const at = (i) => [a[0] + ((b[0] - a[0]) * i) / 40, a[1] + ((b[1] - a[1]) * i) / 40];
+      let start = 0;
+      while (start < 10 && !(await page.evaluate(([x, y]) => !!window.__holey.viewer.pick(x, y), at(start)))) start++;
+      await page.mouse.move(...at(start));
       if (sign < 0) await page.keyboard.down('Control');
-      for (let i = 1; i <= 40; i++) {
-        await page.mouse.move(a[0] + ((b[0] - a[0]) * i) / 40, a[1] + ((b[1] - a[1]) * i) / 40);
+      await page.mouse.down();
+      await waitFor(page, 'the stroke to start (the press picked the surface)', () => window.__holey.stroking, undefined, 5000);
+      for (let i = start + 1; i <= 40; i++) {
+        await page.mouse.move(...at(i));
         await page.waitForTimeout(20);
       }
       await page.mouse.up();
@@ -735,6 +780,8 @@ const scenarios = [
       await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
     }
     await waitVersionAbove(page, before, 60000);
+    const signs = sentStrokes.map((x) => Math.sign(x.strength));
+    if (signs.join() !== '1,-1') throw new Error(`the strokes' strengths have signs ${signs}: the way back with Ctrl must deflate`);
     await page.screenshot({ path: path.join(artifacts, '9-bunny-inflate.png') });
     await waitStats(page, /components 1 · genus 0 · boundary loops 5/);
     const got = await page.evaluate((keys) => Object.fromEntries(keys.map((k) => [k, [...window.__holey[k]]])), PARTS);
@@ -747,6 +794,7 @@ const scenarios = [
     await page.click(tid('wireframe'));
     await page.mouse.move(from[0], from[1] + 20);
     await page.mouse.down();
+    await waitFor(page, 'the check stroke to start (the press picked the surface)', () => window.__holey.stroking, undefined, 5000);
     for (let i = 1; i <= 25; i++) {
       await page.mouse.move(from[0] + ((to[0] - from[0]) * i) / 25, from[1] + 20 + ((to[1] - from[1]) * i) / 25);
       await page.waitForTimeout(20);
@@ -1894,7 +1942,10 @@ try {
   const wsLog = fs.createWriteStream(path.join(artifacts, 'ws.log'));
   page.on('websocket', (ws) => {
     const t = () => (performance.now() / 1000).toFixed(3);
-    ws.on('framesent', (f) => wsLog.write(`${t()} > ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`));
+    ws.on('framesent', (f) => {
+      wsLog.write(`${t()} > ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`);
+      if (typeof f.payload === 'string') keepStroke(f.payload);
+    });
     ws.on('framereceived', (f) => wsLog.write(`${t()} < ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`));
     ws.on('close', () => wsLog.write(`${t()} closed\n`));
   });
@@ -1907,12 +1958,14 @@ try {
     const n = i + 1;
     if (only && !only.has(n)) continue;
     const t0 = Date.now();
+    sentStrokes.length = 0;
     let outcome;
     try {
       outcome = (await fn(page, url)) === 'SKIP' ? 'SKIP' : 'PASS';
     } catch (e) {
       outcome = 'FAIL';
       console.log(`  ${String(e.message || e).split('\n').join('\n  ')}`);
+      printStrokes(n);
     }
     if (outcome === 'PASS') passed++;
     else if (outcome === 'FAIL') failed++;
