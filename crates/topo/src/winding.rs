@@ -53,12 +53,16 @@ pub fn winding_number(
 /// largest distance of a corner from its centroid), by its dipole term
 /// `A·n̂·(c − p) / |c − p|³` farther off (the far field of Barill et al.
 /// 2018, per triangle).
-pub fn winding_numbers_at(
+pub fn winding_numbers_at<K, P>(
     triangles: &[[u32; 3]],
-    keep: &(dyn Fn(usize) -> bool + Sync),
-    position: &(dyn Fn(u32) -> DVec3 + Sync),
+    keep: &K,
+    position: &P,
     points: &[DVec3],
-) -> Vec<f64> {
+) -> Vec<f64>
+where
+    K: Fn(usize) -> bool + Sync + ?Sized,
+    P: Fn(u32) -> DVec3 + Sync + ?Sized,
+{
     let k = points.len();
     if k == 0 {
         return Vec::new();
