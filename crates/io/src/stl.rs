@@ -30,7 +30,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, parse_finite, push_f64};
+use crate::text::{Cursor, push_f64};
 
 /// True if the bytes are a binary STL by the rule in the module docs.
 pub fn is_binary(bytes: &[u8]) -> bool {
@@ -228,20 +228,8 @@ pub fn parse_ascii(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
             }
             State::InFacet => return unexpected("\"outer loop\""),
             State::InLoop if is(b"vertex") => {
-                let mut xyz = [0.0; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let Some(t) = c.token() else {
-                        return Err(IoError::line(
-                            source,
-                            line,
-                            format!("vertex has {k} coordinate(s), but 3 are needed"),
-                        ));
-                    };
-                    *slot = parse_finite(t).map_err(|m| IoError::line(source, line, m))?;
-                }
-                let i = w
-                    .vertex(DVec3::from_array(xyz))
-                    .map_err(|m| IoError::line(source, line, m))?;
+                let p = c.point().map_err(|m| IoError::line(source, line, m))?;
+                let i = w.vertex(p).map_err(|m| IoError::line(source, line, m))?;
                 w.mesh.face_indices.push(i);
             }
             State::InLoop if is(b"endloop") => {
