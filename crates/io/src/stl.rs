@@ -310,10 +310,7 @@ pub fn write<W: Write>(mut w: W, mesh: &PolyMesh, ascii: bool) -> io::Result<()>
                 buf.push(b'\n');
             }
             buf.extend_from_slice(b"    endloop\n  endfacet\n");
-            if buf.len() >= crate::CHUNK {
-                w.write_all(&buf)?;
-                buf.clear();
-            }
+            crate::flush_full(&mut w, &mut buf)?;
         }
         buf.extend_from_slice(b"endsolid holey\n");
     } else {
@@ -333,10 +330,7 @@ pub fn write<W: Write>(mut w: W, mesh: &PolyMesh, ascii: bool) -> io::Result<()>
                 }
             }
             buf.extend_from_slice(&[0, 0]);
-            if buf.len() >= crate::CHUNK {
-                w.write_all(&buf)?;
-                buf.clear();
-            }
+            crate::flush_full(&mut w, &mut buf)?;
         }
     }
     w.write_all(&buf)?;

@@ -428,11 +428,7 @@ impl<W: std::io::Write> Lines<W> {
     pub(crate) fn line(&mut self, fill: impl FnOnce(&mut Vec<u8>)) -> std::io::Result<()> {
         fill(&mut self.buf);
         self.buf.push(b'\n');
-        if self.buf.len() >= crate::CHUNK {
-            self.out.write_all(&self.buf)?;
-            self.buf.clear();
-        }
-        Ok(())
+        crate::flush_full(&mut self.out, &mut self.buf)
     }
 
     /// One line per position: `prefix` (OBJ's and .dlfl's `v `, nothing
