@@ -19,14 +19,7 @@ import trueform as tf
 
 import holey
 
-
-def best(fn, runs):
-    times, out = [], None
-    for _ in range(runs):
-        t = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), out
+from peer_io import best
 
 
 def main():

@@ -16,11 +16,10 @@ intersecting pairs than its input had. Usage:
     cargo build --release -p holey-cli
     python3 bench/sculpt/fuzz_strokes.py [--seeds 10] [--holey target/release/holey]
 """
-import argparse, json, os, random, re, subprocess, sys, tempfile
+import json, os, random, re, subprocess, tempfile
 
-from shared_obj import read_obj
+from shared_obj import read_obj, sculpt_args, shared_meshes
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MESHES = ["stanford-bunny.obj", "teapot.obj", "beetle.obj", "suzanne.obj", "spot_triangulated.obj",
           "bigguyhalf.obj", "fertility_poly.obj", "self_intersectA.obj",
           "thingi10k_65004_arduino_case_soup.obj"]
@@ -66,19 +65,13 @@ def strokes(points, rng):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--holey", default=os.path.join(ROOT, "target", "release", "holey"))
-    ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
+    ap = sculpt_args()
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--first-seed", type=int, default=100)
     args = ap.parse_args()
     failures = 0
     with tempfile.TemporaryDirectory() as d:
-        for name in MESHES:
-            path = os.path.join(args.shared, "data", "meshes", name)
-            if not os.path.exists(path):
-                print(f"{name}: not found, skipped", file=sys.stderr)
-                continue
+        for name, path in shared_meshes(args.shared, MESHES):
             points = used_points(path)
             for seed in range(args.first_seed, args.first_seed + args.seeds):
                 file = os.path.join(d, f"s{seed}.json")

@@ -12,12 +12,11 @@ the reasons the CLI gives. Usage:
     cargo build --release -p holey-cli
     python3 bench/sculpt/rim_dwells.py [--holey target/release/holey] [--shared ../shared]
 """
-import argparse, json, os, re, subprocess, sys, tempfile
+import json, os, re, subprocess, tempfile
 from collections import Counter
 
-from shared_obj import read_obj, used_bounds
+from shared_obj import read_obj, sculpt_args, shared_meshes, used_bounds
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MESHES = ["stanford-bunny.obj", "bigguyhalf.obj", "suzanne.obj", "beetle.obj"]
 
 
@@ -39,17 +38,10 @@ def dwell_strokes(v, f, strokes=6, frames=40):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--holey", default=os.path.join(ROOT, "target", "release", "holey"))
-    ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
-    args = ap.parse_args()
+    args = sculpt_args().parse_args()
     total = 0
     with tempfile.TemporaryDirectory() as d:
-        for name in MESHES:
-            path = os.path.join(args.shared, "data", "meshes", name)
-            if not os.path.exists(path):
-                print(f"{name}: not found, skipped", file=sys.stderr)
-                continue
+        for name, path in shared_meshes(args.shared, MESHES):
             strokes = dwell_strokes(*read_obj(path))
             if not strokes:
                 continue

@@ -399,15 +399,12 @@ impl Mesh {
         let mut holes = Vec::with_capacity(self.face_count());
         face_offsets.push(0);
         for f in self.faces.live_indices() {
-            let fx = *self.f(f);
-            let mut c = fx.corner;
-            for _ in 0..fx.len {
+            for c in self.face_corner_slots(f) {
                 cmap[c as usize] = face_vertices.len() as u32;
                 face_vertices.push(vmap[self.c(c).vertex as usize]);
-                c = self.c(c).next;
             }
             face_offsets.push(face_vertices.len() as u32);
-            holes.push(fx.hole);
+            holes.push(self.f(f).hole);
         }
         let edges = self
             .edges

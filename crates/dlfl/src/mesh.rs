@@ -586,6 +586,15 @@ impl Mesh {
         self.faces.insert(Face { corner, len, hole }).0
     }
 
+    /// The corner slots of face slot `f` in walk order, from its first
+    /// corner: [`Mesh::face_corners`] without the ids, for the kernel's own
+    /// walks.
+    #[inline]
+    pub(crate) fn face_corner_slots(&self, f: u32) -> impl Iterator<Item = u32> + '_ {
+        let fx = *self.f(f);
+        std::iter::successors(Some(fx.corner), move |&c| Some(self.c(c).next)).take(fx.len as usize)
+    }
+
     /// Sets the face of every corner of the cycle through `start` to `face`
     /// and returns the cycle's length.
     pub(crate) fn assign_cycle(&mut self, start: u32, face: u32) -> u32 {

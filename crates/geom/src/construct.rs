@@ -613,6 +613,23 @@ mod tests {
         SymPoint::new(DVec3::new(x, y, z), id)
     }
 
+    /// The scales and offsets the lattice cases are repeated at, by
+    /// [`copy`]: far below and above 1, and offsets that leave the case
+    /// fewer and fewer bits.
+    const COPIES: [(f64, f64); 5] = [
+        (1e-30, 0.0),
+        (1e30, 0.0),
+        (1.0, 4096.0),
+        (1.0, 1e6),
+        (1.0, 1e12),
+    ];
+
+    /// `x` scaled by `s` and moved by `off` along every axis, keeping its
+    /// identity.
+    fn copy(x: SymPoint, s: f64, off: f64) -> SymPoint {
+        SymPoint::new(x.pos * s + DVec3::splat(off), x.id)
+    }
+
     /// A random point: generic, snapped to a coarse lattice (many exact
     /// coincidences and representable answers), or scaled far up or down.
     fn random_point(rng: &mut Rng, kind: usize, id: u32) -> SymPoint {
@@ -720,14 +737,8 @@ mod tests {
         assert_eq!(e.pos, DVec3::new(1.0, 1.0, 0.0));
         assert_eq!(e.bary, [0.5, 0.25, 0.25]);
         // Scaled and offset copies.
-        for &(s, off) in &[
-            (1e-30, 0.0),
-            (1e30, 0.0),
-            (1.0, 4096.0),
-            (1.0, 1e6),
-            (1.0, 1e12),
-        ] {
-            let m = |x: SymPoint| SymPoint::new(x.pos * s + DVec3::splat(off), x.id);
+        for (s, off) in COPIES {
+            let m = |x: SymPoint| copy(x, s, off);
             let e = edge_triangle_point(m(p), m(q), m(a), m(b), m(c)).expect("exists");
             assert_eq!(e.t, 0.75);
             let want = DVec3::new(1.0, 1.0, 0.0) * s + DVec3::splat(off);
@@ -845,15 +856,8 @@ mod tests {
         assert!(crate::intersect::triangle_triangle_triangle_point(
             t1, t2, t3
         ));
-        for &(s, off) in &[
-            (1e-30, 0.0),
-            (1e30, 0.0),
-            (1.0, 4096.0),
-            (1.0, 1e6),
-            (1.0, 1e12),
-        ] {
-            let m =
-                |t: [SymPoint; 3]| t.map(|x| SymPoint::new(x.pos * s + DVec3::splat(off), x.id));
+        for (s, off) in COPIES {
+            let m = |t: [SymPoint; 3]| t.map(|x| copy(x, s, off));
             let x = triple_point(m(t1), m(t2), m(t3)).expect("exists");
             assert_eq!(x.pos, DVec3::splat(off), "{s} {off}");
             // 1e±30 are not powers of two: the scaled corners are rounded,

@@ -25,7 +25,7 @@ use holey_mesh::{DVec3, NonFinite};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_u64};
+use crate::text::{Cursor, Lines, parse_u64, push_u64};
 
 const NONE: u32 = u32::MAX;
 
@@ -145,18 +145,7 @@ fn statements(c: &mut Cursor<'_>, source: &str) -> Result<Statements, IoError> {
 
 /// The position of a `v` statement on line `line`, after its keyword.
 fn vertex_statement(c: &mut Cursor<'_>, line: usize, source: &str) -> Result<DVec3, IoError> {
-    let err = |line: usize, m: String| IoError::line(source, line, m);
-    let mut xyz = [0.0; 3];
-    for (k, slot) in xyz.iter_mut().enumerate() {
-        let Some(tok) = c.token() else {
-            return Err(err(
-                line,
-                format!("vertex has {k} coordinate(s), but 3 are needed"),
-            ));
-        };
-        *slot = parse_finite(tok).map_err(|m| err(line, m))?;
-    }
-    Ok(DVec3::from_array(xyz))
+    c.point().map_err(|m| IoError::line(source, line, m))
 }
 
 /// Appends the corners of an `f` or `h` statement on line `line`, after

@@ -322,6 +322,17 @@ pub(crate) fn invalid_input(why: String) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidInput, why)
 }
 
+/// Hands `buf` to `w` and empties it once it holds a chunk ([`CHUNK`]) or
+/// more: the writers build their output in one buffer and call this after
+/// every record.
+pub(crate) fn flush_full<W: Write>(w: &mut W, buf: &mut Vec<u8>) -> io::Result<()> {
+    if buf.len() >= CHUNK {
+        w.write_all(buf)?;
+        buf.clear();
+    }
+    Ok(())
+}
+
 /// Writes the bytes a binary encoder (glTF, GLB, 3MF) made of a mesh; its
 /// refusal is an [`io::ErrorKind::InvalidInput`] error.
 pub(crate) fn write_encoded<W: Write>(

@@ -120,18 +120,8 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
         }
         match keyword {
             b"v" => {
-                let mut xyz = [0.0; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let Some(read) = c.float() else {
-                        return Err(IoError::line(
-                            source,
-                            c.line(),
-                            format!("vertex has {k} coordinate(s), but 3 are needed"),
-                        ));
-                    };
-                    *slot = read.map_err(|m| IoError::line(source, c.line(), m))?;
-                }
-                positions.push(DVec3::from_array(xyz));
+                let p = c.point().map_err(|m| IoError::line(source, c.line(), m))?;
+                positions.push(p);
             }
             b"f" => {
                 let start = indices.len();

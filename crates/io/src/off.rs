@@ -15,11 +15,11 @@
 
 use std::io::{self, Write};
 
-use holey_mesh::{DVec3, PolyMesh};
+use holey_mesh::PolyMesh;
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, Lines, parse_finite, parse_u64, push_face_end, push_u64};
+use crate::text::{Cursor, Lines, parse_u64, push_face_end, push_u64};
 
 /// True for a header keyword this reader handles.
 fn is_off_keyword(word: &[u8]) -> bool {
@@ -131,18 +131,8 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
                 format!("file ends after {i} of {nv} vertices"),
             ));
         }
-        let mut xyz = [0.0; 3];
-        for (k, slot) in xyz.iter_mut().enumerate() {
-            let Some(tok) = c.token() else {
-                return Err(IoError::line(
-                    source,
-                    c.line(),
-                    format!("vertex has {k} coordinate(s), but 3 are needed"),
-                ));
-            };
-            *slot = parse_finite(tok).map_err(|m| IoError::line(source, c.line(), m))?;
-        }
-        positions.push(DVec3::from_array(xyz));
+        let p = c.point().map_err(|m| IoError::line(source, c.line(), m))?;
+        positions.push(p);
         c.next_line();
     }
     for f in 0..nf {
@@ -227,6 +217,7 @@ pub fn write<W: Write>(w: W, mesh: &PolyMesh) -> io::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use holey_mesh::DVec3;
 
     fn err(text: &str) -> String {
         parse(text.as_bytes(), "m.off").unwrap_err().to_string()

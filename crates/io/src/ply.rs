@@ -706,10 +706,7 @@ pub fn write<W: Write>(
                 buf.extend_from_slice(&rgb);
             }
         }
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+        crate::flush_full(&mut w, &mut buf)?;
     }
     for face in mesh.faces() {
         if ascii {
@@ -729,10 +726,7 @@ pub fn write<W: Write>(
                 buf.extend_from_slice(&i.to_le_bytes());
             }
         }
-        if buf.len() >= crate::CHUNK {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
+        crate::flush_full(&mut w, &mut buf)?;
     }
     w.write_all(&buf)?;
     w.flush()

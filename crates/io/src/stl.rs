@@ -30,7 +30,7 @@ use holey_mesh::{DVec3, PolyMesh};
 
 use crate::IoError;
 use crate::error::show;
-use crate::text::{Cursor, parse_finite, push_f64};
+use crate::text::{Cursor, push_f64};
 
 /// True if the bytes are a binary STL by the rule in the module docs.
 pub fn is_binary(bytes: &[u8]) -> bool {
@@ -228,20 +228,8 @@ pub fn parse_ascii(bytes: &[u8], source: &str) -> Result<PolyMesh, IoError> {
             }
             State::InFacet => return unexpected("\"outer loop\""),
             State::InLoop if is(b"vertex") => {
-                let mut xyz = [0.0; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let Some(t) = c.token() else {
-                        return Err(IoError::line(
-                            source,
-                            line,
-                            format!("vertex has {k} coordinate(s), but 3 are needed"),
-                        ));
-                    };
-                    *slot = parse_finite(t).map_err(|m| IoError::line(source, line, m))?;
-                }
-                let i = w
-                    .vertex(DVec3::from_array(xyz))
-                    .map_err(|m| IoError::line(source, line, m))?;
+                let p = c.point().map_err(|m| IoError::line(source, line, m))?;
+                let i = w.vertex(p).map_err(|m| IoError::line(source, line, m))?;
                 w.mesh.face_indices.push(i);
             }
             State::InLoop if is(b"endloop") => {
@@ -322,10 +310,7 @@ pub fn write<W: Write>(mut w: W, mesh: &PolyMesh, ascii: bool) -> io::Result<()>
                 buf.push(b'\n');
             }
             buf.extend_from_slice(b"    endloop\n  endfacet\n");
-            if buf.len() >= crate::CHUNK {
-                w.write_all(&buf)?;
-                buf.clear();
-            }
+            crate::flush_full(&mut w, &mut buf)?;
         }
         buf.extend_from_slice(b"endsolid holey\n");
     } else {
@@ -345,10 +330,7 @@ pub fn write<W: Write>(mut w: W, mesh: &PolyMesh, ascii: bool) -> io::Result<()>
                 }
             }
             buf.extend_from_slice(&[0, 0]);
-            if buf.len() >= crate::CHUNK {
-                w.write_all(&buf)?;
-                buf.clear();
-            }
+            crate::flush_full(&mut w, &mut buf)?;
         }
     }
     w.write_all(&buf)?;

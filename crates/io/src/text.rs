@@ -184,6 +184,19 @@ impl<'a> Cursor<'a> {
         Some(parse_finite(tok))
     }
 
+    /// The next three tokens as a point's finite coordinates (each read by
+    /// [`Cursor::float`]); the error names how many there were when the
+    /// line ends early, or what is wrong with the first bad one.
+    pub(crate) fn point(&mut self) -> Result<holey_mesh::DVec3, String> {
+        let mut xyz = [0.0; 3];
+        for (k, slot) in xyz.iter_mut().enumerate() {
+            *slot = self
+                .float()
+                .ok_or_else(|| format!("vertex has {k} coordinate(s), but 3 are needed"))??;
+        }
+        Ok(holey_mesh::DVec3::from_array(xyz))
+    }
+
     /// The next token read as an OBJ face corner (`v`, `v/vt`, `v//vn`,
     /// `v/vt/vn`): the optionally signed integer before the first `/`,
     /// converted while scanning; the texture and normal parts are skipped
@@ -415,11 +428,7 @@ impl<W: std::io::Write> Lines<W> {
     pub(crate) fn line(&mut self, fill: impl FnOnce(&mut Vec<u8>)) -> std::io::Result<()> {
         fill(&mut self.buf);
         self.buf.push(b'\n');
-        if self.buf.len() >= crate::CHUNK {
-            self.out.write_all(&self.buf)?;
-            self.buf.clear();
-        }
-        Ok(())
+        crate::flush_full(&mut self.out, &mut self.buf)
     }
 
     /// One line per position: `prefix` (OBJ's and .dlfl's `v `, nothing
@@ -540,6 +549,25 @@ mod tests {
         assert_eq!(c.token(), None);
         c.next_line();
         assert!(c.eof());
+    }
+
+    #[test]
+    fn points_take_three_finite_coordinates() {
+        let mut c = Cursor::new(b"1 -2.5 3e2 # c\n0.5 1\n1 nan 0\n1 x 0\n", false, true);
+        assert_eq!(c.point(), Ok(holey_mesh::DVec3::new(1.0, -2.5, 300.0)));
+        assert_eq!(c.token(), None);
+        c.next_line();
+        assert_eq!(
+            c.point(),
+            Err("vertex has 2 coordinate(s), but 3 are needed".to_string())
+        );
+        c.next_line();
+        assert_eq!(
+            c.point(),
+            Err("coordinate \"nan\" is not a finite number".to_string())
+        );
+        c.next_line();
+        assert_eq!(c.point(), Err("bad number \"x\"".to_string()));
     }
 
     #[test]

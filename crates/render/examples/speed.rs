@@ -50,76 +50,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         height: 480,
         ..RenderOptions::default()
     };
+    // The variations timed: each run is one of these over its mesh's base.
+    let ss = |o: &RenderOptions, supersample| RenderOptions {
+        supersample,
+        ..o.clone()
+    };
+    let smooth = |o: &RenderOptions| RenderOptions {
+        smooth: true,
+        ..o.clone()
+    };
+    let edges = |o: &RenderOptions| RenderOptions {
+        edges: true,
+        ..o.clone()
+    };
     let t10k = holey_shapes::parse_primitive("@torus:100:50")?; // 5000 quads = 10k triangles
     time("10k", &t10k, &small)?;
-    time(
-        "10k ss2",
-        &t10k,
-        &RenderOptions {
-            supersample: 2,
-            ..small.clone()
-        },
-    )?;
-    time(
-        "10k ss1",
-        &t10k,
-        &RenderOptions {
-            supersample: 1,
-            ..small.clone()
-        },
-    )?;
-    time(
-        "10k smooth",
-        &t10k,
-        &RenderOptions {
-            smooth: true,
-            ..small.clone()
-        },
-    )?;
-    time(
-        "10k edges",
-        &t10k,
-        &RenderOptions {
-            edges: true,
-            ..small.clone()
-        },
-    )?;
+    time("10k ss2", &t10k, &ss(&small, 2))?;
+    time("10k ss1", &t10k, &ss(&small, 1))?;
+    time("10k smooth", &t10k, &smooth(&small))?;
+    time("10k edges", &t10k, &edges(&small))?;
     time("10k big", &t10k, &big)?;
     let t1m = holey_shapes::parse_primitive("@torus:1000:500")?; // 1M triangles
     time("1M", &t1m, &big)?;
-    time(
-        "1M smooth",
-        &t1m,
-        &RenderOptions {
-            smooth: true,
-            ..big.clone()
-        },
-    )?;
-    time(
-        "1M edges",
-        &t1m,
-        &RenderOptions {
-            edges: true,
-            ..big.clone()
-        },
-    )?;
-    time(
-        "1M ss2",
-        &t1m,
-        &RenderOptions {
-            supersample: 2,
-            ..big.clone()
-        },
-    )?;
+    time("1M smooth", &t1m, &smooth(&big))?;
+    time("1M edges", &t1m, &edges(&big))?;
+    time("1M ss2", &t1m, &ss(&big, 2))?;
     let s1m = holey_shapes::parse_primitive("@sphere:8")?; // 1.3M triangles
     time("sphere 1.3M", &s1m, &big)?;
-    time(
-        "sphere 1.3M smooth",
-        &s1m,
-        &RenderOptions {
-            smooth: true,
-            ..big.clone()
-        },
-    )?;
+    time("sphere 1.3M smooth", &s1m, &smooth(&big))?;
     Ok(())
 }

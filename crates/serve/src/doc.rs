@@ -402,6 +402,18 @@ impl Document {
         }
     }
 
+    /// Refuses a request that would edit, select on or replace the
+    /// document while a rind is being punched (it ends by committing or
+    /// cancelling).
+    pub fn check_no_rind(&self) -> Result<(), ServeError> {
+        if self.rind.is_some() {
+            return Err(ServeError::Refused(
+                "finish or cancel the rind first".into(),
+            ));
+        }
+        Ok(())
+    }
+
     /// The model mesh (the rind's crust while punching) or an error
     /// saying the request needs the model workspace.
     pub fn model(&self, what: &str) -> Result<&Mesh, ServeError> {
@@ -514,6 +526,21 @@ mod tests {
         assert!(!d.redo());
         assert!(d.check_version(Some(1)).is_err());
         assert!(d.check_version(Some(4)).is_ok());
+    }
+
+    #[test]
+    fn a_rind_in_progress_is_refused_until_it_ends() {
+        let mut d = Document::new(model("@cube"), 1);
+        assert!(d.check_no_rind().is_ok());
+        let rind = holey_model::rind::Rind::from_mesh(d.model("rind").unwrap(), 0.1).unwrap();
+        d.rind = Some(RindMode {
+            rind,
+            thickness: 0.1,
+        });
+        let err = d.check_no_rind().unwrap_err().to_string();
+        assert!(err.contains("finish or cancel the rind first"), "{err}");
+        d.rind = None;
+        assert!(d.check_no_rind().is_ok());
     }
 
     #[test]

@@ -78,10 +78,8 @@ impl Mesh {
     /// The longest edge of face `f` whose other side lies in neither `f`
     /// nor `other`, so that splitting it adds exactly one corner to `f`.
     fn splittable_edge(&self, f: u32, other: u32) -> Option<u32> {
-        let start = self.f(f).corner;
-        let mut c = start;
         let mut best: Option<(f64, u32)> = None;
-        for _ in 0..self.f(f).len {
+        for c in self.face_corner_slots(f) {
             let cc = self.c(c);
             let e = cc.edge;
             let far = self.mate(c, e);
@@ -95,7 +93,6 @@ impl Mesh {
                     best = Some((len, e));
                 }
             }
-            c = cc.next;
         }
         best.map(|(_, e)| e)
     }

@@ -23,9 +23,7 @@ impl Mesh {
         }
         let mut corners = Vec::new();
         for &f in &list {
-            let fx = *self.f(f);
-            let mut c = fx.corner;
-            for _ in 0..fx.len {
+            for c in self.face_corner_slots(f) {
                 let e = self.c(c).edge;
                 if e != NONE {
                     let far = self.mate(c, e);
@@ -34,7 +32,6 @@ impl Mesh {
                     }
                 }
                 corners.push(c);
-                c = self.c(c).next;
             }
         }
         self.reverse_corners(&corners);
@@ -47,12 +44,7 @@ impl Mesh {
         let faces = self.component_face_indices(f0);
         let mut corners = Vec::new();
         for f in faces {
-            let fx = *self.f(f);
-            let mut c = fx.corner;
-            for _ in 0..fx.len {
-                corners.push(c);
-                c = self.c(c).next;
-            }
+            corners.extend(self.face_corner_slots(f));
         }
         self.reverse_corners(&corners);
         Ok(())
@@ -67,9 +59,7 @@ impl Mesh {
         seen[f0 as usize] = true;
         while let Some(f) = stack.pop() {
             out.push(f);
-            let fx = *self.f(f);
-            let mut c = fx.corner;
-            for _ in 0..fx.len {
+            for c in self.face_corner_slots(f) {
                 let e = self.c(c).edge;
                 if e != NONE {
                     let g = self.c(self.mate(c, e)).face;
@@ -78,7 +68,6 @@ impl Mesh {
                         stack.push(g);
                     }
                 }
-                c = self.c(c).next;
             }
         }
         out

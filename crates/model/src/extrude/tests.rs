@@ -79,6 +79,20 @@ fn edge_lengths(m: &Mesh) -> Vec<f64> {
         .collect()
 }
 
+/// Every edge of `m` has length `a` (to a relative 1e-9).
+fn every_edge_has_length(m: &Mesh, a: f64) {
+    for l in edge_lengths(m) {
+        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
+    }
+}
+
+/// `m` holds twice the volume of the primitive `spec`: two copies of the
+/// solid glued on a face.
+fn is_two_glued(m: &Mesh, spec: &str) {
+    let one = signed_volume(&prim(spec));
+    assert!((signed_volume(m) - 2.0 * one).abs() < 1e-9);
+}
+
 fn max_non_planarity(m: &Mesh, f: FaceId) -> f64 {
     let p = m.face_positions(f).unwrap();
     let (c, n) = polygon::best_fit_plane(&p).unwrap();
@@ -461,17 +475,13 @@ fn octahedral_extrusion_of_a_regular_triangle_is_a_regular_octahedron() {
     let mut m = prim("@tetrahedron");
     let f = face(&m, 3);
     let a = edge_lengths(&m)[0];
-    let before = m.clone();
     expect_delta(&mut m, (3, 9, 6), |m| {
         let out = extrude_face_octahedral(m, f, 1.0).unwrap();
         assert_eq!(m.face_len(out.top).unwrap(), 3);
         assert_eq!(out.sides.len(), 6);
     });
     // Every new edge has the tetrahedron's edge length.
-    let _ = before;
-    for l in edge_lengths(&m) {
-        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
-    }
+    every_edge_has_length(&m, a);
 }
 
 #[test]
@@ -488,12 +498,8 @@ fn dodecahedral_extrusion_of_a_regular_pentagon_is_a_regular_dodecahedron() {
             assert!(max_non_planarity(m, *s) < 1e-9);
         }
     });
-    for l in edge_lengths(&m) {
-        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
-    }
-    // Two dodecahedra glued on a face: volume twice the solid's.
-    let one = signed_volume(&prim("@dodecahedron"));
-    assert!((signed_volume(&m) - 2.0 * one).abs() < 1e-9);
+    every_edge_has_length(&m, a);
+    is_two_glued(&m, "@dodecahedron");
 }
 
 #[test]
@@ -509,11 +515,8 @@ fn icosahedral_extrusion_of_a_regular_triangle_is_a_regular_icosahedron() {
             assert_eq!(m.face_len(*s).unwrap(), 3);
         }
     });
-    for l in edge_lengths(&m) {
-        assert!((l - a).abs() < 1e-9 * a, "{l} vs {a}");
-    }
-    let one = signed_volume(&prim("@icosahedron"));
-    assert!((signed_volume(&m) - 2.0 * one).abs() < 1e-9);
+    every_edge_has_length(&m, a);
+    is_two_glued(&m, "@icosahedron");
 }
 
 #[test]

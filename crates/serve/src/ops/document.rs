@@ -55,11 +55,7 @@ impl Shared {
 
     /// `undo` or `redo` (`op`).
     pub(super) fn undo_redo(&self, doc: &mut Document, op: &str) -> Reply {
-        if doc.rind.is_some() {
-            return Err(ServeError::Refused(
-                "finish or cancel the rind first".into(),
-            ));
-        }
+        doc.check_no_rind()?;
         let done = if op == "undo" { doc.undo() } else { doc.redo() };
         if !done {
             return Err(ServeError::Refused(format!("nothing to {op}")));
@@ -71,11 +67,7 @@ impl Shared {
     /// `weld` (by a distance, a share of the mesh size) or, without one,
     /// `make_manifold`.
     pub(super) fn repair(&self, doc: &mut Document, weld: Option<f64>) -> Reply {
-        if doc.rind.is_some() {
-            return Err(ServeError::Refused(
-                "finish or cancel the rind first".into(),
-            ));
-        }
+        doc.check_no_rind()?;
         let (content, message) = if let Some(distance) = weld {
             doc.content().welded(distance)?
         } else {

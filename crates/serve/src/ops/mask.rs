@@ -64,11 +64,7 @@ impl Shared {
     /// The sculpt mesh a mask edit applies to.
     fn mask_mesh<'a>(&self, doc: &'a Document) -> Result<&'a TriMesh, ServeError> {
         let mesh = doc.sculpt_mesh("masking")?;
-        if doc.rind.is_some() {
-            return Err(ServeError::Refused(
-                "finish or cancel the rind first".into(),
-            ));
-        }
+        doc.check_no_rind()?;
         Ok(mesh)
     }
 

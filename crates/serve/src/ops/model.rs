@@ -28,11 +28,7 @@ impl Shared {
         edit: impl FnOnce(&Document, &mut Mesh) -> Result<String, ServeError>,
     ) -> Reply {
         doc.check_version(version)?;
-        if doc.rind.is_some() {
-            return Err(ServeError::Refused(
-                "finish or cancel the rind first".into(),
-            ));
-        }
+        doc.check_no_rind()?;
         let mut mesh = doc.model(op)?.clone();
         let message = edit(doc, &mut mesh)?;
         if preview {

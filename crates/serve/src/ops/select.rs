@@ -40,11 +40,7 @@ impl Shared {
     /// `version`.
     pub(super) fn select(&self, doc: &Document, req: &SelectRequest) -> Reply {
         doc.check_version(req.version)?;
-        if doc.rind.is_some() {
-            return Err(ServeError::Refused(
-                "finish or cancel the rind first".into(),
-            ));
-        }
+        doc.check_no_rind()?;
         let query = req.query.as_str();
         let mesh = doc.model("selection")?;
         let faces = faces_of(doc, req.faces.as_deref())?;

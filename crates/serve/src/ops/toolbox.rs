@@ -143,11 +143,7 @@ impl Shared {
         what: &str,
     ) -> Result<Mesh, ServeError> {
         doc.check_version(version)?;
-        if doc.rind.is_some() {
-            return Err(ServeError::Refused(
-                "finish or cancel the rind first".into(),
-            ));
-        }
+        doc.check_no_rind()?;
         Ok(doc.model(what)?.clone())
     }
 
