@@ -78,6 +78,27 @@ fn a_waist_squeezed_through_its_axis_leaves_no_specks() {
     }
 }
 
+/// The engine's options for an inflate.
+fn outward() -> Options {
+    Options {
+        outward: true,
+        ..Options::default()
+    }
+}
+
+/// `m`'s positions with those of the vertices in `which` mapped by `f`.
+fn moved(
+    m: &TriMesh,
+    which: impl std::ops::RangeBounds<usize>,
+    f: impl Fn(DVec3) -> DVec3,
+) -> Vec<DVec3> {
+    m.positions
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| if which.contains(&i) { f(p) } else { p })
+        .collect()
+}
+
 /// Two boxes apart, the second pushed into the first: they join (one
 /// piece, closed), with or without the outward flag: fewer pieces is
 /// never worse.
@@ -86,24 +107,10 @@ fn an_outward_motion_still_joins_parts() {
     let a = cuboid(DVec3::ZERO, DVec3::ONE);
     let b = cuboid(DVec3::new(1.5, 0.2, 0.3), DVec3::new(2.5, 0.9, 0.8));
     let m = join(&a, &b);
-    let end: Vec<DVec3> = m
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| {
-            if i >= a.positions.len() {
-                p - DVec3::new(0.8, 0.0, 0.0)
-            } else {
-                p
-            }
-        })
-        .collect();
-    let options = Options {
-        outward: true,
-        ..Options::default()
-    };
+    let n = a.positions.len();
+    let end = moved(&m, n.., |p| p - DVec3::new(0.8, 0.0, 0.0));
     let mut joined = m.clone();
-    let r = topology_change_guarded(&mut joined, &end, &options).unwrap();
+    let r = topology_change_guarded(&mut joined, &end, &outward()).unwrap();
     assert!(r.refused.is_empty(), "{:?}", r.refused);
     assert_eq!(components(&joined), 1);
     assert!(closed_oriented(&joined));
@@ -125,18 +132,9 @@ fn pieces_already_there_are_not_new() {
     let third = cuboid(DVec3::new(2.1, -0.5, -0.5), DVec3::new(3.0, 0.5, 0.5));
     let m = join(&join(&join(&big, &small), &tiny), &third);
     assert_eq!(components(&m), 4);
-    let end: Vec<DVec3> = m
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(i, &p)| if i < big.positions.len() { p * 1.1 } else { p })
-        .collect();
-    let options = Options {
-        outward: true,
-        ..Options::default()
-    };
+    let end = moved(&m, ..big.positions.len(), |p| p * 1.1);
     let mut grown = m.clone();
-    let r = topology_change_guarded(&mut grown, &end, &options).unwrap();
+    let r = topology_change_guarded(&mut grown, &end, &outward()).unwrap();
     assert!(r.refused.is_empty(), "{:?}", r.refused);
     assert!(!r.local.positions_only, "the big box met the third");
     assert_eq!(components(&grown), 3);
