@@ -70,6 +70,8 @@ def main():
     ap.add_argument("--first-seed", type=int, default=100)
     args = ap.parse_args()
     failures = 0
+    # Why the guard held frames, by what would have got worse: strokes per reason.
+    reasons = {}
     with tempfile.TemporaryDirectory() as d:
         for name, path in shared_meshes(args.shared, MESHES):
             points = used_points(path)
@@ -85,11 +87,18 @@ def main():
                     continue
                 worse = [line for line in p.stderr.splitlines() if "worse" in line.lower() and "held" not in line]
                 held = sum(int(x) for x in re.findall(r"(\d+) guarded frame", p.stderr))
+                for line in p.stderr.splitlines():
+                    if "held frames that would have left" in line:
+                        for why in line.split("would have left", 1)[1].split(","):
+                            why = why.strip().split(":")[0]
+                            reasons[why] = reasons.get(why, 0) + 1
                 if worse:
                     failures += 1
                     print(f"{name} seed {seed}: " + "; ".join(worse))
                 else:
                     print(f"{name} seed {seed}: ok ({held} guarded frames)")
+    for why, n in sorted(reasons.items(), key=lambda x: -x[1]):
+        print(f"strokes held for {why}: {n}")
     print(f"failures: {failures}")
 
 
