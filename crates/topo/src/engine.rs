@@ -65,7 +65,7 @@ pub struct Options {
     /// inflate). Parts it sweeps into each other merge, as in a union
     /// (Theorem 5.2): the solid only grows, so every part of it stays
     /// joined to the rest, and a void it closes off is a piece hidden
-    /// inside ([`crate::hidden`]). A sculpting frame
+    /// inside (which the guard refuses anyway). A sculpting frame
     /// ([`crate::topology_change_guarded`]) that leaves more connected
     /// components than it found has then cut a piece loose that the
     /// motion cannot have made, and the guard refuses it. Off by default:

@@ -15,8 +15,10 @@
 //! - no new degenerate (zero-area) triangle;
 //! - no more intersecting triangle pairs than before: every intersection
 //!   the motion makes is resolved;
-//! - no piece cut loose and left hidden inside the surface
-//!   ([`crate::hidden`]).
+//! - no piece cut loose and left hidden inside the surface, and no
+//!   speck, a piece smaller than any edge the surface had there
+//!   ([`crate::hidden`]);
+//! - for an inflate ([`Options::outward`]), no new piece at all.
 //!
 //! [`topology_change_guarded`] runs the frame on the region the motion
 //! reaches ([`crate::local`]) and audits that region and the ring of
@@ -313,11 +315,11 @@ fn spliced_and_audited(
 }
 
 /// What `after` has worse than `before` in its pieces, in words: more
-/// pieces hidden inside the surface ([`crate::hidden`]) or more specks
-/// (pieces smaller than the shortest edge the surface had there,
-/// [`crate::hidden::specks`]) among the components near what changed
-/// (`near_before`, `near_after` flag their vertices), and, for a motion
-/// that only pushes outward ([`Options::outward`]), more pieces at all. The whole surface is
+/// pieces hidden inside the surface or more specks (pieces smaller than
+/// the shortest edge the surface had there; both [`crate::hidden`])
+/// among the components near what changed (`near_before`, `near_after`
+/// flag their vertices), and, for a motion that only pushes outward
+/// ([`Options::outward`]), more pieces at all. The whole surface is
 /// counted once (a union-find over its triangles); `before` only when
 /// `after` has more than one piece.
 fn piece_growth(

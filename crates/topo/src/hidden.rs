@@ -1,5 +1,7 @@
-//! Pieces hidden inside the surface: connected components that lie
-//! inside the rest of it.
+//! The surface's pieces (connected components, [`pieces`]) that a change
+//! must not leave behind: pieces hidden inside the rest of the surface
+//! ([`hidden_pieces`]), and specks, pieces smaller than any edge the
+//! surface had there ([`specks`]).
 //!
 //! A change can cut a piece loose inside a body: a grab whose strand
 //! folded over itself pushed its tip through a wall, the strand vanished
@@ -17,6 +19,10 @@
 //! orientation; the rule of issue 14) at points spread over the piece,
 //! every one of them: near the opening of an open sheet the winding
 //! number passes ½ without anything being enclosed.
+//!
+//! A speck is a piece whose bounding box has a diagonal shorter than the
+//! shortest edge of the triangles near the change before it. The guard
+//! counts them before and after as it counts hidden pieces.
 
 use glam::DVec3;
 
