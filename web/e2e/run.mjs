@@ -13,7 +13,9 @@
 // requests then carry. Before the scenarios, the run checks that the server
 // refuses a request without the token.
 //
-// Screenshots and perf.json go to web/e2e/artifacts/ (CI's artifact folder).
+// Screenshots and perf.json go to web/e2e/artifacts/ (CI's artifact folder);
+// a failing scenario also prints the strokes it sent and writes them there
+// as a stroke file (scenario-N-strokes.json) for the frame_trace example.
 // Every scenario prints PASS/FAIL/SKIP; the exit code is non-zero on any FAIL.
 
 import { spawn } from 'node:child_process';
