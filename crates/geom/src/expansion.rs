@@ -56,6 +56,61 @@ fn push_nonzero(h: &mut Vec<f64>, x: f64) {
     }
 }
 
+/// The components of `e + sign·f` (`sign` is ±1, so `sign·f` is exact)
+/// into `out`, which is cleared first: the two lists merged by magnitude
+/// (`e`'s first on a tie) feeding one `two_sum` chain, without a merged
+/// copy; either operand empty gives the other.
+fn sum_into(e: &[f64], f: &[f64], sign: f64, out: &mut Vec<f64>) {
+    out.clear();
+    if e.is_empty() {
+        out.extend(f.iter().map(|x| sign * x));
+        return;
+    }
+    if f.is_empty() {
+        out.extend_from_slice(e);
+        return;
+    }
+    out.reserve(e.len() + f.len());
+    let (mut i, mut j) = (0, 0);
+    let mut next = || {
+        if i < e.len() && (j >= f.len() || e[i].abs() <= f[j].abs()) {
+            i += 1;
+            e[i - 1]
+        } else {
+            j += 1;
+            sign * f[j - 1]
+        }
+    };
+    let mut q = next();
+    for _ in 1..e.len() + f.len() {
+        let (s, err) = two_sum(q, next());
+        push_nonzero(out, err);
+        q = s;
+    }
+    push_nonzero(out, q);
+}
+
+/// The components of `c · b` into `out`, which is cleared first
+/// (Scale-Expansion with zero elimination).
+fn scale_into(c: &[f64], b: f64, out: &mut Vec<f64>) {
+    out.clear();
+    if b == 0.0 || c.is_empty() {
+        return;
+    }
+    out.reserve(2 * c.len());
+    let (mut q, lo) = two_prod(c[0], b);
+    push_nonzero(out, lo);
+    for &e in &c[1..] {
+        let (p1, p0) = two_prod(e, b);
+        let (s, err) = two_sum(q, p0);
+        push_nonzero(out, err);
+        let (s2, err2) = two_sum(p1, s);
+        push_nonzero(out, err2);
+        q = s2;
+    }
+    push_nonzero(out, q);
+}
+
 /// An exact real number as a nonoverlapping expansion (see module docs).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Expansion {
@@ -107,35 +162,8 @@ impl Expansion {
 
     /// Exact sum.
     pub fn add(&self, o: &Expansion) -> Expansion {
-        if self.c.is_empty() {
-            return o.clone();
-        }
-        if o.c.is_empty() {
-            return self.clone();
-        }
-        // Merge by magnitude, then one two_sum chain.
-        let (e, f) = (&self.c, &o.c);
-        let mut g = Vec::with_capacity(e.len() + f.len());
-        let (mut i, mut j) = (0, 0);
-        while i < e.len() && j < f.len() {
-            if e[i].abs() <= f[j].abs() {
-                g.push(e[i]);
-                i += 1;
-            } else {
-                g.push(f[j]);
-                j += 1;
-            }
-        }
-        g.extend_from_slice(&e[i..]);
-        g.extend_from_slice(&f[j..]);
-        let mut h = Vec::with_capacity(g.len());
-        let mut q = g[0];
-        for &x in &g[1..] {
-            let (s, err) = two_sum(q, x);
-            push_nonzero(&mut h, err);
-            q = s;
-        }
-        push_nonzero(&mut h, q);
+        let mut h = Vec::new();
+        sum_into(&self.c, &o.c, 1.0, &mut h);
         Expansion { c: h }
     }
 
@@ -148,26 +176,15 @@ impl Expansion {
 
     /// Exact difference.
     pub fn sub(&self, o: &Expansion) -> Expansion {
-        self.add(&o.neg())
+        let mut h = Vec::new();
+        sum_into(&self.c, &o.c, -1.0, &mut h);
+        Expansion { c: h }
     }
 
     /// Exact product with one double (Scale-Expansion with zero elimination).
     pub fn scale(&self, b: f64) -> Expansion {
-        if b == 0.0 || self.c.is_empty() {
-            return Self::zero();
-        }
-        let mut h = Vec::with_capacity(2 * self.c.len());
-        let (mut q, lo) = two_prod(self.c[0], b);
-        push_nonzero(&mut h, lo);
-        for &e in &self.c[1..] {
-            let (p1, p0) = two_prod(e, b);
-            let (s, err) = two_sum(q, p0);
-            push_nonzero(&mut h, err);
-            let (s2, err2) = two_sum(p1, s);
-            push_nonzero(&mut h, err2);
-            q = s2;
-        }
-        push_nonzero(&mut h, q);
+        let mut h = Vec::new();
+        scale_into(&self.c, b, &mut h);
         Expansion { c: h }
     }
 
@@ -178,11 +195,14 @@ impl Expansion {
         } else {
             (o, self)
         };
-        let mut acc = Expansion::zero();
+        // The partial products and the running sum reuse three buffers.
+        let (mut acc, mut part, mut next) = (Vec::new(), Vec::new(), Vec::new());
         for &b in &small.c {
-            acc = acc.add(&big.scale(b));
+            scale_into(&big.c, b, &mut part);
+            sum_into(&acc, &part, 1.0, &mut next);
+            std::mem::swap(&mut acc, &mut next);
         }
-        acc
+        Expansion { c: acc }
     }
 
     /// Exact `a - b` of two doubles.

@@ -173,6 +173,39 @@ pub struct EpsPoly {
 }
 
 impl EpsPoly {
+    /// `self + o`, or `self − o` when `negate`: the two term lists merged
+    /// by monomial, equal monomials' coefficients added (or subtracted)
+    /// exactly, zero results dropped; no negated copy of `o` is made.
+    fn add_signed(&self, o: &Self, negate: bool) -> Self {
+        let mut t = Vec::with_capacity(self.terms.len() + o.terms.len());
+        let other = |(m, c): &(Mono, Expansion)| (*m, if negate { c.neg() } else { c.clone() });
+        let (mut i, mut j) = (0, 0);
+        while i < self.terms.len() && j < o.terms.len() {
+            match self.terms[i].0.cmp(&o.terms[j].0) {
+                Ordering::Less => {
+                    t.push(self.terms[i].clone());
+                    i += 1;
+                }
+                Ordering::Greater => {
+                    t.push(other(&o.terms[j]));
+                    j += 1;
+                }
+                Ordering::Equal => {
+                    let (a, b) = (&self.terms[i].1, &o.terms[j].1);
+                    let c = if negate { a.sub(b) } else { a.add(b) };
+                    if !c.is_zero() {
+                        t.push((self.terms[i].0, c));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        t.extend_from_slice(&self.terms[i..]);
+        t.extend(o.terms[j..].iter().map(other));
+        EpsPoly { terms: t }
+    }
+
     fn from_terms(mut t: Vec<(Mono, Expansion)>) -> EpsPoly {
         t.sort_by_key(|a| a.0);
         let mut out: Vec<(Mono, Expansion)> = Vec::with_capacity(t.len());
@@ -248,34 +281,10 @@ impl Ring for EpsPoly {
         }
     }
     fn add(&self, o: &Self) -> Self {
-        let mut t = Vec::with_capacity(self.terms.len() + o.terms.len());
-        let (mut i, mut j) = (0, 0);
-        while i < self.terms.len() && j < o.terms.len() {
-            match self.terms[i].0.cmp(&o.terms[j].0) {
-                Ordering::Less => {
-                    t.push(self.terms[i].clone());
-                    i += 1;
-                }
-                Ordering::Greater => {
-                    t.push(o.terms[j].clone());
-                    j += 1;
-                }
-                Ordering::Equal => {
-                    let c = self.terms[i].1.add(&o.terms[j].1);
-                    if !c.is_zero() {
-                        t.push((self.terms[i].0, c));
-                    }
-                    i += 1;
-                    j += 1;
-                }
-            }
-        }
-        t.extend_from_slice(&self.terms[i..]);
-        t.extend_from_slice(&o.terms[j..]);
-        EpsPoly { terms: t }
+        self.add_signed(o, false)
     }
     fn sub(&self, o: &Self) -> Self {
-        self.add(&o.neg())
+        self.add_signed(o, true)
     }
     fn mul(&self, o: &Self) -> Self {
         let mut t = Vec::with_capacity(self.terms.len() * o.terms.len());
