@@ -195,9 +195,14 @@ impl Expansion {
         } else {
             (o, self)
         };
-        // The partial products and the running sum reuse three buffers.
+        // The partial products and the running sum reuse three buffers;
+        // the first partial product is the sum so far.
+        let Some((&first, rest)) = small.c.split_first() else {
+            return Expansion::zero();
+        };
         let (mut acc, mut part, mut next) = (Vec::new(), Vec::new(), Vec::new());
-        for &b in &small.c {
+        scale_into(&big.c, first, &mut acc);
+        for &b in rest {
             scale_into(&big.c, b, &mut part);
             sum_into(&acc, &part, 1.0, &mut next);
             std::mem::swap(&mut acc, &mut next);
