@@ -116,28 +116,56 @@ impl SegEnd {
     }
 }
 
-/// For a segment end whose points start at `p[off]` and the plane of the
-/// triangle at `p[k..k+3]`: `(ĥ, w)` with `O(T_k, E) = ĥ / w`, where `O` is
-/// [`crate::orient3d`] with the point last. For an edge `p q` crossing plane
-/// `T` (`α = O(T,p)`, `β = O(T,q)`): `E = (α q − β p)/(α − β)`, and `O(T_k,·)`
-/// is affine, so `ĥ = α·O(T_k,q) − β·O(T_k,p)`, `w = α − β`. For a vertex:
-/// `ĥ = O(T_k, v)`, `w = 1`.
-fn end_h<T: Ring>(edge: bool, p: &[V3<T>], off: usize, k: usize) -> (T, T) {
-    let tk = (&p[k], &p[k + 1], &p[k + 2]);
-    if edge {
-        let (pp, q) = (&p[off], &p[off + 1]);
-        let t = (&p[off + 2], &p[off + 3], &p[off + 4]);
-        let al = orient3(t.0, t.1, t.2, pp);
-        let be = orient3(t.0, t.1, t.2, q);
-        let gp = orient3(tk.0, tk.1, tk.2, pp);
-        let gq = orient3(tk.0, tk.1, tk.2, q);
-        (al.mul(&gq).sub(&be.mul(&gp)), al.sub(&be))
-    } else {
-        (orient3(tk.0, tk.1, tk.2, &p[off]), T::cst(1.0))
+/// A segment end whose points start at `p[off]`, with the orientations it
+/// needs once however many planes it is measured against. For an edge
+/// `p q` crossing plane `T` (the points `p, q, T` at `p[off..off + 5]`),
+/// `α = O(T,p)` and `β = O(T,q)`, with `O` [`crate::orient3d`] with the
+/// point last: the end is `E = (α q − β p)/(α − β)`. For a vertex, the
+/// vertex.
+enum EndTerms<'a, T> {
+    Edge {
+        al: T,
+        be: T,
+        p: &'a V3<T>,
+        q: &'a V3<T>,
+    },
+    Vertex(&'a V3<T>),
+}
+
+impl<'a, T: Ring> EndTerms<'a, T> {
+    fn of(edge: bool, p: &'a [V3<T>], off: usize) -> Self {
+        if edge {
+            let t = (&p[off + 2], &p[off + 3], &p[off + 4]);
+            EndTerms::Edge {
+                al: orient3(t.0, t.1, t.2, &p[off]),
+                be: orient3(t.0, t.1, t.2, &p[off + 1]),
+                p: &p[off],
+                q: &p[off + 1],
+            }
+        } else {
+            EndTerms::Vertex(&p[off])
+        }
+    }
+
+    /// `ĥ` with `O(T_k, E) = ĥ / w` for the plane of the triangle at
+    /// `p[k..k + 3]`: `O(T_k, ·)` is affine, so for an edge end
+    /// `ĥ = α·O(T_k,q) − β·O(T_k,p)` and `w = α − β`, whose sign is `α`'s
+    /// (`α` and `β` have opposite signs: the edge crosses `T`, in the
+    /// perturbed world too); for a vertex `ĥ = O(T_k, v)`, `w = 1`.
+    fn h(&self, p: &[V3<T>], k: usize) -> T {
+        let tk = (&p[k], &p[k + 1], &p[k + 2]);
+        match self {
+            EndTerms::Edge { al, be, p, q } => {
+                let gp = orient3(tk.0, tk.1, tk.2, p);
+                let gq = orient3(tk.0, tk.1, tk.2, q);
+                al.mul(&gq).sub(&be.mul(&gp))
+            }
+            EndTerms::Vertex(v) => orient3(tk.0, tk.1, tk.2, v),
+        }
     }
 }
 
-/// `ĥ` of [`end_h`] as a predicate polynomial.
+/// `ĥ` of [`EndTerms::h`] as a predicate polynomial.
 struct EndHat {
     edge: bool,
     off: usize,
@@ -145,16 +173,16 @@ struct EndHat {
 }
 impl Poly for EndHat {
     fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
-        end_h(self.edge, p, self.off, self.k).0
+        EndTerms::of(self.edge, p, self.off).h(p, self.k)
     }
 }
-/// `w` of [`end_h`] for an edge end.
-struct EndW {
-    off: usize,
-}
-impl Poly for EndW {
-    fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
-        end_h(true, p, self.off, self.off + 2).1
+
+/// The sign of `w` of an edge end (see [`EndTerms::h`]): that of
+/// `α = O(T, p)`; positive for a vertex.
+fn end_w_sign(end: &SegEnd) -> SosSign {
+    match end {
+        SegEnd::Edge { p, tri, .. } => orient3d_sos(tri[0], tri[1], tri[2], *p),
+        SegEnd::Vertex(_) => SosSign::Positive,
     }
 }
 
@@ -198,8 +226,7 @@ fn end_side_exact(end: &SegEnd, tri: [SymPoint; 3]) -> SosSign {
                 },
                 &pts,
             );
-            let w = sos_sign(&EndW { off: 0 }, &pts);
-            SosSign::from_i8(h.as_i8() * w.as_i8())
+            SosSign::from_i8(h.as_i8() * end_w_sign(end).as_i8())
         }
     }
 }
@@ -288,10 +315,10 @@ struct Cross2 {
 }
 impl Poly for Cross2 {
     fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
-        let (hke, _) = end_h(self.e_edge, p, 0, self.k);
-        let (hme, _) = end_h(self.e_edge, p, 0, self.m);
-        let (hkf, _) = end_h(self.f_edge, p, self.f_off, self.k);
-        let (hmf, _) = end_h(self.f_edge, p, self.f_off, self.m);
+        let e = EndTerms::of(self.e_edge, p, 0);
+        let f = EndTerms::of(self.f_edge, p, self.f_off);
+        let (hke, hme) = (e.h(p, self.k), e.h(p, self.m));
+        let (hkf, hmf) = (f.h(p, self.k), f.h(p, self.m));
         hke.mul(&hmf).sub(&hkf.mul(&hme))
     }
 }
@@ -339,11 +366,7 @@ pub fn order_on_segment(s: &[SegEnd; 2], tk: [SymPoint; 3], tm: [SymPoint; 3]) -
         },
         &pts,
     );
-    let wf = if f.is_edge() {
-        sos_sign(&EndW { off: f_off }, &pts)
-    } else {
-        SosSign::Positive
-    };
+    let wf = end_w_sign(f);
     let om_xk = big.as_i8() * wf.as_i8() * ok_e.as_i8();
     if om_xk == 0 {
         return Ordering::Equal;
@@ -369,6 +392,53 @@ mod tests {
 
     fn sp(x: f64, y: f64, z: f64, id: u32) -> SymPoint {
         SymPoint::new(DVec3::new(x, y, z), id)
+    }
+
+    /// `w = α − β` of an edge end, the polynomial itself: the oracle of
+    /// [`end_w_sign`].
+    struct AlphaMinusBeta;
+    impl Poly for AlphaMinusBeta {
+        fn eval<T: Ring>(&self, p: &[V3<T>]) -> T {
+            let t = (&p[2], &p[3], &p[4]);
+            orient3(t.0, t.1, t.2, &p[0]).sub(&orient3(t.0, t.1, t.2, &p[1]))
+        }
+    }
+
+    /// The sign of an edge end's `w` is its first point's side of the
+    /// plane the edge crosses, as the polynomial `α − β` says, on
+    /// triangles drawn from a 3×3×3 grid of points (coplanar and collinear
+    /// configurations are the rule there, decided in the perturbed world).
+    #[test]
+    fn an_edge_ends_w_has_the_sign_of_its_first_points_side() {
+        let mut rng = Rng::new(30);
+        let grid: Vec<SymPoint> = (0..27)
+            .map(|i| {
+                let at = |k: u32| f64::from((i / 3u32.pow(k)) % 3);
+                sp(at(0), at(1), at(2), i)
+            })
+            .collect();
+        let mut compared = 0;
+        while compared < 2000 {
+            let pick = |rng: &mut Rng| [*rng.pick(&grid), *rng.pick(&grid), *rng.pick(&grid)];
+            let (t1, t2) = (pick(&mut rng), pick(&mut rng));
+            if t1[0].id == t1[1].id || t1[1].id == t1[2].id || t1[0].id == t1[2].id {
+                continue;
+            }
+            if t2[0].id == t2[1].id || t2[1].id == t2[2].id || t2[0].id == t2[2].id {
+                continue;
+            }
+            let Some(ends) = triangle_triangle_segment(t1, t2) else {
+                continue;
+            };
+            for end in &ends {
+                if let SegEnd::Edge { p, q, tri } = end {
+                    let pts = [*p, *q, tri[0], tri[1], tri[2]];
+                    assert_eq!(end_w_sign(end), sos_sign(&AlphaMinusBeta, &pts), "{end:?}");
+                    assert_ne!(end_w_sign(end), SosSign::Degenerate);
+                    compared += 1;
+                }
+            }
+        }
     }
 
     /// The shortcut of [`end_side`] (both ends of the crossing edge on one
