@@ -394,6 +394,26 @@ mod tests {
         SymPoint::new(DVec3::new(x, y, z), id)
     }
 
+    /// The 27 points of a 3×3×3 grid, numbered as their own identities.
+    fn grid() -> Vec<SymPoint> {
+        (0..27)
+            .map(|i| {
+                let at = |k: u32| f64::from((i / 3u32.pow(k)) % 3);
+                sp(at(0), at(1), at(2), i)
+            })
+            .collect()
+    }
+
+    /// A triangle of three distinct points of `grid`, drawn by `rng`.
+    fn grid_triangle(rng: &mut Rng, grid: &[SymPoint]) -> [SymPoint; 3] {
+        loop {
+            let t = [*rng.pick(grid), *rng.pick(grid), *rng.pick(grid)];
+            if t[0].id != t[1].id && t[1].id != t[2].id && t[0].id != t[2].id {
+                return t;
+            }
+        }
+    }
+
     /// `w = α − β` of an edge end, the polynomial itself: the oracle of
     /// [`end_w_sign`].
     struct AlphaMinusBeta;
@@ -411,22 +431,13 @@ mod tests {
     #[test]
     fn an_edge_ends_w_has_the_sign_of_its_first_points_side() {
         let mut rng = Rng::new(30);
-        let grid: Vec<SymPoint> = (0..27)
-            .map(|i| {
-                let at = |k: u32| f64::from((i / 3u32.pow(k)) % 3);
-                sp(at(0), at(1), at(2), i)
-            })
-            .collect();
+        let grid = grid();
         let mut compared = 0;
         while compared < 2000 {
-            let pick = |rng: &mut Rng| [*rng.pick(&grid), *rng.pick(&grid), *rng.pick(&grid)];
-            let (t1, t2) = (pick(&mut rng), pick(&mut rng));
-            if t1[0].id == t1[1].id || t1[1].id == t1[2].id || t1[0].id == t1[2].id {
-                continue;
-            }
-            if t2[0].id == t2[1].id || t2[1].id == t2[2].id || t2[0].id == t2[2].id {
-                continue;
-            }
+            let (t1, t2) = (
+                grid_triangle(&mut rng, &grid),
+                grid_triangle(&mut rng, &grid),
+            );
             let Some(ends) = triangle_triangle_segment(t1, t2) else {
                 continue;
             };
@@ -449,20 +460,8 @@ mod tests {
     #[test]
     fn end_side_shortcut_agrees_with_the_ends_polynomial() {
         let mut rng = Rng::new(29);
-        let grid: Vec<SymPoint> = (0..27)
-            .map(|i| {
-                let at = |k: u32| f64::from((i / 3u32.pow(k)) % 3);
-                sp(at(0), at(1), at(2), i)
-            })
-            .collect();
-        let tri = |rng: &mut Rng| -> [SymPoint; 3] {
-            loop {
-                let t = [*rng.pick(&grid), *rng.pick(&grid), *rng.pick(&grid)];
-                if t[0].id != t[1].id && t[1].id != t[2].id && t[0].id != t[2].id {
-                    return t;
-                }
-            }
-        };
+        let grid = grid();
+        let tri = |rng: &mut Rng| grid_triangle(rng, &grid);
         let (mut compared, mut shortcut) = (0, 0);
         while compared < 2000 {
             let (t1, t2, t3) = (tri(&mut rng), tri(&mut rng), tri(&mut rng));
