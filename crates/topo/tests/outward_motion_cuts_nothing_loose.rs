@@ -75,6 +75,14 @@ fn a_waist_squeezed_through_its_axis_leaves_no_specks() {
         assert!(r.refused.contains(&want), "{:?}", r.refused);
         let loose = format!("pieces cut loose: 1 -> {}", parts.len());
         assert_eq!(r.refused.contains(&loose), outward, "{:?}", r.refused);
+        // The modeler says why in plain words: every reason has them.
+        for why in &r.refused {
+            assert_ne!(
+                holey_topo::audit::in_plain_words(why),
+                why.as_str(),
+                "{why}"
+            );
+        }
     }
 }
 
