@@ -167,6 +167,13 @@ impl Expansion {
         Expansion { c: h }
     }
 
+    /// `self += o` exactly, through `scratch` (any contents; it is left
+    /// holding this expansion's old buffer, for the next call to reuse).
+    pub(crate) fn add_assign_with(&mut self, o: &Expansion, scratch: &mut Vec<f64>) {
+        sum_into(&self.c, &o.c, 1.0, scratch);
+        std::mem::swap(&mut self.c, scratch);
+    }
+
     /// Exact negation.
     pub fn neg(&self) -> Expansion {
         Expansion {

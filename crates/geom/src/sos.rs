@@ -209,11 +209,12 @@ impl EpsPoly {
     fn from_terms(mut t: Vec<(Mono, Expansion)>) -> EpsPoly {
         t.sort_by_key(|a| a.0);
         let mut out: Vec<(Mono, Expansion)> = Vec::with_capacity(t.len());
+        let mut scratch = Vec::new();
         for (m, c) in t {
             if let Some(last) = out.last_mut()
                 && last.0 == m
             {
-                last.1 = last.1.add(&c);
+                last.1.add_assign_with(&c, &mut scratch);
                 continue;
             }
             out.push((m, c));
