@@ -27,6 +27,13 @@ fn json_file(path: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
+/// A file `name` in `dir` holding `text`.
+fn file_in(dir: &Path, name: impl AsRef<Path>, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 fn tmp() -> tempfile::TempDir {
     tempfile::tempdir().expect("a temporary directory")
 }
@@ -187,8 +194,7 @@ fn malformed_input_is_status_2_with_line_and_no_output() {
         ),
     ];
     for (name, text, expect) in cases {
-        let input = dir.path().join(name);
-        std::fs::write(&input, text).unwrap();
+        let input = file_in(dir.path(), name, text);
         let out = dir.path().join(format!("{name}.ply"));
         let err = bad(&["convert", s(&input), s(&out)]);
         assert!(err.contains(expect), "{name}: {err}");
@@ -216,15 +222,13 @@ fn malformed_input_is_status_2_with_line_and_no_output() {
 #[test]
 fn failed_write_leaves_an_existing_output_untouched() {
     let dir = tmp();
-    let out = dir.path().join("keep.dlfl");
-    std::fs::write(&out, "precious").unwrap();
+    let out = file_in(dir.path(), "keep.dlfl", "precious");
     // A non-manifold soup cannot become a DLFL without splitting.
-    let bowtie = dir.path().join("bowtie.obj");
-    std::fs::write(
-        &bowtie,
+    let bowtie = file_in(
+        dir.path(),
+        "bowtie.obj",
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n",
-    )
-    .unwrap();
+    );
     let err = bad(&["convert", s(&bowtie), s(&out)]);
     assert!(err.contains("non-manifold vertex 0"), "{err}");
     assert!(err.contains("--split-nonmanifold"), "{err}");
@@ -243,8 +247,7 @@ fn dlfl_files_keep_what_other_formats_cannot() {
     // A sphere made of a self-loop and two monogons, plus a two-gon sphere
     // and a point-sphere, written by hand.
     let text = "dlfl 1\nv 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 0\nf 0\ne 0:0 1:0\nf 1 2\nf 2 1\ne 2:0 3:0\ne 2:1 3:1\nf 3\n";
-    let path = dir.path().join("odd.dlfl");
-    std::fs::write(&path, text).unwrap();
+    let path = file_in(dir.path(), "odd.dlfl", text);
     let v = info(s(&path), &[]);
     assert_eq!(v["vertices"], 4);
     assert_eq!(v["edges"], 3);
@@ -258,12 +261,11 @@ fn dlfl_files_keep_what_other_formats_cannot() {
     ok(&["convert", s(&path), s(&copy)]);
     assert_eq!(info(s(&copy), &[]), v);
     // A .dlfl whose edges contradict its faces is refused with its line.
-    let broken = dir.path().join("broken.dlfl");
-    std::fs::write(
-        &broken,
+    let broken = file_in(
+        dir.path(),
+        "broken.dlfl",
         "dlfl 1\nv 0 0 0\nv 1 0 0\nf 0 1\nf 0 1\ne 0:0 1:0\ne 0:1 1:1\n",
-    )
-    .unwrap();
+    );
     let err = bad(&["info", s(&broken)]);
     assert!(err.contains("broken.dlfl"), "{err}");
 }
@@ -1365,8 +1367,7 @@ fn topology_commands_refuse_bad_input() {
         ),
     ];
     for (name, text, place) in cases {
-        let path = dir.path().join(name);
-        std::fs::write(&path, text).unwrap();
+        let path = file_in(dir.path(), name, text);
         for args in [
             vec!["topo", s(&path), s(&path), s(&out)],
             vec!["topo", s(&good), s(&path), s(&out)],
@@ -1390,12 +1391,11 @@ fn topology_commands_refuse_bad_input() {
 #[test]
 fn convert_and_sculpt_weld_by_distance() {
     let dir = tmp();
-    let soup = dir.path().join("soup.obj");
-    std::fs::write(
-        &soup,
+    let soup = file_in(
+        dir.path(),
+        "soup.obj",
         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1.000001 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n",
-    )
-    .unwrap();
+    );
     let out = dir.path().join("out.obj");
     let (soup, out) = (s(&soup), s(&out));
     ok(&["convert", soup, out, "--weld", "0"]);
@@ -1407,12 +1407,11 @@ fn convert_and_sculpt_weld_by_distance() {
     assert_eq!(info(out, &[])["vertices"], 4);
     let e = bad(&["convert", soup, out, "--weld=-1"]);
     assert!(e.contains("weld distance"), "{e}");
-    let strokes = dir.path().join("s.json");
-    std::fs::write(
-        &strokes,
+    let strokes = file_in(
+        dir.path(),
+        "s.json",
         r#"{"strokes": [{"brush": "smooth", "radius": 0.5, "strength": 0.5, "path": [[0.5,0.5,0]]}]}"#,
-    )
-    .unwrap();
+    );
     ok(&["sculpt", soup, s(&strokes), out, "--weld", "1e-5"]);
     assert_eq!(info(out, &[])["vertices"], 4);
 }
@@ -1426,13 +1425,12 @@ fn convert_and_sculpt_weld_by_distance() {
 #[test]
 fn sculpt_audit_judges_a_grab_at_its_release() {
     let dir = tmp();
-    let strokes = dir.path().join("grab.json");
-    std::fs::write(
-        &strokes,
+    let strokes = file_in(
+        dir.path(),
+        "grab.json",
         r#"{"strokes": [{"brush": "grab", "radius": 0.7, "strength": 1,
             "path": [[0,0,1], [0,0,0], [0,0,-1.5], [0,0,-2.5], [0,0,-2.5]]}]}"#,
-    )
-    .unwrap();
+    );
     let out = dir.path().join("out.obj");
     let run = holey(&["sculpt", "@sphere:3", s(&strokes), s(&out), "--audit", "-v"]);
     let err = String::from_utf8_lossy(&run.stderr);
