@@ -70,12 +70,7 @@ pub(crate) fn hidden_pieces(
         return 0;
     }
     // Candidates: the components near the change, with their triangles.
-    let mut candidate: rustc_hash::FxHashMap<u32, Vec<usize>> = Default::default();
-    for (i, t) in m.triangles.iter().enumerate() {
-        if t.iter().any(|&v| near(v)) {
-            candidate.entry(root[i]).or_default();
-        }
-    }
+    let mut candidate = near_components(m, root, near, Vec::<usize>::new);
     if candidate.len() > MAX_CANDIDATES {
         return 0;
     }
@@ -124,14 +119,7 @@ pub(crate) fn specks(
     if count < 2 {
         return 0;
     }
-    let mut boxes: rustc_hash::FxHashMap<u32, (DVec3, DVec3)> = Default::default();
-    for (i, t) in m.triangles.iter().enumerate() {
-        if t.iter().any(|&v| near(v)) {
-            boxes
-                .entry(root[i])
-                .or_insert((DVec3::INFINITY, DVec3::NEG_INFINITY));
-        }
-    }
+    let mut boxes = near_components(m, root, near, || (DVec3::INFINITY, DVec3::NEG_INFINITY));
     for (i, t) in m.triangles.iter().enumerate() {
         if let Some((lo, hi)) = boxes.get_mut(&root[i]) {
             for &v in t {
@@ -146,13 +134,35 @@ pub(crate) fn specks(
         .count()
 }
 
+/// The components of `m` (named by `root`, as [`pieces`] gives them)
+/// with a vertex that `near` flags, each with `empty()` to fill in.
+fn near_components<T>(
+    m: &TriMesh,
+    root: &[u32],
+    near: &dyn Fn(u32) -> bool,
+    empty: impl Fn() -> T,
+) -> rustc_hash::FxHashMap<u32, T> {
+    let mut found = rustc_hash::FxHashMap::default();
+    for (t, &r) in m.triangles.iter().zip(root) {
+        if touches(t, near) {
+            found.entry(r).or_insert_with(&empty);
+        }
+    }
+    found
+}
+
+/// Whether triangle `t` has a vertex that `near` flags.
+fn touches(t: &[u32; 3], near: &dyn Fn(u32) -> bool) -> bool {
+    t.iter().any(|&v| near(v))
+}
+
 /// The length of the shortest edge of the triangles of `m` with a vertex
 /// that `near` flags (infinite when there is none).
 pub(crate) fn shortest_edge_near(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> f64 {
     let p = |v: u32| m.positions[v as usize];
     m.triangles
         .iter()
-        .filter(|t| t.iter().any(|&v| near(v)))
+        .filter(|t| touches(t, near))
         .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
         .map(|(a, b)| p(a).distance(p(b)))
         .fold(f64::INFINITY, f64::min)
