@@ -156,7 +156,7 @@ impl SurfaceAudit {
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {
-    const WORDS: [(&str, &str); 8] = [
+    const WORDS: [(&str, &str); 9] = [
         ("boundary loops", "open a hole"),
         (
             "non-manifold curves",
@@ -176,6 +176,10 @@ pub fn in_plain_words(regression: &str) -> &str {
         (
             "specks cut off",
             "leave specks of surface too small to see where it crosses itself",
+        ),
+        (
+            "tiny handles",
+            "crumple the surface into tunnels too small to see",
         ),
     ];
     WORDS

@@ -46,7 +46,9 @@ use crate::drag_path::{DragPath, Numbering};
 use crate::engine::{
     Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
-use crate::hidden::{hidden_pieces, pieces, shortest_edge_near, specks};
+use crate::hidden::{
+    hidden_pieces, pieces, shortest_edge_near, specks, tiny_new_curves, vertex_components,
+};
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
 use crate::mesh::TriMesh;
@@ -482,9 +484,41 @@ fn audit_region(
             a.nonmanifold_curves = a.nonmanifold_curves.min(b.nonmanifold_curves);
             a.pinched_vertices = a.pinched_vertices.min(b.pinched_vertices);
         }
-        b.regressions(&a)
+        let mut worse = b.regressions(&a);
+        worse.extend(crumple(mesh, end, region, sub, out, &was));
+        worse
     };
     Ok(worse)
+}
+
+/// The crumple rule ([`crate::hidden`]): two or more new intersection
+/// curves within one piece of `mesh`, smaller than the shortest edge of
+/// the region (`sub`, at the start) and within one such edge of each
+/// other are handles too small to see, in words. `was` says which of the
+/// pairs of `out`'s intersections (at `end`) intersected at the start.
+fn crumple(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    region: &Region,
+    sub: &TriMesh,
+    out: &Outcome,
+    was: &[bool],
+) -> Option<String> {
+    let x = &out.intersections;
+    if x.curve_count < 2 {
+        return None;
+    }
+    let at = |v: u32| end[region.global[v as usize] as usize];
+    let scale = shortest_edge_near(sub, &|_| true);
+    if tiny_new_curves(sub, &at, x, was, scale, &|_, _| true) < 2 {
+        return None;
+    }
+    // Which curves join pieces is asked only now: the pieces of the
+    // whole surface are one pass over it.
+    let piece = vertex_components(mesh);
+    let piece_of = |t: u32| piece[region.global[sub.triangles[t as usize][0] as usize] as usize];
+    let tiny = tiny_new_curves(sub, &at, x, was, scale, &|s, t| piece_of(s) == piece_of(t));
+    (tiny >= 2).then(|| format!("tiny handles: 0 -> {tiny}"))
 }
 
 /// Whether the triangles of `start` squashed flat (exactly zero area) are

@@ -23,9 +23,21 @@
 //! A speck is a piece whose bounding box has a diagonal shorter than the
 //! shortest edge of the triangles near the change before it. The guard
 //! counts them before and after as it counts hidden pieces.
+//!
+//! A crumple can also leave handles instead of pieces: the cut glues the
+//! surface along every intersection curve, and where many triangles
+//! cross near one point the curves are far smaller than any triangle,
+//! each one a tunnel or neck nobody can see (a rod squeezed through its
+//! axis came out of one frame in one piece with genus 10). So
+//! [`tiny_new_curves`] counts the curves a frame makes that are smaller
+//! than the shortest edge there and lie within one such edge of each
+//! other; the guard
+//! refuses two or more (one is how every contact starts, and separate
+//! contacts lie apart).
 
 use glam::DVec3;
 
+use crate::intersect::{Intersections, Node};
 use crate::mesh::TriMesh;
 use crate::union_find::UnionFind;
 use crate::winding::winding_numbers_at;
@@ -154,6 +166,99 @@ fn near_components<T>(
 /// Whether triangle `t` has a vertex that `near` flags.
 fn touches(t: &[u32; 3], near: &dyn Fn(u32) -> bool) -> bool {
     t.iter().any(|&v| near(v))
+}
+
+/// The most intersection curves of `x` that are new, smaller than
+/// `scale`, lie within one piece and lie together (their bounding boxes
+/// closer than `scale`, directly or through others). New: every triangle
+/// pair on the curve is new (`was[i]` says whether pair `x.pairs[i]`
+/// intersected at the frame's start). Smaller: the diagonal of the
+/// curve's bounding box is shorter than `scale`. Within one piece:
+/// `one_piece(s, t)` for every pair `(s, t)` on it; a curve between two
+/// pieces joins them (the triangles of a soup welding as they touch)
+/// where a curve within one makes a handle. `x` holds the static
+/// intersections of `m` with vertex `v` at `at(v)` (a frame's end).
+///
+/// One such curve is how every contact starts (two bulges touching, a
+/// vertex poking through a face), and the next frames grow it; several
+/// within an edge of each other in one frame, each smaller than any edge
+/// there, are a crumple (module docs).
+pub(crate) fn tiny_new_curves(
+    m: &TriMesh,
+    at: &dyn Fn(u32) -> DVec3,
+    x: &Intersections,
+    was: &[bool],
+    scale: f64,
+    one_piece: &dyn Fn(u32, u32) -> bool,
+) -> usize {
+    let n = x.curve_count;
+    let mut new = vec![true; n];
+    let mut bounds = vec![(DVec3::INFINITY, DVec3::NEG_INFINITY); n];
+    for (piece, &c) in x.pieces.iter().zip(&x.curve_of_piece) {
+        let c = c as usize;
+        let pair = (piece.tris[0], piece.tris[1]);
+        if let Ok(i) = x.pairs.binary_search(&pair)
+            && was.get(i).copied().unwrap_or(false)
+        {
+            new[c] = false;
+        }
+        if !one_piece(pair.0, pair.1) {
+            new[c] = false;
+        }
+        let (lo, hi) = &mut bounds[c];
+        let mut grow = |p: DVec3| (*lo, *hi) = (lo.min(p), hi.max(p));
+        for node in piece.ends {
+            match node {
+                Node::Point(j) => grow(x.points[j as usize].position),
+                // A vertex both triangles have: their common corner.
+                Node::Shared(_) => {
+                    let [a, b] = piece.tris.map(|t| m.triangles[t as usize].map(at));
+                    a.iter().filter(|p| b.contains(p)).for_each(|&p| grow(p));
+                }
+            }
+        }
+    }
+    // The tiny new curves, and of them the largest cluster closer than
+    // `scale` to one another (boxes grown by half of it meet): a
+    // crumple's curves crowd where its triangles cross, within an edge of
+    // each other, while separate contacts (a brush and its mirror image)
+    // lie apart.
+    let half = DVec3::splat(0.5 * scale);
+    let mut tiny: Vec<(DVec3, DVec3)> = new
+        .iter()
+        .zip(&bounds)
+        .filter(|&(&new, (lo, hi))| new && (*hi - *lo).length() < scale)
+        .map(|(_, (lo, hi))| (*lo - half, *hi + half))
+        .collect();
+    // Boxes that meet, by a sweep along x.
+    tiny.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
+    let mut uf = UnionFind::new(tiny.len());
+    for (i, (lo, hi)) in tiny.iter().enumerate() {
+        for (j, (lo2, hi2)) in tiny.iter().enumerate().skip(i + 1) {
+            if lo2.x > hi.x {
+                break;
+            }
+            if lo.cmple(*hi2).all() && lo2.cmple(*hi).all() {
+                uf.union(i as u32, j as u32);
+            }
+        }
+    }
+    let mut size = vec![0usize; tiny.len()];
+    for i in 0..tiny.len() as u32 {
+        size[uf.find(i) as usize] += 1;
+    }
+    size.into_iter().max().unwrap_or(0)
+}
+
+/// The connected piece of each vertex of `m` (pieces numbered from 0 in
+/// order of their first vertex; a vertex no triangle uses is its own).
+pub(crate) fn vertex_components(m: &TriMesh) -> Vec<u32> {
+    let mut sets = UnionFind::new(m.positions.len());
+    for t in &m.triangles {
+        sets.union(t[0], t[1]);
+        sets.union(t[1], t[2]);
+    }
+    sets.labels().0
 }
 
 /// The length of the shortest edge of the triangles of `m` with a vertex

@@ -83,6 +83,7 @@ use rayon::prelude::*;
 
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
+use crate::hidden::vertex_components;
 use crate::intersect::{default_pair_limit, intersections_limited};
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::union::Operation;
@@ -419,17 +420,6 @@ pub fn boolean_by_winding_robust(
     // Every attempt and check counts.
     out.report.seconds.total = started.elapsed().as_secs_f64();
     Ok(out)
-}
-
-/// The connected piece of each vertex of `m` (pieces numbered from 0 in
-/// order of their first vertex; a vertex no triangle uses is its own).
-fn vertex_components(m: &TriMesh) -> Vec<u32> {
-    let mut sets = UnionFind::new(m.positions.len());
-    for t in &m.triangles {
-        sets.union(t[0], t[1]);
-        sets.union(t[1], t[2]);
-    }
-    sets.labels().0
 }
 
 /// A unit direction for piece `j`, none for piece 0: points of a
