@@ -620,7 +620,7 @@ pub fn columns(mesh: &Mesh, params: &ColumnParams) -> Result<Mesh, WireframeErro
         return Err(WireframeError::InvalidThickness(r));
     }
     let cs = Corners::new(mesh)?;
-    check_size(cs.len() as u64 * n as u64 * 4)?;
+    check_size((cs.len() as u64).saturating_mul(n as u64).saturating_mul(4))?;
     let ports = port_points(mesh, &cs, n, r)?;
     let mut b = Builder::default();
     // Port vertices: corner c's port is q(c, m) = base[c] + m.

@@ -54,7 +54,12 @@ pub fn extrude_face_dome(
         params.rings >= 1
     })?;
     let (corners, points, frame) = base_face(mesh, face)?;
-    check_size((params.rings as u64 * 5 + 3) * corners.len() as u64)?;
+    check_size(
+        (params.rings as u64)
+            .saturating_mul(5)
+            .saturating_add(3)
+            .saturating_mul(corners.len() as u64),
+    )?;
     let (c, n) = (frame.centroid, frame.normal);
     let h = params.height_factor * frame.radius;
     let k = params.rings;

@@ -116,7 +116,13 @@ pub(crate) fn extrude_repeated(
     mut next: impl FnMut(&[DVec3]) -> Vec<DVec3>,
 ) -> Result<Extruded, ExtrudeError> {
     // Each ring adds d quads (4d corners) and d top corners.
-    check_size(count as u64 * 5 * corners.len() as u64)?;
+    // Saturating: a count near `usize::MAX` is refused as oversized, not
+    // wrapped into a small size.
+    check_size(
+        (count as u64)
+            .saturating_mul(5)
+            .saturating_mul(corners.len() as u64),
+    )?;
     let mut rings: Vec<Vec<DVec3>> = Vec::with_capacity(count);
     for k in 0..count {
         let ring = next(rings.last().unwrap_or(&points));

@@ -596,6 +596,14 @@ fn stellation_apex_and_refusals() {
     };
     assert!(extrude_face_dome(&mut m, face(&m0, 0), &zero_rings).is_err());
     unchanged(&m, &m0);
+    // So many rings that their size would wrap: refused as too large.
+    let endless = DomeParams {
+        height_factor: 1.0,
+        rings: usize::MAX,
+    };
+    let err = extrude_face_dome(&mut m, face(&m0, 0), &endless).unwrap_err();
+    assert!(matches!(err, ExtrudeError::TooLarge { .. }), "{err}");
+    unchanged(&m, &m0);
 }
 
 #[test]
