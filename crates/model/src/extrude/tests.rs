@@ -3,7 +3,7 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use crate::test_util::{check, prim, shared_edge, state};
+use crate::test_util::{check, prim, shared_edge, signed_volume, state};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
@@ -54,20 +54,6 @@ fn expect_delta_on_copy(m0: &Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut 
 
 fn unchanged(m: &Mesh, before: &Mesh) {
     assert_eq!(m.to_raw(), before.to_raw());
-}
-
-fn signed_volume(m: &Mesh) -> f64 {
-    let mut vol = 0.0;
-    for f in m.faces() {
-        if m.is_hole(f).unwrap() {
-            continue;
-        }
-        let p = m.face_positions(f).unwrap();
-        for k in 1..p.len().saturating_sub(1) {
-            vol += p[0].dot(p[k].cross(p[k + 1]));
-        }
-    }
-    vol / 6.0
 }
 
 fn edge_lengths(m: &Mesh) -> Vec<f64> {
