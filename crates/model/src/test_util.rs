@@ -40,6 +40,12 @@ pub(crate) fn check(m: &Mesh) {
     assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
 }
 
+/// Asserts that `m` is `before` as it was: what a refused operation
+/// must leave.
+pub(crate) fn unchanged(m: &Mesh, before: &Mesh) {
+    assert_eq!(m.to_raw(), before.to_raw());
+}
+
 /// The signed volume of `m`'s faces (holes left out), each fanned from its
 /// first corner: positive for a closed mesh whose faces turn
 /// counter-clockwise seen from outside.

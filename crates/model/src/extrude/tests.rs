@@ -3,7 +3,7 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use crate::test_util::{check, prim, shared_edge, signed_volume, state};
+use crate::test_util::{check, prim, shared_edge, signed_volume, state, unchanged};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
@@ -50,10 +50,6 @@ fn expect_plain_delta(
 /// operation tried on the same face.
 fn expect_delta_on_copy(m0: &Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)) {
     expect_delta(&mut m0.clone(), delta, op);
-}
-
-fn unchanged(m: &Mesh, before: &Mesh) {
-    assert_eq!(m.to_raw(), before.to_raw());
 }
 
 fn edge_lengths(m: &Mesh) -> Vec<f64> {
