@@ -34,6 +34,12 @@ fn on_copies<O>(bencher: Bencher, base: &Mesh, run: impl Fn(Mesh) -> O) {
     bencher.with_inputs(|| base.clone()).bench_local_values(run);
 }
 
+/// Times `make`, a tool that builds a new mesh from `base`; each sample
+/// returns the new mesh's face count.
+fn on_new_meshes<E>(bencher: Bencher, base: &Mesh, make: impl Fn(&Mesh) -> Result<Mesh, E> + Sync) {
+    bencher.bench(|| black_box(make(base)).map(|m| m.face_count()));
+}
+
 /// Times rendering the primitive `spec` at `width` × `height`.
 fn render_primitive(bencher: Bencher, spec: &str, width: u32, height: u32) {
     let soup = holey_shapes::parse_primitive(spec).unwrap_or_else(|e| panic!("{e}"));
@@ -137,13 +143,13 @@ fn rind_100k_faces_punch_all(bencher: Bencher) {
 #[divan::bench(sample_count = 5)]
 fn catmull_clark_to_1m(bencher: Bencher) {
     let base = primitive("@torus:64:64");
-    bencher.bench(|| black_box(catmull_clark(&base, 4)).map(|m| m.face_count()));
+    on_new_meshes(bencher, &base, |m| catmull_clark(m, 4));
 }
 
 #[divan::bench(sample_count = 5)]
 fn doo_sabin_to_1m(bencher: Bencher) {
     let base = primitive("@torus:64:64");
-    bencher.bench(|| black_box(doo_sabin(&base, 4)).map(|m| m.face_count()));
+    on_new_meshes(bencher, &base, |m| doo_sabin(m, 4));
 }
 
 /// Issue 18's families at about a million output faces, on a
@@ -186,7 +192,7 @@ fn stellate_every_face_of_a_256_torus(bencher: Bencher) {
 #[divan::bench(sample_count = 3)]
 fn wireframe_to_1m(bencher: Bencher) {
     let base = primitive("@torus:320:320");
-    bencher.bench(|| black_box(wireframe(&base, 0.001)).map(|m| m.face_count()));
+    on_new_meshes(bencher, &base, |m| wireframe(m, 0.001));
 }
 
 /// Hexagonal columns on every edge of the 128 × 128 torus, with their
@@ -198,7 +204,7 @@ fn columns_6_on_every_edge(bencher: Bencher) {
         sides: 6,
         radius: 0.002,
     };
-    bencher.bench(|| black_box(columns(&base, &params)).map(|m| m.face_count()));
+    on_new_meshes(bencher, &base, |m| columns(m, &params));
 }
 
 /// Every vertex of a 512 × 512 torus truncated: V + F = 524,288 faces.
@@ -258,7 +264,7 @@ fn sphere_points(n: usize) -> Mesh {
 #[divan::bench(sample_count = 3)]
 fn convex_hull_of_500k_sphere_points(bencher: Bencher) {
     let base = sphere_points(500_000);
-    bencher.bench(|| black_box(convex_hull(&base)).map(|m| m.face_count()));
+    on_new_meshes(bencher, &base, convex_hull);
 }
 
 /// The dual convex hull of 100,000 points on a sphere: 100,000 faces,
@@ -266,5 +272,5 @@ fn convex_hull_of_500k_sphere_points(bencher: Bencher) {
 #[divan::bench(sample_count = 3)]
 fn dual_convex_hull_of_100k_sphere_points(bencher: Bencher) {
     let base = sphere_points(100_000);
-    bencher.bench(|| black_box(dual_convex_hull(&base)).map(|m| m.face_count()));
+    on_new_meshes(bencher, &base, dual_convex_hull);
 }

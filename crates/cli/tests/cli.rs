@@ -22,9 +22,15 @@ fn bad(args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
-/// The JSON a command wrote to `path` (its --report).
-fn json_file(path: &Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+/// Runs `holey ARGS --report DIR/report.json` and returns the report it
+/// wrote (a report left by an earlier run is removed first).
+fn reported(dir: &Path, args: &[&str]) -> Value {
+    let r = dir.join("report.json");
+    let _ = std::fs::remove_file(&r);
+    let mut all = args.to_vec();
+    all.extend(["--report", s(&r)]);
+    ok(&all);
+    serde_json::from_str(&std::fs::read_to_string(&r).unwrap()).unwrap()
 }
 
 /// A file `name` in `dir` holding `text`.
@@ -865,17 +871,14 @@ fn union_of_lattice_aligned_cubes() {
     let dir = tmp();
     let (a, b) = shifted_pair(dir.path(), "@cube:4", [1.0, 0.0, 0.0]);
     let u = dir.path().join("u.obj");
-    let r = dir.path().join("r.json");
-    ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
+    let report = reported(dir.path(), &["union", s(&a), s(&b), s(&u)]);
     let m = info(s(&u), &[]);
     assert_one_closed_sphere(&m, "union");
     let v = m["volume"].as_f64().unwrap();
     assert!((v - 12.0).abs() < 1e-6, "volume {v}");
-    let report = json_file(&r);
     assert_eq!(report["perturbation_retries"], 1);
     // --exact keeps the first attempt, whatever it gives.
-    ok(&["union", s(&a), s(&b), s(&u), "--exact", "--report", s(&r)]);
-    let report = json_file(&r);
+    let report = reported(dir.path(), &["union", s(&a), s(&b), s(&u), "--exact"]);
     assert_eq!(report["perturbation_retries"], 0);
 }
 
@@ -892,8 +895,7 @@ fn intersection_and_difference_of_two_cubes() {
     let overlap = 1.1 * 1.3 * 1.45;
     for (cmd, want) in [("intersection", overlap), ("difference", 8.0 - overlap)] {
         let out = dir.path().join(format!("{cmd}.obj"));
-        let r = dir.path().join(format!("{cmd}.json"));
-        ok(&[cmd, s(&a), s(&b), s(&out), "--report", s(&r)]);
+        let report = reported(dir.path(), &[cmd, s(&a), s(&b), s(&out)]);
         let m = info(s(&out), &[]);
         assert_one_closed_sphere(&m, cmd);
         let v = m["volume"].as_f64().unwrap();
@@ -902,7 +904,6 @@ fn intersection_and_difference_of_two_cubes() {
             "{cmd}: volume {v}, expected {want}"
         );
         assert_eq!(selfint(&out)["intersecting_pairs"], 0, "{cmd}");
-        let report = json_file(&r);
         assert!(
             report["intersection_curves"].as_u64().unwrap() >= 1,
             "{cmd}"
@@ -917,9 +918,7 @@ fn intersection_and_difference_of_two_cubes() {
     lines.remove(last_face);
     std::fs::write(&open, lines.join("\n")).unwrap();
     let out = dir.path().join("open.ply");
-    let r = dir.path().join("open.json");
-    ok(&["difference", s(&a), s(&open), s(&out), "--report", s(&r)]);
-    let report = json_file(&r);
+    let report = reported(dir.path(), &["difference", s(&a), s(&open), s(&out)]);
     assert_eq!(report["inputs_closed"], serde_json::json!([true, false]));
 }
 
@@ -982,10 +981,8 @@ fn crossing_and_many_solids_by_the_winding_number() {
         assert_eq!(selfint(out)["intersecting_pairs"], 0, "{what}");
     };
     let out = dir.path().join("one.obj");
-    let r = dir.path().join("one.json");
-    ok(&["union", s(&shells), s(&out), "--report", s(&r)]);
+    let report = reported(dir.path(), &["union", s(&shells), s(&out)]);
     check(&out, united, "one input");
-    let report = json_file(&r);
     assert_eq!(report["method"], "winding");
     assert_eq!(report["output_intersecting_pairs"], 0);
     assert!(report["cells"].as_u64().unwrap() >= 2);
@@ -995,10 +992,8 @@ fn crossing_and_many_solids_by_the_winding_number() {
     check(&out, united + 8.0, "three inputs");
 
     let out = dir.path().join("minus.obj");
-    let r = dir.path().join("minus.json");
-    ok(&["difference", s(&shells), s(&c), s(&out), "--report", s(&r)]);
+    let report = reported(dir.path(), &["difference", s(&shells), s(&c), s(&out)]);
     check(&out, united, "crossing minus apart");
-    let report = json_file(&r);
     assert_eq!(report["method"], "winding");
 
     // An open input counts by its generalized winding number, and the
@@ -1009,9 +1004,7 @@ fn crossing_and_many_solids_by_the_winding_number() {
     let kept: Vec<&str> = text.lines().filter(|l| !l.starts_with("f 5")).collect();
     std::fs::write(&open, kept.join("\n")).unwrap();
     let out = dir.path().join("open_union.obj");
-    let r = dir.path().join("open_union.json");
-    ok(&["union", s(&a), s(&b), s(&open), s(&out), "--report", s(&r)]);
-    let report = json_file(&r);
+    let report = reported(dir.path(), &["union", s(&a), s(&b), s(&open), s(&out)]);
     assert_eq!(
         report["inputs_closed"],
         serde_json::json!([true, true, false])
@@ -1034,8 +1027,7 @@ fn union_of_two_spheres_is_one_closed_solid() {
     let dir = tmp();
     let (a, b) = shifted_pair(dir.path(), "@sphere:4", [1.0, 0.0, 0.0]);
     let u = dir.path().join("u.ply");
-    let r = dir.path().join("r.json");
-    ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
+    let report = reported(dir.path(), &["union", s(&a), s(&b), s(&u)]);
     let m = info(s(&u), &[]);
     assert_one_closed_sphere(&m, "union");
     let one = info(s(&a), &[])["volume"].as_f64().unwrap();
@@ -1052,7 +1044,6 @@ fn union_of_two_spheres_is_one_closed_solid() {
     );
     // Closed solids: the parity is computed by containment rays, not by
     // simulating the motion.
-    let report = json_file(&r);
     assert_eq!(report["collisions"], 0);
     assert!(report["containment_rays"].as_u64().unwrap() >= 2);
     assert_eq!(report["intersection_curves"], 1);
@@ -1064,19 +1055,11 @@ fn union_of_two_spheres_is_one_closed_solid() {
     // kept it (no retry), and the motion starts nudged unless --exact.
     assert_eq!(report["perturbation_retries"], 0);
     let um = dir.path().join("um.ply");
-    let rm = dir.path().join("rm.json");
-    ok(&[
-        "union",
-        s(&a),
-        s(&b),
-        s(&um),
-        "--via-motion",
-        "--exact",
-        "--report",
-        s(&rm),
-    ]);
+    let motion = reported(
+        dir.path(),
+        &["union", s(&a), s(&b), s(&um), "--via-motion", "--exact"],
+    );
     let mm = info(s(&um), &[]);
-    let motion = json_file(&rm);
     // The library's choice, named in the report.
     assert_eq!(report["method"], "containment");
     assert_eq!(motion["method"], "motion");
@@ -1106,12 +1089,10 @@ fn union_with_an_open_surface() {
     let dir = tmp();
     let (a, b) = shifted_pair(dir.path(), "@sphere:2", [1.0, 0.0, 0.0]);
     let u = dir.path().join("u.ply");
-    let r = dir.path().join("r.json");
     let text = std::fs::read_to_string(&b).unwrap();
     let last_face = text.rfind("\nf ").unwrap();
     std::fs::write(&b, &text[..last_face + 1]).unwrap();
-    ok(&["union", s(&a), s(&b), s(&u), "--report", s(&r)]);
-    let report = json_file(&r);
+    let report = reported(dir.path(), &["union", s(&a), s(&b), s(&u)]);
     assert_eq!(report["method"], "winding");
     assert_eq!(report["inputs_closed"], serde_json::json!([true, false]));
     assert_eq!(report["intersection_curves"], 1);
@@ -1121,16 +1102,7 @@ fn union_with_an_open_surface() {
     assert_eq!(m["boundary_edges"], 3);
     assert_eq!(m["components"], 1);
 
-    ok(&[
-        "union",
-        s(&a),
-        s(&b),
-        s(&u),
-        "--report",
-        s(&r),
-        "--via-motion",
-    ]);
-    let report = json_file(&r);
+    let report = reported(dir.path(), &["union", s(&a), s(&b), s(&u), "--via-motion"]);
     assert!(report["collisions"].as_u64().unwrap() > 0);
     assert_eq!(report["containment_rays"], 0);
     assert_eq!(report["intersection_curves"], 1);
@@ -1262,28 +1234,17 @@ fn topo_punches_a_tunnel_and_reports_it() {
     let a = dir.path().join("a.obj");
     let b = dir.path().join("b.obj");
     let out = dir.path().join("out.obj");
-    let r = dir.path().join("r.json");
     let p = dir.path().join("p.ply");
     ok(&["primitive", "@sphere:4", s(&a)]);
     bumped_obj(&a, &b, [0.013, 0.007, 1.0], [0.0, 0.0, -2.6], 0.35);
     for extra in [&[][..], &["--scheme", "majority"], &["--float-ccd"]] {
-        let mut args = vec![
-            "topo",
-            s(&a),
-            s(&b),
-            s(&out),
-            "--report",
-            s(&r),
-            "--parity",
-            s(&p),
-        ];
+        let mut args = vec!["topo", s(&a), s(&b), s(&out), "--parity", s(&p)];
         args.extend_from_slice(extra);
-        ok(&args);
+        let report = reported(dir.path(), &args);
         let m = info(s(&out), &[]);
         assert_eq!(m["closed"], true, "{extra:?}");
         assert_eq!(m["manifold"], true, "{extra:?}");
         assert_eq!(m["genus"], 1, "{extra:?}: a tunnel");
-        let report = json_file(&r);
         assert!(report["collisions"].as_u64().unwrap() > 0, "{extra:?}");
         assert!(
             report["intersection_curves"].as_u64().unwrap() >= 1,

@@ -113,10 +113,17 @@ impl PolyMesh {
 
     /// The mesh moved by `offset`, its faces as they are.
     pub fn translated(&self, offset: DVec3) -> PolyMesh {
-        PolyMesh {
-            positions: self.positions.iter().map(|&p| p + offset).collect(),
-            ..self.clone()
+        self.transformed(|p| p + offset)
+    }
+
+    /// The mesh with every position mapped by `f` (an affine map, a
+    /// projection, anything), its faces as they are.
+    pub fn transformed(&self, f: impl Fn(DVec3) -> DVec3) -> PolyMesh {
+        let mut m = self.clone();
+        for p in &mut m.positions {
+            *p = f(*p);
         }
+        m
     }
 
     /// Checks offsets, index ranges and finiteness of positions.

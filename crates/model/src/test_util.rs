@@ -40,6 +40,29 @@ pub(crate) fn check(m: &Mesh) {
     assert_eq!(v - e + f, 2 * c as i64 - 2 * g, "Euler's formula");
 }
 
+/// Asserts that `m` is `before` as it was: what a refused operation
+/// must leave.
+pub(crate) fn unchanged(m: &Mesh, before: &Mesh) {
+    assert_eq!(m.to_raw(), before.to_raw());
+}
+
+/// The signed volume of `m`'s faces (holes left out), each fanned from its
+/// first corner: positive for a closed mesh whose faces turn
+/// counter-clockwise seen from outside.
+pub(crate) fn signed_volume(m: &Mesh) -> f64 {
+    let mut vol = 0.0;
+    for f in m.faces() {
+        if m.is_hole(f).unwrap() {
+            continue;
+        }
+        let p = m.face_positions(f).unwrap();
+        for k in 1..p.len().saturating_sub(1) {
+            vol += p[0].dot(p[k].cross(p[k + 1]));
+        }
+    }
+    vol / 6.0
+}
+
 /// An edge of face `a` that has face `b` on its other side, if the two
 /// faces are neighbours.
 pub(crate) fn shared_edge(m: &Mesh, a: FaceId, b: FaceId) -> Option<EdgeId> {

@@ -2,14 +2,11 @@
 //! applied to a tetrahedron (A) and a cube (B), through the public API.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
-use holey_dlfl::Mesh;
-use holey_dlfl::convert::{ImportOptions, to_dlfl};
-use holey_model::sierpinski::{SierpinskiError, sierpinski};
+mod soups_and_oracles;
 
-fn primitive(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
+use holey_dlfl::Mesh;
+use holey_model::sierpinski::{SierpinskiError, sierpinski};
+use soups_and_oracles::prim;
 
 fn loops(m: &Mesh) -> usize {
     m.edges().filter(|&e| m.is_self_loop(e).unwrap()).count()
@@ -17,7 +14,7 @@ fn loops(m: &Mesh) -> usize {
 
 #[test]
 fn figure_39a_sierpinski_tetrahedron() {
-    let mut m = primitive("@tetrahedron");
+    let mut m = prim("@tetrahedron");
     // The thesis's numbers: V/E/F, genus, self-loops per iteration.
     for (v, e, f, g, l) in [
         (10, 30, 16, 3, 6),
@@ -45,7 +42,7 @@ fn figure_39a_sierpinski_tetrahedron() {
 fn figure_39b_sierpinski_cube() {
     // §VI.6: a cube has only 3-valent convex vertices, so after one
     // iteration the mesh is made of tetrahedral pyramids only.
-    let mut m = primitive("@cube");
+    let mut m = prim("@cube");
     sierpinski(&mut m, 3).unwrap();
     m.validate().unwrap();
     assert_eq!(
@@ -59,7 +56,7 @@ fn figure_39b_sierpinski_cube() {
 
 #[test]
 fn sierpinski_refuses_open_meshes() {
-    let mut m = primitive("@plane:2:2");
+    let mut m = prim("@plane:2:2");
     assert!(matches!(
         sierpinski(&mut m, 1),
         Err(SierpinskiError::OpenSurface { .. })

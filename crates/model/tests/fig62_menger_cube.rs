@@ -4,17 +4,15 @@
 //! against the shared level-3 mesh.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
-use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+mod soups_and_oracles;
+
+use holey_dlfl::convert::to_poly;
 use holey_dlfl::dlfl_info;
 use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::analysis::analyze;
 use holey_model::handle::geometry::vector_area;
 use holey_model::menger::{MengerParams, Thickness, exact_counts, menger};
-
-fn cube() -> Mesh {
-    let poly = holey_shapes::parse_primitive("@cube").unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
+use soups_and_oracles::prim;
 
 fn thesis(iterations: usize) -> MengerParams {
     MengerParams {
@@ -41,7 +39,7 @@ fn min_face_area(m: &Mesh) -> f64 {
 
 #[test]
 fn figure_62_level_one() {
-    let mut m = cube();
+    let mut m = prim("@cube");
     menger(&mut m, &thesis(1)).unwrap();
     m.validate().unwrap();
     assert_eq!(
@@ -60,7 +58,7 @@ fn figure_62_level_one() {
 
 #[test]
 fn figure_62_level_two() {
-    let mut m = cube();
+    let mut m = prim("@cube");
     let report = menger(&mut m, &thesis(2)).unwrap();
     m.validate().unwrap();
     assert_eq!(m.genus(), 81);
@@ -75,7 +73,7 @@ fn figure_62_level_two() {
 #[test]
 fn exact_mode_levels_one_to_three() {
     for level in 1..=3 {
-        let mut m = cube();
+        let mut m = prim("@cube");
         menger(&mut m, &exact(level)).unwrap();
         m.validate().unwrap();
         let (v, e, f, g) = exact_counts(level).unwrap();
@@ -104,7 +102,7 @@ fn exact_level_three_matches_the_shared_mesh() {
     assert!(theirs.closed && theirs.manifold);
     assert_eq!(theirs.genus, Some(1409));
 
-    let mut m = cube();
+    let mut m = prim("@cube");
     menger(&mut m, &exact(3)).unwrap();
     m.validate().unwrap();
     assert_eq!(m.genus(), 1409);

@@ -3,18 +3,16 @@
 //! cube with another thickness.
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
+mod soups_and_oracles;
+
 use holey_dlfl::Mesh;
-use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_dlfl::convert::to_poly;
 use holey_mesh::analysis::analyze;
 use holey_model::menger::{MengerParams, Thickness, menger};
-
-fn primitive(spec: &str) -> Mesh {
-    let poly = holey_shapes::parse_primitive(spec).unwrap();
-    to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
-}
+use soups_and_oracles::prim;
 
 fn run(spec: &str, ratio: f64) -> (Mesh, Mesh) {
-    let before = primitive(spec);
+    let before = prim(spec);
     let mut m = before.clone();
     let params = MengerParams {
         thickness: Thickness::RatioOfMeanEdge(ratio),

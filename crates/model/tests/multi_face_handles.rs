@@ -185,19 +185,9 @@ fn spot_faces_too_large_for_their_gap_are_refused_for_crossing() {
 /// `@cube`s of side `2·size` centred at `centres`, one component each.
 fn cubes(centres: &[(DVec3, f64)]) -> Mesh {
     let one = holey_shapes::parse_primitive("@cube").unwrap();
-    let mut s = PolyMesh {
-        face_offsets: vec![0],
-        ..PolyMesh::default()
-    };
+    let mut s = PolyMesh::new();
     for &(c, size) in centres {
-        let base = s.positions.len() as u32;
-        let shift = s.face_indices.len() as u32;
-        s.positions
-            .extend(one.positions.iter().map(|&p| p * size + c));
-        s.face_offsets
-            .extend(one.face_offsets.iter().skip(1).map(|&o| o + shift));
-        s.face_indices
-            .extend(one.face_indices.iter().map(|&i| i + base));
+        s.append(&one.transformed(|p| p * size + c));
     }
     to_dlfl(&s, ImportOptions::default()).unwrap().mesh
 }

@@ -6,12 +6,8 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl};
 use holey_dlfl::{DVec3, EdgeId, Mesh, VertexId};
 
 use super::*;
-use crate::test_util::{check, counts, prim};
+use crate::test_util::{check, counts, prim, unchanged};
 use crate::truncate::{truncate_all_vertices, truncate_edges, truncate_vertices};
-
-fn unchanged(m: &Mesh, before: &Mesh) {
-    assert_eq!(m.to_raw(), before.to_raw());
-}
 
 fn face_sizes(m: &Mesh) -> Vec<usize> {
     let mut s: Vec<usize> = m.faces().map(|f| m.face_len(f).unwrap()).collect();

@@ -3,7 +3,7 @@
 //! geometry where a kind promises a regular solid, refusals that leave the
 //! mesh unchanged, faces of different sizes and meshes with holes.
 
-use crate::test_util::{check, prim, shared_edge, state};
+use crate::test_util::{check, prim, shared_edge, signed_volume, state, unchanged};
 use holey_dlfl::{DVec3, FaceId, Mesh, VertexId};
 
 use super::*;
@@ -50,24 +50,6 @@ fn expect_plain_delta(
 /// operation tried on the same face.
 fn expect_delta_on_copy(m0: &Mesh, delta: (i64, i64, i64), op: impl FnOnce(&mut Mesh)) {
     expect_delta(&mut m0.clone(), delta, op);
-}
-
-fn unchanged(m: &Mesh, before: &Mesh) {
-    assert_eq!(m.to_raw(), before.to_raw());
-}
-
-fn signed_volume(m: &Mesh) -> f64 {
-    let mut vol = 0.0;
-    for f in m.faces() {
-        if m.is_hole(f).unwrap() {
-            continue;
-        }
-        let p = m.face_positions(f).unwrap();
-        for k in 1..p.len().saturating_sub(1) {
-            vol += p[0].dot(p[k].cross(p[k + 1]));
-        }
-    }
-    vol / 6.0
 }
 
 fn edge_lengths(m: &Mesh) -> Vec<f64> {
@@ -470,52 +452,67 @@ fn cubical_extrusion_grows_cubes() {
     assert!((signed_volume(&m) - 24.0).abs() < 1e-9);
 }
 
-#[test]
-fn octahedral_extrusion_of_a_regular_triangle_is_a_regular_octahedron() {
-    let mut m = prim("@tetrahedron");
-    let f = face(&m, 3);
+/// Extrudes face `index` of the regular solid `spec` by `extrude` at
+/// height factor 1 and returns the mesh, asserting the change `delta`
+/// (ΔV, ΔE, ΔF), a top the size of the base, `sides` planar walls of
+/// `side` corners each, and that every edge, old and new, keeps the
+/// solid's edge length.
+fn grows_regular(
+    spec: &str,
+    index: usize,
+    extrude: fn(&mut Mesh, FaceId, f64) -> Result<Extruded, ExtrudeError>,
+    delta: (i64, i64, i64),
+    (sides, side): (usize, usize),
+) -> Mesh {
+    let mut m = prim(spec);
+    let f = face(&m, index);
+    let d = m.face_len(f).unwrap();
     let a = edge_lengths(&m)[0];
-    expect_delta(&mut m, (3, 9, 6), |m| {
-        let out = extrude_face_octahedral(m, f, 1.0).unwrap();
-        assert_eq!(m.face_len(out.top).unwrap(), 3);
-        assert_eq!(out.sides.len(), 6);
-    });
-    // Every new edge has the tetrahedron's edge length.
-    every_edge_has_length(&m, a);
-}
-
-#[test]
-fn dodecahedral_extrusion_of_a_regular_pentagon_is_a_regular_dodecahedron() {
-    let mut m = prim("@dodecahedron");
-    let f = face(&m, 11);
-    let a = edge_lengths(&m)[0];
-    expect_delta(&mut m, (15, 25, 10), |m| {
-        let out = extrude_face_dodecahedral(m, f, 1.0).unwrap();
-        assert_eq!(m.face_len(out.top).unwrap(), 5);
-        assert_eq!(out.sides.len(), 10);
+    expect_delta(&mut m, delta, |m| {
+        let out = extrude(m, f, 1.0).unwrap();
+        assert_eq!(m.face_len(out.top).unwrap(), d);
+        assert_eq!(out.sides.len(), sides);
         for s in &out.sides {
-            assert_eq!(m.face_len(*s).unwrap(), 5);
+            assert_eq!(m.face_len(*s).unwrap(), side);
             assert!(max_non_planarity(m, *s) < 1e-9);
         }
     });
     every_edge_has_length(&m, a);
+    m
+}
+
+#[test]
+fn octahedral_extrusion_of_a_regular_triangle_is_a_regular_octahedron() {
+    grows_regular(
+        "@tetrahedron",
+        3,
+        extrude_face_octahedral,
+        (3, 9, 6),
+        (6, 3),
+    );
+}
+
+#[test]
+fn dodecahedral_extrusion_of_a_regular_pentagon_is_a_regular_dodecahedron() {
+    let m = grows_regular(
+        "@dodecahedron",
+        11,
+        extrude_face_dodecahedral,
+        (15, 25, 10),
+        (10, 5),
+    );
     is_two_glued(&m, "@dodecahedron");
 }
 
 #[test]
 fn icosahedral_extrusion_of_a_regular_triangle_is_a_regular_icosahedron() {
-    let mut m = prim("@icosahedron");
-    let f = face(&m, 19);
-    let a = edge_lengths(&m)[0];
-    expect_delta(&mut m, (9, 27, 18), |m| {
-        let out = extrude_face_icosahedral(m, f, 1.0).unwrap();
-        assert_eq!(m.face_len(out.top).unwrap(), 3);
-        assert_eq!(out.sides.len(), 18);
-        for s in &out.sides {
-            assert_eq!(m.face_len(*s).unwrap(), 3);
-        }
-    });
-    every_edge_has_length(&m, a);
+    let m = grows_regular(
+        "@icosahedron",
+        19,
+        extrude_face_icosahedral,
+        (9, 27, 18),
+        (18, 3),
+    );
     is_two_glued(&m, "@icosahedron");
 }
 

@@ -151,14 +151,7 @@ mod tests {
         let spot = to_dlfl(&soup, ImportOptions::default()).unwrap().mesh;
         let cube = holey_shapes::parse_primitive("@cube").unwrap();
         let mut two = cube.clone();
-        let shift = cube.positions.len() as u32;
-        two.positions
-            .extend(cube.positions.iter().map(|p| *p + DVec3::splat(1.5)));
-        let n = two.face_indices.len() as u32;
-        two.face_offsets
-            .extend(cube.face_offsets.iter().skip(1).map(|&o| o + n));
-        two.face_indices
-            .extend(cube.face_indices.iter().map(|&i| i + shift));
+        two.append(&cube.translated(DVec3::splat(1.5)));
         let two = to_dlfl(&two, ImportOptions::default()).unwrap().mesh;
         let one = to_dlfl(&cube, ImportOptions::default()).unwrap().mesh;
         for m in [spot, two, one] {

@@ -551,24 +551,15 @@ mod tests {
     use super::*;
     use crate::handle::HandleCurve;
     use holey_dlfl::convert::{ImportOptions, to_dlfl};
+    use holey_mesh::PolyMesh;
 
     /// Copies of the primitive `spec` centred at `centres`, one component each.
     fn copies(spec: &str, centres: &[DVec3]) -> Mesh {
         let one = holey_shapes::parse_primitive(spec).unwrap();
         let mid = centroid(&one.positions);
-        let mut soup = one.clone();
-        soup.positions.clear();
-        soup.face_offsets.truncate(1);
-        soup.face_indices.clear();
+        let mut soup = PolyMesh::new();
         for &c in centres {
-            let base = soup.positions.len() as u32;
-            let shift = soup.face_indices.len() as u32;
-            soup.positions
-                .extend(one.positions.iter().map(|&p| p - mid + c));
-            soup.face_offsets
-                .extend(one.face_offsets.iter().skip(1).map(|&o| o + shift));
-            soup.face_indices
-                .extend(one.face_indices.iter().map(|&i| i + base));
+            soup.append(&one.transformed(|p| p - mid + c));
         }
         to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
     }

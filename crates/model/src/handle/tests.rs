@@ -417,14 +417,7 @@ fn bezier_and_hermite_differ_and_agree_at_tripled_weights() {
 fn two_cubes(gap: f64) -> Mesh {
     let one = holey_shapes::parse_primitive("@cube").unwrap();
     let mut soup = one.clone();
-    let base = one.positions.len() as u32;
-    let shift = one.face_indices.len() as u32;
-    soup.positions
-        .extend(one.positions.iter().map(|&p| p + DVec3::X * gap));
-    soup.face_offsets
-        .extend(one.face_offsets.iter().skip(1).map(|&o| o + shift));
-    soup.face_indices
-        .extend(one.face_indices.iter().map(|&i| i + base));
+    soup.append(&one.translated(DVec3::X * gap));
     to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
 }
 

@@ -2,15 +2,11 @@
 //! definitions, counts worked out per tool, refusals leaving the mesh
 //! unchanged.
 
-use crate::test_util::{counts, prim};
+use crate::test_util::{counts, prim, unchanged};
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
 use super::*;
-
-fn unchanged(m: &Mesh, before: &Mesh) {
-    assert_eq!(m.to_raw(), before.to_raw());
-}
 
 fn jiggle(m: &mut Mesh, rng: &mut Rng, amount: f64) {
     let vs: Vec<VertexId> = m.vertices().collect();

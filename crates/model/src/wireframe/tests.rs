@@ -7,7 +7,7 @@ use holey_dlfl::{DVec3, Mesh};
 use holey_mesh::PolyMesh;
 
 use super::*;
-use crate::test_util::{counts, prim};
+use crate::test_util::{counts, prim, signed_volume};
 
 fn poly(spec: &str) -> PolyMesh {
     holey_shapes::parse_primitive(spec).unwrap()
@@ -32,17 +32,6 @@ fn graph_genus(m: &Mesh) -> i64 {
 
 fn valences(m: &Mesh) -> Vec<usize> {
     m.vertices().map(|v| m.valence(v).unwrap()).collect()
-}
-
-fn signed_volume(m: &Mesh) -> f64 {
-    let mut vol = 0.0;
-    for f in m.faces() {
-        let p = m.face_positions(f).unwrap();
-        for k in 1..p.len().saturating_sub(1) {
-            vol += p[0].dot(p[k].cross(p[k + 1]));
-        }
-    }
-    vol / 6.0
 }
 
 /// The wireframe counts of the module documentation from E and the

@@ -1,6 +1,7 @@
-//! Helpers shared by the chapter IV–V figure tests (handles and rinds):
-//! unions of soups, counts, and oracles written from the definitions
-//! (independent of the code under test).
+//! Helpers shared by the figure tests (chapters IV–VII: handles, rinds,
+//! Sierpinski and Menger): primitives as kernel meshes, unions of soups,
+//! counts, and oracles written from the definitions (independent of the
+//! code under test).
 #![allow(dead_code, clippy::unwrap_used)]
 
 use holey_dlfl::convert::{ImportOptions, to_dlfl};

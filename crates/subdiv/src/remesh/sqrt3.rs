@@ -14,6 +14,7 @@ use glam::DVec3;
 
 use super::build::{Budget, Builder, Sizes};
 use super::map::{Map, lab};
+use super::stellate::hole_side_triangles;
 use crate::SubdivError;
 use crate::flat::Flat;
 
@@ -35,22 +36,7 @@ pub(super) fn step(src: &Flat, budget: &Budget, smooth: bool) -> Result<Flat, Su
     let zc = |c: usize| st.v as u32 + m.nrank[src.cf[c] as usize];
     let spoke = |c: usize, side: u32| lab(st.e + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
-    b.kept_faces(
-        &m,
-        |c, hole| hole.push((src.cv[c], m.own(c))),
-        |b, _, lo, hi| {
-            for (c, d) in m.boundary_corners(lo, hi) {
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], m.own(c)),
-                        (src.cv[d], spoke(d, 0)),
-                        (zc(c), spoke(c, 1)),
-                    ],
-                );
-            }
-        },
-    );
+    hole_side_triangles(&mut b, &m, |c| m.own(c), zc, spoke);
     for (e, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,

@@ -93,6 +93,38 @@ pub(super) fn stellate(
     b.finish()
 }
 
+/// The faces a stellation keeps around the holes once its interior old
+/// edges are gone (√3 flips them, the edge removal makes quads of them):
+/// point-spheres, holes with their corners' old edges labelled by `old`,
+/// and in each normal face the triangle `[v(c), v(next c), z]` on every
+/// side `c` next to a hole, `z = centre(c)` the centre of `c`'s face and
+/// `spoke(c, side)` the label of the spoke from `v(c)` to it.
+pub(super) fn hole_side_triangles(
+    b: &mut Builder,
+    m: &Map,
+    old: impl Fn(usize) -> usize,
+    centre: impl Fn(usize) -> u32,
+    spoke: impl Fn(usize, u32) -> usize,
+) {
+    let src = m.f;
+    b.kept_faces(
+        m,
+        |c, hole| hole.push((src.cv[c], old(c))),
+        |b, _, lo, hi| {
+            for (c, d) in m.boundary_corners(lo, hi) {
+                b.face(
+                    false,
+                    &[
+                        (src.cv[c], old(c)),
+                        (src.cv[d], spoke(d, 0)),
+                        (centre(c), spoke(c, 1)),
+                    ],
+                );
+            }
+        },
+    );
+}
+
 /// Stellates every normal face with centres raised `height`, then deletes
 /// every old edge with normal faces on both sides: edge `(a, b)` between
 /// faces `f ∋ a` and `g ∋ b` becomes the quad `[v(a), z_g, v(b), z_f]`.
@@ -122,22 +154,7 @@ pub(super) fn edge_removal(src: &Flat, budget: &Budget, height: f64) -> Result<F
     let spoke = |c: usize, side: u32| lab(kept_count + m.nidx(c), side);
     let old = |c: usize| lab(kept[m.edge(c)] as usize, m.side(c));
     let mut b = Builder::new(pos, sizes);
-    b.kept_faces(
-        &m,
-        |c, hole| hole.push((src.cv[c], old(c))),
-        |b, _, lo, hi| {
-            for (c, d) in m.boundary_corners(lo, hi) {
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], old(c)),
-                        (src.cv[d], spoke(d, 0)),
-                        (zc(c), spoke(c, 1)),
-                    ],
-                );
-            }
-        },
-    );
+    hole_side_triangles(&mut b, &m, old, zc, spoke);
     for (_, a, bb, na, nb) in m.interior_edges() {
         b.face(
             false,
