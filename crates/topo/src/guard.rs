@@ -18,7 +18,11 @@
 //! - no piece cut loose and left hidden inside the surface, and no
 //!   speck, a piece smaller than any edge the surface had there
 //!   ([`crate::hidden`]);
-//! - for an inflate ([`Options::outward`]), no new piece at all.
+//! - for an inflate ([`Options::outward`]), no new piece at all;
+//! - no crumple: two or more new intersection curves within one piece,
+//!   each smaller than the shortest edge there and within one such edge
+//!   of each other, along which the cut would glue tunnels nobody can
+//!   see ([`crate::hidden`]).
 //!
 //! [`topology_change_guarded`] runs the frame on the region the motion
 //! reaches ([`crate::local`]) and audits that region and the ring of
