@@ -8,6 +8,7 @@
 mod accumulate;
 pub mod audit;
 mod containment;
+mod coplanar;
 mod correct;
 mod cut;
 mod drag_path;

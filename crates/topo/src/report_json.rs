@@ -75,6 +75,7 @@ impl WindingOutcome {
             "rays": r.rays,
             "snapped_points": r.welded_points,
             "t_junctions_repaired": r.t_junctions_repaired,
+            "coplanar_walls_merged": r.coplanar_walls_merged,
             "unsampled_regions": r.unsampled_regions,
             "perturbation_retries": r.perturbation_retries,
             "unpaired_edges": r.unpaired_edges,

@@ -1,0 +1,391 @@
+//! The coplanar overlay of a Boolean's kept faces (issue 14: "coplanar
+//! faces of opposite orientation cancel").
+//!
+//! Where two inputs touch along coplanar faces from opposite sides (two
+//! boxes side by side, a slab flush with a solid's face in a difference),
+//! the arrangement's perturbed world keeps the sheets apart, and where it
+//! leaves a gap between them both faces are kept: a wall of no thickness
+//! whose two sides face away from each other. Its cells need not
+//! coincide (the sheets have their own triangulations, cut by their own
+//! perturbed curves), so cancelling identical twins
+//! (`winding_boolean::cancel_opposite_twins`) does not remove it.
+//!
+//! Here such faces are found exactly (coplanar by `orient3d`, facing
+//! opposite ways and overlapping in their plane by `orient2d` in a
+//! coordinate projection, which keeps every orientation's sign), grouped,
+//! and each group is replaced by its overlay: the constrained
+//! triangulation of all its sides in the plane, each cell counted by the
+//! faces covering it with their orientations (+1 facing one way, −1 the
+//! other). A cell whose count is 0 lies in a wall and goes; a count of ±1
+//! is kept, facing that way. Crossing sides meet at points rounded once
+//! (spade's splitting insertion) and lifted back onto the plane; the
+//! faces around the group are split at the points that land on their
+//! sides by the Boolean's T-junction repair, and a group whose overlay
+//! fails (a panic of the splitting insertion, a count of ±2, a
+//! projection that flattens a face) keeps its faces.
+
+use glam::{DVec2, DVec3};
+use holey_geom::{Aabb, Bvh, Sign, orient2d, orient3d};
+use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+
+use crate::union_find::UnionFind;
+
+/// A vertex of a group's triangulation: its position in the projection,
+/// and the result's vertex it is (`NONE` for a crossing of two sides).
+#[derive(Clone, Copy, Debug)]
+struct PlaneVertex {
+    pos: Point2<f64>,
+    global: u32,
+}
+
+impl HasPosition for PlaneVertex {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.pos
+    }
+}
+
+const NONE: u32 = u32::MAX;
+
+/// The coordinate axis to drop for `f`'s plane: its normal's largest
+/// component (in floating point; the projection only needs that
+/// component to be nonzero, which [`projected_sign`] checks exactly).
+fn drop_axis(positions: &[DVec3], f: [u32; 3]) -> usize {
+    let [a, b, c] = f.map(|v| positions[v as usize]);
+    let n = (b - a).cross(c - a).abs();
+    if n.x >= n.y && n.x >= n.z {
+        0
+    } else if n.y >= n.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// `p` without coordinate `axis`, in the order that keeps orientations:
+/// (y, z), (z, x) or (x, y).
+fn project(p: DVec3, axis: usize) -> DVec2 {
+    match axis {
+        0 => DVec2::new(p.y, p.z),
+        1 => DVec2::new(p.z, p.x),
+        _ => DVec2::new(p.x, p.y),
+    }
+}
+
+/// The exact orientation of `f` in the projection along `axis`: the sign
+/// of its normal's `axis` component.
+fn projected_sign(positions: &[DVec3], f: [u32; 3], axis: usize) -> Sign {
+    let [a, b, c] = f.map(|v| project(positions[v as usize], axis));
+    orient2d(a, b, c)
+}
+
+/// Whether the closed triangles `a` and `b` (projected, counterclockwise)
+/// share interior points: no side of either has the other wholly on its
+/// outer closed half-plane.
+fn interiors_meet(a: [DVec2; 3], b: [DVec2; 3]) -> bool {
+    let separates = |t: [DVec2; 3], other: [DVec2; 3]| {
+        (0..3).any(|k| {
+            let (p, q) = (t[k], t[(k + 1) % 3]);
+            other.iter().all(|&x| orient2d(p, q, x) != Sign::Positive)
+        })
+    };
+    !separates(a, b) && !separates(b, a)
+}
+
+/// `t`'s corners in counterclockwise order of the projection, given its
+/// sign there.
+fn counterclockwise(t: [DVec2; 3], sign: Sign) -> [DVec2; 3] {
+    if sign == Sign::Negative {
+        [t[0], t[2], t[1]]
+    } else {
+        t
+    }
+}
+
+/// Whether faces `f` and `g` are a piece of wall: exactly coplanar,
+/// facing opposite ways, and overlapping in their plane.
+fn wall_pair(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
+    let p = |v: u32| positions[v as usize];
+    let (nf, ng) = (
+        (p(f[1]) - p(f[0])).cross(p(f[2]) - p(f[0])),
+        (p(g[1]) - p(g[0])).cross(p(g[2]) - p(g[0])),
+    );
+    // A cheap filter: faces of a wall have opposite normals.
+    if nf.dot(ng) >= -0.5 * nf.length() * ng.length() {
+        return false;
+    }
+    let [a, b, c] = f.map(p);
+    if g.iter()
+        .any(|&v| !f.contains(&v) && orient3d(a, b, c, p(v)) != Sign::Zero)
+    {
+        return false;
+    }
+    let axis = drop_axis(positions, f);
+    let (sf, sg) = (
+        projected_sign(positions, f, axis),
+        projected_sign(positions, g, axis),
+    );
+    if sf == Sign::Zero || sg == Sign::Zero || sf == sg {
+        return false;
+    }
+    let proj = |t: [u32; 3]| t.map(|v| project(p(v), axis));
+    interiors_meet(counterclockwise(proj(f), sf), counterclockwise(proj(g), sg))
+}
+
+/// The walls of `faces` (module docs): groups of face indices, each
+/// group's faces coplanar, joined by pairs that face opposite ways and
+/// overlap; in order of their first face.
+pub(crate) fn wall_groups(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<Vec<usize>> {
+    let boxes: Vec<Aabb> = faces
+        .iter()
+        .map(|f| Aabb::from_points(&f.map(|v| positions[v as usize])))
+        .collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return Vec::new();
+    };
+    let mut sets = UnionFind::new(faces.len());
+    let mut in_wall = vec![false; faces.len()];
+    for (i, b) in boxes.iter().enumerate() {
+        tree.for_each_overlap(b, |j| {
+            let j = j as usize;
+            if j > i && wall_pair(positions, faces[i], faces[j]) {
+                sets.union(i as u32, j as u32);
+                in_wall[i] = true;
+                in_wall[j] = true;
+            }
+        });
+    }
+    let mut groups: rustc_hash::FxHashMap<u32, Vec<usize>> = Default::default();
+    for (i, _) in in_wall.iter().enumerate().filter(|(_, w)| **w) {
+        groups.entry(sets.find(i as u32)).or_default().push(i);
+    }
+    let mut groups: Vec<Vec<usize>> = groups.into_values().collect();
+    groups.sort_unstable();
+    groups
+}
+
+/// The overlay of the coplanar faces `group` of `faces` (module docs):
+/// its cells with a nonzero count, facing by their count, with the
+/// crossing points appended to `positions` (those at the position of a
+/// vertex in `existing`, by [`holey_geom::position_key`], are that
+/// vertex); `None` when it cannot be made (and nothing is appended).
+pub(crate) fn overlay(
+    positions: &mut Vec<DVec3>,
+    faces: &[[u32; 3]],
+    group: &[usize],
+    existing: &rustc_hash::FxHashMap<[u64; 3], u32>,
+) -> Option<Vec<[u32; 3]>> {
+    let axis = drop_axis(positions, faces[group[0]]);
+    let signs: Vec<Sign> = group
+        .iter()
+        .map(|&i| projected_sign(positions, faces[i], axis))
+        .collect();
+    if signs.contains(&Sign::Zero) {
+        return None;
+    }
+    let proj = |v: u32| project(positions[v as usize], axis);
+    let mut cdt: ConstrainedDelaunayTriangulation<PlaneVertex> =
+        ConstrainedDelaunayTriangulation::new();
+    let mut handle_of: rustc_hash::FxHashMap<u32, spade::handles::FixedVertexHandle> =
+        Default::default();
+    for &i in group {
+        for v in faces[i] {
+            if let std::collections::hash_map::Entry::Vacant(e) = handle_of.entry(v) {
+                let q = proj(v);
+                let h = cdt
+                    .insert(PlaneVertex {
+                        pos: Point2::new(q.x, q.y),
+                        global: v,
+                    })
+                    .ok()?;
+                e.insert(h);
+            }
+        }
+    }
+    // Two result vertices at one projected point: the overlay would merge
+    // them, which is not its to decide.
+    if cdt.num_vertices() != handle_of.len() {
+        return None;
+    }
+    let split = |p: Point2<f64>| PlaneVertex {
+        pos: p,
+        global: NONE,
+    };
+    let sides: Vec<(
+        spade::handles::FixedVertexHandle,
+        spade::handles::FixedVertexHandle,
+    )> = group
+        .iter()
+        .flat_map(|&i| {
+            let f = faces[i];
+            (0..3).map(move |k| (f[k], f[(k + 1) % 3]))
+        })
+        .map(|(a, b)| (handle_of[&a], handle_of[&b]))
+        .collect();
+    let inserted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        for &(a, b) in &sides {
+            if a != b {
+                cdt.add_constraint_and_split(a, b, split);
+            }
+        }
+    }));
+    if inserted.is_err() {
+        return None;
+    }
+    // The group's faces, counterclockwise in the projection, with the
+    // count each adds inside it.
+    let covers: Vec<([DVec2; 3], i32)> = group
+        .iter()
+        .zip(&signs)
+        .map(|(&i, &s)| {
+            let t = faces[i].map(proj);
+            (
+                counterclockwise(t, s),
+                if s == Sign::Positive { 1 } else { -1 },
+            )
+        })
+        .collect();
+    let inside = |t: &[DVec2; 3], x: DVec2| {
+        (0..3).all(|k| orient2d(t[k], t[(k + 1) % 3], x) == Sign::Positive)
+    };
+    // The plane the crossing points are lifted onto: through the first
+    // face's first corner, with its normal.
+    let [a, b, c] = faces[group[0]].map(|v| positions[v as usize]);
+    let normal = (b - a).cross(c - a);
+    let lift = |q: Point2<f64>| -> DVec3 {
+        let (u, w) = (q.x, q.y);
+        let mut p = match axis {
+            0 => DVec3::new(a.x, u, w),
+            1 => DVec3::new(w, a.y, u),
+            _ => DVec3::new(u, w, a.z),
+        };
+        let off = (p - a).dot(normal) / normal[axis];
+        p[axis] -= off;
+        p
+    };
+    let mut global: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
+    let mut new_points = Vec::new();
+    for v in cdt.vertices() {
+        let pv = v.data();
+        if pv.global == NONE {
+            let p = lift(pv.pos);
+            if !p.is_finite() {
+                return None;
+            }
+            // A crossing that lands on a vertex the result has (a point of
+            // another sheet's curve in this plane) is that vertex.
+            if let Some(&v) = existing.get(&holey_geom::position_key(p)) {
+                global.push(v);
+                continue;
+            }
+            global.push((positions.len() + new_points.len()) as u32);
+            new_points.push(p);
+        } else {
+            global.push(pv.global);
+        }
+    }
+    let mut cells = Vec::new();
+    for f in cdt.inner_faces() {
+        let q = f.vertices().map(|v| {
+            let p = v.position();
+            DVec2::new(p.x, p.y)
+        });
+        let centroid = (q[0] + q[1] + q[2]) / 3.0;
+        let count: i32 = covers
+            .iter()
+            .filter(|(t, _)| inside(t, centroid))
+            .map(|(_, c)| c)
+            .sum();
+        let [i, j, k] = f.vertices().map(|v| global[v.fix().index()]);
+        match count {
+            0 => {}
+            1 => cells.push([i, j, k]),
+            -1 => cells.push([i, k, j]),
+            _ => return None,
+        }
+    }
+    positions.extend(new_points);
+    Some(cells)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two unit squares in the plane z = 1, the second shifted by ½ along
+    /// x, triangulated along different diagonals and facing opposite
+    /// ways: one wall where they overlap. The overlay keeps each square's
+    /// half outside the other, facing as that square did, and nothing of
+    /// the overlap; the oracle is the squares' areas and the normals'
+    /// signs computed here.
+    #[test]
+    fn overlapping_opposite_squares_cancel_where_they_overlap() {
+        let mut positions = vec![
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+            DVec3::new(0.5, 0.0, 1.0),
+            DVec3::new(1.5, 0.0, 1.0),
+            DVec3::new(1.5, 1.0, 1.0),
+            DVec3::new(0.5, 1.0, 1.0),
+            // A face elsewhere, facing up in another plane: not a wall.
+            DVec3::new(0.0, 0.0, 3.0),
+            DVec3::new(1.0, 0.0, 3.0),
+            DVec3::new(0.0, 1.0, 3.0),
+        ];
+        let faces = vec![
+            // Up (+z), diagonal 0–2.
+            [0, 1, 2],
+            [0, 2, 3],
+            // Down (−z), diagonal 5–7.
+            [4, 7, 5],
+            [5, 7, 6],
+            [8, 9, 10],
+        ];
+        let groups = wall_groups(&positions, &faces);
+        assert_eq!(groups, vec![vec![0, 1, 2, 3]]);
+        let existing = Default::default();
+        let cells = overlay(&mut positions, &faces, &groups[0], &existing).unwrap();
+        let (mut up, mut down) = (0.0, 0.0);
+        for c in &cells {
+            let [a, b, d] = c.map(|v| positions[v as usize]);
+            let n = (b - a).cross(d - a);
+            let centroid = (a + b + d) / 3.0;
+            assert!(
+                centroid.x < 0.5 || centroid.x > 1.0,
+                "a cell in the overlap: {centroid}"
+            );
+            assert_eq!(n.x, 0.0);
+            assert_eq!(n.y, 0.0);
+            if n.z > 0.0 {
+                assert!(centroid.x < 0.5, "facing up beyond the first square");
+                up += 0.5 * n.z;
+            } else {
+                assert!(centroid.x > 1.0, "facing down before the second square");
+                down -= 0.5 * n.z;
+            }
+        }
+        assert!((up - 0.5).abs() < 1e-15 && (down - 0.5).abs() < 1e-15);
+    }
+
+    /// Coplanar faces facing the same way, and opposite faces in parallel
+    /// planes, are no wall.
+    #[test]
+    fn same_facing_or_parallel_faces_are_no_wall() {
+        let positions = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.2, 0.2, 0.0),
+            DVec3::new(1.2, 0.2, 0.0),
+            DVec3::new(0.2, 1.2, 0.0),
+            DVec3::new(0.2, 0.2, 1e-300),
+            DVec3::new(1.2, 0.2, 1e-300),
+            DVec3::new(0.2, 1.2, 1e-300),
+        ];
+        assert!(wall_groups(&positions, &[[0, 1, 2], [3, 4, 5]]).is_empty());
+        assert!(wall_groups(&positions, &[[0, 1, 2], [6, 8, 7]]).is_empty());
+        assert_eq!(wall_groups(&positions, &[[0, 1, 2], [3, 5, 4]]).len(), 1);
+    }
+}
