@@ -25,6 +25,7 @@
 //! projection that flattens a face) keeps its faces.
 
 use glam::{DVec2, DVec3};
+use holey_geom::expansion::Expansion;
 use holey_geom::{Aabb, Bvh, Sign, orient2d, orient3d};
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
@@ -99,6 +100,42 @@ fn counterclockwise(t: [DVec2; 3], sign: Sign) -> [DVec2; 3] {
         [t[0], t[2], t[1]]
     } else {
         t
+    }
+}
+
+/// The exact side of the line `p → q` on which the centroid of `cell`
+/// lies (positive: to the left). `orient2d(p, q, x)` is affine in `x`, so
+/// at the centroid it is the mean of its values at the corners: the sign
+/// of `(q − p) × (Σ xₖ − 3p)`, decided in floating point when that is
+/// clearly away from zero and by exact expansions otherwise. (A rounded
+/// centroid can leave a sliver cell.)
+fn centroid_side(p: DVec2, q: DVec2, cell: &[DVec2; 3]) -> Sign {
+    let (dx, dy) = (q.x - p.x, q.y - p.y);
+    let sx = cell[0].x + cell[1].x + cell[2].x - 3.0 * p.x;
+    let sy = cell[0].y + cell[1].y + cell[2].y - 3.0 * p.y;
+    let det = dx * sy - dy * sx;
+    // The rounding error is a few ulps of the terms' size (the corners'
+    // and p's coordinates, times the side's); 2⁻⁴⁰ of it is far more.
+    let size =
+        cell.iter().map(|x| x.abs().element_sum()).sum::<f64>() + 3.0 * p.abs().element_sum();
+    let bound = (dx.abs() + dy.abs()) * size;
+    if det.abs() > bound * (1.0 / (1u64 << 40) as f64) {
+        return Sign::of(det);
+    }
+    let sum = |c: fn(DVec2) -> f64| {
+        cell.iter()
+            .fold(Expansion::zero(), |acc, &x| {
+                acc.add(&Expansion::from_f64(c(x)))
+            })
+            .sub(&Expansion::from_f64(c(p)).scale(3.0))
+    };
+    let exact = Expansion::diff(q.x, p.x)
+        .mul(&sum(|v| v.y))
+        .sub(&Expansion::diff(q.y, p.y).mul(&sum(|v| v.x)));
+    match exact.sign() {
+        1 => Sign::Positive,
+        -1 => Sign::Negative,
+        _ => Sign::Zero,
     }
 }
 
@@ -245,8 +282,8 @@ pub(crate) fn overlay(
             )
         })
         .collect();
-    let inside = |t: &[DVec2; 3], x: DVec2| {
-        (0..3).all(|k| orient2d(t[k], t[(k + 1) % 3], x) == Sign::Positive)
+    let inside = |t: &[DVec2; 3], cell: &[DVec2; 3]| {
+        (0..3).all(|k| centroid_side(t[k], t[(k + 1) % 3], cell) == Sign::Positive)
     };
     // The plane the crossing points are lifted onto: through the first
     // face's first corner, with its normal.
@@ -290,10 +327,9 @@ pub(crate) fn overlay(
             let p = v.position();
             DVec2::new(p.x, p.y)
         });
-        let centroid = (q[0] + q[1] + q[2]) / 3.0;
         let count: i32 = covers
             .iter()
-            .filter(|(t, _)| inside(t, centroid))
+            .filter(|(t, _)| inside(t, &q))
             .map(|(_, c)| c)
             .sum();
         let [i, j, k] = f.vertices().map(|v| global[v.fix().index()]);
