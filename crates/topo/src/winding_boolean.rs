@@ -72,8 +72,8 @@
 //!
 //! **Not yet.** A wall whose overlay fails or would open the result (a
 //! stack of coplanar sheets crossing within a few ulps, where a cell's
-//! rounded centroid can land on the wrong side; on the OpenSCAD export 12
-//! of its 28 walls merge) is kept. A constructed point within a few ulps
+//! crossings are rounded a few ulps apart; on the OpenSCAD export 15 of
+//! its 28 walls merge) is kept. A constructed point within a few ulps
 //! of an input vertex it should be (nearly coincident shells) is not
 //! snapped to it, which can leave the result open there. The report
 //! counts both (`unpaired_edges`, and the CLI checks the result for
