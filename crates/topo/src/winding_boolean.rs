@@ -52,6 +52,13 @@
 //!    T-junction); the side is split there (`repair_t_junctions`, and
 //!    `split_open_sides` where the points come in different orders on the
 //!    sheets that meet along the line).
+//! 6. Coplanar faces of opposite orientation that touch are apart in the
+//!    perturbed world, and where the perturbation leaves a gap between
+//!    them both are kept: a wall of no thickness. Where the inputs touch
+//!    degenerately, such walls are found exactly and replaced by their
+//!    overlay, in which the faces cancel where they overlap
+//!    ([`crate::coplanar`]); each wall is merged only when that leaves the
+//!    result no more open and no less manifold (`coplanar_walls_merged`).
 //!
 //! **Open inputs.** The winding number of a surface with holes is not an
 //! integer; it is the generalized winding number (Jacobson, Kavan &
@@ -62,22 +69,13 @@
 //! the rest of the input's plus or minus half a turn. The report says
 //! which inputs were open; the result keeps the open input's boundary.
 //!
-//! 6. Coplanar faces of opposite orientation that touch are apart in the
-//!    perturbed world, and where the perturbation leaves a gap between
-//!    them both are kept: a wall of no thickness. Where the inputs touch
-//!    degenerately, such walls are found exactly and replaced by their
-//!    overlay, in which the faces cancel where they overlap
-//!    ([`crate::coplanar`]); each wall is merged only when that leaves the
-//!    result no more open and no less manifold (`coplanar_walls_merged`).
-//!
-//! **Not yet.** A wall whose overlay fails or would open the result (a
-//! stack of coplanar sheets crossing within a few ulps, where a cell's
-//! crossings are rounded a few ulps apart; on the OpenSCAD export 15 of
-//! its 28 walls merge) is kept. A constructed point within a few ulps
-//! of an input vertex it should be (nearly coincident shells) is not
-//! snapped to it, which can leave the result open there. The report
-//! counts both (`unpaired_edges`, and the CLI checks the result for
-//! crossings).
+//! **Not yet.** A wall whose overlay fails or would open the result
+//! (stacked coplanar sheets whose crossings round a few ulps apart; on
+//! the OpenSCAD export 15 of its 28 walls merge) is kept. A constructed
+//! point within a few ulps of an input vertex it should be (nearly
+//! coincident shells) is not snapped to it, which can leave the result
+//! open there. The report counts both (`unpaired_edges`, and the CLI
+//! checks the result for crossings).
 
 use rustc_hash::FxHashMap as HashMap;
 use std::sync::atomic::AtomicBool;
