@@ -93,24 +93,8 @@ enum Command {
     Batch(cmd::batch::Args),
 }
 
-/// holey-topo catches the rare panic of spade's splitting constraint
-/// insertion and rebuilds the chart (see `holey_topo::cut`); the default
-/// hook would still print it as if the program had crashed. Panics raised
-/// inside spade are therefore not printed; every other panic is.
-fn quiet_caught_triangulation_panics() {
-    let default = std::panic::take_hook();
-    std::panic::set_hook(Box::new(move |info| {
-        let in_spade = info
-            .location()
-            .is_some_and(|l| l.file().contains("/spade-"));
-        if !in_spade {
-            default(info);
-        }
-    }));
-}
-
 fn main() {
-    quiet_caught_triangulation_panics();
+    holey_topo::hide_caught_triangulation_panics();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a),

@@ -24,6 +24,9 @@ mod toolbox;
 /// The module `holey._holey`.
 #[pymodule]
 fn _holey(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // Panics the engine catches itself (spade's splitting insertion) are
+    // not printed into the interpreter's stderr.
+    holey::topo::hide_caught_triangulation_panics();
     let py = m.py();
     m.add("HoleyError", py.get_type::<errors::HoleyError>())?;
     m.add_function(wrap_pyfunction!(engine::boolean, m)?)?;

@@ -50,3 +50,22 @@ pub use winding_boolean::{
     WindingError, WindingOutcome, WindingReport, boolean_by_winding, boolean_by_winding_robust,
     needs_arrangement,
 };
+
+/// Installs a panic hook that does not print the panics holey-topo
+/// raises and catches itself, and prints every other panic as the hook
+/// before it did. spade's splitting constraint insertion can panic on
+/// near-degenerate input; the cut stage and the coplanar overlay catch
+/// that and carry on (`std::panic::catch_unwind`), but the default hook
+/// would still print it as if the program had crashed. For programs
+/// (the CLI, the Python module); a library leaves the hook alone.
+pub fn hide_caught_triangulation_panics() {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let in_spade = info
+            .location()
+            .is_some_and(|l| l.file().contains("/spade-"));
+        if !in_spade {
+            previous(info);
+        }
+    }));
+}
