@@ -27,26 +27,11 @@
 use glam::{DVec2, DVec3};
 use holey_geom::expansion::Expansion;
 use holey_geom::{Aabb, Bvh, Sign, orient2d, orient3d};
-use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+
+use crate::cut::{ChartVertex, NONE};
 
 use crate::union_find::UnionFind;
-
-/// A vertex of a group's triangulation: its position in the projection,
-/// and the result's vertex it is (`NONE` for a crossing of two sides).
-#[derive(Clone, Copy, Debug)]
-struct PlaneVertex {
-    pos: Point2<f64>,
-    global: u32,
-}
-
-impl HasPosition for PlaneVertex {
-    type Scalar = f64;
-    fn position(&self) -> Point2<f64> {
-        self.pos
-    }
-}
-
-const NONE: u32 = u32::MAX;
 
 /// The coordinate axis to drop for `f`'s plane: its normal's largest
 /// component (in floating point; the projection only needs that
@@ -221,7 +206,7 @@ pub(crate) fn overlay(
         return None;
     }
     let proj = |v: u32| project(positions[v as usize], axis);
-    let mut cdt: ConstrainedDelaunayTriangulation<PlaneVertex> =
+    let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
         ConstrainedDelaunayTriangulation::new();
     let mut handle_of: rustc_hash::FxHashMap<u32, spade::handles::FixedVertexHandle> =
         Default::default();
@@ -230,7 +215,7 @@ pub(crate) fn overlay(
             if let std::collections::hash_map::Entry::Vacant(e) = handle_of.entry(v) {
                 let q = proj(v);
                 let h = cdt
-                    .insert(PlaneVertex {
+                    .insert(ChartVertex {
                         pos: Point2::new(q.x, q.y),
                         global: v,
                     })
@@ -244,7 +229,7 @@ pub(crate) fn overlay(
     if cdt.num_vertices() != handle_of.len() {
         return None;
     }
-    let split = |p: Point2<f64>| PlaneVertex {
+    let split = |p: Point2<f64>| ChartVertex {
         pos: p,
         global: NONE,
     };

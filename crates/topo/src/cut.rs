@@ -91,11 +91,13 @@ pub struct CutReport {
     pub pinches_split: usize,
 }
 
-/// A vertex of a chart triangulation.
+/// A vertex of a chart triangulation (also the coplanar overlay's): its
+/// position in the chart, and the mesh vertex it is (`NONE` for a point
+/// the triangulation made where two constraints cross).
 #[derive(Clone, Copy, Debug)]
-struct ChartVertex {
-    pos: Point2<f64>,
-    global: u32,
+pub(crate) struct ChartVertex {
+    pub(crate) pos: Point2<f64>,
+    pub(crate) global: u32,
 }
 
 impl HasPosition for ChartVertex {
@@ -105,7 +107,7 @@ impl HasPosition for ChartVertex {
     }
 }
 
-const NONE: u32 = u32::MAX;
+pub(crate) const NONE: u32 = u32::MAX;
 
 /// Lists attached to a few of many items (the edges and triangles a cut
 /// touches, out of a whole mesh's): a slot per item, storage only for the
