@@ -318,6 +318,12 @@ pub(crate) fn overlay(
             .map(|(_, c)| c)
             .sum();
         let [i, j, k] = f.vertices().map(|v| global[v.fix().index()]);
+        // A crossing taken as an existing vertex can make a cell's corners
+        // repeat: a cell of no area, never kept (the check of the merge
+        // decides whether the result stays closed without it).
+        if count != 0 && (i == j || j == k || i == k) {
+            continue;
+        }
         match count {
             0 => {}
             1 => cells.push([i, j, k]),
