@@ -12,8 +12,9 @@
 //!
 //! Here such faces are found exactly (coplanar by `orient3d`, facing
 //! opposite ways and overlapping in their plane by `orient2d` in a
-//! coordinate projection, which keeps every orientation's sign), grouped,
-//! and each group is replaced by its overlay: the constrained
+//! coordinate projection, which keeps every orientation's sign), grouped
+//! with the faces that overlap them from one side and the flat slivers on
+//! their sides, and each group is replaced by its overlay: the constrained
 //! triangulation of all its sides in the plane, each cell counted by the
 //! faces covering it with their orientations (+1 facing one way, −1 the
 //! other). A cell whose count is 0 lies in a wall and goes; a count of ±1
@@ -124,39 +125,64 @@ fn centroid_side(p: DVec2, q: DVec2, cell: &[DVec2; 3]) -> Sign {
     }
 }
 
-/// Whether faces `f` and `g` are a piece of wall: exactly coplanar,
-/// facing opposite ways, and overlapping in their plane.
-fn wall_pair(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
+/// How two faces overlap in a common plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Overlap {
+    /// Not coplanar, or their interiors do not meet.
+    Apart,
+    /// Coplanar and overlapping, facing the same way.
+    Same,
+    /// Coplanar and overlapping, facing opposite ways: a piece of wall.
+    Opposite,
+}
+
+/// How faces `f` and `g` overlap: exactly coplanar, and interiors that
+/// meet in their plane, facing the same or opposite ways.
+fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
     let p = |v: u32| positions[v as usize];
-    let (nf, ng) = (
-        (p(f[1]) - p(f[0])).cross(p(f[2]) - p(f[0])),
-        (p(g[1]) - p(g[0])).cross(p(g[2]) - p(g[0])),
-    );
-    // A cheap filter: faces of a wall have opposite normals.
-    if nf.dot(ng) >= -0.5 * nf.length() * ng.length() {
-        return false;
+    let normal = |t: [u32; 3]| (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
+    let size = |t: [u32; 3]| {
+        (p(t[1]) - p(t[0]))
+            .length_squared()
+            .max((p(t[2]) - p(t[0])).length_squared())
+    };
+    let (nf, ng) = (normal(f), normal(g));
+    // A cheap filter: coplanar faces have parallel normals. Only for
+    // faces whose normal means something in floating point (a sliver's
+    // can point anywhere; those go to the exact test).
+    let sure = |n: DVec3, t: [u32; 3]| n.length() > 1e-6 * size(t);
+    if sure(nf, f) && sure(ng, g) && nf.dot(ng).abs() < 0.5 * nf.length() * ng.length() {
+        return Overlap::Apart;
     }
     let [a, b, c] = f.map(p);
     if g.iter()
         .any(|&v| !f.contains(&v) && orient3d(a, b, c, p(v)) != Sign::Zero)
     {
-        return false;
+        return Overlap::Apart;
     }
     let axis = drop_axis(positions, f);
     let (sf, sg) = (
         projected_sign(positions, f, axis),
         projected_sign(positions, g, axis),
     );
-    if sf == Sign::Zero || sg == Sign::Zero || sf == sg {
-        return false;
+    if sf == Sign::Zero || sg == Sign::Zero {
+        return Overlap::Apart;
     }
     let proj = |t: [u32; 3]| t.map(|v| project(p(v), axis));
-    interiors_meet(counterclockwise(proj(f), sf), counterclockwise(proj(g), sg))
+    if !interiors_meet(counterclockwise(proj(f), sf), counterclockwise(proj(g), sg)) {
+        Overlap::Apart
+    } else if sf == sg {
+        Overlap::Same
+    } else {
+        Overlap::Opposite
+    }
 }
 
 /// The walls of `faces` (module docs): groups of face indices, each
-/// group's faces coplanar, joined by pairs that face opposite ways and
-/// overlap; in order of their first face.
+/// group's faces coplanar, joined by pairs that overlap, with at least
+/// one pair facing opposite ways (faces overlapping the wall from the
+/// same side, a sliver the cut left along it, count in its overlay too);
+/// in order of their first face.
 pub(crate) fn wall_groups(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<Vec<usize>> {
     let boxes: Vec<Aabb> = faces
         .iter()
@@ -167,23 +193,92 @@ pub(crate) fn wall_groups(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<Vec<us
     };
     let mut sets = UnionFind::new(faces.len());
     let mut in_wall = vec![false; faces.len()];
+    let mut joined = vec![false; faces.len()];
     for (i, b) in boxes.iter().enumerate() {
         tree.for_each_overlap(b, |j| {
             let j = j as usize;
-            if j > i && wall_pair(positions, faces[i], faces[j]) {
-                sets.union(i as u32, j as u32);
-                in_wall[i] = true;
-                in_wall[j] = true;
+            if j <= i {
+                return;
+            }
+            match overlap(positions, faces[i], faces[j]) {
+                Overlap::Apart => {}
+                Overlap::Same => {
+                    sets.union(i as u32, j as u32);
+                    joined[i] = true;
+                    joined[j] = true;
+                }
+                Overlap::Opposite => {
+                    sets.union(i as u32, j as u32);
+                    in_wall[i] = true;
+                    in_wall[j] = true;
+                }
             }
         });
     }
+    let walls: rustc_hash::FxHashSet<u32> = (0..faces.len())
+        .filter(|&i| in_wall[i])
+        .map(|i| sets.find(i as u32))
+        .collect();
     let mut groups: rustc_hash::FxHashMap<u32, Vec<usize>> = Default::default();
-    for (i, _) in in_wall.iter().enumerate().filter(|(_, w)| **w) {
-        groups.entry(sets.find(i as u32)).or_default().push(i);
+    for i in (0..faces.len()).filter(|&i| in_wall[i] || joined[i]) {
+        let root = sets.find(i as u32);
+        if walls.contains(&root) {
+            groups.entry(root).or_default().push(i);
+        }
     }
     let mut groups: Vec<Vec<usize>> = groups.into_values().collect();
     groups.sort_unstable();
+    let grouped: Vec<bool> = {
+        let mut g = vec![false; faces.len()];
+        for &i in groups.iter().flatten() {
+            g[i] = true;
+        }
+        g
+    };
+    absorb_flat_faces(positions, faces, &mut groups, &grouped);
     groups
+}
+
+/// Whether `f`'s corners are exactly collinear (or repeat): a face of no
+/// area, which every projection flattens.
+fn flat(positions: &[DVec3], f: [u32; 3]) -> bool {
+    (0..3).all(|axis| projected_sign(positions, f, axis) == Sign::Zero)
+}
+
+/// Adds to each group the faces of no area that share a side with one of
+/// its faces (the cut leaves such slivers along a wall's curves). They
+/// lie on that side's line, in the group's plane; their sides pair with
+/// the group's, so the overlay, which refines those sides, must replace
+/// them too (they add nothing to a cell's count). Each group stays
+/// sorted.
+fn absorb_flat_faces(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    groups: &mut [Vec<usize>],
+    grouped: &[bool],
+) {
+    let side = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut group_of_side: rustc_hash::FxHashMap<(u32, u32), usize> = Default::default();
+    for (g, group) in groups.iter().enumerate() {
+        for &i in group {
+            let f = faces[i];
+            for k in 0..3 {
+                group_of_side.insert(side(f[k], f[(k + 1) % 3]), g);
+            }
+        }
+    }
+    for (i, &f) in faces.iter().enumerate() {
+        if grouped[i] || !flat(positions, f) {
+            continue;
+        }
+        let joined = (0..3).find_map(|k| group_of_side.get(&side(f[k], f[(k + 1) % 3])));
+        if let Some(&g) = joined {
+            groups[g].push(i);
+        }
+    }
+    for group in groups.iter_mut() {
+        group.sort_unstable();
+    }
 }
 
 /// The overlay of the coplanar faces `group` of `faces` (module docs):
@@ -197,12 +292,19 @@ pub(crate) fn overlay(
     group: &[usize],
     existing: &rustc_hash::FxHashMap<[u64; 3], u32>,
 ) -> Option<Vec<[u32; 3]>> {
-    let axis = drop_axis(positions, faces[group[0]]);
+    // The plane's axis and face: the first face with an area (faces of no
+    // area, absorbed by `absorb_flat_faces`, count nothing).
+    let first = *group.iter().find(|&&i| !flat(positions, faces[i]))?;
+    let axis = drop_axis(positions, faces[first]);
     let signs: Vec<Sign> = group
         .iter()
         .map(|&i| projected_sign(positions, faces[i], axis))
         .collect();
-    if signs.contains(&Sign::Zero) {
+    if group
+        .iter()
+        .zip(&signs)
+        .any(|(&i, &s)| s == Sign::Zero && !flat(positions, faces[i]))
+    {
         return None;
     }
     let proj = |v: u32| project(positions[v as usize], axis);
@@ -238,7 +340,9 @@ pub(crate) fn overlay(
         spade::handles::FixedVertexHandle,
     )> = group
         .iter()
-        .flat_map(|&i| {
+        .zip(&signs)
+        .filter(|(_, s)| **s != Sign::Zero)
+        .flat_map(|(&i, _)| {
             let f = faces[i];
             (0..3).map(move |k| (f[k], f[(k + 1) % 3]))
         })
@@ -259,6 +363,7 @@ pub(crate) fn overlay(
     let covers: Vec<([DVec2; 3], i32)> = group
         .iter()
         .zip(&signs)
+        .filter(|(_, s)| **s != Sign::Zero)
         .map(|(&i, &s)| {
             let t = faces[i].map(proj);
             (
@@ -272,7 +377,7 @@ pub(crate) fn overlay(
     };
     // The plane the crossing points are lifted onto: through the first
     // face's first corner, with its normal.
-    let [a, b, c] = faces[group[0]].map(|v| positions[v as usize]);
+    let [a, b, c] = faces[first].map(|v| positions[v as usize]);
     let normal = (b - a).cross(c - a);
     let lift = |q: Point2<f64>| -> DVec3 {
         let (u, w) = (q.x, q.y);
@@ -394,6 +499,51 @@ mod tests {
             }
         }
         assert!((up - 0.5).abs() < 1e-15 && (down - 0.5).abs() < 1e-15);
+    }
+
+    /// A face overlapping a wall from one side, and a face of no area on a
+    /// wall face's side, belong to the wall's group: the overlay replaces
+    /// them too. A face overlapping the second square beyond the first
+    /// cancels it there (count −1 + 1), and the flat face adds nothing:
+    /// the cells facing down cover the second square less that face.
+    #[test]
+    fn faces_over_a_wall_and_flat_faces_on_it_join_its_group() {
+        let mut positions = vec![
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+            DVec3::new(0.5, 0.0, 1.0),
+            DVec3::new(1.5, 0.0, 1.0),
+            DVec3::new(1.5, 1.0, 1.0),
+            DVec3::new(0.5, 1.0, 1.0),
+            // A triangle facing up over the second square beyond the first.
+            DVec3::new(1.1, 0.1, 1.0),
+            DVec3::new(1.4, 0.1, 1.0),
+            DVec3::new(1.1, 0.4, 1.0),
+            // On the line through corners 0 and 1, beyond 1.
+            DVec3::new(2.0, 0.0, 1.0),
+        ];
+        let faces = vec![
+            [0, 1, 2],
+            [0, 2, 3],
+            [4, 7, 5],
+            [5, 7, 6],
+            [8, 9, 10],
+            [0, 1, 11],
+        ];
+        let groups = wall_groups(&positions, &faces);
+        assert_eq!(groups, vec![vec![0, 1, 2, 3, 4, 5]]);
+        let cells = overlay(&mut positions, &faces, &groups[0], &Default::default()).unwrap();
+        let down: f64 = cells
+            .iter()
+            .map(|c| {
+                let [a, b, d] = c.map(|v| positions[v as usize]);
+                -0.5 * (b - a).cross(d - a).z
+            })
+            .filter(|&z| z > 0.0)
+            .sum();
+        assert!((down - (0.5 - 0.045)).abs() < 1e-15, "{down}");
     }
 
     /// Coplanar faces facing the same way, and opposite faces in parallel

@@ -71,7 +71,7 @@
 //!
 //! **Not yet.** A wall whose overlay fails or would open the result
 //! (stacked coplanar sheets whose crossings round a few ulps apart; on
-//! the OpenSCAD export 15 of its 28 walls merge) is kept. A constructed
+//! the OpenSCAD export 17 of its 28 walls merge) is kept. A constructed
 //! point within a few ulps of an input vertex it should be (nearly
 //! coincident shells) is not snapped to it, which can leave the result
 //! open there. The report counts both (`unpaired_edges`, and the CLI

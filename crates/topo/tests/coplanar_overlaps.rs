@@ -207,9 +207,9 @@ const OPENSCAD_UNION_LIBIGL: f64 = 381.1737100008513;
 /// relative.
 ///
 /// Coplanar faces of opposite orientation that touch are kept as walls of
-/// no thickness; the coplanar overlay merges 15 of its 28 walls (those
-/// that leave the result no more open), and 100 edges of four faces and
-/// 794 crossing pairs remain, against 131 and 873 without it.
+/// no thickness; the coplanar overlay merges 17 of its 28 walls (those
+/// that leave the result no more open), and 90 edges of four faces and
+/// 761 crossing pairs remain, against 131 and 873 without it.
 #[test]
 fn openscad_union_matches_libigl() {
     let dir = holey_testkit::shared_meshes_or_return!("openscad_union_matches_libigl");
