@@ -445,6 +445,25 @@ mod tests {
     use super::*;
 
     /// Two unit squares in the plane z = 1, the second shifted by ½ along
+    /// x: the first facing up (+z) and split along its diagonal 0–2, the
+    /// second facing down and split along 5–7.
+    fn two_squares() -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let positions = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (1.0, 1.0),
+            (0.0, 1.0),
+            (0.5, 0.0),
+            (1.5, 0.0),
+            (1.5, 1.0),
+            (0.5, 1.0),
+        ]
+        .map(|(x, y)| DVec3::new(x, y, 1.0))
+        .to_vec();
+        (positions, vec![[0, 1, 2], [0, 2, 3], [4, 7, 5], [5, 7, 6]])
+    }
+
+    /// Two unit squares in the plane z = 1, the second shifted by ½ along
     /// x, triangulated along different diagonals and facing opposite
     /// ways: one wall where they overlap. The overlay keeps each square's
     /// half outside the other, facing as that square did, and nothing of
@@ -452,29 +471,14 @@ mod tests {
     /// signs computed here.
     #[test]
     fn overlapping_opposite_squares_cancel_where_they_overlap() {
-        let mut positions = vec![
-            DVec3::new(0.0, 0.0, 1.0),
-            DVec3::new(1.0, 0.0, 1.0),
-            DVec3::new(1.0, 1.0, 1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-            DVec3::new(0.5, 0.0, 1.0),
-            DVec3::new(1.5, 0.0, 1.0),
-            DVec3::new(1.5, 1.0, 1.0),
-            DVec3::new(0.5, 1.0, 1.0),
-            // A face elsewhere, facing up in another plane: not a wall.
+        let (mut positions, mut faces) = two_squares();
+        // A face elsewhere, facing up in another plane: not a wall.
+        positions.extend([
             DVec3::new(0.0, 0.0, 3.0),
             DVec3::new(1.0, 0.0, 3.0),
             DVec3::new(0.0, 1.0, 3.0),
-        ];
-        let faces = vec![
-            // Up (+z), diagonal 0–2.
-            [0, 1, 2],
-            [0, 2, 3],
-            // Down (−z), diagonal 5–7.
-            [4, 7, 5],
-            [5, 7, 6],
-            [8, 9, 10],
-        ];
+        ]);
+        faces.push([8, 9, 10]);
         let groups = wall_groups(&positions, &faces);
         assert_eq!(groups, vec![vec![0, 1, 2, 3]]);
         let existing = Default::default();
@@ -508,30 +512,16 @@ mod tests {
     /// the cells facing down cover the second square less that face.
     #[test]
     fn faces_over_a_wall_and_flat_faces_on_it_join_its_group() {
-        let mut positions = vec![
-            DVec3::new(0.0, 0.0, 1.0),
-            DVec3::new(1.0, 0.0, 1.0),
-            DVec3::new(1.0, 1.0, 1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-            DVec3::new(0.5, 0.0, 1.0),
-            DVec3::new(1.5, 0.0, 1.0),
-            DVec3::new(1.5, 1.0, 1.0),
-            DVec3::new(0.5, 1.0, 1.0),
+        let (mut positions, mut faces) = two_squares();
+        positions.extend([
             // A triangle facing up over the second square beyond the first.
             DVec3::new(1.1, 0.1, 1.0),
             DVec3::new(1.4, 0.1, 1.0),
             DVec3::new(1.1, 0.4, 1.0),
             // On the line through corners 0 and 1, beyond 1.
             DVec3::new(2.0, 0.0, 1.0),
-        ];
-        let faces = vec![
-            [0, 1, 2],
-            [0, 2, 3],
-            [4, 7, 5],
-            [5, 7, 6],
-            [8, 9, 10],
-            [0, 1, 11],
-        ];
+        ]);
+        faces.extend([[8, 9, 10], [0, 1, 11]]);
         let groups = wall_groups(&positions, &faces);
         assert_eq!(groups, vec![vec![0, 1, 2, 3, 4, 5]]);
         let cells = overlay(&mut positions, &faces, &groups[0], &Default::default()).unwrap();
