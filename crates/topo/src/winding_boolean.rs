@@ -331,8 +331,10 @@ pub fn boolean_by_winding(
 /// The kept faces closed up: T-junctions repaired and, where the inputs
 /// touched degenerately (`degenerate`: coplanar faces can touch only
 /// so), walls of no thickness merged by the coplanar overlay
-/// ([`crate::coplanar`]), one wall at a time, each kept only when it
-/// leaves the result no more open and no less manifold than before it.
+/// ([`crate::coplanar`]) when that leaves the result no more open and no
+/// less manifold than without: every wall at once (one repair pass over
+/// the result, the common case), and when that is worse, one wall at a
+/// time, each kept only if it is no worse than the result before it.
 fn close_up(
     positions: &mut Vec<DVec3>,
     faces: Vec<[u32; 3]>,
@@ -348,44 +350,69 @@ fn close_up(
     } else {
         Vec::new()
     };
-    let (mut best, mut n) = repaired(positions, faces.clone());
     if groups.is_empty() {
+        let (faces, n) = repaired(positions, faces);
         report.t_junctions_repaired = n;
-        return best;
+        return faces;
     }
+    let (mut best, mut n) = repaired(positions, faces.clone());
     let defects = |f: &[[u32; 3]]| (unpaired_edges(f).len(), nonmanifold_edges(f));
+    let no_worse = |d: (usize, usize), than: (usize, usize)| d.0 <= than.0 && d.1 <= than.1;
     let mut least = defects(&best);
     let existing: rustc_hash::FxHashMap<[u64; 3], u32> = positions
         .iter()
         .enumerate()
         .map(|(v, &p)| (holey_geom::position_key(p), v as u32))
         .collect();
+    // The faces but those `gone` flags, with `added` after them.
+    let with = |gone: &[bool], added: &[[u32; 3]]| -> Vec<[u32; 3]> {
+        faces
+            .iter()
+            .zip(gone)
+            .filter(|(_, g)| !**g)
+            .map(|(f, _)| *f)
+            .chain(added.iter().copied())
+            .collect()
+    };
+    let first_new = positions.len();
     let mut gone = vec![false; faces.len()];
     let mut added: Vec<[u32; 3]> = Vec::new();
+    let mut made = 0;
     for group in &groups {
-        let first_new = positions.len();
+        if let Some(cells) = crate::coplanar::overlay(positions, &faces, group, &existing) {
+            group.iter().for_each(|&i| gone[i] = true);
+            added.extend(cells);
+            made += 1;
+        }
+    }
+    if made > 0 {
+        let (merged, m) = repaired(positions, with(&gone, &added));
+        if no_worse(defects(&merged), least) {
+            report.coplanar_walls_merged = made;
+            report.t_junctions_repaired = m;
+            return merged;
+        }
+    }
+    positions.truncate(first_new);
+    gone.fill(false);
+    added.clear();
+    for group in &groups {
+        let mark = positions.len();
         let Some(cells) = crate::coplanar::overlay(positions, &faces, group, &existing) else {
             continue;
         };
-        let candidate: Vec<[u32; 3]> = faces
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !gone[*i] && group.binary_search(i).is_err())
-            .map(|(_, f)| *f)
-            .chain(added.iter().copied())
-            .chain(cells.iter().copied())
-            .collect();
-        let (merged, m) = repaired(positions, candidate);
+        let mut trial = gone.clone();
+        group.iter().for_each(|&i| trial[i] = true);
+        let mut trial_added = added.clone();
+        trial_added.extend(cells);
+        let (merged, m) = repaired(positions, with(&trial, &trial_added));
         let d = defects(&merged);
-        if d.0 <= least.0 && d.1 <= least.1 {
-            for &i in group {
-                gone[i] = true;
-            }
-            added.extend(cells);
+        if no_worse(d, least) {
+            (gone, added) = (trial, trial_added);
             (best, n, least) = (merged, m, d);
             report.coplanar_walls_merged += 1;
         } else {
-            positions.truncate(first_new);
+            positions.truncate(mark);
         }
     }
     report.t_junctions_repaired = n;
