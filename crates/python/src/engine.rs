@@ -218,6 +218,8 @@ pub fn resolve<'py>(
         "intersecting_pairs": x.pairs.len(),
         "intersection_curves": x.curve_count,
         "triangles_split": cut.triangles_split,
+        "coplanar_groups_merged": cut.coplanar_groups_merged,
+        "coplanar_groups_left": cut.coplanar_groups_left,
         "output_triangles": out.triangles.len(),
     });
     let (v, f) = tri_arrays(py, &out);

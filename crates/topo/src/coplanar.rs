@@ -127,7 +127,7 @@ fn centroid_side(p: DVec2, q: DVec2, cell: &[DVec2; 3]) -> Sign {
 
 /// How two faces overlap in a common plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Overlap {
+pub(crate) enum Overlap {
     /// Not coplanar, or their interiors do not meet.
     Apart,
     /// Coplanar and overlapping, facing the same way.
@@ -138,7 +138,7 @@ enum Overlap {
 
 /// How faces `f` and `g` overlap: exactly coplanar, and interiors that
 /// meet in their plane, facing the same or opposite ways.
-fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
+pub(crate) fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
     let p = |v: u32| positions[v as usize];
     let normal = |t: [u32; 3]| (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
     let size = |t: [u32; 3]| {
@@ -184,6 +184,19 @@ fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
 /// same side, a sliver the cut left along it, count in its overlay too);
 /// in order of their first face.
 pub(crate) fn wall_groups(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<Vec<usize>> {
+    overlap_groups(positions, faces, true)
+}
+
+/// The groups of `faces` that overlap in their plane: face indices,
+/// each group's faces coplanar and joined by pairs whose interiors meet
+/// (facing either way), with the flat slivers on their sides; only those
+/// with a pair facing opposite ways when `walls_only`. In order of their
+/// first face.
+pub(crate) fn overlap_groups(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    walls_only: bool,
+) -> Vec<Vec<usize>> {
     let boxes: Vec<Aabb> = faces
         .iter()
         .map(|f| Aabb::from_points(&f.map(|v| positions[v as usize])))
@@ -222,7 +235,7 @@ pub(crate) fn wall_groups(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<Vec<us
     let mut groups: rustc_hash::FxHashMap<u32, Vec<usize>> = Default::default();
     for i in (0..faces.len()).filter(|&i| in_wall[i] || joined[i]) {
         let root = sets.find(i as u32);
-        if walls.contains(&root) {
+        if !walls_only || walls.contains(&root) {
             groups.entry(root).or_default().push(i);
         }
     }
@@ -281,17 +294,213 @@ fn absorb_flat_faces(
     }
 }
 
+/// What an overlay keeps of a cell, given the faces covering it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Keep {
+    /// A Boolean's rule (module docs): the count of the covering faces,
+    /// +1 for each facing one way and −1 for each facing the other. A
+    /// cell of count 0 goes, ±1 is kept facing that way, and any other
+    /// count fails the overlay (stacked faces are no wall).
+    Count,
+    /// `holey resolve`'s rule: every cell that a face covers is kept
+    /// once, facing by the sign of the count, and where that is 0, as the
+    /// first covering face does.
+    Once,
+}
+
+/// An overlay's result.
+pub(crate) struct Overlay {
+    /// The kept cells.
+    pub cells: Vec<[u32; 3]>,
+    /// Each side of the group's faces (its two ends, as the face runs it)
+    /// with the points it was split at, in order from its first end: the
+    /// faces around the group that share such a side must be split there
+    /// too.
+    pub sides: Vec<((u32, u32), Vec<u32>)>,
+}
+
+type Handle = spade::handles::FixedVertexHandle;
+
+/// The constrained triangulation of a group's faces in the projection
+/// along `axis`: every corner a vertex (`None` when two corners project
+/// to one point, which the overlay would merge, or when the splitting
+/// insertion of a side panics), every side of a face with an area a
+/// constraint, split where sides cross.
+fn triangulate(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    group: &[usize],
+    signs: &[Sign],
+    axis: usize,
+) -> Option<(
+    ConstrainedDelaunayTriangulation<ChartVertex>,
+    rustc_hash::FxHashMap<u32, Handle>,
+)> {
+    let proj = |v: u32| project(positions[v as usize], axis);
+    let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
+        ConstrainedDelaunayTriangulation::new();
+    let mut handle_of: rustc_hash::FxHashMap<u32, Handle> = Default::default();
+    for &i in group {
+        for v in faces[i] {
+            if let std::collections::hash_map::Entry::Vacant(e) = handle_of.entry(v) {
+                let q = proj(v);
+                let h = cdt
+                    .insert(ChartVertex {
+                        pos: Point2::new(q.x, q.y),
+                        global: v,
+                    })
+                    .ok()?;
+                e.insert(h);
+            }
+        }
+    }
+    if cdt.num_vertices() != handle_of.len() {
+        return None;
+    }
+    let split = |p: Point2<f64>| ChartVertex {
+        pos: p,
+        global: NONE,
+    };
+    let sides: Vec<(Handle, Handle)> = group
+        .iter()
+        .zip(signs)
+        .filter(|(_, s)| **s != Sign::Zero)
+        .flat_map(|(&i, _)| {
+            let f = faces[i];
+            (0..3).map(move |k| (f[k], f[(k + 1) % 3]))
+        })
+        .map(|(a, b)| (handle_of[&a], handle_of[&b]))
+        .collect();
+    let inserted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        for &(a, b) in &sides {
+            if a != b {
+                cdt.add_constraint_and_split(a, b, split);
+            }
+        }
+    }));
+    inserted.is_ok().then_some((cdt, handle_of))
+}
+
+/// How far from a side's line, relative to its length, a split point of
+/// the side may lie (the rounding of a crossing point, in ulps; a
+/// crossing so ill-conditioned that its point lands farther off leaves
+/// the chain unfollowed and the group as it was).
+const ON_SIDE: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// The chain of constraint edges of `cdt` from `from` to `to`: the
+/// vertices strictly between, in order. Each step takes a constraint
+/// edge to a vertex on the segment (within [`ON_SIDE`] of its line)
+/// that is closer to `to`, the nearest such; `None` when there is none
+/// before `to`.
+fn chain(
+    cdt: &ConstrainedDelaunayTriangulation<ChartVertex>,
+    from: Handle,
+    to: Handle,
+) -> Option<Vec<Handle>> {
+    let (a, b) = (cdt.vertex(from).position(), cdt.vertex(to).position());
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let length2 = dx * dx + dy * dy;
+    // The parameter along the side, and whether the point is on it.
+    let along = |q: Point2<f64>| ((q.x - a.x) * dx + (q.y - a.y) * dy) / length2;
+    let on_line = |q: Point2<f64>| {
+        let off = ((q.x - a.x) * dy - (q.y - a.y) * dx).abs();
+        off <= length2 * ON_SIDE
+    };
+    let mut at = from;
+    let mut t = 0.0;
+    let mut between = Vec::new();
+    for _ in 0..cdt.num_vertices() {
+        let mut next: Option<(Handle, f64)> = None;
+        for e in cdt.vertex(at).out_edges() {
+            if !e.is_constraint_edge() {
+                continue;
+            }
+            let v = e.to();
+            if v.fix() == to {
+                return Some(between);
+            }
+            let q = v.position();
+            let s = along(q);
+            if s > t && s < 1.0 && on_line(q) && next.is_none_or(|(_, n)| s < n) {
+                next = Some((v.fix(), s));
+            }
+        }
+        let (v, s) = next?;
+        between.push(v);
+        (at, t) = (v, s);
+    }
+    None
+}
+
+/// Relative distance (to the size of the overlay's points) within which
+/// a crossing point is taken as another point: the rounding of two
+/// computations of one crossing (three sides through one point of a
+/// degenerate input are split at two points an ulp apart, and the sliver
+/// between them covers nothing), not a modelling tolerance.
+const SNAP: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// For each of `points`, the point it is taken as: itself, or for a
+/// crossing (`crossing[i]`), the nearest corner within [`SNAP`] of the
+/// points' size, else the first crossing of its cluster of crossings
+/// that lie within that of each other. Corners are never merged.
+fn snap_crossings(points: &[DVec3], crossing: &[bool]) -> Vec<usize> {
+    let mut to: Vec<usize> = (0..points.len()).collect();
+    if !crossing.iter().any(|&c| c) {
+        return to;
+    }
+    let size = Aabb::from_points(points);
+    let tol = (size.max - size.min).length() * SNAP;
+    if !(tol > 0.0 && tol.is_finite()) {
+        return to;
+    }
+    let cell = |p: DVec3| ((p - size.min) / tol).floor().as_i64vec3();
+    let mut grid: rustc_hash::FxHashMap<glam::I64Vec3, Vec<usize>> = Default::default();
+    for (i, &p) in points.iter().enumerate() {
+        grid.entry(cell(p)).or_default().push(i);
+    }
+    let mut clusters = UnionFind::new(points.len());
+    for i in (0..points.len()).filter(|&i| crossing[i]) {
+        let c = cell(points[i]);
+        let mut nearest: Option<(f64, usize)> = None;
+        for d in (0..27).map(|k| glam::I64Vec3::new(k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1)) {
+            for &j in grid.get(&(c + d)).into_iter().flatten() {
+                let dist = (points[j] - points[i]).length();
+                if j == i || dist > tol {
+                    continue;
+                }
+                if crossing[j] {
+                    clusters.union(i as u32, j as u32);
+                } else if nearest.is_none_or(|(n, _)| dist < n) {
+                    nearest = Some((dist, j));
+                }
+            }
+        }
+        if let Some((_, j)) = nearest {
+            to[i] = j;
+        }
+    }
+    let mut first: rustc_hash::FxHashMap<u32, usize> = Default::default();
+    for i in 0..points.len() {
+        if crossing[i] && to[i] == i {
+            to[i] = *first.entry(clusters.find(i as u32)).or_insert(i);
+        }
+    }
+    to
+}
+
 /// The overlay of the coplanar faces `group` of `faces` (module docs):
-/// its cells with a nonzero count, facing by their count, with the
-/// crossing points appended to `positions` (those at the position of a
-/// vertex in `existing`, by [`holey_geom::position_key`], are that
-/// vertex); `None` when it cannot be made (and nothing is appended).
+/// its cells kept by `keep`, with the crossing points appended to
+/// `positions` (those at the position of a vertex in `existing`, by
+/// [`holey_geom::position_key`], are that vertex), and the points each
+/// side of the group's faces was split at; `None` when it cannot be made
+/// (and nothing is appended).
 pub(crate) fn overlay(
     positions: &mut Vec<DVec3>,
     faces: &[[u32; 3]],
     group: &[usize],
     existing: &rustc_hash::FxHashMap<[u64; 3], u32>,
-) -> Option<Vec<[u32; 3]>> {
+    keep: Keep,
+) -> Option<Overlay> {
     // The plane's axis and face: the first face with an area (faces of no
     // area, absorbed by `absorb_flat_faces`, count nothing).
     let first = *group.iter().find(|&&i| !flat(positions, faces[i]))?;
@@ -307,57 +516,8 @@ pub(crate) fn overlay(
     {
         return None;
     }
+    let (cdt, handle_of) = triangulate(positions, faces, group, &signs, axis)?;
     let proj = |v: u32| project(positions[v as usize], axis);
-    let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
-        ConstrainedDelaunayTriangulation::new();
-    let mut handle_of: rustc_hash::FxHashMap<u32, spade::handles::FixedVertexHandle> =
-        Default::default();
-    for &i in group {
-        for v in faces[i] {
-            if let std::collections::hash_map::Entry::Vacant(e) = handle_of.entry(v) {
-                let q = proj(v);
-                let h = cdt
-                    .insert(ChartVertex {
-                        pos: Point2::new(q.x, q.y),
-                        global: v,
-                    })
-                    .ok()?;
-                e.insert(h);
-            }
-        }
-    }
-    // Two result vertices at one projected point: the overlay would merge
-    // them, which is not its to decide.
-    if cdt.num_vertices() != handle_of.len() {
-        return None;
-    }
-    let split = |p: Point2<f64>| ChartVertex {
-        pos: p,
-        global: NONE,
-    };
-    let sides: Vec<(
-        spade::handles::FixedVertexHandle,
-        spade::handles::FixedVertexHandle,
-    )> = group
-        .iter()
-        .zip(&signs)
-        .filter(|(_, s)| **s != Sign::Zero)
-        .flat_map(|(&i, _)| {
-            let f = faces[i];
-            (0..3).map(move |k| (f[k], f[(k + 1) % 3]))
-        })
-        .map(|(a, b)| (handle_of[&a], handle_of[&b]))
-        .collect();
-    let inserted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        for &(a, b) in &sides {
-            if a != b {
-                cdt.add_constraint_and_split(a, b, split);
-            }
-        }
-    }));
-    if inserted.is_err() {
-        return None;
-    }
     // The group's faces, counterclockwise in the projection, with the
     // count each adds inside it.
     let covers: Vec<([DVec2; 3], i32)> = group
@@ -390,25 +550,45 @@ pub(crate) fn overlay(
         p[axis] -= off;
         p
     };
-    let mut global: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
-    let mut new_points = Vec::new();
+    // Every vertex's point: a corner's own, a crossing's lifted.
+    let mut points = Vec::with_capacity(cdt.num_vertices());
     for v in cdt.vertices() {
         let pv = v.data();
-        if pv.global == NONE {
+        points.push(if pv.global == NONE {
             let p = lift(pv.pos);
             if !p.is_finite() {
                 return None;
             }
+            p
+        } else {
+            positions[pv.global as usize]
+        });
+    }
+    let crossing: Vec<bool> = cdt.vertices().map(|v| v.data().global == NONE).collect();
+    let snapped = snap_crossings(&points, &crossing);
+    let mut global: Vec<u32> = Vec::with_capacity(cdt.num_vertices());
+    let mut new_points = Vec::new();
+    for (i, v) in cdt.vertices().enumerate() {
+        let pv = v.data();
+        if pv.global != NONE {
+            global.push(pv.global);
+        } else if snapped[i] < i {
+            global.push(global[snapped[i]]);
+        } else if snapped[i] > i {
+            // Snapped to a corner of a later vertex: filled in below.
+            global.push(NONE);
+        } else if let Some(&v) = existing.get(&holey_geom::position_key(points[i])) {
             // A crossing that lands on a vertex the result has (a point of
             // another sheet's curve in this plane) is that vertex.
-            if let Some(&v) = existing.get(&holey_geom::position_key(p)) {
-                global.push(v);
-                continue;
-            }
-            global.push((positions.len() + new_points.len()) as u32);
-            new_points.push(p);
+            global.push(v);
         } else {
-            global.push(pv.global);
+            global.push((positions.len() + new_points.len()) as u32);
+            new_points.push(points[i]);
+        }
+    }
+    for i in 0..global.len() {
+        if global[i] == NONE {
+            global[i] = global[snapped[i]];
         }
     }
     let mut cells = Vec::new();
@@ -417,27 +597,57 @@ pub(crate) fn overlay(
             let p = v.position();
             DVec2::new(p.x, p.y)
         });
-        let count: i32 = covers
+        let mut covering = covers
             .iter()
             .filter(|(t, _)| inside(t, &q))
-            .map(|(_, c)| c)
-            .sum();
+            .map(|(_, c)| *c);
+        let first_cover = covering.next();
+        let count: i32 = first_cover.unwrap_or(0) + covering.sum::<i32>();
         let [i, j, k] = f.vertices().map(|v| global[v.fix().index()]);
         // A crossing taken as an existing vertex can make a cell's corners
         // repeat: a cell of no area, never kept (the check of the merge
         // decides whether the result stays closed without it).
-        if count != 0 && (i == j || j == k || i == k) {
+        if first_cover.is_none() || i == j || j == k || i == k {
             continue;
         }
-        match count {
-            0 => {}
+        let facing = match keep {
+            Keep::Count if count.abs() > 1 => return None,
+            Keep::Count => count,
+            Keep::Once if count == 0 => first_cover.unwrap_or(1),
+            Keep::Once => count,
+        };
+        match facing.signum() {
             1 => cells.push([i, j, k]),
             -1 => cells.push([i, k, j]),
-            _ => return None,
+            _ => {}
+        }
+    }
+    let mut sides = Vec::new();
+    // (A Boolean repairs the T-junctions around its walls by their
+    // orientation; it needs no chains.)
+    let chained = if keep == Keep::Once { group } else { &[] };
+    for (&i, _) in chained
+        .iter()
+        .zip(&signs)
+        .filter(|(_, s)| **s != Sign::Zero)
+    {
+        let f = faces[i];
+        for k in 0..3 {
+            let (u, v) = (f[k], f[(k + 1) % 3]);
+            let on = chain(&cdt, handle_of[&u], handle_of[&v])?;
+            let mut on: Vec<u32> = on
+                .iter()
+                .map(|h| global[h.index()])
+                .filter(|&w| w != u && w != v)
+                .collect();
+            on.dedup();
+            if !on.is_empty() {
+                sides.push(((u, v), on));
+            }
         }
     }
     positions.extend(new_points);
-    Some(cells)
+    Some(Overlay { cells, sides })
 }
 
 #[cfg(test)]
@@ -482,7 +692,9 @@ mod tests {
         let groups = wall_groups(&positions, &faces);
         assert_eq!(groups, vec![vec![0, 1, 2, 3]]);
         let existing = Default::default();
-        let cells = overlay(&mut positions, &faces, &groups[0], &existing).unwrap();
+        let cells = overlay(&mut positions, &faces, &groups[0], &existing, Keep::Count)
+            .unwrap()
+            .cells;
         let (mut up, mut down) = (0.0, 0.0);
         for c in &cells {
             let [a, b, d] = c.map(|v| positions[v as usize]);
@@ -524,7 +736,15 @@ mod tests {
         faces.extend([[8, 9, 10], [0, 1, 11]]);
         let groups = wall_groups(&positions, &faces);
         assert_eq!(groups, vec![vec![0, 1, 2, 3, 4, 5]]);
-        let cells = overlay(&mut positions, &faces, &groups[0], &Default::default()).unwrap();
+        let cells = overlay(
+            &mut positions,
+            &faces,
+            &groups[0],
+            &Default::default(),
+            Keep::Count,
+        )
+        .unwrap()
+        .cells;
         let down: f64 = cells
             .iter()
             .map(|c| {

@@ -89,6 +89,12 @@ pub struct CutReport {
     /// Vertices split because the solid guard's result touched itself
     /// there at a single point (one vertex per fan).
     pub pinches_split: usize,
+    /// Groups of coplanar triangles overlapping in their plane that
+    /// `resolve` replaced by their overlay (`crate::overlaps`).
+    pub coplanar_groups_merged: usize,
+    /// Such groups `resolve` left overlapping: their overlay could not be
+    /// made.
+    pub coplanar_groups_left: usize,
 }
 
 /// A vertex of a chart triangulation (also the coplanar overlay's): its

@@ -803,7 +803,9 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     let ids = position_classes(&mesh.positions)?;
     let x = intersections(mesh, &mesh.positions, &edges, &ids)?;
     let Cut {
-        mesh: out, report, ..
+        mesh: out,
+        mut report,
+        ..
     } = cut(
         mesh,
         &mesh.positions,
@@ -813,7 +815,21 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
         Deletion::Nothing,
         None,
     );
-    Ok((out, x, report))
+    let TriMesh {
+        mut positions,
+        triangles,
+    } = out;
+    let (triangles, merged) = crate::overlaps::merge_overlaps(&mut positions, triangles);
+    report.coplanar_groups_merged = merged.groups;
+    report.coplanar_groups_left = merged.left;
+    Ok((
+        TriMesh {
+            positions,
+            triangles,
+        },
+        x,
+        report,
+    ))
 }
 
 /// Whether any two triangles of `mesh` intersect (exact, identities by

@@ -20,6 +20,7 @@ pub mod intersect;
 mod local;
 pub mod mesh;
 mod orient;
+mod overlaps;
 mod report_json;
 mod solid;
 pub mod solids;
@@ -41,6 +42,7 @@ pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_
 pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::{MeshError, TriMesh};
+pub use overlaps::coplanar_overlaps;
 pub use solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method, solid_boolean};
 pub use union::{
     Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,

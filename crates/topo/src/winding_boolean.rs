@@ -87,6 +87,7 @@ use holey_geom::sos::{Poly, sos_sign};
 use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
 use rayon::prelude::*;
 
+use crate::coplanar::{Keep, Overlay, overlay};
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
@@ -379,7 +380,8 @@ fn close_up(
     let mut added: Vec<[u32; 3]> = Vec::new();
     let mut made = 0;
     for group in &groups {
-        if let Some(cells) = crate::coplanar::overlay(positions, &faces, group, &existing) {
+        if let Some(o) = overlay(positions, &faces, group, &existing, Keep::Count) {
+            let cells = o.cells;
             group.iter().for_each(|&i| gone[i] = true);
             added.extend(cells);
             made += 1;
@@ -398,7 +400,8 @@ fn close_up(
     added.clear();
     for group in &groups {
         let mark = positions.len();
-        let Some(cells) = crate::coplanar::overlay(positions, &faces, group, &existing) else {
+        let Some(Overlay { cells, .. }) = overlay(positions, &faces, group, &existing, Keep::Count)
+        else {
             continue;
         };
         let mut trial = gone.clone();

@@ -13,6 +13,9 @@ Cuts the surface along all its self-intersection curves and glues the
 pieces there, deleting nothing: every intersection curve becomes a curve
 of shared edges, so the output has no triangle crossing another. Where
 four sheets meet along a curve the output has edges of degree four.
+Triangles that lie in one plane and overlap there are merged: every part
+of the plane they cover is covered once, facing the way most of them
+face (`holey selfint --overlaps` counts what is left).
 
 Examples:
   holey resolve self_intersecting.obj arrangement.obj -v")]
@@ -45,10 +48,13 @@ pub fn run_file(input: &str, output: &str) -> Result<String> {
     };
     crate::tri::write_triangles(output, &out)?;
     Ok(format!(
-        "{} intersecting pairs, {} curves; {} triangles split into {} triangles total",
+        "{} intersecting pairs, {} curves; {} triangles split into {} triangles total; \
+         {} groups of overlapping coplanar triangles merged, {} left",
         x.pairs.len(),
         x.curve_count,
         report.triangles_split,
-        out.triangles.len()
+        out.triangles.len(),
+        report.coplanar_groups_merged,
+        report.coplanar_groups_left,
     ))
 }

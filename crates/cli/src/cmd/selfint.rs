@@ -40,6 +40,11 @@ pub struct Options {
     /// segments, one group per curve (`g curve0`, ...), for viewing them.
     #[arg(long, value_name = "CURVES.obj")]
     pub curves: Option<String>,
+    /// Also count the pairs of triangles that lie in one plane and
+    /// overlap there (exact). Simulation of simplicity keeps coplanar
+    /// triangles apart, so such overlaps are not intersecting pairs.
+    #[arg(long)]
+    pub overlaps: bool,
 }
 
 impl MeshReport for Options {
@@ -59,8 +64,12 @@ impl MeshReport for Options {
             .map_err(crate::error::from_io)?;
         }
         let triple = x.triple_points();
+        let overlaps = self.overlaps.then(|| holey_topo::coplanar_overlaps(mesh));
         if self.json {
-            let v = report_json(name, &found, self.pairs);
+            let mut v = report_json(name, &found, self.pairs);
+            if let Some(n) = overlaps {
+                v["coplanar_overlaps"] = json!(n);
+            }
             println!("{}", serde_json::to_string_pretty(&v)?);
         } else {
             println!("mesh                {name}");
@@ -69,6 +78,9 @@ impl MeshReport for Options {
             println!("points              {} ({} triple)", x.points.len(), triple);
             println!("edges               {}", x.pieces.len());
             println!("curves              {}", x.curve_count);
+            if let Some(n) = overlaps {
+                println!("coplanar overlaps   {n}");
+            }
             if self.pairs {
                 for (a, b) in &x.pairs {
                     println!("pair {a} {b}");

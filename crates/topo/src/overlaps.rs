@@ -1,0 +1,220 @@
+//! Coplanar overlaps merged in `holey resolve`'s arrangement (issue 14:
+//! "`holey resolve` also merges coplanar overlaps, so that afterwards no
+//! two triangles cross or overlap").
+//!
+//! The arrangement's cut works in a perturbed world in which coplanar
+//! triangles do not meet, so triangles lying in one plane and
+//! overlapping there (a CAD export's stacked duplicates, two shells
+//! sharing a face) come out of it still overlapping. Each group of such
+//! triangles is replaced by its overlay ([`crate::coplanar`], rule
+//! [`Keep::Once`]): the constrained triangulation of all their sides in
+//! the plane, every cell that some triangle covers kept once. Nothing is
+//! deleted that a triangle covered, and no cell is covered twice.
+//!
+//! The overlay splits the group's sides where other sides cross them (at
+//! points rounded once and lifted onto the plane) and where other
+//! corners lie on them. A triangle outside the group sharing such a side
+//! must be split at the same points, or the surface would open along it:
+//! every side a group split is recorded with its points, and each
+//! triangle of the result that runs along one is fanned from its
+//! opposite corner through them. This needs no orientation (the
+//! arrangement has none to rely on: its sheets cross and stack).
+
+use glam::DVec3;
+use rustc_hash::FxHashMap as HashMap;
+
+use holey_geom::{Aabb, Bvh};
+
+use crate::coplanar::{Keep, Overlap, overlap, overlap_groups, overlay};
+use crate::mesh::TriMesh;
+
+/// What merging the overlaps did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Merged {
+    /// Groups of overlapping coplanar triangles replaced by their overlay.
+    pub groups: usize,
+    /// Groups left as they were: the overlay could not be made (two
+    /// corners at one point of the plane, a side whose splitting
+    /// insertion failed or whose split points could not be followed).
+    pub left: usize,
+}
+
+/// The sides the overlays split, by their ends (smaller first), each with
+/// its points in order from the smaller end; and the side each piece of
+/// such a side belongs to.
+#[derive(Default)]
+struct SplitSides {
+    points: HashMap<(u32, u32), Vec<u32>>,
+    piece_of: HashMap<(u32, u32), (u32, u32)>,
+}
+
+fn key(u: u32, v: u32) -> (u32, u32) {
+    (u.min(v), u.max(v))
+}
+
+impl SplitSides {
+    /// Records that the side `u → v` was split at `on` (in order from
+    /// `u`), merging the points with those another group split it at.
+    fn record(&mut self, positions: &[DVec3], (u, v): (u32, u32), mut on: Vec<u32>) {
+        if u > v {
+            on.reverse();
+        }
+        let side = key(u, v);
+        let points = self.points.entry(side).or_default();
+        let fresh = points.is_empty();
+        points.extend(on);
+        if !fresh {
+            let along = along(positions, side);
+            points.sort_by(|&a, &b| along(a).total_cmp(&along(b)));
+            points.dedup();
+        }
+        let mut chain = vec![side.0];
+        chain.extend(points.iter().copied());
+        chain.push(side.1);
+        for w in chain.windows(2) {
+            self.piece_of.entry(key(w[0], w[1])).or_insert(side);
+        }
+    }
+
+    /// The points strictly between `u` and `v` that the side `u – v`, or
+    /// the split side it is a piece of, was split at: in order from `u`.
+    fn between(&self, positions: &[DVec3], u: u32, v: u32) -> Vec<u32> {
+        let side = key(u, v);
+        let mut on: Vec<u32> = if let Some(points) = self.points.get(&side) {
+            points.clone()
+        } else if let Some(&whole) = self.piece_of.get(&side) {
+            let along = along(positions, whole);
+            let (lo, hi) = (along(side.0), along(side.1));
+            let (lo, hi) = (lo.min(hi), lo.max(hi));
+            let mut on: Vec<u32> = self.points[&whole]
+                .iter()
+                .copied()
+                .filter(|&w| along(w) > lo && along(w) < hi)
+                .collect();
+            if along(side.0) > along(side.1) {
+                on.reverse();
+            }
+            on
+        } else {
+            return Vec::new();
+        };
+        if u > v {
+            on.reverse();
+        }
+        on
+    }
+}
+
+/// The parameter along the side `(a, b)` of a point: its projection on
+/// `b − a` (unnormalized: only the order matters).
+fn along(positions: &[DVec3], (a, b): (u32, u32)) -> impl Fn(u32) -> f64 + '_ {
+    let (pa, d) = (
+        positions[a as usize],
+        positions[b as usize] - positions[a as usize],
+    );
+    move |w| (positions[w as usize] - pa).dot(d)
+}
+
+/// Replaces every group of overlapping coplanar triangles of `faces` by
+/// its overlay (module docs), appending the crossing points to
+/// `positions`, and splits the triangles that share a side the overlays
+/// split.
+pub(crate) fn merge_overlaps(
+    positions: &mut Vec<DVec3>,
+    faces: Vec<[u32; 3]>,
+) -> (Vec<[u32; 3]>, Merged) {
+    let groups = overlap_groups(positions, &faces, false);
+    let mut merged = Merged::default();
+    if groups.is_empty() {
+        return (faces, merged);
+    }
+    let existing: HashMap<[u64; 3], u32> = positions
+        .iter()
+        .enumerate()
+        .map(|(v, &p)| (holey_geom::position_key(p), v as u32))
+        .collect();
+    let mut gone = vec![false; faces.len()];
+    let mut added = Vec::new();
+    let mut split = SplitSides::default();
+    for group in &groups {
+        let Some(o) = overlay(positions, &faces, group, &existing, Keep::Once) else {
+            merged.left += 1;
+            continue;
+        };
+        group.iter().for_each(|&i| gone[i] = true);
+        added.extend(o.cells);
+        for (side, on) in o.sides {
+            split.record(positions, side, on);
+        }
+        merged.groups += 1;
+    }
+    let kept = faces
+        .iter()
+        .zip(&gone)
+        .filter(|(_, g)| !**g)
+        .map(|(f, _)| *f)
+        .chain(added);
+    let mut out = Vec::with_capacity(faces.len());
+    for f in kept {
+        split_along(positions, &split, f, &mut out);
+    }
+    (out, merged)
+}
+
+/// Pushes `f` onto `out`, fanned from its opposite corner through the
+/// points of every side of it that an overlay split (each piece fanned
+/// again through the points of its other sides).
+fn split_along(positions: &[DVec3], split: &SplitSides, f: [u32; 3], out: &mut Vec<[u32; 3]>) {
+    let mut stack = vec![f];
+    // Each split replaces a face by faces with shorter split sides; the
+    // bound only guards against a cycle of rounded orders.
+    let mut splits_left = 1 << 16;
+    while let Some(f) = stack.pop() {
+        if splits_left == 0 {
+            out.push(f);
+            continue;
+        }
+        let found = (0..3).find_map(|k| {
+            let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+            let on = split.between(positions, u, v);
+            // A point at the opposite corner: the face is flat along the
+            // side, and a fan through it would fold.
+            (!on.is_empty() && !on.contains(&x)).then_some((k, on))
+        });
+        let Some((k, on)) = found else {
+            out.push(f);
+            continue;
+        };
+        splits_left -= 1;
+        let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+        let mut along = vec![u];
+        along.extend(on);
+        along.push(v);
+        stack.extend(along.windows(2).map(|w| [w[0], w[1], x]));
+    }
+}
+
+/// The pairs of triangles of `mesh` that lie in one plane and overlap
+/// there (exactly: coplanar by `orient3d`, interiors meeting by
+/// `orient2d`), facing either way: the overlaps the perturbed world of
+/// [`crate::self_intersections`] does not count as crossings.
+pub fn coplanar_overlaps(mesh: &TriMesh) -> usize {
+    let (positions, faces) = (&mesh.positions, &mesh.triangles);
+    let boxes: Vec<Aabb> = faces
+        .iter()
+        .map(|f| Aabb::from_points(&f.map(|v| positions[v as usize])))
+        .collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return 0;
+    };
+    let mut pairs = 0;
+    for (i, b) in boxes.iter().enumerate() {
+        tree.for_each_overlap(b, |j| {
+            let j = j as usize;
+            if j > i && overlap(positions, faces[i], faces[j]) != Overlap::Apart {
+                pairs += 1;
+            }
+        });
+    }
+    pairs
+}
