@@ -317,9 +317,21 @@ pub(crate) struct Overlay {
     /// faces around the group that share such a side must be split there
     /// too.
     pub sides: Vec<((u32, u32), Vec<u32>)>,
+    /// Corners of the group taken as another corner at the same point
+    /// (only by [`Keep::Once`]): (corner, the one it is taken as). The
+    /// cells use the second; every face must.
+    pub renamed: Vec<(u32, u32)>,
 }
 
 type Handle = spade::handles::FixedVertexHandle;
+
+/// A group's triangulation: the vertex of each corner, and the corners
+/// taken as another at the same point (corner, the one it is taken as).
+struct Triangulated {
+    cdt: ConstrainedDelaunayTriangulation<ChartVertex>,
+    handle_of: rustc_hash::FxHashMap<u32, Handle>,
+    renamed: Vec<(u32, u32)>,
+}
 
 /// The constrained triangulation of a group's faces in the projection
 /// along `axis`: every corner a vertex (`None` when two corners project
@@ -332,30 +344,35 @@ fn triangulate(
     group: &[usize],
     signs: &[Sign],
     axis: usize,
-) -> Option<(
-    ConstrainedDelaunayTriangulation<ChartVertex>,
-    rustc_hash::FxHashMap<u32, Handle>,
-)> {
+    keep: Keep,
+) -> Option<Triangulated> {
     let proj = |v: u32| project(positions[v as usize], axis);
     let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
         ConstrainedDelaunayTriangulation::new();
     let mut handle_of: rustc_hash::FxHashMap<u32, Handle> = Default::default();
+    let mut renamed = Vec::new();
     for &i in group {
         for v in faces[i] {
             if let std::collections::hash_map::Entry::Vacant(e) = handle_of.entry(v) {
                 let q = proj(v);
-                let h = cdt
-                    .insert(ChartVertex {
-                        pos: Point2::new(q.x, q.y),
-                        global: v,
-                    })
-                    .ok()?;
+                let at = Point2::new(q.x, q.y);
+                if let Some(h) = cdt.locate_vertex(at) {
+                    // Two corners at one point of the plane are at one
+                    // point of space (the projection is one to one on the
+                    // plane): the same point, by the engine's identities
+                    // by position. `resolve` takes them as one; for a
+                    // Boolean that is not the overlay's to decide.
+                    if keep == Keep::Count {
+                        return None;
+                    }
+                    renamed.push((v, h.data().global));
+                    e.insert(h.fix());
+                    continue;
+                }
+                let h = cdt.insert(ChartVertex { pos: at, global: v }).ok()?;
                 e.insert(h);
             }
         }
-    }
-    if cdt.num_vertices() != handle_of.len() {
-        return None;
     }
     let split = |p: Point2<f64>| ChartVertex {
         pos: p,
@@ -378,7 +395,11 @@ fn triangulate(
             }
         }
     }));
-    inserted.is_ok().then_some((cdt, handle_of))
+    inserted.is_ok().then_some(Triangulated {
+        cdt,
+        handle_of,
+        renamed,
+    })
 }
 
 /// How far from a side's line, relative to its length, a split point of
@@ -516,7 +537,11 @@ pub(crate) fn overlay(
     {
         return None;
     }
-    let (cdt, handle_of) = triangulate(positions, faces, group, &signs, axis)?;
+    let Triangulated {
+        cdt,
+        handle_of,
+        renamed,
+    } = triangulate(positions, faces, group, &signs, axis, keep)?;
     let proj = |v: u32| project(positions[v as usize], axis);
     // The group's faces, counterclockwise in the projection, with the
     // count each adds inside it.
@@ -647,7 +672,11 @@ pub(crate) fn overlay(
         }
     }
     positions.extend(new_points);
-    Some(Overlay { cells, sides })
+    Some(Overlay {
+        cells,
+        sides,
+        renamed,
+    })
 }
 
 #[cfg(test)]

@@ -18,14 +18,17 @@
 //! every side a group split is recorded with its points, and each
 //! triangle of the result that runs along one is fanned from its
 //! opposite corner through them. This needs no orientation (the
-//! arrangement has none to rely on: its sheets cross and stack).
+//! arrangement has none to rely on: its sheets cross and stack). A
+//! merge that would leave more sides on one triangle only than the
+//! arrangement had (a rounded crossing that the sides around it do not
+//! follow) is not made.
 
 use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
 
 use holey_geom::{Aabb, Bvh};
 
-use crate::coplanar::{Keep, Overlap, overlap, overlap_groups, overlay};
+use crate::coplanar::{Keep, Overlap, Overlay, overlap, overlap_groups, overlay};
 use crate::mesh::TriMesh;
 
 /// What merging the overlaps did.
@@ -35,7 +38,8 @@ pub(crate) struct Merged {
     pub groups: usize,
     /// Groups left as they were: the overlay could not be made (two
     /// corners at one point of the plane, a side whose splitting
-    /// insertion failed or whose split points could not be followed).
+    /// insertion failed or whose split points could not be followed), or
+    /// merging it would have opened the surface.
     pub left: usize,
 }
 
@@ -115,50 +119,146 @@ fn along(positions: &[DVec3], (a, b): (u32, u32)) -> impl Fn(u32) -> f64 + '_ {
     move |w| (positions[w as usize] - pa).dot(d)
 }
 
-/// Replaces every group of overlapping coplanar triangles of `faces` by
-/// its overlay (module docs), appending the crossing points to
+/// Replaces the groups of overlapping coplanar triangles of `faces` by
+/// their overlays (module docs), appending the crossing points to
 /// `positions`, and splits the triangles that share a side the overlays
-/// split.
+/// split. A merge must not open the surface: every group at once when
+/// that leaves no more sides on one triangle only than `faces` had, else
+/// one group at a time, each kept only if it opens nothing.
 pub(crate) fn merge_overlaps(
     positions: &mut Vec<DVec3>,
     faces: Vec<[u32; 3]>,
 ) -> (Vec<[u32; 3]>, Merged) {
     let groups = overlap_groups(positions, &faces, false);
-    let mut merged = Merged::default();
     if groups.is_empty() {
-        return (faces, merged);
+        return (faces, Merged::default());
     }
     let existing: HashMap<[u64; 3], u32> = positions
         .iter()
         .enumerate()
         .map(|(v, &p)| (holey_geom::position_key(p), v as u32))
         .collect();
-    let mut gone = vec![false; faces.len()];
-    let mut added = Vec::new();
-    let mut split = SplitSides::default();
-    for group in &groups {
-        let Some(o) = overlay(positions, &faces, group, &existing, Keep::Once) else {
-            merged.left += 1;
-            continue;
-        };
-        group.iter().for_each(|&i| gone[i] = true);
-        added.extend(o.cells);
-        for (side, on) in o.sides {
-            split.record(positions, side, on);
-        }
-        merged.groups += 1;
-    }
-    let kept = faces
+    let first_new = positions.len();
+    let overlays: Vec<(usize, Overlay)> = groups
         .iter()
-        .zip(&gone)
-        .filter(|(_, g)| !**g)
-        .map(|(f, _)| *f)
-        .chain(added);
-    let mut out = Vec::with_capacity(faces.len());
-    for f in kept {
-        split_along(positions, &split, f, &mut out);
-    }
+        .enumerate()
+        .filter_map(|(g, group)| {
+            overlay(positions, &faces, group, &existing, Keep::Once).map(|o| (g, o))
+        })
+        .collect();
+    let positions_now: &[DVec3] = positions;
+    // The faces with the overlays `taken` (indices into `overlays`) merged.
+    let merge = |taken: &[usize]| -> Vec<[u32; 3]> {
+        let mut gone = vec![false; faces.len()];
+        let mut split = SplitSides::default();
+        let mut added = Vec::new();
+        let mut same: HashMap<u32, u32> = HashMap::default();
+        for &k in taken {
+            let (g, o) = &overlays[k];
+            groups[*g].iter().for_each(|&i| gone[i] = true);
+            added.extend_from_slice(&o.cells);
+            for (side, on) in &o.sides {
+                split.record(positions_now, *side, on.clone());
+            }
+            same.extend(o.renamed.iter().copied());
+        }
+        let kept = faces
+            .iter()
+            .zip(&gone)
+            .filter(|(_, g)| !**g)
+            .map(|(f, _)| *f)
+            .chain(added);
+        let mut out = Vec::with_capacity(faces.len());
+        for f in kept {
+            split_along(positions_now, &split, f, &mut out);
+        }
+        if !same.is_empty() {
+            // Corners an overlay took as another at the same point (a
+            // chain of such ends at a vertex no overlay renamed).
+            let named = |mut v: u32| {
+                for _ in 0..same.len() {
+                    match same.get(&v) {
+                        Some(&w) if w != v => v = w,
+                        _ => break,
+                    }
+                }
+                v
+            };
+            out = out
+                .into_iter()
+                .map(|f| f.map(named))
+                .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
+                .collect();
+        }
+        out
+    };
+    let before = lone_sides(&faces);
+    let every: Vec<usize> = (0..overlays.len()).collect();
+    let at_once = merge(&every);
+    let (out, taken) = if lone_sides(&at_once) <= before {
+        (at_once, every.len())
+    } else {
+        let (mut best, mut taken) = (faces.clone(), Vec::new());
+        for k in every {
+            taken.push(k);
+            let trial = merge(&taken);
+            if lone_sides(&trial) <= before {
+                best = trial;
+            } else {
+                taken.pop();
+            }
+        }
+        (best, taken.len())
+    };
+    let out = drop_unused_points(positions, first_new, out);
+    let merged = Merged {
+        groups: taken,
+        left: groups.len() - taken,
+    };
     (out, merged)
+}
+
+/// The sides that only one triangle of `faces` has (the surface's
+/// boundary, whatever the orientations).
+fn lone_sides(faces: &[[u32; 3]]) -> usize {
+    let mut count: HashMap<(u32, u32), u32> = HashMap::default();
+    for f in faces {
+        for k in 0..3 {
+            *count.entry(key(f[k], f[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    count.values().filter(|&&n| n == 1).count()
+}
+
+/// Drops the points from `first_new` on that no face uses (crossings of
+/// overlays that were not merged), renumbering the rest.
+fn drop_unused_points(
+    positions: &mut Vec<DVec3>,
+    first_new: usize,
+    mut faces: Vec<[u32; 3]>,
+) -> Vec<[u32; 3]> {
+    let mut used = vec![false; positions.len() - first_new];
+    for &v in faces.iter().flatten() {
+        if v as usize >= first_new {
+            used[v as usize - first_new] = true;
+        }
+    }
+    let mut to = vec![0u32; used.len()];
+    let mut next = first_new;
+    for (k, &u) in used.iter().enumerate() {
+        if u {
+            positions[next] = positions[first_new + k];
+            to[k] = next as u32;
+            next += 1;
+        }
+    }
+    positions.truncate(next);
+    for v in faces.iter_mut().flatten() {
+        if *v as usize >= first_new {
+            *v = to[*v as usize - first_new];
+        }
+    }
+    faces
 }
 
 /// Pushes `f` onto `out`, fanned from its opposite corner through the

@@ -382,4 +382,60 @@ fn openscad_resolve_merges_coplanar_overlaps() {
     assert!(report.coplanar_groups_merged > 0, "{report:?}");
     let left = holey_topo::coplanar_overlaps(&out);
     assert!(left < 28_299, "{left} overlapping pairs left");
+    let open = common::boundary(&out).0;
+    assert!(open <= 1, "{open} boundary edges");
+}
+
+/// Random boxes on an integer lattice (faces in shared planes, stacked
+/// and crossing): `resolve` never opens the closed input (no side on one
+/// triangle only), covers no more than the boxes' faces did and no less
+/// than the largest box's (areas computed here), and where every group
+/// was merged, leaves no two triangles overlapping (brute force).
+///
+/// Not asserted: no crossing. Where two groups in different planes
+/// split one line between different ends (a cell's side in one, a face
+/// side in the other), the points of one are not put on the other's
+/// pieces, and a few pairs cross there (round 80: 3 pairs). Finding the
+/// points on a side geometrically instead of by its ends looped on the
+/// OpenSCAD export's nearly collinear slivers.
+#[test]
+fn resolve_of_lattice_boxes_merges_without_opening() {
+    let mut merged_all = 0;
+    for round in 0..120u64 {
+        let mut rng = holey_testkit::Rng::new(0x0C0F_1A7E + round);
+        let mut boxes = Vec::new();
+        for _ in 0..2 + rng.below(2) {
+            let lo = DVec3::new(
+                rng.below(3) as f64,
+                rng.below(3) as f64,
+                rng.below(3) as f64,
+            );
+            let size = DVec3::new(
+                1.0 + rng.below(3) as f64,
+                1.0 + rng.below(3) as f64,
+                1.0 + rng.below(3) as f64,
+            );
+            boxes.push(common::cuboid(lo, lo + size));
+        }
+        let input = boxes[1..].iter().fold(boxes[0].clone(), |m, b| join(&m, b));
+        let (out, _, report) = resolve(&input).expect("resolve");
+        common::well_formed(&out);
+        assert_eq!(common::boundary(&out).0, 0, "round {round}: opened");
+        let area = common::area(&out);
+        let total: f64 = boxes.iter().map(common::area).sum();
+        let largest = boxes.iter().map(common::area).fold(0.0, f64::max);
+        assert!(
+            area <= total + 1e-9 && area >= largest - 1e-9,
+            "round {round}: area {area}, boxes {total}, largest {largest}"
+        );
+        if report.coplanar_groups_left == 0 {
+            merged_all += 1;
+            assert_eq!(overlapping_pairs_brute_force(&out), 0, "round {round}");
+        }
+    }
+    // Measured: 93 of 120 rounds (the rest: chains not followed, spade panics).
+    assert!(
+        merged_all > 85,
+        "only {merged_all} of 120 rounds merged every group"
+    );
 }
