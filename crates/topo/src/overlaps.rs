@@ -16,8 +16,9 @@
 //! corners lie on them. A triangle outside the group sharing such a side
 //! must be split at the same points, or the surface would open along it:
 //! every side a group split is recorded with its points, and each
-//! triangle of the result that runs along one is fanned from its
-//! opposite corner through them. This needs no orientation (the
+//! triangle of the result is fanned from its opposite corners through
+//! the points on its sides (those recorded for the side or the side it
+//! is a piece of, and any other split point on its line, to rounding). This needs no orientation (the
 //! arrangement has none to rely on: its sheets cross and stack). A
 //! merge that would leave more sides on one triangle only than the
 //! arrangement had (a rounded crossing that the sides around it do not
@@ -50,6 +51,23 @@ pub(crate) struct Merged {
 struct SplitSides {
     points: HashMap<(u32, u32), Vec<u32>>,
     piece_of: HashMap<(u32, u32), (u32, u32)>,
+    /// Every split point, and a tree of them: found again on a side with
+    /// other ends along the same line (another group's cell side).
+    all: Vec<u32>,
+    tree: Option<Bvh>,
+}
+
+/// How far from a side's line, relative to its length, a split point
+/// counts as on it: the rounding of a crossing point (ulps), as the
+/// overlay's chains allow.
+const ON_SIDE: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// Whether `w` lies on the line through `u` and `v`, within [`ON_SIDE`]
+/// of their distance (or `u` and `v` coincide).
+fn near_line(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
+    let (pu, pv) = (positions[u as usize], positions[v as usize]);
+    let d = pv - pu;
+    (positions[w as usize] - pu).cross(d).length() <= d.length_squared() * ON_SIDE
 }
 
 fn key(u: u32, v: u32) -> (u32, u32) {
@@ -64,6 +82,7 @@ impl SplitSides {
             on.reverse();
         }
         let side = key(u, v);
+        self.all.extend_from_slice(&on);
         let points = self.points.entry(side).or_default();
         let fresh = points.is_empty();
         points.extend(on);
@@ -78,6 +97,53 @@ impl SplitSides {
         for w in chain.windows(2) {
             self.piece_of.entry(key(w[0], w[1])).or_insert(side);
         }
+    }
+
+    /// Builds the tree of all split points (after the last `record`).
+    fn finish(&mut self, positions: &[DVec3]) {
+        self.all.sort_unstable();
+        self.all.dedup();
+        let boxes: Vec<Aabb> = self
+            .all
+            .iter()
+            .map(|&w| Aabb::from_points(&[positions[w as usize]]))
+            .collect();
+        self.tree = (!boxes.is_empty())
+            .then(|| Bvh::build(&boxes).ok())
+            .flatten();
+    }
+
+    /// The split points on the side `u → v` of a face of the result,
+    /// in order from `u`: those recorded for it or the side it is a piece
+    /// of ([`Self::between`]), and any other strictly between its ends
+    /// within [`ON_SIDE`] of its line.
+    fn on_side(&self, positions: &[DVec3], u: u32, v: u32) -> Vec<u32> {
+        let mut on = self.between(positions, u, v);
+        let Some(tree) = &self.tree else {
+            return on;
+        };
+        let (pu, pv) = (positions[u as usize], positions[v as usize]);
+        let d = pv - pu;
+        let length2 = d.length_squared();
+        let margin = DVec3::splat(length2.sqrt() * ON_SIDE);
+        let reach = Aabb::from_points(&[pu, pv]);
+        let reach = Aabb {
+            min: reach.min - margin,
+            max: reach.max + margin,
+        };
+        tree.for_each_overlap(&reach, |k| {
+            let w = self.all[k as usize];
+            let t = (positions[w as usize] - pu).dot(d);
+            if w != u && w != v && t > 0.0 && t < length2 && near_line(positions, u, v, w) {
+                on.push(w);
+            }
+        });
+        on.sort_by(|&a, &b| {
+            let t = |w: u32| (positions[w as usize] - pu).dot(d);
+            t(a).total_cmp(&t(b))
+        });
+        on.dedup();
+        on
     }
 
     /// The points strictly between `u` and `v` that the side `u – v`, or
@@ -168,6 +234,7 @@ pub(crate) fn merge_overlaps(
             .filter(|(_, g)| !**g)
             .map(|(f, _)| *f)
             .chain(added);
+        split.finish(positions_now);
         let mut out = Vec::with_capacity(faces.len());
         for f in kept {
             split_along(positions_now, &split, f, &mut out);
@@ -261,36 +328,51 @@ fn drop_unused_points(
     faces
 }
 
-/// Pushes `f` onto `out`, fanned from its opposite corner through the
-/// points of every side of it that an overlay split (each piece fanned
-/// again through the points of its other sides).
+/// Pushes `f` onto `out`, split at the points on its sides
+/// ([`SplitSides::on_side`]): fanned from the corner opposite a split
+/// side, and the two pieces that keep its other sides fanned likewise.
+/// The points are found for `f`'s own sides only, never for the sides a
+/// fan adds (which run inside `f`): that ends, and nearly collinear
+/// slivers cannot split one another in turn. A side whose opposite
+/// corner lies on its line, to rounding, is not split (the fan would
+/// fold).
 fn split_along(positions: &[DVec3], split: &SplitSides, f: [u32; 3], out: &mut Vec<[u32; 3]>) {
-    let mut stack = vec![f];
-    // Each split replaces a face by faces with shorter split sides; the
-    // bound only guards against a cycle of rounded orders.
-    let mut splits_left = 1 << 16;
-    while let Some(f) = stack.pop() {
-        if splits_left == 0 {
-            out.push(f);
-            continue;
+    let on: [Vec<u32>; 3] = std::array::from_fn(|k| {
+        let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+        if near_line(positions, u, v, x) {
+            Vec::new()
+        } else {
+            split.on_side(positions, u, v)
         }
-        let found = (0..3).find_map(|k| {
-            let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
-            let on = split.between(positions, u, v);
-            // A point at the opposite corner: the face is flat along the
-            // side, and a fan through it would fold.
-            (!on.is_empty() && !on.contains(&x)).then_some((k, on))
-        });
-        let Some((k, on)) = found else {
+    });
+    let mut stack = vec![(f, on)];
+    while let Some((f, mut on)) = stack.pop() {
+        let Some(k) = (0..3).find(|&k| !on[k].is_empty()) else {
             out.push(f);
             continue;
         };
-        splits_left -= 1;
         let (u, v, x) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
         let mut along = vec![u];
-        along.extend(on);
+        along.append(&mut on[k]);
         along.push(v);
-        stack.extend(along.windows(2).map(|w| [w[0], w[1], x]));
+        let last = along.len() - 2;
+        let mut after = std::mem::take(&mut on[(k + 1) % 3]);
+        let mut before = std::mem::take(&mut on[(k + 2) % 3]);
+        for (i, w) in along.windows(2).enumerate() {
+            // [w₀, w₁, x]: its side w₁ → x is f's v → x in the last
+            // piece, and x → w₀ is f's x → u in the first.
+            let to_x = if i == last {
+                std::mem::take(&mut after)
+            } else {
+                Vec::new()
+            };
+            let from_x = if i == 0 {
+                std::mem::take(&mut before)
+            } else {
+                Vec::new()
+            };
+            stack.push(([w[0], w[1], x], [Vec::new(), to_x, from_x]));
+        }
     }
 }
 
