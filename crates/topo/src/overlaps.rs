@@ -37,10 +37,9 @@ use crate::mesh::TriMesh;
 pub(crate) struct Merged {
     /// Groups of overlapping coplanar triangles replaced by their overlay.
     pub groups: usize,
-    /// Groups left as they were: the overlay could not be made (two
-    /// corners at one point of the plane, a side whose splitting
-    /// insertion failed or whose split points could not be followed), or
-    /// merging it would have opened the surface.
+    /// Groups left as they were: the overlay could not be made (the
+    /// splitting insertion of a side failed, or its split points could
+    /// not be followed), or merging it would have opened the surface.
     pub left: usize,
 }
 
