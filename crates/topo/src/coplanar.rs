@@ -138,7 +138,7 @@ pub(crate) enum Overlap {
 
 /// How faces `f` and `g` overlap: exactly coplanar, and interiors that
 /// meet in their plane, facing the same or opposite ways.
-pub(crate) fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
+fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
     let p = |v: u32| positions[v as usize];
     let normal = |t: [u32; 3]| (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
     let size = |t: [u32; 3]| {
@@ -178,6 +178,67 @@ pub(crate) fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap 
     }
 }
 
+/// Calls `f(i, j, how)` for every pair `i < j` of `faces` that overlap
+/// in their plane ([`overlap`] is not [`Overlap::Apart`]), over a tree of
+/// their boxes.
+pub(crate) fn for_each_overlapping_pair(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    mut f: impl FnMut(usize, usize, Overlap),
+) {
+    let boxes: Vec<Aabb> = faces
+        .iter()
+        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
+        .collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return;
+    };
+    for (i, b) in boxes.iter().enumerate() {
+        tree.for_each_overlap(b, |j| {
+            let j = j as usize;
+            if j > i {
+                let how = overlap(positions, faces[i], faces[j]);
+                if how != Overlap::Apart {
+                    f(i, j, how);
+                }
+            }
+        });
+    }
+}
+
+/// Each vertex by its position's key ([`holey_geom::position_key`]): the
+/// vertices an overlay's crossing point may land on.
+pub(crate) fn position_index(positions: &[DVec3]) -> rustc_hash::FxHashMap<[u64; 3], u32> {
+    positions
+        .iter()
+        .enumerate()
+        .map(|(v, &p)| (holey_geom::position_key(p), v as u32))
+        .collect()
+}
+
+/// How far from a side's line, relative to its length, a point may lie
+/// and still be on it: the rounding of a constructed point (ulps), not a
+/// modelling tolerance. The overlay follows its split sides, and the
+/// Booleans and `resolve` split the sides around it, by this one bound.
+pub(crate) const ON_SIDE: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// Whether `w` lies on the line through `u` and `v`, within [`ON_SIDE`]
+/// of their distance (or `u` and `v` coincide).
+pub(crate) fn near_line(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
+    let (pu, pv) = (positions[u as usize], positions[v as usize]);
+    let d = pv - pu;
+    (positions[w as usize] - pu).cross(d).length() <= d.length_squared() * ON_SIDE
+}
+
+/// Whether `w` lies strictly between `u` and `v` on their line, up to
+/// [`ON_SIDE`].
+pub(crate) fn on_side_between(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
+    let (pu, pv) = (positions[u as usize], positions[v as usize]);
+    let d = pv - pu;
+    let t = (positions[w as usize] - pu).dot(d);
+    t > 0.0 && t < d.dot(d) && near_line(positions, u, v, w)
+}
+
 /// The walls of `faces` (module docs): groups of face indices, each
 /// group's faces coplanar, joined by pairs that overlap, with at least
 /// one pair facing opposite ways (faces overlapping the wall from the
@@ -197,37 +258,19 @@ pub(crate) fn overlap_groups(
     faces: &[[u32; 3]],
     walls_only: bool,
 ) -> Vec<Vec<usize>> {
-    let boxes: Vec<Aabb> = faces
-        .iter()
-        .map(|f| Aabb::from_points(&f.map(|v| positions[v as usize])))
-        .collect();
-    let Ok(tree) = Bvh::build(&boxes) else {
-        return Vec::new();
-    };
     let mut sets = UnionFind::new(faces.len());
     let mut in_wall = vec![false; faces.len()];
     let mut joined = vec![false; faces.len()];
-    for (i, b) in boxes.iter().enumerate() {
-        tree.for_each_overlap(b, |j| {
-            let j = j as usize;
-            if j <= i {
-                return;
-            }
-            match overlap(positions, faces[i], faces[j]) {
-                Overlap::Apart => {}
-                Overlap::Same => {
-                    sets.union(i as u32, j as u32);
-                    joined[i] = true;
-                    joined[j] = true;
-                }
-                Overlap::Opposite => {
-                    sets.union(i as u32, j as u32);
-                    in_wall[i] = true;
-                    in_wall[j] = true;
-                }
-            }
-        });
-    }
+    for_each_overlapping_pair(positions, faces, |i, j, o| {
+        sets.union(i as u32, j as u32);
+        let flag = if o == Overlap::Opposite {
+            &mut in_wall
+        } else {
+            &mut joined
+        };
+        flag[i] = true;
+        flag[j] = true;
+    });
     let walls: rustc_hash::FxHashSet<u32> = (0..faces.len())
         .filter(|&i| in_wall[i])
         .map(|i| sets.find(i as u32))
@@ -402,17 +445,12 @@ fn triangulate(
     })
 }
 
-/// How far from a side's line, relative to its length, a split point of
-/// the side may lie (the rounding of a crossing point, in ulps; a
-/// crossing so ill-conditioned that its point lands farther off leaves
-/// the chain unfollowed and the group as it was).
-const ON_SIDE: f64 = 1.0 / (1u64 << 30) as f64;
-
 /// The chain of constraint edges of `cdt` from `from` to `to`: the
 /// vertices strictly between, in order. Each step takes a constraint
 /// edge to a vertex on the segment (within [`ON_SIDE`] of its line)
 /// that is closer to `to`, the nearest such; `None` when there is none
-/// before `to`.
+/// before `to` (a crossing so ill-conditioned that its point lands
+/// farther off leaves the group as it was).
 fn chain(
     cdt: &ConstrainedDelaunayTriangulation<ChartVertex>,
     from: Handle,

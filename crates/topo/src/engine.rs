@@ -822,14 +822,14 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     let (triangles, merged) = crate::overlaps::merge_overlaps(&mut positions, triangles);
     report.coplanar_groups_merged = merged.groups;
     report.coplanar_groups_left = merged.left;
-    Ok((
-        TriMesh {
-            positions,
-            triangles,
-        },
-        x,
-        report,
-    ))
+    // The crossings of overlays that were not merged, and corners taken
+    // as another at the same point, are left unused.
+    let out = TriMesh {
+        positions,
+        triangles,
+    }
+    .compacted();
+    Ok((out, x, report))
 }
 
 /// Whether any two triangles of `mesh` intersect (exact, identities by

@@ -29,7 +29,11 @@ use rustc_hash::FxHashMap as HashMap;
 
 use holey_geom::{Aabb, Bvh};
 
-use crate::coplanar::{Keep, Overlap, Overlay, overlap, overlap_groups, overlay};
+use crate::coplanar::{
+    Keep, ON_SIDE, Overlay, for_each_overlapping_pair, near_line, on_side_between, overlap_groups,
+    overlay, position_index,
+};
+use crate::mesh::Edges;
 use crate::mesh::TriMesh;
 
 /// What merging the overlaps did.
@@ -56,19 +60,6 @@ struct SplitSides {
     tree: Option<Bvh>,
 }
 
-/// How far from a side's line, relative to its length, a split point
-/// counts as on it: the rounding of a crossing point (ulps), as the
-/// overlay's chains allow.
-const ON_SIDE: f64 = 1.0 / (1u64 << 30) as f64;
-
-/// Whether `w` lies on the line through `u` and `v`, within [`ON_SIDE`]
-/// of their distance (or `u` and `v` coincide).
-fn near_line(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
-    let (pu, pv) = (positions[u as usize], positions[v as usize]);
-    let d = pv - pu;
-    (positions[w as usize] - pu).cross(d).length() <= d.length_squared() * ON_SIDE
-}
-
 fn key(u: u32, v: u32) -> (u32, u32) {
     (u.min(v), u.max(v))
 }
@@ -76,15 +67,16 @@ fn key(u: u32, v: u32) -> (u32, u32) {
 impl SplitSides {
     /// Records that the side `u → v` was split at `on` (in order from
     /// `u`), merging the points with those another group split it at.
-    fn record(&mut self, positions: &[DVec3], (u, v): (u32, u32), mut on: Vec<u32>) {
-        if u > v {
-            on.reverse();
-        }
+    fn record(&mut self, positions: &[DVec3], (u, v): (u32, u32), on: &[u32]) {
         let side = key(u, v);
-        self.all.extend_from_slice(&on);
+        self.all.extend_from_slice(on);
         let points = self.points.entry(side).or_default();
         let fresh = points.is_empty();
-        points.extend(on);
+        if u > v {
+            points.extend(on.iter().rev());
+        } else {
+            points.extend_from_slice(on);
+        }
         if !fresh {
             let along = along(positions, side);
             points.sort_by(|&a, &b| along(a).total_cmp(&along(b)));
@@ -132,8 +124,7 @@ impl SplitSides {
         };
         tree.for_each_overlap(&reach, |k| {
             let w = self.all[k as usize];
-            let t = (positions[w as usize] - pu).dot(d);
-            if w != u && w != v && t > 0.0 && t < length2 && near_line(positions, u, v, w) {
+            if w != u && w != v && on_side_between(positions, u, v, w) {
                 on.push(w);
             }
         });
@@ -198,12 +189,7 @@ pub(crate) fn merge_overlaps(
     if groups.is_empty() {
         return (faces, Merged::default());
     }
-    let existing: HashMap<[u64; 3], u32> = positions
-        .iter()
-        .enumerate()
-        .map(|(v, &p)| (holey_geom::position_key(p), v as u32))
-        .collect();
-    let first_new = positions.len();
+    let existing = position_index(positions);
     let overlays: Vec<(usize, Overlay)> = groups
         .iter()
         .enumerate()
@@ -223,7 +209,7 @@ pub(crate) fn merge_overlaps(
             groups[*g].iter().for_each(|&i| gone[i] = true);
             added.extend_from_slice(&o.cells);
             for (side, on) in &o.sides {
-                split.record(positions_now, *side, on.clone());
+                split.record(positions_now, *side, on);
             }
             same.extend(o.renamed.iter().copied());
         }
@@ -276,7 +262,6 @@ pub(crate) fn merge_overlaps(
         }
         (best, taken.len())
     };
-    let out = drop_unused_points(positions, first_new, out);
     let merged = Merged {
         groups: taken,
         left: groups.len() - taken,
@@ -287,44 +272,10 @@ pub(crate) fn merge_overlaps(
 /// The sides that only one triangle of `faces` has (the surface's
 /// boundary, whatever the orientations).
 fn lone_sides(faces: &[[u32; 3]]) -> usize {
-    let mut count: HashMap<(u32, u32), u32> = HashMap::default();
-    for f in faces {
-        for k in 0..3 {
-            *count.entry(key(f[k], f[(k + 1) % 3])).or_insert(0) += 1;
-        }
-    }
-    count.values().filter(|&&n| n == 1).count()
-}
-
-/// Drops the points from `first_new` on that no face uses (crossings of
-/// overlays that were not merged), renumbering the rest.
-fn drop_unused_points(
-    positions: &mut Vec<DVec3>,
-    first_new: usize,
-    mut faces: Vec<[u32; 3]>,
-) -> Vec<[u32; 3]> {
-    let mut used = vec![false; positions.len() - first_new];
-    for &v in faces.iter().flatten() {
-        if v as usize >= first_new {
-            used[v as usize - first_new] = true;
-        }
-    }
-    let mut to = vec![0u32; used.len()];
-    let mut next = first_new;
-    for (k, &u) in used.iter().enumerate() {
-        if u {
-            positions[next] = positions[first_new + k];
-            to[k] = next as u32;
-            next += 1;
-        }
-    }
-    positions.truncate(next);
-    for v in faces.iter_mut().flatten() {
-        if *v as usize >= first_new {
-            *v = to[*v as usize - first_new];
-        }
-    }
-    faces
+    let edges = Edges::of_triangles(faces);
+    (0..edges.len())
+        .filter(|&e| edges.triangles(e).len() == 1)
+        .count()
 }
 
 /// Pushes `f` onto `out`, split at the points on its sides
@@ -380,22 +331,7 @@ fn split_along(positions: &[DVec3], split: &SplitSides, f: [u32; 3], out: &mut V
 /// `orient2d`), facing either way: the overlaps the perturbed world of
 /// [`crate::self_intersections`] does not count as crossings.
 pub fn coplanar_overlaps(mesh: &TriMesh) -> usize {
-    let (positions, faces) = (&mesh.positions, &mesh.triangles);
-    let boxes: Vec<Aabb> = faces
-        .iter()
-        .map(|f| Aabb::from_points(&f.map(|v| positions[v as usize])))
-        .collect();
-    let Ok(tree) = Bvh::build(&boxes) else {
-        return 0;
-    };
     let mut pairs = 0;
-    for (i, b) in boxes.iter().enumerate() {
-        tree.for_each_overlap(b, |j| {
-            let j = j as usize;
-            if j > i && overlap(positions, faces[i], faces[j]) != Overlap::Apart {
-                pairs += 1;
-            }
-        });
-    }
+    for_each_overlapping_pair(&mesh.positions, &mesh.triangles, |_, _, _| pairs += 1);
     pairs
 }

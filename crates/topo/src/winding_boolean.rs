@@ -87,7 +87,7 @@ use holey_geom::sos::{Poly, sos_sign};
 use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
 use rayon::prelude::*;
 
-use crate::coplanar::{Keep, Overlay, overlay};
+use crate::coplanar::{Keep, Overlay, on_side_between, overlay, position_index};
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
@@ -360,11 +360,7 @@ fn close_up(
     let defects = |f: &[[u32; 3]]| (unpaired_edges(f).len(), nonmanifold_edges(f));
     let no_worse = |d: (usize, usize), than: (usize, usize)| d.0 <= than.0 && d.1 <= than.1;
     let mut least = defects(&best);
-    let existing: rustc_hash::FxHashMap<[u64; 3], u32> = positions
-        .iter()
-        .enumerate()
-        .map(|(v, &p)| (holey_geom::position_key(p), v as u32))
-        .collect();
+    let existing = position_index(positions);
     // The faces but those `gone` flags, with `added` after them.
     let with = |gone: &[bool], added: &[[u32; 3]]| -> Vec<[u32; 3]> {
         faces
@@ -766,11 +762,6 @@ fn unpaired_edges(faces: &[[u32; 3]]) -> Vec<(u32, u32)> {
 /// Longest chain of vertices one side of a T-junction is searched for.
 const T_JUNCTION_CHAIN: usize = 8;
 
-/// How far from a side's line, relative to its length, a vertex may lie
-/// and still be on it (rounding of a constructed point: ulps, not a
-/// modelling tolerance).
-const T_JUNCTION_OFFSET: f64 = 1.0 / (1u64 << 30) as f64;
-
 /// Passes of [`repair_t_junctions`] (a side split once can hold another
 /// junction; more passes than this mean a chain that is no junction).
 const T_JUNCTION_PASSES: usize = 8;
@@ -889,21 +880,6 @@ fn cancel_opposite_twins(faces: &mut Vec<[u32; 3]>) {
         }
         _ => true,
     });
-}
-
-/// Whether `w` lies strictly between `u` and `v` on their line, up to the
-/// rounding of a constructed point ([`T_JUNCTION_OFFSET`] of the side's
-/// length from its line).
-fn on_side_between(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
-    let (pu, pv, pw) = (
-        positions[u as usize],
-        positions[v as usize],
-        positions[w as usize],
-    );
-    let d = pv - pu;
-    let t = (pw - pu).dot(d);
-    let off = (pw - pu).cross(d).length();
-    t > 0.0 && t < d.dot(d) && off <= d.dot(d) * T_JUNCTION_OFFSET
 }
 
 /// Closes what [`repair_t_junctions`] leaves where a curve runs along a
