@@ -22,6 +22,7 @@ pub mod mesh;
 mod orient;
 mod overlaps;
 mod report_json;
+mod side_crossings;
 mod solid;
 pub mod solids;
 pub mod union;

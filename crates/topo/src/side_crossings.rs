@@ -1,0 +1,189 @@
+//! Where the sides of a coplanar group cross, in its projection: the
+//! points each side is split at before it goes into the overlay's
+//! constrained triangulation (`coplanar::triangulate`).
+//!
+//! Spade's splitting insertion finds crossings one constraint at a time
+//! and rounds each crossing where it meets it. When many sides cross near
+//! one point (the big coplanar fans of a CAD export, several faces
+//! stacked on one strip), a later side meets the already rounded pieces
+//! of an earlier one, and its conflict walk can fail outright (a panic in
+//! spade: "previous_region.is_empty()"). Here every crossing is found
+//! first, from the input's own coordinates:
+//!
+//! - two sides cross properly when each has the other's ends strictly on
+//!   opposite sides, by exact `orient2d` (a side through another's end,
+//!   or along it, is not a crossing: the triangulation splits a
+//!   constraint at every vertex exactly on it, itself);
+//! - the crossing point is rounded once, from the two sides' ends;
+//! - points within `coplanar::SNAP` of the group's size of a
+//!   corner are that corner, and crossings that close of each other are
+//!   one point (`coplanar::snap_crossings`), so three sides through one
+//!   point meet at one vertex.
+//!
+//! Each side is then inserted as the chain of its pieces between
+//! consecutive split points, ordered along it.
+
+use glam::{DVec2, DVec3};
+use holey_geom::{Sign, orient2d};
+
+/// A proper crossing: sides `i` and `j` meet at `point` (rounded).
+struct Crossing {
+    i: usize,
+    j: usize,
+    point: DVec2,
+}
+
+/// Whether segments `a–b` and `c–d` cross properly: each has the other's
+/// ends strictly on opposite sides (exact).
+fn cross_properly(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let opposite = |x: Sign, y: Sign| {
+        matches!(
+            (x, y),
+            (Sign::Positive, Sign::Negative) | (Sign::Negative, Sign::Positive)
+        )
+    };
+    opposite(orient2d(a, b, c), orient2d(a, b, d)) && opposite(orient2d(c, d, a), orient2d(c, d, b))
+}
+
+/// The crossing point of two properly crossing segments, rounded: along
+/// the longer one, at the parameter the shorter one's ends give it (the
+/// two cross products are the areas of the triangles on the longer side,
+/// each rounded once).
+fn crossing_point(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> DVec2 {
+    let ((a, b), (c, d)) = if (b - a).length_squared() >= (d - c).length_squared() {
+        ((a, b), (c, d))
+    } else {
+        ((c, d), (a, b))
+    };
+    // Signed areas of c and d over the line a → b.
+    let u = b - a;
+    let (ac, ad) = (u.perp_dot(c - a), u.perp_dot(d - a));
+    let t = ac / (ac - ad);
+    c + (d - c) * t
+}
+
+/// Every proper crossing among `sides`: the sides sorted by their
+/// lowest x and swept, so only pairs whose x-ranges meet are tested.
+fn crossings(sides: &[[DVec2; 2]]) -> Vec<Crossing> {
+    let lo = |s: &[DVec2; 2]| s[0].min(s[1]);
+    let hi = |s: &[DVec2; 2]| s[0].max(s[1]);
+    let mut order: Vec<usize> = (0..sides.len()).collect();
+    order.sort_by(|&i, &j| lo(&sides[i]).x.total_cmp(&lo(&sides[j]).x));
+    let mut found = Vec::new();
+    for (k, &i) in order.iter().enumerate() {
+        let (li, hi_i) = (lo(&sides[i]), hi(&sides[i]));
+        for &j in &order[k + 1..] {
+            let (lj, hj) = (lo(&sides[j]), hi(&sides[j]));
+            if lj.x > hi_i.x {
+                break;
+            }
+            if lj.y > hi_i.y || hj.y < li.y {
+                continue;
+            }
+            let [a, b] = sides[i];
+            let [c, d] = sides[j];
+            if cross_properly(a, b, c, d) {
+                let point = crossing_point(a, b, c, d);
+                if point.is_finite() {
+                    found.push(Crossing { i, j, point });
+                }
+            }
+        }
+    }
+    found
+}
+
+/// The split points of each of `sides` (in the projection; `corners` are
+/// all the group's corners, the sides' ends among them): for side `k`,
+/// the points strictly between its ends where other sides cross it,
+/// ordered from its first end to its second, each a corner's point or a
+/// crossing point shared by every side through it.
+pub(crate) fn split_points(corners: &[DVec2], sides: &[[DVec2; 2]]) -> Vec<Vec<DVec2>> {
+    let found = crossings(sides);
+    let mut splits: Vec<Vec<DVec2>> = vec![Vec::new(); sides.len()];
+    if found.is_empty() {
+        return splits;
+    }
+    // Corners first, then the crossings, lifted to z = 0 for the snap.
+    let points: Vec<DVec3> = corners
+        .iter()
+        .chain(found.iter().map(|c| &c.point))
+        .map(|p| p.extend(0.0))
+        .collect();
+    let crossing: Vec<bool> = (0..points.len()).map(|k| k >= corners.len()).collect();
+    let to = crate::coplanar::snap_crossings(&points, &crossing);
+    for (n, c) in found.iter().enumerate() {
+        let p = points[to[corners.len() + n]].truncate();
+        splits[c.i].push(p);
+        splits[c.j].push(p);
+    }
+    for (k, points) in splits.iter_mut().enumerate() {
+        let [a, b] = sides[k];
+        let u = b - a;
+        points.retain(|&p| p != a && p != b);
+        points.sort_by(|p, q| (*p - a).dot(u).total_cmp(&(*q - a).dot(u)));
+        points.dedup();
+    }
+    splits
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn three_sides_through_one_point_meet_at_one_split_point() {
+        // Three segments through (1/3, 1/3)-ish: a star of three lines
+        // whose pairwise crossings round to points an ulp apart at most.
+        let c = DVec2::new(0.1, 0.7);
+        let dirs = [
+            DVec2::new(1.0, 0.3),
+            DVec2::new(-0.2, 1.0),
+            DVec2::new(0.7, -0.9),
+        ];
+        let sides: Vec<[DVec2; 2]> = dirs.iter().map(|&d| [c - d * 0.37, c + d * 0.61]).collect();
+        let corners: Vec<DVec2> = sides.iter().flatten().copied().collect();
+        let splits = split_points(&corners, &sides);
+        let all: Vec<DVec2> = splits.iter().flatten().copied().collect();
+        assert_eq!(all.len(), 3, "each side split once: {splits:?}");
+        assert!(all.iter().all(|&p| p == all[0]), "one point: {all:?}");
+        assert!((all[0] - c).length() < 1e-12);
+    }
+
+    #[test]
+    fn touching_or_collinear_sides_are_not_crossings() {
+        let sides = [
+            [DVec2::new(0.0, 0.0), DVec2::new(2.0, 0.0)],
+            // Ends on the first side: a T, and a side along it.
+            [DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0)],
+            [DVec2::new(0.5, 0.0), DVec2::new(3.0, 0.0)],
+            // Crosses the T's stem properly.
+            [DVec2::new(0.0, 0.5), DVec2::new(2.0, 0.5)],
+        ];
+        let corners: Vec<DVec2> = sides.iter().flatten().copied().collect();
+        let splits = split_points(&corners, &sides);
+        assert!(splits[0].is_empty() && splits[2].is_empty());
+        assert_eq!(splits[1], vec![DVec2::new(1.0, 0.5)]);
+        assert_eq!(splits[3], vec![DVec2::new(1.0, 0.5)]);
+    }
+
+    #[test]
+    fn splits_are_ordered_along_each_side() {
+        // One long side crossed by five short ones, given out of order.
+        let long = [DVec2::new(4.0, 1.0), DVec2::new(-1.0, 0.0)];
+        let mut sides = vec![long];
+        for x in [2.0, 0.0, 3.0, 1.0, -0.5] {
+            sides.push([DVec2::new(x, -1.0), DVec2::new(x, 2.0)]);
+        }
+        let corners: Vec<DVec2> = sides.iter().flatten().copied().collect();
+        let splits = split_points(&corners, &sides);
+        let xs: Vec<f64> = splits[0].iter().map(|p| p.x).collect();
+        assert_eq!(xs, vec![3.0, 2.0, 1.0, 0.0, -0.5]);
+        for (k, s) in splits.iter().enumerate().skip(1) {
+            assert_eq!(s.len(), 1, "side {k}");
+            // On the long side's line to rounding.
+            let p = s[0];
+            assert!((p.y - 0.2 * (p.x + 1.0)).abs() < 1e-15);
+        }
+    }
+}
