@@ -179,8 +179,12 @@ fn along(positions: &[DVec3], (a, b): (u32, u32)) -> impl Fn(u32) -> f64 + '_ {
 /// their overlays (module docs), appending the crossing points to
 /// `positions`, and splits the triangles that share a side the overlays
 /// split. A merge must not open the surface: every group at once when
-/// that leaves no more sides on one triangle only than `faces` had, else
-/// one group at a time, each kept only if it opens nothing.
+/// that leaves no more sides on one triangle only than `faces` had; else
+/// without the groups at the ends of the sides it left on one triangle
+/// (a few rounds), and the groups so dropped one at a time after, each
+/// kept only if it opens nothing more. (Trying every group one at a time
+/// costs a pass over the mesh each: 1.6 s on the OpenSCAD export, against
+/// 0.7 s this way, with 122 of its 139 groups merged instead of 120.)
 pub(crate) fn merge_overlaps(
     positions: &mut Vec<DVec3>,
     faces: Vec<[u32; 3]>,
@@ -244,24 +248,60 @@ pub(crate) fn merge_overlaps(
         }
         out
     };
-    let before = lone_sides(&faces);
-    let every: Vec<usize> = (0..overlays.len()).collect();
-    let at_once = merge(&every);
-    let (out, taken) = if lone_sides(&at_once) <= before {
-        (at_once, every.len())
-    } else {
-        let (mut best, mut taken) = (faces.clone(), Vec::new());
-        for k in every {
-            taken.push(k);
-            let trial = merge(&taken);
-            if lone_sides(&trial) <= before {
-                best = trial;
-            } else {
-                taken.pop();
+    let before = lone_sides(&faces).len();
+    // The overlays touching each vertex (their group's corners, their
+    // cells' and their split sides' points): a lone side of a trial is
+    // blamed on the overlays at its ends.
+    let mut touching: HashMap<u32, Vec<usize>> = HashMap::default();
+    for (k, (g, o)) in overlays.iter().enumerate() {
+        let corners = groups[*g].iter().flat_map(|&i| faces[i]);
+        let cells = o.cells.iter().flatten().copied();
+        let points = o.sides.iter().flat_map(|(_, on)| on.iter().copied());
+        for v in corners.chain(cells).chain(points) {
+            let at = touching.entry(v).or_default();
+            if at.last() != Some(&k) {
+                at.push(k);
             }
         }
-        (best, taken.len())
+    }
+    // Every overlay at once; while that opens the surface, without those
+    // at the ends of its lone sides (a few rounds: each drops some).
+    let mut taken: Vec<usize> = (0..overlays.len()).collect();
+    let mut best = None;
+    for _ in 0..4 {
+        let trial = merge(&taken);
+        let lone = lone_sides(&trial);
+        if lone.len() <= before {
+            best = Some(trial);
+            break;
+        }
+        let blamed: rustc_hash::FxHashSet<usize> = lone
+            .iter()
+            .flat_map(|&[u, v]| [u, v])
+            .flat_map(|v| touching.get(&v).into_iter().flatten().copied())
+            .collect();
+        let count = taken.len();
+        taken.retain(|k| !blamed.contains(k));
+        if taken.len() == count {
+            break;
+        }
+    }
+    let (mut best, mut taken) = match best {
+        Some(out) => (out, taken),
+        None => (faces.clone(), Vec::new()),
     };
+    // The rest one at a time, each kept only if it opens nothing.
+    let rest: Vec<usize> = (0..overlays.len()).filter(|k| !taken.contains(k)).collect();
+    for k in rest {
+        taken.push(k);
+        let trial = merge(&taken);
+        if lone_sides(&trial).len() <= before {
+            best = trial;
+        } else {
+            taken.pop();
+        }
+    }
+    let (out, taken) = (best, taken.len());
     let merged = Merged {
         groups: taken,
         left: groups.len() - taken,
@@ -270,12 +310,13 @@ pub(crate) fn merge_overlaps(
 }
 
 /// The sides that only one triangle of `faces` has (the surface's
-/// boundary, whatever the orientations).
-fn lone_sides(faces: &[[u32; 3]]) -> usize {
+/// boundary, whatever the orientations), by their ends.
+fn lone_sides(faces: &[[u32; 3]]) -> Vec<[u32; 2]> {
     let edges = Edges::of_triangles(faces);
     (0..edges.len())
         .filter(|&e| edges.triangles(e).len() == 1)
-        .count()
+        .map(|e| edges.ends[e])
+        .collect()
 }
 
 /// Pushes `f` onto `out`, split at the points on its sides
