@@ -376,8 +376,8 @@ struct Triangulated {
     handle_of: rustc_hash::FxHashMap<u32, Handle>,
     renamed: Vec<(u32, u32)>,
     /// Each side's vertices, by its ends' handles (smaller index first):
-    /// its ends and the split points between, in order from the first
-    /// (only for [`Keep::Once`]).
+    /// its ends, the split points between and the vertices spade split its
+    /// pieces at, in order from the first (only for [`Keep::Once`]).
     split_sides: SplitSides,
 }
 
@@ -452,18 +452,55 @@ fn triangulate(
         Keep::Count => (sides, Default::default()),
         Keep::Once => presplit(&mut cdt, &sides)?,
     };
+    // The vertices each piece went in through (`Once`): where spade split
+    // it, at a vertex exactly on it or a crossing it met, in order.
+    let mut through: rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>> = Default::default();
     let inserted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         for &(a, b) in &pieces {
-            if keep == Keep::Once && cdt.can_add_constraint(a, b) {
-                cdt.add_constraint(a, b);
-            } else {
-                // Crossings split where spade meets them (for `Once`, a
-                // piece that the rounding of its ends made cross another:
-                // rare).
+            if keep == Keep::Count {
+                // The Booleans: crossings split where spade meets them.
                 cdt.add_constraint_and_split(a, b, split);
+                continue;
+            }
+            let edges = if cdt.exists_constraint(a, b) {
+                Vec::new()
+            } else if cdt.can_add_constraint(a, b) {
+                cdt.try_add_constraint(a, b)
+            } else {
+                // A piece that the rounding of its ends made cross
+                // another (rare).
+                cdt.add_constraint_and_split(a, b, split)
+            };
+            let (pa, pb) = (cdt.vertex(a).position(), cdt.vertex(b).position());
+            let along = |h: Handle| {
+                let q = cdt.vertex(h).position();
+                (q.x - pa.x) * (pb.x - pa.x) + (q.y - pa.y) * (pb.y - pa.y)
+            };
+            let mut mid: Vec<Handle> = edges
+                .iter()
+                .flat_map(|&e| cdt.directed_edge(e).vertices().map(|v| v.fix()))
+                .filter(|&v| v != a && v != b)
+                .collect();
+            mid.sort_by(|&u, &v| along(u).total_cmp(&along(v)));
+            mid.dedup();
+            if !mid.is_empty() {
+                through.insert((a, b), mid);
             }
         }
     }));
+    let mut split_sides = split_sides;
+    for on in split_sides.values_mut() {
+        let mut expanded = vec![on[0]];
+        for w in on.windows(2) {
+            if let Some(mid) = through.get(&(w[0], w[1])) {
+                expanded.extend(mid);
+            } else if let Some(mid) = through.get(&(w[1], w[0])) {
+                expanded.extend(mid.iter().rev());
+            }
+            expanded.push(w[1]);
+        }
+        *on = expanded;
+    }
     inserted.is_ok().then_some(Triangulated {
         cdt,
         handle_of,
@@ -576,10 +613,9 @@ fn chain(
 }
 
 /// The vertices strictly between `from` and `to` along their side, in
-/// order: its split points (`split_sides`), each piece between them
-/// followed by [`chain`] where the triangulation split it further (at a
-/// vertex exactly on it, or where its rounded ends made it cross
-/// another piece).
+/// order: its split points and the vertices its pieces went in through
+/// (`split_sides`), each step followed by [`chain`] where a later piece
+/// split it (crossing it where their rounded ends made them cross).
 fn follow(
     cdt: &ConstrainedDelaunayTriangulation<ChartVertex>,
     split_sides: &SplitSides,
