@@ -374,8 +374,8 @@ fn resolve_merges_stacked_duplicates_into_one_covering() {
 /// triangle of no area and no surface opened beyond the 1 boundary edge
 /// measured then. With each side's crossings found before it is inserted
 /// (`side_crossings`), the overlays of all but 2 of the 139 groups are
-/// made and 120 merge (106 when spade's splitting insertion found them,
-/// panicking on the largest groups), leaving 24,269 pairs: a floor of
+/// made and 121 merge (106 when spade's splitting insertion found them,
+/// panicking on the largest groups), leaving 23,803 pairs: a floor of
 /// 115 guards that.
 #[test]
 fn openscad_resolve_merges_coplanar_overlaps() {
