@@ -346,9 +346,14 @@ pub(crate) enum Keep {
     /// cell of count 0 goes, ±1 is kept facing that way, and any other
     /// count fails the overlay (stacked faces are no wall).
     Count,
-    /// `holey resolve`'s rule: every cell that a face covers is kept
-    /// once, facing by the sign of the count, and where that is 0, as the
-    /// first covering face does.
+    /// `holey resolve`'s rule: a covered cell is kept once, facing by the
+    /// sign of the count, and goes where the count is 0. Faces facing
+    /// opposite ways over one cell add −1 and +1 to the winding number on
+    /// each side of it, so cancelling them leaves the winding number of
+    /// the surface unchanged off the plane (keeping one, as a first
+    /// version did, added a sheet; it also left the edge of a fold, two
+    /// faces folded flat onto each other, on one triangle). Stacked faces
+    /// facing one way are kept once: the merge the issue asks for.
     Once,
 }
 
@@ -847,7 +852,6 @@ pub(crate) fn overlay(
         let facing = match keep {
             Keep::Count if count.abs() > 1 => return None,
             Keep::Count => count,
-            Keep::Once if count == 0 => first_cover.unwrap_or(1),
             Keep::Once => count,
         };
         match facing.signum() {

@@ -8,8 +8,12 @@
 //! sharing a face) come out of it still overlapping. Each group of such
 //! triangles is replaced by its overlay ([`crate::coplanar`], rule
 //! [`Keep::Once`]): the constrained triangulation of all their sides in
-//! the plane, every cell that some triangle covers kept once. Nothing is
-//! deleted that a triangle covered, and no cell is covered twice.
+//! the plane, each cell counted by the triangles covering it with their
+//! facings (+1 one way, −1 the other) and kept once, facing by the
+//! count's sign, where that is not 0. Stacked copies become one; faces
+//! folded flat onto each other, or two sheets meeting face to face,
+//! cancel where they overlap, which leaves the surface's winding number
+//! unchanged off the plane. No cell is covered twice.
 //!
 //! The overlay splits the group's sides where other sides cross them (at
 //! points rounded once and lifted onto the plane) and where other

@@ -13,9 +13,11 @@ Cuts the surface along all its self-intersection curves and glues the
 pieces there, deleting nothing: every intersection curve becomes a curve
 of shared edges, so the output has no triangle crossing another. Where
 four sheets meet along a curve the output has edges of degree four.
-Triangles that lie in one plane and overlap there are merged: every part
-of the plane they cover is covered once, facing the way most of them
-face (`holey selfint --overlaps` counts what is left).
+Triangles that lie in one plane and overlap there are merged: stacked
+copies become one, facing the way most of them face, and where as many
+face one way as the other (two shells meeting face to face, a fold) they
+cancel, which leaves the surface's winding number as it was
+(`holey selfint --overlaps` counts what is left).
 
 Examples:
   holey resolve self_intersecting.obj arrangement.obj -v")]
