@@ -167,6 +167,7 @@ pub(crate) fn split_points(corners: &[DVec2], sides: &[[DVec2; 2]]) -> Vec<Vec<D
         if again.is_empty() {
             break;
         }
+        let before: usize = splits.iter().map(Vec::len).sum();
         for c in &again {
             let ([a, b], [d, e]) = (pieces[c.i], pieces[c.j]);
             let nearer = |x: DVec2, y: DVec2| {
@@ -189,6 +190,11 @@ pub(crate) fn split_points(corners: &[DVec2], sides: &[[DVec2; 2]]) -> Vec<Vec<D
             }
         }
         order_along(sides, &mut splits);
+        if splits.iter().map(Vec::len).sum::<usize>() == before {
+            // No piece could be split at an end on its line: the rest
+            // goes to spade.
+            break;
+        }
     }
     splits
 }
