@@ -223,16 +223,37 @@ pub(crate) fn position_index(positions: &[DVec3]) -> rustc_hash::FxHashMap<[u64;
 /// Booleans and `resolve` split the sides around it, by this one bound.
 pub(crate) const ON_SIDE: f64 = 1.0 / (1u64 << 30) as f64;
 
-/// Whether `w` lies on the line through `u` and `v`, within [`ON_SIDE`]
-/// of their distance (or `u` and `v` coincide).
+/// How far from a side's line, relative to the size of the coordinates,
+/// a point may also lie and still be on it: a constructed point is off by
+/// some ulps of its coordinates however short the side, so on a side of a
+/// few ulps' length [`ON_SIDE`] alone would take a point rounded onto it
+/// as off it (the OpenSCAD export has sides of 2·10⁻¹¹ at coordinates of
+/// 200, with points 2·10⁻¹⁶ off them).
+pub(crate) const ON_COORDINATES: f64 = 1.0 / (1u64 << 48) as f64;
+
+/// The distance within which a point is on a side of length `length`
+/// among points whose largest coordinate is `size` ([`ON_SIDE`] and
+/// [`ON_COORDINATES`]).
+pub(crate) fn on_side_reach(length: f64, size: f64) -> f64 {
+    length * ON_SIDE + size * ON_COORDINATES
+}
+
+/// Whether `w` lies on the line through `u` and `v`, within
+/// [`on_side_reach`] of it (or `u` and `v` coincide).
 pub(crate) fn near_line(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
-    let (pu, pv) = (positions[u as usize], positions[v as usize]);
+    let (pu, pv, pw) = (
+        positions[u as usize],
+        positions[v as usize],
+        positions[w as usize],
+    );
     let d = pv - pu;
-    (positions[w as usize] - pu).cross(d).length() <= d.length_squared() * ON_SIDE
+    let size = pu.abs().max(pv.abs()).max(pw.abs()).max_element();
+    let length = d.length();
+    (pw - pu).cross(d).length() <= length * on_side_reach(length, size)
 }
 
 /// Whether `w` lies strictly between `u` and `v` on their line, up to
-/// [`ON_SIDE`].
+/// [`on_side_reach`].
 pub(crate) fn on_side_between(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
     let (pu, pv) = (positions[u as usize], positions[v as usize]);
     let d = pv - pu;
@@ -957,6 +978,29 @@ mod tests {
             }
         }
         assert!((up - 0.5).abs() < 1e-15 && (down - 0.5).abs() < 1e-15);
+    }
+
+    /// A side of 2·10⁻¹¹ at coordinates near 200 (as on the OpenSCAD
+    /// export): a point 2·10⁻¹⁶ off it, a fraction of an ulp of the
+    /// coordinates, is on it, though that is 10⁻⁵ of its length; a point
+    /// 10⁻¹² off (several times 2⁻⁴⁸ · 200 ≈ 7·10⁻¹³) is not; and on a
+    /// side of length 1 near the origin only 2⁻³⁰ of its length counts.
+    #[test]
+    fn on_a_side_to_the_rounding_of_its_coordinates() {
+        let u = DVec3::new(-16.8, -6.08, -204.0);
+        let along = DVec3::new(0.0, 2e-11, 0.0);
+        let off = |d: f64| u + along * 0.4 + DVec3::new(d, 0.0, 0.0);
+        let positions = vec![u, u + along, off(2e-16), off(1e-12)];
+        assert!(on_side_between(&positions, 0, 1, 2));
+        assert!(!on_side_between(&positions, 0, 1, 3));
+        let unit = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(0.5, 5e-10, 0.0),
+            DVec3::new(0.5, 2e-9, 0.0),
+        ];
+        assert!(on_side_between(&unit, 0, 1, 2));
+        assert!(!on_side_between(&unit, 0, 1, 3));
     }
 
     /// A corner 10⁻¹⁰ inside a side of another face of its group (within

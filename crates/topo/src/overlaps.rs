@@ -34,8 +34,8 @@ use rustc_hash::FxHashMap as HashMap;
 use holey_geom::{Aabb, Bvh};
 
 use crate::coplanar::{
-    Keep, ON_SIDE, Overlay, for_each_overlapping_pair, near_line, on_side_between, overlap_groups,
-    overlay, position_index,
+    Keep, Overlay, for_each_overlapping_pair, near_line, on_side_between, on_side_reach,
+    overlap_groups, overlay, position_index,
 };
 use crate::mesh::Edges;
 use crate::mesh::TriMesh;
@@ -111,7 +111,7 @@ impl SplitSides {
     /// The split points on the side `u → v` of a face of the result,
     /// in order from `u`: those recorded for it or the side it is a piece
     /// of ([`Self::between`]), and any other strictly between its ends
-    /// within [`ON_SIDE`] of its line.
+    /// within [`on_side_reach`] of its line.
     fn on_side(&self, positions: &[DVec3], u: u32, v: u32) -> Vec<u32> {
         let mut on = self.between(positions, u, v);
         let Some(tree) = &self.tree else {
@@ -120,7 +120,8 @@ impl SplitSides {
         let (pu, pv) = (positions[u as usize], positions[v as usize]);
         let d = pv - pu;
         let length2 = d.length_squared();
-        let margin = DVec3::splat(length2.sqrt() * ON_SIDE);
+        let size = pu.abs().max(pv.abs()).max_element();
+        let margin = DVec3::splat(on_side_reach(length2.sqrt(), size) * 2.0);
         let reach = Aabb::from_points(&[pu, pv]);
         let reach = Aabb {
             min: reach.min - margin,

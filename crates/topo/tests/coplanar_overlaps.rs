@@ -403,19 +403,20 @@ fn resolve_cancels_the_wall_where_two_boxes_touch_face_to_face() {
 /// triangle of no area and no surface opened beyond the 1 boundary edge
 /// measured then. With each side's crossings found before it is inserted
 /// (`side_crossings`), the overlays of all 139 groups are made, and with
-/// opposite faces cancelling 133 merge (106 when spade's splitting
-/// insertion found the crossings, panicking on the largest groups),
-/// leaving 18,115 pairs and no boundary edge: a floor of 125 groups and
-/// a ceiling of 20,000 pairs guard that.
+/// opposite faces cancelling and points on a side to the coordinates'
+/// rounding, 134 merge (106 when spade's splitting insertion found the
+/// crossings, panicking on the largest groups), leaving 10,803 pairs and
+/// no boundary edge: a floor of 130 groups and a ceiling of 12,000 pairs
+/// guard that.
 #[test]
 fn openscad_resolve_merges_coplanar_overlaps() {
     let dir = holey_testkit::shared_meshes_or_return!("openscad_resolve_merges_coplanar_overlaps");
     let mesh = read_shared(&dir, "openscad-nonmanifold-crash.obj");
     let (out, _, report) = resolve(&mesh).expect("resolve");
     common::well_formed(&out);
-    assert!(report.coplanar_groups_merged >= 125, "{report:?}");
+    assert!(report.coplanar_groups_merged >= 130, "{report:?}");
     let left = holey_topo::coplanar_overlaps(&out);
-    assert!(left < 20_000, "{left} overlapping pairs left");
+    assert!(left < 12_000, "{left} overlapping pairs left");
     let open = common::boundary(&out).0;
     assert!(open <= 1, "{open} boundary edges");
 }
