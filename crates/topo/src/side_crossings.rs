@@ -47,10 +47,11 @@ fn cross_properly(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     opposite(orient2d(a, b, c), orient2d(a, b, d)) && opposite(orient2d(c, d, a), orient2d(c, d, b))
 }
 
-/// The crossing point of two properly crossing segments, rounded: along
-/// the longer one, at the parameter the shorter one's ends give it (the
-/// two cross products are the areas of the triangles on the longer side,
-/// each rounded once).
+/// The crossing point of two properly crossing segments, rounded: on the
+/// shorter one, at the parameter A_c / (A_c − A_d) that the signed areas
+/// of its ends over the longer one's line give it (each area rounded
+/// once), so the point lies on the shorter segment to rounding however
+/// nearly parallel the two are.
 fn crossing_point(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> DVec2 {
     let ((a, b), (c, d)) = if (b - a).length_squared() >= (d - c).length_squared() {
         ((a, b), (c, d))
