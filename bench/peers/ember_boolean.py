@@ -31,7 +31,7 @@ import numpy as np
 import manifold3d as m3d
 import trueform as tf
 
-from peer_io import best, read_stl, volume
+from peer_io import best, read_stl, volume, write_obj
 
 try:
     import holey as holey_py
@@ -42,12 +42,6 @@ except ImportError:
 def transform(v, m):
     m = np.asarray(m, dtype=np.float64)
     return v @ m[:, :3].T + m[:, 3]
-
-
-def write_obj(path, v, f):
-    with open(path, "w") as fh:
-        fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist()))
-        fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f.tolist()))
 
 
 def holey_run(holey, op, pa, pb, out, report, runs, extra=()):

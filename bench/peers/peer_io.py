@@ -39,6 +39,14 @@ def read_stl(path):
     return corners[first].astype(np.float64), inverse.reshape(-1, 3).astype(np.int64)
 
 
+def write_obj(path, v, f):
+    """An OBJ of float64 vertices written exactly (repr) and 1-based
+    triangles."""
+    with open(path, "w") as fh:
+        fh.write("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist()))
+        fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f.tolist()))
+
+
 def volume(v, f):
     """Signed volume, summed about the first vertex (about the origin,
     coordinates near 2e4 lose a part in 1e8 to cancellation)."""
