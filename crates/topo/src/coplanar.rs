@@ -252,6 +252,17 @@ pub(crate) fn near_line(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
     (pw - pu).cross(d).length() <= length * on_side_reach(length, size)
 }
 
+/// [`near_line`] in a group's projection: whether `q` lies on the line
+/// through `a` and `b` within [`on_side_reach`] of it, the size being
+/// that of the projected coordinates (the projection drops an axis
+/// exactly, and points constructed in it are rounded to its own).
+pub(crate) fn near_line_2d(a: DVec2, b: DVec2, q: DVec2) -> bool {
+    let d = b - a;
+    let size = a.abs().max(b.abs()).max(q.abs()).max_element();
+    let length = d.length();
+    d.perp_dot(q - a).abs() <= length * on_side_reach(length, size)
+}
+
 /// Whether `w` lies strictly between `u` and `v` on their line, up to
 /// [`on_side_reach`].
 pub(crate) fn on_side_between(positions: &[DVec3], u: u32, v: u32, w: u32) -> bool {
@@ -404,11 +415,11 @@ struct Triangulated {
     /// Each side's vertices, by its ends' handles (smaller index first):
     /// its ends, the split points between and the vertices spade split its
     /// pieces at, in order from the first (only for [`Keep::Once`]).
-    split_sides: SplitSides,
+    split_sides: SideVertices,
 }
 
 /// Each side's vertices (see [`Triangulated`]).
-type SplitSides = rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>>;
+type SideVertices = rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>>;
 
 /// The constrained triangulation of a group's faces in the projection
 /// along `axis`: every corner a vertex (`None` when two corners project
@@ -543,7 +554,7 @@ fn triangulate(
 fn presplit(
     cdt: &mut ConstrainedDelaunayTriangulation<ChartVertex>,
     sides: &[(Handle, Handle)],
-) -> Option<(Vec<(Handle, Handle)>, SplitSides)> {
+) -> Option<(Vec<(Handle, Handle)>, SideVertices)> {
     // Once each, in the faces' order.
     let mut seen = rustc_hash::FxHashSet::default();
     let sides: Vec<(Handle, Handle)> = sides
@@ -567,7 +578,7 @@ fn presplit(
         .collect();
     let segments: Vec<[DVec2; 2]> = sides.iter().map(|&(a, b)| [at(a), at(b)]).collect();
     let splits = crate::side_crossings::split_points(&corners, &segments);
-    let mut split_sides = SplitSides::default();
+    let mut split_sides = SideVertices::default();
     let mut pieces = Vec::new();
     for (&(a, b), points) in sides.iter().zip(&splits) {
         let mut on = vec![a];
@@ -594,7 +605,7 @@ fn presplit(
 
 /// The chain of constraint edges of `cdt` from `from` to `to`: the
 /// vertices strictly between, in order. Each step takes a constraint
-/// edge to a vertex on the segment (within [`ON_SIDE`] of its line)
+/// edge to a vertex on the segment ([`near_line_2d`])
 /// that is closer to `to`, the nearest such; `None` when there is none
 /// before `to` (a crossing so ill-conditioned that its point lands
 /// farther off leaves the group as it was).
@@ -609,8 +620,11 @@ fn chain(
     // The parameter along the side, and whether the point is on it.
     let along = |q: Point2<f64>| ((q.x - a.x) * dx + (q.y - a.y) * dy) / length2;
     let on_line = |q: Point2<f64>| {
-        let off = ((q.x - a.x) * dy - (q.y - a.y) * dx).abs();
-        off <= length2 * ON_SIDE
+        near_line_2d(
+            DVec2::new(a.x, a.y),
+            DVec2::new(b.x, b.y),
+            DVec2::new(q.x, q.y),
+        )
     };
     let mut at = from;
     let mut t = 0.0;
@@ -644,7 +658,7 @@ fn chain(
 /// split it (crossing it where their rounded ends made them cross).
 fn follow(
     cdt: &ConstrainedDelaunayTriangulation<ChartVertex>,
-    split_sides: &SplitSides,
+    split_sides: &SideVertices,
     from: Handle,
     to: Handle,
 ) -> Option<Vec<Handle>> {

@@ -26,7 +26,7 @@
 use glam::{DVec2, DVec3};
 use holey_geom::{Sign, orient2d};
 
-use crate::coplanar::ON_SIDE;
+use crate::coplanar::near_line_2d;
 
 /// A proper crossing: sides `i` and `j` meet at `point` (rounded).
 struct Crossing {
@@ -183,9 +183,7 @@ pub(crate) fn split_points(corners: &[DVec2], sides: &[[DVec2; 2]]) -> Vec<Vec<D
             // more than rounding (a bend, not a split: left to spade).
             for (k, end) in [(side_of[c.i], nearer(d, e)), (side_of[c.j], nearer(a, b))] {
                 let [p, q] = sides[k];
-                let u = q - p;
-                let on_line = u.perp_dot(end - p).abs() <= u.length_squared() * ON_SIDE;
-                if end != p && end != q && on_line {
+                if end != p && end != q && near_line_2d(p, q, end) {
                     splits[k].push(end);
                 }
             }
