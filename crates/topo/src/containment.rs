@@ -42,7 +42,7 @@ use crate::engine::{
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::regions;
 use crate::union_find::UnionFind;
-use crate::winding::{WindingField, winding_numbers_at};
+use crate::winding::{WindingField, winding_numbers_at, winding_numbers_without_own};
 use rayon::prelude::*;
 
 /// How far a winding number may be from an integer for its piece to be
@@ -92,13 +92,18 @@ impl<'a> Surroundings<'a> {
     /// it faces outward (inside has winding number +1), −1 when inward.
     pub fn orientation(&self) -> f64 {
         *self.orientation.get_or_init(|| {
+            // In runs: a task per triangle costs more than its sum.
             let volume: f64 = self
                 .mesh
                 .triangles
-                .par_iter()
-                .map(|t| {
-                    let [a, b, c] = t.map(|v| self.positions[v as usize]);
-                    a.dot(b.cross(c))
+                .par_chunks(4096)
+                .map(|run| {
+                    run.iter()
+                        .map(|t| {
+                            let [a, b, c] = t.map(|v| self.positions[v as usize]);
+                            a.dot(b.cross(c))
+                        })
+                        .sum::<f64>()
                 })
                 .sum();
             if volume < 0.0 { -1.0 } else { 1.0 }
@@ -124,6 +129,30 @@ impl<'a> Surroundings<'a> {
         let field = WindingField::new(outside, &at);
         points.iter().map(|&p| field.at(p, None)).collect()
     }
+}
+
+/// The winding numbers at `points` of `triangles`, each point without its
+/// own triangle (`own`): summed in one pass for up to [`FEW_POINTS`]
+/// points, from the octree field for more (the field costs about twenty
+/// passes to build).
+fn near_winding_numbers<P>(
+    triangles: &[[u32; 3]],
+    position: &P,
+    points: &[DVec3],
+    own: &[Option<usize>],
+) -> Vec<f64>
+where
+    P: Fn(u32) -> DVec3 + Sync,
+{
+    if points.len() <= FEW_POINTS {
+        return winding_numbers_without_own(triangles, position, points, own);
+    }
+    let field = WindingField::new(triangles, position);
+    points
+        .iter()
+        .zip(own)
+        .map(|(&p, &t)| field.at(p, t))
+        .collect()
 }
 
 /// The frame of `sub` (a region of a mesh, at its start positions)
@@ -314,7 +343,6 @@ fn label_pieces(
     // counted with the surface's own orientation, is at least 1.
     let inside = |w: f64| surroundings.orientation() * w >= 0.5;
     let arr_at = |v: u32| arr.positions[v as usize];
-    let near = WindingField::new(&arr.triangles, &arr_at);
     let outward = surroundings.orientation() > 0.0;
     // Per region: keep, and flip (its inside lies on the other side of it
     // than the rest of the surface's does).
@@ -337,9 +365,11 @@ fn label_pieces(
         })
         .collect();
     let points: Vec<DVec3> = samples.iter().map(|s| s.2).collect();
+    let own: Vec<Option<usize>> = samples.iter().map(|s| Some(s.1)).collect();
+    let near = near_winding_numbers(&arr.triangles, &arr_at, &points, &own);
     let far = surroundings.winding_numbers_at(&points);
-    for (&(r, t, c), far) in samples.iter().zip(far) {
-        let w = near.at(c, Some(t)) + far;
+    for ((&(r, _, _), far), near) in samples.iter().zip(far).zip(near) {
+        let w = near + far;
         // The seed's own triangle adds ±1/2 on its two sides.
         let (behind, front) = (w + 0.5, w - 0.5);
         let off = (behind - behind.round()).abs();
@@ -520,7 +550,6 @@ fn fill_voids(
         .collect();
     let kept_index: Vec<usize> = (0..arr.triangles.len()).filter(|&t| keep[t]).collect();
     let arr_at = |v: u32| arr.positions[v as usize];
-    let near = WindingField::new(&kept, &arr_at);
     // At a point of each shell's first triangle, the rest of the kept
     // surface: everything kept but that triangle, less the rest of the
     // shell, which a closed surface's own point sees as a half (of the
@@ -529,10 +558,13 @@ fn fill_voids(
         .iter()
         .map(|members| output[members[0]].map(arr_at).iter().sum::<DVec3>() / 3.0)
         .collect();
+    let own: Vec<Option<usize>> = candidates
+        .iter()
+        .map(|members| kept_index.binary_search(&members[0]).ok())
+        .collect();
+    let near = near_winding_numbers(&kept, &arr_at, &points, &own);
     let far = surroundings.winding_numbers_at(&points);
-    for ((members, p), far) in candidates.into_iter().zip(points).zip(far) {
-        let seed = members[0];
-        let own = kept_index.binary_search(&seed).ok();
+    for ((members, far), near) in candidates.into_iter().zip(far).zip(near) {
         let volume: f64 = members
             .iter()
             .map(|&t| {
@@ -541,7 +573,7 @@ fn fill_voids(
             })
             .sum();
         let shell = if volume < 0.0 { -0.5 } else { 0.5 };
-        let w = near.at(p, own) - shell + far;
+        let w = near - shell + far;
         if inside(w) {
             for t in members {
                 keep[t] = false;

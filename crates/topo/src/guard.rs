@@ -293,26 +293,34 @@ fn spliced_and_audited(
     out: &Outcome,
     options: &Options,
 ) -> Result<Option<Run>, TopoError> {
-    let (report, spliced) = region.resolve(mesh, end, out, options.solid_guard);
+    let (report, plan) = region.plan(mesh, out, options.solid_guard);
+    // The spliced result keeps every input vertex's number; new ones
+    // follow.
+    let n = mesh.positions.len();
+    let near = |v: u32| region.local.get(v as usize).is_none_or(|&l| l != u32::MAX);
+    // The splice and the count of the result's pieces are passes over the
+    // whole mesh; the audit works on the region. On two cores they take
+    // the time of the longer one.
+    let ((spliced, growth), audited) = rayon::join(
+        || {
+            let spliced = region.carry_out(plan, mesh, end, out);
+            let growth = match &spliced {
+                Spliced::Mesh(m) => {
+                    piece_growth(mesh, m, &near, &|v| v as usize >= n || near(v), options)
+                }
+                _ => Vec::new(),
+            };
+            (spliced, growth)
+        },
+        || audit_region(mesh, end, region, sub, out, &report, options),
+    );
     let result = match spliced {
         Spliced::PositionsOnly => None,
         Spliced::Mesh(m) => Some(m),
         Spliced::NotExact => return Ok(None),
     };
-    let mut worse = audit_region(mesh, end, region, sub, out, &report, options)?;
-    if let Some(m) = &result {
-        // The spliced result keeps every input vertex's number; new ones
-        // follow.
-        let n = mesh.positions.len();
-        let near = |v: u32| region.local.get(v as usize).is_none_or(|&l| l != u32::MAX);
-        worse.extend(piece_growth(
-            mesh,
-            m,
-            &near,
-            &|v| v as usize >= n || near(v),
-            options,
-        ));
-    }
+    let mut worse = audited?;
+    worse.extend(growth);
     Ok(Some(Run {
         mesh: result,
         report,
@@ -547,23 +555,15 @@ fn neighbourhoods(
     region: &Region,
     out: &Outcome,
 ) -> (TriMesh, TriMesh) {
-    let ring: Vec<[u32; 3]> = mesh
-        .triangles
+    let ring: Vec<[u32; 3]> = region
+        .ring(&mesh.triangles)
         .iter()
-        .zip(&region.mask)
-        .filter(|(t, inside)| !**inside && t.iter().any(|&v| region.local[v as usize] != u32::MAX))
-        .map(|(t, _)| *t)
+        .map(|&t| mesh.triangles[t as usize])
         .collect();
-    let inside: Vec<[u32; 3]> = mesh
-        .triangles
-        .iter()
-        .zip(&region.mask)
-        .filter(|(_, inside)| **inside)
-        .map(|(t, _)| *t)
-        .collect();
-    let before = compact_of(inside.iter().chain(&ring).copied(), &|v| {
-        mesh.positions[v as usize]
-    });
+    let before = compact_of(
+        region.global_triangles().chain(ring.iter().copied()),
+        &|v| mesh.positions[v as usize],
+    );
     // The output's vertices: region vertices by their global number, new
     // ones after every global number.
     let n = mesh.positions.len() as u32;

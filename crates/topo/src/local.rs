@@ -78,6 +78,17 @@ pub(crate) enum Spliced {
     NotExact,
 }
 
+/// What [`Region::plan`] decided the engine's output means, before the
+/// splice is made.
+pub(crate) enum Plan {
+    /// The region came back as it went in.
+    PositionsOnly,
+    /// Splice the output in ([`Region::carry_out`]).
+    Splice,
+    /// The splice would not be exact.
+    NotExact,
+}
+
 /// Whether `out` (with `origin`, per output vertex the input vertex it
 /// is) is the input `triangles` over `n` vertices, unchanged.
 fn is_identity(triangles: &[[u32; 3]], n: usize, out: &TriMesh, origin: &[u32]) -> bool {
@@ -148,6 +159,9 @@ pub(crate) struct Region {
     pub local: Vec<u32>,
     /// The region's triangles in local numbers.
     pub triangles: Vec<[u32; 3]>,
+    /// The ring ([`Region::ring`]), found on first use: a frame that
+    /// only moves the surface never needs it.
+    ring: std::sync::OnceLock<Vec<u32>>,
 }
 
 impl Region {
@@ -203,7 +217,33 @@ impl Region {
             global,
             local,
             triangles,
+            ring: std::sync::OnceLock::new(),
         }
+    }
+
+    /// The ring: the triangles of `tris` (the mesh the region was
+    /// selected from) outside the region with a vertex in it, in mesh
+    /// order. They are the only outside triangles the region's output can
+    /// share an edge or a vertex with, so the splice and the audit of a
+    /// frame need only them, not the whole mesh.
+    pub fn ring(&self, tris: &[[u32; 3]]) -> &[u32] {
+        self.ring.get_or_init(|| {
+            tris.iter()
+                .zip(&self.mask)
+                .enumerate()
+                .filter(|(_, (t, inside))| {
+                    !**inside && t.iter().any(|&v| self.local[v as usize] != u32::MAX)
+                })
+                .map(|(i, _)| i as u32)
+                .collect()
+        })
+    }
+
+    /// The region's triangles in the mesh's vertex numbers, in mesh order.
+    pub fn global_triangles(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
+        self.triangles
+            .iter()
+            .map(|t| t.map(|v| self.global[v as usize]))
     }
 
     /// Whether the region is small enough to be worth it.
@@ -246,6 +286,15 @@ impl Region {
         out: &Outcome,
         solid_guard: bool,
     ) -> (LocalReport, Spliced) {
+        let (report, plan) = self.plan(mesh, out, solid_guard);
+        (report, self.carry_out(plan, mesh, end, out))
+    }
+
+    /// [`Region::resolve`] in two steps: what the output means (cheap,
+    /// on the region), then [`Region::carry_out`] (the splice, a pass
+    /// over the whole mesh), so that a caller can audit the region while
+    /// the splice runs.
+    pub fn plan(&self, mesh: &TriMesh, out: &Outcome, solid_guard: bool) -> (LocalReport, Plan) {
         let n = mesh.positions.len();
         let mut report = LocalReport {
             new_vertices: new_vertex_count(&out.vertex_origin),
@@ -264,14 +313,14 @@ impl Region {
         // mesh that already crossed itself would otherwise go to the
         // whole mesh at every frame near its old curves.
         let cut = &out.report.cut;
-        let spliced = if solid_guard
+        let plan = if solid_guard
             && (cut.curves_dropped > 0
                 || cut.false_vertices > 0
                 || self.opens(&out.mesh, &out.vertex_origin))
             && mesh.is_closed_manifold()
             && intersecting_pair_count(&self.submesh(&mesh.positions), 0) == Ok(0)
         {
-            Spliced::NotExact
+            Plan::NotExact
         } else if is_identity(
             &self.triangles,
             self.global.len(),
@@ -279,14 +328,25 @@ impl Region {
             &out.vertex_origin,
         ) {
             report.positions_only = true;
-            Spliced::PositionsOnly
+            Plan::PositionsOnly
         } else {
-            match self.splice(mesh, end, &out.mesh, &out.vertex_origin) {
+            Plan::Splice
+        };
+        (report, plan)
+    }
+
+    /// The [`Plan`] carried out: for [`Plan::Splice`], the mesh with the
+    /// region replaced by `out`, at `end` outside, or
+    /// [`Spliced::NotExact`] when the splice would not be exact.
+    pub fn carry_out(&self, plan: Plan, mesh: &TriMesh, end: &[DVec3], out: &Outcome) -> Spliced {
+        match plan {
+            Plan::PositionsOnly => Spliced::PositionsOnly,
+            Plan::NotExact => Spliced::NotExact,
+            Plan::Splice => match self.splice(mesh, end, &out.mesh, &out.vertex_origin) {
                 Some(m) => Spliced::Mesh(m),
                 None => Spliced::NotExact,
-            }
-        };
-        (report, spliced)
+            },
+        }
     }
 
     /// Whether the engine's output `out` (`origin` as for
@@ -332,7 +392,11 @@ impl Region {
         origin: &[u32],
     ) -> Option<TriMesh> {
         let mut interface: HashSet<(u32, u32)> = HashSet::default();
-        for (t, _) in mesh.triangles.iter().zip(&self.mask).filter(|(_, r)| !**r) {
+        for t in self
+            .ring(&mesh.triangles)
+            .iter()
+            .map(|&t| mesh.triangles[t as usize])
+        {
             for k in 0..3 {
                 let (a, b) = (
                     self.local[t[k] as usize],
@@ -377,13 +441,15 @@ impl Region {
                 }
             })
             .collect();
-        let mut triangles: Vec<[u32; 3]> = mesh
-            .triangles
-            .iter()
-            .zip(&self.mask)
-            .filter(|(_, r)| !**r)
-            .map(|(t, _)| *t)
-            .collect();
+        // The outside triangles in order, copied a run at a time.
+        let mut triangles: Vec<[u32; 3]> =
+            Vec::with_capacity(mesh.triangles.len() - self.count + out.triangles.len());
+        let mut run = 0;
+        for (t, _) in self.mask.iter().enumerate().filter(|(_, inside)| **inside) {
+            triangles.extend_from_slice(&mesh.triangles[run..t]);
+            run = t + 1;
+        }
+        triangles.extend_from_slice(&mesh.triangles[run..]);
         triangles.extend(out.triangles.iter().map(|t| t.map(|v| map[v as usize])));
         Some(
             TriMesh {
