@@ -249,7 +249,9 @@ pub fn remesh_with(
 
 /// [`remesh_with`] on the mesh itself, which is left unchanged on error.
 /// Apart from the checks of the input (linear and cheap) and two scans
-/// of the triangle list, the cost follows the active region.
+/// of the triangle list, the cost follows the active region: the first
+/// pass looks at every active edge, each later one only at the edges
+/// near what the passes before it changed.
 pub fn remesh_in_place(
     mesh: &mut TriMesh,
     active: &[bool],
@@ -410,7 +412,21 @@ struct Work {
     origin: Vec<u32>,
     /// Cached class and valence per local vertex.
     info: Vec<Option<(Class, i64)>>,
+    /// Per local vertex, the tick of the last change to a triangle around
+    /// it (its ring, a corner's position): what a pass after the first
+    /// looks at ([`Work::edges_to_visit`]).
+    changed: Vec<u64>,
+    /// Ticks one per change.
+    clock: u64,
+    /// Per kind of pass (split, collapse, flip), the tick it last began
+    /// at; 0 before its first run.
+    visited: [u64; 3],
 }
+
+/// The kinds of pass, for [`Work::visited`].
+const SPLITS: usize = 0;
+const COLLAPSES: usize = 1;
+const FLIPS: usize = 2;
 
 fn degenerate(t: [u32; 3]) -> bool {
     t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
@@ -499,6 +515,9 @@ impl Work {
             full: (0..nl).map(|i| (i as u32) < full_count).collect(),
             alive_v: vec![true; nl],
             info: vec![None; nl],
+            changed: vec![1; nl],
+            clock: 1,
+            visited: [0; 3],
             ring,
             alive_t: vec![true; tris.len()],
             tris,
@@ -554,11 +573,63 @@ impl Work {
         self.info(v).0
     }
 
-    /// Forgets the cached class of the vertices of triangle `t`.
+    /// Forgets the cached class of the vertices of triangle `t`, and
+    /// marks them changed.
     fn touch(&mut self, t: u32) {
+        self.clock += 1;
         for v in self.tris[t as usize] {
             self.info[v as usize] = None;
+            self.changed[v as usize] = self.clock;
         }
+    }
+
+    /// The active edges a pass of `kind` has to look at: on its first run
+    /// all of them ([`Work::active_edges`]); after that only those near a
+    /// change since its last run began, in the same order. An edge's
+    /// every test (its length, its triangles, the rings, classes and
+    /// valences of its ends and opposite corners, the distances from an
+    /// end to its neighbours) reads the triangles around its two ends and
+    /// their neighbours, so an edge with neither end within one edge of a
+    /// changed vertex would be tested exactly as last time, and fail
+    /// again: leaving it out reaches the same fixed point (no long edge,
+    /// no collapse, no flip left) without testing the whole region again
+    /// for each pass.
+    fn edges_to_visit(&mut self, kind: usize) -> Vec<(u32, u32)> {
+        let since = std::mem::replace(&mut self.visited[kind], self.clock);
+        if since == 0 {
+            return self.active_edges();
+        }
+        let n = self.pos.len();
+        // The changed vertices and their neighbours: each edge of a
+        // triangle around one of them.
+        let mut near = vec![false; n];
+        for v in (0..n).filter(|&v| self.alive_v[v] && self.changed[v] > since) {
+            near[v] = true;
+            for &t in &self.ring[v] {
+                for x in self.tris[t as usize] {
+                    near[x as usize] = true;
+                }
+            }
+        }
+        let live_active = |v: u32| self.active[v as usize] && self.alive_v[v as usize];
+        let mut edges: Vec<u64> = Vec::new();
+        for v in (0..n).filter(|&v| near[v] && self.alive_v[v]) {
+            for &t in &self.ring[v] {
+                let tri = self.tris[t as usize];
+                for k in 0..3 {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    if a != b && (live_active(a) || live_active(b)) {
+                        edges.push(u64::from(a.min(b)) << 32 | u64::from(a.max(b)));
+                    }
+                }
+            }
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        edges
+            .into_iter()
+            .map(|e| ((e >> 32) as u32, e as u32))
+            .collect()
     }
 
     fn classify(&self, v: u32) -> (Class, i64) {
@@ -664,6 +735,8 @@ impl Work {
         self.full.push(true);
         self.alive_v.push(true);
         self.info.push(None);
+        self.clock += 1;
+        self.changed.push(self.clock);
         self.ring.push(Vec::new());
         v
     }
@@ -690,7 +763,7 @@ impl Work {
         // finite lengths the budget allows.
         for _ in 0..64 {
             let mut long: Vec<(f64, u32, u32)> = self
-                .active_edges()
+                .edges_to_visit(SPLITS)
                 .into_iter()
                 .map(|(a, b)| (self.length(a, b), a, b))
                 .filter(|&(l, _, _)| l > self.opts.max_edge)
@@ -767,7 +840,7 @@ impl Work {
 
     fn collapse_pass(&mut self, report: &mut RemeshReport) {
         let mut short: Vec<(f64, u32, u32)> = self
-            .active_edges()
+            .edges_to_visit(COLLAPSES)
             .into_iter()
             .map(|(a, b)| (self.length(a, b), a, b))
             .filter(|&(l, _, _)| l < self.opts.min_edge)
@@ -964,12 +1037,16 @@ impl Work {
         self.ring[y as usize].extend(moved);
         self.alive_v[x as usize] = false;
         self.pos[y as usize] = p;
+        // `y` moved: every triangle around it changed shape.
+        for i in 0..self.ring[y as usize].len() {
+            self.touch(self.ring[y as usize][i]);
+        }
     }
 
     // ---- flips ----
 
     fn flip_pass(&mut self, report: &mut RemeshReport) {
-        for (a, b) in self.active_edges() {
+        for (a, b) in self.edges_to_visit(FLIPS) {
             if self.alive_v[a as usize] && self.alive_v[b as usize] && self.try_flip(a, b) {
                 report.flips += 1;
             }
@@ -1587,6 +1664,43 @@ pub(crate) mod tests {
             );
         }
         assert!(clean_triangles(&out));
+    }
+
+    /// The passes after the first look only near what changed
+    /// (`Work::edges_to_visit`). Run to the end, they must leave nothing
+    /// that a run looking at every edge would still change: a second run
+    /// on the result splits, collapses and flips nothing. Refining and
+    /// coarsening a sphere, a grid (with a boundary) and a torus.
+    #[test]
+    fn passes_near_changes_end_where_a_full_look_finds_nothing_left() {
+        let cases = [
+            (sphere(1), range(0.1, 0.25)),
+            (sphere(4), range(0.15, 0.4)),
+            (grid(20), range(0.03, 0.07)),
+            (grid(20), range(0.15, 0.4)),
+            (torus(), range(0.05, 0.12)),
+            (torus(), range(0.3, 0.7)),
+        ];
+        for (m, r) in cases {
+            let opts = RemeshOptions {
+                passes: 1000,
+                ..RemeshOptions::new(r)
+            };
+            let (out, first) = remesh_checked(&m, &all(&m), &opts);
+            assert!(first.passes < 1000, "{first:?}");
+            assert!(
+                first.splits + first.collapses + first.flips > 0,
+                "{first:?}"
+            );
+            let mut copy = out.clone();
+            let second = remesh_in_place(&mut copy, &all(&out), &opts).unwrap();
+            assert_eq!(
+                (second.splits, second.collapses, second.flips),
+                (0, 0, 0),
+                "{r:?}: {second:?} after {first:?}"
+            );
+            assert_eq!(copy, out);
+        }
     }
 
     #[test]
