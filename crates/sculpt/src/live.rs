@@ -828,12 +828,15 @@ fn substeps(mesh: &TriMesh, end: &[DVec3]) -> usize {
         .zip(end)
         .map(|(p, q)| p != q)
         .collect();
+    // The square root of the largest squared distance: the same number
+    // (a correctly rounded square root is monotone), one root.
     let farthest = mesh
         .positions
         .iter()
         .zip(end)
-        .map(|(p, q)| p.distance(*q))
-        .fold(0.0, f64::max);
+        .map(|(p, q)| p.distance_squared(*q))
+        .fold(0.0, f64::max)
+        .sqrt();
     let (mut sum, mut count) = (0.0, 0usize);
     for t in &mesh.triangles {
         for k in 0..3 {

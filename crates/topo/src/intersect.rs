@@ -34,6 +34,7 @@ use holey_geom::{
 };
 use rayon::prelude::*;
 
+use crate::local::outcode;
 use crate::mesh::{Edges, TriMesh};
 
 /// A node of an intersection curve.
@@ -825,14 +826,15 @@ pub fn crossing_pairs_involving(
     involved: &[bool],
 ) -> usize {
     let n = mesh.positions.len();
+    // A triangle's box misses the region exactly when its three corners
+    // lie beyond one face of it ([`outcode`]), found per vertex in one
+    // sequential pass, so the triangle scan reads a byte per corner.
+    let code: Vec<u8> = mesh.positions.iter().map(|&p| outcode(p, region)).collect();
     let (mut marked, mut rest) = (Vec::new(), Vec::new());
     for (i, t) in mesh.triangles.iter().enumerate() {
-        if t.iter().any(|&v| v as usize >= n) {
-            continue;
-        }
-        let p = t.map(|v| mesh.positions[v as usize]);
-        let (lo, hi) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
-        if lo.cmpgt(region.1).any() || hi.cmplt(region.0).any() {
+        if t.iter().any(|&v| v as usize >= n)
+            || code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] != 0
+        {
             continue;
         }
         if involved.get(i).copied().unwrap_or(false) {
