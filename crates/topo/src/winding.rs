@@ -631,5 +631,34 @@ mod tests {
         let one = [[0u32, 1, 2]];
         let behind = (p[0] + p[1] + p[2]) / 3.0 - (p[1] - p[0]).cross(p[2] - p[0]) * 1e-9;
         assert!((winding_number(&one, &at, behind, None) - 0.5).abs() < 1e-6);
+        // The one-pass sum without each point's own face.
+        let w = winding_numbers_without_own(&t, &at, &[c], &[Some(0)]);
+        assert!((w[0] - 0.5).abs() < 1e-12, "{w:?}");
+    }
+
+    /// At the centroids of faces of a closed sphere, the rest of it has
+    /// winding number 1/2 (the closed form: a closed surface's own point
+    /// sees half a turn), far triangles counted by their dipoles; a face
+    /// not left out would count as ±2π more or less.
+    #[test]
+    fn without_its_own_face_a_point_on_a_sphere_sees_a_half() {
+        let (pos, tris, _) = uv_sphere(60, 90);
+        let p = |v: u32| pos[v as usize];
+        let own: Vec<usize> = vec![0, 77, 1234, 3001, tris.len() - 1];
+        let points: Vec<DVec3> = own
+            .iter()
+            .map(|&t| tris[t].map(p).iter().sum::<DVec3>() / 3.0)
+            .collect();
+        let some: Vec<Option<usize>> = own.iter().map(|&t| Some(t)).collect();
+        let w = winding_numbers_without_own(&tris, &p, &points, &some);
+        for ((&t, &q), w) in own.iter().zip(&points).zip(&w) {
+            let exact = winding_number(&tris, &p, q, Some(t));
+            assert!((w - 0.5).abs() < 0.01, "face {t}: {w}");
+            assert!((w - exact).abs() < 0.01, "face {t}: {w} against {exact}");
+        }
+        // With nothing left out the same points are not a half.
+        let none = vec![None; own.len()];
+        let all = winding_numbers_without_own(&tris, &p, &points, &none);
+        assert!(all.iter().all(|w| (w - 0.5).abs() > 0.4), "{all:?}");
     }
 }
