@@ -428,6 +428,17 @@ const SPLITS: usize = 0;
 const COLLAPSES: usize = 1;
 const FLIPS: usize = 2;
 
+/// Edges packed one to a `u64` (smaller end high, so that the integers'
+/// order is the pairs'), sorted, each once, unpacked.
+fn unpacked(mut edges: Vec<u64>) -> Vec<(u32, u32)> {
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+        .into_iter()
+        .map(|e| ((e >> 32) as u32, e as u32))
+        .collect()
+}
+
 fn degenerate(t: [u32; 3]) -> bool {
     t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
 }
@@ -624,12 +635,7 @@ impl Work {
                 }
             }
         }
-        edges.sort_unstable();
-        edges.dedup();
-        edges
-            .into_iter()
-            .map(|e| ((e >> 32) as u32, e as u32))
-            .collect()
+        unpacked(edges)
     }
 
     fn classify(&self, v: u32) -> (Class, i64) {
@@ -715,12 +721,7 @@ impl Work {
                 }
             }
         }
-        edges.sort_unstable();
-        edges.dedup();
-        edges
-            .into_iter()
-            .map(|e| ((e >> 32) as u32, e as u32))
-            .collect()
+        unpacked(edges)
     }
 
     fn length(&self, a: u32, b: u32) -> f64 {

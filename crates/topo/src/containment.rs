@@ -42,7 +42,7 @@ use crate::engine::{
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::regions;
 use crate::union_find::UnionFind;
-use crate::winding::{WindingField, winding_numbers_at, winding_numbers_without_own};
+use crate::winding::{FEW_POINTS, WindingField, winding_numbers_at, winding_numbers_without_own};
 use rayon::prelude::*;
 
 /// How far a winding number may be from an integer for its piece to be
@@ -69,12 +69,6 @@ pub(crate) struct Surroundings<'a> {
     orientation: std::sync::OnceLock<f64>,
     outside: std::sync::OnceLock<Vec<[u32; 3]>>,
 }
-
-/// Up to this many points, [`Surroundings::winding_numbers_at`] sums
-/// over the outside triangles once for all of them; for more it builds
-/// the octree field (about as costly as twenty such passes) and queries
-/// it.
-const FEW_POINTS: usize = 16;
 
 impl<'a> Surroundings<'a> {
     /// The triangles of `mesh` that `inside` does not flag, at `end`.
@@ -110,7 +104,9 @@ impl<'a> Surroundings<'a> {
         })
     }
 
-    /// The winding numbers of the outside triangles at `points`.
+    /// The winding numbers of the outside triangles at `points`: up to
+    /// [`FEW_POINTS`] points summed over them once for all, for more
+    /// from the octree field.
     pub fn winding_numbers_at(&self, points: &[DVec3]) -> Vec<f64> {
         let at = |v: u32| self.positions[v as usize];
         if points.len() <= FEW_POINTS {
@@ -129,30 +125,6 @@ impl<'a> Surroundings<'a> {
         let field = WindingField::new(outside, &at);
         points.iter().map(|&p| field.at(p, None)).collect()
     }
-}
-
-/// The winding numbers at `points` of `triangles`, each point without its
-/// own triangle (`own`): summed in one pass for up to [`FEW_POINTS`]
-/// points, from the octree field for more (the field costs about twenty
-/// passes to build).
-fn near_winding_numbers<P>(
-    triangles: &[[u32; 3]],
-    position: &P,
-    points: &[DVec3],
-    own: &[Option<usize>],
-) -> Vec<f64>
-where
-    P: Fn(u32) -> DVec3 + Sync,
-{
-    if points.len() <= FEW_POINTS {
-        return winding_numbers_without_own(triangles, position, points, own);
-    }
-    let field = WindingField::new(triangles, position);
-    points
-        .iter()
-        .zip(own)
-        .map(|(&p, &t)| field.at(p, t))
-        .collect()
 }
 
 /// The frame of `sub` (a region of a mesh, at its start positions)
@@ -366,7 +338,7 @@ fn label_pieces(
         .collect();
     let points: Vec<DVec3> = samples.iter().map(|s| s.2).collect();
     let own: Vec<Option<usize>> = samples.iter().map(|s| Some(s.1)).collect();
-    let near = near_winding_numbers(&arr.triangles, &arr_at, &points, &own);
+    let near = winding_numbers_without_own(&arr.triangles, &arr_at, &points, &own);
     let far = surroundings.winding_numbers_at(&points);
     for ((&(r, _, _), far), near) in samples.iter().zip(far).zip(near) {
         let w = near + far;
@@ -562,7 +534,7 @@ fn fill_voids(
         .iter()
         .map(|members| kept_index.binary_search(&members[0]).ok())
         .collect();
-    let near = near_winding_numbers(&kept, &arr_at, &points, &own);
+    let near = winding_numbers_without_own(&kept, &arr_at, &points, &own);
     let far = surroundings.winding_numbers_at(&points);
     for ((members, far), near) in candidates.into_iter().zip(far).zip(near) {
         let volume: f64 = members

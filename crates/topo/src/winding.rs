@@ -106,11 +106,18 @@ where
         .collect()
 }
 
-/// [`winding_numbers_at`] of every triangle of `triangles`, each point
-/// without its own triangle (`own[i]` for `points[i]`, if any): the
+/// Up to this many points, one pass over the triangles
+/// ([`winding_numbers_at`]) is cheaper than building a [`WindingField`]
+/// (about as costly as twenty such passes) and querying it.
+pub const FEW_POINTS: usize = 16;
+
+/// The winding numbers at `points` of every triangle of `triangles`, each
+/// point without its own triangle (`own[i]` for `points[i]`, if any): the
 /// winding number of the rest of a surface at a point on one of its
-/// triangles, where that triangle's own solid angle is ±2π by side. The
-/// own triangle's term is taken back out exactly as it went in.
+/// triangles, where that triangle's own solid angle is ±2π by side. Up to
+/// [`FEW_POINTS`] points, one pass ([`winding_numbers_at`]) with the own
+/// triangle's term taken back out exactly as it went in; for more, the
+/// octree field.
 pub fn winding_numbers_without_own<P>(
     triangles: &[[u32; 3]],
     position: &P,
@@ -118,8 +125,16 @@ pub fn winding_numbers_without_own<P>(
     own: &[Option<usize>],
 ) -> Vec<f64>
 where
-    P: Fn(u32) -> DVec3 + Sync + ?Sized,
+    P: Fn(u32) -> DVec3 + Sync,
 {
+    if points.len() > FEW_POINTS {
+        let field = WindingField::new(triangles, position);
+        return points
+            .iter()
+            .zip(own)
+            .map(|(&p, &t)| field.at(p, t))
+            .collect();
+    }
     let mut w = winding_numbers_at(triangles, &|_| true, position, points);
     for ((w, &p), own) in w.iter_mut().zip(points).zip(own) {
         if let Some(t) = *own {
