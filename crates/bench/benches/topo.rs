@@ -1,6 +1,7 @@
 //! The topology-change engine (issue: topo, performance): Theorem 5.2
 //! unions of two icospheres and their self-intersections, over sizes from
-//! 41k to 655k triangles in all, to show how the time scales.
+//! 41k to 655k triangles in all, to show how the time scales; and the
+//! one-pass winding numbers at a few points.
 //!
 //! cargo bench -p holey-bench --bench topo
 
@@ -64,4 +65,28 @@ fn self_intersections_of_two_spheres(bencher: Bencher, level: u32) {
     let (mut both, end) = union_frame(level);
     both.positions = end;
     bencher.bench_local(|| black_box(self_intersections(&both).map(|x| x.pairs.len())));
+}
+
+/// The winding numbers of a whole sphere at four points near its surface
+/// in one pass (`winding::winding_numbers_at`, what a sculpting frame
+/// that changes topology asks of the surface around its region): 20k to
+/// 1.3M triangles.
+#[divan::bench(args = [5, 6, 7, 8], sample_count = 10)]
+fn winding_numbers_at_four_points(bencher: Bencher, level: u32) {
+    let sphere = holey_bench::icosphere(level);
+    let points = [
+        DVec3::new(0.0, 0.0, 0.99),
+        DVec3::new(0.3, -0.2, 0.9),
+        DVec3::new(-0.7, 0.7, 0.05),
+        DVec3::new(0.5, 0.5, -0.69),
+    ];
+    let at = |v: u32| sphere.positions[v as usize];
+    bencher.bench_local(|| {
+        black_box(holey_topo::winding::winding_numbers_at(
+            &sphere.triangles,
+            &|_| true,
+            &at,
+            &points,
+        ))
+    });
 }
