@@ -87,6 +87,22 @@ impl Aabb {
         }
     }
 
+    /// Where `p` lies beyond the box's faces, a bit per face (below and
+    /// above on x, y, z). Points all beyond one face share its bit, so the
+    /// box around some points misses this box exactly when the AND of
+    /// their codes is nonzero: a scan over many triangles then computes a
+    /// code per vertex once and reads a byte per corner.
+    #[inline]
+    pub fn outcode(&self, p: DVec3) -> u8 {
+        let (lo, hi) = (self.min, self.max);
+        u8::from(p.x < lo.x)
+            | u8::from(p.x > hi.x) << 1
+            | u8::from(p.y < lo.y) << 2
+            | u8::from(p.y > hi.y) << 3
+            | u8::from(p.z < lo.z) << 4
+            | u8::from(p.z > hi.z) << 5
+    }
+
     /// Closed-box overlap (touching counts).
     #[inline]
     pub fn overlaps(&self, o: &Aabb) -> bool {

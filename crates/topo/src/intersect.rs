@@ -34,7 +34,6 @@ use holey_geom::{
 };
 use rayon::prelude::*;
 
-use crate::local::outcode;
 use crate::mesh::{Edges, TriMesh};
 
 /// A node of an intersection curve.
@@ -827,9 +826,9 @@ pub fn crossing_pairs_involving(
 ) -> usize {
     let n = mesh.positions.len();
     // A triangle's box misses the region exactly when its three corners
-    // lie beyond one face of it ([`outcode`]), found per vertex in one
-    // sequential pass, so the triangle scan reads a byte per corner.
-    let code: Vec<u8> = mesh.positions.iter().map(|&p| outcode(p, region)).collect();
+    // lie beyond one face of it ([`Aabb::outcode`]).
+    let bx = Aabb::new(region.0, region.1);
+    let code: Vec<u8> = mesh.positions.iter().map(|&p| bx.outcode(p)).collect();
     let (mut marked, mut rest) = (Vec::new(), Vec::new());
     for (i, t) in mesh.triangles.iter().enumerate() {
         if t.iter().any(|&v| v as usize >= n)

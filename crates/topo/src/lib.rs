@@ -19,6 +19,7 @@ pub mod internals;
 pub mod intersect;
 mod local;
 pub mod mesh;
+mod on_side;
 mod orient;
 mod overlaps;
 mod report_json;

@@ -25,6 +25,7 @@
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
+use holey_geom::Aabb;
 
 use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
 use crate::intersect::intersecting_pair_count;
@@ -103,20 +104,6 @@ const WHOLE_MESH_SHARE: f64 = 0.5;
 /// An axis-aligned box, closed.
 pub(crate) type Bounds = (DVec3, DVec3);
 
-/// Where `p` lies beyond the faces of box `bx`, a bit per face (below,
-/// above on x, y, z). Points all beyond one face share its bit, so a box
-/// around some points misses `bx` exactly when the AND of their codes is
-/// nonzero.
-#[inline]
-pub(crate) fn outcode(p: DVec3, (lo, hi): Bounds) -> u8 {
-    u8::from(p.x < lo.x)
-        | u8::from(p.x > hi.x) << 1
-        | u8::from(p.y < lo.y) << 2
-        | u8::from(p.y > hi.y) << 3
-        | u8::from(p.z < lo.z) << 4
-        | u8::from(p.z > hi.z) << 5
-}
-
 pub(crate) fn union(a: Option<Bounds>, b: Option<Bounds>) -> Option<Bounds> {
     match (a, b) {
         (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
@@ -187,10 +174,11 @@ impl Region {
     /// The codes are computed per vertex in one sequential pass, so the
     /// triangle scan reads a byte per corner.
     pub fn select(tris: &[[u32; 3]], a: &[DVec3], b: &[DVec3], bx: Bounds) -> Region {
+        let bx = Aabb::new(bx.0, bx.1);
         let code: Vec<u8> = a
             .iter()
             .zip(b)
-            .map(|(&p, &q)| outcode(p, bx) & outcode(q, bx))
+            .map(|(&p, &q)| bx.outcode(p) & bx.outcode(q))
             .collect();
         let mask: Vec<bool> = tris
             .iter()

@@ -34,11 +34,11 @@ use rustc_hash::FxHashMap as HashMap;
 use holey_geom::{Aabb, Bvh};
 
 use crate::coplanar::{
-    Keep, Overlay, for_each_overlapping_pair, near_line, on_side_between, on_side_reach,
-    overlap_groups, overlay, position_index,
+    Keep, Overlay, for_each_overlapping_pair, overlap_groups, overlay, position_index,
 };
 use crate::mesh::Edges;
 use crate::mesh::TriMesh;
+use crate::on_side::{near_line, on_side_between, on_side_reach};
 
 /// What merging the overlaps did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

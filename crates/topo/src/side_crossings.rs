@@ -15,9 +15,9 @@
 //!   or along it, is not a crossing: the triangulation splits a
 //!   constraint at every vertex exactly on it, itself);
 //! - the crossing point is rounded once, from the two sides' ends;
-//! - points within `coplanar::SNAP` of the group's size of a
+//! - points within `on_side::SNAP` of the group's size of a
 //!   corner are that corner, and crossings that close of each other are
-//!   one point (`coplanar::snap_crossings`), so three sides through one
+//!   one point (`on_side::snap_crossings`), so three sides through one
 //!   point meet at one vertex.
 //!
 //! Each side is then inserted as the chain of its pieces between
@@ -26,7 +26,7 @@
 use glam::{DVec2, DVec3};
 use holey_geom::{Sign, orient2d};
 
-use crate::coplanar::near_line_2d;
+use crate::on_side::{near_line_2d, snap_crossings};
 
 /// A proper crossing: sides `i` and `j` meet at `point` (rounded).
 struct Crossing {
@@ -155,7 +155,7 @@ pub(crate) fn split_points(corners: &[DVec2], sides: &[[DVec2; 2]]) -> Vec<Vec<D
         .map(|p| p.extend(0.0))
         .collect();
     let crossing: Vec<bool> = (0..points.len()).map(|k| k >= corners.len()).collect();
-    let to = crate::coplanar::snap_crossings(&points, &crossing);
+    let to = snap_crossings(&points, &crossing);
     for (n, c) in found.iter().enumerate() {
         let p = points[to[corners.len() + n]].truncate();
         splits[c.i].push(p);

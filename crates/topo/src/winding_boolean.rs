@@ -87,12 +87,13 @@ use holey_geom::sos::{Poly, sos_sign};
 use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
 use rayon::prelude::*;
 
-use crate::coplanar::{Keep, Overlay, on_side_between, overlay, position_index};
+use crate::coplanar::{Keep, Overlay, overlay, position_index};
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
 use crate::intersect::{default_pair_limit, intersections_limited};
 use crate::mesh::{Edges, MeshError, TriMesh};
+use crate::on_side::on_side_between;
 use crate::union::Operation;
 use crate::union_find::UnionFind;
 use crate::winding::WindingField;
