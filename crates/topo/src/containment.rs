@@ -40,10 +40,9 @@ use crate::engine::{
     Geometry, Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches,
 };
 use crate::mesh::{Edges, TriMesh};
-use crate::solid::regions;
+use crate::solid::{regions, signed_volume};
 use crate::union_find::UnionFind;
 use crate::winding::{FEW_POINTS, WindingField, winding_numbers_at, winding_numbers_without_own};
-use rayon::prelude::*;
 
 /// How far a winding number may be from an integer for its piece to be
 /// labelled by it: a quarter (holes far away shift it by the solid angle
@@ -86,21 +85,11 @@ impl<'a> Surroundings<'a> {
     /// it faces outward (inside has winding number +1), −1 when inward.
     pub fn orientation(&self) -> f64 {
         *self.orientation.get_or_init(|| {
-            // In runs: a task per triangle costs more than its sum.
-            let volume: f64 = self
-                .mesh
-                .triangles
-                .par_chunks(4096)
-                .map(|run| {
-                    run.iter()
-                        .map(|t| {
-                            let [a, b, c] = t.map(|v| self.positions[v as usize]);
-                            a.dot(b.cross(c))
-                        })
-                        .sum::<f64>()
-                })
-                .sum();
-            if volume < 0.0 { -1.0 } else { 1.0 }
+            if signed_volume(self.positions, &self.mesh.triangles) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            }
         })
     }
 

@@ -616,17 +616,22 @@ fn follow(
     let Some(on) = split_sides.get(&key) else {
         return chain(cdt, from, to);
     };
-    let mut on = on.clone();
-    if key.0 != from {
-        on.reverse();
-    }
-    let mut between = Vec::new();
-    for (k, w) in on.windows(2).enumerate() {
-        if k > 0 {
-            between.push(w[0]);
+    // Read from `from`'s end.
+    let at = |k: usize| {
+        if key.0 == from {
+            on[k]
+        } else {
+            on[on.len() - 1 - k]
         }
-        if !cdt.exists_constraint(w[0], w[1]) {
-            between.extend(chain(cdt, w[0], w[1])?);
+    };
+    let mut between = Vec::new();
+    for k in 1..on.len() {
+        let (p, q) = (at(k - 1), at(k));
+        if k > 1 {
+            between.push(p);
+        }
+        if !cdt.exists_constraint(p, q) {
+            between.extend(chain(cdt, p, q)?);
         }
     }
     Some(between)

@@ -143,13 +143,20 @@ pub(crate) fn regions(mesh: &TriMesh) -> Vec<u32> {
 }
 
 /// Signed volume of a closed triangle mesh (positive when its triangles
-/// face outward), by the divergence theorem.
+/// face outward), by the divergence theorem. Summed in runs of 4,096
+/// triangles: a rayon task per triangle cost more than its term (1.2 ms
+/// on the bunny's 70k triangles, every sculpting frame that changes
+/// topology).
 pub(crate) fn signed_volume(positions: &[DVec3], triangles: &[[u32; 3]]) -> f64 {
     triangles
-        .par_iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| positions[v as usize]);
-            a.dot(b.cross(c))
+        .par_chunks(4096)
+        .map(|run| {
+            run.iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|v| positions[v as usize]);
+                    a.dot(b.cross(c))
+                })
+                .sum::<f64>()
         })
         .sum::<f64>()
         / 6.0
