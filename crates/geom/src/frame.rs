@@ -143,75 +143,95 @@ impl BoxFrame {
     }
 }
 
-/// The unit normal of a triangle, made sign-free (its largest coordinate
-/// positive), and its doubled area; `None` without area or corners.
+/// A triangle's normal `n = (b − a) × (c − a)` made sign-free (its
+/// largest coordinate positive), whose length is the doubled area; `None`
+/// without area or corners.
 #[inline]
-fn unsigned_normal(positions: &[DVec3], t: &[u32; 3]) -> Option<(DVec3, f64)> {
+fn unsigned_normal(positions: &[DVec3], t: &[u32; 3]) -> Option<DVec3> {
     let [a, b, c] = [
         positions.get(t[0] as usize)?,
         positions.get(t[1] as usize)?,
         positions.get(t[2] as usize)?,
     ];
     let n = (*b - *a).cross(*c - *a);
-    let w = n.length();
-    if w.is_nan() || w <= 0.0 || w.is_infinite() {
+    let m = n.abs();
+    let big = if m.x >= m.y && m.x >= m.z {
+        n.x
+    } else if m.y >= m.z {
+        n.y
+    } else {
+        n.z
+    };
+    // Zero, NaN or infinite: no direction.
+    if !(big != 0.0 && n.length_squared().is_finite()) {
         return None;
     }
-    let d = n / w;
-    let big = d.abs().max_element();
-    let sign = if d.x.abs() == big {
-        d.x.signum()
-    } else if d.y.abs() == big {
-        d.y.signum()
-    } else {
-        d.z.signum()
-    };
-    Some((d * sign, w))
+    Some(if big < 0.0 { -n } else { n })
 }
 
-/// The histogram bin of a sign-free unit normal.
+/// No histogram bin: the triangle has no normal.
+const NO_BIN: u16 = u16::MAX;
+
+/// The histogram bin of a sign-free normal `n` of length `w`: each
+/// coordinate of the unit normal rounded to the nearest sixteenth (ties
+/// up; the offset keeps the value positive, so truncation is the floor
+/// and no library rounding call is needed).
 #[inline]
-fn normal_bin(d: DVec3) -> usize {
-    let k = |x: f64| ((x * NORMAL_BINS as f64).round() as i32 + NORMAL_BINS) as usize;
-    (k(d.x) * NORMAL_SIDE + k(d.y)) * NORMAL_SIDE + k(d.z)
+fn normal_bin(n: DVec3, w: f64) -> u16 {
+    let scale = NORMAL_BINS as f64 / w;
+    let k = |x: f64| ((x * scale + (NORMAL_BINS as f64 + 0.5)) as usize).min(NORMAL_SIDE - 1);
+    ((k(n.x) * NORMAL_SIDE + k(n.y)) * NORMAL_SIDE + k(n.z)) as u16
 }
 
 /// The area-weighted mean of the normals in the fullest bin, when that bin
-/// holds at least [`MIN_SHARE`] of the area.
+/// holds at least [`MIN_SHARE`] of the area. One pass bins every triangle
+/// (kept, two bytes each); the mean then reads only the peak's triangles.
 fn dominant_normal(parts: &[(&[DVec3], &[[u32; 3]])]) -> Option<DVec3> {
     let bins = NORMAL_SIDE * NORMAL_SIDE * NORMAL_SIDE;
     let mut area = vec![0.0f64; bins];
+    let mut binned: Vec<Vec<u16>> = Vec::with_capacity(parts.len());
     for (positions, triangles) in parts {
-        let partial: Vec<Vec<f64>> = triangles
+        let partial: Vec<(Vec<u16>, Vec<f64>)> = triangles
             .par_chunks(CHUNK)
             .map(|chunk| {
                 let mut h = vec![0.0f64; bins];
-                for t in chunk {
-                    if let Some((d, w)) = unsigned_normal(positions, t) {
-                        h[normal_bin(d)] += w;
-                    }
-                }
-                h
+                let of = chunk
+                    .iter()
+                    .map(|t| match unsigned_normal(positions, t) {
+                        Some(n) => {
+                            let w = n.length();
+                            let bin = normal_bin(n, w);
+                            h[bin as usize] += w;
+                            bin
+                        }
+                        None => NO_BIN,
+                    })
+                    .collect();
+                (of, h)
             })
             .collect();
-        for h in partial {
+        let mut of = Vec::with_capacity(triangles.len());
+        for (b, h) in partial {
+            of.extend(b);
             for (sum, x) in area.iter_mut().zip(h) {
                 *sum += x;
             }
         }
+        binned.push(of);
     }
     let total: f64 = area.iter().sum();
     let (peak, &most) = area.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1))?;
     if !(total > 0.0 && most >= MIN_SHARE * total) {
         return None;
     }
+    let peak = peak as u16;
     let mut sum = DVec3::ZERO;
-    for (positions, triangles) in parts {
+    for ((positions, triangles), of) in parts.iter().zip(&binned) {
         sum += triangles
             .par_iter()
-            .filter_map(|t| unsigned_normal(positions, t))
-            .filter(|(d, _)| normal_bin(*d) == peak)
-            .map(|(d, w)| d * w)
+            .zip(of)
+            .filter(|(_, b)| **b == peak)
+            .filter_map(|(t, _)| unsigned_normal(positions, t))
             .reduce(|| DVec3::ZERO, |a, b| a + b);
     }
     let n = sum.normalize_or_zero();
@@ -224,85 +244,98 @@ fn any_across(n: DVec3) -> DVec3 {
     axis.cross(n).normalize()
 }
 
+/// Per-bin sums of the edge histogram: the weights, and the projected
+/// directions weighted by projected length cubed (`(x, y)·|(x, y)|`, the
+/// weighted mean direction of the bin).
+struct EdgeBins {
+    weight: [f64; EDGE_BINS],
+    x: [f64; EDGE_BINS],
+    y: [f64; EDGE_BINS],
+}
+
+impl EdgeBins {
+    fn new() -> EdgeBins {
+        EdgeBins {
+            weight: [0.0; EDGE_BINS],
+            x: [0.0; EDGE_BINS],
+            y: [0.0; EDGE_BINS],
+        }
+    }
+
+    fn add(&mut self, other: &EdgeBins) {
+        for k in 0..EDGE_BINS {
+            self.weight[k] += other.weight[k];
+            self.x[k] += other.x[k];
+            self.y[k] += other.y[k];
+        }
+    }
+}
+
 /// The dominant undirected direction of the edges' projections on the
 /// plane across `normal`, weighted by projected length squared; `None`
-/// when no edge leaves the normal's line.
+/// when no edge leaves the normal's line. One pass: each bin sums its
+/// weights and its weighted directions together. An edge two triangles
+/// share is taken once, from the triangle where it runs from the smaller
+/// vertex index to the larger (an edge of one triangle, on a boundary,
+/// may be taken once or not at all: the frame only has to be good).
 fn dominant_edge(parts: &[(&[DVec3], &[[u32; 3]])], normal: DVec3) -> Option<DVec3> {
     let u = any_across(normal);
     let v = normal.cross(u);
-    // Undirected direction of a projected edge in (u, v) coordinates, its
-    // bin by the diamond angle (monotone in the angle, no trigonometry),
-    // and its weight.
-    let project = |e: DVec3| -> Option<(f64, f64, usize, f64)> {
-        let (mut x, mut y) = (e.dot(u), e.dot(v));
-        if y < 0.0 || (y == 0.0 && x < 0.0) {
-            (x, y) = (-x, -y);
-        }
-        let w = x * x + y * y;
-        if !(w > 0.0 && w.is_finite()) {
-            return None;
-        }
-        // Diamond angle in [0, 2) over the upper half-plane.
-        let angle = if x >= 0.0 {
-            y / (x + y)
-        } else {
-            1.0 - x / (y - x)
-        };
-        let bin = ((angle * 0.5 * EDGE_BINS as f64) as usize).min(EDGE_BINS - 1);
-        Some((x, y, bin, w))
-    };
-    let edges = |positions: &'_ [DVec3], t: &[u32; 3]| -> [Option<DVec3>; 3] {
-        let p = |i: usize| positions.get(t[i] as usize).copied();
-        [(0, 1), (1, 2), (2, 0)].map(|(i, j)| Some(p(j)? - p(i)?))
-    };
-    let mut weight = [0.0f64; EDGE_BINS];
+    let mut bins = EdgeBins::new();
     for (positions, triangles) in parts {
-        let partial: Vec<[f64; EDGE_BINS]> = triangles
+        let partial: Vec<EdgeBins> = triangles
             .par_chunks(CHUNK)
             .map(|chunk| {
-                let mut h = [0.0f64; EDGE_BINS];
+                let mut h = EdgeBins::new();
                 for t in chunk {
-                    for (_, _, bin, w) in edges(positions, t)
-                        .into_iter()
-                        .flatten()
-                        .filter_map(project)
-                    {
-                        h[bin] += w;
+                    for (i, j) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                        if i >= j {
+                            continue;
+                        }
+                        let (Some(p), Some(q)) =
+                            (positions.get(i as usize), positions.get(j as usize))
+                        else {
+                            continue;
+                        };
+                        let e = *q - *p;
+                        // The undirected direction of the projected edge, in
+                        // (u, v) coordinates over the upper half-plane, and
+                        // its bin by the diamond angle (monotone in the
+                        // angle, no trigonometry).
+                        let (mut x, mut y) = (e.dot(u), e.dot(v));
+                        if y < 0.0 || (y == 0.0 && x < 0.0) {
+                            (x, y) = (-x, -y);
+                        }
+                        let w = x * x + y * y;
+                        if !(w > 0.0 && w.is_finite()) {
+                            continue;
+                        }
+                        let angle = if x >= 0.0 {
+                            y / (x + y)
+                        } else {
+                            1.0 - x / (y - x)
+                        };
+                        let bin = ((angle * 0.5 * EDGE_BINS as f64) as usize).min(EDGE_BINS - 1);
+                        let len = w.sqrt();
+                        h.weight[bin] += w;
+                        h.x[bin] += x * len;
+                        h.y[bin] += y * len;
                     }
                 }
                 h
             })
             .collect();
-        for h in partial {
-            for (sum, x) in weight.iter_mut().zip(h) {
-                *sum += x;
-            }
+        for h in &partial {
+            bins.add(h);
         }
     }
-    let (peak, _) = weight
+    let (peak, _) = bins
+        .weight
         .iter()
         .enumerate()
         .max_by(|a, b| a.1.total_cmp(b.1))
         .filter(|(_, w)| **w > 0.0)?;
-    let mut sum = (0.0, 0.0);
-    for (positions, triangles) in parts {
-        let (x, y) = triangles
-            .par_iter()
-            .flat_map_iter(|t| {
-                edges(positions, t)
-                    .into_iter()
-                    .flatten()
-                    .filter_map(project)
-            })
-            .filter(|&(_, _, bin, _)| bin == peak)
-            .map(|(x, y, _, w)| {
-                let len = w.sqrt();
-                (x * len, y * len)
-            })
-            .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
-        sum = (sum.0 + x, sum.1 + y);
-    }
-    let d = u * sum.0 + v * sum.1;
+    let d = u * bins.x[peak] + v * bins.y[peak];
     let d = d.normalize_or_zero();
     (d != DVec3::ZERO).then_some(d)
 }
