@@ -340,6 +340,14 @@ fn pair_segment(tris: &[[u32; 3]], sym: &Symbolic<'_>, t1: u32, t2: u32) -> Opti
     pair_segment_with(tris, sym, None, t1, t2)
 }
 
+/// What [`pair_segment_with`] can use when it was computed for the whole
+/// mesh beforehand: every triangle's [`Plane`], and which vertex stars
+/// are certified flat ([`stars`]).
+struct Prepared {
+    planes: Vec<Plane>,
+    flat_stars: Vec<bool>,
+}
+
 /// A triangle's plane as [`side_filter`] evaluates it, computed once: the
 /// cross product `q × r` of its edges from its first corner and the
 /// absolute values of its terms, so that each corner of another triangle
@@ -408,21 +416,32 @@ fn side_filter_plane(a0: DVec3, plane: &Plane, b: [DVec3; 3], b_shared: [bool; 3
 fn pair_segment_with(
     tris: &[[u32; 3]],
     sym: &Symbolic<'_>,
-    planes: Option<&[Plane]>,
+    prepared: Option<&Prepared>,
     t1: u32,
     t2: u32,
 ) -> Option<[SegEnd; 2]> {
     let tid = |t: u32| tris[t as usize].map(|v| sym.ids[v as usize]);
     let (i1, i2) = (tid(t1), tid(t2));
     let s2 = i2.map(|i| i1.contains(&i));
-    if s2.iter().filter(|&&s| s).count() >= 2 {
-        return None;
+    match s2.iter().filter(|&&s| s).count() {
+        0 => {}
+        // Two triangles of a flat star that share only its centre meet
+        // only there ([`stars`]).
+        1 => {
+            if let Some(pre) = prepared {
+                let k = s2.iter().position(|&s| s).unwrap_or(0);
+                if pre.flat_stars[i2[k] as usize] {
+                    return None;
+                }
+            }
+        }
+        _ => return None,
     }
     let s1 = i1.map(|i| i2.contains(&i));
     let p1 = tris[t1 as usize].map(|v| sym.positions[v as usize]);
     let p2 = tris[t2 as usize].map(|v| sym.positions[v as usize]);
-    let (f1, f2) = match planes {
-        Some(pl) => (
+    let (f1, f2) = match prepared {
+        Some(Prepared { planes: pl, .. }) => (
             side_filter_plane(p1[0], &pl[t1 as usize], p2, s2),
             side_filter_plane(p2[0], &pl[t2 as usize], p1, s1),
         ),
@@ -655,16 +674,23 @@ fn segments(
     // overlapping boxes; the output keeps the descent's order. Only hits
     // are kept: candidates outnumber hits by orders of magnitude (4.7M
     // against 2.5k for two 262k-triangle spheres).
-    // Every triangle's plane, once, where most triangles take part.
-    let planes = match candidates {
+    // Every triangle's plane and every flat star, once, where most
+    // triangles take part.
+    let prepared = match candidates {
         Candidates::Among { .. } => None,
-        _ => Some(Plane::all(tris, positions)),
+        _ => {
+            let (planes, flat_stars) = rayon::join(
+                || Plane::all(tris, positions),
+                || stars::flat_stars(tris, positions, ids),
+            );
+            Some(Prepared { planes, flat_stars })
+        }
     };
     let test = |t1: u32, t2: u32| {
         if abort.load(AtomicOrdering::Relaxed) {
             return None;
         }
-        let seg = pair_segment_with(tris, &sym, planes.as_deref(), t1, t2)?;
+        let seg = pair_segment_with(tris, &sym, prepared.as_ref(), t1, t2)?;
         if hits.fetch_add(1, AtomicOrdering::Relaxed) >= limit {
             abort.store(true, AtomicOrdering::Relaxed);
             return None;
@@ -1330,3 +1356,5 @@ pub fn shared_ids<'a>(pieces: impl IntoIterator<Item = &'a Piece>) -> Vec<u32> {
 
 #[cfg(test)]
 pub(crate) mod tests;
+
+mod stars;

@@ -493,3 +493,72 @@ fn candidates_in_the_turned_frame_miss_no_intersecting_pair() {
     assert!(brute.len() > 20, "the prisms cross: {}", brute.len());
     assert_eq!(run(&m).pairs, brute);
 }
+
+/// Every pair of triangles tested one by one, without the flat-star and
+/// plane shortcuts: the oracle for the pairs [`intersections`] finds.
+fn brute_pairs(m: &TriMesh) -> Vec<(u32, u32)> {
+    let ids = position_classes(&m.positions).unwrap();
+    let sym = Symbolic {
+        positions: &m.positions,
+        ids: &ids,
+    };
+    let n = m.triangles.len() as u32;
+    let mut pairs = Vec::new();
+    for t1 in 0..n {
+        for t2 in t1 + 1..n {
+            if pair_segment(&m.triangles, &sym, t1, t2).is_some() {
+                pairs.push((t1, t2));
+            }
+        }
+    }
+    pairs
+}
+
+/// A closed double cone whose rim is a star polygon `{k/turns}`: both
+/// apexes' stars wind `turns` times around their axis. Tilted a little,
+/// so no face is axis-aligned.
+fn wound_double_cone(k: usize, turns: usize) -> TriMesh {
+    let tilt = |p: DVec3| DVec3::new(p.x, p.y * 0.96 - p.z * 0.28, p.y * 0.28 + p.z * 0.96);
+    let mut positions = vec![
+        tilt(DVec3::new(0.0, 0.0, 1.0)),
+        tilt(DVec3::new(0.01, -0.02, -1.0)),
+    ];
+    for i in 0..k {
+        let a = std::f64::consts::TAU * (turns * i) as f64 / k as f64;
+        positions.push(tilt(DVec3::new(a.cos(), a.sin(), 0.05 * (i % 2) as f64)));
+    }
+    let rim = |i: usize| 2 + (i % k) as u32;
+    let mut triangles = Vec::new();
+    for i in 0..k {
+        triangles.push([0, rim(i), rim(i + 1)]);
+        triangles.push([1, rim(i + 1), rim(i)]);
+    }
+    TriMesh {
+        positions,
+        triangles,
+    }
+}
+
+/// Pairs sharing only a vertex are skipped where its star is certified
+/// flat, and only there: a double cone over a rim that winds once has no
+/// crossing pair, one whose rim winds twice (each apex's triangles sweep
+/// the turn twice, so triangles sharing only the apex cross) has them,
+/// and in both the pairs equal those of every pair tested one by one.
+#[test]
+fn pairs_at_a_shared_apex_are_skipped_only_where_its_star_is_flat() {
+    let once = wound_double_cone(9, 1);
+    assert!(brute_pairs(&once).is_empty());
+    assert!(run(&once).pairs.is_empty());
+    let twice = wound_double_cone(9, 2);
+    let brute = brute_pairs(&twice);
+    assert!(
+        brute.len() >= 9,
+        "the twice-wound cone crosses itself: {}",
+        brute.len()
+    );
+    assert_eq!(run(&twice).pairs, brute);
+    assert_eq!(
+        intersecting_pair_count(&twice, usize::MAX).unwrap(),
+        brute.len()
+    );
+}
