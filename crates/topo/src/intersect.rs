@@ -342,10 +342,11 @@ fn pair_segment(tris: &[[u32; 3]], sym: &Symbolic<'_>, t1: u32, t2: u32) -> Opti
 
 /// What [`pair_segment_with`] can use when it was computed for the whole
 /// mesh beforehand: every triangle's [`Plane`], and which vertex stars
-/// are certified flat ([`stars`]).
+/// are certified flat ([`stars`]; only where pairs can share a vertex,
+/// not across two parts).
 struct Prepared {
     planes: Vec<Plane>,
-    flat_stars: Vec<bool>,
+    flat_stars: Option<Vec<bool>>,
 }
 
 /// A triangle's plane as [`side_filter`] evaluates it, computed once: the
@@ -428,9 +429,9 @@ fn pair_segment_with(
         // Two triangles of a flat star that share only its centre meet
         // only there ([`stars`]).
         1 => {
-            if let Some(pre) = prepared {
+            if let Some(flat) = prepared.and_then(|pre| pre.flat_stars.as_ref()) {
                 let k = s2.iter().position(|&s| s).unwrap_or(0);
-                if pre.flat_stars[i2[k] as usize] {
+                if flat[i2[k] as usize] {
                     return None;
                 }
             }
@@ -678,12 +679,19 @@ fn segments(
     // triangles take part.
     let prepared = match candidates {
         Candidates::Among { .. } => None,
-        _ => {
+        Candidates::Across { .. } => Some(Prepared {
+            planes: Plane::all(tris, positions),
+            flat_stars: None,
+        }),
+        Candidates::Within(_) | Candidates::Distinct { .. } => {
             let (planes, flat_stars) = rayon::join(
                 || Plane::all(tris, positions),
                 || stars::flat_stars(tris, positions, ids),
             );
-            Some(Prepared { planes, flat_stars })
+            Some(Prepared {
+                planes,
+                flat_stars: Some(flat_stars),
+            })
         }
     };
     let test = |t1: u32, t2: u32| {
