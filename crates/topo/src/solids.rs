@@ -28,9 +28,10 @@ use glam::DVec3;
 
 use crate::engine::{Options, Outcome, TopoError, topology_change};
 use crate::mesh::TriMesh;
-use crate::union::{NUDGES, Operation, UnionError, boolean, boolean_robust, nudge};
+use crate::union::{NUDGES, Operation, PreparedPair, UnionError, boolean, boolean_robust, nudge};
 use crate::winding_boolean::{
     WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_robust, needs_arrangement,
+    needs_arrangement_when_closed,
 };
 
 /// The default direction B arrives from in the motion: generic, so that
@@ -262,10 +263,21 @@ pub fn solid_boolean(
         let (out, at_end) = by_motion(a, b, options)?;
         return Ok(finish(Method::Motion, Computed::Parity(out), Some(at_end)));
     }
+    // The containment method's edge tables, built before the check: it
+    // reads both surfaces' closedness from them, and the method uses them.
+    let mut prepared = None;
     let winding = match (inputs, options.method) {
         (_, Some(Method::Winding)) => true,
-        ([a, b], None) => options.check && needs_arrangement(a, b)?,
-        ([_, _], Some(_)) => false,
+        ([a, b], None) if options.check => match PreparedPair::new(a, b, op) {
+            Ok(pair) => {
+                let needs = needs_arrangement_when_closed(a, b, pair.closed())?;
+                prepared = Some(pair);
+                needs
+            }
+            // A mesh the method refuses: the check says why.
+            Err(_) => needs_arrangement(a, b)?,
+        },
+        ([_, _], _) => false,
         _ => true,
     };
     if winding {
@@ -279,10 +291,11 @@ pub fn solid_boolean(
     let &[a, b] = inputs else {
         unreachable!("two inputs take the containment path")
     };
-    let direct = if options.exact {
-        boolean(a, b, op, &options.engine)
-    } else {
-        boolean_robust(a, b, op, &options.engine)
+    let direct = match (prepared, options.exact) {
+        (Some(pair), true) => pair.exact(&options.engine),
+        (Some(pair), false) => pair.robust(&options.engine),
+        (None, true) => boolean(a, b, op, &options.engine),
+        (None, false) => boolean_robust(a, b, op, &options.engine),
     };
     match direct {
         Ok(out) => Ok(finish(Method::Containment, Computed::Parity(out), None)),

@@ -361,9 +361,7 @@ pub fn boolean(
     op: Operation,
     options: &Options,
 ) -> Result<Outcome, UnionError> {
-    let started = Instant::now();
-    let (b, pa, pb) = prepare(a, b, op)?;
-    unite(a, &pa, &b, &pb, op, options, started)
+    PreparedPair::new(a, b, op)?.exact(options)
 }
 
 /// B as `op` takes it ([`operand`]) and what a Boolean builds of each
@@ -376,6 +374,71 @@ fn prepare<'b>(
     let b = operand(b, op);
     let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(&b));
     Ok((b, pa?, pb?))
+}
+
+/// What [`boolean_robust`] builds of two solids before it intersects
+/// them, built once so that a caller can read their closedness from it
+/// (the edge tables are a whole-mesh pass each) before it commits to the
+/// containment method ([`crate::solids::solid_boolean`]).
+pub(crate) struct PreparedPair<'a> {
+    a: &'a TriMesh,
+    b: std::borrow::Cow<'a, TriMesh>,
+    pa: Parts,
+    pb: Parts,
+    op: Operation,
+    started: Instant,
+}
+
+impl<'a> PreparedPair<'a> {
+    /// [`prepare`] of `a` and `b` for `op`.
+    pub(crate) fn new(
+        a: &'a TriMesh,
+        b: &'a TriMesh,
+        op: Operation,
+    ) -> Result<PreparedPair<'a>, UnionError> {
+        let started = Instant::now();
+        let (b, pa, pb) = prepare(a, b, op)?;
+        Ok(PreparedPair {
+            a,
+            b,
+            pa,
+            pb,
+            op,
+            started,
+        })
+    }
+
+    /// Both surfaces are closed: every edge has an even number of
+    /// triangles and no triangle repeats a corner.
+    pub(crate) fn closed(&self) -> bool {
+        self.pa.closed() && self.pb.closed()
+    }
+
+    /// [`boolean_robust`] of the pair.
+    pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
+        robust_with(
+            self.a,
+            &self.pa,
+            &self.b,
+            &self.pb,
+            self.op,
+            options,
+            self.started,
+        )
+    }
+
+    /// [`boolean`] of the pair.
+    pub(crate) fn exact(&self, options: &Options) -> Result<Outcome, UnionError> {
+        unite(
+            self.a,
+            &self.pa,
+            &self.b,
+            &self.pb,
+            self.op,
+            options,
+            self.started,
+        )
+    }
 }
 
 /// A ∩ B of two closed solids ([`boolean`], robust as [`union_robust`]).
@@ -450,21 +513,32 @@ pub fn boolean_robust(
     op: Operation,
     options: &Options,
 ) -> Result<Outcome, UnionError> {
-    let started = Instant::now();
-    let (b, pa, pb) = prepare(a, b, op)?;
+    PreparedPair::new(a, b, op)?.robust(options)
+}
+
+/// [`boolean_robust`] of solids already prepared.
+fn robust_with(
+    a: &TriMesh,
+    pa: &Parts,
+    b: &TriMesh,
+    pb: &Parts,
+    op: Operation,
+    options: &Options,
+    started: Instant,
+) -> Result<Outcome, UnionError> {
     let manifold_inputs = pa.oriented() && pb.oriented();
-    let mut out = unite(a, &pa, &b, &pb, op, options, started)?;
+    let mut out = unite(a, pa, b, pb, op, options, started)?;
     for k in 1..NUDGES.len() {
         if !manifold_inputs || out.mesh.is_closed_manifold() {
             break;
         }
-        let d = nudge(a, &b, k);
+        let d = nudge(a, b, k);
         let moved = TriMesh {
             positions: b.positions.iter().map(|p| *p + d).collect(),
             triangles: b.triangles.clone(),
         };
         let pm = Parts::new(&moved)?;
-        out = unite(a, &pa, &moved, &pm, op, options, started)?;
+        out = unite(a, pa, &moved, &pm, op, options, started)?;
         out.report.perturbation_retries = k;
     }
     Ok(out)

@@ -552,7 +552,17 @@ fn generic_direction(j: usize) -> DVec3 {
 /// number by their orientations), else the containment union, which is
 /// faster. Costs about one [`crate::engine::self_intersections`] of each.
 pub fn needs_arrangement(a: &TriMesh, b: &TriMesh) -> Result<bool, TopoError> {
-    if !a.is_closed() || !b.is_closed() {
+    needs_arrangement_when_closed(a, b, a.is_closed() && b.is_closed())
+}
+
+/// [`needs_arrangement`] with whether both surfaces are closed known
+/// already (from the containment method's edge tables).
+pub(crate) fn needs_arrangement_when_closed(
+    a: &TriMesh,
+    b: &TriMesh,
+    closed: bool,
+) -> Result<bool, TopoError> {
+    if !closed {
         return Ok(true);
     }
     Ok(crate::engine::crosses_itself(a)?
