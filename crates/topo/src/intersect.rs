@@ -597,6 +597,15 @@ pub(crate) fn within(
     positions: &[DVec3],
     ids: &[u32],
 ) -> Result<(Bvh, Option<Distinct>), IntersectError> {
+    framed_within(mesh, positions, ids).map(|(tree, distinct, _)| (tree, distinct))
+}
+
+/// [`within`], and the frame its boxes are measured in.
+fn framed_within(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    ids: &[u32],
+) -> Result<(Bvh, Option<Distinct>, BoxFrame), IntersectError> {
     let frame = BoxFrame::of_triangles(&[(positions, &mesh.triangles)]);
     match Distinct::of(&mesh.triangles, ids) {
         None => Ok((
@@ -607,6 +616,7 @@ pub(crate) fn within(
                 &frame,
             ))?,
             None,
+            frame,
         )),
         Some(d) => {
             let boxes: Vec<Aabb> = d
@@ -616,7 +626,7 @@ pub(crate) fn within(
                     frame.triangle_box(mesh.triangles[t as usize].map(|v| positions[v as usize]))
                 })
                 .collect();
-            Ok((Bvh::build(&boxes)?, Some(d)))
+            Ok((Bvh::build(&boxes)?, Some(d), frame))
         }
     }
 }
@@ -805,6 +815,41 @@ fn all_segments(
         limit,
         abort,
     )
+}
+
+/// A surface's tree of every triangle's box, in the frame the boxes are
+/// measured in: primitive `i` is triangle `i`.
+pub(crate) struct FramedTree {
+    pub(crate) frame: BoxFrame,
+    pub(crate) tree: Bvh,
+}
+
+/// Whether `mesh` crosses itself (exactly, as [`intersections`] decides),
+/// and the tree the check found its candidate pairs in, when it holds
+/// every triangle (none repeats another): a caller pairing this surface
+/// with another can query it again instead of building one more.
+pub(crate) fn crosses_itself_keeping_tree(
+    mesh: &TriMesh,
+) -> Result<(bool, Option<FramedTree>), IntersectError> {
+    mesh.check()?;
+    let ids = holey_geom::position_classes(&mesh.positions)?;
+    let (tree, distinct, frame) = framed_within(mesh, &mesh.positions, &ids)?;
+    let crosses = match segments(
+        mesh,
+        &mesh.positions,
+        &ids,
+        Candidates::within(&tree, &distinct),
+        0,
+        &AtomicBool::new(false),
+    ) {
+        Ok(_) => false,
+        Err(IntersectError::TooManyPairs { .. }) => true,
+        Err(e) => return Err(e),
+    };
+    Ok((
+        crosses,
+        distinct.is_none().then_some(FramedTree { frame, tree }),
+    ))
 }
 
 /// How many triangle pairs of `mesh` intersect (exactly, as

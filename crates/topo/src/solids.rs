@@ -270,8 +270,8 @@ pub fn solid_boolean(
         (_, Some(Method::Winding)) => true,
         ([a, b], None) if options.check => match PreparedPair::new(a, b, op) {
             Ok(pair) => {
-                let needs = needs_arrangement_when_closed(a, b, pair.closed())?;
-                prepared = Some(pair);
+                let (needs, trees) = needs_arrangement_when_closed(a, b, pair.closed())?;
+                prepared = Some(pair.with_checked_trees(trees));
                 needs
             }
             // A mesh the method refuses: the check says why.

@@ -64,8 +64,8 @@ use rayon::prelude::*;
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
 use crate::intersect::{
-    Candidates, Primitives, any_intersection_among, default_pair_limit, intersections_among,
-    triangle_boxes,
+    Candidates, FramedTree, Primitives, any_intersection_among, default_pair_limit,
+    intersections_among, triangle_boxes,
 };
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
@@ -204,6 +204,10 @@ struct Parts {
     proper: bool,
     /// The signed volume is positive: the triangles face outward.
     outward: bool,
+    /// The tree the self-crossing check of the solid was made with, in
+    /// its own frame ([`crate::intersect::crosses_itself_keeping_tree`]),
+    /// when one ran: [`Near`] reuses it.
+    checked: Option<FramedTree>,
 }
 
 impl Parts {
@@ -239,6 +243,7 @@ impl Parts {
             tree: tree.map_err(TopoError::from)?,
             proper,
             outward,
+            checked: None,
         })
     }
 
@@ -414,6 +419,15 @@ impl<'a> PreparedPair<'a> {
         self.pa.closed() && self.pb.closed()
     }
 
+    /// Keeps the trees the self-crossing checks of A and B were made
+    /// with ([`crate::winding_boolean::needs_arrangement_when_closed`]),
+    /// for the pairs across them to be found in.
+    pub(crate) fn with_checked_trees(mut self, [ta, tb]: [Option<FramedTree>; 2]) -> Self {
+        self.pa.checked = ta;
+        self.pb.checked = tb;
+        self
+    }
+
     /// [`boolean_robust`] of the pair.
     pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
         robust_with(
@@ -569,14 +583,43 @@ pub fn union_prepared(
 /// the [`BoxFrame`] of those triangles (turned CAD parts' flat faces then
 /// have flat boxes: EMBER pairs 1.14M candidate pairs → 0.21M). The
 /// solids' own trees stay in the world's axes for the containment rays.
-struct Near {
-    /// Triangles of A near B, of B near A (numbered in the joined mesh),
-    /// and their trees; `None` when the solids' own trees serve.
-    trees: Option<(Vec<u32>, Bvh, Vec<u32>, Bvh)>,
+struct Near<'p> {
+    /// A's tree and B's; `None` when the solids' own trees serve.
+    trees: Option<[NearTree<'p>; 2]>,
 }
 
-impl Near {
-    fn of(a: &TriMesh, pa: &Parts, b: &TriMesh, pb: &Parts) -> Result<Near, UnionError> {
+/// One solid's tree of [`Near`].
+enum NearTree<'p> {
+    /// A tree of the listed triangles (numbered in the joined mesh).
+    Listed(Vec<u32>, Bvh),
+    /// The self-crossing check's tree of every triangle of the solid
+    /// ([`Parts::checked`]), whose triangles start at `offset` in the
+    /// joined mesh.
+    Checked(&'p Bvh, u32),
+}
+
+impl NearTree<'_> {
+    fn tree_and_triangles(&self) -> (&Bvh, Primitives<'_>) {
+        match self {
+            NearTree::Listed(list, tree) => (tree, Primitives::Listed(list)),
+            NearTree::Checked(tree, offset) => (tree, Primitives::From(*offset)),
+        }
+    }
+}
+
+/// Whether boxes measured in `checked` are as tight as in `wanted`: the
+/// same frame up to about a degree per axis (rows compared without their
+/// sign), or both the world's axes.
+fn frames_agree(checked: &BoxFrame, wanted: &BoxFrame) -> bool {
+    match (checked.axes(), wanted.axes()) {
+        (None, None) => true,
+        (Some(c), Some(w)) => c.iter().zip(&w).all(|(x, y)| x.dot(*y).abs() >= 0.9998),
+        _ => false,
+    }
+}
+
+impl<'p> Near<'p> {
+    fn of(a: &TriMesh, pa: &'p Parts, b: &TriMesh, pb: &'p Parts) -> Result<Near<'p>, UnionError> {
         // The solids' own trees hold every triangle's box already: a box
         // query finds the ones meeting the other's box without a pass
         // over all of them (sorted, for the order the mesh stores them in).
@@ -596,7 +639,7 @@ impl Near {
             .iter()
             .map(|&t| b.triangles[(t - split) as usize])
             .collect();
-        let frame = BoxFrame::of_triangles(&[(&a.positions, &tris_a), (&b.positions, &tris_b)]);
+        let mut frame = BoxFrame::of_triangles(&[(&a.positions, &tris_a), (&b.positions, &tris_b)]);
         let most = |near: usize, all: usize| 2 * near >= all;
         if frame.is_identity()
             && most(near_a.len(), a.triangles.len())
@@ -604,23 +647,49 @@ impl Near {
         {
             return Ok(Near { trees: None });
         }
-        let boxes = |m: &TriMesh, tris: &[[u32; 3]]| -> Vec<Aabb> {
-            tris.par_iter()
-                .map(|t| frame.triangle_box(t.map(|v| m.positions[v as usize])))
-                .collect()
+        // Where most of a solid is near the other and its self-crossing
+        // check measured its boxes in this frame (up to a degree), that
+        // tree serves, and the other solid's near triangles are measured
+        // in the very same frame: one tree build of the bigger solid less.
+        let reused = [(pa, &near_a, a), (pb, &near_b, b)]
+            .iter()
+            .enumerate()
+            .filter_map(|(k, (parts, near, mesh))| {
+                let checked = parts.checked.as_ref()?;
+                (most(near.len(), mesh.triangles.len()) && frames_agree(&checked.frame, &frame))
+                    .then_some((k, near.len(), checked))
+            })
+            .max_by_key(|&(_, size, _)| size);
+        if let Some((_, _, checked)) = reused {
+            frame = checked.frame;
+        }
+        let listed =
+            |m: &TriMesh, tris: &[[u32; 3]], near: Vec<u32>| -> Result<NearTree<'p>, UnionError> {
+                let boxes: Vec<Aabb> = tris
+                    .par_iter()
+                    .map(|t| frame.triangle_box(t.map(|v| m.positions[v as usize])))
+                    .collect();
+                Ok(NearTree::Listed(
+                    near,
+                    Bvh::build(&boxes).map_err(TopoError::from)?,
+                ))
+            };
+        let trees = match reused {
+            Some((0, _, checked)) => [
+                NearTree::Checked(&checked.tree, 0),
+                listed(b, &tris_b, near_b)?,
+            ],
+            Some((_, _, checked)) => [
+                listed(a, &tris_a, near_a)?,
+                NearTree::Checked(&checked.tree, split),
+            ],
+            None => {
+                let (ta, tb) =
+                    rayon::join(|| listed(a, &tris_a, near_a), || listed(b, &tris_b, near_b));
+                [ta?, tb?]
+            }
         };
-        let (ta, tb) = rayon::join(
-            || Bvh::build(&boxes(a, &tris_a)),
-            || Bvh::build(&boxes(b, &tris_b)),
-        );
-        Ok(Near {
-            trees: Some((
-                near_a,
-                ta.map_err(TopoError::from)?,
-                near_b,
-                tb.map_err(TopoError::from)?,
-            )),
-        })
+        Ok(Near { trees: Some(trees) })
     }
 
     fn candidates<'a>(&'a self, pa: &'a Parts, pb: &'a Parts, split: u32) -> Candidates<'a> {
@@ -631,12 +700,16 @@ impl Near {
                 second: &pb.tree,
                 second_triangles: Primitives::From(split),
             },
-            Some((near_a, tree_a, near_b, tree_b)) => Candidates::Across {
-                first: tree_a,
-                first_triangles: Primitives::Listed(near_a),
-                second: tree_b,
-                second_triangles: Primitives::Listed(near_b),
-            },
+            Some([ta, tb]) => {
+                let (first, first_triangles) = ta.tree_and_triangles();
+                let (second, second_triangles) = tb.tree_and_triangles();
+                Candidates::Across {
+                    first,
+                    first_triangles,
+                    second,
+                    second_triangles,
+                }
+            }
         }
     }
 }
@@ -820,4 +893,73 @@ fn unite(
         intersections: x,
         vertex_origin: origin,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::winding_boolean::needs_arrangement_when_closed;
+
+    /// A prism over an ellipse of `n` points (semi-axes `2r` and `r`,
+    /// height 0.3) whose caps are fans from one outline point (slivers as
+    /// long as the part, as CAD caps are), turned by `turn`, moved by `at`.
+    fn fan_prism(n: u32, r: f64, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMesh {
+        let mut m = TriMesh::default();
+        for z in [0.0, 0.3] {
+            m.positions.extend((0..n).map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                at + turn(DVec3::new(2.0 * r * a.cos(), r * a.sin(), z))
+            }));
+        }
+        for i in 1..n - 1 {
+            m.triangles.push([0, i + 1, i]);
+            m.triangles.push([n, n + i, n + i + 1]);
+        }
+        for i in 0..n {
+            let j = (i + 1) % n;
+            m.triangles.push([i, j, n + j]);
+            m.triangles.push([i, n + j, n + i]);
+        }
+        m
+    }
+
+    /// Two turned CAD-like parts in one frame: the pairs across them are
+    /// found in the tree A's self-crossing check built (A is the bigger
+    /// one near B), with B's near triangles measured in A's very frame,
+    /// and the difference is the same mesh, vertex for vertex, as with
+    /// trees built for the pairs.
+    #[test]
+    fn the_self_crossing_checks_tree_finds_the_pairs_across_when_frames_agree() {
+        let axis = DVec3::new(1.0, 2.0, 3.0).normalize();
+        let turn = |q: DVec3| {
+            let (s, c) = 0.7f64.sin_cos();
+            q * c + axis.cross(q) * s + axis * axis.dot(q) * (1.0 - c)
+        };
+        let a = fan_prism(96, 1.0, turn, DVec3::ZERO);
+        let b = fan_prism(40, 0.7, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
+        let op = Operation::Difference;
+        let pair = PreparedPair::new(&a, &b, op).unwrap();
+        assert!(pair.closed());
+        let (needs, trees) = needs_arrangement_when_closed(&a, &b, pair.closed()).unwrap();
+        assert!(!needs, "neither part crosses itself");
+        assert!(trees.iter().all(Option::is_some));
+        let pair = pair.with_checked_trees(trees);
+        let near = Near::of(pair.a, &pair.pa, &pair.b, &pair.pb).unwrap();
+        assert!(
+            matches!(
+                near.trees,
+                Some([NearTree::Checked(_, 0), NearTree::Listed(..)])
+            ),
+            "A's checked tree serves"
+        );
+        let options = Options::default();
+        let reused = pair.robust(&options).unwrap();
+        let built = PreparedPair::new(&a, &b, op)
+            .unwrap()
+            .robust(&options)
+            .unwrap();
+        assert!(reused.report.intersecting_pairs > 0, "the parts cross");
+        assert_eq!(reused.mesh, built.mesh);
+        assert!(reused.mesh.is_closed_manifold());
+    }
 }

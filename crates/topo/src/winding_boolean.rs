@@ -91,7 +91,9 @@ use crate::coplanar::{Keep, Overlay, overlay, position_index};
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
-use crate::intersect::{default_pair_limit, intersections_limited};
+use crate::intersect::{
+    FramedTree, crosses_itself_keeping_tree, default_pair_limit, intersections_limited,
+};
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::on_side::on_side_between;
 use crate::union::Operation;
@@ -552,23 +554,30 @@ fn generic_direction(j: usize) -> DVec3 {
 /// number by their orientations), else the containment union, which is
 /// faster. Costs about one [`crate::engine::self_intersections`] of each.
 pub fn needs_arrangement(a: &TriMesh, b: &TriMesh) -> Result<bool, TopoError> {
-    needs_arrangement_when_closed(a, b, a.is_closed() && b.is_closed())
+    Ok(needs_arrangement_when_closed(a, b, a.is_closed() && b.is_closed())?.0)
 }
 
 /// [`needs_arrangement`] with whether both surfaces are closed known
-/// already (from the containment method's edge tables).
+/// already (from the containment method's edge tables), and the trees
+/// the self-crossing checks of `a` and `b` were made with
+/// ([`crosses_itself_keeping_tree`]), for the containment method to
+/// reuse; a tree is `None` where no check ran to the end or its tree does
+/// not hold every triangle.
 pub(crate) fn needs_arrangement_when_closed(
     a: &TriMesh,
     b: &TriMesh,
     closed: bool,
-) -> Result<bool, TopoError> {
+) -> Result<(bool, [Option<FramedTree>; 2]), TopoError> {
     if !closed {
-        return Ok(true);
+        return Ok((true, [None, None]));
     }
-    Ok(crate::engine::crosses_itself(a)?
-        || crate::engine::crosses_itself(b)?
-        || has_nested_pieces(a)?
-        || has_nested_pieces(b)?)
+    let (crosses, tree_a) = crosses_itself_keeping_tree(a)?;
+    if crosses {
+        return Ok((true, [None, None]));
+    }
+    let (crosses, tree_b) = crosses_itself_keeping_tree(b)?;
+    let needs = crosses || has_nested_pieces(a)? || has_nested_pieces(b)?;
+    Ok((needs, [tree_a, tree_b]))
 }
 
 /// Whether some connected piece of `m` (closed, not crossing itself) lies
