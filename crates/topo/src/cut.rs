@@ -1145,88 +1145,56 @@ fn label(
     if state.par_iter().all(Option::is_some) {
         return state.into_par_iter().map(|s| s.unwrap_or(false)).collect();
     }
-    let mut curve: Vec<(u32, u32)> = curve_edges.to_vec();
-    curve.sort_unstable();
-    curve.dedup();
-    let is_curve = |a: u32, b: u32| curve.binary_search(&(a.min(b), a.max(b))).is_ok();
-    // Only the undecided triangles (sub-triangles with no original corner)
-    // need neighbours: their adjacency across non-curve edges is gathered
-    // by one scan of the sides whose two ends both belong to one of them,
-    // so the cost follows the cut, not the mesh.
     let undecided: Vec<u32> = (0..tris.len() as u32)
         .filter(|&t| state[t as usize].is_none())
         .collect();
     let mut slot = vec![u32::MAX; tris.len()];
-    // Vertices of undecided triangles (new points included, so sized by
-    // the largest of them).
-    let size = undecided
-        .iter()
-        .flat_map(|&u| tris[u as usize])
-        .max()
-        .map_or(0, |v| v as usize + 1);
-    let mut touched = vec![false; size];
-    let mut keys: Vec<(u32, u32, u32)> = Vec::with_capacity(undecided.len() * 3);
     for (k, &u) in undecided.iter().enumerate() {
         slot[u as usize] = k as u32;
-        let t = tris[u as usize];
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            touched[a as usize] = true;
-            if !is_curve(a, b) {
-                keys.push((a.min(b), a.max(b), k as u32));
-            }
-        }
     }
-    keys.sort_unstable();
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); undecided.len()];
-    let flagged = |v: u32| touched.get(v as usize).copied().unwrap_or(false);
-    for (i, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            if !(flagged(a) && flagged(b)) || is_curve(a, b) {
-                continue;
-            }
-            let key = (a.min(b), a.max(b));
-            let first = keys.partition_point(|e| (e.0, e.1) < key);
-            for e in keys[first..].iter().take_while(|e| (e.0, e.1) == key) {
-                if e.2 != slot[i] {
-                    neighbours[e.2 as usize].push(i as u32);
-                }
-            }
-        }
-    }
+    let neighbours = undecided_neighbours(tris, &undecided, &slot, curve_edges);
     let undecided_before = undecided.len();
+    // Rounds of majority votes, each from the states the round before
+    // left (a triangle takes the parity most of its decided neighbours
+    // have), visiting only the triangles next to one decided last round.
+    let mut front: Vec<u32> = (0..undecided.len() as u32)
+        .filter(|&k| {
+            neighbours
+                .of(k)
+                .iter()
+                .any(|&t| state[t as usize].is_some())
+        })
+        .collect();
     for _ in 0..50 {
-        let mut changed = false;
-        let snapshot: Vec<Option<bool>> = undecided.iter().map(|&u| state[u as usize]).collect();
-        let at = |t: u32| match slot[t as usize] {
-            u32::MAX => state[t as usize],
-            k => snapshot[k as usize],
-        };
-        let mut next = snapshot.clone();
-        for (k, s) in next.iter_mut().enumerate() {
-            if s.is_some() {
-                continue;
-            }
-            let (mut o, mut e) = (0, 0);
-            for &u in &neighbours[k] {
-                match at(u) {
-                    Some(true) => o += 1,
-                    Some(false) => e += 1,
-                    None => {}
-                }
-            }
-            if o + e > 0 {
-                *s = Some(o > e);
-                changed = true;
-            }
-        }
-        for (&u, s) in undecided.iter().zip(next) {
-            state[u as usize] = s;
-        }
-        if !changed {
+        if front.is_empty() {
             break;
         }
+        let decided: Vec<(u32, bool)> = front
+            .iter()
+            .filter_map(|&k| {
+                let (mut o, mut e) = (0, 0);
+                for &t in neighbours.of(k) {
+                    match state[t as usize] {
+                        Some(true) => o += 1,
+                        Some(false) => e += 1,
+                        None => {}
+                    }
+                }
+                (o + e > 0).then_some((k, o > e))
+            })
+            .collect();
+        for &(k, parity) in &decided {
+            state[undecided[k as usize] as usize] = Some(parity);
+        }
+        let mut next: Vec<u32> = decided
+            .iter()
+            .flat_map(|&(k, _)| neighbours.of(k))
+            .filter(|&&t| state[t as usize].is_none())
+            .map(|&t| slot[t as usize])
+            .collect();
+        next.sort_unstable();
+        next.dedup();
+        front = next;
     }
     report.diffused = undecided_before - state.iter().filter(|s| s.is_none()).count();
     // Regions no vertex reaches: one sample each (Figure 13), at most
@@ -1255,7 +1223,7 @@ fn label(
             let mut stack = vec![k as u32];
             state[seed as usize] = Some(parity);
             while let Some(a) = stack.pop() {
-                for &b in &neighbours[a as usize] {
+                for &b in neighbours.of(a) {
                     if state[b as usize].is_none() {
                         state[b as usize] = Some(parity);
                         stack.push(slot[b as usize]);
@@ -1266,6 +1234,87 @@ fn label(
     }
     report.undecided = state.iter().filter(|s| s.is_none()).count();
     state.into_iter().map(|s| s.unwrap_or(false)).collect()
+}
+
+/// The neighbours of each undecided sub-triangle across its sides that
+/// are not curve edges (every triangle having that side, but itself), by
+/// slot in `undecided`: one sort of the sides whose ends both belong to
+/// an undecided triangle, so the cost follows the cut, not the mesh.
+fn undecided_neighbours(
+    tris: &[[u32; 3]],
+    undecided: &[u32],
+    slot: &[u32],
+    curve_edges: &[(u32, u32)],
+) -> Neighbours {
+    let mut curve: Vec<(u32, u32)> = curve_edges.to_vec();
+    curve.sort_unstable();
+    curve.dedup();
+    let is_curve = |a: u32, b: u32| curve.binary_search(&(a.min(b), a.max(b))).is_ok();
+    // Vertices of undecided triangles (new points included, so sized by
+    // the largest of them).
+    let size = undecided
+        .iter()
+        .flat_map(|&u| tris[u as usize])
+        .max()
+        .map_or(0, |v| v as usize + 1);
+    let mut touched = vec![false; size];
+    for &u in undecided {
+        for v in tris[u as usize] {
+            touched[v as usize] = true;
+        }
+    }
+    let flagged = |v: u32| touched.get(v as usize).copied().unwrap_or(false);
+    let mut sides: Vec<(u32, u32, u32)> = tris
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(i, t)| {
+            (0..3).filter_map(move |k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                (flagged(a) && flagged(b) && !is_curve(a, b)).then_some((
+                    a.min(b),
+                    a.max(b),
+                    i as u32,
+                ))
+            })
+        })
+        .collect();
+    sides.par_sort_unstable();
+    let mut count = vec![0u32; undecided.len() + 1];
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    for group in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        for e in group {
+            let k = slot[e.2 as usize];
+            if k == u32::MAX {
+                continue;
+            }
+            for f in group.iter().filter(|f| f.2 != e.2) {
+                pairs.push((k, f.2));
+                count[k as usize + 1] += 1;
+            }
+        }
+    }
+    for k in 0..undecided.len() {
+        count[k + 1] += count[k];
+    }
+    let mut fill = count.clone();
+    let mut list = vec![0u32; pairs.len()];
+    for (k, t) in pairs {
+        list[fill[k as usize] as usize] = t;
+        fill[k as usize] += 1;
+    }
+    Neighbours { start: count, list }
+}
+
+/// Lists of triangles per undecided slot ([`undecided_neighbours`]).
+struct Neighbours {
+    start: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Neighbours {
+    fn of(&self, k: u32) -> &[u32] {
+        &self.list[self.start[k as usize] as usize..self.start[k as usize + 1] as usize]
+    }
 }
 
 mod junctions;
