@@ -778,13 +778,70 @@ fn subdivide(
         ids,
         on,
     };
-    for (t, &tri) in tris.iter().enumerate() {
-        if !whole[t] {
-            report.triangles_split += 1;
-            chart.split_triangle(t, tri, globals, &mut sub, report);
-        }
+    // Each chart is triangulated on its own, in parallel; what they add
+    // to the shared tables (new points, merges) goes in afterwards in
+    // triangle order, so the output is the same as one after another.
+    let point = &globals.point;
+    let splits: Vec<Split> = (0..nt)
+        .into_par_iter()
+        .filter(|&t| !whole[t])
+        .map(|t| chart.split_triangle(t, tris[t], point))
+        .collect();
+    for split in splits {
+        report.triangles_split += 1;
+        split.append(globals, &mut sub, report);
     }
     sub
+}
+
+/// What triangulating one triangle's chart gives: its sub-triangles
+/// with their chart centroids and its curve edges, by global vertex, new
+/// points (split constraints) numbered [`NEW_POINT`]` | k` until they get
+/// their global numbers, and the points its chart merged.
+struct Split {
+    t: u32,
+    tris: Vec<[u32; 3]>,
+    centroids: Vec<[f64; 2]>,
+    curve_edges: Vec<(u32, u32)>,
+    new_points: Vec<DVec3>,
+    merges: Vec<(u32, u32)>,
+    constraint_splits: usize,
+    dropped_constraints: usize,
+}
+
+/// The mark of a chart's own new point in a [`Split`] (global numbers
+/// stay below 2³¹).
+const NEW_POINT: u32 = 1 << 31;
+
+impl Split {
+    /// Adds the split to the shared tables, numbering its new points.
+    fn append(self, globals: &mut Globals, sub: &mut Subdivided, report: &mut CutReport) {
+        let base = globals.positions.len() as u32;
+        globals.positions.extend(self.new_points);
+        let global = |v: u32| {
+            if v & NEW_POINT != 0 {
+                base + (v & !NEW_POINT)
+            } else {
+                v
+            }
+        };
+        for (a, b) in self.merges {
+            if merge(&mut sub.alias, a, b) {
+                report.merged_points += 1;
+            }
+        }
+        report.constraint_splits += self.constraint_splits;
+        report.dropped_constraints += self.dropped_constraints;
+        sub.tris.extend(self.tris.iter().map(|t| t.map(global)));
+        sub.source
+            .sub
+            .extend(self.centroids.into_iter().map(|c| (self.t, c)));
+        sub.curve_edges
+            .extend(self.curve_edges.iter().map(|&(a, b)| {
+                let (a, b) = (global(a), global(b));
+                (a.min(b), a.max(b))
+            }));
+    }
 }
 
 /// What re-triangulating one input triangle needs to know.
@@ -800,33 +857,26 @@ impl Chart<'_> {
     /// corners, the points on its sides and inside it, its curve pieces and
     /// false edges as constraints (constrained Delaunay, spade), and appends
     /// the sub-triangles, their sources and curve edges to `sub`.
-    fn split_triangle(
-        &self,
-        t: usize,
-        tri: [u32; 3],
-        globals: &mut Globals,
-        sub: &mut Subdivided,
-        report: &mut CutReport,
-    ) {
+    fn split_triangle(&self, t: usize, tri: [u32; 3], point: &[u32]) -> Split {
         let (edges, on) = (self.edges, self.on);
         let mut points = ChartPoints::default();
         for k in 0..3 {
-            points.insert(tri[k], CHART[k], report, &mut sub.alias);
+            points.insert(tri[k], CHART[k]);
         }
         for (k, &corner) in tri.iter().enumerate() {
             let e = edges.of_triangle[t][k] as usize;
             let forward = corner == edges.ends[e][0];
             for &(g, s) in on.on_edge.get(e) {
                 let s = if forward { s } else { 1.0 - s };
-                points.insert(g, on_side(k, s), report, &mut sub.alias);
+                points.insert(g, on_side(k, s));
             }
         }
         for &(g, b) in on.interior.get(t) {
-            points.insert(g, from_bary(b), report, &mut sub.alias);
+            points.insert(g, from_bary(b));
         }
         let node_global = |node: Node| -> u32 {
             match node {
-                Node::Point(i) => globals.point[i as usize],
+                Node::Point(i) => point[i as usize],
                 Node::Shared(id) => tri
                     .iter()
                     .copied()
@@ -841,19 +891,17 @@ impl Chart<'_> {
             .map(|ends| [node_global(ends[0]), node_global(ends[1])])
             .collect();
         segs.extend_from_slice(on.false_edges.get(t));
-        points.constrain(&segs, report);
-        // Globals for split vertices; the corners' 3D frame for them.
+        let dropped_constraints = points.constrain(&segs);
+        // Numbers for split vertices; the corners' 3D frame for them.
         let p = tri.map(|v| self.positions[v as usize]);
         let mut global: Vec<u32> = Vec::with_capacity(points.cdt.num_vertices());
+        let mut new_points = Vec::new();
         for v in points.cdt.vertices() {
             let cv = *v.data();
             let g = if cv.global == NONE {
-                report.constraint_splits += 1;
-                let g = globals.positions.len() as u32;
+                let g = NEW_POINT | new_points.len() as u32;
                 let (u, w) = (cv.pos.x, cv.pos.y);
-                globals
-                    .positions
-                    .push(p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * w);
+                new_points.push(p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * w);
                 g
             } else {
                 points
@@ -864,24 +912,33 @@ impl Chart<'_> {
             };
             global.push(g);
         }
+        let mut split = Split {
+            t: t as u32,
+            tris: Vec::new(),
+            centroids: Vec::new(),
+            curve_edges: Vec::new(),
+            constraint_splits: new_points.len(),
+            new_points,
+            merges: points.merges,
+            dropped_constraints,
+        };
         for f in points.cdt.inner_faces() {
-            let vs = f.vertices().map(|v| global[v.fix().index()]);
-            sub.tris.push(vs);
+            split
+                .tris
+                .push(f.vertices().map(|v| global[v.fix().index()]));
             let c = f.vertices().map(|v| v.position());
-            sub.source.sub.push((
-                t as u32,
-                [
-                    (c[0].x + c[1].x + c[2].x) / 3.0,
-                    (c[0].y + c[1].y + c[2].y) / 3.0,
-                ],
-            ));
+            split.centroids.push([
+                (c[0].x + c[1].x + c[2].x) / 3.0,
+                (c[0].y + c[1].y + c[2].y) / 3.0,
+            ]);
         }
         for e in points.cdt.undirected_edges() {
             if e.is_constraint_edge() {
                 let [a, b] = e.vertices().map(|v| global[v.fix().index()]);
-                sub.curve_edges.push((a.min(b), a.max(b)));
+                split.curve_edges.push((a, b));
             }
         }
+        split
     }
 }
 
@@ -893,18 +950,15 @@ struct ChartPoints {
     handle_of: HashMap<u32, spade::handles::FixedVertexHandle>,
     global_of_handle: HashMap<usize, u32>,
     inserted: Vec<ChartVertex>,
+    /// Global vertices that rounded onto another's chart point, with it:
+    /// merged once the charts are done ([`Split::append`]).
+    merges: Vec<(u32, u32)>,
 }
 
 impl ChartPoints {
     /// Inserts global vertex `global` at chart position `pos` (once); a
     /// point that rounds onto an existing one is merged with it.
-    fn insert(
-        &mut self,
-        global: u32,
-        pos: [f64; 2],
-        report: &mut CutReport,
-        alias: &mut HashMap<u32, u32>,
-    ) {
+    fn insert(&mut self, global: u32, pos: [f64; 2]) {
         if self.handle_of.contains_key(&global) {
             return;
         }
@@ -921,9 +975,8 @@ impl ChartPoints {
             // Rounded onto an existing point: the two are one.
             if let Some(&g0) = self.global_of_handle.get(&h.index())
                 && g0 != global
-                && merge(alias, global, g0)
             {
-                report.merged_points += 1;
+                self.merges.push((global, g0));
             }
         } else {
             self.global_of_handle.insert(h.index(), global);
@@ -939,8 +992,9 @@ impl ChartPoints {
     /// split where the chart puts it. spade's splitting insertion can
     /// fail on such near-degenerate input (it panics); the chart is then
     /// rebuilt from its points and every constraint that fits is added
-    /// without splitting, the others counted as dropped.
-    fn constrain(&mut self, segs: &[[u32; 2]], report: &mut CutReport) {
+    /// without splitting, the others counted as dropped (the count is
+    /// returned).
+    fn constrain(&mut self, segs: &[[u32; 2]]) -> usize {
         let split = |p: Point2<f64>| ChartVertex {
             pos: p,
             global: NONE,
@@ -950,7 +1004,7 @@ impl ChartPoints {
             .filter_map(|[a, b]| Some((*self.handle_of.get(a)?, *self.handle_of.get(b)?)))
             .filter(|(ha, hb)| ha != hb)
             .collect();
-        let mut failed = false;
+        let (mut failed, mut dropped) = (false, 0);
         for &(ha, hb) in &pairs {
             if self.cdt.can_add_constraint(ha, hb) {
                 self.cdt.add_constraint(ha, hb);
@@ -977,10 +1031,11 @@ impl ChartPoints {
                 if self.cdt.can_add_constraint(ha, hb) {
                     self.cdt.add_constraint(ha, hb);
                 } else {
-                    report.dropped_constraints += 1;
+                    dropped += 1;
                 }
             }
         }
+        dropped
     }
 }
 
