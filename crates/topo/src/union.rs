@@ -428,17 +428,27 @@ impl<'a> PreparedPair<'a> {
         self
     }
 
-    /// [`boolean_robust`] of the pair.
+    /// [`boolean_robust`] of the pair: the exact Boolean, and where
+    /// inputs that are closed 2-manifolds give an output that is not, the
+    /// same with B nudged ([`NUDGES`]).
     pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
-        robust_with(
-            self.a,
-            &self.pa,
-            &self.b,
-            &self.pb,
-            self.op,
-            options,
-            self.started,
-        )
+        let (a, b, op) = (self.a, self.b.as_ref(), self.op);
+        let manifold_inputs = self.pa.oriented() && self.pb.oriented();
+        let mut out = self.exact(options)?;
+        for k in 1..NUDGES.len() {
+            if !manifold_inputs || out.mesh.is_closed_manifold() {
+                break;
+            }
+            let d = nudge(a, b, k);
+            let moved = TriMesh {
+                positions: b.positions.iter().map(|p| *p + d).collect(),
+                triangles: b.triangles.clone(),
+            };
+            let pm = Parts::new(&moved)?;
+            out = unite(a, &self.pa, &moved, &pm, op, options, self.started)?;
+            out.report.perturbation_retries = k;
+        }
+        Ok(out)
     }
 
     /// [`boolean`] of the pair.
@@ -528,34 +538,6 @@ pub fn boolean_robust(
     options: &Options,
 ) -> Result<Outcome, UnionError> {
     PreparedPair::new(a, b, op)?.robust(options)
-}
-
-/// [`boolean_robust`] of solids already prepared.
-fn robust_with(
-    a: &TriMesh,
-    pa: &Parts,
-    b: &TriMesh,
-    pb: &Parts,
-    op: Operation,
-    options: &Options,
-    started: Instant,
-) -> Result<Outcome, UnionError> {
-    let manifold_inputs = pa.oriented() && pb.oriented();
-    let mut out = unite(a, pa, b, pb, op, options, started)?;
-    for k in 1..NUDGES.len() {
-        if !manifold_inputs || out.mesh.is_closed_manifold() {
-            break;
-        }
-        let d = nudge(a, b, k);
-        let moved = TriMesh {
-            positions: b.positions.iter().map(|p| *p + d).collect(),
-            triangles: b.triangles.clone(),
-        };
-        let pm = Parts::new(&moved)?;
-        out = unite(a, pa, &moved, &pm, op, options, started)?;
-        out.report.perturbation_retries = k;
-    }
-    Ok(out)
 }
 
 /// [`union()`] of two prepared solids: their edge tables and trees are
@@ -943,26 +925,16 @@ mod tests {
     use crate::winding_boolean::needs_arrangement_when_closed;
 
     /// A prism over an ellipse of `n` points (semi-axes `2r` and `r`,
-    /// height 0.3) whose caps are fans from one outline point (slivers as
-    /// long as the part, as CAD caps are), turned by `turn`, moved by `at`.
+    /// height 0.3), its caps fans from one outline point, turned by
+    /// `turn` and moved by `at`.
     fn fan_prism(n: u32, r: f64, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMesh {
-        let mut m = TriMesh::default();
-        for z in [0.0, 0.3] {
-            m.positions.extend((0..n).map(|i| {
+        let outline: Vec<DVec3> = (0..n)
+            .map(|i| {
                 let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-                at + turn(DVec3::new(2.0 * r * a.cos(), r * a.sin(), z))
-            }));
-        }
-        for i in 1..n - 1 {
-            m.triangles.push([0, i + 1, i]);
-            m.triangles.push([n, n + i, n + i + 1]);
-        }
-        for i in 0..n {
-            let j = (i + 1) % n;
-            m.triangles.push([i, j, n + j]);
-            m.triangles.push([i, n + j, n + i]);
-        }
-        m
+                DVec3::new(2.0 * r * a.cos(), r * a.sin(), 0.0)
+            })
+            .collect();
+        crate::intersect::tests::fan_prism(&outline, 0.3, turn, at)
     }
 
     /// Two turned CAD-like parts in one frame: the pairs across them are
@@ -972,11 +944,7 @@ mod tests {
     /// same mesh, vertex for vertex, as with trees built for the pairs.
     #[test]
     fn the_self_crossing_checks_tree_finds_the_pairs_across_in_one_frame() {
-        let axis = DVec3::new(1.0, 2.0, 3.0).normalize();
-        let turn = |q: DVec3| {
-            let (s, c) = 0.7f64.sin_cos();
-            q * c + axis.cross(q) * s + axis * axis.dot(q) * (1.0 - c)
-        };
+        let turn = crate::intersect::tests::turn;
         let a = fan_prism(96, 1.0, turn, DVec3::ZERO);
         let b = fan_prism(40, 0.7, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
         let op = Operation::Difference;

@@ -442,22 +442,41 @@ fn turned_fan_prism(n: usize, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMe
             DVec3::new(2.0 * r * a.cos(), r * a.sin(), 0.0)
         })
         .collect();
+    fan_prism(&outline, 0.3, turn, at)
+}
+
+/// The prism of height `height` over the closed outline `outline` (in
+/// the plane z = 0, counter-clockwise), its caps fans from the outline's
+/// first point, turned by `turn` and moved by `at`.
+pub(crate) fn fan_prism(
+    outline: &[DVec3],
+    height: f64,
+    turn: impl Fn(DVec3) -> DVec3,
+    at: DVec3,
+) -> TriMesh {
     let mut m = TriMesh::default();
-    for z in [0.0, 0.3] {
+    for z in [0.0, height] {
         m.positions
             .extend(outline.iter().map(|p| at + turn(*p + DVec3::Z * z)));
     }
-    let (n32, top) = (n as u32, n as u32);
-    for i in 1..n32 - 1 {
+    let n = outline.len() as u32;
+    for i in 1..n - 1 {
         m.triangles.push([0, i + 1, i]);
-        m.triangles.push([top, top + i, top + i + 1]);
+        m.triangles.push([n, n + i, n + i + 1]);
     }
-    for i in 0..n32 {
-        let j = (i + 1) % n32;
-        m.triangles.push([i, j, top + j]);
-        m.triangles.push([i, top + j, top + i]);
+    for i in 0..n {
+        let j = (i + 1) % n;
+        m.triangles.push([i, j, n + j]);
+        m.triangles.push([i, n + j, n + i]);
     }
     m
+}
+
+/// A rotation about (1, 2, 3) by 0.7 radians: no axis stays put.
+pub(crate) fn turn(q: DVec3) -> DVec3 {
+    let axis = DVec3::new(1.0, 2.0, 3.0).normalize();
+    let (s, c) = 0.7f64.sin_cos();
+    q * c + axis.cross(q) * s + axis * axis.dot(q) * (1.0 - c)
 }
 
 /// Candidates found in a turned mesh's own frame ([`BoxFrame`]) lose no
@@ -466,30 +485,12 @@ fn turned_fan_prism(n: usize, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMe
 /// other (their caps nearly coplanar slivers, the case the frame is for).
 #[test]
 fn candidates_in_the_turned_frame_miss_no_intersecting_pair() {
-    let axis = DVec3::new(1.0, 2.0, 3.0).normalize();
-    let turn = |q: DVec3| {
-        let (s, c) = 0.7f64.sin_cos();
-        q * c + axis.cross(q) * s + axis * axis.dot(q) * (1.0 - c)
-    };
     let a = turned_fan_prism(60, turn, DVec3::ZERO);
     let b = turned_fan_prism(40, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
     let m = join(&a, &b);
     let frame = BoxFrame::of_triangles(&[(&m.positions, &m.triangles)]);
     assert!(!frame.is_identity(), "the turned prisms have a frame");
-    let ids = position_classes(&m.positions).unwrap();
-    let sym = Symbolic {
-        positions: &m.positions,
-        ids: &ids,
-    };
-    let n = m.triangles.len() as u32;
-    let mut brute = Vec::new();
-    for t1 in 0..n {
-        for t2 in t1 + 1..n {
-            if pair_segment(&m.triangles, &sym, t1, t2).is_some() {
-                brute.push((t1, t2));
-            }
-        }
-    }
+    let brute = brute_pairs(&m);
     assert!(brute.len() > 20, "the prisms cross: {}", brute.len());
     assert_eq!(run(&m).pairs, brute);
 }
