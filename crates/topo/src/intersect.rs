@@ -606,8 +606,12 @@ fn framed_within(
     positions: &[DVec3],
     ids: &[u32],
 ) -> Result<(Bvh, Option<Distinct>, BoxFrame), IntersectError> {
-    let frame = BoxFrame::of_triangles(&[(positions, &mesh.triangles)]);
-    match Distinct::of(&mesh.triangles, ids) {
+    // Two whole-mesh passes that need nothing of each other.
+    let (frame, distinct) = rayon::join(
+        || BoxFrame::of_triangles(&[(positions, &mesh.triangles)]),
+        || Distinct::of(&mesh.triangles, ids),
+    );
+    match distinct {
         None => Ok((
             Bvh::build(&framed_triangle_boxes(
                 mesh,

@@ -571,12 +571,24 @@ pub(crate) fn needs_arrangement_when_closed(
     if !closed {
         return Ok((true, [None, None]));
     }
-    let (crosses, tree_a) = crosses_itself_keeping_tree(a)?;
-    if crosses {
+    // Both checks at once: each has passes that leave a core idle (the
+    // position classes, the top of its tree). One that finds a crossing
+    // makes the other's work moot, and the arrangement then costs far more.
+    let (checked_a, checked_b) = rayon::join(
+        || crosses_itself_keeping_tree(a),
+        || crosses_itself_keeping_tree(b),
+    );
+    // A first: a crossing there answers, whatever B's check says.
+    let (crosses_a, tree_a) = checked_a?;
+    if crosses_a {
         return Ok((true, [None, None]));
     }
-    let (crosses, tree_b) = crosses_itself_keeping_tree(b)?;
-    let needs = crosses || has_nested_pieces(a)? || has_nested_pieces(b)?;
+    let (crosses_b, tree_b) = checked_b?;
+    if crosses_b {
+        return Ok((true, [None, None]));
+    }
+    let (nested_a, nested_b) = rayon::join(|| has_nested_pieces(a), || has_nested_pieces(b));
+    let needs = nested_a? || nested_b?;
     Ok((needs, [tree_a, tree_b]))
 }
 
