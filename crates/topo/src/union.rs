@@ -391,7 +391,10 @@ pub(crate) struct PreparedPair<'a> {
     pa: Parts,
     pb: Parts,
     op: Operation,
-    started: Instant,
+    /// How long [`prepare`] took: the stage times start that long before
+    /// the Boolean itself, whatever a caller did in between (the
+    /// self-crossing check).
+    prepared_in: std::time::Duration,
 }
 
 impl<'a> PreparedPair<'a> {
@@ -409,8 +412,14 @@ impl<'a> PreparedPair<'a> {
             pa,
             pb,
             op,
-            started,
+            prepared_in: started.elapsed(),
         })
+    }
+
+    /// When the Boolean counts as started: now, less the preparation.
+    fn started(&self) -> Instant {
+        let now = Instant::now();
+        now.checked_sub(self.prepared_in).unwrap_or(now)
     }
 
     /// Both surfaces are closed: every edge has an even number of
@@ -434,7 +443,8 @@ impl<'a> PreparedPair<'a> {
     pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
         let (a, b, op) = (self.a, self.b.as_ref(), self.op);
         let manifold_inputs = self.pa.oriented() && self.pb.oriented();
-        let mut out = self.exact(options)?;
+        let started = self.started();
+        let mut out = unite(a, &self.pa, b, &self.pb, op, options, started)?;
         for k in 1..NUDGES.len() {
             if !manifold_inputs || out.mesh.is_closed_manifold() {
                 break;
@@ -445,7 +455,7 @@ impl<'a> PreparedPair<'a> {
                 triangles: b.triangles.clone(),
             };
             let pm = Parts::new(&moved)?;
-            out = unite(a, &self.pa, &moved, &pm, op, options, self.started)?;
+            out = unite(a, &self.pa, &moved, &pm, op, options, started)?;
             out.report.perturbation_retries = k;
         }
         Ok(out)
@@ -460,7 +470,7 @@ impl<'a> PreparedPair<'a> {
             &self.pb,
             self.op,
             options,
-            self.started,
+            self.started(),
         )
     }
 }
