@@ -76,24 +76,39 @@ pub(crate) fn flat_stars(tris: &[[u32; 3]], positions: &[DVec3], ids: &[u32]) ->
             *at += 1;
         }
     }
+    // Two scratch lists per worker, not two allocations per vertex.
     (0..n)
         .into_par_iter()
-        .map(|v| {
-            let edges = &link[start[v] as usize..start[v + 1] as usize];
-            !repeats[v] && ids[v] as usize == v && star_is_flat(positions[v], edges, positions, ids)
-        })
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |scratch, v| {
+                let edges = &link[start[v] as usize..start[v + 1] as usize];
+                !repeats[v]
+                    && ids[v] as usize == v
+                    && star_is_flat(positions[v], edges, positions, ids, scratch)
+            },
+        )
         .collect()
 }
 
 /// The three tests of the [module documentation](self) for the star of a
-/// vertex at `centre` whose link edges are `edges` (vertex indices).
-fn star_is_flat(centre: DVec3, edges: &[[u32; 2]], positions: &[DVec3], ids: &[u32]) -> bool {
+/// vertex at `centre` whose link edges are `edges` (vertex indices);
+/// `scratch` holds the link's sorted ends.
+fn star_is_flat(
+    centre: DVec3,
+    edges: &[[u32; 2]],
+    positions: &[DVec3],
+    ids: &[u32],
+    (from, to): &mut (Vec<u32>, Vec<u32>),
+) -> bool {
     if edges.len() < 3 {
         return false;
     }
     // 1. The link edges are a permutation of the link's identities.
-    let mut from: Vec<u32> = edges.iter().map(|e| ids[e[0] as usize]).collect();
-    let mut to: Vec<u32> = edges.iter().map(|e| ids[e[1] as usize]).collect();
+    from.clear();
+    from.extend(edges.iter().map(|e| ids[e[0] as usize]));
+    to.clear();
+    to.extend(edges.iter().map(|e| ids[e[1] as usize]));
     from.sort_unstable();
     to.sort_unstable();
     if from != to || from.windows(2).any(|w| w[0] == w[1]) {
