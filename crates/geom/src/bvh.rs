@@ -21,7 +21,9 @@
 //! the batch, output in batch order then tree order: deterministic); all
 //! pairs of overlapping primitives ([`Bvh::self_overlaps`], a simultaneous
 //! descent of the tree against itself, parallel over the top levels, each
-//! unordered pair once); all pairs across two trees
+//! unordered pair once), or those of primitives in different groups
+//! ([`Bvh::self_overlaps_apart_filter_map`], skipping whole subtrees of
+//! one group); all pairs across two trees
 //! ([`Bvh::overlaps_with_filter_map`], the same descent of one tree
 //! against another, for two meshes whose own overlaps do not matter).
 //! **Refit** recomputes boxes bottom-up after the
@@ -439,6 +441,54 @@ impl Bvh {
         &self,
         f: impl Fn(u32, u32) -> Option<T> + Sync,
     ) -> (Vec<T>, usize) {
+        self.self_overlaps_pruned(KeepAll, f)
+    }
+
+    /// Per node, the group every primitive below it belongs to, or
+    /// [`NO_GROUP`] when they are not all of one group; `group_of` gives
+    /// each primitive's group (by primitive id). Nodes come after their
+    /// parents, so one backward pass fills them.
+    pub fn node_groups(&self, group_of: &[u32]) -> NodeGroups {
+        let slot: Vec<u32> = self.prims.iter().map(|&p| group_of[p as usize]).collect();
+        let mut node = vec![NO_GROUP; self.nodes.len()];
+        for i in (0..self.nodes.len()).rev() {
+            let nd = self.nodes[i];
+            node[i] = if nd.is_leaf() {
+                let g = slot[nd.range()].first().copied().unwrap_or(NO_GROUP);
+                if slot[nd.range()].iter().all(|&h| h == g) {
+                    g
+                } else {
+                    NO_GROUP
+                }
+            } else if node[nd.a as usize] == node[nd.b as usize] {
+                node[nd.a as usize]
+            } else {
+                NO_GROUP
+            };
+        }
+        NodeGroups { node, slot }
+    }
+
+    /// [`Bvh::self_overlaps_filter_map`] without the pairs of primitives
+    /// of one group (other than [`NO_GROUP`]): `groups` from
+    /// [`Bvh::node_groups`] of this tree. A subtree of one group is not
+    /// descended into at all, nor a pair of subtrees of the same group,
+    /// so pairs known beforehand to need nothing (two triangles of one
+    /// certified flat patch) cost neither a test nor a visit. The count
+    /// returned is of the pairs passed to `f`.
+    pub fn self_overlaps_apart_filter_map<T: Send>(
+        &self,
+        groups: &NodeGroups,
+        f: impl Fn(u32, u32) -> Option<T> + Sync,
+    ) -> (Vec<T>, usize) {
+        self.self_overlaps_pruned(ApartGroups(groups), f)
+    }
+
+    fn self_overlaps_pruned<T: Send>(
+        &self,
+        prune: impl Prune,
+        f: impl Fn(u32, u32) -> Option<T> + Sync,
+    ) -> (Vec<T>, usize) {
         if self.nodes.is_empty() {
             return (Vec::new(), 0);
         }
@@ -446,8 +496,8 @@ impl Bvh {
         // PARALLEL_THRESHOLD primitives, in descent order; numeric phase:
         // run them in parallel, each into its own output.
         let mut tasks = Vec::new();
-        self.split_within(0, &mut tasks);
-        run_tasks(self, self, &tasks, |a, b| {
+        self.split_within(0, prune, &mut tasks);
+        run_tasks(self, self, prune, &tasks, |a, b| {
             let (a, b) = pair(a, b);
             f(a, b)
         })
@@ -474,33 +524,39 @@ impl Bvh {
 
     /// The tasks of the pairs within subtree `i`: its two children's, then
     /// those across them.
-    fn split_within(&self, i: u32, tasks: &mut Vec<Task>) {
+    fn split_within(&self, i: u32, prune: impl Prune, tasks: &mut Vec<Task>) {
         let nd = self.nodes[i as usize];
+        if prune.within(i) {
+            return;
+        }
         if nd.is_leaf() || self.subtree_size(i) <= PARALLEL_THRESHOLD {
             tasks.push(Task::Within(i));
             return;
         }
-        self.split_within(nd.a, tasks);
-        self.split_within(nd.b, tasks);
-        split_across(self, nd.a, self, nd.b, tasks);
+        self.split_within(nd.a, prune, tasks);
+        self.split_within(nd.b, prune, tasks);
+        split_across(self, nd.a, self, nd.b, prune, tasks);
     }
 
-    fn within(&self, i: u32, sink: &mut impl FnMut(u32, u32)) {
+    fn within(&self, i: u32, prune: impl Prune, sink: &mut impl FnMut(u32, u32)) {
         let nd = self.nodes[i as usize];
+        if prune.within(i) {
+            return;
+        }
         if nd.is_leaf() {
             let r = nd.range();
             for s in r.clone() {
                 for t in s + 1..r.end {
-                    if self.prim_boxes[s].overlaps(&self.prim_boxes[t]) {
+                    if self.prim_boxes[s].overlaps(&self.prim_boxes[t]) && !prune.slots(s, t) {
                         sink(self.prims[s], self.prims[t]);
                     }
                 }
             }
             return;
         }
-        self.within(nd.a, sink);
-        self.within(nd.b, sink);
-        across(self, nd.a, self, nd.b, sink);
+        self.within(nd.a, prune, sink);
+        self.within(nd.b, prune, sink);
+        across(self, nd.a, self, nd.b, prune, sink);
     }
 
     /// [`Bvh::self_overlaps_filter_map`] across two trees: every pair
@@ -518,8 +574,8 @@ impl Bvh {
             return (Vec::new(), 0);
         }
         let mut tasks = Vec::new();
-        split_across(self, 0, other, 0, &mut tasks);
-        run_tasks(self, other, &tasks, f)
+        split_across(self, 0, other, 0, KeepAll, &mut tasks);
+        run_tasks(self, other, KeepAll, &tasks, f)
     }
 
     /// Recomputes all boxes from new primitive boxes (same count as built),
@@ -645,6 +701,7 @@ impl Bvh {
 fn run_tasks<T: Send>(
     x: &Bvh,
     y: &Bvh,
+    prune: impl Prune,
     tasks: &[Task],
     f: impl Fn(u32, u32) -> Option<T> + Sync,
 ) -> (Vec<T>, usize) {
@@ -660,8 +717,8 @@ fn run_tasks<T: Send>(
                 }
             };
             match *task {
-                Task::Within(i) => x.within(i, &mut sink),
-                Task::Across(i, j) => across(x, i, y, j, &mut sink),
+                Task::Within(i) => x.within(i, prune, &mut sink),
+                Task::Across(i, j) => across(x, i, y, j, prune, &mut sink),
             }
             (out, found)
         })
@@ -672,28 +729,28 @@ fn run_tasks<T: Send>(
 
 /// The tasks of the pairs across subtree `i` of `x` and subtree `j` of
 /// `y` (`x` and `y` may be one tree).
-fn split_across(x: &Bvh, i: u32, y: &Bvh, j: u32, tasks: &mut Vec<Task>) {
+fn split_across(x: &Bvh, i: u32, y: &Bvh, j: u32, prune: impl Prune, tasks: &mut Vec<Task>) {
     let (ni, nj) = (x.nodes[i as usize], y.nodes[j as usize]);
-    if !ni.bb.overlaps(&nj.bb) {
+    if !ni.bb.overlaps(&nj.bb) || prune.across(i, j) {
         return;
     }
     let (si, sj) = (x.subtree_size(i), y.subtree_size(j));
     if si + sj <= PARALLEL_THRESHOLD || (ni.is_leaf() && nj.is_leaf()) {
         tasks.push(Task::Across(i, j));
     } else if !ni.is_leaf() && (nj.is_leaf() || si >= sj) {
-        split_across(x, ni.a, y, j, tasks);
-        split_across(x, ni.b, y, j, tasks);
+        split_across(x, ni.a, y, j, prune, tasks);
+        split_across(x, ni.b, y, j, prune, tasks);
     } else {
-        split_across(x, i, y, nj.a, tasks);
-        split_across(x, i, y, nj.b, tasks);
+        split_across(x, i, y, nj.a, prune, tasks);
+        split_across(x, i, y, nj.b, prune, tasks);
     }
 }
 
 /// Every pair (primitive under node `i` of `x`, primitive under node `j`
 /// of `y`) whose boxes overlap, in descent order.
-fn across(x: &Bvh, i: u32, y: &Bvh, j: u32, sink: &mut impl FnMut(u32, u32)) {
+fn across(x: &Bvh, i: u32, y: &Bvh, j: u32, prune: impl Prune, sink: &mut impl FnMut(u32, u32)) {
     let (ni, nj) = (x.nodes[i as usize], y.nodes[j as usize]);
-    if !ni.bb.overlaps(&nj.bb) {
+    if !ni.bb.overlaps(&nj.bb) || prune.across(i, j) {
         return;
     }
     match (ni.is_leaf(), nj.is_leaf()) {
@@ -704,30 +761,93 @@ fn across(x: &Bvh, i: u32, y: &Bvh, j: u32, sink: &mut impl FnMut(u32, u32)) {
                     continue;
                 }
                 for t in nj.range() {
-                    if bs.overlaps(&y.prim_boxes[t]) {
+                    if bs.overlaps(&y.prim_boxes[t]) && !prune.slots(s, t) {
                         sink(x.prims[s], y.prims[t]);
                     }
                 }
             }
         }
         (false, true) => {
-            across(x, ni.a, y, j, sink);
-            across(x, ni.b, y, j, sink);
+            across(x, ni.a, y, j, prune, sink);
+            across(x, ni.b, y, j, prune, sink);
         }
         (true, false) => {
-            across(x, i, y, nj.a, sink);
-            across(x, i, y, nj.b, sink);
+            across(x, i, y, nj.a, prune, sink);
+            across(x, i, y, nj.b, prune, sink);
         }
         (false, false) => {
             // Descend the larger box (keeps the recursion balanced).
             if volume(&ni.bb) >= volume(&nj.bb) {
-                across(x, ni.a, y, j, sink);
-                across(x, ni.b, y, j, sink);
+                across(x, ni.a, y, j, prune, sink);
+                across(x, ni.b, y, j, prune, sink);
             } else {
-                across(x, i, y, nj.a, sink);
-                across(x, i, y, nj.b, sink);
+                across(x, i, y, nj.a, prune, sink);
+                across(x, i, y, nj.b, prune, sink);
             }
         }
+    }
+}
+
+/// No group: [`Bvh::node_groups`] of a node whose primitives are not all
+/// of one group, and the group of a primitive in none.
+pub const NO_GROUP: u32 = u32::MAX;
+
+/// Which group each node's primitives all belong to, and each slot's
+/// primitive ([`Bvh::node_groups`]).
+#[derive(Clone, Debug)]
+pub struct NodeGroups {
+    node: Vec<u32>,
+    slot: Vec<u32>,
+}
+
+/// What a descent of a tree against itself may skip: a generic parameter,
+/// so that the descent that skips nothing compiles to the one it was.
+trait Prune: Copy + Sync {
+    /// Every pair within node `i`.
+    fn within(self, i: u32) -> bool;
+    /// Every pair across nodes `i` and `j`.
+    fn across(self, i: u32, j: u32) -> bool;
+    /// The pair of the primitives in slots `s` and `t`.
+    fn slots(self, s: usize, t: usize) -> bool;
+}
+
+/// Skips nothing.
+#[derive(Clone, Copy)]
+struct KeepAll;
+
+impl Prune for KeepAll {
+    #[inline(always)]
+    fn within(self, _: u32) -> bool {
+        false
+    }
+    #[inline(always)]
+    fn across(self, _: u32, _: u32) -> bool {
+        false
+    }
+    #[inline(always)]
+    fn slots(self, _: usize, _: usize) -> bool {
+        false
+    }
+}
+
+/// Skips the pairs of one group.
+#[derive(Clone, Copy)]
+struct ApartGroups<'a>(&'a NodeGroups);
+
+impl Prune for ApartGroups<'_> {
+    #[inline]
+    fn within(self, i: u32) -> bool {
+        self.0.node[i as usize] != NO_GROUP
+    }
+    #[inline]
+    fn across(self, i: u32, j: u32) -> bool {
+        let g = self.0.node[i as usize];
+        g != NO_GROUP && g == self.0.node[j as usize]
+    }
+    #[inline]
+    fn slots(self, s: usize, t: usize) -> bool {
+        let g = self.0.slot[s];
+        g != NO_GROUP && g == self.0.slot[t]
     }
 }
 
@@ -878,6 +998,46 @@ mod tests {
         let mut got = a;
         got.sort_unstable();
         assert_eq!(got, want);
+    }
+
+    /// The descent apart from groups finds exactly the overlapping pairs
+    /// whose primitives are not of one group (other than [`NO_GROUP`]),
+    /// in the same order as the full descent, and counts just those. The
+    /// groups are spatial (boxes of one slab of x, as a flat patch's
+    /// triangles lie together), so whole subtrees are of one group, and
+    /// the tree is large enough to be split into parallel tasks.
+    #[test]
+    fn self_overlaps_apart_from_groups_skip_exactly_the_pairs_of_one_group() {
+        let mut rng = Rng::new(36);
+        let boxes = random_boxes(&mut rng, 30_000, 0.02);
+        let group_of: Vec<u32> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| match (b.min.x * 20.0) as u32 {
+                g if g % 5 == 4 || i % 97 == 0 => NO_GROUP,
+                g => g / 2,
+            })
+            .collect();
+        let bvh = Bvh::build(&boxes).expect("finite");
+        let groups = bvh.node_groups(&group_of);
+        let apart = |a: u32, b: u32| {
+            let g = group_of[a as usize];
+            g == NO_GROUP || g != group_of[b as usize]
+        };
+        let want: Vec<(u32, u32)> = bvh
+            .self_overlaps()
+            .into_iter()
+            .filter(|&(a, b)| apart(a, b))
+            .collect();
+        let (got, count) = bvh.self_overlaps_apart_filter_map(&groups, |a, b| Some((a, b)));
+        assert_eq!(got, want);
+        assert_eq!(count, want.len());
+        let skipped = bvh.self_overlaps().len() - want.len();
+        assert!(skipped > want.len() / 4, "pairs of one group: {skipped}");
+        // A group of its own for every primitive skips nothing.
+        let own: Vec<u32> = (0..boxes.len() as u32).collect();
+        let all = bvh.self_overlaps_apart_filter_map(&bvh.node_groups(&own), |a, b| Some((a, b)));
+        assert_eq!(all.0, bvh.self_overlaps());
     }
 
     #[test]
