@@ -689,23 +689,32 @@ fn segments(
     // overlapping boxes; the output keeps the descent's order. Only hits
     // are kept: candidates outnumber hits by orders of magnitude (4.7M
     // against 2.5k for two 262k-triangle spheres).
-    // Every triangle's plane and every flat star, once, where most
-    // triangles take part.
-    let prepared = match candidates {
-        Candidates::Among { .. } => None,
-        Candidates::Across { .. } => Some(Prepared {
-            planes: Plane::all(tris, positions),
-            flat_stars: None,
-        }),
-        Candidates::Within(_) | Candidates::Distinct { .. } => {
-            let (planes, flat_stars) = rayon::join(
-                || Plane::all(tris, positions),
-                || stars::flat_stars(tris, positions, ids),
-            );
+    // Every triangle's plane, every flat star and every flat patch, once,
+    // where most triangles take part.
+    let (prepared, flat_patches) = match candidates {
+        Candidates::Among { .. } => (None, Vec::new()),
+        Candidates::Across { .. } => (
             Some(Prepared {
+                planes: Plane::all(tris, positions),
+                flat_stars: None,
+            }),
+            Vec::new(),
+        ),
+        Candidates::Within(_) | Candidates::Distinct { .. } => {
+            let (planes, (flat_stars, flat_patches)) = rayon::join(
+                || Plane::all(tris, positions),
+                || {
+                    rayon::join(
+                        || stars::flat_stars(tris, positions, ids),
+                        || patches::flat_patches(tris, positions, ids),
+                    )
+                },
+            );
+            let prepared = Prepared {
                 planes,
                 flat_stars: Some(flat_stars),
-            })
+            };
+            (Some(prepared), flat_patches)
         }
     };
     let test = |t1: u32, t2: u32| {
@@ -719,8 +728,12 @@ fn segments(
         }
         Some((t1, t2, seg))
     };
+    // Two triangles of one certified flat patch meet only where they
+    // share a vertex or an edge ([`patches`]): the descent skips them.
     let (segs, candidates): (Vec<Segment>, usize) = match candidates {
-        Candidates::Within(bvh) => bvh.self_overlaps_filter_map(test),
+        Candidates::Within(bvh) => {
+            bvh.self_overlaps_apart_filter_map(&bvh.node_groups(&flat_patches), test)
+        }
         Candidates::Across {
             first,
             first_triangles,
@@ -735,7 +748,12 @@ fn segments(
         }),
         Candidates::Distinct { tree, distinct } => {
             let triangles = &distinct.triangles;
-            let (found, candidates) = tree.self_overlaps_filter_map(|i, j| {
+            let patch_of: Vec<u32> = triangles
+                .iter()
+                .map(|&t| flat_patches[t as usize])
+                .collect();
+            let groups = tree.node_groups(&patch_of);
+            let (found, candidates) = tree.self_overlaps_apart_filter_map(&groups, |i, j| {
                 let (t1, t2) = (triangles[i as usize], triangles[j as usize]);
                 test(t1.min(t2), t1.max(t2))
             });
@@ -1414,4 +1432,5 @@ pub fn shared_ids<'a>(pieces: impl IntoIterator<Item = &'a Piece>) -> Vec<u32> {
 #[cfg(test)]
 pub(crate) mod tests;
 
+mod patches;
 mod stars;
