@@ -11,7 +11,9 @@ pub mod exact;
 pub mod meshes;
 pub mod oracles;
 
-pub use meshes::{octahedron, quad_torus, tetrahedron, unit_cube, uv_sphere, uv_spheres};
+pub use meshes::{
+    grid_triangles, octahedron, quad_torus, tetrahedron, unit_cube, uv_sphere, uv_spheres,
+};
 pub use oracles::{Groups, boundary, components, edge_degrees, pieces};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and fully
