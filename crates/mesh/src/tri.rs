@@ -54,6 +54,15 @@ pub enum MeshError {
 }
 
 impl TriMesh {
+    /// The mesh of plain arrays: positions as `[x, y, z]`, triangles as
+    /// index triples, taken as they are (nothing is checked).
+    pub fn from_arrays(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> TriMesh {
+        TriMesh {
+            positions: positions.iter().map(|&p| DVec3::from_array(p)).collect(),
+            triangles: triangles.to_vec(),
+        }
+    }
+
     /// Appends `other`'s vertices and triangles (its indices shifted past
     /// this mesh's vertices): the two as one mesh, apart as they were.
     pub fn append(&mut self, other: &TriMesh) {
@@ -636,7 +645,8 @@ mod tests {
     }
 
     /// A polygon soup and its triangle mesh convert both ways; append,
-    /// translate and transform keep the triangles and move the points.
+    /// translate and transform keep the triangles and move the points; plain
+    /// arrays make the same mesh.
     #[test]
     fn conversions_and_placement() {
         let square = crate::PolyMesh::from_faces(
@@ -657,6 +667,13 @@ mod tests {
         let scaled = t.transformed(|p| 2.0 * p);
         assert_eq!(scaled.positions[2], DVec3::new(2.0, 2.0, 0.0));
         assert_eq!(scaled.triangles, t.triangles);
+        let arrays = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        assert_eq!(TriMesh::from_arrays(&arrays, &[[0, 1, 2], [0, 2, 3]]), t);
     }
 
     #[test]

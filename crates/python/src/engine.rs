@@ -173,15 +173,7 @@ pub fn self_intersections<'py>(
     let mesh = tri_mesh(v, f, "mesh")?;
     let started = std::time::Instant::now();
     let x = detached(py, threads, || holey::topo::self_intersections(&mesh))?.map_err(bad)?;
-    let counts = json!({
-        "triangles": mesh.triangles.len(),
-        "intersecting_pairs": x.pairs.len(),
-        "intersection_points": x.points.len(),
-        "triple_points": x.triple_points(),
-        "intersection_edges": x.pieces.len(),
-        "intersection_curves": x.curve_count,
-        "seconds": started.elapsed().as_secs_f64(),
-    });
+    let counts = x.counts_json(mesh.triangles.len(), started.elapsed().as_secs_f64());
     let point = |n: Node| match n {
         Node::Point(i) => x.points.get(i as usize).map(|p| p.position),
         Node::Shared(id) => mesh.positions.get(id as usize).copied(),

@@ -134,24 +134,12 @@ impl Session {
     /// Undoes the last stroke, restoring the exact mesh before it. False
     /// when there is nothing to undo.
     pub fn undo(&mut self) -> bool {
-        match self.undo.pop() {
-            Some(m) => {
-                self.redo.push(std::mem::replace(&mut self.mesh, m));
-                true
-            }
-            None => false,
-        }
+        step_back(&mut self.mesh, &mut self.undo, &mut self.redo)
     }
 
     /// Redoes the last undone stroke, restoring the exact mesh after it.
     pub fn redo(&mut self) -> bool {
-        match self.redo.pop() {
-            Some(m) => {
-                self.undo.push(std::mem::replace(&mut self.mesh, m));
-                true
-            }
-            None => false,
-        }
+        step_back(&mut self.mesh, &mut self.redo, &mut self.undo)
     }
 
     /// Applies one stroke (one undo step).
@@ -265,6 +253,18 @@ impl Session {
             }
         }
         Ok(reports)
+    }
+}
+
+/// Undo and redo alike: makes the last mesh of `from` the current one and
+/// keeps the one it replaces on `to`. False when `from` is empty.
+fn step_back(current: &mut TriMesh, from: &mut Vec<TriMesh>, to: &mut Vec<TriMesh>) -> bool {
+    match from.pop() {
+        Some(m) => {
+            to.push(std::mem::replace(current, m));
+            true
+        }
+        None => false,
     }
 }
 

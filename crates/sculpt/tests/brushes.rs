@@ -390,34 +390,47 @@ fn thin_slab() -> TriMesh {
     }
 }
 
+/// A crease of `radius` pressed into the [`thin_slab`] at `(x, 0)` on its
+/// top, with `symmetry`, frame after frame for three times the slab's
+/// thickness: it cuts through (a topology change), and the slab stays
+/// one closed piece, now of genus `holes`. Returns the result and the
+/// bottom of the slab before.
+fn crease_through_slab(x: f64, radius: f64, symmetry: [bool; 3], holes: i64) -> (TriMesh, f64) {
+    let slab = thin_slab();
+    let hi = slab
+        .positions
+        .iter()
+        .fold(f64::NEG_INFINITY, |z, p| z.max(p.z));
+    let lo = slab.positions.iter().fold(f64::INFINITY, |z, p| z.min(p.z));
+    let at = DVec3::new(x, 0.0, hi);
+    let mut s = Session::new(slab).unwrap();
+    let r = s
+        .apply_stroke(&Stroke {
+            brush: Brush::Crease,
+            radius,
+            strength: 0.02,
+            path: vec![at; (3.0 * (hi - lo) / 0.02) as usize],
+            symmetry,
+            ..Stroke::default()
+        })
+        .unwrap();
+    assert!(r.changes >= 1, "no groove reached the far side");
+    let m = s.mesh();
+    assert_eq!(holey_testkit::components(&m.triangles), 1);
+    assert_eq!(
+        genus_and_closed(m),
+        (holes, true),
+        "a slab with {holes} hole(s)"
+    );
+    (m.clone(), lo)
+}
+
 /// Issue 19: a crease pressed into a thin closed slab, frame after
 /// frame at one spot, cuts through to the far side and opens a hole:
 /// the slab becomes a closed surface of genus 1.
 #[test]
 fn crease_through_a_thin_slab_opens_a_hole() {
-    let slab = thin_slab();
-    let (lo, hi) = slab
-        .positions
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
-    let top = DVec3::new(0.0, 0.0, hi.z);
-    let thickness = hi.z - lo.z;
-    let mut s = Session::new(slab).unwrap();
-    let r = s
-        .apply_stroke(&Stroke {
-            brush: Brush::Crease,
-            radius: 0.5,
-            strength: 0.02,
-            path: vec![top; (3.0 * thickness / 0.02) as usize],
-            ..Stroke::default()
-        })
-        .unwrap();
-    assert!(r.changes >= 1, "the groove reached the far side");
-    let m = s.mesh();
-    assert_eq!(holey_testkit::components(&m.triangles), 1);
-    assert_eq!(genus_and_closed(m), (1, true), "a slab with a hole");
+    crease_through_slab(0.0, 0.5, [false; 3], 1);
 }
 
 /// Issue 19: symmetry holds across a topology change. The crease of the
@@ -427,28 +440,7 @@ fn crease_through_a_thin_slab_opens_a_hole() {
 /// mirror-symmetric, so positions are not compared vertex for vertex.)
 #[test]
 fn a_mirrored_crease_through_a_slab_opens_two_holes() {
-    let slab = thin_slab();
-    let hi = slab
-        .positions
-        .iter()
-        .fold(f64::NEG_INFINITY, |z, p| z.max(p.z));
-    let lo = slab.positions.iter().fold(f64::INFINITY, |z, p| z.min(p.z));
-    let at = DVec3::new(0.5, 0.0, hi);
-    let mut s = Session::new(slab).unwrap();
-    let r = s
-        .apply_stroke(&Stroke {
-            brush: Brush::Crease,
-            radius: 0.45,
-            strength: 0.02,
-            path: vec![at; (3.0 * (hi - lo) / 0.02) as usize],
-            symmetry: [true, false, false],
-            ..Stroke::default()
-        })
-        .unwrap();
-    assert!(r.changes >= 1, "the grooves reached the far side");
-    let m = s.mesh();
-    assert_eq!(holey_testkit::components(&m.triangles), 1);
-    assert_eq!(genus_and_closed(m), (2, true), "a slab with two holes");
+    let (m, lo) = crease_through_slab(0.5, 0.45, [true, false, false], 2);
     // One hole at each image of the brush: on each side of x = 0 the
     // groove's tip went through the bottom face (z = lo).
     let deepest = |sign: f64| {

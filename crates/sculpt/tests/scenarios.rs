@@ -84,6 +84,32 @@ fn stroke(brush: Brush, radius: f64, strength: f64, path: &[[f64; 3]]) -> Stroke
     }
 }
 
+/// A move of the whole piece picked at the path's first point (radius 0),
+/// at full strength.
+fn move_piece(path: &[[f64; 3]]) -> Stroke {
+    stroke(Brush::Move, 0.0, 1.0, path)
+}
+
+/// After `stroke` moved an open part into the unit body: one topology
+/// change, a valid mesh of one component with `loops` boundary loops left
+/// and no self-intersection, and no vertex within 0.9 of the body's
+/// centre (the part's end that went in is gone). `what` names the part.
+fn assert_part_attached(s: &mut Session, stroke: &Stroke, loops: usize, what: &str) {
+    let r = s.apply_stroke(stroke).unwrap();
+    assert_eq!(r.changes, 1);
+    let m = s.mesh();
+    assert!(valid(m));
+    assert_eq!(components(m), 1, "the {what} is attached");
+    assert_eq!(boundary_loops(m), loops, "the {what}'s boundary loops");
+    assert!(no_self_intersections(m));
+    for p in &m.positions {
+        assert!(
+            p.length() > 0.9,
+            "a vertex of the {what}'s end inside the body: {p}"
+        );
+    }
+}
+
 /// Figure 1: grab the top of a sphere and push it down through the
 /// bottom; the poke-through opens a tunnel.
 #[test]
@@ -159,12 +185,7 @@ fn union_by_move() {
     let two = join(&sphere(DVec3::ZERO), &sphere(DVec3::new(3.0, 0.0, 0.0)));
     let mut s = Session::new(two).unwrap();
     // The pick is just off the second sphere's surface, the drag 2 units.
-    let mv = stroke(
-        Brush::Move,
-        0.0,
-        1.0,
-        &[[4.05, 0., 0.], [3.5, 0.1, 0.], [2.05, 0.1, 0.05]],
-    );
+    let mv = move_piece(&[[4.05, 0., 0.], [3.5, 0.1, 0.], [2.05, 0.1, 0.05]]);
     let r = s.apply_stroke(&mv).unwrap();
     assert_eq!(r.engine_runs, 1);
     let m = s.mesh();
@@ -388,17 +409,12 @@ fn hemisphere(r: f64, offset: DVec3) -> TriMesh {
 /// radius 0.3 at x = 2, see the tests below), then push it in by 1.2: the
 /// rim ends at x = 0.8 (inside the unit body), the tip at 1.1 (outside).
 fn push_the_nose_in() -> Stroke {
-    stroke(
-        Brush::Move,
-        0.0,
-        1.0,
-        &[
-            [2.3, 0., 0.],
-            [1.9, 0.004, 0.002],
-            [1.5, 0.008, 0.004],
-            [1.1, 0.013, 0.007],
-        ],
-    )
+    move_piece(&[
+        [2.3, 0., 0.],
+        [1.9, 0.004, 0.002],
+        [1.5, 0.008, 0.004],
+        [1.1, 0.013, 0.007],
+    ])
 }
 
 /// §6, part assembly (Figure 9): move an open part (a nose: an open
@@ -422,16 +438,9 @@ fn part_assembly_glues_an_open_part_onto_a_body() {
         ..Options::default()
     };
     let mut s = Session::with_options(m, options).unwrap();
-    let r = s.apply_stroke(&push_the_nose_in()).unwrap();
-    assert_eq!(r.changes, 1);
+    // The rim was inside and is gone.
+    assert_part_attached(&mut s, &push_the_nose_in(), 0, "nose");
     let m = s.mesh();
-    assert!(valid(m));
-    assert_eq!(components(m), 1, "the part is attached");
-    assert_eq!(boundary_loops(m), 0, "the rim was inside and is gone");
-    assert!(no_self_intersections(m));
-    for p in &m.positions {
-        assert!(p.length() > 0.9, "a vertex of the rim inside the body: {p}");
-    }
     // The occluded cap: the body's pole, inside the nose, is still there,
     // and the glue curve is a T-junction (edges of three triangles).
     assert!(
@@ -472,25 +481,9 @@ fn part_assembly_with_an_open_tube_keeps_its_outer_end() {
     assert_eq!(boundary_loops(&side), 2);
     let m = join(&sphere(DVec3::ZERO), &side);
     let mut s = Session::new(m).unwrap();
-    let mv = stroke(
-        Brush::Move,
-        0.0,
-        1.0,
-        &[[2.5, 0.25, 0.], [2.0, 0.254, 0.002], [1.7, 0.259, 0.005]],
-    );
-    let r = s.apply_stroke(&mv).unwrap();
-    assert_eq!(r.changes, 1);
-    let m = s.mesh();
-    assert!(valid(m));
-    assert_eq!(components(m), 1, "the tube is attached");
-    assert_eq!(boundary_loops(m), 1, "the outer end stays open");
-    assert!(no_self_intersections(m));
-    for p in &m.positions {
-        assert!(
-            p.length() > 0.9,
-            "a vertex of the tube's end inside the body: {p}"
-        );
-    }
+    let mv = move_piece(&[[2.5, 0.25, 0.], [2.0, 0.254, 0.002], [1.7, 0.259, 0.005]]);
+    // The outer end stays open.
+    assert_part_attached(&mut s, &mv, 1, "tube");
 }
 
 /// Part assembly with the default options: where the body is a solid the
@@ -949,7 +942,7 @@ fn local_move_drags_the_part_within_its_radius() {
     }
     assert!(rigid > 3, "some vertices inside half the radius");
     // Radius 0: the whole piece.
-    let whole = stroke(Brush::Move, 0.0, 1.0, &[[0., 0., 1.], [0., 0., 1.1]]);
+    let whole = move_piece(&[[0., 0., 1.], [0., 0., 1.1]]);
     let mut s = Session::new(start.clone()).unwrap();
     s.apply_stroke(&whole).unwrap();
     for (p0, p1) in start.positions.iter().zip(&s.mesh().positions) {

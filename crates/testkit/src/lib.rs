@@ -11,7 +11,9 @@ pub mod exact;
 pub mod meshes;
 pub mod oracles;
 
-pub use meshes::{octahedron, quad_torus, tetrahedron, unit_cube, uv_sphere, uv_spheres};
+pub use meshes::{
+    grid_triangles, octahedron, quad_torus, tetrahedron, unit_cube, uv_sphere, uv_spheres,
+};
 pub use oracles::{Groups, boundary, components, edge_degrees, pieces};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and fully
@@ -112,16 +114,26 @@ pub fn shared_meshes_or_skip(test: &str) -> Option<PathBuf> {
     dir
 }
 
+/// The folder in `$dir`, an `Option`, or a return from the enclosing
+/// test when it is `None` (the two macros below, after their SKIP line).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __dir_or_return {
+    ($dir:expr) => {
+        match $dir {
+            Some(dir) => dir,
+            None => return,
+        }
+    };
+}
+
 /// In a test: the shared mesh folder, or — after the SKIP line of
 /// [`shared_meshes_or_skip`] naming `test` — a return from the test, which
 /// has nothing to check without it.
 #[macro_export]
 macro_rules! shared_meshes_or_return {
     ($test:expr) => {
-        match $crate::shared_meshes_or_skip($test) {
-            Some(dir) => dir,
-            None => return,
-        }
+        $crate::__dir_or_return!($crate::shared_meshes_or_skip($test))
     };
 }
 
@@ -130,9 +142,6 @@ macro_rules! shared_meshes_or_return {
 #[macro_export]
 macro_rules! shared_corpus_or_return {
     ($test:expr) => {
-        match $crate::shared_corpus_or_skip($test) {
-            Some(dir) => dir,
-            None => return,
-        }
+        $crate::__dir_or_return!($crate::shared_corpus_or_skip($test))
     };
 }

@@ -85,6 +85,23 @@ pub fn quad_torus(n: u32, m: u32) -> (Vec<[f64; 3]>, Vec<[u32; 4]>) {
     (pos, quads)
 }
 
+/// The triangles of a grid of `nu × nv` squares whose vertex `(i, j)`, for
+/// `i` in `0..=nu` and `j` in `0..=nv`, has index `j·(nu + 1) + i` (rows of
+/// `nu + 1`): square `(i, j)` as the triangles `(i, j) (i+1, j) (i+1, j+1)`
+/// and `(i, j) (i+1, j+1) (i, j+1)`, square by square along each row.
+/// Counter-clockwise when `i` runs along x and `j` along y.
+pub fn grid_triangles(nu: u32, nv: u32) -> Vec<[u32; 3]> {
+    let id = |i: u32, j: u32| j * (nu + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    triangles
+}
+
 /// A UV sphere of `2·nu·(nv−2)` triangles: `nu` meridians, `nv` parallels
 /// (poles included), welded, outward-oriented, centre `c`, radius `r`.
 /// Vertices: the north pole, the rings from north to south, the south
@@ -194,6 +211,11 @@ mod tests {
             let v = six_volume(&p, &q) / 6.0;
             assert!(v > 0.0 && v < std::f64::consts::PI.powi(2), "{n}×{m}: {v}");
         }
+        // Two squares in a row: the row 0 1 2, then 3 4 5 beside it.
+        assert_eq!(
+            grid_triangles(2, 1),
+            vec![[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]]
+        );
         let (p, t) = uv_sphere(12, 7, [1.0, 2.0, 3.0], 0.5);
         assert_eq!((p.len(), t.len()), (2 + 12 * 5, 2 * 12 * 5));
         assert!(closed_oriented(&t));

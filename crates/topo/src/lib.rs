@@ -26,6 +26,8 @@ mod report_json;
 mod side_crossings;
 mod solid;
 pub mod solids;
+#[cfg(test)]
+mod test_meshes;
 pub mod union;
 mod union_find;
 mod weights;

@@ -527,37 +527,7 @@ pub(crate) fn from_whole(mesh: &TriMesh, out: Outcome) -> (TriMesh, LocalReport)
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-
-    /// Two unit-ish icosphere-like closed meshes: a coarse UV sphere.
-    fn sphere(centre: DVec3, r: f64, rings: u32, segs: u32) -> TriMesh {
-        let mut positions = vec![centre + DVec3::Z * r, centre - DVec3::Z * r];
-        for i in 1..rings {
-            let th = std::f64::consts::PI * i as f64 / rings as f64;
-            for j in 0..segs {
-                let ph = std::f64::consts::TAU * j as f64 / segs as f64;
-                positions.push(
-                    centre + r * DVec3::new(th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()),
-                );
-            }
-        }
-        let at = |i: u32, j: u32| 2 + (i - 1) * segs + (j % segs);
-        let mut triangles = Vec::new();
-        for j in 0..segs {
-            triangles.push([0, at(1, j), at(1, j + 1)]);
-            triangles.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);
-        }
-        for i in 1..rings - 1 {
-            for j in 0..segs {
-                let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j), at(i + 1, j + 1));
-                triangles.push([a, c, b]);
-                triangles.push([b, c, d]);
-            }
-        }
-        TriMesh {
-            positions,
-            triangles,
-        }
-    }
+    use crate::test_meshes::uv_sphere;
 
     fn components(m: &TriMesh) -> usize {
         let mut parent: Vec<usize> = (0..m.positions.len()).collect();
@@ -582,14 +552,14 @@ mod tests {
 
     /// A far-away second sphere keeps the region small.
     fn scene() -> TriMesh {
-        let mut a = sphere(DVec3::ZERO, 1.0, 16, 24);
-        let b = sphere(DVec3::new(2.5, 0.0, 0.0), 1.0, 16, 24);
+        let mut a = uv_sphere(DVec3::ZERO, 1.0, 16, 24);
+        let b = uv_sphere(DVec3::new(2.5, 0.0, 0.0), 1.0, 16, 24);
         let off = a.positions.len() as u32;
         a.positions.extend(b.positions);
         a.triangles
             .extend(b.triangles.iter().map(|t| t.map(|v| v + off)));
         // A third, far away, that only adds work for a global run.
-        let c = sphere(DVec3::new(0.0, 40.0, 0.0), 1.0, 40, 60);
+        let c = uv_sphere(DVec3::new(0.0, 40.0, 0.0), 1.0, 40, 60);
         let off = a.positions.len() as u32;
         a.positions.extend(c.positions);
         a.triangles

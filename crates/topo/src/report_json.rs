@@ -5,6 +5,7 @@
 use serde_json::{Value, json};
 
 use crate::engine::Report;
+use crate::intersect::Intersections;
 use crate::solids::{BooleanOutcome, Computed};
 use crate::winding_boolean::WindingOutcome;
 
@@ -119,5 +120,23 @@ impl BooleanOutcome {
         json["method"] = self.method.name().into();
         json["seconds"]["total"] = self.seconds.into();
         json
+    }
+}
+
+impl Intersections {
+    /// The counts of a self-intersection search of a mesh of `triangles`
+    /// triangles that took `seconds`, as one JSON object: the CLI's
+    /// `selfint --json` and the Python package's `self_intersections`
+    /// counts.
+    pub fn counts_json(&self, triangles: usize, seconds: f64) -> Value {
+        json!({
+            "triangles": triangles,
+            "intersecting_pairs": self.pairs.len(),
+            "intersection_points": self.points.len(),
+            "triple_points": self.triple_points(),
+            "intersection_edges": self.pieces.len(),
+            "intersection_curves": self.curve_count,
+            "seconds": seconds,
+        })
     }
 }

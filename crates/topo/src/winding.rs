@@ -495,31 +495,8 @@ mod tests {
     /// A unit sphere of `rings` rings and `segs` segments (poles first),
     /// outward: positions, triangles, and `segs`.
     fn uv_sphere(rings: u32, segs: u32) -> (Vec<DVec3>, Vec<[u32; 3]>, u32) {
-        let mut pos = vec![DVec3::Z, -DVec3::Z];
-        for i in 1..rings {
-            let th = std::f64::consts::PI * f64::from(i) / f64::from(rings);
-            for j in 0..segs {
-                let ph = std::f64::consts::TAU * f64::from(j) / f64::from(segs);
-                pos.push(DVec3::new(
-                    th.sin() * ph.cos(),
-                    th.sin() * ph.sin(),
-                    th.cos(),
-                ));
-            }
-        }
-        let at = |i: u32, j: u32| 2 + (i - 1) * segs + (j % segs);
-        let mut tris = Vec::new();
-        for j in 0..segs {
-            tris.push([0, at(1, j), at(1, j + 1)]);
-            tris.push([1, at(rings - 1, j + 1), at(rings - 1, j)]);
-        }
-        for i in 1..rings - 1 {
-            for j in 0..segs {
-                tris.push([at(i, j), at(i + 1, j), at(i, j + 1)]);
-                tris.push([at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)]);
-            }
-        }
-        (pos, tris, segs)
+        let m = crate::test_meshes::uv_sphere(DVec3::ZERO, 1.0, rings, segs);
+        (m.positions, m.triangles, segs)
     }
 
     #[test]

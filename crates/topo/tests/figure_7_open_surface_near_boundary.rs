@@ -61,17 +61,9 @@ fn sheet() -> TriMesh {
             ));
         }
     }
-    let mut triangles = Vec::new();
-    let id = |i: u32, j: u32| j * (NU + 1) + i;
-    for j in 0..NV {
-        for i in 0..NU {
-            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
     TriMesh {
         positions,
-        triangles,
+        triangles: holey_testkit::grid_triangles(NU, NV),
     }
 }
 
@@ -94,15 +86,30 @@ fn push(m: &TriMesh) -> Vec<DVec3> {
 fn check(scheme: Scheme) {
     let m = sheet();
     let end = push(&m);
-    let outcome = run(
-        &m,
-        &end,
+    verify(&m, &end, run_with(&m, &end, scheme));
+}
+
+/// The engine on `m` moving to `end` with the default options but `scheme`.
+fn run_with(m: &TriMesh, end: &[DVec3], scheme: Scheme) -> holey_topo::Outcome {
+    run(
+        m,
+        end,
         &Options {
             scheme,
             ..Options::default()
         },
+    )
+}
+
+/// The result is free of self-intersections and has no edge of three or
+/// more triangles.
+fn assert_manifold_and_embedded(out: &TriMesh) {
+    assert_eq!(
+        self_intersecting_pairs(out),
+        0,
+        "the result intersects itself"
     );
-    verify(&m, &end, outcome);
+    assert!(max_edge_degree(out) <= 2, "non-manifold edges");
 }
 
 /// What [`check`] asserts of the result `outcome` of `m` moving to `end`.
@@ -114,12 +121,7 @@ fn verify(m: &TriMesh, end: &[DVec3], outcome: holey_topo::Outcome) {
         outcome.report.cut
     );
     let out = outcome.mesh;
-    assert_eq!(
-        self_intersecting_pairs(&out),
-        0,
-        "the result intersects itself"
-    );
-    assert!(max_edge_degree(&out) <= 2, "non-manifold edges");
+    assert_manifold_and_embedded(&out);
     // Nothing is left under the floor.
     for v in out.triangles.iter().flatten() {
         assert!(
@@ -201,21 +203,8 @@ fn flap_through_the_floor_dragged_over_ten_frames() {
 fn flap_through_the_floor_with_majority_voting_keeps_the_strip() {
     let m = sheet();
     let end = push(&m);
-    let out = run(
-        &m,
-        &end,
-        &Options {
-            scheme: Scheme::Majority,
-            ..Options::default()
-        },
-    )
-    .mesh;
-    assert_eq!(
-        self_intersecting_pairs(&out),
-        0,
-        "the result intersects itself"
-    );
-    assert!(max_edge_degree(&out) <= 2, "non-manifold edges");
+    let out = run_with(&m, &end, Scheme::Majority).mesh;
+    assert_manifold_and_embedded(&out);
     let whole = floor_triangles_in_strip(&TriMesh {
         positions: end,
         triangles: m.triangles.clone(),
@@ -253,14 +242,7 @@ fn random_flaps_never_panic() {
             })
             .collect();
         for scheme in [Scheme::Partition, Scheme::Majority] {
-            let out = run(
-                &m,
-                &end,
-                &Options {
-                    scheme,
-                    ..Options::default()
-                },
-            );
+            let out = run_with(&m, &end, scheme);
             assert_eq!(
                 self_intersecting_pairs(&out.mesh),
                 0,

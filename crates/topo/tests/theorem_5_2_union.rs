@@ -36,6 +36,26 @@ fn direct_union(a: &TriMesh, b: &TriMesh) -> TriMesh {
     out.mesh
 }
 
+/// The containment union refuses `bad` beside `other` in both orders, with
+/// the error `error` makes of the place `bad` has: [`Solid::A`] first,
+/// [`Solid::B`] second.
+fn refuses_in_both_orders(bad: &TriMesh, other: &TriMesh, error: fn(Solid) -> UnionError) {
+    for (a, b, place) in [(bad, other, Solid::A), (other, bad, Solid::B)] {
+        assert_eq!(
+            holey_topo::union(a, b, &Options::default()).expect_err("refused"),
+            error(place)
+        );
+    }
+}
+
+/// `volume` within `relative` of `want`.
+fn assert_volume_near(volume: f64, want: f64, relative: f64, what: &str) {
+    assert!(
+        (volume - want).abs() < relative * want,
+        "{what}: volume {volume} vs {want}"
+    );
+}
+
 fn check_union(a: &TriMesh, b: &TriMesh, genus_expected: i64, what: &str) {
     let u = union(a, b);
     // The motion through the whole pipeline (CCD, correction) and the
@@ -63,12 +83,8 @@ fn check_union(a: &TriMesh, b: &TriMesh, genus_expected: i64, what: &str) {
         0,
         "{what}: the union intersects itself"
     );
-    let v = volume(&u);
     let sampled = union_volume_sampled(a, b, 200_000, 7);
-    assert!(
-        (v - sampled).abs() < 0.01 * sampled,
-        "{what}: volume {v} vs sampled {sampled}"
-    );
+    assert_volume_near(volume(&u), sampled, 0.01, &format!("{what}, sampled"));
 }
 
 #[test]
@@ -82,11 +98,7 @@ fn two_spheres() {
     let (r, d) = (1.0f64, 1.0f64);
     let lens = std::f64::consts::PI * (4.0 * r + d) * (2.0 * r - d).powi(2) / 12.0;
     let exact = 2.0 * 4.0 / 3.0 * std::f64::consts::PI - lens;
-    let v = volume(&u);
-    assert!(
-        (v - exact).abs() < 0.005 * exact,
-        "volume {v} vs exact {exact}"
-    );
+    assert_volume_near(volume(&u), exact, 0.005, "exact lens");
 }
 
 /// Two tori (major radius 1, minor 0.4) side by side in one plane. Shifted
@@ -235,14 +247,7 @@ fn containment_union_refuses_what_bounds_no_solid() {
     let a = primitive("@sphere:2");
     let mut open = translate(&a, DVec3::new(0.5, 0.0, 0.0));
     open.triangles.pop();
-    assert_eq!(
-        holey_topo::union(&a, &open, &Options::default()).unwrap_err(),
-        UnionError::NotClosed(Solid::B)
-    );
-    assert_eq!(
-        holey_topo::union(&open, &a, &Options::default()).unwrap_err(),
-        UnionError::NotClosed(Solid::A)
-    );
+    refuses_in_both_orders(&open, &a, UnionError::NotClosed);
     let mut nan = a.clone();
     nan.positions[3].y = f64::NAN;
     let e = holey_topo::union(&nan, &a, &Options::default()).unwrap_err();
@@ -267,14 +272,7 @@ fn containment_union_refuses_a_solid_crossing_itself_where_they_meet() {
     let s = primitive("@sphere:3");
     let a = join(&s, &translate(&s, DVec3::new(0.8, 0.0, 0.0)));
     let near = translate(&s, DVec3::new(0.4, 0.0, 1.2));
-    assert_eq!(
-        holey_topo::union(&a, &near, &Options::default()).unwrap_err(),
-        UnionError::SelfIntersecting(Solid::A)
-    );
-    assert_eq!(
-        holey_topo::union(&near, &a, &Options::default()).unwrap_err(),
-        UnionError::SelfIntersecting(Solid::B)
-    );
+    refuses_in_both_orders(&a, &near, UnionError::SelfIntersecting);
     let away = translate(&s, DVec3::new(-1.5, 0.0, 0.0));
     let u = holey_topo::union(&a, &away, &Options::default())
         .expect("B meets A away from its crossing");

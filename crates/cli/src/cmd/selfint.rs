@@ -116,16 +116,8 @@ pub fn find(name: &str) -> Result<Found> {
 /// The JSON object `--json` prints, with the pairs listed when `pairs`.
 pub fn report_json(name: &str, found: &Found, pairs: bool) -> serde_json::Value {
     let Found { mesh, x, seconds } = found;
-    let mut v = json!({
-        "mesh": name,
-        "triangles": mesh.triangles.len(),
-        "intersecting_pairs": x.pairs.len(),
-        "intersection_points": x.points.len(),
-        "triple_points": x.triple_points(),
-        "intersection_edges": x.pieces.len(),
-        "intersection_curves": x.curve_count,
-        "seconds": seconds,
-    });
+    let mut v = x.counts_json(mesh.triangles.len(), *seconds);
+    v["mesh"] = json!(name);
     if pairs {
         v["pairs"] = json!(x.pairs);
     }

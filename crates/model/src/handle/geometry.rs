@@ -95,40 +95,8 @@ impl HermiteCurve {
     /// `H(t ± step)` is used, and failing that `fallback`, so the result
     /// is always a finite unit vector.
     pub fn unit_tangent(&self, t: f64, step: f64, fallback: DVec3) -> DVec3 {
-        unit_tangent(
-            |s| self.point(s),
-            self.velocity(t),
-            self.scale(),
-            t,
-            step,
-            fallback,
-        )
+        HandlePath::Hermite(*self).unit_tangent(t, step, fallback)
     }
-}
-
-/// The unit tangent of a curve `point` with velocity `v` at `t`, sampled
-/// every `step`: `v` normalised, or where it vanishes (relative to
-/// `scale`) the chord between the neighbouring samples, or where that
-/// vanishes too (relative to `scale` and the samples' size) `fallback`.
-fn unit_tangent(
-    point: impl Fn(f64) -> DVec3,
-    v: DVec3,
-    scale: f64,
-    t: f64,
-    step: f64,
-    fallback: DVec3,
-) -> DVec3 {
-    let tiny = 1e-12 * scale;
-    if v.length() > tiny {
-        return v.normalize();
-    }
-    // Points carry rounding relative to their size, not the curve's.
-    let (ahead, behind) = (point((t + step).min(1.0)), point((t - step).max(0.0)));
-    let chord = ahead - behind;
-    if chord.length() > 1e-12 * (scale + ahead.length().max(behind.length())) {
-        return chord.normalize();
-    }
-    fallback
 }
 
 /// The cubic Bernstein basis `[(1 − t)³, 3t(1 − t)², 3t²(1 − t), t³]`.
@@ -189,14 +157,7 @@ impl BezierCurve {
     /// The unit tangent at `t`, as [`HermiteCurve::unit_tangent`]: never
     /// NaN, also at cusps.
     pub fn unit_tangent(&self, t: f64, step: f64, fallback: DVec3) -> DVec3 {
-        unit_tangent(
-            |s| self.point(s),
-            self.velocity(t),
-            self.scale(),
-            t,
-            step,
-            fallback,
-        )
+        HandlePath::Bezier(*self).unit_tangent(t, step, fallback)
     }
 }
 
@@ -226,12 +187,31 @@ impl HandlePath {
         }
     }
 
-    /// The unit tangent at `t`, never NaN (see [`HermiteCurve::unit_tangent`]).
+    /// The unit tangent at `t`, for a curve sampled every `step`, never NaN
+    /// (see [`HermiteCurve::unit_tangent`]): `H′(t)` normalised, or where
+    /// it vanishes (relative to the curve's scale) the chord between the
+    /// neighbouring samples, or where that vanishes too (relative to the
+    /// scale and the samples' size) `fallback`. Both curves' own
+    /// `unit_tangent` come here.
     pub fn unit_tangent(&self, t: f64, step: f64, fallback: DVec3) -> DVec3 {
-        match self {
-            HandlePath::Hermite(c) => c.unit_tangent(t, step, fallback),
-            HandlePath::Bezier(c) => c.unit_tangent(t, step, fallback),
+        let scale = match self {
+            HandlePath::Hermite(c) => c.scale(),
+            HandlePath::Bezier(c) => c.scale(),
+        };
+        let v = self.velocity(t);
+        if v.length() > 1e-12 * scale {
+            return v.normalize();
         }
+        // Points carry rounding relative to their size, not the curve's.
+        let (ahead, behind) = (
+            self.point((t + step).min(1.0)),
+            self.point((t - step).max(0.0)),
+        );
+        let chord = ahead - behind;
+        if chord.length() > 1e-12 * (scale + ahead.length().max(behind.length())) {
+            return chord.normalize();
+        }
+        fallback
     }
 }
 

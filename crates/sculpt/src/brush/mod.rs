@@ -517,11 +517,8 @@ mod tests {
     use super::*;
 
     fn tetra() -> TriMesh {
-        let (positions, triangles) = holey_testkit::meshes::tetrahedron();
-        TriMesh {
-            positions: positions.map(DVec3::from_array).to_vec(),
-            triangles: triangles.to_vec(),
-        }
+        let (positions, triangles) = holey_testkit::tetrahedron();
+        TriMesh::from_arrays(&positions, &triangles)
     }
 
     #[test]

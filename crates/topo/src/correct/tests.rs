@@ -12,17 +12,9 @@ fn grid(n: u32, s: f64) -> TriMesh {
             positions.push(DVec3::new(i as f64, j as f64, 0.0) * s);
         }
     }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    let mut triangles = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
     TriMesh {
         positions,
-        triangles,
+        triangles: holey_testkit::grid_triangles(n, n),
     }
 }
 

@@ -166,13 +166,7 @@ fn false_edges_close_a_parity_change_that_no_curve_separates() {
             m.positions.push(DVec3::new(i as f64, j as f64, 0.0));
         }
     }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    for j in 0..n {
-        for i in 0..n {
-            m.triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            m.triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
+    m.triangles = holey_testkit::grid_triangles(n, n);
     let s = setup(&m);
     assert_eq!(s.x.curve_count, 0);
     let c = DVec3::new(4.0, 4.0, 0.0);
