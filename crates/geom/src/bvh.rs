@@ -444,6 +444,30 @@ impl Bvh {
         self.self_overlaps_pruned(KeepAll, f)
     }
 
+    /// An estimate of how many pairs [`Bvh::self_overlaps`] would find
+    /// that satisfy `f`, from at most `samples` primitives spread over the
+    /// tree: each one's overlapping primitives are counted, and the sum is
+    /// scaled to the whole tree (each pair is seen from both ends).
+    pub fn estimate_self_overlaps(&self, samples: usize, f: impl Fn(u32, u32) -> bool) -> f64 {
+        let n = self.prims.len();
+        if n == 0 || samples == 0 {
+            return 0.0;
+        }
+        let step = n.div_ceil(samples).max(1);
+        let mut seen = 0usize;
+        let mut found = 0usize;
+        for s in (0..n).step_by(step) {
+            let p = self.prims[s];
+            seen += 1;
+            self.for_each_overlap(&self.prim_boxes[s], |q| {
+                if q != p && f(p, q) {
+                    found += 1;
+                }
+            });
+        }
+        found as f64 * n as f64 / seen as f64 / 2.0
+    }
+
     /// Per node, the group every primitive below it belongs to, or
     /// [`NO_GROUP`] when they are not all of one group; `group_of` gives
     /// each primitive's group (by primitive id). Nodes come after their
@@ -1038,6 +1062,34 @@ mod tests {
         let own: Vec<u32> = (0..boxes.len() as u32).collect();
         let all = bvh.self_overlaps_apart_filter_map(&bvh.node_groups(&own), |a, b| Some((a, b)));
         assert_eq!(all.0, bvh.self_overlaps());
+    }
+
+    /// Sampled from every primitive, the estimate is the exact count of
+    /// the pairs satisfying the predicate; from a sample, it is near it.
+    #[test]
+    fn estimated_self_overlaps_count_the_pairs_the_descent_finds() {
+        let mut rng = Rng::new(7);
+        let boxes = random_boxes(&mut rng, 5_000, 0.03);
+        let bvh = Bvh::build(&boxes).expect("finite");
+        let odd = |a: u32, b: u32| (a + b) % 2 == 1;
+        let exact = bvh
+            .self_overlaps()
+            .iter()
+            .filter(|&&(a, b)| odd(a, b))
+            .count();
+        assert!(exact > 1000, "{exact}");
+        assert_eq!(bvh.estimate_self_overlaps(5_000, odd), exact as f64);
+        let sampled = bvh.estimate_self_overlaps(500, odd);
+        assert!(
+            (sampled / exact as f64 - 1.0).abs() < 0.2,
+            "{sampled} against {exact}"
+        );
+        assert_eq!(
+            Bvh::build(&[])
+                .expect("empty")
+                .estimate_self_overlaps(10, odd),
+            0.0
+        );
     }
 
     #[test]

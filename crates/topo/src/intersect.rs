@@ -700,13 +700,21 @@ fn segments(
             }),
             Vec::new(),
         ),
-        Candidates::Within(_) | Candidates::Distinct { .. } => {
+        Candidates::Within(tree) | Candidates::Distinct { tree, .. } => {
+            let triangle_of = |i: u32| match candidates {
+                Candidates::Distinct { distinct, .. } => distinct.triangles[i as usize],
+                _ => i,
+            };
+            let pays = patches::pay(tree, triangle_of, tris, ids);
             let (planes, (flat_stars, flat_patches)) = rayon::join(
                 || Plane::all(tris, positions),
                 || {
                     rayon::join(
                         || stars::flat_stars(tris, positions, ids),
-                        || patches::flat_patches(tris, positions, ids),
+                        || match pays {
+                            true => patches::flat_patches(tris, positions, ids),
+                            false => Vec::new(),
+                        },
                     )
                 },
             );
@@ -731,6 +739,7 @@ fn segments(
     // Two triangles of one certified flat patch meet only where they
     // share a vertex or an edge ([`patches`]): the descent skips them.
     let (segs, candidates): (Vec<Segment>, usize) = match candidates {
+        Candidates::Within(bvh) if flat_patches.is_empty() => bvh.self_overlaps_filter_map(test),
         Candidates::Within(bvh) => {
             bvh.self_overlaps_apart_filter_map(&bvh.node_groups(&flat_patches), test)
         }
@@ -748,15 +757,19 @@ fn segments(
         }),
         Candidates::Distinct { tree, distinct } => {
             let triangles = &distinct.triangles;
-            let patch_of: Vec<u32> = triangles
-                .iter()
-                .map(|&t| flat_patches[t as usize])
-                .collect();
-            let groups = tree.node_groups(&patch_of);
-            let (found, candidates) = tree.self_overlaps_apart_filter_map(&groups, |i, j| {
+            let test_pair = |i: u32, j: u32| {
                 let (t1, t2) = (triangles[i as usize], triangles[j as usize]);
                 test(t1.min(t2), t1.max(t2))
-            });
+            };
+            let (found, candidates) = if flat_patches.is_empty() {
+                tree.self_overlaps_filter_map(test_pair)
+            } else {
+                let patch_of: Vec<u32> = triangles
+                    .iter()
+                    .map(|&t| flat_patches[t as usize])
+                    .collect();
+                tree.self_overlaps_apart_filter_map(&tree.node_groups(&patch_of), test_pair)
+            };
             // Every copy of one crosses every copy of the other alike.
             let mut all = Vec::with_capacity(found.len());
             for (t1, t2, seg) in found {
