@@ -1076,7 +1076,9 @@ pub(crate) fn intersections_among(
     let tris = &mesh.triangles;
     let sym = Symbolic { positions, ids };
     let (mut segs, candidates) = segments(mesh, positions, ids, candidates, limit, abort)?;
-    let filtered = candidates - segs.len();
+    // Copies of a repeated triangle ([`Distinct`]) add pairs the
+    // descent never counted.
+    let filtered = candidates.saturating_sub(segs.len());
     segs.sort_by_key(|s| (s.0, s.1));
     segs.dedup_by_key(|s| (s.0, s.1));
 

@@ -630,4 +630,90 @@ mod tests {
             assert!(grid(moved).iter().all(|&q| q == NO_PATCH), "{moved}");
         }
     }
+
+    /// A grid of `n` × `n` unit quads in the plane z = 0 (axis-aligned,
+    /// so points on diagonals are exact), each split along the diagonal
+    /// from its lower-left corner, without the quads `holes` (by lower-left
+    /// corner).
+    fn square_grid(n: u32, holes: &[(u32, u32)]) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let mut positions = Vec::new();
+        for y in 0..=n {
+            for x in 0..=n {
+                positions.push(DVec3::new(x as f64, y as f64, 0.0));
+            }
+        }
+        let mut tris = Vec::new();
+        for y in 0..n {
+            for x in (0..n).filter(|&x| !holes.contains(&(x, y))) {
+                let v = (n + 1) * y + x;
+                tris.push([v, v + 1, v + n + 2]);
+                tris.push([v, v + n + 2, v + n + 1]);
+            }
+        }
+        (positions, tris)
+    }
+
+    /// Two holes meeting at one corner make one boundary that passes a
+    /// vertex twice (a pinch): not certified, though every triangle turns
+    /// the same way and no two overlap. With one hole, an annulus,
+    /// certified.
+    #[test]
+    fn a_boundary_through_a_vertex_twice_is_not_certified() {
+        let (p, t) = square_grid(4, &[(1, 1)]);
+        assert!(one_patch(&patches_of(&p, &t)));
+        let (p, t) = square_grid(4, &[(1, 1), (2, 2)]);
+        assert!(patches_of(&p, &t).iter().all(|&q| q == NO_PATCH));
+    }
+
+    /// A T-junction: one quad's diagonal split on one side by two points
+    /// the other side does not have. The hole between the sides is a cycle
+    /// of edges on one line: not certified, in the plane or with the two
+    /// points lifted a little (still on the diagonal in projection, and
+    /// their triangles still of the class of the plane: lifted much, they
+    /// would leave the patch, and the hole they leave is a patch's own).
+    #[test]
+    fn a_t_junction_is_not_certified() {
+        for lift in [0.0, 0.05] {
+            let (mut p, mut t) = square_grid(3, &[]);
+            // Quad (1, 1): corners 5, 6, 10, 9; its upper triangle
+            // [5, 10, 9] becomes three through points on the diagonal 5–10.
+            let m1 = p.len() as u32;
+            p.push(DVec3::new(1.25, 1.25, lift));
+            p.push(DVec3::new(1.75, 1.75, lift));
+            let upper = t.iter().position(|&x| x == [5, 10, 9]).unwrap();
+            t.remove(upper);
+            t.extend([[5, m1, 9], [m1, m1 + 1, 9], [m1 + 1, 10, 9]]);
+            assert!(
+                patches_of(&p, &t).iter().all(|&q| q == NO_PATCH),
+                "lift {lift}"
+            );
+        }
+    }
+
+    /// A fan around a centre sweeping exactly one turn whose last rim
+    /// point lies straight above its first: the two edges from the centre
+    /// along the boundary lie on one segment in projection (a fold at the
+    /// centre), and the rim's last edge touches the first edge from the
+    /// centre, which it does not follow. Not certified. Short of the
+    /// turn, certified.
+    #[test]
+    fn a_fan_closing_over_itself_is_not_certified() {
+        let fan = |turn: f64| {
+            let steps = 12;
+            let mut positions = vec![DVec3::ZERO];
+            for i in 0..=steps {
+                let a = turn * i as f64 / steps as f64;
+                let (s, c) = if i == steps && turn == std::f64::consts::TAU {
+                    (0.0, 1.0)
+                } else {
+                    a.sin_cos()
+                };
+                positions.push(DVec3::new(c, s, 0.01 * i as f64));
+            }
+            let tris: Vec<[u32; 3]> = (1..=steps).map(|i| [0, i, i + 1]).collect();
+            patches_of(&positions, &tris)
+        };
+        assert!(one_patch(&fan(5.0)));
+        assert!(fan(std::f64::consts::TAU).iter().all(|&q| q == NO_PATCH));
+    }
 }

@@ -674,3 +674,35 @@ fn flat_patches_pay_on_sliver_caps_and_not_on_a_smooth_sphere() {
     let sphere = crate::test_meshes::uv_sphere(DVec3::ZERO, 1.0, 40, 80);
     assert!(!pays(&sphere));
 }
+
+/// The check with certified patches, end to end, where it pays: two
+/// crossing elliptic prisms whose caps are fans of slivers, with some triangles repeated
+/// and some repeated flipped (so the candidates go through [`Distinct`]),
+/// find the pairs that every pair tested one by one finds.
+#[test]
+fn sliver_prisms_with_repeated_triangles_cross_as_every_pair_says() {
+    let ellipse = |n: usize| -> Vec<DVec3> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                DVec3::new(2.0 * a.cos(), a.sin(), 0.0)
+            })
+            .collect()
+    };
+    let a = fan_prism(&ellipse(120), 0.3, turn, DVec3::ZERO);
+    let b = fan_prism(&ellipse(80), 0.3, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
+    let mut m = join(&a, &b);
+    let tree = Bvh::build(&triangle_boxes(&m, &m.positions, 0..m.triangles.len())).unwrap();
+    let ids = position_classes(&m.positions).unwrap();
+    assert!(patches::pay(&tree, |i| i, &m.triangles, &ids));
+    let patch = patches::flat_patches(&m.triangles, &m.positions, &ids);
+    assert!(patch.iter().filter(|&&p| p != patches::NO_PATCH).count() > 200);
+    for k in [3usize, 150, 333] {
+        let [x, y, z] = m.triangles[k];
+        m.triangles.push([x, y, z]);
+        m.triangles.push([x, z, y]);
+    }
+    let brute = brute_pairs(&m);
+    assert!(brute.len() > 20, "the prisms cross: {}", brute.len());
+    assert_eq!(run(&m).pairs, brute);
+}
