@@ -938,12 +938,7 @@ mod tests {
     /// height 0.3), its caps fans from one outline point, turned by
     /// `turn` and moved by `at`.
     fn fan_prism(n: u32, r: f64, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMesh {
-        let outline: Vec<DVec3> = (0..n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
-                DVec3::new(2.0 * r * a.cos(), r * a.sin(), 0.0)
-            })
-            .collect();
+        let outline = crate::intersect::tests::ellipse(n as usize, 2.0 * r, r);
         crate::intersect::tests::fan_prism(&outline, 0.3, turn, at)
     }
 

@@ -116,9 +116,10 @@ pub(crate) fn flat_patches(tris: &[[u32; 3]], positions: &[DVec3], ids: &[u32]) 
     let certified: Vec<bool> = (0..count)
         .into_par_iter()
         .map(|c| {
+            // Unclassed triangles are never joined: their sets are
+            // singletons, below the size.
             let class = classes[first[c] as usize];
             size[c] as usize >= MIN_TRIANGLES
-                && class != NO_CLASS
                 && Boundary::of(
                     &boundary[start[c] as usize..start[c + 1] as usize],
                     tris,
@@ -476,22 +477,12 @@ fn strictly_apart(p0: DVec2, p1: DVec2, q0: DVec2, q1: DVec2) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::intersect::tests::ellipse;
 
     /// `p` turned about (1, 2, 3) by 0.7 radians and moved: no axis of
     /// the patch stays put.
     fn turned(p: DVec3) -> DVec3 {
         crate::intersect::tests::turn(p) + DVec3::new(3.0, -1.0, 0.5)
-    }
-
-    /// A convex outline of `n` points in the plane z = 0 (an ellipse),
-    /// counter-clockwise.
-    fn ellipse(n: usize, rx: f64, ry: f64) -> Vec<DVec3> {
-        (0..n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * i as f64 / n as f64;
-                DVec3::new(rx * a.cos(), ry * a.sin(), 0.0)
-            })
-            .collect()
     }
 
     /// The polygon `outline` triangulated as a zigzag strip between its

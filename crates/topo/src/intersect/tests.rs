@@ -472,6 +472,17 @@ pub(crate) fn fan_prism(
     m
 }
 
+/// A convex outline of `n` points in the plane z = 0, counter-clockwise:
+/// the ellipse of semi-axes `rx` and `ry`.
+pub(crate) fn ellipse(n: usize, rx: f64, ry: f64) -> Vec<DVec3> {
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            DVec3::new(rx * a.cos(), ry * a.sin(), 0.0)
+        })
+        .collect()
+}
+
 /// A rotation about (1, 2, 3) by 0.7 radians: no axis stays put.
 pub(crate) fn turn(q: DVec3) -> DVec3 {
     let axis = DVec3::new(1.0, 2.0, 3.0).normalize();
@@ -681,16 +692,13 @@ fn flat_patches_pay_on_sliver_caps_and_not_on_a_smooth_sphere() {
 /// find the pairs that every pair tested one by one finds.
 #[test]
 fn sliver_prisms_with_repeated_triangles_cross_as_every_pair_says() {
-    let ellipse = |n: usize| -> Vec<DVec3> {
-        (0..n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * i as f64 / n as f64;
-                DVec3::new(2.0 * a.cos(), a.sin(), 0.0)
-            })
-            .collect()
-    };
-    let a = fan_prism(&ellipse(120), 0.3, turn, DVec3::ZERO);
-    let b = fan_prism(&ellipse(80), 0.3, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
+    let a = fan_prism(&ellipse(120, 2.0, 1.0), 0.3, turn, DVec3::ZERO);
+    let b = fan_prism(
+        &ellipse(80, 2.0, 1.0),
+        0.3,
+        turn,
+        turn(DVec3::new(0.9, 0.2, 0.15)),
+    );
     let mut m = join(&a, &b);
     let tree = Bvh::build(&triangle_boxes(&m, &m.positions, 0..m.triangles.len())).unwrap();
     let ids = position_classes(&m.positions).unwrap();
