@@ -7,6 +7,8 @@
 //! Booleans and sculpting take it ([`tri`]: checks, edge tables,
 //! closedness, pinches, compaction); the two convert into each other.
 //!
+//! - [`rows`] files items into numbered rows by a counting sort (the
+//!   sides of a mesh under their smaller end).
 //! - [`slots`] removes entries of a numbered array by filling the gaps
 //!   from its end (what the sculpt remesher and the modeler's frames do).
 //! - [`analysis`] measures any soup (`holey info`): counts, boundary,
@@ -21,6 +23,7 @@
 pub mod analysis;
 mod finite;
 mod poly;
+pub mod rows;
 pub mod slots;
 pub mod tri;
 pub mod union_find;
