@@ -143,6 +143,42 @@ impl BoxFrame {
     }
 }
 
+impl BoxFrame {
+    /// A point from `start` along the frame's first axis (+x in the
+    /// identity) whose exact image lies past `bounds`, a box in this
+    /// frame holding boxes measured by [`BoxFrame::triangle_box`]: so it
+    /// lies outside every triangle boxed within, and outside the solid
+    /// they bound (the far end of a containment ray). The exact image is
+    /// within `4u(|x|+|y|+|z|)` of the computed one (the module's note),
+    /// so the computed one must clear `bounds` by twice that. `None`
+    /// when the coordinates are too large for such a point.
+    pub fn beyond(&self, start: DVec3, bounds: &Aabb) -> Option<DVec3> {
+        let span = (bounds.max.x - bounds.min.x)
+            .max(bounds.max.x.abs())
+            .max(1.0);
+        let Some([first, ..]) = self.axes else {
+            let far_x = bounds.max.x.max(start.x) + span;
+            return far_x
+                .is_finite()
+                .then_some(DVec3::new(far_x, start.y, start.z));
+        };
+        let mut step = (bounds.max.x - first.dot(start)).max(0.0) + span;
+        // Rounding can leave the first tries short only by a few ulps of
+        // the coordinates; doubling the step clears them.
+        for _ in 0..8 {
+            let end = start + first * step;
+            if !end.is_finite() {
+                return None;
+            }
+            if first.dot(end) - SLACK * end.abs().element_sum() > bounds.max.x {
+                return Some(end);
+            }
+            step *= 2.0;
+        }
+        None
+    }
+}
+
 /// A triangle's normal `n = (b − a) × (c − a)` made sign-free (its
 /// largest coordinate positive), whose length is the doubled area; `None`
 /// without area or corners.

@@ -839,7 +839,7 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
 /// themselves; one that does needs the winding-number arrangement
 /// ([`crate::boolean_by_winding`]).
 pub fn crosses_itself(mesh: &TriMesh) -> Result<bool, TopoError> {
-    Ok(crate::intersect::crosses_itself_keeping_tree(mesh)?.0)
+    Ok(crate::intersect::crosses_itself_keeping_tree(mesh, None)?.0)
 }
 
 /// The self-intersections of a mesh (`holey selfint`).

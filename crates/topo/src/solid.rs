@@ -29,7 +29,7 @@
 //! fold it is the result Lemma 8.1 says parity gives.
 
 use glam::DVec3;
-use holey_geom::{Aabb, Bvh, SymPoint, position_classes, segment_triangle_intersect};
+use holey_geom::{Aabb, BoxFrame, Bvh, SymPoint, position_classes, segment_triangle_intersect};
 use rayon::prelude::*;
 
 use crate::cut::{Deletion, cut};
@@ -106,20 +106,29 @@ pub(crate) fn ray_crossings_odd(
     far_id: u32,
     triangle: impl Fn(u32) -> [SymPoint; 3],
 ) -> Option<bool> {
+    ray_crossings_odd_in(&BoxFrame::IDENTITY, tree, start, far_id, triangle)
+}
+
+/// [`ray_crossings_odd`] with `tree`'s boxes measured in `frame`: the ray
+/// runs along the frame's first axis ([`BoxFrame::beyond`]), so that its
+/// box there is as thin as an axis-aligned ray's in the world's axes.
+/// Any ray from `start` to a point outside the solid crosses its surface
+/// an odd number of times exactly when `start` is inside (in the
+/// perturbed world too), so the answer does not depend on the frame.
+pub(crate) fn ray_crossings_odd_in(
+    frame: &BoxFrame,
+    tree: &Bvh,
+    start: SymPoint,
+    far_id: u32,
+    triangle: impl Fn(u32) -> [SymPoint; 3],
+) -> Option<bool> {
     let bounds = tree.bounds();
     if !bounds.is_finite() {
         return Some(false);
     }
-    let span = (bounds.max.x - bounds.min.x)
-        .max(bounds.max.x.abs())
-        .max(1.0);
-    let far_x = bounds.max.x.max(start.pos.x) + span;
-    if !far_x.is_finite() {
-        return None;
-    }
-    let end = SymPoint::new(DVec3::new(far_x, start.pos.y, start.pos.z), far_id);
+    let end = SymPoint::new(frame.beyond(start.pos, &bounds)?, far_id);
     let mut odd = false;
-    tree.for_each_overlap(&Aabb::new(start.pos, end.pos), |i| {
+    tree.for_each_overlap(&frame.triangle_box([start.pos, end.pos, end.pos]), |i| {
         let [a, b, c] = triangle(i);
         if segment_triangle_intersect(start, end, a, b, c) {
             odd = !odd;
@@ -201,4 +210,94 @@ pub(crate) fn relabel(
         .map(|&v| arrangement.origin[v as usize])
         .collect();
     Some((out, origin, deleted))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::intersect::tests::{ellipse, fan_prism, turn};
+
+    /// The solid angle of triangle `abc` seen from `p` (Van Oosterom and
+    /// Strackee), written here apart from the library's.
+    fn solid_angle(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
+        let (a, b, c) = (a - p, b - p, c - p);
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let numerator = a.dot(b.cross(c));
+        let denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+        2.0 * numerator.atan2(denominator)
+    }
+
+    /// A ray along a turned frame's first axis, through a tree of boxes
+    /// measured in that frame, says inside exactly where the world's +x
+    /// ray does, and where the winding number (solid angles summed here)
+    /// is 1: at random points around a turned, slivered part, and at
+    /// points exactly on its corners, edges and faces with identities of
+    /// their own (decided by the perturbation alike).
+    #[test]
+    fn a_ray_in_a_turned_frame_finds_what_the_world_ray_finds() {
+        let m = fan_prism(
+            &ellipse(120, 2.0, 1.0),
+            0.3,
+            turn,
+            DVec3::new(0.3, -0.2, 5.0),
+        );
+        let n = m.positions.len() as u32;
+        let corners = |t: u32| m.triangles[t as usize].map(|v| m.positions[v as usize]);
+        let sym =
+            |t: u32| m.triangles[t as usize].map(|v| SymPoint::new(m.positions[v as usize], v));
+        let frame = BoxFrame::of_triangles(&[(&m.positions, &m.triangles)]);
+        assert!(!frame.is_identity(), "the part is turned");
+        let boxes = |f: &BoxFrame| -> Vec<Aabb> {
+            (0..m.triangles.len() as u32)
+                .map(|t| f.triangle_box(corners(t)))
+                .collect()
+        };
+        let framed = Bvh::build(&boxes(&frame)).unwrap();
+        let world = Bvh::build(&boxes(&BoxFrame::IDENTITY)).unwrap();
+        let mut rng = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut inside = 0;
+        for k in 0..600u32 {
+            let start = SymPoint::new(
+                turn(DVec3::new(
+                    4.4 * unit() - 2.2,
+                    2.2 * unit() - 1.1,
+                    0.4 * unit() - 0.05,
+                )) + DVec3::new(0.3, -0.2, 5.0),
+                n + 1 + k,
+            );
+            let along = ray_crossings_odd_in(&frame, &framed, start, n, sym).unwrap();
+            assert_eq!(Some(along), ray_crossings_odd(&world, start, n, sym));
+            let w: f64 = (0..m.triangles.len() as u32)
+                .map(|t| solid_angle(start.pos, corners(t)))
+                .sum::<f64>()
+                / (4.0 * std::f64::consts::PI);
+            assert!(
+                (w - f64::from(u8::from(along))).abs() < 1e-6,
+                "w = {w} at {k}"
+            );
+            inside += usize::from(along);
+        }
+        assert!((150..450).contains(&inside), "{inside} of 600 inside");
+        // On the surface: every corner, the middle of every fifth edge
+        // and the centroid of every fifth face, each a point of its own.
+        let mut on = Vec::new();
+        for tri in m.triangles.iter().step_by(5) {
+            let [a, b, c] = tri.map(|v| m.positions[v as usize]);
+            on.extend([a, (a + b) * 0.5, (a + b + c) / 3.0]);
+        }
+        for (k, p) in on.into_iter().enumerate() {
+            let start = SymPoint::new(p, n + 1000 + k as u32);
+            assert_eq!(
+                ray_crossings_odd_in(&frame, &framed, start, n, sym),
+                ray_crossings_odd(&world, start, n, sym),
+                "point {k} on the surface"
+            );
+        }
+    }
 }

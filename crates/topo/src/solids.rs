@@ -31,7 +31,6 @@ use crate::mesh::TriMesh;
 use crate::union::{NUDGES, Operation, PreparedPair, UnionError, boolean, boolean_robust, nudge};
 use crate::winding_boolean::{
     WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_robust, needs_arrangement,
-    needs_arrangement_when_closed,
 };
 
 /// The default direction B arrives from in the motion: generic, so that
@@ -263,16 +262,16 @@ pub fn solid_boolean(
         let (out, at_end) = by_motion(a, b, options)?;
         return Ok(finish(Method::Motion, Computed::Parity(out), Some(at_end)));
     }
-    // The containment method's edge tables, built before the check: it
-    // reads both surfaces' closedness from them, and the method uses them.
+    // The containment method's edge tables and trees, built beside the
+    // check: it reads both surfaces' closedness from them, and the method
+    // uses them.
     let mut prepared = None;
     let winding = match (inputs, options.method) {
         (_, Some(Method::Winding)) => true,
-        ([a, b], None) if options.check => match PreparedPair::new(a, b, op) {
+        ([a, b], None) if options.check => match PreparedPair::with_checks(a, b, op) {
             Ok(pair) => {
-                let (needs, trees) = needs_arrangement_when_closed(a, b, pair.closed())?;
-                prepared = Some(pair.with_checked_trees(trees));
-                needs
+                prepared = pair;
+                prepared.is_none()
             }
             // A mesh the method refuses: the check says why.
             Err(_) => needs_arrangement(a, b)?,

@@ -58,19 +58,22 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use glam::DVec3;
-use holey_geom::{Aabb, BoxFrame, Bvh, SymPoint};
+use holey_geom::{BoxFrame, Bvh, SymPoint};
 use rayon::prelude::*;
 
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
 use crate::intersect::{
-    Candidates, FramedTree, Primitives, any_intersection_among, default_pair_limit,
-    intersections_among, triangle_boxes,
+    FramedTree, any_intersection_among, default_pair_limit, intersections_among, triangle_boxes,
 };
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
-use crate::solid::{ray_crossings_odd, signed_volume};
+use crate::solid::{ray_crossings_odd_in, signed_volume};
 use crate::union_find::UnionFind;
+use crate::winding_boolean::needs_arrangement_when_closed;
+
+mod near;
+use near::{Near, NearSets};
 
 /// Which of the two solids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -195,25 +198,32 @@ fn identities(pair: &Pair) -> Vec<u32> {
 }
 
 /// What a union needs of one solid besides its mesh, built once: its
-/// edge table (with the closedness and orientation summary), its tree,
-/// whether a triangle repeats a corner, and its orientation.
+/// surface's edge table and orientation ([`Surface`]) and a tree of its
+/// triangles.
 struct Parts {
+    surface: Surface,
+    /// A tree of every triangle's box, for the containment rays and the
+    /// pairs across: in the world's axes, or the self-crossing check's in
+    /// the frame it chose ([`crate::intersect::crosses_itself_keeping_tree`],
+    /// [`PreparedPair::with_checks`]), which [`Near`] then reuses.
+    tree: FramedTree,
+}
+
+/// What a union needs of one solid's surface: its edge table (with the
+/// closedness and orientation summary), whether a triangle repeats a
+/// corner, and its orientation.
+struct Surface {
     edges: Edges,
-    tree: Bvh,
     /// No triangle repeats a corner.
     proper: bool,
     /// The signed volume is positive: the triangles face outward.
     outward: bool,
-    /// The tree the self-crossing check of the solid was made with, in
-    /// its own frame ([`crate::intersect::crosses_itself_keeping_tree`]),
-    /// when one ran: [`Near`] reuses it.
-    checked: Option<FramedTree>,
 }
 
-impl Parts {
-    fn new(mesh: &TriMesh) -> Result<Parts, UnionError> {
+impl Surface {
+    fn new(mesh: &TriMesh) -> Result<Surface, UnionError> {
         mesh.check()?;
-        let ((edges, proper), (tree, outward)) = rayon::join(
+        let ((edges, proper), outward) = rayon::join(
             || {
                 rayon::join(
                     || Edges::new(mesh),
@@ -225,25 +235,12 @@ impl Parts {
                     },
                 )
             },
-            || {
-                rayon::join(
-                    || {
-                        Bvh::build(&triangle_boxes(
-                            mesh,
-                            &mesh.positions,
-                            0..mesh.triangles.len(),
-                        ))
-                    },
-                    || signed_volume(&mesh.positions, &mesh.triangles) > 0.0,
-                )
-            },
+            || signed_volume(&mesh.positions, &mesh.triangles) > 0.0,
         );
-        Ok(Parts {
+        Ok(Surface {
             edges,
-            tree: tree.map_err(TopoError::from)?,
             proper,
             outward,
-            checked: None,
         })
     }
 
@@ -258,6 +255,34 @@ impl Parts {
     /// opposite directions.
     fn oriented(&self) -> bool {
         self.proper && self.edges.summary.all_opposite
+    }
+}
+
+/// A tree of every triangle of `mesh` (checked) in the world's axes.
+fn world_tree(mesh: &TriMesh) -> Result<FramedTree, UnionError> {
+    let boxes = triangle_boxes(mesh, &mesh.positions, 0..mesh.triangles.len());
+    Ok(FramedTree {
+        frame: BoxFrame::IDENTITY,
+        tree: Bvh::build(&boxes).map_err(TopoError::from)?,
+    })
+}
+
+impl Parts {
+    fn new(mesh: &TriMesh) -> Result<Parts, UnionError> {
+        mesh.check()?;
+        let (surface, tree) = rayon::join(|| Surface::new(mesh), || world_tree(mesh));
+        Ok(Parts {
+            surface: surface?,
+            tree: tree?,
+        })
+    }
+
+    fn closed(&self) -> bool {
+        self.surface.closed()
+    }
+
+    fn oriented(&self) -> bool {
+        self.surface.oriented()
     }
 }
 
@@ -292,9 +317,9 @@ impl PreparedSolid {
     }
 }
 
-/// Crossings, mod 2, of the ray from `start` towards +x with the
-/// triangles of the solid `tree` holds (primitive `i` is triangle
-/// `offset + i`): odd iff `start` is inside that solid.
+/// Crossings, mod 2, of a ray from `start` with the triangles of the
+/// solid `tree` holds (primitive `i` is triangle `offset + i`): odd iff
+/// `start` is inside that solid.
 struct Rays<'a> {
     positions: &'a [DVec3],
     triangles: &'a [[u32; 3]],
@@ -304,9 +329,9 @@ struct Rays<'a> {
 }
 
 impl Rays<'_> {
-    fn inside(&self, start: SymPoint, tree: &Bvh, offset: u32) -> Option<bool> {
+    fn inside(&self, start: SymPoint, tree: &FramedTree, offset: u32) -> Option<bool> {
         let sym = |v: u32| SymPoint::new(self.positions[v as usize], self.ids[v as usize]);
-        ray_crossings_odd(tree, start, self.far_id, |i| {
+        ray_crossings_odd_in(&tree.frame, &tree.tree, start, self.far_id, |i| {
             self.triangles[(offset + i) as usize].map(sym)
         })
     }
@@ -369,16 +394,25 @@ pub fn boolean(
     PreparedPair::new(a, b, op)?.exact(options)
 }
 
-/// B as `op` takes it ([`operand`]) and what a Boolean builds of each
-/// solid alone.
-fn prepare<'b>(
-    a: &TriMesh,
-    b: &'b TriMesh,
-    op: Operation,
-) -> Result<(std::borrow::Cow<'b, TriMesh>, Parts, Parts), UnionError> {
+/// What [`prepare`] gives: B as the operation takes it, what a Boolean
+/// builds of each solid alone, and their near sets.
+type Prepared<'b> = (std::borrow::Cow<'b, TriMesh>, Parts, Parts, NearSets);
+
+/// B as `op` takes it ([`operand`]), what a Boolean builds of each
+/// solid alone, and where the pairs across them are looked for.
+fn prepare<'b>(a: &TriMesh, b: &'b TriMesh, op: Operation) -> Result<Prepared<'b>, UnionError> {
     let b = operand(b, op);
-    let (pa, pb) = rayon::join(|| Parts::new(a), || Parts::new(&b));
-    Ok((b, pa?, pb?))
+    let ((pa, pb), sets) = rayon::join(
+        || rayon::join(|| Parts::new(a), || Parts::new(&b)),
+        // The sets read corners by index: both meshes are checked first
+        // (as `Parts::new` checks them, a pass over the indices).
+        || -> Result<NearSets, UnionError> {
+            a.check()?;
+            b.check()?;
+            Ok(NearSets::of(a, &b))
+        },
+    );
+    Ok((b, pa?, pb?, sets?))
 }
 
 /// What [`boolean_robust`] builds of two solids before it intersects
@@ -391,6 +425,8 @@ pub(crate) struct PreparedPair<'a> {
     pa: Parts,
     pb: Parts,
     op: Operation,
+    /// Where the pairs across A and B are looked for.
+    near: NearSets,
     /// How long [`prepare`] took: the stage times start that long before
     /// the Boolean itself, whatever a caller did in between (the
     /// self-crossing check).
@@ -405,36 +441,76 @@ impl<'a> PreparedPair<'a> {
         op: Operation,
     ) -> Result<PreparedPair<'a>, UnionError> {
         let started = Instant::now();
-        let (b, pa, pb) = prepare(a, b, op)?;
+        let (b, pa, pb, near) = prepare(a, b, op)?;
         Ok(PreparedPair {
             a,
             b,
             pa,
             pb,
             op,
+            near,
             prepared_in: started.elapsed(),
         })
+    }
+
+    /// [`PreparedPair::new`], with the self-crossing checks of A and B
+    /// ([`needs_arrangement_when_closed`]) run alongside the solids' edge
+    /// tables (the two leave each other's idle core busy), and each
+    /// check's tree built in the frame [`NearSets::with_check_frames`]
+    /// picks, then kept for the rays and the pairs across. `None` when
+    /// the winding-number arrangement is needed instead: a surface is
+    /// open, crosses itself or has a piece inside another.
+    pub(crate) fn with_checks(
+        a: &'a TriMesh,
+        b: &'a TriMesh,
+        op: Operation,
+    ) -> Result<Option<PreparedPair<'a>>, UnionError> {
+        let started = Instant::now();
+        a.check()?;
+        b.check()?;
+        let b = operand(b, op);
+        let ((sa, sb), (near, checked)) = rayon::join(
+            || rayon::join(|| Surface::new(a), || Surface::new(&b)),
+            || {
+                let (near, frames) = NearSets::with_check_frames(a, &b);
+                // Closedness is known only from the edge tables: the
+                // check assumes it, and an open surface needs the
+                // arrangement whatever the check says.
+                let checked = needs_arrangement_when_closed(a, &b, true, frames);
+                (near, checked)
+            },
+        );
+        let (sa, sb) = (sa?, sb?);
+        if !(sa.closed() && sb.closed()) {
+            return Ok(None);
+        }
+        let (needs, [ta, tb]) = checked?;
+        if needs {
+            return Ok(None);
+        }
+        // A check whose tree does not hold every triangle (some repeat
+        // another) leaves none to keep.
+        let parts = |surface: Surface, tree: Option<FramedTree>, m: &TriMesh| {
+            Ok::<_, UnionError>(Parts {
+                surface,
+                tree: tree.map_or_else(|| world_tree(m), Ok)?,
+            })
+        };
+        Ok(Some(PreparedPair {
+            a,
+            pa: parts(sa, ta, a)?,
+            pb: parts(sb, tb, &b)?,
+            b,
+            op,
+            near,
+            prepared_in: started.elapsed(),
+        }))
     }
 
     /// When the Boolean counts as started: now, less the preparation.
     fn started(&self) -> Instant {
         let now = Instant::now();
         now.checked_sub(self.prepared_in).unwrap_or(now)
-    }
-
-    /// Both surfaces are closed: every edge has an even number of
-    /// triangles and no triangle repeats a corner.
-    pub(crate) fn closed(&self) -> bool {
-        self.pa.closed() && self.pb.closed()
-    }
-
-    /// Keeps the trees the self-crossing checks of A and B were made
-    /// with ([`crate::winding_boolean::needs_arrangement_when_closed`]),
-    /// for the pairs across them to be found in.
-    pub(crate) fn with_checked_trees(mut self, [ta, tb]: [Option<FramedTree>; 2]) -> Self {
-        self.pa.checked = ta;
-        self.pb.checked = tb;
-        self
     }
 
     /// [`boolean_robust`] of the pair: the exact Boolean, and where
@@ -444,7 +520,16 @@ impl<'a> PreparedPair<'a> {
         let (a, b, op) = (self.a, self.b.as_ref(), self.op);
         let manifold_inputs = self.pa.oriented() && self.pb.oriented();
         let started = self.started();
-        let mut out = unite(a, &self.pa, b, &self.pb, op, options, started)?;
+        let mut out = unite(
+            a,
+            &self.pa,
+            b,
+            &self.pb,
+            op,
+            options,
+            started,
+            Some(&self.near),
+        )?;
         for k in 1..NUDGES.len() {
             if !manifold_inputs || out.mesh.is_closed_manifold() {
                 break;
@@ -455,7 +540,7 @@ impl<'a> PreparedPair<'a> {
                 triangles: b.triangles.clone(),
             };
             let pm = Parts::new(&moved)?;
-            out = unite(a, &self.pa, &moved, &pm, op, options, started)?;
+            out = unite(a, &self.pa, &moved, &pm, op, options, started, None)?;
             out.report.perturbation_retries = k;
         }
         Ok(out)
@@ -471,6 +556,7 @@ impl<'a> PreparedPair<'a> {
             self.op,
             options,
             self.started(),
+            Some(&self.near),
         )
     }
 }
@@ -565,187 +651,8 @@ pub fn union_prepared(
         Operation::Union,
         options,
         Instant::now(),
+        None,
     )
-}
-
-/// The trees the pairs across A and B are found in, when the solids'
-/// own trees are not the best ones: only the triangles whose boxes meet
-/// the other solid's box can meet it (a small part placed on a big one
-/// needs a few of the big one's triangles), and boxes are measured in
-/// the [`BoxFrame`] of those triangles (turned CAD parts' flat faces then
-/// have flat boxes: EMBER pairs 1.14M candidate pairs → 0.21M). The
-/// solids' own trees stay in the world's axes for the containment rays.
-struct Near<'p> {
-    /// A's tree and B's; `None` when the solids' own trees serve.
-    trees: Option<[NearTree<'p>; 2]>,
-}
-
-/// One solid's tree of [`Near`].
-enum NearTree<'p> {
-    /// A tree of the listed triangles (numbered in the joined mesh).
-    Listed(Vec<u32>, Bvh),
-    /// The self-crossing check's tree of every triangle of the solid
-    /// ([`Parts::checked`]), whose triangles start at `offset` in the
-    /// joined mesh.
-    Checked(&'p Bvh, u32),
-}
-
-impl NearTree<'_> {
-    fn tree_and_triangles(&self) -> (&Bvh, Primitives<'_>) {
-        match self {
-            NearTree::Listed(list, tree) => (tree, Primitives::Listed(list)),
-            NearTree::Checked(tree, offset) => (tree, Primitives::From(*offset)),
-        }
-    }
-}
-
-/// Triangles of each near set sampled to cost a frame.
-const FRAME_SAMPLE: usize = 256;
-
-/// A tree build's cost per triangle (its box and its share of the
-/// build), in candidate pairs tested: measured, a 68k-triangle tree took
-/// about as long as 130k candidate pairs.
-const BUILD_PER_TRIANGLE: f64 = 2.0;
-
-/// Sampled triangles' corners, and how many triangles each stands for.
-type Sample = (Vec<[DVec3; 3]>, f64);
-
-/// The corners of every k-th triangle of `tris`, at most [`FRAME_SAMPLE`]
-/// of them, and how many triangles each stands for.
-fn sample(m: &TriMesh, tris: &[[u32; 3]]) -> Sample {
-    let step = tris.len().div_ceil(FRAME_SAMPLE).max(1);
-    let corners: Vec<[DVec3; 3]> = tris
-        .iter()
-        .step_by(step)
-        .map(|t| t.map(|v| m.positions[v as usize]))
-        .collect();
-    let weight = tris.len() as f64 / corners.len().max(1) as f64;
-    (corners, weight)
-}
-
-/// The cost of finding the pairs across two near sets in `frame`, in
-/// candidate pairs: the pairs of the samples' boxes that overlap, scaled
-/// up to the whole sets, plus building trees of `to_build` triangles.
-fn frame_cost(frame: &BoxFrame, ((a, wa), (b, wb)): &(Sample, Sample), to_build: usize) -> f64 {
-    let boxes_b: Vec<Aabb> = b.iter().map(|&p| frame.triangle_box(p)).collect();
-    let overlapping: usize = a
-        .iter()
-        .map(|&p| {
-            let x = frame.triangle_box(p);
-            boxes_b.iter().filter(|y| x.overlaps(y)).count()
-        })
-        .sum();
-    overlapping as f64 * wa * wb + BUILD_PER_TRIANGLE * to_build as f64
-}
-
-impl<'p> Near<'p> {
-    fn of(a: &TriMesh, pa: &'p Parts, b: &TriMesh, pb: &'p Parts) -> Result<Near<'p>, UnionError> {
-        // The solids' own trees hold every triangle's box already: a box
-        // query finds the ones meeting the other's box without a pass
-        // over all of them (sorted, for the order the mesh stores them in).
-        let meeting = |tree: &Bvh, other: Aabb, offset: u32| -> Vec<u32> {
-            let mut near = Vec::new();
-            tree.for_each_overlap(&other, |t| near.push(t + offset));
-            near.sort_unstable();
-            near
-        };
-        let split = a.triangles.len() as u32;
-        let (near_a, near_b) = rayon::join(
-            || meeting(&pa.tree, pb.tree.bounds(), 0),
-            || meeting(&pb.tree, pa.tree.bounds(), split),
-        );
-        let tris_a: Vec<[u32; 3]> = near_a.iter().map(|&t| a.triangles[t as usize]).collect();
-        let tris_b: Vec<[u32; 3]> = near_b
-            .iter()
-            .map(|&t| b.triangles[(t - split) as usize])
-            .collect();
-        let mut frame = BoxFrame::of_triangles(&[(&a.positions, &tris_a), (&b.positions, &tris_b)]);
-        let most = |near: usize, all: usize| 2 * near >= all;
-        if frame.is_identity()
-            && most(near_a.len(), a.triangles.len())
-            && most(near_b.len(), b.triangles.len())
-        {
-            return Ok(Near { trees: None });
-        }
-        // The frame the pairs are found in: the joint one with new trees
-        // of both near sets, or a solid's own, where most of it is near
-        // the other and its self-crossing check left a tree of all its
-        // triangles in that frame (then only the other's near triangles
-        // need a tree, measured in that very frame). Neither is always
-        // best: a small part turned otherwise than a big one can hold most
-        // of the joint area, and the big one's slivers are then turned in
-        // the joint frame (EMBER 79741 − 65004: 210,232 pairs of boxes
-        // there, 25,302 in 79741's own frame), or it is the one whose
-        // slivers turn (1063852 − 72214: 36,238 against 181,166). So each
-        // is costed from a sample of both near sets.
-        let samples = (sample(a, &tris_a), sample(b, &tris_b));
-        let joint = frame_cost(&frame, &samples, tris_a.len() + tris_b.len());
-        let reused = [
-            (pa, &near_a, a, tris_b.len()),
-            (pb, &near_b, b, tris_a.len()),
-        ]
-        .iter()
-        .enumerate()
-        .filter_map(|(k, (parts, near, mesh, other))| {
-            let checked = parts.checked.as_ref()?;
-            most(near.len(), mesh.triangles.len())
-                .then(|| (k, frame_cost(&checked.frame, &samples, *other), checked))
-        })
-        .filter(|&(_, cost, _)| cost < joint)
-        .min_by(|x, y| x.1.total_cmp(&y.1))
-        .map(|(k, _, checked)| (k, checked));
-        if let Some((_, checked)) = reused {
-            frame = checked.frame;
-        }
-        let listed =
-            |m: &TriMesh, tris: &[[u32; 3]], near: Vec<u32>| -> Result<NearTree<'p>, UnionError> {
-                let boxes: Vec<Aabb> = tris
-                    .par_iter()
-                    .map(|t| frame.triangle_box(t.map(|v| m.positions[v as usize])))
-                    .collect();
-                Ok(NearTree::Listed(
-                    near,
-                    Bvh::build(&boxes).map_err(TopoError::from)?,
-                ))
-            };
-        let trees = match reused {
-            Some((0, checked)) => [
-                NearTree::Checked(&checked.tree, 0),
-                listed(b, &tris_b, near_b)?,
-            ],
-            Some((_, checked)) => [
-                listed(a, &tris_a, near_a)?,
-                NearTree::Checked(&checked.tree, split),
-            ],
-            None => {
-                let (ta, tb) =
-                    rayon::join(|| listed(a, &tris_a, near_a), || listed(b, &tris_b, near_b));
-                [ta?, tb?]
-            }
-        };
-        Ok(Near { trees: Some(trees) })
-    }
-
-    fn candidates<'a>(&'a self, pa: &'a Parts, pb: &'a Parts, split: u32) -> Candidates<'a> {
-        match &self.trees {
-            None => Candidates::Across {
-                first: &pa.tree,
-                first_triangles: Primitives::From(0),
-                second: &pb.tree,
-                second_triangles: Primitives::From(split),
-            },
-            Some([ta, tb]) => {
-                let (first, first_triangles) = ta.tree_and_triangles();
-                let (second, second_triangles) = tb.tree_and_triangles();
-                Candidates::Across {
-                    first,
-                    first_triangles,
-                    second,
-                    second_triangles,
-                }
-            }
-        }
-    }
 }
 
 // One argument per part of the problem; a struct would only rename them.
@@ -758,6 +665,7 @@ fn unite(
     op: Operation,
     options: &Options,
     started: Instant,
+    near_sets: Option<&NearSets>,
 ) -> Result<Outcome, UnionError> {
     for (solid, parts) in [(Solid::A, pa), (Solid::B, pb)] {
         if !parts.closed() {
@@ -768,12 +676,24 @@ fn unite(
     let t = started;
     let mesh = &pair.mesh;
     let pos = &mesh.positions;
-    let edges = pa.edges.joined(&pb.edges, pair.split_vertex, pair.split);
+    let edges = pa
+        .surface
+        .edges
+        .joined(&pb.surface.edges, pair.split_vertex, pair.split);
     let ids = identities(&pair);
-    let near = Near::of(a, pa, b, pb)?;
+    // Near sets found for another B (moved by a nudge) would miss pairs.
+    let found;
+    let near_sets = match near_sets {
+        Some(sets) => sets,
+        None => {
+            found = NearSets::of(a, b);
+            &found
+        }
+    };
+    let near = Near::of(a, pa, b, pb, near_sets)?;
     let oriented = pa.oriented() && pb.oriented();
     // A difference takes B inside out: then B faces inward.
-    let outward = pa.outward && pb.outward == (op != Operation::Difference);
+    let outward = pa.surface.outward && pb.surface.outward == (op != Operation::Difference);
     let limit = options
         .max_intersecting_pairs
         .unwrap_or_else(|| default_pair_limit(mesh.triangles.len()));
@@ -782,7 +702,7 @@ fn unite(
         pos,
         &edges,
         &ids,
-        near.candidates(pa, pb, pair.split),
+        near.candidates(),
         limit,
         &AtomicBool::new(false),
     )
@@ -932,7 +852,7 @@ fn unite(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::winding_boolean::needs_arrangement_when_closed;
+    use near::NearTree;
 
     /// A prism over an ellipse of `n` points (semi-axes `2r` and `r`,
     /// height 0.3), its caps fans from one outline point, turned by
@@ -942,39 +862,64 @@ mod tests {
         crate::intersect::tests::fan_prism(&outline, 0.3, turn, at)
     }
 
-    /// Two turned CAD-like parts in one frame: the pairs across them are
-    /// found in the tree A's self-crossing check built (A is the bigger
-    /// one near B: the same pairs, one tree build less), with B's near
-    /// triangles measured in A's very frame, and the difference is the
-    /// same mesh, vertex for vertex, as with trees built for the pairs.
-    #[test]
-    fn the_self_crossing_checks_tree_finds_the_pairs_across_in_one_frame() {
-        let turn = crate::intersect::tests::turn;
-        let a = fan_prism(96, 1.0, turn, DVec3::ZERO);
-        let b = fan_prism(40, 0.7, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
-        let op = Operation::Difference;
-        let pair = PreparedPair::new(&a, &b, op).unwrap();
-        assert!(pair.closed());
-        let (needs, trees) = needs_arrangement_when_closed(&a, &b, pair.closed()).unwrap();
-        assert!(!needs, "neither part crosses itself");
-        assert!(trees.iter().all(Option::is_some));
-        let pair = pair.with_checked_trees(trees);
-        let near = Near::of(pair.a, &pair.pa, &pair.b, &pair.pb).unwrap();
-        assert!(
-            matches!(
-                near.trees,
-                Some([NearTree::Checked(_, 0), NearTree::Listed(..)])
-            ),
-            "A's checked tree serves"
-        );
+    /// The difference through the trees kept from the self-crossing
+    /// checks, and the same through trees built for the pairs across
+    /// ([`PreparedPair::new`]): the same mesh, vertex for vertex.
+    fn same_as_with_trees_built(a: &TriMesh, b: &TriMesh, pair: &PreparedPair) {
         let options = Options::default();
         let reused = pair.robust(&options).unwrap();
-        let built = PreparedPair::new(&a, &b, op)
+        let built = PreparedPair::new(a, b, pair.op)
             .unwrap()
             .robust(&options)
             .unwrap();
         assert!(reused.report.intersecting_pairs > 0, "the parts cross");
         assert_eq!(reused.mesh, built.mesh);
         assert!(reused.mesh.is_closed_manifold());
+    }
+
+    /// Two turned CAD-like parts in one frame, each mostly near the
+    /// other: the pairs across them are found in the trees their
+    /// self-crossing checks built, in the joint frame, and no tree is
+    /// built for them.
+    #[test]
+    fn the_self_crossing_checks_trees_find_the_pairs_across_in_one_frame() {
+        let turn = crate::intersect::tests::turn;
+        let a = fan_prism(96, 1.0, turn, DVec3::ZERO);
+        let b = fan_prism(40, 0.7, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
+        let pair = PreparedPair::with_checks(&a, &b, Operation::Difference).unwrap();
+        let pair = pair.expect("both closed, neither part crosses itself");
+        let near = Near::of(pair.a, &pair.pa, &pair.b, &pair.pb, &pair.near).unwrap();
+        let split = a.triangles.len() as u32;
+        assert!(
+            matches!(near.trees, [NearTree::Whole(_, 0), NearTree::Whole(_, s)] if s == split),
+            "both checked trees serve"
+        );
+        assert_eq!(pair.pa.tree.frame, pair.pb.tree.frame);
+        assert!(!pair.pa.tree.frame.is_identity());
+        same_as_with_trees_built(&a, &b, &pair);
+    }
+
+    /// A small part at one end of a long one: most of the small part is
+    /// near the long one, and its checked tree serves; few of the long
+    /// one's triangles are near the small part, and only they get a tree,
+    /// measured in the small part's very frame.
+    #[test]
+    fn a_small_part_at_the_end_of_a_long_one_reuses_only_its_own_tree() {
+        let turn = crate::intersect::tests::turn;
+        let a = fan_prism(40, 0.7, turn, turn(DVec3::new(-5.6, 0.1, 0.15)));
+        let b = fan_prism(200, 3.0, turn, DVec3::ZERO);
+        let pair = PreparedPair::with_checks(&a, &b, Operation::Union).unwrap();
+        let pair = pair.expect("both closed, neither part crosses itself");
+        let near = Near::of(pair.a, &pair.pa, &pair.b, &pair.pb, &pair.near).unwrap();
+        let [NearTree::Whole(_, 0), NearTree::Listed(listed, _)] = &near.trees else {
+            panic!("A's checked tree and a tree of B's near triangles");
+        };
+        assert!(
+            !listed.is_empty() && 4 * listed.len() < b.triangles.len(),
+            "{} of B's {} triangles near A",
+            listed.len(),
+            b.triangles.len()
+        );
+        same_as_with_trees_built(&a, &b, &pair);
     }
 }

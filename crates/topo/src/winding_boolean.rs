@@ -84,7 +84,7 @@ use std::time::Instant;
 use glam::DVec3;
 use holey_geom::ring::{Ring, V3, orient3};
 use holey_geom::sos::{Poly, sos_sign};
-use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
+use holey_geom::{Aabb, BoxFrame, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
 use rayon::prelude::*;
 
 use crate::coplanar::{Keep, Overlay, overlay, position_index};
@@ -554,19 +554,21 @@ fn generic_direction(j: usize) -> DVec3 {
 /// number by their orientations), else the containment union, which is
 /// faster. Costs about one [`crate::engine::self_intersections`] of each.
 pub fn needs_arrangement(a: &TriMesh, b: &TriMesh) -> Result<bool, TopoError> {
-    Ok(needs_arrangement_when_closed(a, b, a.is_closed() && b.is_closed())?.0)
+    Ok(needs_arrangement_when_closed(a, b, a.is_closed() && b.is_closed(), [None, None])?.0)
 }
 
 /// [`needs_arrangement`] with whether both surfaces are closed known
 /// already (from the containment method's edge tables), and the trees
 /// the self-crossing checks of `a` and `b` were made with
-/// ([`crosses_itself_keeping_tree`]), for the containment method to
-/// reuse; a tree is `None` where no check ran to the end or its tree does
-/// not hold every triangle.
+/// ([`crosses_itself_keeping_tree`], in `frames`, or in each mesh's own
+/// where `None`), for the containment method to reuse; a tree is `None`
+/// where no check ran to the end or its tree does not hold every
+/// triangle.
 pub(crate) fn needs_arrangement_when_closed(
     a: &TriMesh,
     b: &TriMesh,
     closed: bool,
+    frames: [Option<BoxFrame>; 2],
 ) -> Result<(bool, [Option<FramedTree>; 2]), TopoError> {
     if !closed {
         return Ok((true, [None, None]));
@@ -575,8 +577,8 @@ pub(crate) fn needs_arrangement_when_closed(
     // position classes, the top of its tree). One that finds a crossing
     // makes the other's work moot, and the arrangement then costs far more.
     let (checked_a, checked_b) = rayon::join(
-        || crosses_itself_keeping_tree(a),
-        || crosses_itself_keeping_tree(b),
+        || crosses_itself_keeping_tree(a, frames[0]),
+        || crosses_itself_keeping_tree(b, frames[1]),
     );
     // A first: a crossing there answers, whatever B's check says.
     let (crosses_a, tree_a) = checked_a?;
