@@ -221,8 +221,8 @@ struct Surface {
 }
 
 impl Surface {
-    fn new(mesh: &TriMesh) -> Result<Surface, UnionError> {
-        mesh.check()?;
+    /// The surface of `mesh`, whose indices and coordinates are checked.
+    fn of_checked(mesh: &TriMesh) -> Surface {
         let ((edges, proper), outward) = rayon::join(
             || {
                 rayon::join(
@@ -237,11 +237,11 @@ impl Surface {
             },
             || signed_volume(&mesh.positions, &mesh.triangles) > 0.0,
         );
-        Ok(Surface {
+        Surface {
             edges,
             proper,
             outward,
-        })
+        }
     }
 
     /// Every edge has an even number of triangles and no triangle repeats
@@ -270,9 +270,14 @@ fn world_tree(mesh: &TriMesh) -> Result<FramedTree, UnionError> {
 impl Parts {
     fn new(mesh: &TriMesh) -> Result<Parts, UnionError> {
         mesh.check()?;
-        let (surface, tree) = rayon::join(|| Surface::new(mesh), || world_tree(mesh));
+        Parts::of_checked(mesh)
+    }
+
+    /// [`Parts::new`] of a mesh already checked.
+    fn of_checked(mesh: &TriMesh) -> Result<Parts, UnionError> {
+        let (surface, tree) = rayon::join(|| Surface::of_checked(mesh), || world_tree(mesh));
         Ok(Parts {
-            surface: surface?,
+            surface,
             tree: tree?,
         })
     }
@@ -401,18 +406,14 @@ type Prepared<'b> = (std::borrow::Cow<'b, TriMesh>, Parts, Parts, NearSets);
 /// B as `op` takes it ([`operand`]), what a Boolean builds of each
 /// solid alone, and where the pairs across them are looked for.
 fn prepare<'b>(a: &TriMesh, b: &'b TriMesh, op: Operation) -> Result<Prepared<'b>, UnionError> {
+    a.check()?;
+    b.check()?;
     let b = operand(b, op);
     let ((pa, pb), sets) = rayon::join(
-        || rayon::join(|| Parts::new(a), || Parts::new(&b)),
-        // The sets read corners by index: both meshes are checked first
-        // (as `Parts::new` checks them, a pass over the indices).
-        || -> Result<NearSets, UnionError> {
-            a.check()?;
-            b.check()?;
-            Ok(NearSets::of(a, &b))
-        },
+        || rayon::join(|| Parts::of_checked(a), || Parts::of_checked(&b)),
+        || NearSets::of(a, &b),
     );
-    Ok((b, pa?, pb?, sets?))
+    Ok((b, pa?, pb?, sets))
 }
 
 /// What [`boolean_robust`] builds of two solids before it intersects
@@ -470,7 +471,7 @@ impl<'a> PreparedPair<'a> {
         b.check()?;
         let b = operand(b, op);
         let ((sa, sb), (near, checked)) = rayon::join(
-            || rayon::join(|| Surface::new(a), || Surface::new(&b)),
+            || rayon::join(|| Surface::of_checked(a), || Surface::of_checked(&b)),
             || {
                 let (near, frames) = NearSets::with_check_frames(a, &b);
                 // Closedness is known only from the edge tables: the
@@ -480,7 +481,6 @@ impl<'a> PreparedPair<'a> {
                 (near, checked)
             },
         );
-        let (sa, sb) = (sa?, sb?);
         if !(sa.closed() && sb.closed()) {
             return Ok(None);
         }
