@@ -1,5 +1,6 @@
 use glam::DVec3;
 use holey_geom::position_classes;
+use holey_testkit::oracles::edge_degrees;
 
 use super::*;
 use crate::intersect::intersections;
@@ -23,18 +24,6 @@ fn volume(m: &TriMesh) -> f64 {
             p[0].dot(p[1].cross(p[2])) / 6.0
         })
         .sum()
-}
-
-/// Edge → number of triangle sides on it, by vertex pair.
-fn edge_degrees(m: &TriMesh) -> HashMap<(u32, u32), usize> {
-    let mut d = HashMap::default();
-    for t in &m.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *d.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    d
 }
 
 /// Directed edges each used once and their reverse once: closed and oriented.
@@ -97,7 +86,7 @@ fn resolve_cuts_and_glues_without_deleting() {
     assert!((area(&out.mesh) - area(&m)).abs() < 1e-12 * area(&m));
     assert!((volume(&out.mesh) - volume(&m)).abs() < 1e-12);
     // The curve's edges are shared by four triangles, all others by two.
-    let d = edge_degrees(&out.mesh);
+    let d = edge_degrees(&out.mesh.triangles);
     let fours = d.values().filter(|&&n| n == 4).count();
     assert_eq!(fours, x.pieces.len() + out.report.constraint_splits);
     assert!(d.values().all(|&n| n == 2 || n == 4));
@@ -181,7 +170,7 @@ fn false_edges_close_a_parity_change_that_no_curve_separates() {
     assert!(out.report.false_vertices > 0 && out.report.false_edges > 0);
     // A hole opened, and the remaining surface is a disk with one hole:
     // every edge has one or two triangle sides.
-    let d = edge_degrees(&out.mesh);
+    let d = edge_degrees(&out.mesh.triangles);
     assert!(d.values().all(|&k| k == 1 || k == 2));
     let hole = area(&m) - area(&out.mesh);
     assert!(hole > 9.0 && hole < 30.0, "hole area {hole}");
