@@ -322,23 +322,101 @@ impl PreparedSolid {
     }
 }
 
-/// Crossings, mod 2, of a ray from `start` with the triangles of the
-/// solid `tree` holds (primitive `i` is triangle `offset + i`): odd iff
-/// `start` is inside that solid.
-struct Rays<'a> {
-    positions: &'a [DVec3],
-    triangles: &'a [[u32; 3]],
+/// Containment in the other solid, by exact rays (simulation of
+/// simplicity, in the same perturbed world as the intersections): a ray
+/// from a point of one solid crosses the other's triangles an odd number
+/// of times exactly when the point is inside it.
+struct Containment<'a> {
+    pair: &'a Pair,
     ids: &'a [u32],
+    /// A's tree of all its triangles, then B's.
+    trees: [&'a FramedTree; 2],
+    op: Operation,
     /// Identity of every ray's far end: no vertex has it.
     far_id: u32,
 }
 
-impl Rays<'_> {
-    fn inside(&self, start: SymPoint, tree: &FramedTree, offset: u32) -> Option<bool> {
-        let sym = |v: u32| SymPoint::new(self.positions[v as usize], self.ids[v as usize]);
-        ray_crossings_odd_in(&tree.frame, &tree.tree, start, self.far_id, |i| {
-            self.triangles[(offset + i) as usize].map(sym)
+impl<'a> Containment<'a> {
+    fn new(
+        pair: &'a Pair,
+        ids: &'a [u32],
+        trees: [&'a FramedTree; 2],
+        op: Operation,
+    ) -> Result<Containment<'a>, UnionError> {
+        let n = pair.mesh.positions.len();
+        let far_id = u32::try_from(n).map_err(|_| MeshError::TooLarge(n))?;
+        Ok(Containment {
+            pair,
+            ids,
+            trees,
+            op,
+            far_id,
         })
+    }
+
+    /// Whether `op` deletes `start`, a point of `solid`: whether it is
+    /// inside the other solid, read as the operation reads it. `None`
+    /// when the ray cannot leave the scene.
+    fn deletes(&self, solid: Solid, start: SymPoint) -> Option<bool> {
+        let (tree, offset) = match solid {
+            Solid::A => (self.trees[1], self.pair.split),
+            Solid::B => (self.trees[0], 0),
+        };
+        let (positions, triangles) = (&self.pair.mesh.positions, &self.pair.mesh.triangles);
+        let sym = |v: u32| SymPoint::new(positions[v as usize], self.ids[v as usize]);
+        let inside = ray_crossings_odd_in(&tree.frame, &tree.tree, start, self.far_id, |i| {
+            triangles[(offset + i) as usize].map(sym)
+        })?;
+        Some(self.op.deletes(solid, inside))
+    }
+
+    /// Every vertex's parity (whether the operation deletes it), from one
+    /// ray per component of the edges no curve cuts (containment is
+    /// constant along them), and how many rays were cast.
+    fn vertex_parities(
+        &self,
+        edges: &Edges,
+        cut_edges: &[bool],
+    ) -> Result<(Vec<bool>, usize), UnionError> {
+        let positions = &self.pair.mesh.positions;
+        let n = positions.len();
+        let mut sets = UnionFind::new(n);
+        for (e, &[u, v]) in edges.ends.iter().enumerate() {
+            if !cut_edges[e] {
+                sets.union(u, v);
+            }
+        }
+        let mut odd = vec![false; n];
+        let mut cast = 0usize;
+        for v in 0..n as u32 {
+            let root = sets.find(v);
+            odd[v as usize] = if root == v {
+                cast += 1;
+                let start = SymPoint::new(positions[v as usize], self.ids[v as usize]);
+                self.deletes(self.pair.solid_of_vertex(v), start)
+                    .ok_or(UnionError::TooLarge)?
+            } else {
+                // Roots are the smallest vertex of their component, so
+                // they come first.
+                odd[root as usize]
+            };
+        }
+        Ok((odd, cast))
+    }
+
+    /// The parity of a region no vertex reaches (the cut's `k`-th such):
+    /// the ray starts at the point of weights `w` in triangle `t`, with an
+    /// identity no vertex or far end has.
+    fn sample(&self, k: u32, t: u32, w: [f64; 3]) -> Option<bool> {
+        let mesh = &self.pair.mesh;
+        let corners = *mesh.triangles.get(t as usize)?;
+        let p = corners
+            .iter()
+            .zip(w)
+            .map(|(&c, wi)| mesh.positions[c as usize] * wi)
+            .sum::<DVec3>();
+        let id = self.far_id.checked_add(1)?.checked_add(k)?;
+        self.deletes(self.pair.solid_of_triangle(t), SymPoint::new(p, id))
     }
 }
 
@@ -727,61 +805,9 @@ fn unite(
 
     // Containment parity: one ray per component of uncut edges.
     let t = Instant::now();
-    let n = pos.len();
-    let mut sets = UnionFind::new(n);
-    for (e, &[u, v]) in edges.ends.iter().enumerate() {
-        if !x.cut_edges[e] {
-            sets.union(u, v);
-        }
-    }
-    let far_id = u32::try_from(n).map_err(|_| MeshError::TooLarge(n))?;
-    let rays = Rays {
-        positions: pos,
-        triangles: &mesh.triangles,
-        ids: &ids,
-        far_id,
-    };
-    let other = |s: Solid| match s {
-        Solid::A => (&pb.tree, pair.split),
-        Solid::B => (&pa.tree, 0),
-    };
-    let mut odd = vec![false; n];
-    let mut cast = 0usize;
-    for v in 0..n as u32 {
-        let root = sets.find(v);
-        odd[v as usize] = if root == v {
-            let solid = pair.solid_of_vertex(v);
-            let (tree, offset) = other(solid);
-            cast += 1;
-            let inside = rays
-                .inside(
-                    SymPoint::new(pos[v as usize], ids[v as usize]),
-                    tree,
-                    offset,
-                )
-                .ok_or(UnionError::TooLarge)?;
-            op.deletes(solid, inside)
-        } else {
-            // Roots are the smallest vertex of their component, so they
-            // come first.
-            odd[root as usize]
-        };
-    }
-    // A region no vertex reaches: the ray starts at a point of the
-    // region's triangle, with an identity no vertex or far end has.
-    let sample = |k: u32, t: u32, w: [f64; 3]| {
-        let corners = *mesh.triangles.get(t as usize)?;
-        let p = corners
-            .iter()
-            .zip(w)
-            .map(|(&c, wi)| pos[c as usize] * wi)
-            .sum::<DVec3>();
-        let id = far_id.checked_add(1)?.checked_add(k)?;
-        let solid = pair.solid_of_triangle(t);
-        let (tree, offset) = other(solid);
-        let inside = rays.inside(SymPoint::new(p, id), tree, offset)?;
-        Some(op.deletes(solid, inside))
-    };
+    let containment = Containment::new(&pair, &ids, [&pa.tree, &pb.tree], op)?;
+    let (odd, cast) = containment.vertex_parities(&edges, &x.cut_edges)?;
+    let sample = |k: u32, t: u32, w: [f64; 3]| containment.sample(k, t, w);
     let t_parity = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
