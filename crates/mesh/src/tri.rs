@@ -640,34 +640,13 @@ mod tests {
     /// third triangle (a fin), or with a corner repeated.
     #[test]
     fn closed_manifold_check_agrees_with_the_edge_table() {
-        // An octahedron.
+        let (corners, faces) = holey_testkit::octahedron();
         let octa = TriMesh {
-            positions: vec![
-                DVec3::X,
-                -DVec3::X,
-                DVec3::Y,
-                -DVec3::Y,
-                DVec3::Z,
-                -DVec3::Z,
-            ],
-            triangles: vec![
-                [0, 2, 4],
-                [2, 1, 4],
-                [1, 3, 4],
-                [3, 0, 4],
-                [2, 0, 5],
-                [1, 2, 5],
-                [3, 1, 5],
-                [0, 3, 5],
-            ],
+            positions: corners.iter().map(|&c| DVec3::from(c)).collect(),
+            triangles: faces.to_vec(),
         };
-        let mut rng = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |n: usize| {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            (rng % n as u64) as usize
-        };
+        let mut rng = holey_testkit::Rng::new(0x9e37_79b9);
+        let mut next = |n: usize| rng.below(n);
         let mut agreed = [0usize; 2];
         for round in 0..400 {
             let mut m = octa.clone();
