@@ -7,6 +7,7 @@
 
 mod accumulate;
 pub mod audit;
+pub mod clean_solids;
 mod containment;
 mod coplanar;
 mod correct;
@@ -36,6 +37,7 @@ pub mod winding_boolean;
 
 pub use accumulate::{Accumulator, Release};
 pub use audit::SurfaceAudit;
+pub use clean_solids::needs_arrangement;
 pub use correct::Scheme;
 pub use cut::CutReport;
 pub use engine::{
@@ -54,7 +56,6 @@ pub use union::{
 };
 pub use winding_boolean::{
     WindingError, WindingOutcome, WindingReport, boolean_by_winding, boolean_by_winding_robust,
-    needs_arrangement,
 };
 
 /// Installs a panic hook that does not print the panics holey-topo

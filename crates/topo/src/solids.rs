@@ -26,11 +26,12 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use crate::clean_solids::needs_arrangement;
 use crate::engine::{Options, Outcome, TopoError, topology_change};
 use crate::mesh::TriMesh;
 use crate::union::{NUDGES, Operation, PreparedPair, UnionError, boolean, boolean_robust, nudge};
 use crate::winding_boolean::{
-    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_robust, needs_arrangement,
+    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_robust,
 };
 
 /// The default direction B arrives from in the motion: generic, so that

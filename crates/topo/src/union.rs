@@ -61,6 +61,7 @@ use glam::DVec3;
 use holey_geom::{BoxFrame, Bvh, SymPoint};
 use rayon::prelude::*;
 
+use crate::clean_solids::needs_arrangement_when_closed;
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
 use crate::intersect::{
@@ -70,7 +71,6 @@ use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
 use crate::solid::{ray_crossings_odd_in, signed_volume};
 use crate::union_find::UnionFind;
-use crate::winding_boolean::needs_arrangement_when_closed;
 
 mod near;
 use near::{Near, NearSets};
