@@ -4,12 +4,13 @@
 //! Why: on turned CAD parts the frame boxes are measured in decides how
 //! many candidate pairs a tree finds ([`holey_geom::frame`]), and a tree
 //! of 68k triangles costs about as much to build as testing 130k
-//! candidate pairs. A Boolean with the self-crossing check builds up to
-//! three trees of its bigger solid: the check's, in that solid's own
-//! frame; the solid's axis-aligned one for the containment rays; and one
-//! in the joint frame of both near sets for the pairs across. Where the
-//! joint frame serves the check about as well as the solid's own, the
-//! check builds its tree there, and the pairs across reuse it (EMBER
+//! candidate pairs. Left to itself, a Boolean with the self-crossing
+//! check would build three trees of its bigger solid: the check's, in
+//! that solid's own frame; an axis-aligned one for the containment rays;
+//! and one in the joint frame of both near sets for the pairs across. So
+//! each solid keeps one tree, which the rays and the pairs across reuse,
+//! and where the joint frame serves the check about as well as the
+//! solid's own, the check builds it there (EMBER
 //! 1063852 − 72214: the joint frame is 72214's, in which 1063852's check
 //! finds as many candidates as in its own, while 72214's slivers turned
 //! in 1063852's frame give 181,166 candidate pairs across instead of
@@ -89,9 +90,9 @@ impl NearSets {
                 return None;
             }
             let sample = Spread::of(m.triangles.len());
-            // The own frame of the counted triangles alone: close enough
-            // to the whole mesh's for an estimate, at a sixteenth of the
-            // cost on 68k triangles.
+            // The own frame of the 4,096 triangles counted against: close
+            // enough to the whole mesh's for an estimate, at a sixteenth
+            // of the cost on 68k triangles.
             let tris: Vec<[u32; 3]> = sample.against.iter().map(|&t| m.triangles[t]).collect();
             let own = BoxFrame::of_triangles(&[(&m.positions, &tris)]);
             if own == joint {
