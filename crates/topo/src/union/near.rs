@@ -38,20 +38,18 @@ pub(super) struct NearSets {
 
 /// The box of every triangle of `m` together (indices checked already).
 fn bounds(m: &TriMesh) -> Aabb {
-    m.triangles
-        .par_iter()
-        .map(|t| Aabb::from_points(&t.map(|v| m.positions[v as usize])))
+    (0..m.triangles.len())
+        .into_par_iter()
+        .map(|t| Aabb::from_points(&m.corners(t)))
         .reduce(|| Aabb::EMPTY, |x, y| x.union(&y))
 }
 
 /// The triangles of `m` whose boxes meet `other`, in increasing order: a
 /// pass over the corners, cheaper than a tree built for it.
 fn meeting(m: &TriMesh, other: &Aabb) -> Vec<u32> {
-    m.triangles
-        .par_iter()
-        .enumerate()
-        .filter(|(_, t)| Aabb::from_points(&t.map(|v| m.positions[v as usize])).overlaps(other))
-        .map(|(i, _)| i as u32)
+    (0..m.triangles.len() as u32)
+        .into_par_iter()
+        .filter(|&t| Aabb::from_points(&m.corners(t as usize)).overlaps(other))
         .collect()
 }
 
@@ -163,7 +161,7 @@ impl Spread {
         if self.n < 2 {
             return 0.0;
         }
-        let box_of = |t: usize| frame.triangle_box(m.triangles[t].map(|v| m.positions[v as usize]));
+        let box_of = |t: usize| frame.triangle_box(m.corners(t));
         let boxes: Vec<Aabb> = self.against.iter().map(|&t| box_of(t)).collect();
         let Ok(tree) = Bvh::build(&boxes) else {
             return f64::INFINITY;
@@ -221,16 +219,17 @@ const BUILD_PER_TRIANGLE: f64 = 2.0;
 /// Sampled triangles' corners, and how many triangles each stands for.
 type Sample = (Vec<[glam::DVec3; 3]>, f64);
 
-/// The corners of every k-th triangle of `tris`, at most [`FRAME_SAMPLE`]
-/// of them, and how many triangles each stands for.
-fn sample(m: &TriMesh, tris: &[[u32; 3]]) -> Sample {
-    let step = tris.len().div_ceil(FRAME_SAMPLE).max(1);
-    let corners: Vec<[glam::DVec3; 3]> = tris
+/// The corners of every k-th of the triangles of `m` listed in `near`,
+/// at most [`FRAME_SAMPLE`] of them, and how many triangles each stands
+/// for.
+fn sample(m: &TriMesh, near: &[u32]) -> Sample {
+    let step = near.len().div_ceil(FRAME_SAMPLE).max(1);
+    let corners: Vec<[glam::DVec3; 3]> = near
         .iter()
         .step_by(step)
-        .map(|t| t.map(|v| m.positions[v as usize]))
+        .map(|&t| m.corners(t as usize))
         .collect();
-    let weight = tris.len() as f64 / corners.len().max(1) as f64;
+    let weight = near.len() as f64 / corners.len().max(1) as f64;
     (corners, weight)
 }
 
@@ -276,8 +275,7 @@ impl<'p> Near<'p> {
             most(near_a.len(), a.triangles.len()),
             most(near_b.len(), b.triangles.len()),
         ];
-        let tris = [gathered(a, near_a), gathered(b, near_b)];
-        let samples = (sample(a, &tris[0]), sample(b, &tris[1]));
+        let samples = (sample(a, near_a), sample(b, near_b));
         let whole = [&pa.tree, &pb.tree];
         // Which solids' own trees serve in `frame`.
         let reused = |frame: &BoxFrame| -> [bool; 2] {
@@ -285,7 +283,7 @@ impl<'p> Near<'p> {
         };
         let cost = |frame: &BoxFrame| -> f64 {
             let r = reused(frame);
-            let to_build = (0..2).filter(|&k| !r[k]).map(|k| tris[k].len()).sum();
+            let to_build = (0..2).filter(|&k| !r[k]).map(|k| sets.near[k].len()).sum();
             frame_cost(frame, &samples, to_build)
         };
         let mut frames = vec![sets.joint, pa.tree.frame, pb.tree.frame];
@@ -302,9 +300,9 @@ impl<'p> Near<'p> {
             if r[k] {
                 return Ok(NearTree::Whole(&whole[k].tree, offset));
             }
-            let boxes: Vec<Aabb> = tris[k]
+            let boxes: Vec<Aabb> = sets.near[k]
                 .par_iter()
-                .map(|t| frame.triangle_box(t.map(|v| m.positions[v as usize])))
+                .map(|&t| frame.triangle_box(m.corners(t as usize)))
                 .collect();
             let listed = sets.near[k].iter().map(|&t| t + offset).collect();
             Ok(NearTree::Listed(
