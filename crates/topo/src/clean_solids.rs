@@ -5,7 +5,6 @@
 //! winding-number arrangement ([`crate::winding_boolean`]). Both Boolean
 //! methods use the check, so it has a module of its own below both.
 
-use glam::DVec3;
 use holey_geom::{Aabb, BoxFrame, Bvh, SymPoint, position_classes};
 
 use crate::engine::TopoError;
@@ -81,7 +80,6 @@ fn has_nested_pieces(m: &TriMesh) -> Result<bool, TopoError> {
         return Ok(true);
     };
     let bounds = tree.bounds();
-    let span = (bounds.max - bounds.min).max_element().max(1.0);
     let far_id =
         u32::try_from(m.positions.len()).map_err(|_| MeshError::TooLarge(m.positions.len()))?;
     let sym = |v: u32| SymPoint::new(m.positions[v as usize], ids[v as usize]);
@@ -93,14 +91,9 @@ fn has_nested_pieces(m: &TriMesh) -> Result<bool, TopoError> {
         }
         seen[c as usize] = true;
         let start = sym(v);
-        let far = DVec3::new(
-            bounds.max.x.max(start.pos.x) + span,
-            start.pos.y,
-            start.pos.z,
-        );
-        if !far.is_finite() {
+        let Some(far) = BoxFrame::IDENTITY.beyond(start.pos, &bounds) else {
             return Ok(true);
-        }
+        };
         let end = SymPoint::new(far, far_id);
         let mut odd = false;
         tree.for_each_overlap(&Aabb::new(start.pos, far), |t| {
