@@ -34,9 +34,11 @@
 //! flip only within a nearly planar quad.
 
 use glam::DVec3;
+use holey_geom::Aabb;
 use holey_mesh::slots::fill_holes;
 use holey_topo::TriMesh;
-use holey_topo::audit::is_flat;
+use holey_topo::audit::{is_degenerate, is_flat};
+use holey_topo::intersect::crossing_pairs_involving;
 use holey_topo::mesh::MeshError;
 
 use crate::strokes::Remesh;
@@ -257,6 +259,35 @@ pub fn remesh_in_place(
     active: &[bool],
     options: &RemeshOptions,
 ) -> Result<RemeshReport, RemeshError> {
+    remesh_run(mesh, active, options, false)
+}
+
+/// [`remesh_in_place`] that never makes the surface intersect itself
+/// more: a collapse or flip can swing a triangle through a sheet nearby
+/// (the brushed region is often where sheets were just glued), and the
+/// next frame's engine would then start from a self-intersecting surface.
+/// The triangles near the ones the run changed are tested exactly before
+/// and after; if the run added intersecting pairs or degenerate
+/// (zero-area) triangles there, it is not written and
+/// [`RemeshReport::undone`] says so.
+pub fn remesh_in_place_checked(
+    mesh: &mut TriMesh,
+    active: &[bool],
+    options: &RemeshOptions,
+) -> Result<RemeshReport, RemeshError> {
+    remesh_run(mesh, active, options, true)
+}
+
+/// Loads the work set, runs the passes, and writes the result into
+/// `mesh` unless `checked` finds it worse ([`Work::worse_than`]). The
+/// check runs on the work set before anything is written, so an undone
+/// run costs no copy of the mesh.
+fn remesh_run(
+    mesh: &mut TriMesh,
+    active: &[bool],
+    options: &RemeshOptions,
+    checked: bool,
+) -> Result<RemeshReport, RemeshError> {
     options.check()?;
     mesh.check().map_err(RemeshError::Mesh)?;
     if active.len() != mesh.positions.len() {
@@ -279,105 +310,56 @@ pub fn remesh_in_place(
             break;
         }
     }
+    // Checked only when the run changed something (most frames of a
+    // stroke over a remeshed surface change nothing).
+    let changed = report.splits + report.collapses + report.flips > 0;
+    if checked && changed && work.worse_than(mesh) {
+        report.undone = true;
+        return Ok(report);
+    }
     work.store(mesh, &mut report);
     Ok(report)
 }
 
-/// [`remesh_in_place`] that never makes the surface intersect itself
-/// more: a collapse or flip can swing a triangle through a sheet nearby
-/// (the brushed region is often where sheets were just glued), and the
-/// next frame's engine would then start from a self-intersecting surface.
-/// The triangles near the active region are tested exactly before and
-/// after; if the run added intersecting pairs or degenerate (zero-area)
-/// triangles there, it is undone and [`RemeshReport::undone`] says so.
-pub fn remesh_in_place_checked(
-    mesh: &mut TriMesh,
-    active: &[bool],
-    options: &RemeshOptions,
-) -> Result<RemeshReport, RemeshError> {
-    // Everything a run can touch lies within two edge lengths of the
-    // active vertices' triangles (the work set is their ring). An edge it
-    // makes is at most `max_edge` long, or, when that is no bound (a
-    // collapse-only cleanup: `f64::MAX`), at most a few old edges end to
-    // end; growing by `2 × f64::MAX` made the box the whole mesh, and the
-    // cleanup after a topology change counted every crossing pair of the
-    // surface twice (40 ms a time on the bunny).
-    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-    let mut reach = 0.0f64;
-    for t in &mesh.triangles {
-        if t.iter()
-            .any(|&v| active.get(v as usize).copied().unwrap_or(false))
-        {
-            for k in 0..3 {
-                let (p, q) = (
-                    mesh.positions[t[k] as usize],
-                    mesh.positions[t[(k + 1) % 3] as usize],
-                );
-                (lo, hi) = (lo.min(p), hi.max(p));
-                reach = reach.max(p.distance(q));
-            }
-        }
-    }
-    if !(lo.is_finite() && hi.is_finite()) {
-        return remesh_in_place(mesh, active, options);
-    }
-    let longest = reach.max(options.max_edge.min(4.0 * reach));
-    let grow = DVec3::splat(2.0 * longest);
-    let region = (lo - grow, hi + grow);
-    let saved = mesh.clone();
-    let mut report = remesh_in_place(mesh, active, options)?;
-    // Checked only when the run changed something (most frames of a
-    // stroke over a remeshed surface change nothing). Crossings are
-    // counted only for the pairs a made or unmade triangle takes part in:
-    // the pairs among the triangles the run left alone are the same
-    // before and after, so the whole region's counts compare as these do,
-    // at the cost of what the run touched. The start is counted only
-    // when the result has any.
-    let grew = |after: usize, before: &dyn Fn() -> usize| after > 0 && after > before();
-    if report.splits + report.collapses + report.flips > 0 {
-        let (made, unmade) = changed_triangles(&saved, mesh);
-        let crossings = holey_topo::intersect::crossing_pairs_involving;
-        if grew(crossings(mesh, region, &made), &|| {
-            crossings(&saved, region, &unmade)
-        }) || grew(flat_among(mesh, &made), &|| flat_among(&saved, &unmade))
-        {
-            *mesh = saved;
-            report.undone = true;
-        }
-    }
-    Ok(report)
+/// What a run changed, as corners: the triangles it made (at their new
+/// corners) and those it unmade (as the mesh still has them), with the
+/// mesh slots of the unmade ones, sorted. Every other triangle of the
+/// mesh is the same, at the same place, before and after.
+struct Changes {
+    made: Vec<[DVec3; 3]>,
+    made_flat: usize,
+    unmade: Vec<[DVec3; 3]>,
+    unmade_flat: usize,
+    unmade_slots: Vec<u32>,
 }
 
-/// Which triangles of `after` differ from the triangle at the same index
-/// of `before` (other corners, or a corner moved, or no triangle there),
-/// and the same the other way: a superset of what a remeshing run made
-/// and unmade, found by one pass without hashing. Every unmarked triangle
-/// of one is the same triangle, at the same place, in the other.
-fn changed_triangles(before: &TriMesh, after: &TriMesh) -> (Vec<bool>, Vec<bool>) {
-    // Positions first, in one sequential pass: a triangle is the same
-    // when its corners are and none of them moved.
-    let moved: Vec<bool> = (0..before.positions.len().max(after.positions.len()))
-        .map(|v| before.positions.get(v) != after.positions.get(v))
-        .collect();
-    let same = |i: usize| match (before.triangles.get(i), after.triangles.get(i)) {
-        (Some(a), Some(b)) => a == b && a.iter().all(|&v| !moved[v as usize]),
-        _ => false,
-    };
-    let made = (0..after.triangles.len()).map(|i| !same(i)).collect();
-    let unmade = (0..before.triangles.len()).map(|i| !same(i)).collect();
-    (made, unmade)
-}
-
-/// Triangles with exactly collinear corners (zero area) among those
-/// `marked` flags: the made (or unmade) triangles of a run. The triangles
-/// a run left alone are the same before and after, so the counts of the
-/// whole surface compare as these do.
-fn flat_among(mesh: &TriMesh, marked: &[bool]) -> usize {
-    mesh.triangles
-        .iter()
-        .zip(marked)
-        .filter(|(t, m)| **m && holey_topo::audit::is_degenerate(mesh, **t))
-        .count()
+impl Changes {
+    /// The triangles of `mesh` that are neither unmade nor beyond the
+    /// box of every changed triangle: any triangle crossing a made or
+    /// unmade one has a box meeting that triangle's, so it is among
+    /// these. A triangle's box misses the region exactly when its three
+    /// corners lie beyond one face of it ([`Aabb::outcode`]).
+    fn rest(&self, mesh: &TriMesh) -> Vec<[DVec3; 3]> {
+        let (lo, hi) = self
+            .made
+            .iter()
+            .chain(&self.unmade)
+            .flatten()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        let region = Aabb::new(lo, hi);
+        let code: Vec<u8> = mesh.positions.iter().map(|&p| region.outcode(p)).collect();
+        mesh.triangles
+            .iter()
+            .enumerate()
+            .filter(|(slot, t)| {
+                code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] == 0
+                    && self.unmade_slots.binary_search(&(*slot as u32)).is_err()
+            })
+            .map(|(_, t)| t.map(|v| mesh.positions[v as usize]))
+            .collect()
+    }
 }
 
 const NONE: u32 = u32::MAX;
@@ -1159,17 +1141,75 @@ impl Work {
     /// the last vertices and triangles fill what remains.
     // Local vertex numbers index several parallel arrays here.
     #[allow(clippy::needless_range_loop)]
+    /// The triangles the run made and unmade ([`Changes`]), found from
+    /// the work set alone: a loaded triangle is unchanged when its
+    /// corners are still the input's and none of them moved.
+    fn changes(&self, mesh: &TriMesh) -> Changes {
+        let moved: Vec<bool> = (0..self.pos.len())
+            .map(|v| {
+                let g = self.global[v];
+                g == NONE || mesh.positions[g as usize] != self.pos[v]
+            })
+            .collect();
+        let mut changes = Changes {
+            made: Vec::new(),
+            made_flat: 0,
+            unmade: Vec::new(),
+            unmade_flat: 0,
+            unmade_slots: Vec::new(),
+        };
+        for (i, &t) in self.tris.iter().enumerate() {
+            let slot = self.origin[i];
+            let same = slot != NONE
+                && self.alive_t[i]
+                && !t.iter().any(|&v| moved[v as usize])
+                && t.map(|v| self.global[v as usize]) == mesh.triangles[slot as usize];
+            if same {
+                continue;
+            }
+            if self.alive_t[i] {
+                let corners = self.corners(t);
+                changes.made_flat += usize::from(degenerate(t) || is_flat(corners));
+                changes.made.push(corners);
+            }
+            if slot != NONE {
+                let old = mesh.triangles[slot as usize];
+                changes.unmade_flat += usize::from(is_degenerate(mesh, old));
+                changes.unmade.push(old.map(|v| mesh.positions[v as usize]));
+                changes.unmade_slots.push(slot);
+            }
+        }
+        changes.unmade_slots.sort_unstable();
+        changes
+    }
+
+    /// Whether writing the run into `mesh` would add crossing pairs or
+    /// degenerate triangles. The pairs among the triangles the run left
+    /// alone are the same before and after, so the whole surface's
+    /// counts compare as the counts of pairs a made (or unmade) triangle
+    /// takes part in do ([`crossing_pairs_involving`]). The start is
+    /// counted only when the result has any.
+    fn worse_than(&self, mesh: &TriMesh) -> bool {
+        let changes = self.changes(mesh);
+        if changes.made_flat > 0 && changes.made_flat > changes.unmade_flat {
+            return true;
+        }
+        let rest = changes.rest(mesh);
+        let after = crossing_pairs_involving(&changes.made, &rest);
+        after > 0 && after > crossing_pairs_involving(&changes.unmade, &rest)
+    }
+
     fn store(self, mesh: &mut TriMesh, report: &mut RemeshReport) {
         let nl = self.pos.len();
         let mut free_v: Vec<u32> = Vec::new();
         let mut final_id = vec![NONE; nl];
-        for v in 0..nl {
+        for (v, id) in final_id.iter_mut().enumerate() {
             let g = self.global[v];
             if g == NONE {
                 continue;
             }
             if self.alive_v[v] {
-                final_id[v] = g;
+                *id = g;
                 mesh.positions[g as usize] = self.pos[v];
             } else {
                 free_v.push(g);
@@ -1178,7 +1218,7 @@ impl Work {
         free_v.sort_unstable();
         report.removed_vertices = free_v.clone();
         let mut next_free = 0;
-        for v in 0..nl {
+        for (v, final_v) in final_id.iter_mut().enumerate() {
             if self.global[v] != NONE || !self.alive_v[v] || self.ring[v].is_empty() {
                 continue;
             }
@@ -1190,7 +1230,7 @@ impl Work {
                 mesh.positions.push(self.pos[v]);
                 (mesh.positions.len() - 1) as u32
             };
-            final_id[v] = id;
+            *final_v = id;
             report.new_vertices.push(id);
         }
         // Triangles: changed ones in place, new ones into freed slots.
@@ -1672,6 +1712,108 @@ pub(crate) mod tests {
     /// that a run looking at every edge would still change: a second run
     /// on the result splits, collapses and flips nothing. Refining and
     /// coarsening a sphere, a grid (with a boundary) and a torus.
+    /// A shallow tent (ridge `ab` at height 0.1 over the long diagonal of
+    /// a rhombus) with a thin sheet just under its ridge, at height 0.09.
+    /// Flipping the ridge to the short diagonal `cd` opens the smallest
+    /// angle, within every bound, but turns the tent into a valley
+    /// through the sheet: the valley is 0.098 high at x = ±0.98, where
+    /// the sheet reaches, and 0 at the middle.
+    fn tent_over_a_sheet() -> (TriMesh, Vec<bool>) {
+        let (h, z) = (0.1, 0.09);
+        let mesh = TriMesh {
+            positions: vec![
+                DVec3::new(-1.0, 0.0, h),
+                DVec3::new(1.0, 0.0, h),
+                DVec3::new(0.0, -0.5, 0.0),
+                DVec3::new(0.0, 0.5, 0.0),
+                DVec3::new(-0.98, 0.0, z),
+                DVec3::new(0.98, 0.0, z),
+                DVec3::new(0.0, 0.02, z),
+            ],
+            triangles: vec![[0, 1, 2], [1, 0, 3], [4, 5, 6]],
+        };
+        let active = vec![true, true, true, true, false, false, false];
+        (mesh, active)
+    }
+
+    /// The checked remeshing does not write a run that makes the surface
+    /// cross itself where it did not, and leaves the mesh exactly as it
+    /// was; the unchecked one makes the flip, and the exact pair count
+    /// (an independent whole-mesh count) sees the two new crossings.
+    /// Without the sheet, the checked run writes the same flip.
+    #[test]
+    fn checked_remeshing_leaves_a_flip_through_a_sheet_unwritten() {
+        use holey_topo::intersect::intersecting_pair_count;
+        let (mesh, active) = tent_over_a_sheet();
+        let opts = RemeshOptions::new(range(0.5, 3.0));
+        assert_eq!(intersecting_pair_count(&mesh, usize::MAX).unwrap(), 0);
+        let (free, r) = remesh_with(&mesh, &active, &opts).unwrap();
+        assert_eq!((r.splits, r.collapses, r.flips, r.undone), (0, 0, 1, false));
+        assert_eq!(intersecting_pair_count(&free, usize::MAX).unwrap(), 2);
+        let mut checked = mesh.clone();
+        let r = remesh_in_place_checked(&mut checked, &active, &opts).unwrap();
+        assert!(r.undone, "{r:?}");
+        assert_eq!(checked, mesh);
+        assert!(r.removed_vertices.is_empty() && r.new_vertices.is_empty());
+        // The tent alone: nothing to cross, so the flip is written.
+        let tent = TriMesh {
+            positions: mesh.positions[..4].to_vec(),
+            triangles: mesh.triangles[..2].to_vec(),
+        };
+        let mut checked = tent.clone();
+        let r = remesh_in_place_checked(&mut checked, &active[..4], &opts).unwrap();
+        assert!(!r.undone && r.flips == 1, "{r:?}");
+        assert_eq!(checked, remesh_with(&tent, &active[..4], &opts).unwrap().0);
+    }
+
+    /// The made and unmade triangles the check reads from the work set
+    /// are exactly the run's difference: the input's triangles less the
+    /// unmade, plus the made, are the output's, as multisets of corner
+    /// triples (an independent diff of the meshes before and after), on
+    /// runs that split, collapse and flip; and no triangle is listed as
+    /// unmade twice.
+    #[test]
+    fn the_checks_changes_are_the_difference_of_the_meshes() {
+        let key = |t: [DVec3; 3]| t.map(|p| p.to_array().map(f64::to_bits));
+        let cases = [
+            (sphere(1), range(0.1, 0.25)),
+            (sphere(3), range(0.15, 0.4)),
+            (grid(12), range(0.03, 0.07)),
+            (grid(12), range(0.2, 0.5)),
+            (torus(), range(0.3, 0.7)),
+        ];
+        for (m, r) in cases {
+            let opts = RemeshOptions::new(r);
+            let active: Vec<bool> = (0..m.positions.len()).map(|v| v % 3 != 0).collect();
+            let mut report = RemeshReport::default();
+            let mut work = Work::load(&m, &active, &opts, &mut report).unwrap();
+            work.split_pass(&mut report);
+            work.collapse_pass(&mut report);
+            work.flip_pass(&mut report);
+            assert!(report.splits + report.collapses + report.flips > 0, "{r:?}");
+            let changes = work.changes(&m);
+            let slots = &changes.unmade_slots;
+            assert!(slots.windows(2).all(|w| w[0] < w[1]), "{r:?}");
+            let mut out = m.clone();
+            work.store(&mut out, &mut report);
+            let corners = |mesh: &TriMesh| -> Vec<_> {
+                (0..mesh.triangles.len())
+                    .map(|t| key(mesh.corners(t)))
+                    .collect()
+            };
+            let mut want = corners(&out);
+            let mut got = corners(&m);
+            for u in changes.unmade.iter().map(|&t| key(t)) {
+                let at = got.iter().position(|&g| g == u).unwrap();
+                got.swap_remove(at);
+            }
+            got.extend(changes.made.iter().map(|&t| key(t)));
+            got.sort_unstable();
+            want.sort_unstable();
+            assert_eq!(got, want, "{r:?}");
+        }
+    }
+
     #[test]
     fn passes_near_changes_end_where_a_full_look_finds_nothing_left() {
         let cases = [

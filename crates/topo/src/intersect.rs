@@ -942,53 +942,29 @@ pub fn crossing_pairs_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
     intersecting_pair_count(&part, usize::MAX).unwrap_or(0)
 }
 
-/// The crossing pairs of [`crossing_pairs_within`] that involve at least
-/// one triangle `involved` marks (by index into `mesh.triangles`; a short
-/// slice marks nothing past its end). Tested exactly as there, but only
-/// the pairs a marked triangle takes part in: the marked triangles get a
-/// tree, every other triangle in `region` queries it with its box, so a
-/// check after a local edit costs what the edit touched, not the region.
+/// How many pairs of triangles cross (tested exactly, as
+/// [`intersections`] tests them) among `marked` and `rest` taken as one
+/// surface, counting only the pairs a `marked` triangle takes part in.
+/// Corners are one vertex where their positions are the same, so the
+/// triangles may come from different meshes or moments: the ones a
+/// local edit made, against the untouched surface around them. The
+/// marked triangles get a tree, every `rest` triangle queries it with
+/// its box, so the cost follows the edit, not the surface. 0 when a
+/// corner is not finite.
 ///
-/// Two meshes that differ only in their marked triangles have the same
+/// Two surfaces that differ only in their marked triangles have the same
 /// unmarked pairs, so their full counts compare as these do.
-pub fn crossing_pairs_involving(
-    mesh: &TriMesh,
-    region: (DVec3, DVec3),
-    involved: &[bool],
-) -> usize {
-    let n = mesh.positions.len();
-    // A triangle's box misses the region exactly when its three corners
-    // lie beyond one face of it ([`Aabb::outcode`]).
-    let bx = Aabb::new(region.0, region.1);
-    let code: Vec<u8> = mesh.positions.iter().map(|&p| bx.outcode(p)).collect();
-    let (mut marked, mut rest) = (Vec::new(), Vec::new());
-    for (i, t) in mesh.triangles.iter().enumerate() {
-        if t.iter().any(|&v| v as usize >= n)
-            || code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] != 0
-        {
-            continue;
-        }
-        if involved.get(i).copied().unwrap_or(false) {
-            marked.push(*t);
-        } else {
-            rest.push(*t);
-        }
-    }
+pub fn crossing_pairs_involving(marked: &[[DVec3; 3]], rest: &[[DVec3; 3]]) -> usize {
     if marked.is_empty() {
         return 0;
     }
-    // One part mesh, the marked triangles first.
-    let mut local = vec![u32::MAX; n];
-    let mut part = TriMesh::default();
-    for t in marked.iter().chain(&rest) {
-        part.triangles.push(t.map(|v| {
-            if local[v as usize] == u32::MAX {
-                local[v as usize] = part.positions.len() as u32;
-                part.positions.push(mesh.positions[v as usize]);
-            }
-            local[v as usize]
-        }));
-    }
+    // One part mesh, the marked triangles first, three corners each.
+    let part = TriMesh {
+        positions: marked.iter().chain(rest).flatten().copied().collect(),
+        triangles: (0..(marked.len() + rest.len()) as u32)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect(),
+    };
     let Ok(ids) = holey_geom::position_classes(&part.positions) else {
         return 0;
     };

@@ -410,6 +410,7 @@ fn crossing_pairs_involving_counts_the_marked_triangles_pairs() {
     assert!(pairs.len() > 4, "the octahedra cross");
     let everywhere = (DVec3::splat(-10.0), DVec3::splat(10.0));
     assert_eq!(crossing_pairs_within(&m, everywhere), pairs.len());
+    let corners = |i: usize| m.triangles[i].map(|v| m.positions[v as usize]);
     for marking in [
         vec![true; n],
         vec![false; n],
@@ -420,15 +421,26 @@ fn crossing_pairs_involving_counts_the_marked_triangles_pairs() {
             .iter()
             .filter(|&&(i, j)| marking[i] || marking[j])
             .count();
+        let (marked, rest): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| marking[i]);
+        let (marked, rest): (Vec<_>, Vec<_>) = (
+            marked.into_iter().map(corners).collect(),
+            rest.into_iter().map(corners).collect(),
+        );
         assert_eq!(
-            crossing_pairs_involving(&m, everywhere, &marking),
+            crossing_pairs_involving(&marked, &rest),
+            want,
+            "{marking:?}"
+        );
+        // Corners are shared by position, not by where they are listed:
+        // a rest triangle given as a corner-wise copy (and turned to
+        // start at another corner) meets its neighbours as before.
+        let turned: Vec<_> = rest.iter().map(|&[a, b, c]| [b, c, a]).collect();
+        assert_eq!(
+            crossing_pairs_involving(&marked, &turned),
             want,
             "{marking:?}"
         );
     }
-    // Outside the region nothing is counted.
-    let far = (DVec3::splat(50.0), DVec3::splat(60.0));
-    assert_eq!(crossing_pairs_involving(&m, far, &vec![true; n]), 0);
 }
 
 /// A prism over a star-shaped outline of `n` points whose caps are fans
