@@ -122,10 +122,7 @@ fn main() {
         Command::Sculpt(a) => cmd::sculpt::run(a),
         Command::Serve(a) => cmd::serve::run(a),
         Command::Batch(a) => cmd::batch::run(a),
-        Command::Primitives => {
-            print!("{}", holey_shapes::primitive_help());
-            Ok(())
-        }
+        Command::Primitives => output::print_stdout(holey_shapes::primitive_help()),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

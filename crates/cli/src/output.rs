@@ -10,6 +10,26 @@ use holey_mesh::PolyMesh;
 
 use crate::error::from_io;
 
+/// Writes `text` to standard output and flushes it. A closed pipe
+/// (`holey selfint x.obj --json | head -1`) is an error saying so, not a
+/// panic as `print!` would make it.
+pub fn print_stdout(text: &str) -> Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| anyhow::Error::new(e).context("cannot write to stdout"))
+}
+
+/// [`print_stdout`] of a line, as `println!` takes one.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::output::print_stdout(&format!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+pub(crate) use outln;
+
 /// Writes a DLFL: exactly as `.dlfl`, otherwise as a soup of its non-hole
 /// faces with self-loops dropped (see `holey_dlfl::convert::to_poly`).
 pub fn write_kernel(path: &str, mesh: &Mesh, opts: &WriteOptions) -> Result<()> {

@@ -1410,3 +1410,34 @@ fn sculpt_audit_judges_a_grab_at_its_release() {
     assert!(!err.contains("worse than the input"), "{err}");
     assert!(err.contains("stroke 0 frame 4: "), "{err}");
 }
+
+/// A reader that closes the pipe early (`holey … | head -1`) gets a
+/// clear error from the commands that print, never a panic: stdout's
+/// read end is closed before the command writes, for a report of each
+/// kind (text, JSON, a help text).
+#[test]
+fn a_closed_stdout_is_an_error_not_a_panic() {
+    use std::process::{Command, Stdio};
+    for args in [
+        &["selfint", "@sphere:3", "--pairs"][..],
+        &["selfint", "--json", "@sphere:3"],
+        &["info", "--json", "@sphere:3"],
+        &["primitives"],
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_holey"))
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "holey {args:?}: {err}");
+        assert!(
+            err.contains("cannot write to stdout"),
+            "holey {args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "holey {args:?}: {err}");
+    }
+}

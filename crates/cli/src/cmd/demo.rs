@@ -6,6 +6,7 @@
 //! sphere) from the built-in primitives only, writes each as `.obj`,
 //! `.dlfl` and `.png`, and an `index.html` gallery.
 
+use crate::output::outln;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -516,12 +517,17 @@ pub fn run(args: Args) -> Result<()> {
             seconds,
         });
     }
-    println!(
+    outln!(
         "{:<34} {:>7} {:>7} {:>7} {:>6} {:>9}",
-        "model", "V", "E", "F", "genus", "build ms"
-    );
+        "model",
+        "V",
+        "E",
+        "F",
+        "genus",
+        "build ms"
+    )?;
     for r in &rows {
-        println!(
+        outln!(
             "{:<34} {:>7} {:>7} {:>7} {:>6} {:>9.1}",
             r.name,
             r.v,
@@ -529,7 +535,7 @@ pub fn run(args: Args) -> Result<()> {
             r.f,
             r.genus,
             r.seconds * 1e3
-        );
+        )?;
     }
     let index = args.out.join("index.html");
     holey_io::write_bytes_atomic(&index, gallery_html(&rows).as_bytes())

@@ -1,5 +1,6 @@
 //! `holey info`: measure a mesh.
 
+use crate::output::print_stdout;
 use anyhow::Result;
 use holey_dlfl::dlfl_info;
 use holey_mesh::analysis::{MeshInfo, analyze, weld_exact};
@@ -39,9 +40,9 @@ impl MeshReport for Options {
     fn report(&self, mesh: &str) -> Result<()> {
         let info = measure(mesh, self)?;
         if self.json {
-            println!("{}", serde_json::to_string_pretty(&info)?);
+            print_stdout(&(serde_json::to_string_pretty(&info)? + "\n"))?;
         } else {
-            print!("{}", render_text(mesh, &info));
+            print_stdout(&render_text(mesh, &info))?;
         }
         Ok(())
     }

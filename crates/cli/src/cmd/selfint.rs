@@ -1,5 +1,6 @@
 //! `holey selfint`: the exact self-intersections of a mesh (§3.3).
 
+use crate::output::print_stdout;
 use anyhow::Result;
 use holey_topo::self_intersections;
 use serde_json::json;
@@ -70,22 +71,27 @@ impl MeshReport for Options {
             if let Some(n) = overlaps {
                 v["coplanar_overlaps"] = json!(n);
             }
-            println!("{}", serde_json::to_string_pretty(&v)?);
+            print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
         } else {
-            println!("mesh                {name}");
-            println!("triangles           {}", mesh.triangles.len());
-            println!("intersecting pairs  {}", x.pairs.len());
-            println!("points              {} ({} triple)", x.points.len(), triple);
-            println!("edges               {}", x.pieces.len());
-            println!("curves              {}", x.curve_count);
+            // One write: `--pairs` can list a great many lines.
+            let mut text = format!(
+                "mesh                {name}\ntriangles           {}\nintersecting pairs  {}\npoints              {} ({} triple)\nedges               {}\ncurves              {}\n",
+                mesh.triangles.len(),
+                x.pairs.len(),
+                x.points.len(),
+                triple,
+                x.pieces.len(),
+                x.curve_count
+            );
             if let Some(n) = overlaps {
-                println!("coplanar overlaps   {n}");
+                text += &format!("coplanar overlaps   {n}\n");
             }
             if self.pairs {
                 for (a, b) in &x.pairs {
-                    println!("pair {a} {b}");
+                    text += &format!("pair {a} {b}\n");
                 }
             }
+            print_stdout(&text)?;
         }
         Ok(())
     }

@@ -1,6 +1,6 @@
 //! `holey serve`: the interactive modeler in the browser.
 
-use std::io::Write;
+use crate::output::outln;
 use std::net::IpAddr;
 use std::path::PathBuf;
 
@@ -131,8 +131,7 @@ pub fn run(args: Args) -> Result<()> {
     let (server, note) = Server::bind(config).context("holey serve")?;
     let url = server.url()?;
     eprintln!("{note}");
-    println!("holey serve: listening on {url}");
-    std::io::stdout().flush()?;
+    outln!("holey serve: listening on {url}")?;
     if args.open {
         // Best effort: a machine without a desktop keeps serving.
         if let Err(e) = std::process::Command::new("xdg-open").arg(&url).spawn() {
