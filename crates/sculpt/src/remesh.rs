@@ -394,6 +394,10 @@ struct Work {
     origin: Vec<u32>,
     /// Cached class and valence per local vertex.
     info: Vec<Option<(Class, i64)>>,
+    /// Scratch of [`Work::classify`], reused: a ring's (neighbour,
+    /// triangle) pairs and its union-find parents.
+    scratch_pairs: Vec<(u32, u32)>,
+    scratch_parents: Vec<u32>,
     /// Per local vertex, the tick of the last change to a triangle around
     /// it (its ring, a corner's position): what a pass after the first
     /// looks at ([`Work::edges_to_visit`]).
@@ -508,6 +512,8 @@ impl Work {
             full: (0..nl).map(|i| (i as u32) < full_count).collect(),
             alive_v: vec![true; nl],
             info: vec![None; nl],
+            scratch_pairs: Vec::new(),
+            scratch_parents: Vec::new(),
             changed: vec![1; nl],
             clock: 1,
             visited: [0; 3],
@@ -538,6 +544,23 @@ impl Work {
             .copied()
             .filter(|&t| self.tris[t as usize].contains(&b))
             .collect()
+    }
+
+    /// The two live triangles with both `a` and `b`, in ring order, when
+    /// there are exactly two ([`Work::edge_tris`] without a list).
+    fn edge_pair(&self, a: u32, b: u32) -> Option<[u32; 2]> {
+        let mut pair = [NONE; 2];
+        let mut count = 0;
+        for &t in &self.ring[a as usize] {
+            if self.tris[t as usize].contains(&b) {
+                if count == 2 {
+                    return None;
+                }
+                pair[count] = t;
+                count += 1;
+            }
+        }
+        (count == 2).then_some(pair)
     }
 
     /// The edge neighbours of `v`, sorted.
@@ -620,32 +643,59 @@ impl Work {
         unpacked(edges)
     }
 
-    fn classify(&self, v: u32) -> (Class, i64) {
+    fn classify(&mut self, v: u32) -> (Class, i64) {
+        let (mut pairs, mut parents) = (
+            std::mem::take(&mut self.scratch_pairs),
+            std::mem::take(&mut self.scratch_parents),
+        );
+        let info = self.classify_with(v, &mut pairs, &mut parents);
+        (self.scratch_pairs, self.scratch_parents) = (pairs, parents);
+        info
+    }
+
+    /// [`Work::classify`] with its scratch lists: the ring's triangles
+    /// joined through shared neighbours must form one fan (a union-find
+    /// over the ring), each neighbour on one or two of them.
+    fn classify_with(
+        &self,
+        v: u32,
+        pairs: &mut Vec<(u32, u32)>,
+        parents: &mut Vec<u32>,
+    ) -> (Class, i64) {
         let ring = &self.ring[v as usize];
         if !self.full[v as usize] || ring.is_empty() {
             return (Class::Singular, 0);
         }
-        let mut nb: Vec<(u32, usize)> = Vec::with_capacity(2 * ring.len());
+        pairs.clear();
         for (i, &t) in ring.iter().enumerate() {
             let tri = self.tris[t as usize];
             if degenerate(tri) {
                 return (Class::Singular, 0);
             }
-            nb.extend(tri.iter().filter(|&&x| x != v).map(|&x| (x, i)));
+            pairs.extend(tri.iter().filter(|&&x| x != v).map(|&x| (x, i as u32)));
         }
-        nb.sort_unstable();
-        // One fan: the triangles joined through shared neighbours form
-        // one group (union-find over the ring).
-        let mut sets = holey_mesh::UnionFind::new(ring.len());
+        pairs.sort_unstable();
+        parents.clear();
+        parents.extend(0..ring.len() as u32);
+        let root = |parents: &mut Vec<u32>, mut x: u32| {
+            while parents[x as usize] != x {
+                let up = parents[parents[x as usize] as usize];
+                parents[x as usize] = up;
+                x = up;
+            }
+            x
+        };
         let mut groups = ring.len();
         let mut boundary = 0;
         let mut valence = 0;
-        for run in nb.chunk_by(|x, y| x.0 == y.0) {
+        for run in pairs.chunk_by(|x, y| x.0 == y.0) {
             valence += 1;
             match run.len() {
                 1 => boundary += 1,
                 2 => {
-                    if sets.union(run[0].1 as u32, run[1].1 as u32) {
+                    let (x, y) = (root(parents, run[0].1), root(parents, run[1].1));
+                    if x != y {
+                        parents[x as usize] = y;
                         groups -= 1;
                     }
                 }
@@ -1039,8 +1089,7 @@ impl Work {
     /// Flips edge `a`–`b` when that lowers the valence excess of the four
     /// vertices, or keeps it and opens the smallest angle.
     fn try_flip(&mut self, a: u32, b: u32) -> bool {
-        let ts = self.edge_tris(a, b);
-        let [t1, t2] = ts[..] else {
+        let Some([t1, t2]) = self.edge_pair(a, b) else {
             return false;
         };
         // Rotate so that t1 = (a, b, c) and t2 = (b, a, d): a consistently
