@@ -1103,6 +1103,14 @@ fn trim(
     let keep: Vec<bool> = match deletion.odd() {
         None => vec![true; sub.tris.len()],
         Some(odd) => {
+            // An exact field's sampler casts one ray through the other
+            // solid's tree, so every region no vertex reaches is sampled;
+            // a motion's follows a point along its path, so its regions
+            // are capped (see `label`).
+            let max_samples = match deletion {
+                Deletion::OddExact(_) => usize::MAX,
+                _ => MAX_SAMPLED_REGIONS,
+            };
             let labels = label(
                 &sub.tris,
                 n,
@@ -1111,7 +1119,7 @@ fn trim(
                 &sub.curve_edges,
                 &mut report,
                 &sub.source,
-                sample,
+                sample.map(|s| (s, max_samples)),
             );
             let mut keep: Vec<bool> = labels.iter().map(|&o| !o).collect();
             // The samples follow the true motion only for a frame or a
@@ -1180,7 +1188,7 @@ fn label(
     curve_edges: &[(u32, u32)],
     report: &mut CutReport,
     source: &Sources,
-    sample: Option<&Sampler<'_>>,
+    sample: Option<(&Sampler<'_>, usize)>,
 ) -> Vec<bool> {
     // Each triangle's vote, and whether its corners disagreed.
     let votes: Vec<(Option<bool>, bool)> = tris
@@ -1253,17 +1261,21 @@ fn label(
     }
     report.diffused = undecided_before - state.iter().filter(|s| s.is_none()).count();
     // Regions no vertex reaches: one sample each (Figure 13), at most
-    // MAX_SAMPLED_REGIONS. A sample is a moving point tested against every
-    // triangle its path passes, so on a crumpled surface (thousands of
-    // vertex-free slivers between curves) sampling them all took minutes;
-    // past the cap regions stay undecided and are kept, as in the paper.
-    if let Some(sample) = sample {
+    // `max_samples`. A motion's sample is a moving point tested against
+    // every triangle its path passes, so on a crumpled surface (thousands
+    // of vertex-free slivers between curves) sampling them all took
+    // minutes: a motion caps them at MAX_SAMPLED_REGIONS, and past the cap
+    // regions stay undecided and are kept, as in the paper. The union's
+    // exact field is not capped: two Menger sponges give thousands of
+    // bands where one's slab crosses the other's wall between vertices,
+    // and a band left kept is an edge of three triangles.
+    if let Some((sample, max_samples)) = sample {
         let (mut region, mut tried) = (0u32, 0usize);
         for (k, &seed) in undecided.iter().enumerate() {
             if state[seed as usize].is_some() {
                 continue;
             }
-            if tried >= MAX_SAMPLED_REGIONS {
+            if tried >= max_samples {
                 break;
             }
             tried += 1;

@@ -878,6 +878,7 @@ fn unite(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cut::MAX_SAMPLED_REGIONS;
     use near::NearTree;
 
     /// A prism over an ellipse of `n` points (semi-axes `2r` and `r`,
@@ -886,6 +887,58 @@ mod tests {
     fn fan_prism(n: u32, r: f64, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMesh {
         let outline = crate::intersect::tests::ellipse(n as usize, 2.0 * r, r);
         crate::intersect::tests::fan_prism(&outline, 0.3, turn, at)
+    }
+
+    /// The box `[lo, hi]` as twelve outward triangles.
+    fn cuboid(lo: DVec3, hi: DVec3) -> TriMesh {
+        let (corners, quads) = holey_testkit::unit_cube();
+        TriMesh {
+            positions: corners
+                .iter()
+                .map(|&c| lo + DVec3::from_array(c) * (hi - lo))
+                .collect(),
+            triangles: quads
+                .iter()
+                .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+                .collect(),
+        }
+    }
+
+    /// A wall of one big box crossed by more thin slabs than a motion's
+    /// cut samples (`MAX_SAMPLED_REGIONS`): where a slab passes through
+    /// the wall, the wall's part inside the slab is a rectangle bounded
+    /// by the curve alone, with no vertex of the box in it (the bands two
+    /// Menger sponges make where one's slab crosses the other's wall).
+    /// Every such region is sampled by a ray and deleted: the union is
+    /// one closed 2-manifold whose volume is the closed form, the box's
+    /// and the slabs' parts outside it. With the cap, the regions past it
+    /// were kept, each leaving four edges of three triangles.
+    #[test]
+    fn a_union_samples_every_vertex_free_region_of_a_wall_crossed_by_many_slabs() {
+        let slabs = MAX_SAMPLED_REGIONS + 44;
+        let (h, step) = (0.002, 1.8 / slabs as f64);
+        let mut a = TriMesh::default();
+        for k in 0..slabs {
+            let z = -0.9 + step * k as f64;
+            a.append(&cuboid(
+                DVec3::new(-2.0, -0.5, z),
+                DVec3::new(0.0, 0.5, z + h),
+            ));
+        }
+        let b = cuboid(DVec3::splat(-1.0), DVec3::splat(1.0));
+        let out = union(&a, &b, &Options::default()).unwrap();
+        let cut = &out.report.cut;
+        assert_eq!(cut.undecided, 0, "{cut:?}");
+        assert!(cut.sampled_regions >= slabs, "{cut:?}");
+        assert!(out.mesh.is_closed_manifold());
+        let want = 8.0 + slabs as f64 * h;
+        let got = signed_volume(&out.mesh.positions, &out.mesh.triangles);
+        assert!(
+            (got - want).abs() < 1e-9 * want,
+            "volume {got}, want {want}"
+        );
+        let info = holey_mesh::analysis::analyze(&holey_mesh::PolyMesh::from(&out.mesh));
+        assert_eq!(info.components, 1);
     }
 
     /// The difference through the trees kept from the self-crossing
