@@ -141,20 +141,20 @@ fn open_solids_are_refused_by_name() {
     assert!(e.to_string().contains("solid A is not closed"), "{e}");
 }
 
-/// The shared `menger_sponge_level3.obj` (genus 1409) united with its
-/// copy turned 0.3 rad about z and moved by (0.13, 0.07, 0.05): the
-/// copy's walls cross the sponge's slabs between vertices in hundreds of
-/// bands no vertex decides, more than a motion's cut samples. The union
-/// is a closed, consistently oriented 2-manifold (it had 99 edges of
-/// three triangles, where bands past the cap were kept) that does not
-/// cross itself; its volume is manifold3d's (`Mesh64`, 0.6944292758897044,
-/// measured on the same float64 input) and so is its count of surface
-/// pieces, 84 (the outer surface and 83 enclosed voids); points sampled
-/// by winding numbers summed in the test follow the union rule.
+/// The shared `menger_sponge_level3.obj` (genus 1409) and its copy
+/// turned 0.3 rad about z and moved by (0.13, 0.07, 0.05): the copy's
+/// walls cross the sponge's slabs between vertices in hundreds of bands
+/// no vertex decides, more than a motion's cut samples. Each operation
+/// gives a closed, consistently oriented 2-manifold (the union had 99
+/// edges of three triangles, the difference 890, where bands past the cap
+/// were kept) that does not cross itself; its volume and its count of
+/// surface pieces are manifold3d's (`Mesh64` on the same float64 input:
+/// the union's 84 are the outer surface and 83 enclosed voids); points
+/// sampled by winding numbers summed in the test follow the rule.
 #[test]
-fn menger_sponge_level3_united_with_a_turned_copy_is_a_closed_manifold() {
+fn menger_sponge_level3_and_a_turned_copy_give_closed_manifolds() {
     let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "menger_sponge_level3_united_with_a_turned_copy_is_a_closed_manifold",
+        "menger_sponge_level3_and_a_turned_copy_give_closed_manifolds",
     ) else {
         return;
     };
@@ -163,14 +163,20 @@ fn menger_sponge_level3_united_with_a_turned_copy_is_a_closed_manifold() {
     let b = map_positions(&a, |p| {
         DVec3::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos, p.z) + DVec3::new(0.13, 0.07, 0.05)
     });
-    let out = check(&a, &b, Operation::Union, 200, "sponge ∪ turned sponge");
-    assert!(out.is_closed_manifold());
-    assert_eq!(max_edge_degree(&out), 2);
-    assert_eq!(components(&out), 84);
-    let want = 0.6944292758897044;
-    assert!(
-        (volume(&out) - want).abs() < 1e-9 * want,
-        "volume {}",
-        volume(&out)
-    );
+    for (op, volume_want, pieces) in [
+        (Operation::Union, 0.6944292758897044, 84),
+        (Operation::Difference, 0.28798717456276407, 2),
+        (Operation::Intersection, 0.11845492676417642, 11),
+    ] {
+        let what = format!("sponge {} turned sponge", op.name());
+        let out = check(&a, &b, op, 120, &what);
+        assert!(out.is_closed_manifold(), "{what}");
+        assert_eq!(max_edge_degree(&out), 2, "{what}");
+        assert_eq!(components(&out), pieces, "{what}");
+        let v = volume(&out);
+        assert!(
+            (v - volume_want).abs() < 1e-9 * volume_want,
+            "{what}: volume {v}"
+        );
+    }
 }
