@@ -45,7 +45,7 @@ use holey_dlfl::{FaceId, Mesh};
 use holey_geom::{Aabb, Sign, SymPoint, orient3d, position_classes, segment_triangle_intersect};
 
 use super::crossing::{CrossingError, Surface};
-use super::multi::MultiHandleError;
+use super::multi_error::MultiHandleError;
 use super::simplex::{Lp, maximize};
 
 /// Margins (in units of `L`) below this count as none: a hub that close

@@ -84,6 +84,7 @@ pub mod geometry;
 mod hub;
 mod matching;
 mod multi;
+mod multi_error;
 mod simplex;
 
 use glam::DVec3;
@@ -93,7 +94,8 @@ pub use crossing::CrossingError;
 pub use geometry::{BezierCurve, HandlePath, HermiteCurve};
 use geometry::{Morph, centroid, rotation_between, vector_area};
 use matching::{Matching, plan_matching};
-pub use multi::{MultiHandleError, MultiHandleParams, MultiHandleReport, create_multi_face_handle};
+pub use multi::{MultiHandleParams, MultiHandleReport, create_multi_face_handle};
+pub use multi_error::MultiHandleError;
 
 /// Why a handle was refused. The mesh is unchanged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
