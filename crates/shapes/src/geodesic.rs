@@ -6,7 +6,7 @@ use holey_mesh::PolyMesh;
 use crate::ShapeError;
 use crate::grid::with_capacity;
 use crate::solids::{ICOSAHEDRON_FACES, icosahedron_vertices};
-use crate::spec::{GEODESIC, SOCCER_BALL, validate};
+use crate::spec::{GEODESIC, validate};
 
 const SQRT3: f64 = 1.732_050_807_568_877_2;
 
@@ -158,10 +158,4 @@ pub fn geodesic(n: u32) -> Result<PolyMesh, ShapeError> {
         }
     }
     Ok(m)
-}
-
-/// The soccer ball after validating its (empty) parameter list.
-pub(crate) fn soccer_ball_checked() -> Result<PolyMesh, ShapeError> {
-    validate(&SOCCER_BALL, &[])?;
-    Ok(soccer_ball())
 }
