@@ -30,7 +30,7 @@ use std::fmt;
 use std::net::{IpAddr, Ipv4Addr, Ipv6Addr, SocketAddr};
 
 use crate::ServeError;
-use crate::http::Request;
+use crate::head::Request;
 
 /// Bytes of OS randomness in a generated token: 192 bits, as Jupyter.
 const TOKEN_BYTES: usize = 24;

@@ -25,6 +25,7 @@ pub mod auth;
 pub mod doc;
 pub mod embedded;
 pub mod frame;
+pub mod head;
 pub mod http;
 pub mod ops;
 pub mod persist;
