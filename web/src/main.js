@@ -57,7 +57,8 @@ const hook = {
   get stroking() { return !!app.stroke; },
   get strokeInfo() {
     const s = app.stroke;
-    return s && { brush: s.brush, ending: s.ending, inflight: !!s.inflight, queued: !!(s.queued || s.queue?.length) };
+    // In flight until the frame of every answered batch has come too.
+    return s && { brush: s.brush, ending: s.ending, inflight: !!s.inflight || framesDue.length > 0, queued: !!(s.queued || s.queue?.length) };
   },
   get pending() { return [...conn.pending.values()].map((p) => p.op); },
   get selection() { return app.sel; },
@@ -291,7 +292,10 @@ function onFrame(buf) {
   // changed (the brush ring, a second frame): at most one per display frame.
   const applied = performance.now();
   hook.lastParseRenderMs = applied - t0;
-  const inflight = app.stroke?.inflight;
+  // A stroke frame comes right after its answer, by which time the next
+  // batch may be in flight: it is the oldest batch answered and not yet
+  // drawn.
+  const inflight = framesDue.length ? framesDue.shift() : app.stroke?.inflight;
   if (inflight && !inflight.measured) {
     inflight.measured = true;
     // A batch of dabs shows in this one picture: each dab's latency runs
@@ -305,6 +309,10 @@ function onFrame(buf) {
 
 // Stroke frames waiting for their picture (see hook.strokeLatencies).
 const pendingMeasures = [];
+// Batches of dabs answered whose frame has not come yet: the server
+// answers a stroke_frame first and sends its frame right after, so that
+// the next batch is computed while this tab reads and draws the frame.
+const framesDue = [];
 if (viewer) {
   viewer.afterRender = (start, end) => {
     if (!pendingMeasures.length) return;
@@ -912,8 +920,9 @@ $('op-make-manifold').onclick = () => repair('make_manifold');
 
 /** Stroke protocol: stroke_begin, then stroke_frame with at most one request
  * in flight (the dabs waiting in `queue`, sent together up to MAX_BATCH
- * when the answer comes), then stroke_end once everything sent has been
- * answered. */
+ * when the answer comes; the server answers before it sends the frame, so
+ * the next batch is computed while this tab draws), then stroke_end once
+ * everything sent has been answered. */
 /** Inflate, draw, clay and crease: displacement per frame at full strength,
  * as a share of the radius (the server's strength is in world units). */
 const INFLATE_PER_FRAME = 0.05;
@@ -1073,9 +1082,11 @@ function strokeAnswered(stroke) {
     hook.framesSent += batch.length;
     pushCapped(hook.batchSizes, batch.length);
     for (const r of batch) if (r.pressure !== undefined) pushCapped(hook.pressuresSent, r.pressure);
+    const answered = stroke.inflight;
     conn.request('stroke_frame', fields).then(
       (ok) => {
         if (ok.ms != null) pushCapped(hook.serverMs, ok.ms);
+        framesDue.push(answered); // its frame comes next
         strokeAnswered(stroke);
       },
       (err) => {
@@ -1176,6 +1187,7 @@ function strokeUp() {
 /** The connection dropped or the server refused: forget the stroke here. */
 function endStrokeLocally() {
   app.stroke = null;
+  framesDue.length = 0;
   viewer?.endMotion('stroke');
   if (viewer?.controls) viewer.controls.enabled = true;
 }

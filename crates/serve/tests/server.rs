@@ -68,6 +68,12 @@ impl Tab {
     fn open(addr: SocketAddr) -> Tab {
         let (socket, _) =
             tungstenite::connect(format!("ws://{addr}/ws?token={TOKEN}")).expect("connect");
+        // A message that never comes fails the test instead of hanging it.
+        if let MaybeTlsStream::Plain(stream) = socket.get_ref() {
+            stream
+                .set_read_timeout(Some(Duration::from_secs(150)))
+                .expect("a read timeout");
+        }
         let mut tab = Tab {
             socket,
             next: 0,
@@ -128,8 +134,17 @@ impl Tab {
 
     /// Sends a request and waits for its reply.
     fn call(&mut self, req: Value) -> Value {
+        let stroke_frame = req["op"] == "stroke_frame";
         let id = self.send(req);
-        self.reply_to(id, Duration::from_secs(120))
+        let reply = self.reply_to(id, Duration::from_secs(120));
+        // A stroke frame is answered first, and its frame follows at once
+        // (the page sends its next dabs while it reads the frame).
+        if stroke_frame && reply["type"] == "ok" {
+            let n = self.frames.len();
+            assert_eq!(self.pump_one(), None, "the frame follows the answer");
+            assert_eq!(self.frames.len(), n + 1, "the frame follows the answer");
+        }
+        reply
     }
 
     /// Starts a long operation and cancels it at once: its reply must be

@@ -29,7 +29,7 @@ use crate::doc::{Content, Document};
 use crate::frame::{FLAG_PREVIEW, encode_masked};
 use crate::persist::Saver;
 use crate::{Config, ConnId, ServeError};
-use request::Request;
+use request::{Request, StrokeFrame};
 
 mod document;
 mod files;
@@ -100,6 +100,42 @@ pub struct Shared {
 }
 
 type Reply = Result<Value, ServeError>;
+
+/// What a request asks, as far as [`refusal`] cares.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Asks {
+    /// A stroke's next frame or its end.
+    StrokeFrame,
+    /// The remeshing setting, which may change while a long operation runs.
+    SetRemesh,
+    Other,
+}
+
+/// Why a request from `conn` cannot run now: a long operation is running
+/// (only the remeshing setting may change meanwhile), or a stroke is in
+/// progress and this is not its owner's next frame or end.
+fn refusal(doc: &Document, conn: ConnId, asks: Asks) -> Option<ServeError> {
+    if let Some((owner, what)) = &doc.busy
+        && asks != Asks::SetRemesh
+    {
+        let who = if *owner == conn {
+            "this tab"
+        } else {
+            "another tab"
+        };
+        return Some(ServeError::Refused(format!(
+            "busy: {what} is running in {who}; wait or cancel it"
+        )));
+    }
+    if let Some(s) = &doc.stroke
+        && (s.owner != conn || asks != Asks::StrokeFrame)
+    {
+        return Some(ServeError::Refused(
+            "busy: a stroke is in progress; release the mouse first".into(),
+        ));
+    }
+    None
+}
 
 impl Shared {
     pub fn new(config: Config, gate: Gate, doc: Document) -> Arc<Shared> {
@@ -213,33 +249,41 @@ impl Shared {
             }
             Request::Primitives => Ok(primitives()),
             Request::RemeshSchemes => Ok(remesh::schemes_json()),
+            Request::StrokeFrame(f) => return self.stroke_frame_answered(conn, id.as_ref(), &f),
             edit => self.edit(conn, op, edit),
         };
         self.reply(conn, id.as_ref(), result);
     }
 
+    /// A stroke frame, answered before its frame goes out: the tab sends
+    /// its next dabs as soon as the answer comes, so the server computes
+    /// them while the tab reads and draws this frame (the other way round,
+    /// the tab read and drew the frame first, and the server sat idle).
+    /// Both go out under the document's lock, so every tab still gets the
+    /// frames in the order of the strokes' state (a tab joining sees the
+    /// stroke as it was before this frame, and then the frame).
+    fn stroke_frame_answered(&self, conn: ConnId, id: Option<&Value>, req: &StrokeFrame) {
+        let mut doc = self.doc();
+        let (result, frame) = match refusal(&doc, conn, Asks::StrokeFrame) {
+            Some(e) => (Err(e), None),
+            None => self.stroke_frame(&mut doc, req),
+        };
+        self.reply(conn, id, result);
+        if let Some(bytes) = frame {
+            self.hub.broadcast(&Out::Binary(bytes));
+        }
+    }
+
     /// The requests that read or change the document under its lock.
     fn edit(&self, conn: ConnId, op: &str, request: Request) -> Reply {
         let mut doc = self.doc();
-        let stroking = matches!(request, Request::StrokeFrame(_) | Request::StrokeEnd);
-        if let Some((owner, what)) = &doc.busy
-            && !matches!(request, Request::SetRemesh { .. })
-        {
-            let who = if *owner == conn {
-                "this tab"
-            } else {
-                "another tab"
-            };
-            return Err(ServeError::Refused(format!(
-                "busy: {what} is running in {who}; wait or cancel it"
-            )));
-        }
-        if let Some(s) = &doc.stroke
-            && (s.owner != conn || !stroking)
-        {
-            return Err(ServeError::Refused(
-                "busy: a stroke is in progress; release the mouse first".into(),
-            ));
+        let asks = match request {
+            Request::StrokeFrame(_) | Request::StrokeEnd => Asks::StrokeFrame,
+            Request::SetRemesh { .. } => Asks::SetRemesh,
+            _ => Asks::Other,
+        };
+        if let Some(e) = refusal(&doc, conn, asks) {
+            return Err(e);
         }
         let doc = &mut *doc;
         match request {
@@ -287,12 +331,13 @@ impl Shared {
             Request::MakeManifold => self.repair(doc, None),
             Request::SetRemesh { detail } => self.set_remesh(doc, detail),
             Request::StrokeBegin(s) => self.stroke_begin(conn, doc, &s),
-            Request::StrokeFrame(f) => self.stroke_frame(doc, &f),
             Request::StrokeEnd => self.stroke_end(doc),
             Request::MaskPaint(p) => self.mask_paint(doc, &p),
             Request::MaskClear | Request::MaskInvert => self.mask_clear_or_invert(doc, op),
-            // `request` answers these without the document's lock.
+            // `request` answers these without the document's lock, or
+            // (stroke frames) answers before it sends the frame.
             Request::Hello
+            | Request::StrokeFrame(_)
             | Request::Primitives
             | Request::RemeshSchemes
             | Request::Cancel

@@ -85,7 +85,13 @@ impl Shared {
             sent,
             book: None,
         });
-        self.stroke_frame(doc, &req.first_frame())
+        // The first frame goes out before the answer, as every frame
+        // did: the page waits for this answer before sending any dab.
+        let (reply, frame) = self.stroke_frame(doc, &req.first_frame());
+        if let Some(bytes) = frame {
+            self.hub.broadcast(&Out::Binary(bytes));
+        }
+        reply
     }
 
     /// `stroke_end`: the stroke finished and committed if it changed the mesh; a release the guard refused says why in plain words.
@@ -129,10 +135,29 @@ impl Shared {
         Ok(reply)
     }
 
-    /// `stroke_frame`: the stroke's next frame, sent to every tab; with
-    /// `points`, one frame per dab in order, sent as one frame message
-    /// of the state after the last (against what the tabs were sent).
-    pub(super) fn stroke_frame(&self, doc: &mut Document, req: &StrokeFrame) -> Reply {
+    /// `stroke_frame`: the stroke's next frame, for every tab; with
+    /// `points`, one frame per dab in order, as one frame message of the
+    /// state after the last (against what the tabs were sent). The answer
+    /// and the frame message to broadcast after it (none when no dab was
+    /// applied).
+    pub(super) fn stroke_frame(
+        &self,
+        doc: &mut Document,
+        req: &StrokeFrame,
+    ) -> (Reply, Option<Vec<u8>>) {
+        match self.stroke_frames(doc, req) {
+            Ok((reply, frame)) => (reply, Some(frame)),
+            Err(e) => (Err(e), None),
+        }
+    }
+
+    /// [`Self::stroke_frame`]: `Err` when no dab was applied, else the
+    /// answer (an error when a later dab failed) and the frame.
+    fn stroke_frames(
+        &self,
+        doc: &mut Document,
+        req: &StrokeFrame,
+    ) -> Result<(Reply, Vec<u8>), ServeError> {
         let dabs = req.dabs()?;
         let version = doc.version();
         let mask = Arc::clone(doc.mask());
@@ -231,11 +256,11 @@ impl Shared {
         };
         stroke.sent.clone_from(moved);
         let vanishing = vanish.map_or(0, |m| m.iter().filter(|&&b| b).count());
-        self.hub.broadcast(&Out::Binary(bytes));
-        if let Some(e) = failed {
-            return Err(e.into());
-        }
-        Ok(json!({"ms": ms, "vanishing": vanishing, "frames": applied}))
+        let reply = match failed {
+            Some(e) => Err(e.into()),
+            None => Ok(json!({"ms": ms, "vanishing": vanishing, "frames": applied})),
+        };
+        Ok((reply, bytes))
     }
 }
 
