@@ -168,6 +168,12 @@ pub struct Report {
     /// retry happens only when a closed 2-manifold input came out as
     /// something else (coplanar overlaps).
     pub perturbation_retries: usize,
+    /// Triangle pairs of the output that cross, where they were counted
+    /// exactly: a Boolean whose B was nudged off coplanar contact
+    /// ([`crate::union_robust`]), where the nudge leaves slivers at its
+    /// own scale and rounding their points can make them cross. `None`
+    /// where not counted (an exact result in general position).
+    pub output_intersecting_pairs: Option<usize>,
     /// The input was a closed, consistently oriented 2-manifold (a
     /// solid's surface): the solid guard and the coplanar retry apply.
     pub solid_input: bool,
@@ -559,6 +565,7 @@ pub(crate) fn finish(
         solved_components: s.solved,
         unsolved_components: s.unsolved,
         perturbation_retries: 0,
+        output_intersecting_pairs: None,
         solid_input,
         orientation_flips: flips,
         timings: Timings {

@@ -44,6 +44,7 @@ impl Report {
             "solved_components": r.solved_components,
             "unsolved_components": r.unsolved_components,
             "perturbation_retries": r.perturbation_retries,
+            "output_intersecting_pairs": r.output_intersecting_pairs,
             "solid_input": r.solid_input,
             "orientation_flips": r.orientation_flips,
             "seconds": {

@@ -65,7 +65,8 @@ use crate::clean_solids::needs_arrangement_when_closed;
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError};
 use crate::intersect::{
-    FramedTree, any_intersection_among, default_pair_limit, intersections_among, triangle_boxes,
+    FramedTree, any_intersection_among, default_pair_limit, intersecting_pair_count,
+    intersections_among, triangle_boxes,
 };
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
@@ -608,10 +609,14 @@ impl<'a> PreparedPair<'a> {
             started,
             Some(&self.near),
         )?;
+        if !manifold_inputs || out.mesh.is_closed_manifold() {
+            return Ok(out);
+        }
+        // Nudged: the first closed 2-manifold that does not cross itself,
+        // else the closed one that crosses itself least, its crossings
+        // counted in the report (never silently), else the last attempt.
+        let mut best: Option<Outcome> = None;
         for k in 1..NUDGES.len() {
-            if !manifold_inputs || out.mesh.is_closed_manifold() {
-                break;
-            }
             let d = nudge(a, b, k);
             let moved = TriMesh {
                 positions: b.positions.iter().map(|p| *p + d).collect(),
@@ -620,8 +625,21 @@ impl<'a> PreparedPair<'a> {
             let pm = Parts::new(&moved)?;
             out = unite(a, &self.pa, &moved, &pm, op, options, started, None)?;
             out.report.perturbation_retries = k;
+            if !out.mesh.is_closed_manifold() {
+                continue;
+            }
+            let crossing = intersecting_pair_count(&out.mesh, usize::MAX).ok();
+            out.report.output_intersecting_pairs = crossing;
+            if crossing == Some(0) {
+                return Ok(out);
+            }
+            let rank = |c: Option<usize>| c.unwrap_or(usize::MAX);
+            let fewer = |o: &Outcome| rank(crossing) < rank(o.report.output_intersecting_pairs);
+            if best.as_ref().is_none_or(fewer) {
+                best = Some(out.clone());
+            }
         }
-        Ok(out)
+        Ok(best.unwrap_or(out))
     }
 
     /// [`boolean`] of the pair.
@@ -854,6 +872,7 @@ fn unite(
         solved_components: 0,
         unsolved_components: 0,
         perturbation_retries: 0,
+        output_intersecting_pairs: None,
         solid_input: oriented,
         orientation_flips: flips,
         timings: Timings {

@@ -189,5 +189,11 @@ pub fn write_outcome(
     if args.verbose {
         eprint!("{}", report_text(&out.report));
     }
+    if let Some(crossing) = out.report.output_intersecting_pairs.filter(|&n| n > 0) {
+        eprintln!(
+            "warning: {crossing} triangle pairs of the result cross: B was nudged off coplanar contact (nudge {}), and points of the slivers that left were rounded past a sheet; `--winding` merges coplanar faces instead, more slowly",
+            out.report.perturbation_retries
+        );
+    }
     Ok(())
 }
