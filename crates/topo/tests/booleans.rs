@@ -239,3 +239,32 @@ fn a_nudged_result_counts_its_own_crossings() {
     );
     assert_eq!(out.report.output_intersecting_pairs, Some(crossing));
 }
+
+/// The shared `spot_triangulated.obj` minus its copy moved along x by a
+/// fifth of its width (0.18862080000000003): the two are near mirror
+/// images about x = 0.0943104, and the difference's pieces touch at
+/// single points on that plane, where the gluing merged points the
+/// perturbation kept apart. Each piece gets its own vertex there: the
+/// result is a 2-manifold at vertices too (it had 6 pinched vertices),
+/// in manifold3d's 5 pieces (`Mesh64`, same float64 input) and with its
+/// volume, 0.2776503044188431.
+#[test]
+fn spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex() {
+    let Some(dir) = holey_testkit::shared_meshes_or_skip(
+        "spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex",
+    ) else {
+        return;
+    };
+    let a = read_shared(&dir, "spot_triangulated.obj");
+    let b = translate(&a, DVec3::new(0.18862080000000003, 0.0, 0.0));
+    let out = check(&a, &b, Operation::Difference, 200, "spot − moved spot");
+    assert!(out.is_closed_manifold());
+    assert!(!out.pinched_vertices().contains(&true), "a pinched vertex");
+    assert_eq!(components(&out), 5);
+    let want = 0.2776503044188431;
+    assert!(
+        (volume(&out) - want).abs() < 1e-9 * want,
+        "volume {}",
+        volume(&out)
+    );
+}
