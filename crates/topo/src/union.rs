@@ -609,13 +609,22 @@ impl<'a> PreparedPair<'a> {
             started,
             Some(&self.near),
         )?;
-        if !manifold_inputs || out.mesh.is_closed_manifold() {
+        if !manifold_inputs {
             return Ok(out);
+        }
+        let mut best: Option<Outcome> = None;
+        if out.mesh.is_closed_manifold() {
+            // Exact in the perturbed world, the result can cross itself
+            // only where points it keeps apart were rounded onto each
+            // other (a cut that merged points: mirror images, quarter
+            // turns); only then is it counted.
+            if out.report.cut.merged_points == 0 || keep_if_clean(&mut out, &mut best) {
+                return Ok(out);
+            }
         }
         // Nudged: the first closed 2-manifold that does not cross itself,
         // else the closed one that crosses itself least, its crossings
         // counted in the report (never silently), else the last attempt.
-        let mut best: Option<Outcome> = None;
         for k in 1..NUDGES.len() {
             let d = nudge(a, b, k);
             let moved = TriMesh {
@@ -625,18 +634,8 @@ impl<'a> PreparedPair<'a> {
             let pm = Parts::new(&moved)?;
             out = unite(a, &self.pa, &moved, &pm, op, options, started, None)?;
             out.report.perturbation_retries = k;
-            if !out.mesh.is_closed_manifold() {
-                continue;
-            }
-            let crossing = intersecting_pair_count(&out.mesh, usize::MAX).ok();
-            out.report.output_intersecting_pairs = crossing;
-            if crossing == Some(0) {
+            if out.mesh.is_closed_manifold() && keep_if_clean(&mut out, &mut best) {
                 return Ok(out);
-            }
-            let rank = |c: Option<usize>| c.unwrap_or(usize::MAX);
-            let fewer = |o: &Outcome| rank(crossing) < rank(o.report.output_intersecting_pairs);
-            if best.as_ref().is_none_or(fewer) {
-                best = Some(out.clone());
             }
         }
         Ok(best.unwrap_or(out))
@@ -655,6 +654,25 @@ impl<'a> PreparedPair<'a> {
             Some(&self.near),
         )
     }
+}
+
+/// Counts the crossing pairs of the closed result `out` into its report;
+/// true when there are none. Otherwise `out` becomes `best` if it crosses
+/// itself less than `best` does (an uncounted result ranks last).
+fn keep_if_clean(out: &mut Outcome, best: &mut Option<Outcome>) -> bool {
+    let crossing = intersecting_pair_count(&out.mesh, usize::MAX).ok();
+    out.report.output_intersecting_pairs = crossing;
+    if crossing == Some(0) {
+        return true;
+    }
+    let rank = |c: Option<usize>| c.unwrap_or(usize::MAX);
+    if best
+        .as_ref()
+        .is_none_or(|b| rank(crossing) < rank(b.report.output_intersecting_pairs))
+    {
+        *best = Some(out.clone());
+    }
+    false
 }
 
 /// A ∩ B of two closed solids ([`boolean`], robust as [`union_robust`]).
