@@ -3,10 +3,8 @@
 
 use holey_mesh::PolyMesh;
 
-use crate::ShapeError;
 use crate::grid::with_capacity;
 use crate::solids::{ICOSAHEDRON_FACES, icosahedron_vertices};
-use crate::spec::{GEODESIC, validate};
 
 const SQRT3: f64 = 1.732_050_807_568_877_2;
 
@@ -75,24 +73,9 @@ pub fn soccer_ball() -> PolyMesh {
     m
 }
 
-/// The geodesic sphere of frequency `n` (`1 ≤ n ≤ 707`): every face of
-/// the icosahedron cut into `n²` triangles by a triangular grid (a
-/// class I geodesic subdivision, not its dual), the grid points projected
-/// from the centre onto the unit sphere. V = 10n² + 2, E = 30n²,
-/// F = 20n² triangles; frequency 1 is the unit icosahedron and
-/// frequency `2^L` has the counts of `@sphere:L`.
-///
-/// Vertices: the 12 icosahedron vertices (in [`crate::icosahedron`]
-/// order), then the `n − 1` inner points of each icosahedron edge (edges
-/// in order of first use, visiting faces in order and each face's edges
-/// `a–b`, `b–c`, `c–a`; points from the lower-numbered end), then the
-/// inner points of each face. Faces `t·n² … (t+1)·n² − 1` cover
-/// icosahedron face `t = (a, b, c)`: with grid point `(u, v)` at
-/// `a + u(b − a)/n + v(c − a)/n`, row by row (`v` from 0), the triangle
-/// `((u,v), (u+1,v), (u,v+1))` followed, where it exists, by
-/// `((u+1,v), (u+1,v+1), (u,v+1))`.
-pub fn geodesic(n: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&GEODESIC, &[f64::from(n)])?;
+/// [`crate::geodesic`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn geodesic(n: u32) -> PolyMesh {
     let ico = icosahedron_vertices(1.0);
     let nn = n as usize;
     let vertices = 10 * nn * nn + 2;
@@ -157,5 +140,5 @@ pub fn geodesic(n: u32) -> Result<PolyMesh, ShapeError> {
             }
         }
     }
-    Ok(m)
+    m
 }

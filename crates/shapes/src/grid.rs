@@ -5,9 +5,6 @@ use std::f64::consts::FRAC_PI_4;
 
 use holey_mesh::{DVec3, PolyMesh};
 
-use crate::ShapeError;
-use crate::spec::{CUBE, PLANE, QUAD_SPHERE, TRI_PLANE, validate};
-
 /// An empty mesh with room for `vertices` positions, `faces` faces and
 /// `corners` face corners.
 pub(crate) fn with_capacity(vertices: usize, faces: usize, corners: usize) -> PolyMesh {
@@ -117,28 +114,15 @@ pub(crate) fn unit_coord(c: u32, n: u32) -> f64 {
     (2.0 * f64::from(c) - f64::from(n)) / f64::from(n)
 }
 
-/// The cube `[-1, 1]³` with each side an `n × n` grid of quads (`n = 1`:
-/// the plain cube; `1 ≤ n ≤ 1290`).
-///
-/// Vertices are the grid points of the surface in order of z, then y,
-/// then x (for `n = 1`, vertex `i` is at `(2(i&1)−1, 2((i>>1)&1)−1,
-/// 2(i>>2)−1)`). Faces are grouped by side in the order −z, −y, −x, +x,
-/// +y, +z, `n²` per side; within a side, quads are in order of their
-/// centres by z, then y, then x. Each quad runs counter-clockwise seen
-/// from outside, starting at its corner with the smallest coordinates
-/// (its lowest-numbered vertex). V = 6n²+2, E = 12n², F = 6n².
-pub fn cube(n: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&CUBE, &[f64::from(n)])?;
-    Ok(cube_mesh(n, |c| unit_coord(c, n)))
+/// [`crate::cube`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn cube(n: u32) -> PolyMesh {
+    cube_mesh(n, |c| unit_coord(c, n))
 }
 
-/// The unit sphere as `n × n` quads on each of six cube sides: `@cube:n`
-/// projected from the centre, with the grid spaced evenly in angle
-/// (coordinate `tan(π/4 · t)` for evenly spaced `t` in `[-1, 1]`) so the
-/// quads are close to equal in size. Same order and counts as
-/// [`cube`]; `1 ≤ n ≤ 1290`.
-pub fn quad_sphere(n: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&QUAD_SPHERE, &[f64::from(n)])?;
+/// [`crate::quad_sphere`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn quad_sphere(n: u32) -> PolyMesh {
     let mut m = cube_mesh(n, |c| {
         let t = unit_coord(c, n);
         if t.abs() == 1.0 || t == 0.0 {
@@ -150,7 +134,7 @@ pub fn quad_sphere(n: u32) -> Result<PolyMesh, ShapeError> {
     for p in &mut m.positions {
         *p = p.normalize();
     }
-    Ok(m)
+    m
 }
 
 /// The grid points of `[-1, 1]²` in the plane z = 0, row by row.
@@ -160,16 +144,9 @@ fn grid_points(nx: u32, ny: u32) -> impl Iterator<Item = DVec3> {
     })
 }
 
-/// An open grid of `nx × ny` quads covering `[-1, 1]²` in the plane
-/// z = 0, facing +z, with one boundary loop (`1 ≤ nx, ny`, `nx·ny` at
-/// most [`crate::MAX_FACES`]).
-///
-/// Vertex `j(nx+1) + i` is at `x = −1 + 2i/nx`, `y = −1 + 2j/ny`. Face
-/// `j·nx + i` is `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`: counter-clockwise
-/// seen from +z, starting at its lowest-numbered corner.
-/// V = (nx+1)(ny+1), E = nx(ny+1) + ny(nx+1), F = nx·ny.
-pub fn plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&PLANE, &[f64::from(nx), f64::from(ny)])?;
+/// [`crate::plane`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn plane(nx: u32, ny: u32) -> PolyMesh {
     let faces = nx as usize * ny as usize;
     let mut m = with_capacity((nx as usize + 1) * (ny as usize + 1), faces, 4 * faces);
     m.positions.extend(grid_points(nx, ny));
@@ -179,18 +156,12 @@ pub fn plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
             m.push_face(&[v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
         }
     }
-    Ok(m)
+    m
 }
 
-/// [`plane`] with each square split into two triangles along its
-/// diagonal from `(i,j)` to `(i+1,j+1)`: a regular triangle grid whose
-/// inner vertices all have valence 6, for sculpting.
-///
-/// Vertices as [`plane`]. Faces `2(j·nx+i)` and `2(j·nx+i)+1` are
-/// `(i,j), (i+1,j), (i+1,j+1)` and `(i,j), (i+1,j+1), (i,j+1)`.
-/// V = (nx+1)(ny+1), E = nx(ny+1) + ny(nx+1) + nx·ny, F = 2·nx·ny.
-pub fn tri_plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&TRI_PLANE, &[f64::from(nx), f64::from(ny)])?;
+/// [`crate::tri_plane`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn tri_plane(nx: u32, ny: u32) -> PolyMesh {
     let faces = 2 * nx as usize * ny as usize;
     let mut m = with_capacity((nx as usize + 1) * (ny as usize + 1), faces, 3 * faces);
     m.positions.extend(grid_points(nx, ny));
@@ -201,7 +172,7 @@ pub fn tri_plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
             m.push_face(&[v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
         }
     }
-    Ok(m)
+    m
 }
 
 #[cfg(test)]

@@ -6,10 +6,8 @@ use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
 use holey_mesh::tri::rows_by_smaller_end;
 use holey_mesh::{DVec3, PolyMesh};
 
-use crate::ShapeError;
 use crate::grid::{unit_coord, with_capacity};
 use crate::solids::{ICOSAHEDRON_FACES, icosahedron_vertices};
-use crate::spec::{CONE, CYLINDER, SPHERE, TORUS, UV_SPHERE, validate};
 
 /// `(cos, sin)` of the angle `2π·i/n`, computed within the first octant
 /// and extended by symmetry: exact at quarter turns (no `6e-17` or `-0`
@@ -43,20 +41,9 @@ pub(crate) fn turn(i: u32, n: u32) -> (f64, f64) {
     (c + 0.0, s + 0.0)
 }
 
-/// The unit icosphere: the icosahedron scaled to radius 1 and subdivided
-/// `level` times (`0 ≤ level ≤ 9`), each triangle into four, new vertices
-/// projected onto the unit sphere. V = 10·4^L + 2, E = 30·4^L,
-/// F = 20·4^L.
-///
-/// Level 0 is [`crate::icosahedron`] scaled to radius 1, in the same
-/// order. Each subdivision replaces face `t = (a,b,c)` by faces
-/// `4t .. 4t+3` = `(a,ab,ca), (ab,b,bc), (ca,bc,c), (ab,bc,ca)`, where
-/// `ab` is the new vertex on edge a–b. Old vertices keep their numbers;
-/// new ones follow in order of first use, visiting faces in order and
-/// each face's edges a–b, b–c, c–a. So the base-4 digits of a face number
-/// below its icosahedron face spell its path: corner 0, 1, 2 or middle 3.
-pub fn icosphere(level: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&SPHERE, &[f64::from(level)])?;
+/// [`crate::icosphere`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn icosphere(level: u32) -> PolyMesh {
     let mut positions = icosahedron_vertices(1.0);
     let mut tris = ICOSAHEDRON_FACES.to_vec();
     for _ in 0..level {
@@ -67,7 +54,7 @@ pub fn icosphere(level: u32) -> Result<PolyMesh, ShapeError> {
     for t in &tris {
         m.push_face(t);
     }
-    Ok(m)
+    m
 }
 
 /// One level of icosphere subdivision of the closed triangle mesh `tris`,
@@ -105,21 +92,9 @@ fn subdivide(positions: &mut Vec<DVec3>, tris: &[[u32; 3]]) -> Vec<[u32; 3]> {
     out
 }
 
-/// The unit sphere of latitude–longitude quads with triangle fans around
-/// the poles: `segments` meridians (`≥ 3`) and `rings` bands from pole to
-/// pole (`≥ 2`), evenly spaced in angle. V = segments·(rings−1) + 2,
-/// E = segments·(2·rings−1), F = segments·rings.
-///
-/// Vertex 0 is the south pole (0,0,−1); then come the rings from south to
-/// north, each of `segments` vertices starting at angle 0 (towards +x)
-/// and running counter-clockwise seen from +z; the last vertex is the
-/// north pole. Faces are the south fan, the bands of quads from south to
-/// north, then the north fan, each in the same angular order:
-/// `(pole, (1,i+1), (1,i))`, `((k,i), (k,i+1), (k+1,i+1), (k+1,i))`,
-/// `((last,i), (last,i+1), pole)`, where `(k,i)` is vertex `i` of ring `k`
-/// (rings numbered from 1) and indices wrap around.
-pub fn uv_sphere(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&UV_SPHERE, &[f64::from(segments), f64::from(rings)])?;
+/// [`crate::uv_sphere`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn uv_sphere(segments: u32, rings: u32) -> PolyMesh {
     let (s, r) = (segments, rings);
     let vertices = s as usize * (r as usize - 1) + 2;
     let faces = s as usize * r as usize;
@@ -152,34 +127,12 @@ pub fn uv_sphere(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
     for i in 0..s {
         m.push_face(&[ring(r - 1, i), ring(r - 1, i + 1), north]);
     }
-    Ok(m)
+    m
 }
 
-/// A quad torus of genus 1 about the z axis: a circle of radius
-/// `minor_radius` (r) swept around the circle of radius `major_radius`
-/// (R) in the xy plane, with `major ≥ 3` segments around z and
-/// `minor ≥ 3` around the tube; `0 < r < R`. V = major·minor,
-/// E = 2·major·minor, F = major·minor. The volume tends to 2π²Rr².
-///
-/// Vertex `i·minor + j` is at angle `2πi/major` around z (from +x,
-/// counter-clockwise seen from +z) and `2πj/minor` around the tube (from
-/// the outer equator, upwards first). Face `i·minor + j` is
-/// `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`, indices wrapping around.
-pub fn torus(
-    major: u32,
-    minor: u32,
-    major_radius: f64,
-    minor_radius: f64,
-) -> Result<PolyMesh, ShapeError> {
-    validate(
-        &TORUS,
-        &[
-            f64::from(major),
-            f64::from(minor),
-            major_radius,
-            minor_radius,
-        ],
-    )?;
+/// [`crate::torus`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn torus(major: u32, minor: u32, major_radius: f64, minor_radius: f64) -> PolyMesh {
     let (big_r, small_r) = (major_radius, minor_radius);
     let faces = major as usize * minor as usize;
     let mut m = with_capacity(faces, faces, 4 * faces);
@@ -198,7 +151,7 @@ pub fn torus(
             m.push_face(&[v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
         }
     }
-    Ok(m)
+    m
 }
 
 /// Pushes a cap polygon over `ring` (a ring of `n` vertices counter-
@@ -215,19 +168,9 @@ fn push_cap(m: &mut PolyMesh, first: u32, n: u32, down: bool) {
     m.push_face(&cap);
 }
 
-/// A closed cylinder of radius 1 along z from −1 to 1, with `segments ≥ 3`
-/// around z and `rings ≥ 1` rows of side quads; each cap is a single
-/// polygon. V = segments·(rings+1), E = segments·(2·rings+1),
-/// F = segments·rings + 2. The volume tends to 2π.
-///
-/// Vertex `k·segments + i` is on ring `k` (from z = −1 to z = 1) at angle
-/// `2πi/segments` (from +x, counter-clockwise seen from +z). Face 0 is the
-/// bottom cap, starting at vertex 0 and running clockwise seen from +z;
-/// face 1 is the top cap, starting at its vertex at angle 0; face
-/// `2 + k·segments + i` is the side quad `(k,i), (k,i+1), (k+1,i+1),
-/// (k+1,i)`.
-pub fn cylinder(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&CYLINDER, &[f64::from(segments), f64::from(rings)])?;
+/// [`crate::cylinder`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn cylinder(segments: u32, rings: u32) -> PolyMesh {
     let (s, r) = (segments, rings);
     let vertices = s as usize * (r as usize + 1);
     let sides = s as usize * r as usize;
@@ -247,19 +190,12 @@ pub fn cylinder(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
             m.push_face(&[v(k, i), v(k, i + 1), v(k + 1, i + 1), v(k + 1, i)]);
         }
     }
-    Ok(m)
+    m
 }
 
-/// A closed cone: a base polygon of radius 1 at z = −1 with `segments ≥ 3`
-/// sides, and the apex (0,0,1). V = segments + 1, E = 2·segments,
-/// F = segments + 1. The volume tends to 2π/3.
-///
-/// Vertex `i < segments` is on the base at angle `2πi/segments` (from +x,
-/// counter-clockwise seen from +z); the last vertex is the apex. Face 0 is
-/// the base, starting at vertex 0 and running clockwise seen from +z;
-/// face `1 + i` is the triangle `(i, i+1, apex)`.
-pub fn cone(segments: u32) -> Result<PolyMesh, ShapeError> {
-    validate(&CONE, &[f64::from(segments)])?;
+/// [`crate::cone`] without the check of its parameters: the spec
+/// table calls it with parameters its parser checked.
+pub(crate) fn cone(segments: u32) -> PolyMesh {
     let s = segments;
     let mut m = with_capacity(s as usize + 1, s as usize + 1, 4 * s as usize);
     for i in 0..s {
@@ -271,5 +207,5 @@ pub fn cone(segments: u32) -> Result<PolyMesh, ShapeError> {
     for i in 0..s {
         m.push_face(&[i, (i + 1) % s, s]);
     }
-    Ok(m)
+    m
 }

@@ -575,7 +575,7 @@ pub(crate) const CUBE: Primitive = Primitive {
             vertex).",
     face_count: |a| 6 * wide(a, 0) * wide(a, 0),
     conflict: |_| None,
-    build: |a| crate::cube(int(a, 0)),
+    build: |a| Ok(crate::grid::cube(int(a, 0))),
 };
 
 pub(crate) const OCTAHEDRON: Primitive = Primitive {
@@ -658,7 +658,7 @@ pub(crate) const SPHERE: Primitive = Primitive {
             middle 3.",
     face_count: |a| 4u128.saturating_pow(int(a, 0)).saturating_mul(20),
     conflict: |_| None,
-    build: |a| crate::icosphere(int(a, 0)),
+    build: |a| Ok(crate::round::icosphere(int(a, 0))),
 };
 
 pub(crate) const UV_SPHERE: Primitive = Primitive {
@@ -688,7 +688,7 @@ pub(crate) const UV_SPHERE: Primitive = Primitive {
             ring k and indices wrap around.",
     face_count: |a| wide(a, 0) * wide(a, 1),
     conflict: |_| None,
-    build: |a| crate::uv_sphere(int(a, 0), int(a, 1)),
+    build: |a| Ok(crate::round::uv_sphere(int(a, 0), int(a, 1))),
 };
 
 pub(crate) const QUAD_SPHERE: Primitive = Primitive {
@@ -708,7 +708,7 @@ pub(crate) const QUAD_SPHERE: Primitive = Primitive {
     order: "As @cube:n (sides -z, -y, -x, +x, +y, +z).",
     face_count: |a| 6 * wide(a, 0) * wide(a, 0),
     conflict: |_| None,
-    build: |a| crate::quad_sphere(int(a, 0)),
+    build: |a| Ok(crate::grid::quad_sphere(int(a, 0))),
 };
 
 fn torus_conflict(args: &[f64]) -> Option<String> {
@@ -755,7 +755,14 @@ pub(crate) const TORUS: Primitive = Primitive {
             (i,j+1), indices wrapping around.",
     face_count: |a| wide(a, 0) * wide(a, 1),
     conflict: torus_conflict,
-    build: |a| crate::torus(int(a, 0), int(a, 1), real(a, 2), real(a, 3)),
+    build: |a| {
+        Ok(crate::round::torus(
+            int(a, 0),
+            int(a, 1),
+            real(a, 2),
+            real(a, 3),
+        ))
+    },
 };
 
 pub(crate) const CYLINDER: Primitive = Primitive {
@@ -776,7 +783,7 @@ pub(crate) const CYLINDER: Primitive = Primitive {
             the side quad (k,i), (k,i+1), (k+1,i+1), (k+1,i).",
     face_count: |a| wide(a, 0) * wide(a, 1) + 2,
     conflict: |_| None,
-    build: |a| crate::cylinder(int(a, 0), int(a, 1)),
+    build: |a| Ok(crate::round::cylinder(int(a, 0), int(a, 1))),
 };
 
 pub(crate) const CONE: Primitive = Primitive {
@@ -799,7 +806,7 @@ pub(crate) const CONE: Primitive = Primitive {
             triangle (i, i+1, apex).",
     face_count: |a| wide(a, 0) + 1,
     conflict: |_| None,
-    build: |a| crate::cone(int(a, 0)),
+    build: |a| Ok(crate::round::cone(int(a, 0))),
 };
 
 pub(crate) const PLANE: Primitive = Primitive {
@@ -818,7 +825,7 @@ pub(crate) const PLANE: Primitive = Primitive {
             lowest-numbered corner.",
     face_count: |a| wide(a, 0) * wide(a, 1),
     conflict: |_| None,
-    build: |a| crate::plane(int(a, 0), int(a, 1)),
+    build: |a| Ok(crate::grid::plane(int(a, 0), int(a, 1))),
 };
 
 pub(crate) const TRI_PLANE: Primitive = Primitive {
@@ -837,7 +844,7 @@ pub(crate) const TRI_PLANE: Primitive = Primitive {
             (i+1,j+1) and (i,j), (i+1,j+1), (i,j+1).",
     face_count: |a| 2 * wide(a, 0) * wide(a, 1),
     conflict: |_| None,
-    build: |a| crate::tri_plane(int(a, 0), int(a, 1)),
+    build: |a| Ok(crate::grid::tri_plane(int(a, 0), int(a, 1))),
 };
 
 pub(crate) const SOCCER_BALL: Primitive = Primitive {
@@ -890,7 +897,7 @@ pub(crate) const GEODESIC: Primitive = Primitive {
             it exists, by ((u+1,v), (u+1,v+1), (u,v+1)).",
     face_count: |a| 20 * wide(a, 0) * wide(a, 0),
     conflict: |_| None,
-    build: |a| crate::geodesic(int(a, 0)),
+    build: |a| Ok(crate::geodesic::geodesic(int(a, 0))),
 };
 
 /// Every built-in primitive, in the order the help lists them.
