@@ -725,9 +725,15 @@ impl PaintStep<'_> {
                     .collect()
             };
             // An inflate only pushes the surface outward: it may join
-            // parts, never cut one loose (`Options::outward`).
+            // parts, never cut one loose (`Options::outward`). Nor may a
+            // frame that holds vertices: held still while the brush moves
+            // their neighbours, they stand out of the surface as a crease,
+            // and a piece the frame pinches off there is the hold's making,
+            // not the brush's (a deflate over the bunny's haunch cut off a
+            // closed bubble of 12 triangles that way).
+            let holds = already.contains(&true);
             let options = Options {
-                outward: brush == Brush::Inflate && strength > 0.0,
+                outward: (brush == Brush::Inflate && strength > 0.0) || holds,
                 ..*self.options
             };
             match topology_change_guarded_holding(mesh, &end, &options, &already) {

@@ -1078,3 +1078,41 @@ fn fuzz_random_strokes_on_real_meshes() {
         sculpt(&format!("fuzz {file}"), mesh, &strokes, true);
     }
 }
+
+/// The strokes one run of the browser scenario sent with the mouse
+/// (inflate across the haunch, then deflate back; `tests/data`), replayed
+/// frame by frame as the modeler's server replays them: a live stroke per
+/// stroke, remeshing at the range derived from the mesh it starts on. At
+/// the deflate's frame 40 the guard held 88 vertices earlier frames had
+/// had to hold; held still while the deflate moved their neighbours, they
+/// stood out as a crease whose neck the frame pinched off, a closed bubble
+/// of 12 triangles outside the surface that no rule refused. A frame that
+/// holds vertices may now cut no piece loose: the bunny stays one piece,
+/// and nothing else gets worse.
+#[test]
+fn stanford_bunny_deflate_back_over_held_vertices_cuts_no_bubble() {
+    use holey_sculpt::{BrushSettings, LiveStroke, RemeshOptions, default_range, parse_strokes};
+    let test = "stanford_bunny_deflate_back_over_held_vertices_cuts_no_bubble";
+    let Some(mut mesh) = load(test, "stanford-bunny.obj") else {
+        return;
+    };
+    let file = parse_strokes(include_str!("data/bunny_haunch_there_and_back.json")).unwrap();
+    let before = measure(&mesh);
+    for stroke in &file.strokes {
+        let settings = BrushSettings {
+            falloff: stroke.falloff,
+            ..BrushSettings::new(stroke.brush, stroke.radius, stroke.strength)
+        };
+        let first = stroke.path[0];
+        let options = holey_topo::Options::default();
+        let mut live = LiveStroke::begin(&mesh, settings, first, options).unwrap();
+        live.set_remesh(default_range(&mesh).map(RemeshOptions::new));
+        for &point in &stroke.path {
+            live.frame(point).unwrap();
+        }
+        mesh = live.finish().unwrap().mesh;
+    }
+    let after = measure(&mesh);
+    no_worse(test, &before, &after);
+    assert_eq!(after.components, 1, "a piece was cut off");
+}

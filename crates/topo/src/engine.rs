@@ -69,7 +69,9 @@ pub struct Options {
     /// ([`crate::topology_change_guarded`]) that leaves more connected
     /// components than it found has then cut a piece loose that the
     /// motion cannot have made, and the guard refuses it. Off by default:
-    /// a deflate, a pinch or a drag may split a piece off.
+    /// a deflate, a pinch or a drag may split a piece off. Sculpting also
+    /// sets it for a frame that holds vertices earlier frames had to hold:
+    /// a piece pinched off at the crease they make is the hold's making.
     pub outward: bool,
 }
 
