@@ -729,13 +729,18 @@ pub fn nudge(a: &TriMesh, b: &TriMesh, k: usize) -> DVec3 {
 /// decides every degenerate predicate consistently, but where faces of A
 /// and B overlap in one plane the perturbed arrangement is embedded at
 /// the unperturbed coordinates, points it keeps apart coincide, and the
-/// result can have duplicate triangles or cracks. So when A and B are
-/// closed 2-manifolds and the result is not, B is moved by the next of
-/// [`NUDGES`] and the union redone (up to three times; the report's
-/// `perturbation_retries` counts them, and the output has B where it was
-/// moved to). The price is one closed-manifold check of the result. Exact
-/// touching that the perturbation resolves well (faces meeting from
-/// opposite sides) is left exact: the first attempt moves nothing.
+/// result can have duplicate triangles or cracks, or cross itself where
+/// the cut rounded points it keeps apart onto each other. So when A and
+/// B are closed 2-manifolds and the result is not, or crosses itself, B
+/// is moved by the next of [`NUDGES`] and the union redone (up to three
+/// times; the report's `perturbation_retries` counts them, and the output
+/// has B where it was moved to). The first clean attempt is kept, else
+/// the closed one that crosses itself least, its crossing pairs in
+/// [`Report::output_intersecting_pairs`]. The price is one closed-manifold
+/// check of the result, and an exact count of its crossing pairs only
+/// where the cut merged points or B was moved. Exact touching that the
+/// perturbation resolves well (faces meeting from opposite sides) is left
+/// exact: the first attempt moves nothing.
 pub fn union_robust(a: &TriMesh, b: &TriMesh, options: &Options) -> Result<Outcome, UnionError> {
     boolean_robust(a, b, Operation::Union, options)
 }
