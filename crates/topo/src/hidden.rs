@@ -277,22 +277,7 @@ pub(crate) fn shortest_edge_near(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> f64
 #[allow(clippy::unwrap_used)]
 mod tests {
     use super::*;
-
-    /// An axis-aligned box as 12 outward triangles (testkit's unit cube
-    /// stretched over `lo`..`hi`).
-    fn cube(lo: DVec3, hi: DVec3) -> TriMesh {
-        let (corners, quads) = holey_testkit::unit_cube();
-        TriMesh {
-            positions: corners
-                .iter()
-                .map(|&c| lo + (hi - lo) * DVec3::from_array(c))
-                .collect(),
-            triangles: quads
-                .iter()
-                .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-                .collect(),
-        }
-    }
+    use crate::test_meshes::cuboid as cube;
 
     fn joined(a: &TriMesh, b: &TriMesh) -> TriMesh {
         let mut m = a.clone();

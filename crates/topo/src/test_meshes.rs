@@ -37,3 +37,19 @@ pub(crate) fn uv_sphere(centre: DVec3, r: f64, rings: u32, segs: u32) -> TriMesh
         triangles,
     }
 }
+
+/// The axis-aligned box `[lo, hi]` as 12 outward triangles (testkit's
+/// unit cube stretched over it).
+pub(crate) fn cuboid(lo: DVec3, hi: DVec3) -> TriMesh {
+    let (corners, quads) = holey_testkit::unit_cube();
+    TriMesh {
+        positions: corners
+            .iter()
+            .map(|&c| lo + (hi - lo) * DVec3::from_array(c))
+            .collect(),
+        triangles: quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect(),
+    }
+}

@@ -657,8 +657,9 @@ impl<'a> PreparedPair<'a> {
 }
 
 /// Counts the crossing pairs of the closed result `out` into its report;
-/// true when there are none. Otherwise `out` becomes `best` if it crosses
-/// itself less than `best` does (an uncounted result ranks last).
+/// true when there are none. Otherwise `out` moves into `best` (leaving
+/// an empty outcome) if it crosses itself less than `best` does (an
+/// uncounted result ranks last).
 fn keep_if_clean(out: &mut Outcome, best: &mut Option<Outcome>) -> bool {
     let crossing = intersecting_pair_count(&out.mesh, usize::MAX).ok();
     out.report.output_intersecting_pairs = crossing;
@@ -670,7 +671,8 @@ fn keep_if_clean(out: &mut Outcome, best: &mut Option<Outcome>) -> bool {
         .as_ref()
         .is_none_or(|b| rank(crossing) < rank(b.report.output_intersecting_pairs))
     {
-        *best = Some(out.clone());
+        // The caller only replaces `out` from here on: no copy needed.
+        *best = Some(std::mem::take(out));
     }
     false
 }
@@ -933,6 +935,7 @@ fn unite(
 mod tests {
     use super::*;
     use crate::cut::MAX_SAMPLED_REGIONS;
+    use crate::test_meshes::cuboid;
     use near::NearTree;
 
     /// A prism over an ellipse of `n` points (semi-axes `2r` and `r`,
@@ -941,21 +944,6 @@ mod tests {
     fn fan_prism(n: u32, r: f64, turn: impl Fn(DVec3) -> DVec3, at: DVec3) -> TriMesh {
         let outline = crate::intersect::tests::ellipse(n as usize, 2.0 * r, r);
         crate::intersect::tests::fan_prism(&outline, 0.3, turn, at)
-    }
-
-    /// The box `[lo, hi]` as twelve outward triangles.
-    fn cuboid(lo: DVec3, hi: DVec3) -> TriMesh {
-        let (corners, quads) = holey_testkit::unit_cube();
-        TriMesh {
-            positions: corners
-                .iter()
-                .map(|&c| lo + DVec3::from_array(c) * (hi - lo))
-                .collect(),
-            triangles: quads
-                .iter()
-                .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-                .collect(),
-        }
     }
 
     /// A wall of one big box crossed by more thin slabs than a motion's
