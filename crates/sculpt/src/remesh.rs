@@ -539,28 +539,25 @@ impl Work {
 
     /// Live triangles with both `a` and `b`.
     fn edge_tris(&self, a: u32, b: u32) -> Vec<u32> {
+        self.edge_triangles(a, b).collect()
+    }
+
+    /// [`Work::edge_tris`] without the list: the ring of `a`, filtered.
+    fn edge_triangles(&self, a: u32, b: u32) -> impl Iterator<Item = u32> + '_ {
         self.ring[a as usize]
             .iter()
             .copied()
-            .filter(|&t| self.tris[t as usize].contains(&b))
-            .collect()
+            .filter(move |&t| self.tris[t as usize].contains(&b))
     }
 
     /// The two live triangles with both `a` and `b`, in ring order, when
     /// there are exactly two ([`Work::edge_tris`] without a list).
     fn edge_pair(&self, a: u32, b: u32) -> Option<[u32; 2]> {
-        let mut pair = [NONE; 2];
-        let mut count = 0;
-        for &t in &self.ring[a as usize] {
-            if self.tris[t as usize].contains(&b) {
-                if count == 2 {
-                    return None;
-                }
-                pair[count] = t;
-                count += 1;
-            }
+        let mut ts = self.edge_triangles(a, b);
+        match (ts.next(), ts.next(), ts.next()) {
+            (Some(t1), Some(t2), None) => Some([t1, t2]),
+            _ => None,
         }
-        (count == 2).then_some(pair)
     }
 
     /// The edge neighbours of `v`, sorted.
