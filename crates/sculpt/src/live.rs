@@ -66,6 +66,22 @@ impl BrushSettings {
             pressure: PressureDrives::Strength,
         }
     }
+
+    /// The radius and strength of a dab with the pen's `pressure` (0 to
+    /// 1; not finite counts as 1), scaled as [`BrushSettings::pressure`]
+    /// says.
+    fn pressed(&self, pressure: f64) -> (f64, f64) {
+        let pressure = if pressure.is_finite() {
+            pressure.clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        match self.pressure {
+            _ if pressure == 1.0 => (self.radius, self.strength),
+            PressureDrives::Strength => (self.radius, self.strength * pressure),
+            PressureDrives::Radius => (self.radius * pressure, self.strength),
+        }
+    }
 }
 
 /// What one frame shows.
@@ -366,41 +382,40 @@ impl LiveStroke {
         point: DVec3,
         pressure: f64,
     ) -> Result<LiveFrame<'_>, SculptError> {
+        self.frame_together(&[(point, pressure)])
+    }
+
+    /// One frame of several dabs, each `(point, pressure)` as for
+    /// [`LiveStroke::frame_pressed`], in order: what a modeler sends when
+    /// the pointer moved on while the last frame was computed.
+    ///
+    /// A centred brush (every paint brush but the layer and the snake
+    /// hook) evaluates each dab on the surface the dab before it left,
+    /// positions only, and moves the surface from where the frame began to
+    /// where the last dab left it in one guarded topology change (§3: a
+    /// frame's motion is the straight path between its two states), then
+    /// remeshes once around every dab. The brush is applied at every dab,
+    /// so the stroke keeps its spacing; only the collision handling and
+    /// remeshing are shared. A dab whose own step is longer than a frame's
+    /// may be ([`substeps`]), or a joint motion too crumpled for one frame
+    /// ([`IntersectError::TooManyPairs`]), sends the dabs one by one, as
+    /// separate frames would.
+    ///
+    /// The layer brush and the snake hook, whose dabs depend on what the
+    /// dab before them did (its heights, its grip), and drags, which follow
+    /// the pointer, take their dabs one after another within the frame.
+    /// An empty `dabs` is a frame that changes nothing.
+    pub fn frame_together(&mut self, dabs: &[(DVec3, f64)]) -> Result<LiveFrame<'_>, SculptError> {
         let started = Instant::now();
         let index = self.frames;
-        let BrushSettings {
-            brush,
-            radius,
-            strength,
-            falloff,
-            pressure: drives,
-            ..
-        } = self.settings;
-        let pressure = if pressure.is_finite() {
-            pressure.clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
-        let (paint_radius, paint_strength) = match drives {
-            _ if pressure == 1.0 => (radius, strength),
-            PressureDrives::Strength => (radius, strength * pressure),
-            PressureDrives::Radius => (radius * pressure, strength),
-        };
+        let settings = self.settings;
         let mut connectivity_changed = false;
         let mut topology_changed = false;
         let mut corrected_odd = None;
         match &mut self.state {
             State::Paint { mesh, hook } => {
-                let dab = match hook {
-                    Some(h) if h.holding => Some(Dab::Pull(
-                        h.centre,
-                        h.centre + strength * (point - h.pointer),
-                    )),
-                    Some(_) => None,
-                    None => Some(Dab::At(point)),
-                };
                 let mut step = PaintStep {
-                    falloff,
+                    falloff: settings.falloff,
                     heights: &mut self.heights,
                     mirrors: &self.mirrors,
                     mask: &self.mask,
@@ -415,17 +430,44 @@ impl LiveStroke {
                     topology_changed: false,
                     hook_met: false,
                 };
-                if let Some(dab) = dab {
-                    // The snake hook's grip is sized by the radius alone.
-                    let r = if hook.is_some() { radius } else { paint_radius };
-                    step.paint(mesh, brush, dab, r, paint_strength)
+                let brush = settings.brush;
+                if hook.is_none() && brush != Brush::Layer && dabs.len() > 1 {
+                    let pressed: Vec<(DVec3, f64, f64)> = dabs
+                        .iter()
+                        .map(|&(point, pressure)| {
+                            let (r, s) = settings.pressed(pressure);
+                            (point, r, s)
+                        })
+                        .collect();
+                    step.paint_together(mesh, brush, &pressed)
                         .map_err(|e| e.at_frame(index))?;
-                    if let (Some(h), Dab::Pull(_, to)) = (hook.as_mut(), dab) {
-                        *h = Hook {
-                            centre: to,
-                            pointer: point,
-                            holding: !step.hook_met,
+                } else {
+                    for &(point, pressure) in dabs {
+                        let (paint_radius, paint_strength) = settings.pressed(pressure);
+                        let dab = match hook {
+                            Some(h) if h.holding => Some(Dab::Pull(
+                                h.centre,
+                                h.centre + settings.strength * (point - h.pointer),
+                            )),
+                            Some(_) => None,
+                            None => Some(Dab::At(point)),
                         };
+                        let Some(dab) = dab else { continue };
+                        // The snake hook's grip is sized by the radius alone.
+                        let r = if hook.is_some() {
+                            settings.radius
+                        } else {
+                            paint_radius
+                        };
+                        step.paint(mesh, brush, dab, r, paint_strength)
+                            .map_err(|e| e.at_frame(index))?;
+                        if let (Some(h), Dab::Pull(_, to)) = (hook.as_mut(), dab) {
+                            *h = Hook {
+                                centre: to,
+                                pointer: point,
+                                holding: !step.hook_met,
+                            };
+                        }
                     }
                 }
                 connectivity_changed = step.connectivity_changed;
@@ -439,33 +481,35 @@ impl LiveStroke {
                 acc,
                 view,
             } => {
-                let offset = point - *first;
-                if brush == Brush::Grab {
-                    self.grab_tube = Some((*picked, *picked + offset * strength));
-                }
-                // Weight 0 keeps a vertex bit-exact, and a zero offset
-                // (back at the start) restores every position exactly.
-                let mut next = start.positions.clone();
-                for (v, p) in next.iter_mut().enumerate() {
-                    let mut moved = DVec3::ZERO;
-                    let mut any = false;
-                    for (weights, m) in holds.iter() {
-                        let w = weights[v];
-                        if w != 0.0 {
-                            moved += w * m.vector(offset);
-                            any = true;
+                for &(point, _) in dabs {
+                    let offset = point - *first;
+                    if settings.brush == Brush::Grab {
+                        self.grab_tube = Some((*picked, *picked + offset * settings.strength));
+                    }
+                    // Weight 0 keeps a vertex bit-exact, and a zero offset
+                    // (back at the start) restores every position exactly.
+                    let mut next = start.positions.clone();
+                    for (v, p) in next.iter_mut().enumerate() {
+                        let mut moved = DVec3::ZERO;
+                        let mut any = false;
+                        for (weights, m) in holds.iter() {
+                            let w = weights[v];
+                            if w != 0.0 {
+                                moved += w * m.vector(offset);
+                                any = true;
+                            }
+                        }
+                        if any {
+                            *p += moved;
                         }
                     }
-                    if any {
-                        *p += moved;
+                    if next != view.positions {
+                        acc.advance(&next).map_err(|source| SculptError::Topo {
+                            frame: index,
+                            source,
+                        })?;
+                        view.positions = next;
                     }
-                }
-                if next != view.positions {
-                    acc.advance(&next).map_err(|source| SculptError::Topo {
-                        frame: index,
-                        source,
-                    })?;
-                    view.positions = next;
                 }
                 if self.preview {
                     corrected_odd = Some(acc.preview().map(|r| r.vanishing.clone()).map_err(
@@ -674,6 +718,53 @@ impl PaintStep<'_> {
         Ok(())
     }
 
+    /// Centred dabs `(centre, radius, strength)` painted as one frame
+    /// ([`LiveStroke::frame_together`]): each dab's brush on the positions
+    /// the one before it left, then one guarded topology change from the
+    /// frame's start to the last dab's end, and one remeshing around every
+    /// dab. When a dab's own step needs sub-frames ([`substeps`]), or the
+    /// engine finds the joint motion too crumpled for one frame, the dabs
+    /// go one by one instead, each as [`PaintStep::paint_piece`] paints it.
+    fn paint_together(
+        &mut self,
+        mesh: &mut TriMesh,
+        brush: Brush,
+        dabs: &[(DVec3, f64, f64)],
+    ) -> Result<(), StepError> {
+        // Each dab's step is bounded as a frame's is ([`substeps`]): its
+        // brush sees the normals the dab before it left, so the frame
+        // folds nothing over between two evaluations of them; a dab that
+        // would need sub-frames sends them all dab by dab.
+        let start = mesh.positions.clone();
+        let mut together = true;
+        for &(centre, radius, strength) in dabs {
+            let end = self.end(mesh, brush, Dab::At(centre), radius, strength);
+            if substeps(mesh, &end) > 1 {
+                together = false;
+                break;
+            }
+            mesh.positions = end;
+        }
+        let end = std::mem::replace(&mut mesh.positions, start);
+        if together {
+            let mirrors = self.mirrors;
+            let reaches = |p: DVec3| {
+                dabs.iter()
+                    .any(|&(c, r, _)| Dab::At(c).reaches(p, r, mirrors))
+            };
+            // The dabs share a brush, and pressure scales a strength
+            // without turning its sign.
+            let outward = brush == Brush::Inflate && dabs.iter().all(|d| d.2 > 0.0);
+            if let Settled::Done = self.settle(mesh, &end, outward, None, &reaches)? {
+                return Ok(());
+            }
+        }
+        for &(centre, radius, strength) in dabs {
+            self.paint_piece(mesh, brush, Dab::At(centre), radius, strength, 0)?;
+        }
+        Ok(())
+    }
+
     /// One frame of inflate, smooth or a snake hook's step: the brush, the
     /// guarded topology change, then remeshing. A motion the engine refuses as
     /// too crumpled for one frame ([`IntersectError::TooManyPairs`]) is
@@ -707,6 +798,48 @@ impl PaintStep<'_> {
                 return Ok(());
             }
         }
+        let mirrors = self.mirrors;
+        let reaches = |p: DVec3| dab.reaches(p, radius, mirrors);
+        // An inflate only pushes the surface outward: it may join parts,
+        // never cut one loose (`Options::outward`).
+        let outward = brush == Brush::Inflate && strength > 0.0;
+        // A snake hook has met something when the cut made points within
+        // its reach.
+        let hook = match dab {
+            Dab::Pull(_, to) => Some((to, radius)),
+            Dab::At(_) => None,
+        };
+        match self.settle(mesh, &end, outward, hook, &reaches)? {
+            Settled::Done => Ok(()),
+            Settled::TooCrumpled => {
+                if depth >= MAX_SUBFRAME_DEPTH {
+                    self.report.held_frames += 1;
+                    return Ok(());
+                }
+                self.report.subframes += 1;
+                for (half, s) in dab.split(brush, strength, 2) {
+                    self.paint_piece(mesh, brush, half, radius, s, depth + 1)?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The motion of `mesh` to `end` (a brush's frame): the guarded
+    /// topology change, then remeshing around the vertices `reaches`
+    /// admits. `outward`: the brush only pushes the surface outward, so the
+    /// frame may cut no piece loose. `hook`: a snake hook's target and
+    /// radius, which has met something when the cut makes points within
+    /// that radius of it. [`Settled::TooCrumpled`] leaves `mesh` as it
+    /// was, for the caller to split the motion.
+    fn settle(
+        &mut self,
+        mesh: &mut TriMesh,
+        end: &[DVec3],
+        outward: bool,
+        hook: Option<(DVec3, f64)>,
+        reaches: &dyn Fn(DVec3) -> bool,
+    ) -> Result<Settled, StepError> {
         // A frame that moves nothing cannot collide; skipping it also
         // keeps a brush that wanders off the surface from re-cutting
         // intersections the mesh already had.
@@ -720,23 +853,22 @@ impl PaintStep<'_> {
             } else {
                 mesh.positions
                     .iter()
-                    .zip(&end)
+                    .zip(end)
                     .map(|(p, q)| p != q && self.held.contains(&position_key(*p)))
                     .collect()
             };
-            // An inflate only pushes the surface outward: it may join
-            // parts, never cut one loose (`Options::outward`). Nor may a
-            // frame that holds vertices: held still while the brush moves
-            // their neighbours, they stand out of the surface as a crease,
-            // and a piece the frame pinches off there is the hold's making,
-            // not the brush's (a deflate over the bunny's haunch cut off a
-            // closed bubble of 12 triangles that way).
+            // Nor may a frame that holds vertices cut a piece loose: held
+            // still while the brush moves their neighbours, they stand out
+            // of the surface as a crease, and a piece the frame pinches off
+            // there is the hold's making, not the brush's (a deflate over
+            // the bunny's haunch cut off a closed bubble of 12 triangles
+            // that way).
             let holds = already.contains(&true);
             let options = Options {
-                outward: (brush == Brush::Inflate && strength > 0.0) || holds,
+                outward: outward || holds,
                 ..*self.options
             };
-            match topology_change_guarded_holding(mesh, &end, &options, &already) {
+            match topology_change_guarded_holding(mesh, end, &options, &already) {
                 Ok(guarded) => {
                     self.held
                         .extend(guarded.held_positions.iter().map(|&p| position_key(p)));
@@ -759,9 +891,8 @@ impl PaintStep<'_> {
                     });
                     self.connectivity_changed |= !out.positions_only;
                     self.topology_changed |= !out.positions_only;
-                    // A snake hook has met something when the cut made
-                    // points within its reach (the engine appends them).
-                    if let Dab::Pull(_, to) = dab
+                    // The engine appends the points it makes.
+                    if let Some((to, radius)) = hook
                         && !out.positions_only
                     {
                         let n = mesh.positions.len();
@@ -774,15 +905,7 @@ impl PaintStep<'_> {
                     }
                 }
                 Err(TopoError::Intersections(IntersectError::TooManyPairs { .. })) => {
-                    if depth >= MAX_SUBFRAME_DEPTH {
-                        self.report.held_frames += 1;
-                        return Ok(());
-                    }
-                    self.report.subframes += 1;
-                    for (half, s) in dab.split(brush, strength, 2) {
-                        self.paint_piece(mesh, brush, half, radius, s, depth + 1)?;
-                    }
-                    return Ok(());
+                    return Ok(Settled::TooCrumpled);
                 }
                 Err(e) => return Err(StepError::Topo(e)),
             }
@@ -791,7 +914,7 @@ impl PaintStep<'_> {
             // After the topology change (§4): the vertices the brush
             // reaches, at their new positions.
             let active = remesh_active(mesh, |p| {
-                dab.reaches(p, radius, self.mirrors) && !self.mask.contains(&position_key(p))
+                reaches(p) && !self.mask.contains(&position_key(p))
             });
             if active.contains(&true) {
                 let r = remesh_in_place_checked(mesh, &active, opts).map_err(StepError::Remesh)?;
@@ -800,8 +923,17 @@ impl PaintStep<'_> {
                 }
             }
         }
-        Ok(())
+        Ok(Settled::Done)
     }
+}
+
+/// What [`PaintStep::settle`] did with a motion.
+enum Settled {
+    /// The motion happened (or was held where it made things worse).
+    Done,
+    /// The engine found the motion too crumpled for one frame; nothing
+    /// changed.
+    TooCrumpled,
 }
 
 /// The strength of each of `steps` frames that together make one frame

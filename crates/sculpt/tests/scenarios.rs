@@ -949,3 +949,78 @@ fn local_move_drags_the_part_within_its_radius() {
         assert!((*p1 - *p0 - offset).length() < 1e-12);
     }
 }
+
+/// Several dabs painted as one frame (`LiveStroke::frame_together`, what
+/// the modeler sends when the pointer moved on during a frame): the brush
+/// is applied at each dab on the positions the one before it left, so
+/// when nothing collides the surface ends exactly where the brush alone,
+/// applied dab after dab, takes it (computed here with
+/// `holey_sculpt::brush::inflate`), in one frame and with the same
+/// triangles.
+#[test]
+fn dabs_painted_together_move_the_surface_as_the_brush_dab_after_dab() {
+    use holey_sculpt::{BrushSettings, LiveStroke, brush::inflate};
+    let mesh = sphere(DVec3::ZERO);
+    let (radius, strength) = (0.5, 0.01);
+    let dabs = [
+        DVec3::new(0.0, 0.0, 1.0),
+        DVec3::new(0.1, 0.0, 0.99),
+        DVec3::new(0.2, 0.05, 0.97),
+    ];
+    let mut expected = mesh.clone();
+    for &c in &dabs {
+        expected.positions = inflate(&expected, c, radius, strength);
+    }
+    assert_ne!(
+        expected.positions, mesh.positions,
+        "the dabs move the surface"
+    );
+    let settings = BrushSettings::new(Brush::Inflate, radius, strength);
+    let mut live = LiveStroke::begin(&mesh, settings, dabs[0], Options::default()).unwrap();
+    let together: Vec<(DVec3, f64)> = dabs.iter().map(|&c| (c, 1.0)).collect();
+    let frame = live.frame_together(&together).unwrap();
+    assert!(!frame.connectivity_changed && !frame.topology_changed);
+    assert_eq!(frame.mesh.triangles, mesh.triangles);
+    assert_eq!(frame.mesh.positions, expected.positions);
+    assert_eq!(live.frames(), 1);
+}
+
+/// A frame of dabs one of which moves the surface farther than one frame
+/// may (a vertex farther than the edges around the moving vertices are
+/// long: that dab alone takes sub-frames) goes dab by dab, exactly as the
+/// same dabs sent one a frame.
+#[test]
+fn dabs_too_far_for_one_frame_go_as_frames_of_one() {
+    use holey_sculpt::{BrushSettings, LiveStroke};
+    let mesh = sphere(DVec3::ZERO);
+    // Each dab moves the top 1.4 edges' mean length (the sphere's edges
+    // are all about as long): two sub-frames each.
+    let lengths: Vec<f64> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+        .map(|(a, b)| mesh.positions[a as usize].distance(mesh.positions[b as usize]))
+        .collect();
+    let mean = lengths.iter().sum::<f64>() / lengths.len() as f64;
+    let (radius, strength) = (0.6, 1.4 * mean);
+    let dabs = [
+        (DVec3::new(0.0, 0.0, 1.0), 1.0),
+        (DVec3::new(0.02, 0.0, 1.0), 1.0),
+        (DVec3::new(0.04, 0.0, 1.0), 1.0),
+    ];
+    // With remeshing, a frame of three dabs remeshes once and three
+    // frames of two sub-frames six times: the two strokes agree only if
+    // the frame went dab by dab.
+    let settings = BrushSettings::new(Brush::Inflate, radius, strength);
+    let remesh = holey_sculpt::default_range(&mesh).map(RemeshOptions::new);
+    let mut together = LiveStroke::begin(&mesh, settings, dabs[0].0, Options::default()).unwrap();
+    together.set_remesh(remesh);
+    together.frame_together(&dabs).unwrap();
+    let mut apart = LiveStroke::begin(&mesh, settings, dabs[0].0, Options::default()).unwrap();
+    apart.set_remesh(remesh);
+    for &(c, p) in &dabs {
+        apart.frame_pressed(c, p).unwrap();
+    }
+    assert_eq!(together.mesh(), apart.mesh());
+    assert_eq!((together.frames(), apart.frames()), (1, 3));
+}
