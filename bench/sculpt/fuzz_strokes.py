@@ -14,7 +14,10 @@ loops, non-manifold curves, pinched vertices, degenerate triangles or
 intersecting pairs than its input had. Usage:
 
     cargo build --release -p holey-cli
-    python3 bench/sculpt/fuzz_strokes.py [--seeds 10] [--holey target/release/holey]
+    python3 bench/sculpt/fuzz_strokes.py [--seeds 10] [--frames-of 1] [--holey target/release/holey]
+
+With `--frames-of N`, every paint stroke's points go in frames of 1 to N
+dabs drawn at random, which the engine paints together.
 """
 import json, os, random, re, subprocess, tempfile
 
@@ -64,10 +67,28 @@ def strokes(points, rng):
     return out
 
 
+def group(drawn, most, rng):
+    """Groups the points of every paint stroke in `drawn` into frames of
+    1 to `most` dabs (a grab follows its pointer one point a frame)."""
+    for s in drawn:
+        if s["brush"] == "grab":
+            continue
+        left, frames = len(s["path"]), []
+        while left:
+            k = min(left, rng.randint(1, most))
+            frames.append(k)
+            left -= k
+        s["frames"] = frames
+
+
 def main():
     ap = sculpt_args()
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--first-seed", type=int, default=100)
+    ap.add_argument("--frames-of", type=int, default=1,
+                    help="group each paint stroke's points into frames of 1 to N dabs, drawn at "
+                         "random (\"frames\" in the stroke file), as the modeler sends the dabs "
+                         "that queue while a frame is computed")
     args = ap.parse_args()
     failures = 0
     # Why the guard held frames, by what would have got worse: strokes per reason.
@@ -77,8 +98,12 @@ def main():
             points = used_points(path)
             for seed in range(args.first_seed, args.first_seed + args.seeds):
                 file = os.path.join(d, f"s{seed}.json")
+                rng = random.Random(seed)
+                drawn = strokes(points, rng)
+                if args.frames_of > 1:
+                    group(drawn, args.frames_of, rng)
                 with open(file, "w") as fh:
-                    json.dump({"strokes": strokes(points, random.Random(seed))}, fh)
+                    json.dump({"strokes": drawn}, fh)
                 p = subprocess.run([args.holey, "sculpt", path, file, os.path.join(d, "out.obj"), "--audit", "-v"],
                                    capture_output=True, text=True)
                 if p.returncode != 0:

@@ -1,7 +1,9 @@
 //! Replays a stroke file frame by frame and prints, for every frame, what
 //! the engine did and an exact audit of the surface; optionally writes the
 //! motion of one frame as two OBJ files (the surface before it and the
-//! positions the brush moves it to) for `holey topo`.
+//! positions the brush moves it to; a frame of several dabs: its first
+//! dab's) for `holey topo`. A stroke's `frames` groups its points into
+//! frames as the modeler sent them.
 //!
 //! ```text
 //! cargo run --release -p holey-sculpt --example frame_trace -- MESH STROKES.json [--no-remesh] [--no-audit] [--dump K]
@@ -81,7 +83,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             live.set_remesh(range.map(RemeshOptions::new));
         }
         let mut before = audit(&mesh)?;
-        for (i, &point) in stroke.path.iter().enumerate() {
+        for (i, dabs) in stroke.frame_groups().iter().enumerate() {
+            let Some(&(point, _)) = dabs.first() else {
+                continue;
+            };
             if dump == Some(frame_no) && !stroke.brush.is_drag() {
                 let m = live.mesh();
                 let end = match stroke.brush {
@@ -92,7 +97,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 write_obj("trace_after.obj", &end, &m.triangles)?;
                 println!("wrote trace_before.obj and trace_after.obj (frame {frame_no})");
             }
-            let f = live.frame(point)?;
+            let f = live.frame_together(dabs)?;
             let seconds = f.seconds;
             let cut = f.topology_changed;
             if cut {

@@ -26,7 +26,8 @@ use crate::symmetry::{About, Symmetry};
 /// The state after one frame, for pictures and live preview.
 #[derive(Debug)]
 pub struct Frame<'a> {
-    /// The frame within its stroke: one per path point, from 0.
+    /// The frame within its stroke, from 0: one per path point, or per
+    /// group of points the stroke's `frames` makes.
     pub index: usize,
     /// The surface at the end of the frame. During a drag it is the
     /// dragged surface before the topology change; the last frame of a
@@ -150,8 +151,9 @@ impl Session {
     /// Applies one stroke, showing every frame to `observer`. On error the
     /// session is unchanged.
     ///
-    /// The observer sees one frame per path point. The last frame of a
-    /// drag shows the result of the release.
+    /// The observer sees one frame per path point, or per group of points
+    /// the stroke's `frames` makes ([`Stroke::frame_groups`]). The last
+    /// frame of a drag shows the result of the release.
     pub fn apply_stroke_observed(
         &mut self,
         stroke: &Stroke,
@@ -177,13 +179,13 @@ impl Session {
             live.set_mask(mask.positions(&self.mesh.positions));
         }
         let drag = stroke.brush.is_drag();
-        let last = stroke.path.len().saturating_sub(1);
-        for (index, &point) in stroke.path.iter().enumerate() {
+        let groups = stroke.frame_groups();
+        let last = groups.len().saturating_sub(1);
+        for (index, dabs) in groups.iter().enumerate() {
             let release = drag && index == last;
             // The last frame of a drag is shown after the release.
             live.set_preview(self.preview && !release);
-            let pressure = stroke.pressure.get(index).copied().unwrap_or(1.0);
-            let frame = live.frame_pressed(point, pressure)?;
+            let frame = live.frame_together(dabs)?;
             if !release {
                 observer(&Frame {
                     index,

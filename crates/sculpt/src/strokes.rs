@@ -15,7 +15,7 @@
 //!
 //! Parsing is strict: an unknown field or brush, a missing field, an empty
 //! path, a non-positive radius or a non-finite number is an error naming
-//! the stroke (numbered from 0, like faces). Each path point is one frame.
+//! the stroke (numbered from 0, like faces). Each path point is one dab, and one frame unless `frames` groups them.
 //! `grab` takes an optional `strength` (default 1) that scales the drag;
 //! `move` takes a path and an optional `radius`: without one (or 0) it
 //! moves the whole piece it picks, with one the part of it within the
@@ -23,6 +23,14 @@
 //! `snake_hook` hooks the surface at the first point (within the radius)
 //! and pulls it along the rest, with an optional `strength` (default 1,
 //! the hooked point follows the path).
+//!
+//! `frames` (optional, every brush) groups the path into frames: how many
+//! consecutive points each frame takes, all of them together
+//! ([`crate::LiveStroke::frame_together`]), summing to the path's length.
+//! The modeler sends the dabs that queued while a frame was computed as
+//! one frame, and a stroke recorded from it keeps those groups, so that
+//! a replay computes what the modeler did. Without it each point is one
+//! frame.
 //!
 //! `remesh` is the target edge-length range of dynamic remeshing; without
 //! it the session derives one from the mesh's mean edge length
@@ -67,6 +75,31 @@ pub struct Stroke {
     /// What the pressure scales (`"pressure_drives"`: `strength`, the
     /// default, or `radius`).
     pub pressure_drives: PressureDrives,
+    /// How many consecutive path points each frame takes (`"frames"`;
+    /// every count positive, summing to the path's length); empty: one
+    /// point a frame.
+    pub frames: Vec<usize>,
+}
+
+impl Stroke {
+    /// The path's points, with their pressures, grouped into the frames
+    /// [`Stroke::frames`] gives (one point a frame without it, or when its
+    /// counts do not cover the path exactly, as a parsed file's do).
+    pub fn frame_groups(&self) -> Vec<Vec<(DVec3, f64)>> {
+        let dab = |i: usize| (self.path[i], self.pressure.get(i).copied().unwrap_or(1.0));
+        if !covers(&self.frames, self.path.len()) {
+            return (0..self.path.len()).map(|i| vec![dab(i)]).collect();
+        }
+        let mut next = 0;
+        self.frames
+            .iter()
+            .map(|&k| {
+                let group = (next..next + k).map(dab).collect();
+                next += k;
+                group
+            })
+            .collect()
+    }
 }
 
 /// The vertices a stroke may not move.
@@ -110,6 +143,14 @@ impl Mask {
     }
 }
 
+/// Whether `frames` groups `points` path points: positive counts that sum
+/// to it (an empty list groups none).
+fn covers(frames: &[usize], points: usize) -> bool {
+    !frames.is_empty()
+        && !frames.contains(&0)
+        && frames.iter().try_fold(0usize, |a, &k| a.checked_add(k)) == Some(points)
+}
+
 /// The keys every brush accepts besides its own.
 #[derive(Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -126,15 +167,18 @@ struct Common {
     pressure: Vec<f64>,
     #[serde(default)]
     pressure_drives: PressureDrives,
+    #[serde(default)]
+    frames: Vec<usize>,
 }
 
-const COMMON_KEYS: [&str; 6] = [
+const COMMON_KEYS: [&str; 7] = [
     "falloff",
     "symmetry",
     "symmetry_about",
     "mask",
     "pressure",
     "pressure_drives",
+    "frames",
 ];
 
 /// The keys of the centred brushes that have no variant of their own.
@@ -305,6 +349,13 @@ fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
             out.3.len()
         ));
     }
+    if !common.frames.is_empty() && !covers(&common.frames, out.3.len()) {
+        return Err(format!(
+            "{brush}: frames must be positive counts of path points summing to the path's {}, got {:?}",
+            out.3.len(),
+            common.frames
+        ));
+    }
     if let Some(k) = common
         .pressure
         .iter()
@@ -335,6 +386,7 @@ fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
     s.mask = common.mask;
     s.pressure = common.pressure;
     s.pressure_drives = common.pressure_drives;
+    s.frames = common.frames;
     Ok(s)
 }
 
@@ -450,6 +502,58 @@ mod tests {
                 .remesh
                 .is_none()
         );
+    }
+
+    #[test]
+    fn frames_group_the_path_and_must_cover_it() {
+        let f = parse_strokes(
+            r#"{"strokes": [{"brush": "inflate", "radius": 1, "strength": 0.1,
+                "path": [[0,0,0], [1,0,0], [2,0,0], [3,0,0]], "pressure": [1, 0.5, 0.25, 1],
+                "frames": [1, 3]}]}"#,
+        )
+        .unwrap();
+        let groups = f.strokes[0].frame_groups();
+        assert_eq!(groups.len(), 2);
+        assert_eq!(groups[0], [(DVec3::ZERO, 1.0)]);
+        assert_eq!(
+            groups[1],
+            [
+                (DVec3::X, 0.5),
+                (DVec3::new(2.0, 0.0, 0.0), 0.25),
+                (DVec3::new(3.0, 0.0, 0.0), 1.0)
+            ]
+        );
+        // Without `frames`, a point a frame.
+        let one = parse_strokes(EXAMPLE).unwrap().strokes[0].frame_groups();
+        assert_eq!(one.len(), 2);
+        assert!(one.iter().all(|g| g.len() == 1));
+        for bad in ["[1, 2]", "[2, 0, 2]", "[5]", "[]"] {
+            let text = format!(
+                r#"{{"strokes": [{{"brush": "smooth", "radius": 1, "strength": 0.5,
+                    "path": [[0,0,0], [1,0,0], [2,0,0], [3,0,0]], "frames": {bad}}}]}}"#
+            );
+            if bad == "[]" {
+                // An empty list groups nothing: a point a frame.
+                assert_eq!(
+                    parse_strokes(&text).unwrap().strokes[0]
+                        .frame_groups()
+                        .len(),
+                    4
+                );
+                continue;
+            }
+            let (i, reason) = stroke_error(&text);
+            assert_eq!(i, 0);
+            assert!(reason.contains("frames"), "{bad}: {reason}");
+        }
+        // A stroke built in code whose counts do not cover its path: a
+        // point a frame, not a panic.
+        let odd = Stroke {
+            path: vec![DVec3::ZERO; 3],
+            frames: vec![2, 5],
+            ..Stroke::default()
+        };
+        assert_eq!(odd.frame_groups().len(), 3);
     }
 
     fn stroke_error(text: &str) -> (usize, String) {

@@ -340,6 +340,54 @@ fn stanford_bunny_inflate_and_deflate_across_the_haunch() {
     }
 }
 
+/// The haunch strokes as the modeler sends them when its frames take
+/// longer than the pointer's steps: the dabs in frames of one to three
+/// (`"frames"` in a stroke file), each frame's dabs painted in turn and
+/// their motion resolved at once (`LiveStroke::frame_together`), with and
+/// without remeshing. Every stroke leaves the scan no worse, one piece,
+/// its five holes as they were.
+#[test]
+fn stanford_bunny_haunch_strokes_in_frames_of_several_dabs() {
+    let Some(bunny) = load("stanford_bunny_haunch_frames", "stanford-bunny.obj") else {
+        return;
+    };
+    for remesh in [true, false] {
+        let across = walk(&bunny, [0.55, 0.35, 1.0], [0.75, 0.45, 1.0], 40);
+        let back: Vec<DVec3> = across.iter().rev().copied().collect();
+        // 40 dabs in frames of 1, 2, 3, 1, 2, 3, ... (the last one short).
+        let mut frames = Vec::new();
+        let mut left = across.len();
+        for k in [1, 2, 3].into_iter().cycle() {
+            if left == 0 {
+                break;
+            }
+            frames.push(k.min(left));
+            left -= k.min(left);
+        }
+        let mut strokes = Vec::new();
+        for s in [0.5, 1.0] {
+            let (r, k) = radius_and_strength(&bunny, 0.05, s);
+            for (path, sign) in [(across.clone(), 1.0), (back.clone(), -1.0)] {
+                strokes.push(Stroke {
+                    frames: frames.clone(),
+                    ..paint(Brush::Inflate, r, sign * k, path)
+                });
+            }
+        }
+        let (_, reports, end) = sculpt(
+            &format!("bunny haunch in frames of several dabs (remesh {remesh})"),
+            bunny.clone(),
+            &strokes,
+            remesh,
+        );
+        for r in &reports {
+            assert_eq!(r.frames, frames.len(), "one frame per group of dabs");
+        }
+        assert_eq!(end.components, 1);
+        assert_eq!(end.boundary_loops, 5);
+    }
+}
+
 /// Dwell: inflate held on one spot of the bunny's flank at radius 8%,
 /// full strength, thirty frames; then smooth it.
 #[test]

@@ -43,9 +43,12 @@ units per frame like inflate, layer the height of its plateau; flatten, scrape (
 {\"custom\": [five values]}), \"symmetry\" (axes among x, y, z) with
 \"symmetry_about\" (origin or centre), a \"mask\" ({\"vertices\": [...]} or a
 sphere) whose vertices never move, and a \"pressure\" per path point
-with \"pressure_drives\" (strength or radius). The snake hook pulls the
-part under it along the path and lets go when it fuses with what it
-meets.
+with \"pressure_drives\" (strength or radius), and \"frames\": how many
+consecutive path points each frame paints together (the brush at each,
+one topology change and remeshing for all; the modeler records the dabs
+it sent in one request that way), one point a frame without it. The
+snake hook pulls the part under it along the path and lets go when it
+fuses with what it meets.
 
 Strokes are numbered from 0 in errors. The first point of a grab must lie
 within its radius of the surface, that of a move within 10% of the
