@@ -429,7 +429,9 @@ function keepStroke(text) {
   let m;
   try { m = JSON.parse(text); } catch { return; }
   if (m.op === 'stroke_begin') {
-    const s = { brush: m.brush, radius: m.radius, path: [m.point] };
+    // `frames`: the dabs of each request, which the server paints as one
+    // frame (stroke_begin's point is the first).
+    const s = { brush: m.brush, radius: m.radius, path: [m.point], frames: [1] };
     if (m.brush !== 'move' && m.strength !== undefined) s.strength = m.strength;
     if (m.falloff) s.falloff = m.falloff;
     if (m.symmetry) s.symmetry = m.symmetry;
@@ -438,6 +440,7 @@ function keepStroke(text) {
   } else if (m.op === 'stroke_frame' && sentStrokes.length) {
     const s = sentStrokes[sentStrokes.length - 1];
     s.path.push(m.point, ...(m.points || []));
+    s.frames.push(1 + (m.points || []).length);
   }
 }
 

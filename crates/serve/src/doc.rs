@@ -198,6 +198,10 @@ pub struct ActiveStroke {
     pub sent: Vec<DVec3>,
     /// The slots of `display`'s edges, once a patch frame needed them.
     pub book: Option<crate::frame::EdgeBook>,
+    /// A frame failed after it may have changed the surface (a dab of a
+    /// frame painted before a later one failed): the next frame's
+    /// connectivity is compared with `display` whatever it reports.
+    pub stale: bool,
 }
 
 /// The document the server edits.

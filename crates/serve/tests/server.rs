@@ -2123,15 +2123,16 @@ fn stroke_in_batches(
     (model(addr), shown, committed, a.genus())
 }
 
-/// Issue 15 item 6: a `stroke_frame` carrying several dabs applies them as
-/// that many single-point requests would, bit for bit, and its one frame
-/// (positions, a patch or whole) brings the page to the state after the
-/// last; also when a frame in the middle of a batch remeshes or cuts the
-/// surface (a topology change).
+/// Issue 15 item 6: a `stroke_frame` carrying several dabs whose brush
+/// depends on the dab before it (the snake hook's grip, a grab's drag)
+/// applies them as that many single-point requests would, bit for bit, and
+/// so does an inflate that neither collides nor remeshes (its one frame
+/// moves the surface to where the brush alone takes it, dab after dab);
+/// the one frame sent (positions, a patch or whole) brings the page to the
+/// state after the last dab, also when the surface is cut in the middle
+/// of a batch (a topology change).
 #[test]
 fn a_batch_of_dabs_is_the_same_stroke_as_single_frames() {
-    // Inflate with remeshing finer than the mesh: the connectivity
-    // changes within batches.
     let inflate = json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
                           "strength": 0.02, "point": [0, 0, 1]});
     let arc: Vec<[f64; 3]> = (1..=12)
@@ -2153,7 +2154,7 @@ fn a_batch_of_dabs_is_the_same_stroke_as_single_frames() {
                        "strength": 1, "point": [0, 0, 1]});
     let down = [[0.0, 0.0, 0.5], [0.0, 0.0, -0.5], [0.0, 0.0, -1.6]];
     for (begin, detail, path, batches, genus) in [
-        (&inflate, 0.8, &arc[..], vec![3, 1, 8], 0),
+        (&inflate, 0.0, &arc[..], vec![3, 1, 8], 0),
         (&hook, 0.0, &through[..], vec![7, 8, 5], 1),
         (&hook, 0.5, &through[..], vec![2, 8, 8, 2], 1),
         (&grab, 0.5, &down[..], vec![3], 1),
@@ -2182,6 +2183,33 @@ fn a_batch_of_dabs_is_the_same_stroke_as_single_frames() {
             assert_eq!(shown.edge_set(), committed.edges, "{begin}");
         }
     }
+}
+
+/// Issue 15 item 6: with remeshing, a `stroke_frame` of several inflate
+/// dabs is one frame (the library's `LiveStroke::frame_together`, whose
+/// own tests check it against the brush applied dab after dab): the brush
+/// at every dab, then one topology change and one remeshing. So the
+/// stroke commits another surface than the same dabs sent one a request
+/// (remeshed after each), a closed sphere still, and the frames the page
+/// was sent built exactly the committed surface.
+#[test]
+fn a_batch_of_inflate_dabs_with_remeshing_is_one_frame() {
+    let begin = json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
+                        "strength": 0.02, "point": [0, 0, 1]});
+    let arc: Vec<[f64; 3]> = (1..=12)
+        .map(|i| {
+            let x = 0.05 * f64::from(i);
+            [x, 0.0, (1.0 - x * x).sqrt()]
+        })
+        .collect();
+    let detail = 0.8;
+    let (batched, shown, committed, genus) = stroke_in_batches(&begin, detail, &arc, &[3, 1, 8]);
+    let (singles, ..) = stroke_in_batches(&begin, detail, &arc, &[1; 12]);
+    assert_eq!(genus, 0);
+    assert!(batched != singles, "the batches were painted dab by dab");
+    assert_eq!(shown.positions, committed.positions);
+    assert_eq!(shown.triangles, committed.triangles);
+    assert_eq!(shown.edge_set(), committed.edges);
 }
 
 #[test]

@@ -84,6 +84,7 @@ impl Shared {
             display,
             sent,
             book: None,
+            stale: false,
         });
         // The first frame goes out before the answer, as every frame
         // did: the page waits for this answer before sending any dab.
@@ -151,8 +152,8 @@ impl Shared {
         }
     }
 
-    /// [`Self::stroke_frame`]: `Err` when no dab was applied, else the
-    /// answer (an error when a later dab failed) and the frame.
+    /// [`Self::stroke_frame`]: the answer and the frame, or `Err` when the
+    /// request is malformed or the frame failed.
     fn stroke_frames(
         &self,
         doc: &mut Document,
@@ -164,38 +165,23 @@ impl Shared {
         let Some(stroke) = doc.stroke.as_mut() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
-        // Every dab is a frame of its own (the brush's spacing is the
-        // page's); the tabs see the state after the last one, so the
-        // connectivity counts as changed if any frame changed it, and the
-        // vanish mask is the last frame's.
-        let mut seconds = 0.0;
-        let mut connectivity_changed = false;
-        let mut vanish_mask: Option<Vec<bool>> = None;
-        let mut applied = 0;
-        let mut failed = None;
-        for &(point, pressure) in &dabs {
-            // Pen pressure, when the pointer has one (a mouse sends none).
-            match stroke.live.frame_pressed(point, pressure) {
-                Ok(frame) => {
-                    seconds += frame.seconds;
-                    connectivity_changed |= frame.connectivity_changed;
-                    vanish_mask = frame.corrected_odd;
-                    applied += 1;
-                }
-                // The failed frame left the stroke as it was: the frames
-                // before it are sent, the request answers the error.
-                Err(e) => {
-                    failed = Some(e);
-                    break;
-                }
+        // The dabs are one frame: the brush is applied at each (the
+        // page's spacing), and the collision handling and remeshing run
+        // once on their joint motion (`LiveStroke::frame_together`), so a
+        // request that carries the dabs queued while the last frame was
+        // computed costs little more than one dab. The tabs see the state
+        // after the frame.
+        let (seconds, connectivity_changed, vanish_mask) = match stroke.live.frame_together(&dabs) {
+            Ok(frame) => (
+                frame.seconds,
+                frame.connectivity_changed || std::mem::take(&mut stroke.stale),
+                frame.corrected_odd,
+            ),
+            Err(e) => {
+                stroke.stale = true;
+                return Err(e.into());
             }
-        }
-        if applied == 0 {
-            return Err(failed.map_or_else(
-                || ServeError::BadRequest("stroke_frame without a point".into()),
-                Into::into,
-            ));
-        }
+        };
         let ms = seconds * 1e3;
         let mesh = stroke.live.mesh();
         let vanish = vanish_mask.as_deref();
@@ -256,10 +242,7 @@ impl Shared {
         };
         stroke.sent.clone_from(moved);
         let vanishing = vanish.map_or(0, |m| m.iter().filter(|&&b| b).count());
-        let reply = match failed {
-            Some(e) => Err(e.into()),
-            None => Ok(json!({"ms": ms, "vanishing": vanishing, "frames": applied})),
-        };
+        let reply = Ok(json!({"ms": ms, "vanishing": vanishing, "frames": dabs.len()}));
         Ok((reply, bytes))
     }
 }
