@@ -310,6 +310,21 @@ fn paint(brush: Brush, radius: f64, strength: f64, path: Vec<DVec3>) -> Stroke {
     }
 }
 
+/// The haunch strokes of the first report: inflate across the
+/// bunny's haunch in 40 small steps at radius 5%, and deflate back, at
+/// slider 0.5 and then 1.
+fn haunch_strokes(bunny: &TriMesh) -> Vec<Stroke> {
+    let across = walk(bunny, [0.55, 0.35, 1.0], [0.75, 0.45, 1.0], 40);
+    let back: Vec<DVec3> = across.iter().rev().copied().collect();
+    let mut strokes = Vec::new();
+    for s in [0.5, 1.0] {
+        let (r, k) = radius_and_strength(bunny, 0.05, s);
+        strokes.push(paint(Brush::Inflate, r, k, across.clone()));
+        strokes.push(paint(Brush::Inflate, r, -k, back.clone()));
+    }
+    strokes
+}
+
 /// The first report: inflate dragged across the bunny's haunch in
 /// 40 small steps at radius 5% (slider 0.5, then 1), and deflate back,
 /// with and without remeshing. It tore the scan into 54 pieces with
@@ -321,14 +336,7 @@ fn stanford_bunny_inflate_and_deflate_across_the_haunch() {
         return;
     };
     for remesh in [true, false] {
-        let across = walk(&bunny, [0.55, 0.35, 1.0], [0.75, 0.45, 1.0], 40);
-        let back: Vec<DVec3> = across.iter().rev().copied().collect();
-        let mut strokes = Vec::new();
-        for s in [0.5, 1.0] {
-            let (r, k) = radius_and_strength(&bunny, 0.05, s);
-            strokes.push(paint(Brush::Inflate, r, k, across.clone()));
-            strokes.push(paint(Brush::Inflate, r, -k, back.clone()));
-        }
+        let strokes = haunch_strokes(&bunny);
         let (_, _, end) = sculpt(
             &format!("bunny haunch (remesh {remesh})"),
             bunny.clone(),
@@ -352,11 +360,10 @@ fn stanford_bunny_haunch_strokes_in_frames_of_several_dabs() {
         return;
     };
     for remesh in [true, false] {
-        let across = walk(&bunny, [0.55, 0.35, 1.0], [0.75, 0.45, 1.0], 40);
-        let back: Vec<DVec3> = across.iter().rev().copied().collect();
+        let mut strokes = haunch_strokes(&bunny);
         // 40 dabs in frames of 1, 2, 3, 1, 2, 3, ... (the last one short).
         let mut frames = Vec::new();
-        let mut left = across.len();
+        let mut left = strokes[0].path.len();
         for k in [1, 2, 3].into_iter().cycle() {
             if left == 0 {
                 break;
@@ -364,15 +371,8 @@ fn stanford_bunny_haunch_strokes_in_frames_of_several_dabs() {
             frames.push(k.min(left));
             left -= k.min(left);
         }
-        let mut strokes = Vec::new();
-        for s in [0.5, 1.0] {
-            let (r, k) = radius_and_strength(&bunny, 0.05, s);
-            for (path, sign) in [(across.clone(), 1.0), (back.clone(), -1.0)] {
-                strokes.push(Stroke {
-                    frames: frames.clone(),
-                    ..paint(Brush::Inflate, r, sign * k, path)
-                });
-            }
+        for s in &mut strokes {
+            s.frames.clone_from(&frames);
         }
         let (_, reports, end) = sculpt(
             &format!("bunny haunch in frames of several dabs (remesh {remesh})"),

@@ -2123,6 +2123,20 @@ fn stroke_in_batches(
     (model(addr), shown, committed, a.genus())
 }
 
+/// An inflate begun at the top of the unit sphere (radius 0.5, strength
+/// 0.02) and the 12 dabs of its path down the arc towards +x.
+fn inflate_along_an_arc() -> (Value, Vec<[f64; 3]>) {
+    let begin = json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
+                        "strength": 0.02, "point": [0, 0, 1]});
+    let arc = (1..=12)
+        .map(|i| {
+            let x = 0.05 * f64::from(i);
+            [x, 0.0, (1.0 - x * x).sqrt()]
+        })
+        .collect();
+    (begin, arc)
+}
+
 /// Issue 15 item 6: a `stroke_frame` carrying several dabs whose brush
 /// depends on the dab before it (the snake hook's grip, a grab's drag)
 /// applies them as that many single-point requests would, bit for bit, and
@@ -2133,14 +2147,7 @@ fn stroke_in_batches(
 /// of a batch (a topology change).
 #[test]
 fn a_batch_of_dabs_is_the_same_stroke_as_single_frames() {
-    let inflate = json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
-                          "strength": 0.02, "point": [0, 0, 1]});
-    let arc: Vec<[f64; 3]> = (1..=12)
-        .map(|i| {
-            let x = 0.05 * f64::from(i);
-            [x, 0.0, (1.0 - x * x).sqrt()]
-        })
-        .collect();
+    let (inflate, arc) = inflate_along_an_arc();
     // The snake hook pulled through the far side (as in holey-sculpt's
     // brush tests): the surface opens into a tunnel at some frame.
     let hook = json!({"op": "stroke_begin", "brush": "snake_hook", "radius": 0.45,
@@ -2194,14 +2201,7 @@ fn a_batch_of_dabs_is_the_same_stroke_as_single_frames() {
 /// was sent built exactly the committed surface.
 #[test]
 fn a_batch_of_inflate_dabs_with_remeshing_is_one_frame() {
-    let begin = json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
-                        "strength": 0.02, "point": [0, 0, 1]});
-    let arc: Vec<[f64; 3]> = (1..=12)
-        .map(|i| {
-            let x = 0.05 * f64::from(i);
-            [x, 0.0, (1.0 - x * x).sqrt()]
-        })
-        .collect();
+    let (begin, arc) = inflate_along_an_arc();
     let detail = 0.8;
     let (batched, shown, committed, genus) = stroke_in_batches(&begin, detail, &arc, &[3, 1, 8]);
     let (singles, ..) = stroke_in_batches(&begin, detail, &arc, &[1; 12]);
