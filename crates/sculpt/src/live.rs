@@ -395,10 +395,11 @@ impl LiveStroke {
     /// where the last dab left it in one guarded topology change (§3: a
     /// frame's motion is the straight path between its two states), then
     /// remeshes once around every dab. The brush is applied at every dab,
-    /// so the stroke keeps its spacing; only the collision handling and
-    /// remeshing are shared. A dab whose own step is longer than a frame's
-    /// may be ([`substeps`]), or a joint motion too crumpled for one frame
-    /// ([`IntersectError::TooManyPairs`]), sends the dabs one by one, as
+    /// so the stroke keeps its spacing (a dab whose step is longer than a
+    /// frame's may be, [`substeps`], in the steps its own frame would
+    /// take); only the collision handling and remeshing are shared. A joint
+    /// motion the engine finds too crumpled for one frame
+    /// ([`IntersectError::TooManyPairs`]) sends the dabs one by one, as
     /// separate frames would.
     ///
     /// The layer brush and the snake hook, whose dabs depend on what the
@@ -722,42 +723,44 @@ impl PaintStep<'_> {
     /// ([`LiveStroke::frame_together`]): each dab's brush on the positions
     /// the one before it left, then one guarded topology change from the
     /// frame's start to the last dab's end, and one remeshing around every
-    /// dab. When a dab's own step needs sub-frames ([`substeps`]), or the
-    /// engine finds the joint motion too crumpled for one frame, the dabs
-    /// go one by one instead, each as [`PaintStep::paint_piece`] paints it.
+    /// dab. A dab whose step is longer than a frame's may be ([`substeps`])
+    /// is evaluated in as many steps as a frame of its own would take, each
+    /// on the positions the one before left. When the engine finds the joint
+    /// motion too crumpled for one frame, the dabs go one by one instead,
+    /// each as [`PaintStep::paint_piece`] paints it.
     fn paint_together(
         &mut self,
         mesh: &mut TriMesh,
         brush: Brush,
         dabs: &[(DVec3, f64, f64)],
     ) -> Result<(), StepError> {
-        // Each dab's step is bounded as a frame's is ([`substeps`]): its
-        // brush sees the normals the dab before it left, so the frame
-        // folds nothing over between two evaluations of them; a dab that
-        // would need sub-frames sends them all dab by dab.
+        // Each step of the brush sees the normals the step before it left,
+        // so the surface folds nothing over between two evaluations of
+        // them, as between frames; the motion is resolved once.
         let start = mesh.positions.clone();
-        let mut together = true;
         for &(centre, radius, strength) in dabs {
-            let end = self.end(mesh, brush, Dab::At(centre), radius, strength);
-            if substeps(mesh, &end) > 1 {
-                together = false;
-                break;
+            let dab = Dab::At(centre);
+            let end = self.end(mesh, brush, dab, radius, strength);
+            let steps = substeps(mesh, &end);
+            if steps == 1 {
+                mesh.positions = end;
+                continue;
             }
-            mesh.positions = end;
+            for (part, s) in dab.split(brush, strength, steps) {
+                mesh.positions = self.end(mesh, brush, part, radius, s);
+            }
         }
         let end = std::mem::replace(&mut mesh.positions, start);
-        if together {
-            let mirrors = self.mirrors;
-            let reaches = |p: DVec3| {
-                dabs.iter()
-                    .any(|&(c, r, _)| Dab::At(c).reaches(p, r, mirrors))
-            };
-            // The dabs share a brush, and pressure scales a strength
-            // without turning its sign.
-            let outward = brush == Brush::Inflate && dabs.iter().all(|d| d.2 > 0.0);
-            if let Settled::Done = self.settle(mesh, &end, outward, None, &reaches)? {
-                return Ok(());
-            }
+        let mirrors = self.mirrors;
+        let reaches = |p: DVec3| {
+            dabs.iter()
+                .any(|&(c, r, _)| Dab::At(c).reaches(p, r, mirrors))
+        };
+        // The dabs share a brush, and pressure scales a strength without
+        // turning its sign.
+        let outward = brush == Brush::Inflate && dabs.iter().all(|d| d.2 > 0.0);
+        if let Settled::Done = self.settle(mesh, &end, outward, None, &reaches)? {
+            return Ok(());
         }
         for &(centre, radius, strength) in dabs {
             self.paint_piece(mesh, brush, Dab::At(centre), radius, strength, 0)?;

@@ -985,16 +985,17 @@ fn dabs_painted_together_move_the_surface_as_the_brush_dab_after_dab() {
     assert_eq!(live.frames(), 1);
 }
 
-/// A frame of dabs one of which moves the surface farther than one frame
-/// may (a vertex farther than the edges around the moving vertices are
-/// long: that dab alone takes sub-frames) goes dab by dab, exactly as the
-/// same dabs sent one a frame.
+/// A dab whose step is longer than one frame may (a vertex farther than
+/// the edges around the moving vertices are long) is evaluated in the
+/// sub-steps its own frame would take, within the frame of several dabs:
+/// without remeshing or collisions, the frame ends exactly where the same
+/// dabs sent one a frame end (each split into sub-frames there).
 #[test]
-fn dabs_too_far_for_one_frame_go_as_frames_of_one() {
+fn long_dabs_painted_together_take_the_steps_their_own_frames_would() {
     use holey_sculpt::{BrushSettings, LiveStroke};
     let mesh = sphere(DVec3::ZERO);
-    // Each dab moves the top 1.4 edges' mean length (the sphere's edges
-    // are all about as long): two sub-frames each.
+    // Each dab moves the top about 1.4 edges' mean length (the sphere's
+    // edges are all about as long): sub-frames.
     let lengths: Vec<f64> = mesh
         .triangles
         .iter()
@@ -1008,19 +1009,15 @@ fn dabs_too_far_for_one_frame_go_as_frames_of_one() {
         (DVec3::new(0.02, 0.0, 1.0), 1.0),
         (DVec3::new(0.04, 0.0, 1.0), 1.0),
     ];
-    // With remeshing, a frame of three dabs remeshes once and three
-    // frames of two sub-frames six times: the two strokes agree only if
-    // the frame went dab by dab.
     let settings = BrushSettings::new(Brush::Inflate, radius, strength);
-    let remesh = holey_sculpt::default_range(&mesh).map(RemeshOptions::new);
     let mut together = LiveStroke::begin(&mesh, settings, dabs[0].0, Options::default()).unwrap();
-    together.set_remesh(remesh);
     together.frame_together(&dabs).unwrap();
     let mut apart = LiveStroke::begin(&mesh, settings, dabs[0].0, Options::default()).unwrap();
-    apart.set_remesh(remesh);
     for &(c, p) in &dabs {
         apart.frame_pressed(c, p).unwrap();
     }
     assert_eq!(together.mesh(), apart.mesh());
     assert_eq!((together.frames(), apart.frames()), (1, 3));
+    let split = apart.finish().unwrap().report.subframes;
+    assert!(split > 0, "no dab needed sub-frames of its own");
 }
