@@ -395,17 +395,18 @@ impl LiveStroke {
     /// where the last dab left it in one guarded topology change (§3: a
     /// frame's motion is the straight path between its two states), then
     /// remeshes once around every dab. The brush is applied at every dab,
-    /// so the stroke keeps its spacing (a dab whose step is longer than a
-    /// frame's may be, [`substeps`], in the steps its own frame would
-    /// take); only the collision handling and remeshing are shared. A joint
-    /// motion the engine finds too crumpled for one frame
+    /// so the stroke keeps its spacing, and a dab longer than one frame's
+    /// step goes in the sub-steps its own frame would take ([`substeps`]);
+    /// only the collision handling and remeshing are shared. A joint motion
+    /// the engine finds too crumpled for one frame
     /// ([`IntersectError::TooManyPairs`]) sends the dabs one by one, as
     /// separate frames would.
     ///
     /// The layer brush and the snake hook, whose dabs depend on what the
     /// dab before them did (its heights, its grip), and drags, which follow
     /// the pointer, take their dabs one after another within the frame.
-    /// An empty `dabs` is a frame that changes nothing.
+    /// An empty `dabs` is a frame that changes nothing. On an error, dabs
+    /// painted one by one before the failing one stay painted.
     pub fn frame_together(&mut self, dabs: &[(DVec3, f64)]) -> Result<LiveFrame<'_>, SculptError> {
         let started = Instant::now();
         let index = self.frames;
