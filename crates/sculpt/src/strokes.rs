@@ -16,8 +16,8 @@
 //! Parsing is strict: an unknown field or brush, a missing field, an empty
 //! path, a non-positive radius or a non-finite number is an error naming
 //! the stroke (numbered from 0, like faces). Each path point is one dab,
-//! and one frame unless `frames` groups them. `grab` takes an optional `strength` (default 1) that scales the drag;
-//! `move` takes a path and an optional `radius`: without one (or 0) it
+//! and one frame unless `frames` groups them. `grab` takes an optional
+//! `strength` (default 1) that scales the drag; `move` takes a path and an optional `radius`: without one (or 0) it
 //! moves the whole piece it picks, with one the part of it within the
 //! radius, held rigidly in the inner half and blended out to the rim.
 //! `snake_hook` hooks the surface at the first point (within the radius)
