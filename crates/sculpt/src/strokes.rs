@@ -17,12 +17,12 @@
 //! path, a non-positive radius or a non-finite number is an error naming
 //! the stroke (numbered from 0, like faces). Each path point is one dab,
 //! and one frame unless `frames` groups them. `grab` takes an optional
-//! `strength` (default 1) that scales the drag; `move` takes a path and an optional `radius`: without one (or 0) it
-//! moves the whole piece it picks, with one the part of it within the
-//! radius, held rigidly in the inner half and blended out to the rim.
-//! `snake_hook` hooks the surface at the first point (within the radius)
-//! and pulls it along the rest, with an optional `strength` (default 1,
-//! the hooked point follows the path).
+//! `strength` (default 1) that scales the drag; `move` takes a path and an
+//! optional `radius`: without one (or 0) it moves the whole piece it picks,
+//! with one the part of it within the radius, held rigidly in the inner
+//! half and blended out to the rim. `snake_hook` hooks the surface at the
+//! first point (within the radius) and pulls it along the rest, with an
+//! optional `strength` (default 1, the hooked point follows the path).
 //!
 //! `frames` (optional, every brush) groups the path into frames: how many
 //! consecutive points each frame takes, all of them together
