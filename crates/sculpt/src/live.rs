@@ -735,28 +735,33 @@ impl PaintStep<'_> {
         brush: Brush,
         dabs: &[(DVec3, f64, f64)],
     ) -> Result<(), StepError> {
-        // Each step of the brush sees the normals the step before it left,
-        // so the surface folds nothing over between two evaluations of
-        // them, as between frames; the motion is resolved once.
-        let start = mesh.positions.clone();
-        for &(centre, radius, strength) in dabs {
-            let dab = Dab::At(centre);
-            let end = self.end(mesh, brush, dab, radius, strength);
-            let steps = substeps(mesh, &end);
-            if steps == 1 {
-                mesh.positions = end;
-                continue;
-            }
-            for (part, s) in dab.split(brush, strength, steps) {
-                mesh.positions = self.end(mesh, brush, part, radius, s);
-            }
-        }
-        let end = std::mem::replace(&mut mesh.positions, start);
         let mirrors = self.mirrors;
         let reaches = |p: DVec3| {
             dabs.iter()
                 .any(|&(c, r, _)| Dab::At(c).reaches(p, r, mirrors))
         };
+        // Each step of the brush sees the normals the step before it left,
+        // so the surface folds nothing over between two evaluations of
+        // them, as between frames; the motion is resolved once. The steps
+        // run on the piece of the surface they can read ([`Piece`]), not
+        // on the whole mesh.
+        let mut piece = Piece::around(mesh, &reaches);
+        for &(centre, radius, strength) in dabs {
+            let dab = Dab::At(centre);
+            let end = self.end(&piece.mesh, brush, dab, radius, strength);
+            let steps = substeps(&piece.mesh, &end);
+            if steps == 1 {
+                piece.mesh.positions = end;
+                continue;
+            }
+            for (part, s) in dab.split(brush, strength, steps) {
+                piece.mesh.positions = self.end(&piece.mesh, brush, part, radius, s);
+            }
+        }
+        let mut end = mesh.positions.clone();
+        for (&g, &p) in piece.global.iter().zip(&piece.mesh.positions) {
+            end[g as usize] = p;
+        }
         // The dabs share a brush, and pressure scales a strength without
         // turning its sign.
         let outward = brush == Brush::Inflate && dabs.iter().all(|d| d.2 > 0.0);
@@ -928,6 +933,92 @@ impl PaintStep<'_> {
             }
         }
         Ok(Settled::Done)
+    }
+}
+
+/// The part of a surface that the centred brushes of a frame of dabs read
+/// ([`PaintStep::paint_together`]): the triangles within two rings of the
+/// vertices some dab reaches, in mesh order, with their vertices numbered
+/// in mesh order, so that a brush computes on it bit for bit what it
+/// computes on the whole mesh.
+///
+/// Why two rings suffice: a vertex moves only while a dab reaches it, and
+/// until it first moves it is where the frame began, so every vertex any
+/// dab of the frame moves is among those the dabs reach at the start. A
+/// brush reads the triangles around the vertices it moves (their normals,
+/// their rings of neighbours, the rim's sides), and a rim vertex also the
+/// triangles around its neighbours ([`crate::brush`]'s two-ring normal),
+/// which are those around the vertices of the first ring, and of the
+/// vertices at their positions (unwelded copies, which the brushes take
+/// for one point).
+struct Piece {
+    mesh: TriMesh,
+    /// The mesh's vertex number of each of the piece's.
+    global: Vec<u32>,
+}
+
+impl Piece {
+    fn around(mesh: &TriMesh, reaches: &dyn Fn(DVec3) -> bool) -> Piece {
+        let n = mesh.positions.len();
+        let near: Vec<bool> = mesh.positions.iter().map(|&p| reaches(p)).collect();
+        // The first ring: the vertices of the triangles at a reached one.
+        let mut ring = vec![false; n];
+        for t in &mesh.triangles {
+            if t.iter().any(|&v| near[v as usize]) {
+                for &v in t {
+                    ring[v as usize] = true;
+                }
+            }
+        }
+        // And every vertex at the position of one of them: only those in
+        // the ring's box need their position looked up.
+        let keys: rustc_hash::FxHashSet<[u64; 3]> = (0..n)
+            .filter(|&v| ring[v])
+            .map(|v| position_key(mesh.positions[v]))
+            .collect();
+        if let Some((lo, hi)) = (0..n).filter(|&v| ring[v]).map(|v| mesh.positions[v]).fold(
+            None,
+            |b: Option<(DVec3, DVec3)>, p| {
+                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            },
+        ) {
+            for (v, p) in mesh.positions.iter().enumerate() {
+                if !ring[v]
+                    && p.cmpge(lo).all()
+                    && p.cmple(hi).all()
+                    && keys.contains(&position_key(*p))
+                {
+                    ring[v] = true;
+                }
+            }
+        }
+        // The second ring's triangles, and their vertices in mesh order.
+        let kept: Vec<usize> = (0..mesh.triangles.len())
+            .filter(|&t| mesh.triangles[t].iter().any(|&v| ring[v as usize]))
+            .collect();
+        let mut local = vec![u32::MAX; n];
+        for &t in &kept {
+            for &v in &mesh.triangles[t] {
+                local[v as usize] = 0;
+            }
+        }
+        let mut global = Vec::new();
+        for (v, l) in local.iter_mut().enumerate() {
+            if *l == 0 {
+                *l = global.len() as u32;
+                global.push(v as u32);
+            }
+        }
+        Piece {
+            mesh: TriMesh {
+                positions: global.iter().map(|&v| mesh.positions[v as usize]).collect(),
+                triangles: kept
+                    .iter()
+                    .map(|&t| mesh.triangles[t].map(|v| local[v as usize]))
+                    .collect(),
+            },
+            global,
+        }
     }
 }
 

@@ -1021,3 +1021,103 @@ fn long_dabs_painted_together_take_the_steps_their_own_frames_would() {
     let split = apart.finish().unwrap().report.subframes;
     assert!(split > 0, "no dab needed sub-frames of its own");
 }
+
+/// A frame of several dabs computes its brush steps on the piece of the
+/// surface they can read; on an open surface with an unwelded seam (the
+/// upper half of a sphere, its two sides with their own copies of the
+/// seam's vertices) and dabs on the rim, where the brushes read the rim's
+/// two-ring and take coincident copies for one point, the frame still ends
+/// exactly where inflate and smooth applied to the whole mesh, dab after
+/// dab, take it. Two sets of dabs: a wide brush where the seam meets the
+/// rim, and a brush moving only a rim vertex beside the seam, whose rim
+/// normal reads the triangles at its seam neighbour's position on the
+/// other side, which share no vertex number with anything it moves.
+#[test]
+fn dabs_painted_together_at_a_rim_and_a_seam_read_what_the_whole_mesh_gives() {
+    let sphere = sphere(DVec3::ZERO);
+    let upper: Vec<[u32; 3]> = sphere
+        .triangles
+        .iter()
+        .copied()
+        .filter(|t| t.iter().all(|&v| sphere.positions[v as usize].z > -1e-9))
+        .collect();
+    // The side x < 0 gets its own copy of every vertex it uses.
+    let mut mesh = TriMesh {
+        positions: sphere.positions.clone(),
+        triangles: Vec::new(),
+    };
+    let mut copy = HashMap::new();
+    for t in &upper {
+        let west = t
+            .iter()
+            .map(|&v| sphere.positions[v as usize].x)
+            .sum::<f64>()
+            < 0.0;
+        mesh.triangles.push(if west {
+            t.map(|v| {
+                *copy.entry(v).or_insert_with(|| {
+                    mesh.positions.push(sphere.positions[v as usize]);
+                    (mesh.positions.len() - 1) as u32
+                })
+            })
+        } else {
+            *t
+        });
+    }
+    // Sides by position, and a rim vertex east of the seam (x = 0) with a
+    // neighbour on it.
+    let key = |p: DVec3| p.to_array().map(f64::to_bits);
+    let mut sides: HashMap<([u64; 3], [u64; 3]), usize> = HashMap::new();
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let a = key(mesh.positions[t[k] as usize]);
+            let b = key(mesh.positions[t[(k + 1) % 3] as usize]);
+            *sides.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let point = |k: [u64; 3]| DVec3::from_array(k.map(f64::from_bits));
+    let beside_the_seam = sides
+        .iter()
+        .filter(|(_, n)| **n == 1)
+        .flat_map(|((a, b), _)| [(*a, *b), (*b, *a)])
+        .find(|&(v, q)| point(v).x > 1e-9 && point(q).x.abs() < 1e-9)
+        .map(|(v, _)| point(v))
+        .expect("a rim vertex beside the seam");
+    let wide = vec![
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::new(0.05, 0.99, 0.05),
+        DVec3::new(-0.05, 0.99, 0.1),
+    ];
+    for (radius, dabs) in [(0.4, wide), (1e-3, vec![beside_the_seam; 3])] {
+        brushes_together_as_on_the_whole_mesh(&mesh, radius, &dabs);
+    }
+}
+
+/// Inflate and smooth at `dabs` as one frame end where the brush applied
+/// to the whole `mesh`, dab after dab, takes it.
+fn brushes_together_as_on_the_whole_mesh(mesh: &TriMesh, radius: f64, dabs: &[DVec3]) {
+    use holey_sculpt::{BrushSettings, LiveStroke, brush};
+    for (which, strength) in [(Brush::Inflate, 0.01), (Brush::Smooth, 0.5)] {
+        let mut expected = mesh.clone();
+        for &c in dabs {
+            expected.positions = match which {
+                Brush::Smooth => brush::smooth(&expected, c, radius, strength),
+                _ => brush::inflate(&expected, c, radius, strength),
+            };
+        }
+        assert_ne!(expected.positions, mesh.positions, "{which} moves it");
+        let settings = BrushSettings::new(which, radius, strength);
+        let mut live = LiveStroke::begin(mesh, settings, dabs[0], Options::default()).unwrap();
+        let together: Vec<(DVec3, f64)> = dabs.iter().map(|&c| (c, 1.0)).collect();
+        let frame = live.frame_together(&together).unwrap();
+        assert!(!frame.topology_changed, "{which}");
+        let differ = (frame.mesh.positions.iter())
+            .zip(&expected.positions)
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(
+            differ, 0,
+            "{which} at radius {radius}: positions that differ"
+        );
+    }
+}
