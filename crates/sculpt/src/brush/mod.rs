@@ -291,22 +291,8 @@ fn rim_normals(
         .zip(class)
         .map(|(&v, &c)| (key(v), c))
         .collect();
-    // Sides of the triangles that touch `which` (every copy of a point
-    // of `which` is in it: coincident points are equally near), by
-    // position, with how many triangles use each in either direction.
-    let mut sides: rustc_hash::FxHashMap<(Key, Key), u32> = Default::default();
-    for &i in near {
-        let k = mesh.triangles[i].map(key);
-        for (a, b) in [(k[0], k[1]), (k[1], k[2]), (k[2], k[0])] {
-            if a != b {
-                *sides.entry((a.min(b), a.max(b))).or_insert(0) += 1;
-            }
-        }
-    }
-    let rim: rustc_hash::FxHashSet<Key> = sides
-        .iter()
-        .filter(|(_, n)| **n == 1)
-        .flat_map(|((a, b), _)| [*a, *b])
+    let rim: rustc_hash::FxHashSet<Key> = rim_points(mesh, near)
+        .into_iter()
         .filter(|p| of_key.contains_key(p))
         .collect();
     if rim.is_empty() {
@@ -373,6 +359,59 @@ fn rim_normals(
         found.insert(c, two_ring);
     }
     found
+}
+
+/// The positions at the ends of the rim's sides among the triangles
+/// `near`: the sides, taken by position (so that coincident copies, a
+/// soup's corners or an unwelded seam, count as one point), that one
+/// triangle alone uses in either direction.
+///
+/// A side two triangles share by vertex number is shared by position too,
+/// so only the sides one triangle alone has by number (the rim's, and
+/// both sides of a seam) can be; they are found by sorting numbers. Then
+/// every side whose two ends lie at positions of theirs is counted by
+/// position: that counts every side at each of their positions, so those
+/// counted once are exactly the rim's. A closed, welded surface finds
+/// none by number and hashes nothing.
+fn rim_points(mesh: &TriMesh, near: &[usize]) -> rustc_hash::FxHashSet<[u64; 3]> {
+    let key = |v: u32| position_key(mesh.positions[v as usize]);
+    let sides = |i: usize| {
+        let t = mesh.triangles[i];
+        [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]
+    };
+    let mut by_number: Vec<u64> = Vec::with_capacity(3 * near.len());
+    for &i in near {
+        for (a, b) in sides(i) {
+            if key(a) != key(b) {
+                by_number.push((u64::from(a.min(b)) << 32) | u64::from(a.max(b)));
+            }
+        }
+    }
+    by_number.sort_unstable();
+    let mut ends: rustc_hash::FxHashSet<[u64; 3]> = Default::default();
+    for run in by_number.chunk_by(|x, y| x == y) {
+        if run.len() == 1 {
+            ends.insert(key((run[0] >> 32) as u32));
+            ends.insert(key(run[0] as u32));
+        }
+    }
+    if ends.is_empty() {
+        return ends;
+    }
+    let mut by_position: rustc_hash::FxHashMap<([u64; 3], [u64; 3]), u32> = Default::default();
+    for &i in near {
+        for (a, b) in sides(i) {
+            let (ka, kb) = (key(a), key(b));
+            if ka != kb && ends.contains(&ka) && ends.contains(&kb) {
+                *by_position.entry((ka.min(kb), ka.max(kb))).or_insert(0) += 1;
+            }
+        }
+    }
+    by_position
+        .into_iter()
+        .filter(|(_, n)| *n == 1)
+        .flat_map(|((a, b), _)| [a, b])
+        .collect()
 }
 
 /// Vertices used by at least one triangle. Unreferenced vertices are not
@@ -561,6 +600,76 @@ mod tests {
                     })
                 })
                 .collect(),
+        }
+    }
+
+    /// `rim_points` finds the patch's rim, its outer ring of vertices (7 ×
+    /// 7 grid: i or j at 0 or 6), welded, as a soup and with its two halves
+    /// unwelded along a seam; a sphere has none.
+    #[test]
+    fn the_rim_is_the_patch_outline_welded_unwelded_or_a_soup() {
+        let welded = cylinder_patch(6);
+        let outline: std::collections::BTreeSet<[u64; 3]> = (0..49)
+            .filter(|v| [0, 6].contains(&(v / 7)) || [0, 6].contains(&(v % 7)))
+            .map(|v| position_key(welded.positions[v]))
+            .collect();
+        let all = |m: &TriMesh| (0..m.triangles.len()).collect::<Vec<_>>();
+        let rim = |m: &TriMesh| {
+            rim_points(m, &all(m))
+                .into_iter()
+                .collect::<std::collections::BTreeSet<_>>()
+        };
+        assert_eq!(rim(&welded), outline, "welded");
+        let soup = TriMesh {
+            positions: welded
+                .triangles
+                .iter()
+                .flat_map(|t| t.map(|v| welded.positions[v as usize]))
+                .collect(),
+            triangles: (0..welded.triangles.len() as u32)
+                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+                .collect(),
+        };
+        assert_eq!(rim(&soup), outline, "soup");
+        // The second half of the triangles gets its own copies.
+        let mut seamed = welded.clone();
+        let half = seamed.triangles.len() / 2;
+        let mut copy = std::collections::HashMap::new();
+        for t in &mut seamed.triangles[half..] {
+            for v in t.iter_mut() {
+                *v = *copy.entry(*v).or_insert_with(|| {
+                    seamed.positions.push(welded.positions[*v as usize]);
+                    (seamed.positions.len() - 1) as u32
+                });
+            }
+        }
+        assert_eq!(rim(&seamed), outline, "seamed");
+        let sphere = octahedron();
+        assert!(rim(&sphere).is_empty(), "a sphere has no rim");
+    }
+
+    /// A closed octahedron.
+    fn octahedron() -> TriMesh {
+        let p = [
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ];
+        TriMesh {
+            positions: p.to_vec(),
+            triangles: vec![
+                [0, 2, 4],
+                [2, 1, 4],
+                [1, 3, 4],
+                [3, 0, 4],
+                [2, 0, 5],
+                [1, 2, 5],
+                [3, 1, 5],
+                [0, 3, 5],
+            ],
         }
     }
 
