@@ -1424,14 +1424,17 @@ fn a_closed_stdout_is_an_error_not_a_panic() {
         &["info", "--json", "@sphere:3"],
         &["primitives"],
     ] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_holey"))
+        // The pipe's reading end is closed before the program starts: a
+        // reader closed after the start races a short output into the
+        // pipe's buffer, and the write then succeeds.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(env!("CARGO_BIN_EXE_holey"))
             .args(args)
-            .stdout(Stdio::piped())
+            .stdout(writer)
             .stderr(Stdio::piped())
-            .spawn()
+            .output()
             .unwrap();
-        drop(child.stdout.take());
-        let out = child.wait_with_output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(1), "holey {args:?}: {err}");
         assert!(
