@@ -620,16 +620,7 @@ mod tests {
                 .collect::<std::collections::BTreeSet<_>>()
         };
         assert_eq!(rim(&welded), outline, "welded");
-        let soup = TriMesh {
-            positions: welded
-                .triangles
-                .iter()
-                .flat_map(|t| t.map(|v| welded.positions[v as usize]))
-                .collect(),
-            triangles: (0..welded.triangles.len() as u32)
-                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-                .collect(),
-        };
+        let soup = soup_of(&welded);
         assert_eq!(rim(&soup), outline, "soup");
         // The second half of the triangles gets its own copies.
         let mut seamed = welded.clone();
@@ -648,28 +639,26 @@ mod tests {
         assert!(rim(&sphere).is_empty(), "a sphere has no rim");
     }
 
-    /// A closed octahedron.
-    fn octahedron() -> TriMesh {
-        let p = [
-            DVec3::X,
-            DVec3::NEG_X,
-            DVec3::Y,
-            DVec3::NEG_Y,
-            DVec3::Z,
-            DVec3::NEG_Z,
-        ];
+    /// `mesh` as a soup: every triangle its own three corners.
+    fn soup_of(mesh: &TriMesh) -> TriMesh {
         TriMesh {
-            positions: p.to_vec(),
-            triangles: vec![
-                [0, 2, 4],
-                [2, 1, 4],
-                [1, 3, 4],
-                [3, 0, 4],
-                [2, 0, 5],
-                [1, 2, 5],
-                [3, 1, 5],
-                [0, 3, 5],
-            ],
+            positions: mesh
+                .triangles
+                .iter()
+                .flat_map(|t| t.map(|v| mesh.positions[v as usize]))
+                .collect(),
+            triangles: (0..mesh.triangles.len() as u32)
+                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+                .collect(),
+        }
+    }
+
+    /// testkit's closed octahedron.
+    fn octahedron() -> TriMesh {
+        let (p, t) = holey_testkit::octahedron();
+        TriMesh {
+            positions: p.iter().map(|&c| DVec3::from_array(c)).collect(),
+            triangles: t.to_vec(),
         }
     }
 
@@ -681,16 +670,7 @@ mod tests {
     #[test]
     fn rim_normals_are_the_same_on_a_soup_and_welded() {
         let welded = cylinder_patch(6);
-        let soup = TriMesh {
-            positions: welded
-                .triangles
-                .iter()
-                .flat_map(|t| t.map(|v| welded.positions[v as usize]))
-                .collect(),
-            triangles: (0..welded.triangles.len() as u32)
-                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-                .collect(),
-        };
+        let soup = soup_of(&welded);
         let of_welded = vertex_normals(&welded);
         let of_soup = vertex_normals(&soup);
         for (corner, t) in welded.triangles.iter().flatten().enumerate() {
