@@ -90,10 +90,23 @@ impl NonFinite {
     /// point `index` of kind `what` (`"vertex"`, `"point"`, …); `Ok` when
     /// all are finite.
     pub fn check(what: &'static str, positions: &[DVec3]) -> Result<(), NonFinite> {
-        match positions.iter().position(|p| !p.is_finite()) {
-            Some(index) => Err(NonFinite::new(what, index, positions[index])),
-            None => Ok(()),
+        // A branch-free pass over blocks first (every live stroke frame
+        // checks a whole mesh, a million points at a time); only a block
+        // with a bad point is searched for it.
+        const BLOCK: usize = 256;
+        let finite = |block: &[DVec3]| {
+            block.iter().fold(true, |ok, p| {
+                ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
+            })
+        };
+        for (b, block) in positions.chunks(BLOCK).enumerate() {
+            if !finite(block) {
+                let k = block.iter().position(|p| !p.is_finite()).unwrap_or(0);
+                let index = b * BLOCK + k;
+                return Err(NonFinite::new(what, index, positions[index]));
+            }
         }
+        Ok(())
     }
 }
 

@@ -293,13 +293,21 @@ impl TriMesh {
         if n >= u32::MAX as usize {
             return Err(MeshError::TooLarge(n));
         }
-        for (t, tri) in self.triangles.iter().enumerate() {
-            if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
-                return Err(MeshError::IndexOutOfRange {
-                    triangle: t,
-                    index,
-                    count: n,
-                });
+        // The largest index of each block first, branch-free; only a block
+        // with a bad index is searched for its first one.
+        const BLOCK: usize = 256;
+        for (b, block) in self.triangles.chunks(BLOCK).enumerate() {
+            let largest = block.iter().flatten().fold(0, |m, &i| m.max(i));
+            if largest as usize >= n {
+                for (k, tri) in block.iter().enumerate() {
+                    if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
+                        return Err(MeshError::IndexOutOfRange {
+                            triangle: b * BLOCK + k,
+                            index,
+                            count: n,
+                        });
+                    }
+                }
             }
         }
         Ok(())
@@ -838,5 +846,24 @@ mod tests {
         let mut n = quad();
         n.positions[2].y = f64::NAN;
         assert!(n.check().unwrap_err().to_string().contains("vertex 2"));
+        // Past the first blocks the check reads: the first bad index and
+        // the first bad point, by their own numbers.
+        let mut long = quad();
+        long.triangles = vec![[0, 1, 2]; 1000];
+        long.triangles[700] = [0, 5, 1];
+        long.triangles[900] = [0, 1, 7];
+        assert_eq!(
+            long.check(),
+            Err(MeshError::IndexOutOfRange {
+                triangle: 700,
+                index: 5,
+                count: 4
+            })
+        );
+        let mut far = quad();
+        far.positions = vec![DVec3::ONE; 1000];
+        far.positions[613].z = f64::INFINITY;
+        far.positions[999].x = f64::NAN;
+        assert!(far.check().unwrap_err().to_string().contains("vertex 613"));
     }
 }

@@ -177,14 +177,23 @@ impl Dab {
         }
     }
 
-    /// Whether remeshing after the dab works around `p`: within the
-    /// radius of the centre, or of the segment a pull swept, or of one
-    /// of their mirror images.
-    fn reaches(self, p: DVec3, radius: f64, mirrors: &[Mirror]) -> bool {
-        mirrors.iter().any(|m| match self.mirrored(m) {
+    /// Whether `p` lies within `radius` of the dab: of its centre, or of
+    /// the segment a pull swept.
+    fn within(self, p: DVec3, radius: f64) -> bool {
+        match self {
             Dab::At(c) => p.distance(c) < radius,
             Dab::Pull(a, b) => distance_to_segment(p, a, b) < radius,
-        })
+        }
+    }
+
+    /// The dab's points grown by `radius` on every side (a box holding
+    /// every point [`Dab::within`] admits).
+    fn bounds(self, radius: f64) -> (DVec3, DVec3) {
+        let (lo, hi) = match self {
+            Dab::At(c) => (c, c),
+            Dab::Pull(a, b) => (a.min(b), a.max(b)),
+        };
+        (lo - DVec3::splat(radius), hi + DVec3::splat(radius))
     }
 
     /// `steps` dabs that together make this one, each with its strength:
@@ -207,6 +216,45 @@ impl Dab {
                 })
                 .collect(),
         }
+    }
+}
+
+/// Where a frame's remeshing works, and its brush can read: the points
+/// within the radius of some dab's centre, or of the segment a pull swept,
+/// or of one of their mirror images. The dabs are mirrored once, and a box
+/// around them all turns most of a large mesh away before any distance is
+/// taken: a frame asks this of every vertex, several times.
+struct Reach {
+    /// Every dab and mirror image, with its radius.
+    dabs: Vec<(Dab, f64)>,
+    /// A box holding every point some dab admits, grown by a millionth of
+    /// each radius, so that rounding in the distances cannot admit a point
+    /// outside it.
+    lo: DVec3,
+    hi: DVec3,
+}
+
+impl Reach {
+    fn new(dabs: impl IntoIterator<Item = (Dab, f64)>, mirrors: &[Mirror]) -> Reach {
+        let mut all = Vec::new();
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for (dab, radius) in dabs {
+            for m in mirrors {
+                let d = dab.mirrored(m);
+                let (a, b) = d.bounds(radius * (1.0 + 1e-6));
+                lo = lo.min(a);
+                hi = hi.max(b);
+                all.push((d, radius));
+            }
+        }
+        Reach { dabs: all, lo, hi }
+    }
+
+    /// Whether the frame reaches `p`.
+    fn contains(&self, p: DVec3) -> bool {
+        p.cmpge(self.lo).all()
+            && p.cmple(self.hi).all()
+            && self.dabs.iter().any(|&(d, r)| d.within(p, r))
     }
 }
 
@@ -735,11 +783,8 @@ impl PaintStep<'_> {
         brush: Brush,
         dabs: &[(DVec3, f64, f64)],
     ) -> Result<(), StepError> {
-        let mirrors = self.mirrors;
-        let reaches = |p: DVec3| {
-            dabs.iter()
-                .any(|&(c, r, _)| Dab::At(c).reaches(p, r, mirrors))
-        };
+        let reach = Reach::new(dabs.iter().map(|&(c, r, _)| (Dab::At(c), r)), self.mirrors);
+        let reaches = |p: DVec3| reach.contains(p);
         // Each step of the brush sees the normals the step before it left,
         // so the surface folds nothing over between two evaluations of
         // them, as between frames; the motion is resolved once. The steps
@@ -807,8 +852,8 @@ impl PaintStep<'_> {
                 return Ok(());
             }
         }
-        let mirrors = self.mirrors;
-        let reaches = |p: DVec3| dab.reaches(p, radius, mirrors);
+        let reach = Reach::new([(dab, radius)], self.mirrors);
+        let reaches = |p: DVec3| reach.contains(p);
         // An inflate only pushes the surface outward: it may join parts,
         // never cut one loose (`Options::outward`).
         let outward = brush == Brush::Inflate && strength > 0.0;
@@ -1288,4 +1333,64 @@ pub(crate) fn used_bounds(mesh: &TriMesh) -> Option<(DVec3, DVec3)> {
         }
     }
     (lo.x <= hi.x).then_some((lo, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The box in front of [`Reach::contains`] only saves work: it admits
+    /// exactly the points within a radius of some dab or mirror image,
+    /// here on a lattice through the dabs, including points a radius away
+    /// along an axis, where the box's side and the sphere touch.
+    #[test]
+    fn reach_admits_what_the_distances_admit() {
+        let centre = DVec3::new(0.3, -0.2, 0.1);
+        let Some(symmetry) = Symmetry::parse("xz", centre) else {
+            panic!("xz is a symmetry")
+        };
+        let mirrors = symmetry.mirrors();
+        let dabs = [
+            (Dab::At(DVec3::new(0.9, 0.1, -0.4)), 0.25),
+            (
+                Dab::Pull(DVec3::new(-0.5, 0.6, 0.2), DVec3::new(-0.1, 0.3, 0.7)),
+                0.125,
+            ),
+            (Dab::At(DVec3::new(0.2, -0.8, 0.5)), 0.5),
+        ];
+        let reach = Reach::new(dabs, &mirrors);
+        let plain = |p: DVec3| {
+            dabs.iter()
+                .any(|&(d, r)| mirrors.iter().any(|m| d.mirrored(m).within(p, r)))
+        };
+        let (mut admitted, mut refused) = (0, 0);
+        let mut check = |p: DVec3| {
+            assert_eq!(reach.contains(p), plain(p), "at {p}");
+            if plain(p) {
+                admitted += 1;
+            } else {
+                refused += 1;
+            }
+        };
+        for i in -24..=24 {
+            for j in -24..=24 {
+                for k in -24..=24 {
+                    check(DVec3::new(i as f64, j as f64, k as f64) / 16.0);
+                }
+            }
+        }
+        for &(d, r) in &dabs {
+            for m in &mirrors {
+                let Dab::At(c) = d.mirrored(m) else { continue };
+                for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
+                    for s in [-1.0, 1.0] {
+                        for grow in [1.0 - 1e-12, 1.0, 1.0 + 1e-12] {
+                            check(c + axis * (s * r * grow));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(admitted > 1000 && refused > 1000, "{admitted} {refused}");
+    }
 }
