@@ -34,6 +34,7 @@ mod union_find;
 mod weights;
 pub mod winding;
 pub mod winding_boolean;
+pub mod zero_area;
 
 pub use accumulate::{Accumulator, Release};
 pub use audit::SurfaceAudit;

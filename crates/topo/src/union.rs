@@ -54,6 +54,7 @@
 //! union refuses ([`UnionError::SelfIntersecting`]) and the motion
 //! (`topology_change`) resolves it.
 
+use std::borrow::Cow;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
@@ -72,6 +73,7 @@ use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
 use crate::solid::{ray_crossings_odd_in, signed_volume};
 use crate::union_find::UnionFind;
+use crate::zero_area::without_zero_area_triangles;
 
 mod near;
 use near::{Near, NearSets};
@@ -129,16 +131,29 @@ impl Operation {
     }
 }
 
-/// B as the operation takes it: for a difference, turned inside out (its
-/// kept part is the wall of the hole it leaves in A, facing into it).
-fn operand(b: &TriMesh, op: Operation) -> std::borrow::Cow<'_, TriMesh> {
+/// A solid as a Boolean takes it: without its zero-area triangles
+/// ([`without_zero_area_triangles`]), which the symbolic perturbation
+/// would turn into slivers overlapping their neighbours (the solid would
+/// seem to cross itself there). The same points, so the same solid.
+fn solid(m: &TriMesh) -> Cow<'_, TriMesh> {
+    match without_zero_area_triangles(m) {
+        Some((repaired, _)) => Cow::Owned(repaired),
+        None => Cow::Borrowed(m),
+    }
+}
+
+/// B as the operation takes it ([`solid`]): for a difference, turned
+/// inside out (its kept part is the wall of the hole it leaves in A,
+/// facing into it).
+fn operand(b: &TriMesh, op: Operation) -> Cow<'_, TriMesh> {
+    let b = solid(b);
     if op == Operation::Difference {
-        std::borrow::Cow::Owned(TriMesh {
+        Cow::Owned(TriMesh {
             positions: b.positions.clone(),
             triangles: b.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect(),
         })
     } else {
-        std::borrow::Cow::Borrowed(b)
+        b
     }
 }
 
@@ -480,19 +495,19 @@ pub fn boolean(
 
 /// What [`prepare`] gives: B as the operation takes it, what a Boolean
 /// builds of each solid alone, and their near sets.
-type Prepared<'b> = (std::borrow::Cow<'b, TriMesh>, Parts, Parts, NearSets);
+type Prepared<'a> = (Cow<'a, TriMesh>, Cow<'a, TriMesh>, Parts, Parts, NearSets);
 
 /// B as `op` takes it ([`operand`]), what a Boolean builds of each
 /// solid alone, and where the pairs across them are looked for.
-fn prepare<'b>(a: &TriMesh, b: &'b TriMesh, op: Operation) -> Result<Prepared<'b>, UnionError> {
+fn prepare<'a>(a: &'a TriMesh, b: &'a TriMesh, op: Operation) -> Result<Prepared<'a>, UnionError> {
     a.check()?;
     b.check()?;
-    let b = operand(b, op);
+    let (a, b) = (solid(a), operand(b, op));
     let ((pa, pb), sets) = rayon::join(
-        || rayon::join(|| Parts::of_checked(a), || Parts::of_checked(&b)),
-        || NearSets::of(a, &b),
+        || rayon::join(|| Parts::of_checked(&a), || Parts::of_checked(&b)),
+        || NearSets::of(&a, &b),
     );
-    Ok((b, pa?, pb?, sets))
+    Ok((a, b, pa?, pb?, sets))
 }
 
 /// What [`boolean_robust`] builds of two solids before it intersects
@@ -500,8 +515,8 @@ fn prepare<'b>(a: &TriMesh, b: &'b TriMesh, op: Operation) -> Result<Prepared<'b
 /// (the edge tables are a whole-mesh pass each) before it commits to the
 /// containment method ([`crate::solids::solid_boolean`]).
 pub(crate) struct PreparedPair<'a> {
-    a: &'a TriMesh,
-    b: std::borrow::Cow<'a, TriMesh>,
+    a: Cow<'a, TriMesh>,
+    b: Cow<'a, TriMesh>,
     pa: Parts,
     pb: Parts,
     op: Operation,
@@ -521,7 +536,7 @@ impl<'a> PreparedPair<'a> {
         op: Operation,
     ) -> Result<PreparedPair<'a>, UnionError> {
         let started = Instant::now();
-        let (b, pa, pb, near) = prepare(a, b, op)?;
+        let (a, b, pa, pb, near) = prepare(a, b, op)?;
         Ok(PreparedPair {
             a,
             b,
@@ -548,15 +563,15 @@ impl<'a> PreparedPair<'a> {
         let started = Instant::now();
         a.check()?;
         b.check()?;
-        let b = operand(b, op);
+        let (a, b) = (solid(a), operand(b, op));
         let ((sa, sb), (near, checked)) = rayon::join(
-            || rayon::join(|| Surface::of_checked(a), || Surface::of_checked(&b)),
+            || rayon::join(|| Surface::of_checked(&a), || Surface::of_checked(&b)),
             || {
-                let (near, frames) = NearSets::with_check_frames(a, &b);
+                let (near, frames) = NearSets::with_check_frames(&a, &b);
                 // Closedness is known only from the edge tables: the
                 // check assumes it, and an open surface needs the
                 // arrangement whatever the check says.
-                let checked = needs_arrangement_when_closed(a, &b, true, frames);
+                let checked = needs_arrangement_when_closed(&a, &b, true, frames);
                 (near, checked)
             },
         );
@@ -576,9 +591,9 @@ impl<'a> PreparedPair<'a> {
             })
         };
         Ok(Some(PreparedPair {
-            a,
-            pa: parts(sa, ta, a)?,
+            pa: parts(sa, ta, &a)?,
             pb: parts(sb, tb, &b)?,
+            a,
             b,
             op,
             near,
@@ -596,7 +611,7 @@ impl<'a> PreparedPair<'a> {
     /// inputs that are closed 2-manifolds give an output that is not, the
     /// same with B nudged ([`NUDGES`]).
     pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
-        let (a, b, op) = (self.a, self.b.as_ref(), self.op);
+        let (a, b, op) = (self.a.as_ref(), self.b.as_ref(), self.op);
         let manifold_inputs = self.pa.oriented() && self.pb.oriented();
         let started = self.started();
         let mut out = unite(
@@ -644,7 +659,7 @@ impl<'a> PreparedPair<'a> {
     /// [`boolean`] of the pair.
     pub(crate) fn exact(&self, options: &Options) -> Result<Outcome, UnionError> {
         unite(
-            self.a,
+            &self.a,
             &self.pa,
             &self.b,
             &self.pb,
@@ -1009,7 +1024,7 @@ mod tests {
         let b = fan_prism(40, 0.7, turn, turn(DVec3::new(0.9, 0.2, 0.15)));
         let pair = PreparedPair::with_checks(&a, &b, Operation::Difference).unwrap();
         let pair = pair.expect("both closed, neither part crosses itself");
-        let near = Near::of(pair.a, &pair.pa, &pair.b, &pair.pb, &pair.near).unwrap();
+        let near = Near::of(&pair.a, &pair.pa, &pair.b, &pair.pb, &pair.near).unwrap();
         let split = a.triangles.len() as u32;
         assert!(
             matches!(near.trees, [NearTree::Whole(_, 0), NearTree::Whole(_, s)] if s == split),
@@ -1031,7 +1046,7 @@ mod tests {
         let b = fan_prism(200, 3.0, turn, DVec3::ZERO);
         let pair = PreparedPair::with_checks(&a, &b, Operation::Union).unwrap();
         let pair = pair.expect("both closed, neither part crosses itself");
-        let near = Near::of(pair.a, &pair.pa, &pair.b, &pair.pb, &pair.near).unwrap();
+        let near = Near::of(&pair.a, &pair.pa, &pair.b, &pair.pb, &pair.near).unwrap();
         let [NearTree::Whole(_, 0), NearTree::Listed(listed, _)] = &near.trees else {
             panic!("A's checked tree and a tree of B's near triangles");
         };
