@@ -252,41 +252,33 @@ mod tests {
     use crate::test_meshes::cuboid;
     use crate::union::{Operation, boolean};
 
-    /// The unit cube with a vertex `m = (1/2, 0, 1)` on its top front
-    /// edge, as a CAD exporter leaves a T-junction: the front face runs
-    /// through `m`, the top face does not, and the flat triangle
-    /// `(5, 4, m)` closes the gap. Closed, consistently oriented, outward.
+    /// `mesh` with a new vertex `m` at `at`, a point of side `ab` of its
+    /// triangle `t = (c, a, b)`, as a CAD exporter leaves a T-junction:
+    /// `t` runs through `m` as `(c, a, m)` and `(c, m, b)`, the triangle
+    /// across `ab` does not, and the flat triangle `(a, b, m)` closes the
+    /// gap. Closed and oriented if `mesh` was.
+    fn t_junction(mut mesh: TriMesh, t: [u32; 3], at: DVec3) -> TriMesh {
+        let [c, a, b] = t;
+        let m = mesh.positions.len() as u32;
+        mesh.positions.push(at);
+        let Some(i) = mesh.triangles.iter().position(|&u| u == t) else {
+            panic!("no triangle {t:?}")
+        };
+        mesh.triangles[i] = [c, a, m];
+        mesh.triangles.push([c, m, b]);
+        mesh.triangles.push([a, b, m]);
+        mesh
+    }
+
+    /// The unit cube with a T-junction at `m = (1/2, 0, 1)` = vertex 8 on
+    /// its top front edge: the front face runs through it, the top face
+    /// does not, and the flat triangle `(5, 4, 8)` closes the gap.
     fn cube_with_a_flat_triangle() -> TriMesh {
-        let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        TriMesh {
-            positions: vec![
-                p(0.0, 0.0, 0.0),
-                p(1.0, 0.0, 0.0),
-                p(1.0, 1.0, 0.0),
-                p(0.0, 1.0, 0.0),
-                p(0.0, 0.0, 1.0),
-                p(1.0, 0.0, 1.0),
-                p(1.0, 1.0, 1.0),
-                p(0.0, 1.0, 1.0),
-                p(0.5, 0.0, 1.0),
-            ],
-            triangles: vec![
-                [0, 2, 1],
-                [0, 3, 2],
-                [4, 5, 6],
-                [4, 6, 7],
-                [0, 1, 5],
-                [0, 5, 8],
-                [0, 8, 4],
-                [3, 7, 6],
-                [3, 6, 2],
-                [1, 2, 6],
-                [1, 6, 5],
-                [0, 4, 7],
-                [0, 7, 3],
-                [5, 4, 8],
-            ],
-        }
+        t_junction(
+            cuboid(DVec3::ZERO, DVec3::ONE),
+            [0, 5, 4],
+            DVec3::new(0.5, 0.0, 1.0),
+        )
     }
 
     /// `mesh` with vertex `u` cut in two along its side `uw`, as a snap
@@ -365,14 +357,11 @@ mod tests {
         // 8 at (1/2, 0, 1). The front face runs through both; the flat
         // triangles (5, 4, 8) and (8, 4, m) close the gap, the second
         // across the first's short side 4–8.
-        let mut cube = cube_with_a_flat_triangle();
-        cube.positions.push(DVec3::new(0.25, 0.0, 1.0));
-        let Some(t) = cube.triangles.iter().position(|&t| t == [0, 8, 4]) else {
-            panic!("the front face's triangle at 4")
-        };
-        cube.triangles[t] = [0, 8, 9];
-        cube.triangles.push([0, 9, 4]);
-        cube.triangles.push([8, 4, 9]);
+        let cube = t_junction(
+            cube_with_a_flat_triangle(),
+            [0, 8, 4],
+            DVec3::new(0.25, 0.0, 1.0),
+        );
         assert!(cube.is_closed_manifold());
         assert_eq!(zero_area_count(&cube), 2);
         let (out, repair) = without_zero_area_triangles(&cube).unwrap();
