@@ -179,6 +179,11 @@ pub struct Report {
     /// The input was a closed, consistently oriented 2-manifold (a
     /// solid's surface): the solid guard and the coplanar retry apply.
     pub solid_input: bool,
+    /// Zero-area triangles of a Boolean's inputs taken out before it
+    /// ran, without moving the surface ([`crate::zero_area`]): pinched
+    /// ones deleted after their coincident corners were welded, flat ones
+    /// whose neighbour took their middle corner. 0 for a motion.
+    pub zero_area_removed: usize,
     /// Output triangles flipped to agree in orientation with their neighbours
     /// ([`Options::orient`]); 0 when that is off.
     pub orientation_flips: usize,

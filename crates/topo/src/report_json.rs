@@ -46,6 +46,7 @@ impl Report {
             "perturbation_retries": r.perturbation_retries,
             "output_intersecting_pairs": r.output_intersecting_pairs,
             "solid_input": r.solid_input,
+            "zero_area_removed": r.zero_area_removed,
             "orientation_flips": r.orientation_flips,
             "seconds": {
                 "collisions": r.timings.collisions,

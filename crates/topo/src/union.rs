@@ -135,27 +135,37 @@ impl Operation {
 /// ([`without_zero_area_triangles`]), which the symbolic perturbation
 /// would turn into slivers overlapping their neighbours (the solid would
 /// seem to cross itself there). The same points, so the same solid.
-fn solid(m: &TriMesh) -> Cow<'_, TriMesh> {
+fn solid(m: &TriMesh) -> (Cow<'_, TriMesh>, usize) {
     match without_zero_area_triangles(m) {
-        Some((repaired, _)) => Cow::Owned(repaired),
-        None => Cow::Borrowed(m),
+        Some((repaired, r)) => (Cow::Owned(repaired), r.pinched_removed + r.flat_removed),
+        None => (Cow::Borrowed(m), 0),
     }
 }
 
 /// B as the operation takes it ([`solid`]): for a difference, turned
 /// inside out (its kept part is the wall of the hole it leaves in A,
 /// facing into it).
-fn operand(b: &TriMesh, op: Operation) -> Cow<'_, TriMesh> {
-    let b = solid(b);
+fn operand(b: &TriMesh, op: Operation) -> (Cow<'_, TriMesh>, usize) {
+    let (b, removed) = solid(b);
     if op == Operation::Difference {
-        Cow::Owned(TriMesh {
+        let inside_out = TriMesh {
             positions: b.positions.clone(),
             triangles: b.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect(),
-        })
+        };
+        (Cow::Owned(inside_out), removed)
     } else {
-        b
+        (b, removed)
     }
 }
+
+/// A and B as a Boolean takes them ([`solid`], [`operand`]), and how many
+/// zero-area triangles the two lost.
+fn operands<'a>(a: &'a TriMesh, b: &'a TriMesh, op: Operation) -> Operands<'a> {
+    let ((a, in_a), (b, in_b)) = (solid(a), operand(b, op));
+    (a, b, in_a + in_b)
+}
+
+type Operands<'a> = (Cow<'a, TriMesh>, Cow<'a, TriMesh>, usize);
 
 /// The combined mesh of A and B and what the union needs of it.
 struct Pair {
@@ -495,19 +505,19 @@ pub fn boolean(
 
 /// What [`prepare`] gives: B as the operation takes it, what a Boolean
 /// builds of each solid alone, and their near sets.
-type Prepared<'a> = (Cow<'a, TriMesh>, Cow<'a, TriMesh>, Parts, Parts, NearSets);
+type Prepared<'a> = (Operands<'a>, Parts, Parts, NearSets);
 
 /// B as `op` takes it ([`operand`]), what a Boolean builds of each
 /// solid alone, and where the pairs across them are looked for.
 fn prepare<'a>(a: &'a TriMesh, b: &'a TriMesh, op: Operation) -> Result<Prepared<'a>, UnionError> {
     a.check()?;
     b.check()?;
-    let (a, b) = (solid(a), operand(b, op));
+    let (a, b, removed) = operands(a, b, op);
     let ((pa, pb), sets) = rayon::join(
         || rayon::join(|| Parts::of_checked(&a), || Parts::of_checked(&b)),
         || NearSets::of(&a, &b),
     );
-    Ok((a, b, pa?, pb?, sets))
+    Ok(((a, b, removed), pa?, pb?, sets))
 }
 
 /// What [`boolean_robust`] builds of two solids before it intersects
@@ -517,6 +527,8 @@ fn prepare<'a>(a: &'a TriMesh, b: &'a TriMesh, op: Operation) -> Result<Prepared
 pub(crate) struct PreparedPair<'a> {
     a: Cow<'a, TriMesh>,
     b: Cow<'a, TriMesh>,
+    /// Zero-area triangles the two lost ([`solid`]).
+    zero_area_removed: usize,
     pa: Parts,
     pb: Parts,
     op: Operation,
@@ -536,10 +548,11 @@ impl<'a> PreparedPair<'a> {
         op: Operation,
     ) -> Result<PreparedPair<'a>, UnionError> {
         let started = Instant::now();
-        let (a, b, pa, pb, near) = prepare(a, b, op)?;
+        let ((a, b, zero_area_removed), pa, pb, near) = prepare(a, b, op)?;
         Ok(PreparedPair {
             a,
             b,
+            zero_area_removed,
             pa,
             pb,
             op,
@@ -563,7 +576,7 @@ impl<'a> PreparedPair<'a> {
         let started = Instant::now();
         a.check()?;
         b.check()?;
-        let (a, b) = (solid(a), operand(b, op));
+        let (a, b, zero_area_removed) = operands(a, b, op);
         let ((sa, sb), (near, checked)) = rayon::join(
             || rayon::join(|| Surface::of_checked(&a), || Surface::of_checked(&b)),
             || {
@@ -595,6 +608,7 @@ impl<'a> PreparedPair<'a> {
             pb: parts(sb, tb, &b)?,
             a,
             b,
+            zero_area_removed,
             op,
             near,
             prepared_in: started.elapsed(),
@@ -611,6 +625,19 @@ impl<'a> PreparedPair<'a> {
     /// inputs that are closed 2-manifolds give an output that is not, the
     /// same with B nudged ([`NUDGES`]).
     pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
+        self.robust_attempts(options)
+            .map(|out| self.with_repair(out))
+    }
+
+    /// The outcome `out` of the pair, its report saying what the inputs'
+    /// zero-area triangles lost.
+    fn with_repair(&self, mut out: Outcome) -> Outcome {
+        out.report.zero_area_removed = self.zero_area_removed;
+        out
+    }
+
+    /// [`PreparedPair::robust`] but for the report's repair count.
+    fn robust_attempts(&self, options: &Options) -> Result<Outcome, UnionError> {
         let (a, b, op) = (self.a.as_ref(), self.b.as_ref(), self.op);
         let manifold_inputs = self.pa.oriented() && self.pb.oriented();
         let started = self.started();
@@ -668,6 +695,7 @@ impl<'a> PreparedPair<'a> {
             self.started(),
             Some(&self.near),
         )
+        .map(|out| self.with_repair(out))
     }
 }
 
@@ -926,6 +954,7 @@ fn unite(
         perturbation_retries: 0,
         output_intersecting_pairs: None,
         solid_input: oriented,
+        zero_area_removed: 0,
         orientation_flips: flips,
         timings: Timings {
             collisions: 0.0,

@@ -421,6 +421,8 @@ mod tests {
         ] {
             let out = boolean(&snapped, &b, op, &crate::Options::default())
                 .unwrap_or_else(|e| panic!("{}: {e}", op.name()));
+            // The flat triangle and the two pinched ones.
+            assert_eq!(out.report.zero_area_removed, 3, "{}", op.name());
             let m = &out.mesh;
             assert!(m.is_closed_manifold(), "{}", op.name());
             let got = signed_volume(&m.positions, &m.triangles);
