@@ -181,6 +181,51 @@ fn menger_sponge_level3_and_a_turned_copy_give_closed_manifolds() {
     }
 }
 
+/// The shared Menger sponge snapped to the integer lattice of its size 81
+/// (`round((p + 1/2)·81)`), as a slicer or a CAD round-trip snaps it: the
+/// sponge repeats vertices at one position, and the snap makes 36
+/// triangles of zero area (32 whose two corners now coincide, 4 with
+/// three corners on a line). Under the symbolic perturbation they were
+/// slivers crossing their neighbours: intersection and difference with
+/// the copy moved by half a cell, (3/2, 3/2, 3/2) (no face plane shared,
+/// no edge meeting an edge), were refused as "solid A intersects itself",
+/// and the union fell back to the motion (190 s, open). The Booleans take
+/// the zero-area triangles out first ([`holey_topo::zero_area`]): each
+/// operation is one closed 2-manifold, exact (no nudge), with
+/// manifold3d's volume (`Mesh64`, same input: halves of the lattice).
+#[test]
+fn snapped_menger_sponge_and_its_copy_half_a_cell_away_give_closed_manifolds() {
+    let Some(dir) = holey_testkit::shared_meshes_or_skip(
+        "snapped_menger_sponge_and_its_copy_half_a_cell_away_give_closed_manifolds",
+    ) else {
+        return;
+    };
+    let sponge = read_shared(&dir, "menger_sponge_level3.obj");
+    let a = map_positions(&sponge, |p| ((p + DVec3::splat(0.5)) * 81.0).round());
+    let b = translate(&a, DVec3::splat(1.5));
+    for (op, volume_want) in [
+        (Operation::Union, 307435.5),
+        (Operation::Intersection, 124564.5),
+        (Operation::Difference, 91435.5),
+    ] {
+        let what = format!("snapped sponge {} its copy", op.name());
+        let report = boolean_robust(&a, &b, op, &Options::default())
+            .unwrap_or_else(|e| panic!("{what}: {e}"))
+            .report;
+        assert_eq!(report.zero_area_removed, 2 * 36, "{what}");
+        assert_eq!(report.perturbation_retries, 0, "{what}");
+        let out = check(&a, &b, op, 60, &what);
+        assert!(out.is_closed_manifold(), "{what}");
+        assert_eq!(max_edge_degree(&out), 2, "{what}");
+        assert_eq!(components(&out), 1, "{what}");
+        let v = volume(&out);
+        assert!(
+            (v - volume_want).abs() < 1e-12 * volume_want,
+            "{what}: volume {v}"
+        );
+    }
+}
+
 /// A result whose B was nudged off coplanar contact has its own crossing
 /// pairs counted in the report, the exact count of the output itself:
 /// never silently (an exact result is counted where its cut merged
