@@ -18,9 +18,13 @@ What is inside: a point is inside a solid when the solid's winding number
 there is at least 1/2. The intersection is what is inside both, the
 difference A − B what is inside A and not inside B.
 
-When A or B crosses itself (checked exactly first), or with --winding,
-the winding-number arrangement of `holey union` computes it (see `holey
-union --help`): self-crossing solids, overlapping and nested shells.
+When A or B crosses itself (checked exactly first, or found crossing
+where it meets the other), or with --winding, the winding-number
+arrangement of `holey union` computes it (see `holey union --help`):
+self-crossing solids, overlapping and nested shells. Zero-area triangles
+(three corners on a line, or two at one position, as snapping to a grid
+leaves them) are taken out of both solids first, without moving the
+surface; the report counts them (zero_area_removed).
 
 Otherwise, how it is computed: the intersections of A with B (exact, with symbolic
 perturbation), then one exact ray per region of vertices between the

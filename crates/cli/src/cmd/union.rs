@@ -51,9 +51,13 @@ exact ray per region of vertices between the intersection curves (the
 report counts the rays; it has no collisions). --via-motion runs the
 synthesized frame through the whole pipeline of `holey topo` instead
 (collisions, intersections, error correction), as it does by itself
-for open input and for a solid that intersects itself where it meets
-the other. A solid's own self-intersections elsewhere are kept as they
-are, except by --via-motion.
+for open input that --no-check let through. A solid found crossing
+itself where it meets the other (slivers a hair wide that the check
+passed) goes to the winding-number arrangement above; with --no-check,
+its self-intersections away from the other are kept as they are. Zero-area
+triangles (three corners on a line, or two at one position, as snapping
+to a grid leaves them) are taken out of both solids first, without
+moving the surface; the report counts them (zero_area_removed).
 
 Degenerate contact (faces of A and B coplanar, vertices or edges
 coinciding: a copy of a mesh shifted by a lattice step) is resolved by
