@@ -12,7 +12,10 @@ use clap::{Parser, Subcommand};
 /// mimalloc keeps freed pages for reuse: the engine allocates and drops
 /// several buffers of tens of megabytes per run, and with the system
 /// allocator each came back as fresh pages (page faults were 15% of a
-/// 524k-triangle union; see BENCHMARKS.md).
+/// 524k-triangle union; see BENCHMARKS.md). Built without asking for
+/// transparent huge pages (`no_thp`): each first touch of one cleared
+/// 2 MB, which about doubled the resident size of mid-sized runs and made
+/// their times swing by 3x, for at most a tenth saved elsewhere.
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
