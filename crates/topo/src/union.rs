@@ -73,7 +73,7 @@ use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
 use crate::solid::{ray_crossings_odd_in, signed_volume};
 use crate::union_find::UnionFind;
-use crate::zero_area::without_zero_area_triangles;
+use crate::zero_area::repaired;
 
 mod near;
 use near::{Near, NearSets};
@@ -131,12 +131,12 @@ impl Operation {
     }
 }
 
-/// A solid as a Boolean takes it: without its zero-area triangles
-/// ([`without_zero_area_triangles`]), which the symbolic perturbation
+/// A solid (checked) as a Boolean takes it: without its zero-area
+/// triangles ([`crate::zero_area`]), which the symbolic perturbation
 /// would turn into slivers overlapping their neighbours (the solid would
 /// seem to cross itself there). The same points, so the same solid.
 fn solid(m: &TriMesh) -> (Cow<'_, TriMesh>, usize) {
-    match without_zero_area_triangles(m) {
+    match repaired(m) {
         Some((repaired, r)) => (Cow::Owned(repaired), r.pinched_removed + r.flat_removed),
         None => (Cow::Borrowed(m), 0),
     }

@@ -40,7 +40,7 @@ use rayon::prelude::*;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use crate::audit::is_flat;
-use crate::mesh::TriMesh;
+use crate::mesh::{MeshError, TriMesh};
 use crate::union_find::UnionFind;
 
 /// The most passes over the mesh the flat repair makes: a fan of flat
@@ -63,12 +63,22 @@ pub struct ZeroAreaRepair {
 }
 
 /// `mesh` with its zero-area triangles repaired as the module describes,
-/// and what was done; `None` when it has none with distinct corners (the
-/// common case costs one parallel pass). Vertices keep their numbers (a
-/// welded vertex is left unused); the triangles keep their order, split
-/// neighbours' second halves and the deletions aside. Triangles that
-/// repeat a corner in `mesh` are left as they are.
-pub fn without_zero_area_triangles(mesh: &TriMesh) -> Option<(TriMesh, ZeroAreaRepair)> {
+/// and what was done; `Ok(None)` when it has none of either kind (the
+/// common case costs the mesh's check and one parallel pass). Vertices
+/// keep their numbers (a welded vertex is left unused); the triangles
+/// keep their order, split neighbours' second halves and the deletions
+/// aside. Triangles that repeat a corner in `mesh` are left as they are.
+/// An error says which position is not finite or which index is out of
+/// range.
+pub fn without_zero_area_triangles(
+    mesh: &TriMesh,
+) -> Result<Option<(TriMesh, ZeroAreaRepair)>, MeshError> {
+    mesh.check()?;
+    Ok(repaired(mesh))
+}
+
+/// [`without_zero_area_triangles`] of a checked mesh.
+pub(crate) fn repaired(mesh: &TriMesh) -> Option<(TriMesh, ZeroAreaRepair)> {
     let positions = &mesh.positions;
     let proper = |t: &[u32; 3]| t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
     let zero: Vec<u32> = (0..mesh.triangles.len() as u32)
@@ -335,7 +345,7 @@ mod tests {
         let cube = cube_with_a_flat_triangle();
         assert_eq!(zero_area_count(&cube), 1);
         assert!(cube.is_closed_manifold());
-        let (out, repair) = without_zero_area_triangles(&cube).unwrap();
+        let (out, repair) = without_zero_area_triangles(&cube).unwrap().unwrap();
         assert_eq!(
             repair,
             ZeroAreaRepair {
@@ -364,7 +374,7 @@ mod tests {
         );
         assert!(cube.is_closed_manifold());
         assert_eq!(zero_area_count(&cube), 2);
-        let (out, repair) = without_zero_area_triangles(&cube).unwrap();
+        let (out, repair) = without_zero_area_triangles(&cube).unwrap().unwrap();
         assert_eq!((repair.flat_removed, repair.flat_kept), (2, 0));
         assert_same_solid(&cube, &out);
     }
@@ -376,7 +386,7 @@ mod tests {
         let snapped = pinched(cube.clone(), t[0], t[1]);
         assert!(snapped.is_closed_manifold());
         assert_eq!(zero_area_count(&snapped), 2);
-        let (out, repair) = without_zero_area_triangles(&snapped).unwrap();
+        let (out, repair) = without_zero_area_triangles(&snapped).unwrap().unwrap();
         assert_eq!(
             repair,
             ZeroAreaRepair {
@@ -392,12 +402,24 @@ mod tests {
 
     #[test]
     fn a_surface_without_zero_area_triangles_is_not_copied() {
-        assert!(without_zero_area_triangles(&cuboid(DVec3::ZERO, DVec3::ONE)).is_none());
+        assert_eq!(
+            without_zero_area_triangles(&cuboid(DVec3::ZERO, DVec3::ONE)),
+            Ok(None)
+        );
         // A triangle that repeats a corner is the input's own, not a
         // pinch: left for the Boolean to say what it makes of it.
         let mut repeated = cuboid(DVec3::ZERO, DVec3::ONE);
         repeated.triangles.push([0, 0, 1]);
-        assert!(without_zero_area_triangles(&repeated).is_none());
+        assert_eq!(without_zero_area_triangles(&repeated), Ok(None));
+        // Bad input is an error, not a panic.
+        repeated.triangles.push([0, 1, 99]);
+        assert!(matches!(
+            without_zero_area_triangles(&repeated),
+            Err(MeshError::IndexOutOfRange { index: 99, .. })
+        ));
+        let mut bad = cuboid(DVec3::ZERO, DVec3::ONE);
+        bad.positions[3].x = f64::NAN;
+        assert!(without_zero_area_triangles(&bad).is_err());
     }
 
     /// A snapped solid (a T-junction's flat triangle and a pinch at its
