@@ -879,11 +879,10 @@ fn replays_are_bit_identical_with_topology_change_and_remeshing() {
 /// 0.1 at radius 0.28: each frame lifts the bump by a third of the radius
 /// while its neighbours tilt). Before step control the surface folded
 /// over itself by the fourth frame and a frame was refused as too
-/// crumpled by the seventh; now every frame is cut into sub-frames that
+/// crumpled by the seventh; now every frame is cut into sub-steps that
 /// move no vertex farther than the edges around it are long, each with
-/// its normals evaluated again and the surface remeshed in between, and
-/// all ten frames leave a solid: closed, one piece, genus 0, no
-/// self-intersection.
+/// its normals evaluated again, and all ten frames leave a solid: closed,
+/// one piece, genus 0, no self-intersection.
 #[test]
 fn strong_circling_inflate_keeps_the_solid() {
     let p = holey_shapes::parse_primitive("@sphere:6").unwrap();
