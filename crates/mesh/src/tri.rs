@@ -143,37 +143,37 @@ impl TriMesh {
     /// [`TriMesh::compacted`], also giving for every kept vertex its index
     /// before compaction (increasing: the order is kept).
     pub fn compacted_with_origin(self) -> (TriMesh, Vec<u32>) {
-        let mut index = vec![u32::MAX; self.positions.len()];
-        for t in &self.triangles {
-            for &v in t {
-                index[v as usize] = 0;
-            }
-        }
+        let index = marked_used(self.positions.len(), &self.triangles);
         if index.iter().all(|&i| i == 0) {
             let origin = (0..self.positions.len() as u32).collect();
             return (self, origin);
         }
-        let mut positions = Vec::with_capacity(self.positions.len());
-        let mut origin = Vec::with_capacity(self.positions.len());
-        for (k, (i, &p)) in index.iter_mut().zip(&self.positions).enumerate() {
-            if *i == 0 {
-                *i = positions.len() as u32;
-                positions.push(p);
-                origin.push(k as u32);
-            }
+        renumbered(&self.positions, self.triangles, index)
+    }
+
+    /// The mesh of `triangles` (indices into `positions`) with only the
+    /// vertices they use, in increasing order, and for each of them its
+    /// index in `positions`: a piece of a larger mesh cut out without
+    /// copying the rest of it. Every index of `triangles` must be below
+    /// `positions.len()`.
+    pub fn of_used(positions: &[DVec3], triangles: Vec<[u32; 3]>) -> (TriMesh, Vec<u32>) {
+        let index = marked_used(positions.len(), &triangles);
+        renumbered(positions, triangles, index)
+    }
+
+    /// The mesh as a soup: every triangle its own three corners (copies of
+    /// the positions), in order.
+    pub fn unwelded(&self) -> TriMesh {
+        TriMesh {
+            positions: self
+                .triangles
+                .iter()
+                .flat_map(|t| t.map(|v| self.positions[v as usize]))
+                .collect(),
+            triangles: (0..self.triangles.len() as u32)
+                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+                .collect(),
         }
-        let triangles = self
-            .triangles
-            .par_iter()
-            .map(|t| t.map(|v| index[v as usize]))
-            .collect();
-        (
-            TriMesh {
-                positions,
-                triangles,
-            },
-            origin,
-        )
     }
 
     /// Calls `f(v, corners, fan)` for every vertex with two or more
@@ -322,6 +322,45 @@ impl TriMesh {
             self.positions[c as usize],
         ]
     }
+}
+
+/// Per vertex of `n`: 0 where some triangle uses it, `u32::MAX` elsewhere.
+fn marked_used(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
+    let mut index = vec![u32::MAX; n];
+    for t in triangles {
+        for &v in t {
+            index[v as usize] = 0;
+        }
+    }
+    index
+}
+
+/// `triangles` over the positions `index` marks used ([`marked_used`]),
+/// numbered in increasing order, and each kept vertex's old index.
+fn renumbered(
+    positions: &[DVec3],
+    mut triangles: Vec<[u32; 3]>,
+    mut index: Vec<u32>,
+) -> (TriMesh, Vec<u32>) {
+    let mut kept = Vec::new();
+    let mut origin = Vec::new();
+    for (k, (i, &p)) in index.iter_mut().zip(positions).enumerate() {
+        if *i == 0 {
+            *i = kept.len() as u32;
+            kept.push(p);
+            origin.push(k as u32);
+        }
+    }
+    triangles
+        .par_iter_mut()
+        .for_each(|t| *t = t.map(|v| index[v as usize]));
+    (
+        TriMesh {
+            positions: kept,
+            triangles,
+        },
+        origin,
+    )
 }
 
 /// Checks that every position is finite; `what` names the array in errors.
@@ -753,6 +792,31 @@ mod tests {
             [0.0, 1.0, 0.0],
         ];
         assert_eq!(TriMesh::from_arrays(&arrays, &[[0, 1, 2], [0, 2, 3]]), t);
+    }
+
+    #[test]
+    fn a_piece_of_used_vertices_and_a_soup() {
+        let positions = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE];
+        let (piece, origin) = TriMesh::of_used(&positions, vec![[4, 1, 3], [3, 1, 0]]);
+        assert_eq!(origin, vec![0, 1, 3, 4]);
+        assert_eq!(piece.triangles, vec![[3, 1, 2], [2, 1, 0]]);
+        assert_eq!(
+            piece.positions,
+            vec![DVec3::ZERO, DVec3::X, DVec3::Z, DVec3::ONE]
+        );
+        let soup = piece.unwelded();
+        assert_eq!(soup.triangles, vec![[0, 1, 2], [3, 4, 5]]);
+        assert_eq!(
+            soup.positions,
+            vec![
+                DVec3::ONE,
+                DVec3::X,
+                DVec3::Z,
+                DVec3::Z,
+                DVec3::X,
+                DVec3::ZERO
+            ]
+        );
     }
 
     #[test]

@@ -1045,32 +1045,14 @@ impl Piece {
             }
         }
         // The second ring's triangles, and their vertices in mesh order.
-        let kept: Vec<usize> = (0..mesh.triangles.len())
-            .filter(|&t| mesh.triangles[t].iter().any(|&v| ring[v as usize]))
+        let kept: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&v| ring[v as usize]))
+            .copied()
             .collect();
-        let mut local = vec![u32::MAX; n];
-        for &t in &kept {
-            for &v in &mesh.triangles[t] {
-                local[v as usize] = 0;
-            }
-        }
-        let mut global = Vec::new();
-        for (v, l) in local.iter_mut().enumerate() {
-            if *l == 0 {
-                *l = global.len() as u32;
-                global.push(v as u32);
-            }
-        }
-        Piece {
-            mesh: TriMesh {
-                positions: global.iter().map(|&v| mesh.positions[v as usize]).collect(),
-                triangles: kept
-                    .iter()
-                    .map(|&t| mesh.triangles[t].map(|v| local[v as usize]))
-                    .collect(),
-            },
-            global,
-        }
+        let (mesh, global) = TriMesh::of_used(&mesh.positions, kept);
+        Piece { mesh, global }
     }
 }
 

@@ -94,61 +94,60 @@ pub(crate) fn repaired(mesh: &TriMesh) -> Option<(TriMesh, ZeroAreaRepair)> {
     }
     let mut repair = ZeroAreaRepair::default();
     let mut triangles = mesh.triangles.clone();
-    // The pinched ones first: weld, then drop what the weld made repeat a
-    // corner.
-    let mut uf = UnionFind::new(0);
-    let mut involved: Vec<u32> = Vec::new();
-    for &t in &zero {
-        let c = triangles[t as usize];
-        for k in 0..3 {
-            let (u, v) = (c[k], c[(k + 1) % 3]);
-            if positions[u as usize] == positions[v as usize] {
-                if uf.is_empty() {
-                    uf = UnionFind::new(positions.len());
-                }
-                uf.union(u, v);
-                involved.extend([u, v]);
-            }
+    let mut alive = vec![true; triangles.len()];
+    // The pinched ones first: weld their coincident corners, then drop
+    // what the weld made repeat a corner. Welding moves no point, so it
+    // makes no triangle flat and unflattens none.
+    let coincident: Vec<(u32, u32)> = zero
+        .iter()
+        .flat_map(|&t| {
+            let c = triangles[t as usize];
+            [(c[0], c[1]), (c[1], c[2]), (c[2], c[0])]
+        })
+        .filter(|&(u, v)| positions[u as usize] == positions[v as usize])
+        .collect();
+    if !coincident.is_empty() {
+        let mut uf = UnionFind::new(positions.len());
+        for &(u, v) in &coincident {
+            uf.union(u, v);
         }
-    }
-    if !involved.is_empty() {
-        involved.sort_unstable();
-        involved.dedup();
         // Each class goes to its lowest number.
         let mut lowest: HashMap<u32, u32> = HashMap::default();
-        for &v in &involved {
-            let root = uf.find(v);
-            let low = lowest.entry(root).or_insert(v);
+        for &v in coincident.iter().flat_map(|(u, v)| [u, v]) {
+            let low = lowest.entry(uf.find(v)).or_insert(v);
             *low = (*low).min(v);
         }
-        let to: HashMap<u32, u32> = involved
+        let to: HashMap<u32, u32> = coincident
             .iter()
-            .map(|&v| (v, lowest[&uf.find(v)]))
+            .flat_map(|&(u, v)| [u, v])
+            .map(|v| (v, lowest[&uf.find(v)]))
             .filter(|&(v, low)| v != low)
             .collect();
         repair.welded_vertices = to.len();
-        let before = triangles.len();
-        triangles.retain_mut(|t| {
-            if !t.iter().any(|v| to.contains_key(v)) {
-                return true;
+        for (t, live) in triangles.iter_mut().zip(&mut alive) {
+            if t.iter().any(|v| to.contains_key(v)) {
+                let was_proper = proper(t);
+                *t = t.map(|v| to.get(&v).copied().unwrap_or(v));
+                if was_proper && !proper(t) {
+                    *live = false;
+                    repair.pinched_removed += 1;
+                }
             }
-            let was_proper = proper(t);
-            *t = t.map(|v| to.get(&v).copied().unwrap_or(v));
-            !was_proper || proper(t)
-        });
-        repair.pinched_removed = before - triangles.len();
+        }
     }
-    let flat: Vec<u32> = (0..triangles.len() as u32)
-        .filter(|&t| {
-            let t = &triangles[t as usize];
-            proper(t) && is_flat(t.map(|v| positions[v as usize]))
-        })
+    // The flat ones: the zero-area triangles with three distinct corners.
+    let flat: Vec<u32> = zero
+        .into_iter()
+        .filter(|&t| alive[t as usize] && along_line(positions, triangles[t as usize]).is_some())
         .collect();
-    let triangles = if flat.is_empty() {
-        triangles
-    } else {
-        repaired_flat(positions, triangles, flat, &mut repair)
-    };
+    if !flat.is_empty() {
+        repaired_flat(positions, &mut triangles, &mut alive, flat, &mut repair);
+    }
+    let triangles = triangles
+        .into_iter()
+        .zip(alive)
+        .filter_map(|(t, alive)| alive.then_some(t))
+        .collect();
     Some((
         TriMesh {
             positions: mesh.positions.clone(),
@@ -177,15 +176,16 @@ fn along_line(positions: &[DVec3], t: [u32; 3]) -> Option<[u32; 3]> {
     (key(c[0]) != key(c[1]) && key(c[1]) != key(c[2])).then_some(c)
 }
 
-/// `triangles` with the flat ones among `pending` resolved as the module
-/// describes (split the neighbour across the long side, delete).
+/// The flat triangles `pending` of `triangles` resolved as the module
+/// describes: the neighbour across the long side split (its second half
+/// appended), the flat one marked dead in `alive`.
 fn repaired_flat(
     positions: &[DVec3],
-    mut triangles: Vec<[u32; 3]>,
+    triangles: &mut Vec<[u32; 3]>,
+    alive: &mut Vec<bool>,
     mut pending: Vec<u32>,
     repair: &mut ZeroAreaRepair,
-) -> Vec<[u32; 3]> {
-    let mut alive = vec![true; triangles.len()];
+) {
     let side = |a: u32, b: u32| (a.min(b), a.max(b));
     // Each round resolves every flat triangle whose neighbour is not
     // flat; a fan of them shrinks by one a round. A round that resolves
@@ -246,11 +246,6 @@ fn repaired_flat(
         }
         pending = left;
     }
-    triangles
-        .into_iter()
-        .zip(alive)
-        .filter_map(|(t, alive)| alive.then_some(t))
-        .collect()
 }
 
 #[cfg(test)]

@@ -620,7 +620,7 @@ mod tests {
                 .collect::<std::collections::BTreeSet<_>>()
         };
         assert_eq!(rim(&welded), outline, "welded");
-        let soup = soup_of(&welded);
+        let soup = welded.unwelded();
         assert_eq!(rim(&soup), outline, "soup");
         // The second half of the triangles gets its own copies.
         let mut seamed = welded.clone();
@@ -637,20 +637,6 @@ mod tests {
         assert_eq!(rim(&seamed), outline, "seamed");
         let sphere = octahedron();
         assert!(rim(&sphere).is_empty(), "a sphere has no rim");
-    }
-
-    /// `mesh` as a soup: every triangle its own three corners.
-    fn soup_of(mesh: &TriMesh) -> TriMesh {
-        TriMesh {
-            positions: mesh
-                .triangles
-                .iter()
-                .flat_map(|t| t.map(|v| mesh.positions[v as usize]))
-                .collect(),
-            triangles: (0..mesh.triangles.len() as u32)
-                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-                .collect(),
-        }
     }
 
     /// testkit's closed octahedron.
@@ -670,7 +656,7 @@ mod tests {
     #[test]
     fn rim_normals_are_the_same_on_a_soup_and_welded() {
         let welded = cylinder_patch(6);
-        let soup = soup_of(&welded);
+        let soup = welded.unwelded();
         let of_welded = vertex_normals(&welded);
         let of_soup = vertex_normals(&soup);
         for (corner, t) in welded.triangles.iter().flatten().enumerate() {

@@ -262,17 +262,7 @@ pub fn scale(m: &TriMesh, s: f64) -> TriMesh {
 
 /// A triangle soup: every triangle gets its own three vertices.
 pub fn soup(m: &TriMesh) -> TriMesh {
-    let mut positions = Vec::with_capacity(3 * m.triangles.len());
-    let mut triangles = Vec::with_capacity(m.triangles.len());
-    for t in &m.triangles {
-        let n = positions.len() as u32;
-        positions.extend(t.iter().map(|&v| m.positions[v as usize]));
-        triangles.push([n, n + 1, n + 2]);
-    }
-    TriMesh {
-        positions,
-        triangles,
-    }
+    m.unwelded()
 }
 
 /// Euler characteristic V − E + F over the vertices used by triangles.
