@@ -26,7 +26,10 @@ use crate::brush::{
     Brush, Falloff, PressureDrives, closest_point, component_of, grab_weights_with, layer,
     paint_at, snake_hook,
 };
-use crate::remesh::{RemeshOptions, RemeshReport, default_range, remesh_in_place_checked};
+use crate::remesh::{
+    RemeshOptions, RemeshReport, default_range, remesh_in_place_checked,
+    remesh_valid_in_place_checked,
+};
 use crate::report::{Diagnostics, SculptError, StrokeReport};
 use crate::symmetry::{Mirror, Symmetry};
 
@@ -904,7 +907,9 @@ impl PaintStep<'_> {
         // A frame that moves nothing cannot collide; skipping it also
         // keeps a brush that wanders off the surface from re-cutting
         // intersections the mesh already had.
-        if end != mesh.positions {
+        // Whether the guard checked the mesh and rebuilt it this frame.
+        let guarded = end != mesh.positions;
+        if guarded {
             // Only the region the brush reaches is recomputed, and never
             // left worse than it was (the guard).
             // Vertices an earlier frame of the stroke had to hold stay
@@ -978,7 +983,13 @@ impl PaintStep<'_> {
                 reaches(p) && !self.mask.contains(&position_key(p))
             });
             if active.contains(&true) {
-                let r = remesh_in_place_checked(mesh, &active, opts).map_err(StepError::Remesh)?;
+                // Once the guard has checked the mesh, remeshing need not.
+                let r = if guarded {
+                    remesh_valid_in_place_checked(mesh, &active, opts)
+                } else {
+                    remesh_in_place_checked(mesh, &active, opts)
+                }
+                .map_err(StepError::Remesh)?;
                 if self.remeshed.add(&r) {
                     self.connectivity_changed = true;
                 }

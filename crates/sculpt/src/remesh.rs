@@ -259,6 +259,7 @@ pub fn remesh_in_place(
     active: &[bool],
     options: &RemeshOptions,
 ) -> Result<RemeshReport, RemeshError> {
+    mesh.check().map_err(RemeshError::Mesh)?;
     remesh_run(mesh, active, options, false)
 }
 
@@ -275,11 +276,26 @@ pub fn remesh_in_place_checked(
     active: &[bool],
     options: &RemeshOptions,
 ) -> Result<RemeshReport, RemeshError> {
+    mesh.check().map_err(RemeshError::Mesh)?;
     remesh_run(mesh, active, options, true)
 }
 
-/// Loads the work set, runs the passes, and writes the result into
-/// `mesh` unless `checked` finds it worse ([`Work::worse_than`]). The
+/// [`remesh_in_place_checked`] of a mesh known to be valid: a live
+/// stroke's, which the guarded topology change has just checked and
+/// rebuilt. The mesh is not read once more for its check (a whole-mesh
+/// pass, a few milliseconds a frame at a million triangles).
+pub(crate) fn remesh_valid_in_place_checked(
+    mesh: &mut TriMesh,
+    active: &[bool],
+    options: &RemeshOptions,
+) -> Result<RemeshReport, RemeshError> {
+    debug_assert!(mesh.check().is_ok());
+    remesh_run(mesh, active, options, true)
+}
+
+/// Loads the work set of `mesh` (checked by the caller), runs the passes,
+/// and writes the result into `mesh` unless `checked` finds it worse
+/// ([`Work::worse_than`]). The
 /// check runs on the work set before anything is written, so an undone
 /// run costs no copy of the mesh.
 fn remesh_run(
@@ -289,7 +305,6 @@ fn remesh_run(
     checked: bool,
 ) -> Result<RemeshReport, RemeshError> {
     options.check()?;
-    mesh.check().map_err(RemeshError::Mesh)?;
     if active.len() != mesh.positions.len() {
         return Err(RemeshError::ActiveLength {
             expected: mesh.positions.len(),
