@@ -423,6 +423,20 @@ function farthestMove(before, after, cell) {
 // are printed with a failure and written to artifacts, to be replayed
 // frame by frame with `frame_trace MESH FILE` (crates/sculpt/examples).
 const sentStrokes = [];
+// The id of the last stroke_begin sent: its answer names the range the
+// stroke remeshes to, derived from the mesh as it began, which the
+// stroke file records per stroke (`remesh`) for the replay.
+let beginId = null;
+
+function keepAnswer(text) {
+  if (beginId === null || !text.includes('"remesh"')) return;
+  let m;
+  try { m = JSON.parse(text); } catch { return; }
+  if (m.type === 'ok' && m.id === beginId && m.remesh !== undefined && sentStrokes.length) {
+    sentStrokes[sentStrokes.length - 1].remesh = m.remesh;
+    beginId = null;
+  }
+}
 
 function keepStroke(text) {
   if (!text.includes('"op":"stroke_')) return;
@@ -437,6 +451,7 @@ function keepStroke(text) {
     if (m.symmetry) s.symmetry = m.symmetry;
     if (m.symmetry_about) s.symmetry_about = m.symmetry_about;
     sentStrokes.push(s);
+    beginId = m.id;
   } else if (m.op === 'stroke_frame' && sentStrokes.length) {
     const s = sentStrokes[sentStrokes.length - 1];
     s.path.push(m.point, ...(m.points || []));
@@ -444,11 +459,14 @@ function keepStroke(text) {
   }
 }
 
-function printStrokes(n) {
+// Every scenario's strokes are written, so that a failure that depends on
+// an earlier scenario's strokes on the same mesh can be replayed whole;
+// they are printed only with a failure.
+function keepStrokes(n, failed) {
   if (!sentStrokes.length) return;
   const text = JSON.stringify({ strokes: sentStrokes });
   fs.writeFileSync(path.join(artifacts, `scenario-${n}-strokes.json`), text + '\n');
-  console.log(`  the scenario's strokes as sent (scenario-${n}-strokes.json): ${text}`);
+  if (failed) console.log(`  the scenario's strokes as sent (scenario-${n}-strokes.json): ${text}`);
 }
 
 // ---- scenarios ------------------------------------------------------------------
@@ -918,6 +936,7 @@ const scenarios = [
     await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
     await waitVersionAbove(page, v, 60000);
     await page.screenshot({ path: path.join(artifacts, '11-bunny-ear-snake-hook.png') });
+    console.log(`  after the hook: ${await statsText(page)}`);
     // With the mouse the dabs fall where the pointer events do, and the
     // thin tentacle sometimes touches itself or the other ear first, and
     // the hook lets go before the crown (the library test
@@ -1954,7 +1973,10 @@ try {
       wsLog.write(`${t()} > ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`);
       if (typeof f.payload === 'string') keepStroke(f.payload);
     });
-    ws.on('framereceived', (f) => wsLog.write(`${t()} < ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`));
+    ws.on('framereceived', (f) => {
+      wsLog.write(`${t()} < ${typeof f.payload === 'string' ? f.payload : `<${f.payload.length} bytes>`}\n`);
+      if (typeof f.payload === 'string') keepAnswer(f.payload);
+    });
     ws.on('close', () => wsLog.write(`${t()} closed\n`));
   });
   if (only && !only.has(1)) {
@@ -1973,8 +1995,8 @@ try {
     } catch (e) {
       outcome = 'FAIL';
       console.log(`  ${String(e.message || e).split('\n').join('\n  ')}`);
-      printStrokes(n);
     }
+    keepStrokes(n, outcome === 'FAIL');
     if (outcome === 'PASS') passed++;
     else if (outcome === 'FAIL') failed++;
     else skipped++;

@@ -2,7 +2,8 @@
 //! the engine did and an exact audit of the surface; optionally writes the
 //! motion of one frame as two OBJ files (the surface before it and the
 //! positions the brush moves it to; a frame of several dabs: its first
-//! dab's) for `holey topo`. A stroke's `frames` groups its points into
+//! dab's) for `holey topo`, and the surface the frame left
+//! (`trace_result.obj`). A stroke's `frames` groups its points into
 //! frames as the modeler sent them.
 //!
 //! ```text
@@ -18,7 +19,9 @@ use std::path::Path;
 
 use holey_io::MeshFile;
 use holey_sculpt::brush::{inflate, smooth};
-use holey_sculpt::{Brush, BrushSettings, LiveStroke, RemeshOptions, default_range, parse_strokes};
+use holey_sculpt::{
+    Brush, BrushSettings, LiveStroke, RemeshOptions, StrokeRemesh, default_range, parse_strokes,
+};
 use holey_topo::{Options, SurfaceAudit, TriMesh};
 
 fn write_obj(path: &str, positions: &[glam::DVec3], tris: &[[u32; 3]]) -> std::io::Result<()> {
@@ -77,9 +80,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;
         if !no_remesh {
-            // The file's range, or one derived from the mesh each stroke
-            // starts on, as the modeler does at its default detail.
-            let range = file.remesh.or_else(|| default_range(&mesh));
+            // The stroke's own range (the modeler records it), else the
+            // file's, else one derived from the mesh the stroke starts on,
+            // as the modeler does at its default detail.
+            let range = match stroke.remesh {
+                Some(StrokeRemesh::Range(r)) => Some(r),
+                Some(StrokeRemesh::Off) => None,
+                None => file.remesh.or_else(|| default_range(&mesh)),
+            };
             live.set_remesh(range.map(RemeshOptions::new));
         }
         let mut before = audit(&mesh)?;
@@ -98,6 +106,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 println!("wrote trace_before.obj and trace_after.obj (frame {frame_no})");
             }
             let f = live.frame_together(dabs)?;
+            if dump == Some(frame_no) {
+                write_obj("trace_result.obj", &f.mesh.positions, &f.mesh.triangles)?;
+                println!("wrote trace_result.obj (after frame {frame_no})");
+            }
             let seconds = f.seconds;
             let cut = f.topology_changed;
             if cut {

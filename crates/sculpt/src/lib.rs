@@ -63,5 +63,5 @@ pub use remesh::{
     RemeshError, RemeshOptions, RemeshReport, default_range, remesh, remesh_in_place, remesh_with,
 };
 pub use session::{Diagnostics, Frame, ObserverError, SculptError, Session, StrokeReport};
-pub use strokes::{Mask, Remesh, Stroke, StrokeFile, StrokeFileError, parse_strokes};
+pub use strokes::{Mask, Remesh, Stroke, StrokeFile, StrokeFileError, StrokeRemesh, parse_strokes};
 pub use symmetry::{About, Symmetry};

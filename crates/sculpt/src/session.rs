@@ -20,7 +20,7 @@ use holey_topo::{Options, TriMesh};
 use crate::live::{BrushSettings, LiveStroke};
 use crate::remesh::{RemeshOptions, default_range};
 pub use crate::report::{Diagnostics, ObserverError, SculptError, StrokeReport};
-use crate::strokes::{Remesh, Stroke, StrokeFile};
+use crate::strokes::{Remesh, Stroke, StrokeFile, StrokeRemesh};
 use crate::symmetry::{About, Symmetry};
 
 /// The state after one frame, for pictures and live preview.
@@ -174,7 +174,15 @@ impl Session {
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
-        live.set_remesh(self.remesh().map(RemeshOptions::new));
+        // A stroke's own range wins over the file's, unless remeshing is
+        // off altogether.
+        let remesh = match stroke.remesh {
+            _ if !self.remeshing => None,
+            Some(StrokeRemesh::Range(r)) => Some(r),
+            Some(StrokeRemesh::Off) => None,
+            None => self.remesh(),
+        };
+        live.set_remesh(remesh.map(RemeshOptions::new));
         if let Some(mask) = &stroke.mask {
             live.set_mask(mask.positions(&self.mesh.positions));
         }
@@ -340,5 +348,50 @@ mod tests {
         assert_eq!(r.engine_runs, 0);
         assert_eq!(s.mesh(), &triangle_mesh());
         assert!(s.can_undo());
+    }
+
+    /// A stroke's own `remesh` wins over the file's, and `--no-remesh`
+    /// (remeshing off) wins over both: the modeler records the range each
+    /// stroke remeshed to, and its replay must remesh to that.
+    #[test]
+    fn a_strokes_own_remeshing_wins_over_the_files() {
+        let sphere = holey_shapes::icosphere(3).unwrap().triangulated();
+        let inflate = |remesh| Stroke {
+            brush: Brush::Inflate,
+            radius: 0.6,
+            strength: 0.05,
+            path: vec![DVec3::new(0.0, 0.0, 1.0)],
+            remesh,
+            ..Stroke::default()
+        };
+        // The icosphere's edges are about 0.3 long: the file's range keeps
+        // them, a stroke's range of a tenth splits them.
+        let file = Remesh {
+            min_edge: 0.15,
+            max_edge: 0.45,
+        };
+        let fine = Remesh {
+            min_edge: 0.015,
+            max_edge: 0.045,
+        };
+        let run = |stroke: Stroke, remeshing: bool| {
+            let mut s = Session::new(sphere.clone()).unwrap();
+            s.set_remesh(Some(file));
+            s.set_remeshing(remeshing);
+            let r = s.apply_stroke(&stroke).unwrap();
+            (r.remesh_operations, s.mesh().triangles.len())
+        };
+        let (file_ops, file_tris) = run(inflate(None), true);
+        let (fine_ops, fine_tris) = run(inflate(Some(StrokeRemesh::Range(fine))), true);
+        assert!(
+            fine_tris > 2 * file_tris,
+            "the stroke's finer range makes {fine_tris} triangles, the file's {file_tris}"
+        );
+        assert!(fine_ops > file_ops);
+        assert_eq!(run(inflate(Some(StrokeRemesh::Off)), true).0, 0);
+        assert_eq!(
+            run(inflate(Some(StrokeRemesh::Range(fine))), false),
+            (0, sphere.triangles.len())
+        );
     }
 }

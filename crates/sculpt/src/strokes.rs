@@ -34,7 +34,11 @@
 //!
 //! `remesh` is the target edge-length range of dynamic remeshing; without
 //! it the session derives one from the mesh's mean edge length
-//! ([`crate::remesh::default_range`]).
+//! ([`crate::remesh::default_range`]). A stroke may carry its own
+//! (`"remesh": {"min_edge": …, "max_edge": …}`, or `"remesh": "off"`),
+//! which wins over the file's for that stroke: the modeler derives a range
+//! from the mesh as each stroke begins and from its detail slider, so a
+//! stroke it recorded keeps the range it was remeshed to.
 
 use glam::DVec3;
 use serde::Deserialize;
@@ -79,6 +83,18 @@ pub struct Stroke {
     /// every count positive, summing to the path's length); empty: one
     /// point a frame.
     pub frames: Vec<usize>,
+    /// This stroke's own remeshing (`"remesh"`); `None`: the file's or
+    /// the session's.
+    pub remesh: Option<StrokeRemesh>,
+}
+
+/// A stroke's own dynamic remeshing, which wins over the file's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StrokeRemesh {
+    /// Remesh to this range (`{"min_edge": …, "max_edge": …}`).
+    Range(Remesh),
+    /// Do not remesh (`"off"`).
+    Off,
 }
 
 impl Stroke {
@@ -143,6 +159,34 @@ impl Mask {
     }
 }
 
+/// Why a remeshing range is not one: it must be finite with
+/// 0 < `min_edge` < `max_edge`.
+fn check_range(r: &Remesh) -> Result<(), String> {
+    if r.min_edge.is_finite()
+        && r.max_edge.is_finite()
+        && 0.0 < r.min_edge
+        && r.min_edge < r.max_edge
+    {
+        return Ok(());
+    }
+    Err(format!(
+        "need 0 < min_edge < max_edge, got min_edge {} and max_edge {}",
+        r.min_edge, r.max_edge
+    ))
+}
+
+/// A stroke's `"remesh"`: a range object or `"off"`.
+fn stroke_remesh(value: serde_json::Value) -> Result<StrokeRemesh, String> {
+    if value.as_str() == Some("off") {
+        return Ok(StrokeRemesh::Off);
+    }
+    let range: Remesh = serde_json::from_value(value).map_err(|e| {
+        format!("remesh must be {{\"min_edge\": …, \"max_edge\": …}} or \"off\": {e}")
+    })?;
+    check_range(&range).map_err(|e| format!("remesh: {e}"))?;
+    Ok(StrokeRemesh::Range(range))
+}
+
 /// Whether `frames` groups `points` path points: positive counts that sum
 /// to it (an empty list groups none).
 fn covers(frames: &[usize], points: usize) -> bool {
@@ -169,9 +213,11 @@ struct Common {
     pressure_drives: PressureDrives,
     #[serde(default)]
     frames: Vec<usize>,
+    #[serde(default)]
+    remesh: Option<serde_json::Value>,
 }
 
-const COMMON_KEYS: [&str; 7] = [
+const COMMON_KEYS: [&str; 8] = [
     "falloff",
     "symmetry",
     "symmetry_about",
@@ -179,6 +225,7 @@ const COMMON_KEYS: [&str; 7] = [
     "pressure",
     "pressure_drives",
     "frames",
+    "remesh",
 ];
 
 /// The keys of the centred brushes that have no variant of their own.
@@ -275,16 +322,8 @@ enum StrokeSpec {
 /// Parses and checks a stroke file.
 pub fn parse_strokes(text: &str) -> Result<StrokeFile, StrokeFileError> {
     let spec: FileSpec = serde_json::from_str(text).map_err(StrokeFileError::Json)?;
-    if let Some(r) = &spec.remesh
-        && !(r.min_edge.is_finite()
-            && r.max_edge.is_finite()
-            && 0.0 < r.min_edge
-            && r.min_edge < r.max_edge)
-    {
-        return Err(StrokeFileError::Remesh(format!(
-            "need 0 < min_edge < max_edge, got min_edge {} and max_edge {}",
-            r.min_edge, r.max_edge
-        )));
+    if let Some(r) = &spec.remesh {
+        check_range(r).map_err(StrokeFileError::Remesh)?;
     }
     let strokes = spec
         .strokes
@@ -387,6 +426,11 @@ fn stroke(value: serde_json::Value) -> Result<Stroke, String> {
     s.pressure = common.pressure;
     s.pressure_drives = common.pressure_drives;
     s.frames = common.frames;
+    s.remesh = common
+        .remesh
+        .map(stroke_remesh)
+        .transpose()
+        .map_err(|e| format!("{brush}: {e}"))?;
     Ok(s)
 }
 
@@ -554,6 +598,43 @@ mod tests {
             ..Stroke::default()
         };
         assert_eq!(odd.frame_groups().len(), 3);
+    }
+
+    #[test]
+    fn a_stroke_may_carry_its_own_remeshing() {
+        let f = parse_strokes(
+            r#"{"remesh": {"min_edge": 0.02, "max_edge": 0.06}, "strokes": [
+                {"brush": "inflate", "radius": 1, "strength": 0.1, "path": [[0,0,0]],
+                 "remesh": {"min_edge": 0.5, "max_edge": 1.5}},
+                {"brush": "snake_hook", "radius": 1, "path": [[0,0,0]], "remesh": "off"},
+                {"brush": "pinch", "radius": 1, "strength": 0.5, "path": [[0,0,0]]}]}"#,
+        )
+        .unwrap();
+        let got: Vec<Option<StrokeRemesh>> = f.strokes.iter().map(|s| s.remesh).collect();
+        assert_eq!(
+            got,
+            [
+                Some(StrokeRemesh::Range(Remesh {
+                    min_edge: 0.5,
+                    max_edge: 1.5
+                })),
+                Some(StrokeRemesh::Off),
+                None
+            ]
+        );
+        for bad in [
+            r#""on""#,
+            r#"{"min_edge": 2, "max_edge": 1}"#,
+            r#"{"min_edge": 0, "max_edge": 1}"#,
+            r#"{"min_edge": 1}"#,
+            "3",
+        ] {
+            let (i, reason) = stroke_error(&format!(
+                r#"{{"strokes": [{{"brush": "clay", "radius": 1, "strength": 0.1, "path": [[0,0,0]], "remesh": {bad}}}]}}"#
+            ));
+            assert_eq!(i, 0);
+            assert!(reason.starts_with("clay: remesh"), "{bad}: {reason}");
+        }
     }
 
     fn stroke_error(text: &str) -> (usize, String) {

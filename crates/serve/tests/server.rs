@@ -2212,6 +2212,80 @@ fn a_batch_of_inflate_dabs_with_remeshing_is_one_frame() {
     assert_eq!(shown.edge_set(), committed.edges);
 }
 
+/// The document's mesh as the OBJ export gives it (exact `f64`s), as
+/// triangles.
+fn exported_triangles(addr: SocketAddr) -> holey_topo::TriMesh {
+    match holey_io::parse(holey_io::Format::Obj, &model(addr), "export").expect("the export parses")
+    {
+        holey_io::MeshFile::Poly(p) => p.triangulated(),
+        other => panic!("an OBJ export is a polygon mesh, got {other:?}"),
+    }
+}
+
+/// The modeler's strokes replay faithfully: `stroke_begin` answers with
+/// the range the stroke remeshes to (derived from the mesh as the stroke
+/// begins, and from the detail slider), and a stroke file that records it
+/// per stroke, with the frames as sent, replays through
+/// `holey_sculpt::Session` to the very mesh the server committed. The
+/// second stroke begins on the surface the first remeshed, so its range
+/// is not the first's: one range for the whole file could not say both.
+#[test]
+fn the_modelers_strokes_replay_to_the_same_mesh_with_their_own_remeshing() {
+    let (_dir, addr) = server();
+    let mut a = Tab::open(addr);
+    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
+    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
+    a.ok(json!({"op": "set_remesh", "detail": 0.8}));
+    let start = exported_triangles(addr);
+    let (begin, arc) = inflate_along_an_arc();
+    // The second stroke deflates back along the same arc.
+    let mut back = begin.clone();
+    back["strength"] = json!(-0.01);
+    back["point"] = json!(arc[11]);
+    let back_path: Vec<[f64; 3]> = arc.iter().rev().skip(1).copied().collect();
+    let mut strokes = Vec::new();
+    for (begin, path, sizes) in [
+        (&begin, &arc[..], [3, 1, 8]),
+        (&back, &back_path[..], [5, 5, 1]),
+    ] {
+        let r = a.ok(begin.clone());
+        let remesh = r["remesh"].clone();
+        assert!(remesh["min_edge"].as_f64().unwrap_or(0.0) > 0.0, "{r}");
+        let mut at = 0;
+        for k in sizes {
+            let batch = &path[at..at + k];
+            at += k;
+            let mut req = json!({"op": "stroke_frame", "point": batch[0]});
+            if k > 1 {
+                req["points"] = json!(batch[1..]);
+            }
+            a.ok(req);
+        }
+        a.ok(json!({"op": "stroke_end"}));
+        let mut whole = vec![begin["point"].clone()];
+        whole.extend(path.iter().map(|p| json!(p)));
+        let mut frames = vec![1];
+        frames.extend(sizes);
+        strokes.push(json!({"brush": "inflate", "radius": begin["radius"],
+            "strength": begin["strength"], "path": whole, "frames": frames, "remesh": remesh}));
+    }
+    assert_ne!(
+        strokes[0]["remesh"], strokes[1]["remesh"],
+        "the second stroke's range is derived from the remeshed surface"
+    );
+    let committed = exported_triangles(addr);
+    let file = holey_sculpt::parse_strokes(&json!({ "strokes": strokes }).to_string())
+        .expect("the recorded strokes parse");
+    let mut session = holey_sculpt::Session::new(start).expect("the sphere can be sculpted");
+    session
+        .replay(&file, &mut |_, _| Ok(()))
+        .expect("the replay");
+    let replayed = session.mesh();
+    assert_eq!(replayed.triangles.len(), committed.triangles.len());
+    assert_eq!(replayed.triangles, committed.triangles);
+    assert_eq!(replayed.positions, committed.positions);
+}
+
 #[test]
 fn a_batch_of_dabs_is_refused_when_malformed() {
     let (_dir, addr) = server();

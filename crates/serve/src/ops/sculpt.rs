@@ -75,7 +75,8 @@ impl Shared {
             live.set_mask(Mask::clone(doc.mask()));
         }
         live.set_preview(brush.is_drag());
-        live.set_remesh(remesh_options(mesh, doc.remesh_detail));
+        let remesh = remesh_range(mesh, doc.remesh_detail);
+        live.set_remesh(remesh.map(RemeshOptions::new));
         let display = doc.display().clone();
         let sent = display.positions.clone();
         doc.stroke = Some(ActiveStroke {
@@ -92,7 +93,16 @@ impl Shared {
         if let Some(bytes) = frame {
             self.hub.broadcast(&Out::Binary(bytes));
         }
-        reply
+        // The range this stroke remeshes to, as a stroke file's `remesh`
+        // records it: derived from the mesh as the stroke began, so a
+        // replay of the stroke needs it.
+        reply.map(|mut ok| {
+            ok["remesh"] = match remesh {
+                Some(r) => json!({"min_edge": r.min_edge, "max_edge": r.max_edge}),
+                None => json!("off"),
+            };
+            ok
+        })
     }
 
     /// `stroke_end`: the stroke finished and committed if it changed the mesh; a release the guard refused says why in plain words.
@@ -292,16 +302,16 @@ fn symmetry(req: &StrokeBegin, mesh: &holey_topo::TriMesh) -> Result<Symmetry, S
 /// `ℓ = L · 4^(1/2 − detail)` (L the mesh's mean edge length: the mesh as
 /// it is at 1/2, twice as fine at 1, twice as coarse near 0), kept within
 /// half to one and a half times ℓ.
-pub(super) fn remesh_options(mesh: &holey_topo::TriMesh, detail: f64) -> Option<RemeshOptions> {
+pub(super) fn remesh_range(mesh: &holey_topo::TriMesh, detail: f64) -> Option<Remesh> {
     if detail <= 0.0 {
         return None;
     }
     let base = default_range(mesh)?;
     let scale = 4f64.powf(0.5 - detail.min(1.0));
-    Some(RemeshOptions::new(Remesh {
+    Some(Remesh {
         min_edge: base.min_edge * scale,
         max_edge: base.max_edge * scale,
-    }))
+    })
 }
 
 /// The largest inflate displacement per frame the server accepts, as a
