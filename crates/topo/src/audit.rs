@@ -156,7 +156,7 @@ impl SurfaceAudit {
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {
-    const WORDS: [(&str, &str); 9] = [
+    const WORDS: [(&str, &str); 10] = [
         ("boundary loops", "open a hole"),
         (
             "non-manifold curves",
@@ -180,6 +180,10 @@ pub fn in_plain_words(regression: &str) -> &str {
         (
             "tiny handles",
             "crumple the surface into tunnels too small to see",
+        ),
+        (
+            "triangles the motion never reached",
+            "delete surface far from where the brush moved it",
         ),
     ];
     WORDS

@@ -16,8 +16,8 @@
 //! - no more intersecting triangle pairs than before: every intersection
 //!   the motion makes is resolved;
 //! - no piece cut loose and left hidden inside the surface, and no
-//!   speck, a piece smaller than any edge the surface had there
-//!   ([`crate::hidden`]);
+//!   speck, a piece smaller than the edges the surface had there are
+//!   long ([`crate::hidden`]);
 //! - for an inflate ([`Options::outward`]), no new piece at all;
 //! - no crumple: two or more new intersection curves within one piece,
 //!   each smaller than the shortest edge there and within one such edge
@@ -51,10 +51,11 @@ use crate::engine::{
     Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
 use crate::hidden::{
-    hidden_pieces, pieces, shortest_edge_near, specks, tiny_new_curves, vertex_components,
+    hidden_pieces, median_edge_near, pieces, shortest_edge_near, specks, tiny_new_curves,
+    vertex_components,
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
-use crate::local::{LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
+use crate::local::{Bounds, LocalReport, Region, Spliced, from_whole, swept_box, with_margin};
 use crate::mesh::TriMesh;
 
 /// What [`topology_change_guarded`] did.
@@ -100,6 +101,36 @@ pub fn topology_change_guarded_holding(
     options: &Options,
     already: &[bool],
 ) -> Result<GuardedReport, TopoError> {
+    guarded(mesh, end, options, already, false).map(|r| r.unwrap_or_default())
+}
+
+/// [`topology_change_guarded_holding`] for a motion that may only move the
+/// surface: when the motion collides (its result would cut and glue) or
+/// would be held, `mesh` is left as it was and the answer is `None`, so
+/// that the caller can take the motion in shorter frames instead. A
+/// sculpting frame whose dabs together move farther than its edges are
+/// long is tried this way first: where nothing collides one frame is
+/// exact, and where something does, the collision parity of so long a
+/// linear motion through folding surface is the error-prone case (§3.1:
+/// the parity samples only the straight paths), so the caller steps it.
+pub fn topology_change_guarded_uncut(
+    mesh: &mut TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    already: &[bool],
+) -> Result<Option<GuardedReport>, TopoError> {
+    guarded(mesh, end, options, already, true)
+}
+
+/// [`topology_change_guarded_holding`]; with `uncut`, `None` (and `mesh`
+/// untouched) instead of a cut or a hold.
+fn guarded(
+    mesh: &mut TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    already: &[bool],
+    uncut: bool,
+) -> Result<Option<GuardedReport>, TopoError> {
     check(mesh, end)?;
     let n = mesh.positions.len();
     let already = |v: usize| already.get(v).copied().unwrap_or(false);
@@ -113,6 +144,9 @@ pub fn topology_change_guarded_holding(
         })
         .collect();
     let first = run_once(mesh, &target, options, &Motion::Frame)?;
+    if uncut && (first.mesh.is_some() || !first.worse.is_empty()) {
+        return Ok(None);
+    }
     let mut report = GuardedReport {
         attempts: 1,
         ..GuardedReport::default()
@@ -139,7 +173,7 @@ pub fn topology_change_guarded_holding(
         (None, Some(positions)) => mesh.positions = positions,
         (None, None) => {}
     }
-    Ok(report)
+    Ok(Some(report))
 }
 
 /// One run of the frame and its audit.
@@ -255,7 +289,8 @@ fn run_with(
     if region.worth_it() {
         let sub = region.submesh(&mesh.positions);
         let out = resolve_frame(mesh, end, &region, &sub, options, motion, containment)?;
-        if let Some(run) = spliced_and_audited(mesh, end, &region, &sub, &out, options)? {
+        if let Some(mut run) = spliced_and_audited(mesh, end, &region, &sub, &out, options)? {
+            run.worse.extend(unreached_deleted(&sub, &out, bx));
             return Ok(run);
         }
     }
@@ -274,12 +309,64 @@ fn run_with(
     let mut worse = audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
     if !report.positions_only {
         worse.extend(piece_growth(mesh, &result, &|_| true, &|_| true, options));
+        worse.extend(unreached_deleted(&sub, &out, bx));
     }
     Ok(Run {
         mesh: Some(result),
         report,
         worse,
     })
+}
+
+/// How many triangles of `sub` the motion never reached (they do not meet
+/// the box `bx` its triangles swept, so none of their corners moved and
+/// nothing that moved touched them) are not among `out`'s, in words; `None`
+/// when all are kept.
+///
+/// Such a triangle collided with nothing, so its parity is even and
+/// topology change keeps it (§3; by containment, Lemma 8.1: its two sides'
+/// containment numbers did not change). A result that deletes it was
+/// labelled wrongly: a containment number sampled where the frame folded
+/// the surface decided a piece that reaches far beyond the fold, and a
+/// frame of several deflate dabs on the Stanford bunny deleted the whole
+/// surface that way, which no other audit counts as worse (no boundary,
+/// piece or crossing is added by deleting everything).
+fn unreached_deleted(sub: &TriMesh, out: &Outcome, bx: Bounds) -> Option<String> {
+    let (lo, hi) = bx;
+    let unreached = |t: &[u32; 3]| {
+        let p = t.map(|v| sub.positions[v as usize]);
+        let (a, b) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
+        a.cmpgt(hi).any() || b.cmplt(lo).any()
+    };
+    let far: Vec<[u32; 3]> = sub
+        .triangles
+        .iter()
+        .filter(|t| unreached(t))
+        .copied()
+        .collect();
+    if far.is_empty() {
+        return None;
+    }
+    let sorted = |mut t: [u32; 3]| {
+        t.sort_unstable();
+        t
+    };
+    let kept: rustc_hash::FxHashSet<[u32; 3]> = out
+        .mesh
+        .triangles
+        .iter()
+        .filter_map(|t| {
+            let o = t.map(|v| {
+                out.vertex_origin
+                    .get(v as usize)
+                    .copied()
+                    .unwrap_or(u32::MAX)
+            });
+            (!o.contains(&u32::MAX)).then(|| sorted(o))
+        })
+        .collect();
+    let lost = far.iter().filter(|&&t| !kept.contains(&sorted(t))).count();
+    (lost > 0).then(|| format!("triangles the motion never reached deleted: {lost}"))
 }
 
 /// The engine's result `out` for `region` of `mesh` (submesh `sub`)
@@ -330,7 +417,7 @@ fn spliced_and_audited(
 
 /// What `after` has worse than `before` in its pieces, in words: more
 /// pieces hidden inside the surface or more specks (pieces smaller than
-/// the shortest edge the surface had there; both [`crate::hidden`])
+/// the median edge the surface had there; both [`crate::hidden`])
 /// among the components near what changed (`near_before`, `near_after`
 /// flag their vertices), and, for a motion that only pushes outward
 /// ([`Options::outward`]), more pieces at all. The whole surface is
@@ -356,7 +443,7 @@ fn piece_growth(
             worse.push(format!("pieces cut loose: {count_before} -> {count_after}"));
         }
     }
-    let scale = shortest_edge_near(before, near_before);
+    let scale = median_edge_near(before, near_before);
     let a = specks(after, (&root_after, count_after), near_after, scale);
     if a > 0 {
         let (root_before, count_before) = counted.get_or_insert_with(|| pieces(before));
@@ -618,4 +705,72 @@ fn compact_of(
         m.triangles.push(local);
     }
     m
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+
+    /// Two triangles, one where the motion swept and one far from it, and
+    /// an outcome that keeps `keep` of them (by input vertex, the way the
+    /// engine's `vertex_origin` names them), the far one turned over when
+    /// `flip`.
+    fn outcome(keep: &[usize], flip: bool) -> (TriMesh, Outcome) {
+        let sub = TriMesh {
+            positions: vec![
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::Y,
+                DVec3::new(10.0, 0.0, 0.0),
+                DVec3::new(11.0, 0.0, 0.0),
+                DVec3::new(10.0, 1.0, 0.0),
+            ],
+            triangles: vec![[0, 1, 2], [3, 4, 5]],
+        };
+        let mut triangles: Vec<[u32; 3]> = keep.iter().map(|&t| sub.triangles[t]).collect();
+        if flip {
+            for t in &mut triangles {
+                t.swap(1, 2);
+            }
+        }
+        let n = sub.positions.len();
+        let out = Outcome {
+            mesh: TriMesh {
+                positions: sub.positions.clone(),
+                triangles,
+            },
+            report: crate::engine::Report::default(),
+            raw_odd: vec![false; n],
+            corrected_odd: vec![false; n],
+            intersections: crate::intersect::Intersections::default(),
+            vertex_origin: (0..n as u32).collect(),
+        };
+        (sub, out)
+    }
+
+    /// A triangle outside the swept box collided with nothing: deleting it
+    /// is worse, keeping it (either way round) is not, and deleting the
+    /// one the motion reached is for the other audits to judge.
+    #[test]
+    fn deleting_a_triangle_the_motion_never_reached_is_worse() {
+        let swept = (DVec3::splat(-0.5), DVec3::splat(1.5));
+        let (sub, out) = outcome(&[0], false);
+        let said = unreached_deleted(&sub, &out, swept).unwrap();
+        assert!(said.ends_with(": 1"), "{said}");
+        assert_eq!(
+            crate::audit::in_plain_words(&said),
+            "delete surface far from where the brush moved it"
+        );
+        let (sub, out) = outcome(&[], false);
+        assert!(unreached_deleted(&sub, &out, swept).is_some());
+        for (keep, flip) in [(&[0, 1][..], false), (&[1], false), (&[0, 1], true)] {
+            let (sub, out) = outcome(keep, flip);
+            assert_eq!(unreached_deleted(&sub, &out, swept), None, "{keep:?}");
+        }
+        // A box that reaches both: nothing is far.
+        let (sub, out) = outcome(&[], false);
+        let everywhere = (DVec3::splat(-1.0), DVec3::splat(12.0));
+        assert_eq!(unreached_deleted(&sub, &out, everywhere), None);
+    }
 }

@@ -1,7 +1,7 @@
 //! The surface's pieces (connected components, [`pieces`]) that a change
 //! must not leave behind: pieces hidden inside the rest of the surface
-//! ([`hidden_pieces`]), and specks, pieces smaller than any edge the
-//! surface had there ([`specks`]).
+//! ([`hidden_pieces`]), and specks, pieces smaller than the edges the
+//! surface had there are long (their median, [`specks`]).
 //!
 //! A change can cut a piece loose inside a body: a grab whose strand
 //! folded over itself pushed its tip through a wall, the strand vanished
@@ -120,8 +120,12 @@ pub(crate) fn hidden_pieces(
 /// squeezed through its axis, a crumpled fold) the arrangement of their
 /// intersections has cells far smaller than any triangle, and parity
 /// can keep some of them as closed pieces of their own: specks no brush
-/// shaped and nobody can see or select. With `scale` the shortest edge
-/// the surface had near the change, a new speck is debris.
+/// shaped and nobody can see or select. With `scale` the median edge the
+/// surface had near the change ([`median_edge_near`]), a new speck is
+/// debris below the surface's resolution (the shortest edge was too
+/// fine a scale: a cut earlier in the same frame can leave edges ten
+/// thousand times shorter than the rest, and a deflate over the Stanford
+/// bunny's fused haunch cut off eleven pieces at once under it).
 pub(crate) fn specks(
     m: &TriMesh,
     (root, count): (&[u32], usize),
@@ -259,6 +263,26 @@ pub(crate) fn vertex_components(m: &TriMesh) -> Vec<u32> {
         sets.union(t[1], t[2]);
     }
     sets.labels().0
+}
+
+/// The median length of the edges of the triangles of `m` with a vertex
+/// that `near` flags (each edge once per such triangle; infinite when
+/// there is none): the resolution of the surface there, which one short
+/// edge left by an earlier cut does not set.
+pub(crate) fn median_edge_near(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> f64 {
+    let p = |v: u32| m.positions[v as usize];
+    let mut lengths: Vec<f64> = m
+        .triangles
+        .iter()
+        .filter(|t| touches(t, near))
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| p(a).distance(p(b)))
+        .collect();
+    if lengths.is_empty() {
+        return f64::INFINITY;
+    }
+    let mid = lengths.len() / 2;
+    *lengths.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// The length of the shortest edge of the triangles of `m` with a vertex

@@ -45,7 +45,10 @@ pub use engine::{
     Options, Outcome, Report, Timings, TopoError, crosses_itself, resolve, self_intersections,
     topology_change,
 };
-pub use guard::{GuardedReport, topology_change_guarded, topology_change_guarded_holding};
+pub use guard::{
+    GuardedReport, topology_change_guarded, topology_change_guarded_holding,
+    topology_change_guarded_uncut,
+};
 pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::{MeshError, TriMesh};
