@@ -19,6 +19,7 @@ use holey_geom::position_key;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
     Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
+    topology_change_guarded_uncut,
 };
 
 use crate::brush::region::Region;
@@ -781,52 +782,111 @@ impl PaintStep<'_> {
     /// frame's start to the last dab's end, and one remeshing around every
     /// dab. A dab whose step is longer than a frame's may be ([`substeps`])
     /// is evaluated in as many steps as a frame of its own would take, each
-    /// on the positions the one before left. When the engine finds the joint
-    /// motion too crumpled for one frame, the dabs go one by one instead,
-    /// each as [`PaintStep::paint_piece`] paints it.
+    /// on the positions the one before left.
+    ///
+    /// Dabs that together move the surface farther than one frame may are
+    /// one frame only where they collide with nothing. Where they do, the
+    /// collision parity of so long a straight motion over folding surface
+    /// is the error-prone case (a frame of seven deflate dabs over the
+    /// Stanford bunny's haunch, which an inflate had fused, cut off closed
+    /// flakes outside the surface), so the dabs go in runs that each move
+    /// it at most one frame's step, every run resolved on its own
+    /// ([`PaintStep::paint_run`]); a single dab longer than that, or a run
+    /// the engine finds too crumpled, goes as [`PaintStep::paint_piece`]
+    /// paints it, step by step.
     fn paint_together(
         &mut self,
         mesh: &mut TriMesh,
         brush: Brush,
         dabs: &[(DVec3, f64, f64)],
     ) -> Result<(), StepError> {
+        if self.paint_run(mesh, brush, dabs, Run::Whole)?.is_some() {
+            return Ok(());
+        }
+        let mut rest = dabs;
+        while let Some(&(centre, radius, strength)) = rest.first() {
+            let taken = match self.paint_run(mesh, brush, rest, Run::Stepped)? {
+                Some(taken) => taken,
+                None => {
+                    self.paint_piece(mesh, brush, Dab::At(centre), radius, strength, 0)?;
+                    1
+                }
+            };
+            rest = &rest[taken..];
+        }
+        Ok(())
+    }
+
+    /// The first dabs of `dabs` as one frame, on the piece of the surface
+    /// they read ([`Piece`]): all of them ([`Run::Whole`]), or as many as
+    /// move it at most one frame's step together, at least one
+    /// ([`Run::Stepped`]). How many it painted, or `None` when it left the
+    /// surface as it was: the engine found the motion too crumpled, or the
+    /// motion was longer than a frame's step and collided.
+    fn paint_run(
+        &mut self,
+        mesh: &mut TriMesh,
+        brush: Brush,
+        dabs: &[(DVec3, f64, f64)],
+        run: Run,
+    ) -> Result<Option<usize>, StepError> {
         let reach = Reach::new(dabs.iter().map(|&(c, r, _)| (Dab::At(c), r)), self.mirrors);
-        let reaches = |p: DVec3| reach.contains(p);
         // Each step of the brush sees the normals the step before it left,
         // so the surface folds nothing over between two evaluations of
         // them, as between frames; the motion is resolved once. The steps
-        // run on the piece of the surface they can read ([`Piece`]), not
-        // on the whole mesh.
-        let mut piece = Piece::around(mesh, &reaches);
+        // run on the piece of the surface they can read, not on the whole
+        // mesh.
+        let mut piece = Piece::around(mesh, &|p| reach.contains(p));
+        let start = piece.mesh.positions.clone();
+        let long =
+            |piece: &Piece| substeps_of(&start, &piece.mesh.triangles, &piece.mesh.positions) > 1;
         let mut subframes = 0;
+        let mut taken = 0;
         for &(centre, radius, strength) in dabs {
+            let before = (run == Run::Stepped && taken > 0).then(|| piece.mesh.positions.clone());
             let dab = Dab::At(centre);
             let end = self.end(&piece.mesh, brush, dab, radius, strength);
             let steps = substeps(&piece.mesh, &end);
+            let mut split = 0;
             if steps == 1 {
                 piece.mesh.positions = end;
-                continue;
+            } else {
+                split = steps - 1;
+                for (part, s) in dab.split(brush, strength, steps) {
+                    piece.mesh.positions = self.end(&piece.mesh, brush, part, radius, s);
+                }
             }
-            subframes += steps - 1;
-            for (part, s) in dab.split(brush, strength, steps) {
-                piece.mesh.positions = self.end(&piece.mesh, brush, part, radius, s);
+            if let Some(before) = before
+                && long(&piece)
+            {
+                // This dab would take the run past one frame's step: the
+                // run ends before it.
+                piece.mesh.positions = before;
+                break;
             }
+            subframes += split;
+            taken += 1;
         }
         let mut end = mesh.positions.clone();
         for (&g, &p) in piece.global.iter().zip(&piece.mesh.positions) {
             end[g as usize] = p;
         }
+        let run_dabs = &dabs[..taken];
+        let reach = Reach::new(
+            run_dabs.iter().map(|&(c, r, _)| (Dab::At(c), r)),
+            self.mirrors,
+        );
         // The dabs share a brush, and pressure scales a strength without
         // turning its sign.
-        let outward = brush == Brush::Inflate && dabs.iter().all(|d| d.2 > 0.0);
-        if let Settled::Done = self.settle(mesh, &end, outward, None, &reaches)? {
-            self.report.subframes += subframes;
-            return Ok(());
+        let outward = brush == Brush::Inflate && run_dabs.iter().all(|d| d.2 > 0.0);
+        let uncut = long(&piece);
+        match self.settle(mesh, &end, outward, None, &|p| reach.contains(p), uncut)? {
+            Settled::Done => {
+                self.report.subframes += subframes;
+                Ok(Some(taken))
+            }
+            Settled::TooCrumpled => Ok(None),
         }
-        for &(centre, radius, strength) in dabs {
-            self.paint_piece(mesh, brush, Dab::At(centre), radius, strength, 0)?;
-        }
-        Ok(())
     }
 
     /// One frame of inflate, smooth or a snake hook's step: the brush, the
@@ -873,7 +933,7 @@ impl PaintStep<'_> {
             Dab::Pull(_, to) => Some((to, radius)),
             Dab::At(_) => None,
         };
-        match self.settle(mesh, &end, outward, hook, &reaches)? {
+        match self.settle(mesh, &end, outward, hook, &reaches, false)? {
             Settled::Done => Ok(()),
             Settled::TooCrumpled => {
                 if depth >= MAX_SUBFRAME_DEPTH {
@@ -894,8 +954,10 @@ impl PaintStep<'_> {
     /// admits. `outward`: the brush only pushes the surface outward, so the
     /// frame may cut no piece loose. `hook`: a snake hook's target and
     /// radius, which has met something when the cut makes points within
-    /// that radius of it. [`Settled::TooCrumpled`] leaves `mesh` as it
-    /// was, for the caller to split the motion.
+    /// that radius of it. `uncut`: the motion may only move the surface
+    /// (a collision or a hold is [`Settled::TooCrumpled`]).
+    /// [`Settled::TooCrumpled`] leaves `mesh` as it was, for the caller to
+    /// split the motion.
     fn settle(
         &mut self,
         mesh: &mut TriMesh,
@@ -903,6 +965,7 @@ impl PaintStep<'_> {
         outward: bool,
         hook: Option<(DVec3, f64)>,
         reaches: &dyn Fn(DVec3) -> bool,
+        uncut: bool,
     ) -> Result<Settled, StepError> {
         // A frame that moves nothing cannot collide; skipping it also
         // keeps a brush that wanders off the surface from re-cutting
@@ -934,8 +997,14 @@ impl PaintStep<'_> {
                 outward: outward || holds,
                 ..*self.options
             };
-            match topology_change_guarded_holding(mesh, end, &options, &already) {
-                Ok(guarded) => {
+            let run = if uncut {
+                topology_change_guarded_uncut(mesh, end, &options, &already)
+            } else {
+                topology_change_guarded_holding(mesh, end, &options, &already).map(Some)
+            };
+            match run {
+                Ok(None) => return Ok(Settled::TooCrumpled),
+                Ok(Some(guarded)) => {
                     self.held
                         .extend(guarded.held_positions.iter().map(|&p| position_key(p)));
                     for why in &guarded.refused {
@@ -1067,6 +1136,16 @@ impl Piece {
     }
 }
 
+/// Which of a frame's dabs [`PaintStep::paint_run`] paints.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Run {
+    /// All of them as one motion.
+    Whole,
+    /// The first ones that together move the surface at most one frame's
+    /// step ([`substeps`]), at least one.
+    Stepped,
+}
+
 /// What [`PaintStep::settle`] did with a motion.
 enum Settled {
     /// The motion happened (or was held where it made things worse).
@@ -1100,27 +1179,27 @@ fn sub_strength(brush: Brush, strength: f64, steps: usize) -> f64 {
 /// moving vertices: ⌈largest displacement / that length⌉, at most
 /// 2^[`MAX_SUBFRAME_DEPTH`].
 fn substeps(mesh: &TriMesh, end: &[DVec3]) -> usize {
-    let moved: Vec<bool> = mesh
-        .positions
-        .iter()
-        .zip(end)
-        .map(|(p, q)| p != q)
-        .collect();
+    substeps_of(&mesh.positions, &mesh.triangles, end)
+}
+
+/// [`substeps`] of the surface of `triangles` at `positions` moving to
+/// `end`.
+fn substeps_of(positions: &[DVec3], triangles: &[[u32; 3]], end: &[DVec3]) -> usize {
+    let moved: Vec<bool> = positions.iter().zip(end).map(|(p, q)| p != q).collect();
     // The square root of the largest squared distance: the same number
     // (a correctly rounded square root is monotone), one root.
-    let farthest = mesh
-        .positions
+    let farthest = positions
         .iter()
         .zip(end)
         .map(|(p, q)| p.distance_squared(*q))
         .fold(0.0, f64::max)
         .sqrt();
     let (mut sum, mut count) = (0.0, 0usize);
-    for t in &mesh.triangles {
+    for t in triangles {
         for k in 0..3 {
             let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
             if moved[a] || moved[b] {
-                sum += mesh.positions[a].distance(mesh.positions[b]);
+                sum += positions[a].distance(positions[b]);
                 count += 1;
             }
         }

@@ -1164,3 +1164,37 @@ fn stanford_bunny_deflate_back_over_held_vertices_cuts_no_bubble() {
     no_worse(test, &before, &after);
     assert_eq!(after.components, 1, "a piece was cut off");
 }
+
+/// The strokes of a browser run that failed (inflate across the haunch,
+/// then deflate back; `tests/data`), recorded as the modeler sent them:
+/// the dabs that queued while a frame was computed in one frame (up to
+/// eight), and each stroke's remeshing range as the server derived it.
+/// Together the deflate's dabs of one frame moved the surface several
+/// edge lengths in one straight motion over the fold the inflate had
+/// fused, and its collision parity cut off six closed flakes, the largest
+/// of ten triangles, outside the surface (7 pieces). Such a frame now
+/// moves in one motion only where nothing collides; where something does
+/// its dabs go in runs that each move the surface at most one frame's
+/// step.
+#[test]
+fn stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes() {
+    use holey_sculpt::{Session, parse_strokes};
+    let test = "stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes";
+    let Some(mesh) = load(test, "stanford-bunny.obj") else {
+        return;
+    };
+    let file = parse_strokes(include_str!(
+        "data/bunny_haunch_deflate_in_frames_of_seven.json"
+    ))
+    .unwrap();
+    assert!(
+        file.strokes[1].frames.iter().any(|&k| k >= 7),
+        "the recording's long frames"
+    );
+    let before = measure(&mesh);
+    let mut session = Session::new(mesh).unwrap();
+    session.replay(&file, &mut |_, _| Ok(())).unwrap();
+    let after = measure(session.mesh());
+    no_worse(test, &before, &after);
+    assert_eq!(after.components, 1, "pieces were cut off");
+}
