@@ -1,7 +1,7 @@
 //! The surface's pieces (connected components, [`pieces`]) that a change
 //! must not leave behind: pieces hidden inside the rest of the surface
-//! ([`hidden_pieces`]), and specks, pieces smaller than the edges the
-//! surface had there are long (their median, [`specks`]).
+//! ([`hidden_pieces`]), and specks, pieces hardly wider than the edges
+//! the surface had there are long ([`specks`]).
 //!
 //! A change can cut a piece loose inside a body: a grab whose strand
 //! folded over itself pushed its tip through a wall, the strand vanished
@@ -120,9 +120,9 @@ pub(crate) fn hidden_pieces(
 /// squeezed through its axis, a crumpled fold) the arrangement of their
 /// intersections has cells far smaller than any triangle, and parity
 /// can keep some of them as closed pieces of their own: specks no brush
-/// shaped and nobody can see or select. With `scale` the median edge the
-/// surface had near the change ([`median_edge_near`]), a new speck is
-/// debris below the surface's resolution (the shortest edge was too
+/// shaped and nobody can see or select. With `scale` a small multiple of
+/// the median edge the surface had near the change ([`median_edge_near`]),
+/// a new speck is debris at or below the surface's resolution (the shortest edge was too
 /// fine a scale: a cut earlier in the same frame can leave edges ten
 /// thousand times shorter than the rest, and a deflate over the Stanford
 /// bunny's fused haunch cut off eleven pieces at once under it).

@@ -1,6 +1,6 @@
 //! Pieces a guarded frame ([`holey_topo::topology_change_guarded`]) may
-//! not leave: specks, pieces smaller than the shortest edge the surface
-//! had where it changed (`crate::hidden::specks`), and, for a motion
+//! not leave: specks, pieces hardly wider than the surface's edges where
+//! it changed (`crate::hidden::specks`), and, for a motion
 //! that only pushes outward ([`Options::outward`], an inflate), any new
 //! piece at all. Parts such a motion pushes into each other still join.
 
