@@ -1321,13 +1321,20 @@ fn dist(a: [f32; 3], b: [f64; 3]) -> f64 {
         .sqrt()
 }
 
-/// A fresh sculpt session on `@sphere:3` (642 vertices on the unit
-/// sphere) with dynamic remeshing off, so vertex numbers stay.
-fn sculpt_sphere(addr: SocketAddr) -> Tab {
+/// A new tab whose document is `@sphere:3` (642 vertices on the unit
+/// sphere) in the sculpt workspace, remeshing at `detail`.
+fn sculpt_sphere_at(addr: SocketAddr, detail: f64) -> Tab {
     let mut a = Tab::open(addr);
     a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
     a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
-    a.ok(json!({"op": "set_remesh", "detail": 0}));
+    a.ok(json!({"op": "set_remesh", "detail": detail}));
+    a
+}
+
+/// A fresh sculpt session on `@sphere:3` with dynamic remeshing off, so
+/// vertex numbers stay.
+fn sculpt_sphere(addr: SocketAddr) -> Tab {
+    let a = sculpt_sphere_at(addr, 0.0);
     assert_eq!(a.state["stats"]["vertices"], 642);
     a
 }
@@ -2095,10 +2102,7 @@ fn stroke_in_batches(
 ) -> (Vec<u8>, Shown, Shown, Value) {
     assert_eq!(sizes.iter().sum::<usize>(), path.len());
     let (_dir, addr) = server();
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
-    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
-    a.ok(json!({"op": "set_remesh", "detail": detail}));
+    let mut a = sculpt_sphere_at(addr, detail);
     let first = a.frames.len() - 1;
     a.ok(begin.clone());
     let mut at = 0;
@@ -2232,10 +2236,7 @@ fn exported_triangles(addr: SocketAddr) -> holey_topo::TriMesh {
 #[test]
 fn the_modelers_strokes_replay_to_the_same_mesh_with_their_own_remeshing() {
     let (_dir, addr) = server();
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
-    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
-    a.ok(json!({"op": "set_remesh", "detail": 0.8}));
+    let mut a = sculpt_sphere_at(addr, 0.8);
     let start = exported_triangles(addr);
     let (begin, arc) = inflate_along_an_arc();
     // The second stroke deflates back along the same arc.
@@ -2321,10 +2322,7 @@ fn frame_word(b: &[u8], i: usize) -> u32 {
 #[test]
 fn a_tab_opened_mid_stroke_can_apply_its_patches() {
     let (_dir, addr) = server();
-    let mut a = Tab::open(addr);
-    a.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
-    a.ok(json!({"op": "workspace", "workspace": "sculpt"}));
-    a.ok(json!({"op": "set_remesh", "detail": 1.0}));
+    let mut a = sculpt_sphere_at(addr, 1.0);
     a.ok(
         json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.4, "strength": 0.02,
                 "point": [0, 0, 1]}),
