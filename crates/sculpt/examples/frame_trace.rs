@@ -19,9 +19,7 @@ use std::path::Path;
 
 use holey_io::MeshFile;
 use holey_sculpt::brush::{inflate, smooth};
-use holey_sculpt::{
-    Brush, BrushSettings, LiveStroke, RemeshOptions, StrokeRemesh, default_range, parse_strokes,
-};
+use holey_sculpt::{Brush, BrushSettings, LiveStroke, RemeshOptions, default_range, parse_strokes};
 use holey_topo::{Options, SurfaceAudit, TriMesh};
 
 fn write_obj(path: &str, positions: &[glam::DVec3], tris: &[[u32; 3]]) -> std::io::Result<()> {
@@ -83,11 +81,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             // The stroke's own range (the modeler records it), else the
             // file's, else one derived from the mesh the stroke starts on,
             // as the modeler does at its default detail.
-            let range = match stroke.remesh {
-                Some(StrokeRemesh::Range(r)) => Some(r),
-                Some(StrokeRemesh::Off) => None,
-                None => file.remesh.or_else(|| default_range(&mesh)),
-            };
+            let range = stroke.remesh_or(|| file.remesh.or_else(|| default_range(&mesh)));
             live.set_remesh(range.map(RemeshOptions::new));
         }
         let mut before = audit(&mesh)?;

@@ -872,10 +872,15 @@ impl PaintStep<'_> {
             end[g as usize] = p;
         }
         let run_dabs = &dabs[..taken];
-        let reach = Reach::new(
-            run_dabs.iter().map(|&(c, r, _)| (Dab::At(c), r)),
-            self.mirrors,
-        );
+        // The remeshing goes around the dabs the run took.
+        let reach = if taken == dabs.len() {
+            reach
+        } else {
+            Reach::new(
+                run_dabs.iter().map(|&(c, r, _)| (Dab::At(c), r)),
+                self.mirrors,
+            )
+        };
         // The dabs share a brush, and pressure scales a strength without
         // turning its sign.
         let outward = brush == Brush::Inflate && run_dabs.iter().all(|d| d.2 > 0.0);

@@ -20,7 +20,7 @@ use holey_topo::{Options, TriMesh};
 use crate::live::{BrushSettings, LiveStroke};
 use crate::remesh::{RemeshOptions, default_range};
 pub use crate::report::{Diagnostics, ObserverError, SculptError, StrokeReport};
-use crate::strokes::{Remesh, Stroke, StrokeFile, StrokeRemesh};
+use crate::strokes::{Remesh, Stroke, StrokeFile};
 use crate::symmetry::{About, Symmetry};
 
 /// The state after one frame, for pictures and live preview.
@@ -176,11 +176,10 @@ impl Session {
         let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
         // A stroke's own range wins over the file's, unless remeshing is
         // off altogether.
-        let remesh = match stroke.remesh {
-            _ if !self.remeshing => None,
-            Some(StrokeRemesh::Range(r)) => Some(r),
-            Some(StrokeRemesh::Off) => None,
-            None => self.remesh(),
+        let remesh = if self.remeshing {
+            stroke.remesh_or(|| self.remesh())
+        } else {
+            None
         };
         live.set_remesh(remesh.map(RemeshOptions::new));
         if let Some(mask) = &stroke.mask {
@@ -289,6 +288,7 @@ fn box_centre(mesh: &TriMesh) -> DVec3 {
 mod tests {
     use super::*;
     use crate::brush::Brush;
+    use crate::strokes::StrokeRemesh;
     use glam::DVec3;
 
     fn triangle_mesh() -> TriMesh {

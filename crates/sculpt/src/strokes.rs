@@ -41,7 +41,7 @@
 //! stroke it recorded keeps the range it was remeshed to.
 
 use glam::DVec3;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use crate::brush::{Brush, Falloff, PressureDrives};
 use crate::symmetry::About;
@@ -98,6 +98,17 @@ pub enum StrokeRemesh {
 }
 
 impl Stroke {
+    /// The range this stroke remeshes to: its own (`"remesh"`), else
+    /// `fallback` (the file's, or one derived from the mesh); `None` when
+    /// it says `"off"` or there is none.
+    pub fn remesh_or(&self, fallback: impl FnOnce() -> Option<Remesh>) -> Option<Remesh> {
+        match self.remesh {
+            Some(StrokeRemesh::Range(r)) => Some(r),
+            Some(StrokeRemesh::Off) => None,
+            None => fallback(),
+        }
+    }
+
     /// The path's points, with their pressures, grouped into the frames
     /// [`Stroke::frames`] gives (one point a frame without it, or when its
     /// counts do not cover the path exactly, as a parsed file's do).
@@ -238,7 +249,7 @@ struct PaintSpec {
 }
 
 /// The optional target edge-length range of dynamic remeshing.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Remesh {
     /// Edges shorter than this, in world units, are collapsed (positive).

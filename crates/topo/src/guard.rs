@@ -43,6 +43,7 @@
 //! of 2.7 s.
 
 use glam::DVec3;
+use holey_geom::Aabb;
 
 use crate::audit::SurfaceAudit;
 use crate::containment::{Surroundings, by_containment};
@@ -252,34 +253,35 @@ fn run_with(
     // triangle can touch, before the wider region the correction needs
     // as context (the box grown by half its size: four times the
     // triangles on a surface) is gathered at all.
-    if matches!(motion, Motion::Frame) {
-        let tight = Region::select(&mesh.triangles, &mesh.positions, end, bx);
-        if tight.worth_it() {
-            let sub = tight.submesh(&mesh.positions);
-            let moved = tight.submesh(end);
-            match freedom(&sub, &moved.positions, options) {
-                Freedom::Free => return Ok(free_run(n, &tight, &sub, &moved)),
-                // The containment number needs no context around what
-                // moved (every curve the motion makes lies among the
-                // triangles the motion's box meets, and the rest of the
-                // surface enters through its winding number), so a piece
-                // of a solid is resolved on the tight region, with the
-                // intersections just found. Parity's correction does
-                // need the context: anything else goes on below.
-                Freedom::Changes(g) if containment && options.solid_guard => {
-                    let surroundings = Surroundings::new(mesh, &tight.mask, end);
-                    let local_end = moved.positions;
-                    if let Some(out) =
-                        by_containment(&sub, &local_end, options, &surroundings, Some(*g))?
-                        && let Some(run) =
-                            spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
-                        && run.worse.is_empty()
-                    {
-                        return Ok(run);
-                    }
+    if matches!(motion, Motion::Frame)
+        && let Some(Tight {
+            region: tight,
+            sub,
+            moved,
+            freedom,
+        }) = Tight::of(mesh, end, options, bx)
+    {
+        match freedom {
+            Freedom::Free => return Ok(free_run(n, &tight, &sub, &moved)),
+            // The containment number needs no context around what
+            // moved (every curve the motion makes lies among the
+            // triangles the motion's box meets, and the rest of the
+            // surface enters through its winding number), so a piece
+            // of a solid is resolved on the tight region, with the
+            // intersections just found. Parity's correction does
+            // need the context: anything else goes on below.
+            Freedom::Changes(g) if containment && options.solid_guard => {
+                let surroundings = Surroundings::new(mesh, &tight.mask, end);
+                let local_end = moved.positions;
+                if let Some(out) =
+                    by_containment(&sub, &local_end, options, &surroundings, Some(*g))?
+                    && let Some(run) = spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
+                    && run.worse.is_empty()
+                {
+                    return Ok(run);
                 }
-                _ => {}
             }
+            _ => {}
         }
     }
     let region = Region::select(&mesh.triangles, &mesh.positions, end, with_margin(bx));
@@ -315,6 +317,36 @@ fn run_with(
     })
 }
 
+/// The triangles a motion's box meets, every one a moving triangle can
+/// touch (`region`; `sub` at the start, `moved` at the end), and whether
+/// they collide or cross ([`freedom`]).
+struct Tight {
+    region: Region,
+    sub: TriMesh,
+    moved: TriMesh,
+    freedom: Freedom,
+}
+
+impl Tight {
+    /// The motion of `mesh` to `end` within its box `bx`; `None` when the
+    /// box meets too much of the mesh for a region to pay.
+    fn of(mesh: &TriMesh, end: &[DVec3], options: &Options, bx: Bounds) -> Option<Tight> {
+        let region = Region::select(&mesh.triangles, &mesh.positions, end, bx);
+        if !region.worth_it() {
+            return None;
+        }
+        let sub = region.submesh(&mesh.positions);
+        let moved = region.submesh(end);
+        let freedom = freedom(&sub, &moved.positions, options);
+        Some(Tight {
+            region,
+            sub,
+            moved,
+            freedom,
+        })
+    }
+}
+
 /// A frame that only moves the surface: the triangles its box meets
 /// (`tight`, as `sub` at the start and `moved` at the end) neither
 /// collide nor cross at the end. Worse only if it flattens a triangle.
@@ -342,14 +374,13 @@ fn run_if_free(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Optio
             worse: Vec::new(),
         }));
     };
-    let tight = Region::select(&mesh.triangles, &mesh.positions, end, bx);
-    if !tight.worth_it() {
-        return Ok(None);
-    }
-    let sub = tight.submesh(&mesh.positions);
-    let moved = tight.submesh(end);
-    Ok(match freedom(&sub, &moved.positions, options) {
-        Freedom::Free => Some(free_run(n, &tight, &sub, &moved)),
+    Ok(match Tight::of(mesh, end, options, bx) {
+        Some(Tight {
+            region,
+            sub,
+            moved,
+            freedom: Freedom::Free,
+        }) => Some(free_run(n, &region, &sub, &moved)),
         _ => None,
     })
 }
@@ -368,16 +399,12 @@ fn run_if_free(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Optio
 /// surface that way, which no other audit counts as worse (no boundary,
 /// piece or crossing is added by deleting everything).
 fn unreached_deleted(sub: &TriMesh, out: &Outcome, bx: Bounds) -> Option<String> {
-    let (lo, hi) = bx;
-    let unreached = |t: &[u32; 3]| {
-        let p = t.map(|v| sub.positions[v as usize]);
-        let (a, b) = (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]));
-        a.cmpgt(hi).any() || b.cmplt(lo).any()
-    };
+    let bx = Aabb::new(bx.0, bx.1);
+    let code: Vec<u8> = sub.positions.iter().map(|&p| bx.outcode(p)).collect();
     let far: Vec<[u32; 3]> = sub
         .triangles
         .iter()
-        .filter(|t| unreached(t))
+        .filter(|t| t.iter().fold(u8::MAX, |c, &v| c & code[v as usize]) != 0)
         .copied()
         .collect();
     if far.is_empty() {
@@ -796,23 +823,11 @@ mod tests {
 
     /// A grid of unit squares (edges 1 and √2: median 1) over [0, n]².
     fn grid(n: u32) -> TriMesh {
-        let id = |i: u32, j: u32| i * (n + 1) + j;
-        let positions = (0..=n)
-            .flat_map(|i| (0..=n).map(move |j| DVec3::new(f64::from(i), f64::from(j), 0.0)))
-            .collect();
-        let triangles = (0..n)
-            .flat_map(|i| {
-                (0..n).flat_map(move |j| {
-                    [
-                        [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
-                        [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
-                    ]
-                })
-            })
-            .collect();
         TriMesh {
-            positions,
-            triangles,
+            positions: (0..=n)
+                .flat_map(|j| (0..=n).map(move |i| DVec3::new(f64::from(i), f64::from(j), 0.0)))
+                .collect(),
+            triangles: holey_testkit::meshes::grid_triangles(n, n),
         }
     }
 
@@ -825,17 +840,14 @@ mod tests {
         for (side, speck) in [(1.0, true), (3.0, false)] {
             let mut after = before.clone();
             let n = after.positions.len() as u32;
+            // The testkit's tetrahedron has sides 2√2.
+            let (corners, faces) = holey_testkit::meshes::tetrahedron();
             let c = DVec3::new(3.0, 3.0, 1.0);
             let k = side / 8f64.sqrt();
-            after.positions.extend([
-                c + DVec3::new(1.0, 1.0, 1.0) * k,
-                c + DVec3::new(1.0, -1.0, -1.0) * k,
-                c + DVec3::new(-1.0, 1.0, -1.0) * k,
-                c + DVec3::new(-1.0, -1.0, 1.0) * k,
-            ]);
-            after.triangles.extend(
-                [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]].map(|t: [u32; 3]| t.map(|v| v + n)),
-            );
+            after
+                .positions
+                .extend(corners.map(|p| c + DVec3::from_array(p) * k));
+            after.triangles.extend(faces.map(|t| t.map(|v| v + n)));
             let worse = piece_growth(&before, &after, &|_| true, &|_| true, &Options::default());
             assert_eq!(
                 worse.contains(&"specks cut off: 0 -> 1".to_owned()),

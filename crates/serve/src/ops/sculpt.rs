@@ -98,7 +98,7 @@ impl Shared {
         // replay of the stroke needs it.
         reply.map(|mut ok| {
             ok["remesh"] = match remesh {
-                Some(r) => json!({"min_edge": r.min_edge, "max_edge": r.max_edge}),
+                Some(r) => json!(r),
                 None => json!("off"),
             };
             ok
