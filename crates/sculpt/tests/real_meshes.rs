@@ -806,6 +806,49 @@ fn stanford_bunny_dwell_on_a_base_hole_rim_unremeshed_holds_and_says_why() {
     assert_eq!((d.end.components, d.end.boundary_loops), (1, 5));
 }
 
+/// Two dwell inflates (40 frames each, radius 5%, slider 1, remeshing) on
+/// the bunny's base-hole rims, at the fifth and sixth of six rim vertices
+/// spread along the rims by index, as `bench/sculpt/rim_dwells.py` picks
+/// them. At the second dwell's fifth frame its rim passes through the
+/// sheet the first raised: the curve runs from one rim to the other,
+/// bounds nothing, and parity deletes neither side, so the paper's glued
+/// curve is an X of four triangles, a non-manifold edge. The guard held
+/// that frame, and with it the rest of the stroke (no topology change in
+/// 40 frames). The crossing now fuses the sheets (`cut/crossings.rs` in
+/// holey-topo): the frame goes through as a topology change, and the
+/// surface stays one manifold piece with its five holes.
+#[test]
+fn stanford_bunny_rim_dwell_through_a_raised_sheet_fuses_it() {
+    let test = "stanford_bunny_rim_dwell_through_a_raised_sheet_fuses_it";
+    let Some(bunny) = load(test, "stanford-bunny.obj") else {
+        return;
+    };
+    let mut rim: Vec<u32> = edge_degrees(&bunny.triangles)
+        .into_iter()
+        .filter(|(_, d)| *d == 1)
+        .flat_map(|((a, b), _)| [a, b])
+        .collect();
+    rim.sort_unstable();
+    rim.dedup();
+    let step = (rim.len() / 6).max(1);
+    let (radius, strength) = radius_and_strength(&bunny, 0.05, 1.0);
+    let dwell = |k: usize| {
+        let at = bunny.positions[rim[k * step] as usize];
+        paint(Brush::Inflate, radius, strength, vec![at; 40])
+    };
+    let (_, reports, end) = sculpt(test, bunny.clone(), &[dwell(4), dwell(5)], true);
+    assert_eq!(reports[0].guarded_frames, 0, "{:?}", reports[0]);
+    assert!(
+        reports[1].changes >= 1,
+        "the rims' crossing went through: {:?}",
+        reports[1]
+    );
+    assert_eq!(
+        (end.components, end.boundary_loops, end.nonmanifold_curves),
+        (1, 5, 0)
+    );
+}
+
 /// How many connected pieces of `m` lie inside the rest of it: the
 /// generalized winding number of every other piece, summed here from
 /// the solid angles of their triangles (Van Oosterom and Strackee), is at

@@ -86,6 +86,11 @@ pub struct CutReport {
     /// sheet's parity missed the curve's last stretch) and the motion,
     /// sampled beside the edge, deleted the swept one (`cut/junctions.rs`).
     pub junctions_repaired: usize,
+    /// Curve edges where all four sub-triangles were kept (two sheets
+    /// crossing where parity deleted neither) and each half of one sheet
+    /// was joined to the half of the other that its orientation allows
+    /// (`cut/crossings.rs`).
+    pub crossings_reconnected: usize,
     /// Vertices split because the solid guard's result touched itself
     /// there at a single point (one vertex per fan).
     pub pinches_split: usize,
@@ -1093,8 +1098,8 @@ fn glue(
 fn trim(
     input_tris: &[[u32; 3]],
     input_positions: &[DVec3],
-    globals: Globals,
-    sub: Subdivided,
+    mut globals: Globals,
+    mut sub: Subdivided,
     deletion: Deletion<'_>,
     sample: Option<&Sampler<'_>>,
     mut report: CutReport,
@@ -1145,6 +1150,18 @@ fn trim(
                     curve: &curve,
                 }
                 .repair(&mut keep, sample, open_ends, MAX_SAMPLED_REGIONS as u32);
+                // Where parity kept all four sides, the sheets fuse
+                // (`cut/crossings.rs`); the paper's part assembly keeps
+                // its X with its T.
+                if open_ends {
+                    report.crossings_reconnected = crossings::reconnect(
+                        &mut sub.tris,
+                        &mut keep,
+                        &mut sub.source,
+                        &curve,
+                        &mut globals.positions,
+                    );
+                }
             }
             keep
         }
@@ -1384,6 +1401,7 @@ impl Neighbours {
     }
 }
 
+mod crossings;
 mod junctions;
 
 #[cfg(test)]

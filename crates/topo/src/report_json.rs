@@ -36,6 +36,7 @@ impl Report {
             "dropped_constraints": c.dropped_constraints,
             "sampled_regions": c.sampled_regions,
             "junctions_repaired": c.junctions_repaired,
+            "crossings_reconnected": c.crossings_reconnected,
             "pinches_split": c.pinches_split,
             "solid_relabelled": c.solid_relabelled,
             "conflicting_triangles": c.conflicting,
