@@ -47,12 +47,12 @@ fn sheet(nu: u32, nv: u32, at: impl Fn(f64, f64) -> DVec3) -> TriMesh {
 /// A (z = 0, x in [-2, 0], |y| ≤ 1) slides by `slide` in x; B (y = 0,
 /// x in [x_b, x_b + 2], |z| ≤ 1) stays. Odd numbers of rows keep grid
 /// lines off the line y = z = 0 where the sheets will cross.
-fn rims_crossing(n: u32, x_b: f64, slide: f64) -> holey_topo::Outcome {
+fn rims_crossing(n: u32, x_b: f64, slide: f64, options: &Options) -> holey_topo::Outcome {
     let a = sheet(n, 9, |u, v| DVec3::new(-2.0 + 2.0 * u, -1.0 + 2.0 * v, 0.0));
     let b = sheet(n, 7, |u, v| DVec3::new(x_b + 2.0 * u, 0.0, -1.0 + 2.0 * v));
     let (start, end) = still_and_moving(&b, &a, DVec3::ZERO, DVec3::X * slide);
     assert_eq!(self_intersecting_pairs(&start), 0, "the sheets start apart");
-    run(&start, &end, &Options::default())
+    run(&start, &end, options)
 }
 
 /// Whether no directed edge is used twice: the triangles agree on an
@@ -89,7 +89,7 @@ fn assert_fused_into_an_annulus(out: &holey_topo::Outcome) {
 /// points split in two, its ends (on the rims) stay one vertex each.
 #[test]
 fn rims_pushed_through_each_other_fuse_into_an_annulus() {
-    assert_fused_into_an_annulus(&rims_crossing(16, 0.3, 1.0));
+    assert_fused_into_an_annulus(&rims_crossing(16, 0.3, 1.0, &Options::default()));
 }
 
 /// The crossing is a single curve edge (the overlap, 0.02 long, lies in
@@ -97,7 +97,7 @@ fn rims_pushed_through_each_other_fuse_into_an_annulus() {
 /// edge is split at its midpoint for the halves to part there.
 #[test]
 fn rims_barely_pushed_through_each_other_fuse_at_one_edge() {
-    let out = rims_crossing(8, 0.03, 0.05);
+    let out = rims_crossing(8, 0.03, 0.05, &Options::default());
     assert_eq!(out.report.intersection_edges, 1, "{:?}", out.report);
     assert_fused_into_an_annulus(&out);
 }
@@ -106,19 +106,11 @@ fn rims_barely_pushed_through_each_other_fuse_at_one_edge() {
 /// triangles on each curve edge.
 #[test]
 fn rims_crossing_keep_the_papers_x_when_asked() {
-    let a = sheet(16, 9, |u, v| {
-        DVec3::new(-2.0 + 2.0 * u, -1.0 + 2.0 * v, 0.0)
-    });
-    let b = sheet(16, 7, |u, v| DVec3::new(0.3 + 2.0 * u, 0.0, -1.0 + 2.0 * v));
-    let (start, end) = still_and_moving(&b, &a, DVec3::ZERO, DVec3::X);
-    let out = run(
-        &start,
-        &end,
-        &Options {
-            nonmanifold_joins: true,
-            ..Options::default()
-        },
-    );
+    let papers = Options {
+        nonmanifold_joins: true,
+        ..Options::default()
+    };
+    let out = rims_crossing(16, 0.3, 1.0, &papers);
     assert_eq!(out.report.cut.crossings_reconnected, 0);
     assert_eq!(max_edge_degree(&out.mesh), 4);
 }
