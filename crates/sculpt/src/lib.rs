@@ -50,6 +50,7 @@
 #![warn(missing_docs)]
 
 pub mod brush;
+mod ease;
 pub mod live;
 pub mod remesh;
 pub mod report;

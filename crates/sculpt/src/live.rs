@@ -27,6 +27,7 @@ use crate::brush::{
     Brush, Falloff, PressureDrives, closest_point, component_of, grab_weights_with, layer,
     paint_at, snake_hook,
 };
+use crate::ease::{self, EASE_SHARE};
 use crate::remesh::{
     RemeshOptions, RemeshReport, default_range, remesh_in_place_checked,
     remesh_valid_in_place_checked,
@@ -252,6 +253,11 @@ impl Reach {
             }
         }
         Reach { dabs: all, lo, hi }
+    }
+
+    /// The largest radius of the frame's dabs (0 for none).
+    fn widest(&self) -> f64 {
+        self.dabs.iter().map(|d| d.1).fold(0.0, f64::max)
     }
 
     /// Whether the frame reaches `p`.
@@ -885,7 +891,7 @@ impl PaintStep<'_> {
         // turning its sign.
         let outward = brush == Brush::Inflate && run_dabs.iter().all(|d| d.2 > 0.0);
         let uncut = long(&piece);
-        match self.settle(mesh, &end, outward, None, &|p| reach.contains(p), uncut)? {
+        match self.settle(mesh, &end, outward, None, &reach, uncut)? {
             Settled::Done => {
                 self.report.subframes += subframes;
                 Ok(Some(taken))
@@ -928,7 +934,6 @@ impl PaintStep<'_> {
             }
         }
         let reach = Reach::new([(dab, radius)], self.mirrors);
-        let reaches = |p: DVec3| reach.contains(p);
         // An inflate only pushes the surface outward: it may join parts,
         // never cut one loose (`Options::outward`).
         let outward = brush == Brush::Inflate && strength > 0.0;
@@ -938,7 +943,7 @@ impl PaintStep<'_> {
             Dab::Pull(_, to) => Some((to, radius)),
             Dab::At(_) => None,
         };
-        match self.settle(mesh, &end, outward, hook, &reaches, false)? {
+        match self.settle(mesh, &end, outward, hook, &reach, false)? {
             Settled::Done => Ok(()),
             Settled::TooCrumpled => {
                 if depth >= MAX_SUBFRAME_DEPTH {
@@ -955,12 +960,14 @@ impl PaintStep<'_> {
     }
 
     /// The motion of `mesh` to `end` (a brush's frame): the guarded
-    /// topology change, then remeshing around the vertices `reaches`
+    /// topology change, then remeshing around the vertices `reach`
     /// admits. `outward`: the brush only pushes the surface outward, so the
     /// frame may cut no piece loose. `hook`: a snake hook's target and
     /// radius, which has met something when the cut makes points within
     /// that radius of it. `uncut`: the motion may only move the surface
-    /// (a collision or a hold is [`Settled::TooCrumpled`]).
+    /// (a collision or a hold is [`Settled::TooCrumpled`]). Around the
+    /// vertices held in earlier frames the motion ramps up over
+    /// [`EASE_SHARE`] of the widest dab's radius (`crate::ease`).
     /// [`Settled::TooCrumpled`] leaves `mesh` as it was, for the caller to
     /// split the motion.
     fn settle(
@@ -969,7 +976,7 @@ impl PaintStep<'_> {
         end: &[DVec3],
         outward: bool,
         hook: Option<(DVec3, f64)>,
-        reaches: &dyn Fn(DVec3) -> bool,
+        reach: &Reach,
         uncut: bool,
     ) -> Result<Settled, StepError> {
         // A frame that moves nothing cannot collide; skipping it also
@@ -998,6 +1005,15 @@ impl PaintStep<'_> {
             // the bunny's haunch cut off a closed bubble of 12 triangles
             // that way).
             let holds = already.contains(&true);
+            // The rest of the brush eases off them (`crate::ease`).
+            let eased;
+            let end = if holds {
+                let width = EASE_SHARE * reach.widest();
+                eased = ease::eased_near_held(&mesh.positions, end, &already, width);
+                &eased[..]
+            } else {
+                end
+            };
             let options = Options {
                 outward: outward || holds,
                 ..*self.options
@@ -1054,7 +1070,7 @@ impl PaintStep<'_> {
             // After the topology change (§4): the vertices the brush
             // reaches, at their new positions.
             let active = remesh_active(mesh, |p| {
-                reaches(p) && !self.mask.contains(&position_key(p))
+                reach.contains(p) && !self.mask.contains(&position_key(p))
             });
             if active.contains(&true) {
                 // Once the guard has checked the mesh, remeshing need not.
