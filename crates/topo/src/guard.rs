@@ -33,7 +33,9 @@
 //! as it was, and the report says which vertices were held. A stroke
 //! passes them on to its next frames
 //! ([`topology_change_guarded_holding`]), so that a contact no frame can
-//! resolve is not tried again at every frame.
+//! resolve is not tried again at every frame; sculpting also eases the
+//! rest of its brush off them, so that they do not stand out of the
+//! surface it moves on (`holey-sculpt`'s `ease`).
 //!
 //! Holding only the vertices at the new contacts and letting the rest of
 //! the brush move (impact zones) was tried: at a contact no frame could
