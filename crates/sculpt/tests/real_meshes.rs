@@ -1242,6 +1242,43 @@ fn stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes() {
     assert_eq!(after.components, 1, "pieces were cut off");
 }
 
+/// A browser run of scenario 10 (inflate across the haunch, deflate
+/// back, inflate again; `tests/data`, as the modeler sent it). In the
+/// third stroke two neighbouring triangles fold flat onto each other
+/// across their shared edge, and the cut's patches of the two, glued at
+/// points that round alike, are one triangle twice, facing opposite ways:
+/// a pillow of no volume hung on an edge where the sheets go on through
+/// (four triangles on one edge). The guard held that frame and two more
+/// (non-manifold curves 0 -> 1). Such pairs now cancel
+/// (`cut/coincident.rs` in holey-topo): no frame is held, and the surface
+/// stays one manifold piece with its five holes.
+#[test]
+fn stanford_bunny_reinflate_over_a_flat_fold_holds_no_frame() {
+    use holey_sculpt::{Session, parse_strokes};
+    let test = "stanford_bunny_reinflate_over_a_flat_fold_holds_no_frame";
+    let Some(mesh) = load(test, "stanford-bunny.obj") else {
+        return;
+    };
+    let file = parse_strokes(include_str!(
+        "data/bunny_haunch_browser_reinflate_folds_flat.json"
+    ))
+    .unwrap();
+    let before = measure(&mesh);
+    let mut session = Session::new(mesh).unwrap();
+    let reports = session.replay(&file, &mut |_, _| Ok(())).unwrap();
+    let after = measure(session.mesh());
+    no_worse(test, &before, &after);
+    assert_eq!(reports[2].guarded_frames, 0, "{:?}", reports[2]);
+    assert_eq!(
+        (
+            after.components,
+            after.boundary_loops,
+            after.nonmanifold_curves
+        ),
+        (1, 5, 0)
+    );
+}
+
 /// How far the vertex that stands out most stands out of its ring: over
 /// the vertices with a closed ring of three or more neighbours (a rim
 /// vertex's ring is open), the distance from the centroid of its

@@ -35,7 +35,7 @@
 
 use glam::DVec3;
 
-use crate::cut::{Deletion, cut};
+use crate::cut::{Deletion, cancel_opposite, cut, reconnect_crossings, same_corners};
 use crate::engine::{
     Geometry, Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches,
 };
@@ -211,7 +211,29 @@ pub(crate) fn by_containment(
         surroundings,
         &inside,
     );
-    let mut triangles = Vec::with_capacity(arr.triangles.len());
+    // Where all four sides of a crossing are kept (an open sheet's rim
+    // through another sheet near that sheet's rim: a curve that bounds no
+    // piece), the sheets fuse instead of meeting at a non-manifold edge,
+    // as in a motion's cut (`cut/crossings.rs`).
+    let mut output = output;
+    let mut positions = arr.positions.clone();
+    let source_of = |t: usize| sub.triangles[arrangement.source[t].0 as usize];
+    let pillows = cancel_opposite(&output, &mut keep, |i, j| {
+        !same_corners(source_of(i), source_of(j))
+    });
+    let mut curve: Vec<(u32, u32)> = (0..arr_edges.len())
+        .filter(|&e| arr_edges.triangles(e).len() > 2)
+        .map(|e| (arr_edges.ends[e][0], arr_edges.ends[e][1]))
+        .collect();
+    curve.sort_unstable();
+    let reconnected = reconnect_crossings(
+        &mut output,
+        &mut keep,
+        &arrangement.source,
+        &curve,
+        &mut positions,
+    );
+    let mut triangles = Vec::with_capacity(output.len());
     let mut deleted = 0;
     for (t, tri) in output.iter().enumerate() {
         if keep[t] {
@@ -221,16 +243,25 @@ pub(crate) fn by_containment(
         }
     }
     let (mut mesh, local) = TriMesh {
-        positions: arr.positions.clone(),
+        positions,
         triangles,
     }
     .compacted_with_origin();
     let mut origin: Vec<u32> = local
         .iter()
-        .map(|&v| arrangement.origin[v as usize])
+        // A point a crossing's split made is new.
+        .map(|&v| {
+            arrangement
+                .origin
+                .get(v as usize)
+                .copied()
+                .unwrap_or(u32::MAX)
+        })
         .collect();
     let mut cut_report = arrangement.report;
     cut_report.triangles_deleted = deleted;
+    cut_report.crossings_reconnected = reconnected;
+    cut_report.opposite_pairs_cancelled = pillows;
     cut_report.solid_relabelled = true;
     cut_report.pinches_split = split_new_pinches(&mut mesh, &mut origin, sub);
     // A vertex of the input is deleted when no output vertex comes from it.

@@ -91,6 +91,10 @@ pub struct CutReport {
     /// was joined to the half of the other that its orientation allows
     /// (`cut/crossings.rs`).
     pub crossings_reconnected: usize,
+    /// Sub-triangles taken out in pairs: one triangle twice, from two
+    /// source triangles, facing opposite ways, a pillow of no volume
+    /// (`cut/coincident.rs`).
+    pub opposite_pairs_cancelled: usize,
     /// Vertices split because the solid guard's result touched itself
     /// there at a single point (one vertex per fan).
     pub pinches_split: usize,
@@ -1151,9 +1155,20 @@ fn trim(
                 }
                 .repair(&mut keep, sample, open_ends, MAX_SAMPLED_REGIONS as u32);
                 // Where parity kept all four sides, the sheets fuse
-                // (`cut/crossings.rs`); the paper's part assembly keeps
+                // (`cut/crossings.rs`), once the pillows of no volume
+                // two sheets' glued patches make are gone
+                // (`cut/coincident.rs`); the paper's part assembly keeps
                 // its X with its T.
                 if open_ends {
+                    let first = sub.source.first_sub();
+                    let source = &sub.source;
+                    let input = |i: usize| input_tris[source.triangle(i) as usize];
+                    report.opposite_pairs_cancelled =
+                        coincident::cancel_opposite(&sub.tris, &mut keep, |i, j| {
+                            i >= first
+                                && j >= first
+                                && !coincident::same_corners(input(i), input(j))
+                        });
                     report.crossings_reconnected = crossings::reconnect(
                         &mut sub.tris,
                         &mut keep,
@@ -1401,8 +1416,30 @@ impl Neighbours {
     }
 }
 
+mod coincident;
 mod crossings;
 mod junctions;
+
+pub(crate) use coincident::{cancel_opposite, same_corners};
+
+/// Fuses the crossings of an arrangement's kept triangles
+/// (`cut/crossings.rs`): `tris` with their source triangles `source`
+/// (`Cut::source`), `keep` what a labelling kept, `curve` the sorted edges
+/// where sheets meet. `tris`, `keep` and `positions` grow where a
+/// one-edge crossing is split. Returns the edges reconnected.
+pub(crate) fn reconnect_crossings(
+    tris: &mut Vec<[u32; 3]>,
+    keep: &mut Vec<bool>,
+    source: &[SourcePoint],
+    curve: &[(u32, u32)],
+    positions: &mut Vec<DVec3>,
+) -> usize {
+    let mut sources = Sources {
+        whole: Vec::new(),
+        sub: source.to_vec(),
+    };
+    crossings::reconnect(tris, keep, &mut sources, curve, positions)
+}
 
 #[cfg(test)]
 mod tests;

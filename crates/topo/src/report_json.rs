@@ -37,6 +37,7 @@ impl Report {
             "sampled_regions": c.sampled_regions,
             "junctions_repaired": c.junctions_repaired,
             "crossings_reconnected": c.crossings_reconnected,
+            "opposite_pairs_cancelled": c.opposite_pairs_cancelled,
             "pinches_split": c.pinches_split,
             "solid_relabelled": c.solid_relabelled,
             "conflicting_triangles": c.conflicting,
