@@ -1208,6 +1208,17 @@ fn stanford_bunny_deflate_back_over_held_vertices_cuts_no_bubble() {
     assert_eq!(after.components, 1, "a piece was cut off");
 }
 
+/// The Stanford bunny and a recorded stroke file (`tests/data`) replayed
+/// on it through a `Session`: the bunny as it was, the session and the
+/// strokes' reports. `None` (a visible skip) without the shared meshes.
+fn replay_on_the_bunny(test: &str, strokes: &str) -> Option<(TriMesh, Session, Vec<StrokeReport>)> {
+    let bunny = load(test, "stanford-bunny.obj")?;
+    let file = holey_sculpt::parse_strokes(strokes).unwrap();
+    let mut session = Session::new(bunny.clone()).unwrap();
+    let reports = session.replay(&file, &mut |_, _| Ok(())).unwrap();
+    Some((bunny, session, reports))
+}
+
 /// The strokes of a browser run that failed (inflate across the haunch,
 /// then deflate back; `tests/data`), recorded as the modeler sent them:
 /// the dabs that queued while a frame was computed in one frame (up to
@@ -1221,22 +1232,17 @@ fn stanford_bunny_deflate_back_over_held_vertices_cuts_no_bubble() {
 /// step.
 #[test]
 fn stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes() {
-    use holey_sculpt::{Session, parse_strokes};
-    let test = "stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes";
-    let Some(mesh) = load(test, "stanford-bunny.obj") else {
-        return;
-    };
-    let file = parse_strokes(include_str!(
-        "data/bunny_haunch_deflate_in_frames_of_seven.json"
-    ))
-    .unwrap();
+    let strokes = include_str!("data/bunny_haunch_deflate_in_frames_of_seven.json");
+    let file = holey_sculpt::parse_strokes(strokes).unwrap();
     assert!(
         file.strokes[1].frames.iter().any(|&k| k >= 7),
         "the recording's long frames"
     );
-    let before = measure(&mesh);
-    let mut session = Session::new(mesh).unwrap();
-    session.replay(&file, &mut |_, _| Ok(())).unwrap();
+    let test = "stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes";
+    let Some((bunny, session, _)) = replay_on_the_bunny(test, strokes) else {
+        return;
+    };
+    let before = measure(&bunny);
     let after = measure(session.mesh());
     no_worse(test, &before, &after);
     assert_eq!(after.components, 1, "pieces were cut off");
@@ -1254,18 +1260,12 @@ fn stanford_bunny_deflate_in_frames_of_seven_dabs_cuts_no_flakes() {
 /// stays one manifold piece with its five holes.
 #[test]
 fn stanford_bunny_reinflate_over_a_flat_fold_holds_no_frame() {
-    use holey_sculpt::{Session, parse_strokes};
     let test = "stanford_bunny_reinflate_over_a_flat_fold_holds_no_frame";
-    let Some(mesh) = load(test, "stanford-bunny.obj") else {
+    let strokes = include_str!("data/bunny_haunch_browser_reinflate_folds_flat.json");
+    let Some((bunny, session, reports)) = replay_on_the_bunny(test, strokes) else {
         return;
     };
-    let file = parse_strokes(include_str!(
-        "data/bunny_haunch_browser_reinflate_folds_flat.json"
-    ))
-    .unwrap();
-    let before = measure(&mesh);
-    let mut session = Session::new(mesh).unwrap();
-    let reports = session.replay(&file, &mut |_, _| Ok(())).unwrap();
+    let before = measure(&bunny);
     let after = measure(session.mesh());
     no_worse(test, &before, &after);
     assert_eq!(reports[2].guarded_frames, 0, "{:?}", reports[2]);
@@ -1321,18 +1321,12 @@ fn sharpest_vertex(m: &TriMesh) -> f64 {
 /// vertex and a tenth.
 #[test]
 fn stanford_bunny_deflate_in_frames_of_seven_dabs_leaves_no_spikes() {
-    use holey_sculpt::{Session, parse_strokes};
     let test = "stanford_bunny_deflate_in_frames_of_seven_dabs_leaves_no_spikes";
-    let Some(mesh) = load(test, "stanford-bunny.obj") else {
+    let strokes = include_str!("data/bunny_haunch_deflate_in_frames_of_seven.json");
+    let Some((bunny, session, reports)) = replay_on_the_bunny(test, strokes) else {
         return;
     };
-    let file = parse_strokes(include_str!(
-        "data/bunny_haunch_deflate_in_frames_of_seven.json"
-    ))
-    .unwrap();
-    let scan = sharpest_vertex(&mesh);
-    let mut session = Session::new(mesh).unwrap();
-    let reports = session.replay(&file, &mut |_, _| Ok(())).unwrap();
+    let scan = sharpest_vertex(&bunny);
     assert!(
         reports[1].held_vertices > 0,
         "the deflate held vertices: {:?}",
