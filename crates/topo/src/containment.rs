@@ -211,28 +211,33 @@ pub(crate) fn by_containment(
         surroundings,
         &inside,
     );
-    // Where all four sides of a crossing are kept (an open sheet's rim
+    // As in a motion's cut: one triangle twice from two sources, facing
+    // opposite ways, a pillow of no volume, cancels (`cut/coincident.rs`);
+    // where all four sides of a crossing are kept (an open sheet's rim
     // through another sheet near that sheet's rim: a curve that bounds no
-    // piece), the sheets fuse instead of meeting at a non-manifold edge,
-    // as in a motion's cut (`cut/crossings.rs`).
+    // piece), the sheets fuse instead of meeting at a non-manifold edge
+    // (`cut/crossings.rs`). The paper's part assembly keeps both.
     let mut output = output;
     let mut positions = arr.positions.clone();
-    let source_of = |t: usize| sub.triangles[arrangement.source[t].0 as usize];
-    let pillows = cancel_opposite(&output, &mut keep, |i, j| {
-        !same_corners(source_of(i), source_of(j))
-    });
-    let mut curve: Vec<(u32, u32)> = (0..arr_edges.len())
-        .filter(|&e| arr_edges.triangles(e).len() > 2)
-        .map(|e| (arr_edges.ends[e][0], arr_edges.ends[e][1]))
-        .collect();
-    curve.sort_unstable();
-    let reconnected = reconnect_crossings(
-        &mut output,
-        &mut keep,
-        &arrangement.source,
-        &curve,
-        &mut positions,
-    );
+    let (mut pillows, mut reconnected) = (0, 0);
+    if !options.nonmanifold_joins {
+        let source_of = |t: usize| sub.triangles[arrangement.source[t].0 as usize];
+        pillows = cancel_opposite(&output, &mut keep, |i, j| {
+            !same_corners(source_of(i), source_of(j))
+        });
+        let mut curve: Vec<(u32, u32)> = (0..arr_edges.len())
+            .filter(|&e| arr_edges.triangles(e).len() > 2)
+            .map(|e| (arr_edges.ends[e][0], arr_edges.ends[e][1]))
+            .collect();
+        curve.sort_unstable();
+        reconnected = reconnect_crossings(
+            &mut output,
+            &mut keep,
+            &arrangement.source,
+            &curve,
+            &mut positions,
+        );
+    }
     let mut triangles = Vec::with_capacity(output.len());
     let mut deleted = 0;
     for (t, tri) in output.iter().enumerate() {
