@@ -17,10 +17,11 @@
 //! sheets fuse at the crossing instead of passing through each other.
 //! Of the two such pairings, orientation picks one: each half of A runs
 //! the edge one way, so it joins the half of B that runs it the other
-//! way, and the fused surface stays consistently oriented. That is the
-//! pairing a union makes of two solids' outsides (and of their insides,
-//! the intersection's boundary), so a closed input reconnected this way
-//! is what its parity would have given, had parity deleted nothing.
+//! way, and the fused surface stays consistently oriented. For two
+//! closed solids crossing, this pairing joins their outsides into the
+//! union's surface and their insides into the intersection's: what a
+//! union keeps and what it deletes (the guard refuses that inner piece
+//! as hidden, as it refused the X).
 //!
 //! The curve's points then belong to two fans, one per pairing, and are
 //! split into two vertices at one position; a point where the curve ends
