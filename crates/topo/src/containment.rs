@@ -35,7 +35,7 @@
 
 use glam::DVec3;
 
-use crate::cut::{Deletion, cancel_opposite, cut, reconnect_crossings, same_corners};
+use crate::cut::{AroundCurve, Deletion, cancel_opposite, cut, reconnect_crossings, same_corners};
 use crate::engine::{
     Geometry, Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches,
 };
@@ -162,7 +162,7 @@ pub(crate) fn by_containment(
     if old_curves(sub, &x)?.contains(&true) {
         return Ok(None);
     }
-    let arrangement = cut(sub, end, &edges, &ids, &x, Deletion::Nothing, None);
+    let mut arrangement = cut(sub, end, &edges, &ids, &x, Deletion::Nothing, None);
     let arr = &arrangement.mesh;
     let region = regions(arr);
     let count = region.iter().copied().max().map_or(0, |r| r as usize + 1);
@@ -225,16 +225,20 @@ pub(crate) fn by_containment(
         pillows = cancel_opposite(&output, &mut keep, |i, j| {
             !same_corners(source_of(i), source_of(j))
         });
-        let mut curve: Vec<(u32, u32)> = (0..arr_edges.len())
+        // The edges where sheets meet, with their triangles.
+        let around: AroundCurve = (0..arr_edges.len())
             .filter(|&e| arr_edges.triangles(e).len() > 2)
-            .map(|e| (arr_edges.ends[e][0], arr_edges.ends[e][1]))
+            .map(|e| {
+                let [a, b] = arr_edges.ends[e];
+                let on: Vec<usize> = arr_edges.triangles(e).iter().map(|&t| t as usize).collect();
+                ((a, b), on)
+            })
             .collect();
-        curve.sort_unstable();
         reconnected = reconnect_crossings(
             &mut output,
             &mut keep,
-            &arrangement.source,
-            &curve,
+            std::mem::take(&mut arrangement.source),
+            &around,
             &mut positions,
         );
     }

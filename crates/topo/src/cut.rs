@@ -1145,6 +1145,8 @@ fn trim(
                 let mut curve = sub.curve_edges.clone();
                 curve.sort_unstable();
                 curve.dedup();
+                let first = sub.source.first_sub();
+                let around = around_curve(&sub.tris, first, &curve, globals.positions.len());
                 report.junctions_repaired = junctions::Junctions {
                     tris: &sub.tris,
                     source: &sub.source,
@@ -1152,6 +1154,7 @@ fn trim(
                     input_tris,
                     input_positions,
                     curve: &curve,
+                    around: &around,
                 }
                 .repair(&mut keep, sample, open_ends, MAX_SAMPLED_REGIONS as u32);
                 // Where parity kept all four sides, the sheets fuse
@@ -1160,7 +1163,6 @@ fn trim(
                 // (`cut/coincident.rs`); the paper's part assembly keeps
                 // its X with its T.
                 if open_ends {
-                    let first = sub.source.first_sub();
                     let source = &sub.source;
                     let input = |i: usize| input_tris[source.triangle(i) as usize];
                     report.opposite_pairs_cancelled =
@@ -1173,7 +1175,7 @@ fn trim(
                         &mut sub.tris,
                         &mut keep,
                         &mut sub.source,
-                        &curve,
+                        &around,
                         &mut globals.positions,
                     );
                 }
@@ -1422,23 +1424,64 @@ mod junctions;
 
 pub(crate) use coincident::{cancel_opposite, same_corners};
 
+/// The sub-triangles (those from `first` on) on each curve edge, kept
+/// or not: where the repairs after the labelling look
+/// (`cut/junctions.rs`, `cut/crossings.rs`). `curve` holds sorted `(min,
+/// max)` pairs of vertices among `points`.
+pub(crate) type AroundCurve = HashMap<(u32, u32), Vec<usize>>;
+
+fn around_curve(
+    tris: &[[u32; 3]],
+    first: usize,
+    curve: &[(u32, u32)],
+    points: usize,
+) -> AroundCurve {
+    let mut around = AroundCurve::default();
+    if curve.is_empty() {
+        return around;
+    }
+    // A side is looked up only when both its ends are curve points.
+    let mut on_curve = vec![false; points];
+    for &(a, b) in curve {
+        for v in [a, b] {
+            if let Some(f) = on_curve.get_mut(v as usize) {
+                *f = true;
+            }
+        }
+    }
+    let flagged = |v: u32| on_curve.get(v as usize).copied().unwrap_or(false);
+    for (s, t) in tris.iter().enumerate().skip(first) {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            if !(flagged(a) && flagged(b)) {
+                continue;
+            }
+            let key = (a.min(b), a.max(b));
+            if curve.binary_search(&key).is_ok() {
+                around.entry(key).or_default().push(s);
+            }
+        }
+    }
+    around
+}
+
 /// Fuses the crossings of an arrangement's kept triangles
 /// (`cut/crossings.rs`): `tris` with their source triangles `source`
-/// (`Cut::source`), `keep` what a labelling kept, `curve` the sorted edges
-/// where sheets meet. `tris`, `keep` and `positions` grow where a
-/// one-edge crossing is split. Returns the edges reconnected.
+/// (`Cut::source`), `keep` what a labelling kept, `around` the triangles
+/// on each edge where sheets meet. `tris`, `keep` and `positions` grow
+/// where a one-edge crossing is split. Returns the edges reconnected.
 pub(crate) fn reconnect_crossings(
     tris: &mut Vec<[u32; 3]>,
     keep: &mut Vec<bool>,
-    source: &[SourcePoint],
-    curve: &[(u32, u32)],
+    source: Vec<SourcePoint>,
+    around: &AroundCurve,
     positions: &mut Vec<DVec3>,
 ) -> usize {
     let mut sources = Sources {
         whole: Vec::new(),
-        sub: source.to_vec(),
+        sub: source,
     };
-    crossings::reconnect(tris, keep, &mut sources, curve, positions)
+    crossings::reconnect(tris, keep, &mut sources, around, positions)
 }
 
 #[cfg(test)]

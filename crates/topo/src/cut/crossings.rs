@@ -31,40 +31,26 @@ use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
-use super::Sources;
+use super::junctions::runs_forward;
+use super::{AroundCurve, Sources};
 use crate::union_find::UnionFind;
 
-/// Reconnects every curve edge whose four kept sub-triangles are two
-/// sheets crossing (module docs): `tris` are renamed in place and the
-/// split points' copies appended to `positions`. Returns the number of
-/// edges reconnected.
+/// Reconnects every curve edge whose four kept sub-triangles (of those
+/// `around` it) are two sheets crossing (module docs): `tris` are renamed
+/// in place and the split points' copies appended to `positions`.
+/// Returns the number of edges reconnected.
 pub(super) fn reconnect(
     tris: &mut Vec<[u32; 3]>,
     keep: &mut Vec<bool>,
     source: &mut Sources,
-    curve: &[(u32, u32)],
+    around: &AroundCurve,
     positions: &mut Vec<DVec3>,
 ) -> usize {
-    if curve.is_empty() {
-        return 0;
-    }
-    let is_curve = |a: u32, b: u32| curve.binary_search(&(a.min(b), a.max(b))).is_ok();
-    let mut around: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
-    for (s, t) in tris.iter().enumerate().skip(source.first_sub()) {
-        if !keep[s] {
-            continue;
-        }
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            if is_curve(a, b) {
-                around.entry((a.min(b), a.max(b))).or_default().push(s);
-            }
-        }
-    }
     // Each crossing edge with its two pairs of sub-triangles to join.
     let mut crossing: HashMap<(u32, u32), [(usize, usize); 2]> = HashMap::default();
-    for (&(a, b), subs) in &around {
-        if let Some(pairs) = pairing(tris, source, subs, a, b) {
+    for (&(a, b), subs) in around {
+        let kept: Vec<usize> = subs.iter().copied().filter(|&s| keep[s]).collect();
+        if let Some(pairs) = pairing(tris, source, &kept, a, b) {
             crossing.insert((a, b), pairs);
         }
     }
@@ -206,28 +192,26 @@ fn pairing(
     a: u32,
     b: u32,
 ) -> Option<[(usize, usize); 2]> {
-    let [s0, s1, s2, s3] = *subs else {
+    let &[first, ..] = subs else {
         return None;
     };
-    let forward = |s: usize| (0..3).any(|i| tris[s][i] == a && tris[s][(i + 1) % 3] == b);
-    let (src, fwd) = (
-        [s0, s1, s2, s3].map(|s| source.triangle(s)),
-        [s0, s1, s2, s3].map(forward),
-    );
-    // Sheet A is s0's source; B the other one, with two sub-triangles.
-    let b_subs: Vec<usize> = (1..4).filter(|&i| src[i] != src[0]).collect();
-    let [i, j] = *b_subs.as_slice() else {
+    let (sheet_a, sheet_b): (Vec<usize>, Vec<usize>) = subs
+        .iter()
+        .partition(|&&s| source.triangle(s) == source.triangle(first));
+    let (&[a1, a2], &[b1, b2]) = (sheet_a.as_slice(), sheet_b.as_slice()) else {
         return None;
     };
-    let a_other = (1..4).find(|&k| k != i && k != j)?;
-    if fwd[0] == fwd[a_other] || fwd[i] == fwd[j] || src[i] != src[j] {
+    if source.triangle(b1) != source.triangle(b2) {
         return None;
     }
-    let subs = [s0, s1, s2, s3];
-    // s0 joins the B sub-triangle running the edge the other way.
-    let (b_with_0, b_with_other) = if fwd[i] != fwd[0] { (i, j) } else { (j, i) };
-    Some([
-        (subs[0], subs[b_with_0]),
-        (subs[a_other], subs[b_with_other]),
-    ])
+    // A sheet's two halves, the one running the edge from a to b first.
+    let halves =
+        |x: usize, y: usize| match (runs_forward(tris[x], a, b), runs_forward(tris[y], a, b)) {
+            (true, false) => Some((x, y)),
+            (false, true) => Some((y, x)),
+            _ => None,
+        };
+    let (a_forward, a_backward) = halves(a1, a2)?;
+    let (b_forward, b_backward) = halves(b1, b2)?;
+    Some([(a_forward, b_backward), (a_backward, b_forward)])
 }

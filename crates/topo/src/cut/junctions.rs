@@ -30,7 +30,7 @@ use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
 
-use super::{Sampler, Sources};
+use super::{AroundCurve, Sampler, Sources};
 use crate::mesh::Edges;
 
 /// Most junction edges examined per cut: each costs two to six
@@ -60,6 +60,8 @@ pub(super) struct Junctions<'a> {
     pub input_positions: &'a [DVec3],
     /// Curve edges (sorted, deduplicated `(min, max)` pairs).
     pub curve: &'a [(u32, u32)],
+    /// The sub-triangles on each curve edge ([`super::around_curve`]).
+    pub around: &'a AroundCurve,
 }
 
 /// Barycentric weights of `q` in triangle `p` (least squares in its
@@ -150,43 +152,22 @@ impl Junctions<'_> {
         open_ends: bool,
         first_call: u32,
     ) -> usize {
-        // Sub-triangles around each curve edge.
         if self.curve.is_empty() {
             return 0;
         }
-        let mut around: HashMap<(u32, u32), Vec<usize>> = HashMap::default();
-        let mut on_curve = vec![false; self.positions.len()];
-        for &(a, b) in self.curve {
-            for v in [a, b] {
-                if let Some(f) = on_curve.get_mut(v as usize) {
-                    *f = true;
-                }
-            }
-        }
-        let flagged = |v: u32| on_curve.get(v as usize).copied().unwrap_or(false);
         let subs = self.source.first_sub()..self.tris.len();
-        for (s, t) in self.tris.iter().enumerate().skip(subs.start) {
-            for i in 0..3 {
-                let (a, b) = (t[i], t[(i + 1) % 3]);
-                if !(flagged(a) && flagged(b)) {
-                    continue;
-                }
-                let key = (a.min(b), a.max(b));
-                if self.curve.binary_search(&key).is_ok() {
-                    around.entry(key).or_default().push(s);
-                }
-            }
-        }
-        let mut junctions: Vec<((u32, u32), Vec<usize>)> = around
-            .into_iter()
+        let mut junctions: Vec<((u32, u32), &[usize])> = self
+            .around
+            .iter()
             .filter(|(_, ss)| ss.iter().filter(|&&s| keep[s]).count() == 3)
+            .map(|(&e, ss)| (e, ss.as_slice()))
             .collect();
         // Deterministic order (the map's is not).
         junctions.sort_unstable_by_key(|(e, _)| *e);
         // Sub-triangles of each source triangle touched by a junction.
         let mut by_source: HashMap<u32, Vec<usize>> = HashMap::default();
         for (_, ss) in &junctions {
-            for &s in ss {
+            for &s in ss.iter() {
                 by_source.entry(self.source.triangle(s)).or_default();
             }
         }
@@ -305,7 +286,7 @@ impl Junctions<'_> {
 
 /// Whether triangle `t` runs its edge from `a` to `b` (rather than from
 /// `b` to `a`).
-fn runs_forward(t: [u32; 3], a: u32, b: u32) -> bool {
+pub(super) fn runs_forward(t: [u32; 3], a: u32, b: u32) -> bool {
     (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b)
 }
 
@@ -342,13 +323,16 @@ mod tests {
             whole: Vec::new(),
             sub: vec![(0, [0.0; 2]), (0, [0.0; 2]), (0, [0.0; 2]), (1, [0.0; 2])],
         };
+        let curve = [(6, 7)];
+        let around = super::super::around_curve(&tris, source.first_sub(), &curve, positions.len());
         let junctions = Junctions {
             tris: &tris,
             source: &source,
             positions: &positions,
             input_tris: &input_tris,
             input_positions: &input_positions,
-            curve: &[(6, 7)],
+            curve: &curve,
+            around: &around,
         };
         let band = |_: u32, t: u32, w: [f64; 3]| -> Option<bool> {
             let p = input_tris[t as usize]
