@@ -10,22 +10,25 @@
 //! haunch, where the inflate before had fused a fold).
 //!
 //! Instead, every other vertex the frame moves goes the share
-//! `s(d / width)` of its way, `d` its distance from the nearest held
-//! vertex and `s(t) = t²(3 − 2t)` (0 at a held vertex, 1 from `width` on,
-//! smooth in between): around a held patch the surface ramps from where
-//! it was held to where the brush takes it over `width`, a shoulder
-//! rather than a spike. Neighbours of held vertices move little, so they
+//! `1 − w(d)` of its way, `d` its distance from the nearest held vertex
+//! and `w` the brush's smooth falloff over `width`
+//! ([`Falloff::Smooth`]: `(1 − t²)²`, `t = d / width`): 0 at a held
+//! vertex, 1 from `width` on, with no crease at either end. Around a held
+//! patch the surface ramps from where it was held to where the brush
+//! takes it over `width`, a shoulder rather than a spike. Neighbours of held vertices move little, so they
 //! do not drive into the contact the hold is avoiding either.
 
 use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
+
+use crate::brush::Falloff;
 
 /// Of the brush's radius: the width of the ramp around held vertices.
 /// Half the radius keeps the ramp within the brush's own falloff.
 pub(crate) const EASE_SHARE: f64 = 0.5;
 
 /// `end` with the motion of every vertex that moves and is not `held`
-/// scaled by `s(d / width)` (module docs); `start` holds the positions at
+/// scaled by `1 − w(d)` (module docs); `start` holds the positions at
 /// the frame's start (the held vertices stay there). Unchanged when no
 /// vertex is held or `width` is not a positive number.
 pub(crate) fn eased_near_held(
@@ -63,8 +66,7 @@ pub(crate) fn eased_near_held(
                 }
             }
         }
-        let t = nearest / width;
-        *q = p + (*q - p) * (t * t * (3.0 - 2.0 * t));
+        *q = p + (*q - p) * (1.0 - Falloff::Smooth.weight(nearest, width));
     }
     eased
 }
@@ -74,10 +76,10 @@ mod tests {
     use super::*;
 
     /// A row of vertices at x = 0, 0.25, ..., 2 all lifted by 1, the one
-    /// at 0 held: each other one goes s(x / 1) of the way, the closed form
-    /// t²(3 − 2t), and from x = 1 on all the way.
+    /// at 0 held: each other one goes 1 − (1 − x²)² of the way, and from
+    /// x = 1 on all the way.
     #[test]
-    fn motion_ramps_by_smoothstep_of_the_distance_to_a_held_vertex() {
+    fn motion_ramps_up_by_the_smooth_falloff_of_the_distance_to_a_held_vertex() {
         let start: Vec<DVec3> = (0..9).map(|i| DVec3::X * (0.25 * f64::from(i))).collect();
         let end: Vec<DVec3> = start.iter().map(|p| *p + DVec3::Z).collect();
         let mut held = vec![false; 9];
@@ -88,10 +90,8 @@ mod tests {
         for i in 1..9 {
             let t = (0.25 * i as f64).min(1.0);
             let rise = eased[i].z;
-            assert!(
-                (rise - t * t * (3.0 - 2.0 * t)).abs() < 1e-12,
-                "{i}: {rise}"
-            );
+            let share = 1.0 - (1.0 - t * t) * (1.0 - t * t);
+            assert!((rise - share).abs() < 1e-12, "{i}: {rise}");
             assert_eq!((eased[i].x, eased[i].y), (start[i].x, start[i].y));
         }
     }
