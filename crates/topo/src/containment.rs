@@ -222,9 +222,14 @@ pub(crate) fn by_containment(
     let (mut pillows, mut reconnected) = (0, 0);
     if !options.nonmanifold_joins {
         let source_of = |t: usize| sub.triangles[arrangement.source[t].0 as usize];
-        pillows = cancel_opposite(&output, &mut keep, |i, j| {
-            !same_corners(source_of(i), source_of(j))
-        });
+        // Only a triangle with a point the cut made can be half of one.
+        let made = |v: u32| arrangement.origin.get(v as usize) == Some(&u32::MAX);
+        pillows = cancel_opposite(
+            &output,
+            &mut keep,
+            |t| output[t].iter().any(|&v| made(v)),
+            |i, j| !same_corners(source_of(i), source_of(j)),
+        );
         // The edges where sheets meet, with their triangles.
         let around: AroundCurve = (0..arr_edges.len())
             .filter(|&e| arr_edges.triangles(e).len() > 2)

@@ -1165,12 +1165,12 @@ fn trim(
                 if open_ends {
                     let source = &sub.source;
                     let input = |i: usize| input_tris[source.triangle(i) as usize];
-                    report.opposite_pairs_cancelled =
-                        coincident::cancel_opposite(&sub.tris, &mut keep, |i, j| {
-                            i >= first
-                                && j >= first
-                                && !coincident::same_corners(input(i), input(j))
-                        });
+                    report.opposite_pairs_cancelled = coincident::cancel_opposite(
+                        &sub.tris,
+                        &mut keep,
+                        |i| i >= first,
+                        |i, j| !coincident::same_corners(input(i), input(j)),
+                    );
                     report.crossings_reconnected = crossings::reconnect(
                         &mut sub.tris,
                         &mut keep,
