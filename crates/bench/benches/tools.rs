@@ -4,8 +4,8 @@
 //! cargo bench -p holey-bench --bench tools
 
 use divan::{Bencher, black_box};
-use holey_dlfl::Mesh;
 use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
+use holey_dlfl::{FaceId, Mesh};
 use holey_model::extrude::{ExtrudeParams, extrude_face, stellate_face};
 use holey_model::handle::{HandleParams, create_handle};
 use holey_model::hull::{convex_hull, dual_convex_hull};
@@ -32,6 +32,20 @@ fn primitive(spec: &str) -> Mesh {
 /// what `run` returns is dropped, outside the timing.
 fn on_copies<O>(bencher: Bencher, base: &Mesh, run: impl Fn(Mesh) -> O) {
     bencher.with_inputs(|| base.clone()).bench_local_values(run);
+}
+
+/// Times `edit` applied to every face of `base` (the faces it had before
+/// the first edit), on a fresh copy per sample as [`on_copies`] makes;
+/// each sample returns the copy's face count. For the per-face tools,
+/// which run one face at a time and must not see the faces they add.
+fn on_every_face<O>(bencher: Bencher, base: &Mesh, edit: impl Fn(&mut Mesh, FaceId) -> O) {
+    let faces: Vec<FaceId> = base.faces().collect();
+    on_copies(bencher, base, |mut m| {
+        for &f in &faces {
+            let _ = black_box(edit(&mut m, f));
+        }
+        m.face_count()
+    });
 }
 
 /// Times `make`, a tool that builds a new mesh from `base`; each sample
@@ -163,14 +177,8 @@ fn torus_128() -> Mesh {
 #[divan::bench(sample_count = 3)]
 fn extrude_every_face_15_rings_to_1m(bencher: Bencher) {
     let base = torus_128();
-    let faces: Vec<_> = base.faces().collect();
-    on_copies(bencher, &base, |mut m| {
-        let params = ExtrudeParams::new(0.001, 15);
-        for &f in &faces {
-            let _ = black_box(extrude_face(&mut m, f, &params));
-        }
-        m.face_count()
-    });
+    let params = ExtrudeParams::new(0.001, 15);
+    on_every_face(bencher, &base, |m, f| extrude_face(m, f, &params));
 }
 
 /// Every face of a 256 × 256 torus stellated (each quad fans into 4
@@ -178,13 +186,7 @@ fn extrude_every_face_15_rings_to_1m(bencher: Bencher) {
 #[divan::bench(sample_count = 3)]
 fn stellate_every_face_of_a_256_torus(bencher: Bencher) {
     let base = primitive("@torus:256:256");
-    let faces: Vec<_> = base.faces().collect();
-    on_copies(bencher, &base, |mut m| {
-        for &f in &faces {
-            let _ = black_box(stellate_face(&mut m, f, 0.001));
-        }
-        m.face_count()
-    });
+    on_every_face(bencher, &base, |m, f| stellate_face(m, f, 0.001));
 }
 
 /// The wireframe of a 320 × 320 torus: 4E + 2V = 10 · 320² ≈ 1.02M

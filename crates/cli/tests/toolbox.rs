@@ -75,13 +75,18 @@ impl Dir {
     }
 }
 
+/// Runs `holey ARGS EXTRA…`, which must succeed, and gives the counts of
+/// the mesh it wrote to `out`: the tool tests' one way of running a
+/// command with the options a case adds.
+fn ok_then_counts(args: &[&str], extra: &[&str], out: &str) -> Counts {
+    ok(&[args, extra].concat());
+    counts(out)
+}
+
 /// `holey remesh IN OUT --scheme S [extra]` and the output's counts.
 fn remesh(dir: &Dir, input: &str, scheme: &str, extra: &[&str]) -> Counts {
     let out = dir.path(&format!("{}.dlfl", scheme.replace('.', "_")));
-    let mut args = vec!["remesh", input, &out, "--scheme", scheme];
-    args.extend_from_slice(extra);
-    ok(&args);
-    counts(&out)
+    ok_then_counts(&["remesh", input, &out, "--scheme", scheme], extra, &out)
 }
 
 // ---------------------------------------------------------------- remesh
@@ -414,10 +419,7 @@ fn remesh_refusals() {
 fn extrude_cube(d: &Dir, extra: &[&str]) -> (i64, i64, i64) {
     let before = counts("@cube");
     let out = d.path("extruded.dlfl");
-    let mut args = vec!["extrude", "@cube", &out, "--faces", "0"];
-    args.extend_from_slice(extra);
-    ok(&args);
-    let after = counts(&out);
+    let after = ok_then_counts(&["extrude", "@cube", &out, "--faces", "0"], extra, &out);
     assert_eq!(
         (after.genus, after.components, after.loops),
         (0, 1, 0),

@@ -1099,15 +1099,27 @@ mod tests {
         out
     }
 
-    /// Four f32 positions (the unit tetrahedron's corners), then u16
-    /// indices of two triangles: 48 + 12 bytes.
-    fn tetra_bin() -> Vec<u8> {
+    /// `points` as a buffer holds VEC3 float positions (little-endian
+    /// f32), each followed by `padding` (the bytes a `byteStride` beyond
+    /// 12 skips): the start of the test buffers built by hand.
+    fn f32_points(points: &[[f32; 3]], padding: &[u8]) -> Vec<u8> {
         let mut b = Vec::new();
-        for p in [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]] {
+        for p in points {
             for x in p {
                 b.extend_from_slice(&x.to_le_bytes());
             }
+            b.extend_from_slice(padding);
         }
+        b
+    }
+
+    /// Four f32 positions (the unit tetrahedron's corners), then u16
+    /// indices of two triangles: 48 + 12 bytes.
+    fn tetra_bin() -> Vec<u8> {
+        let mut b = f32_points(
+            &[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]],
+            &[],
+        );
         for i in [0u16, 1, 2, 0, 2, 3] {
             b.extend_from_slice(&i.to_le_bytes());
         }
@@ -1252,13 +1264,10 @@ mod tests {
     fn index_types_strides_and_modes() {
         // Positions interleaved with padding (stride 16), u8 indices, no
         // indices, strips, fans; points and lines contribute nothing.
-        let mut bin = Vec::new();
-        for p in [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.], [1., 1., 0.]] {
-            for x in p {
-                bin.extend_from_slice(&x.to_le_bytes());
-            }
-            bin.extend_from_slice(&[0xAB; 4]);
-        }
+        let mut bin = f32_points(
+            &[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [1., 1., 0.]],
+            &[0xAB; 4],
+        );
         bin.extend_from_slice(&[0u8, 1, 2, 3]);
         let json = r#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
             "buffers":[{"byteLength":68}],

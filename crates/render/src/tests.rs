@@ -23,6 +23,17 @@ fn opts(width: u32, height: u32) -> RenderOptions {
     }
 }
 
+/// One polygon in the plane y = 0 through `corners`, given as (x, z) in
+/// order: the flat test pieces `View::Front` sees head-on.
+fn front_polygon(corners: impl IntoIterator<Item = (f64, f64)>) -> PolyMesh {
+    let positions: Vec<DVec3> = corners
+        .into_iter()
+        .map(|(x, z)| DVec3::new(x, 0.0, z))
+        .collect();
+    let face: Vec<u32> = (0..positions.len() as u32).collect();
+    PolyMesh::from_faces(positions, [face])
+}
+
 fn pixels(img: &Image) -> impl Iterator<Item = (u32, u32, Rgba)> + '_ {
     (0..img.height()).flat_map(move |y| {
         (0..img.width()).map(move |x| (x, y, img.pixel(x, y).unwrap_or_default()))
@@ -248,24 +259,11 @@ fn edges_show_only_where_visible() {
 /// light centres with edges on.
 #[test]
 fn edges_follow_polygon_boundaries_not_fans() {
-    let square = PolyMesh::from_faces(
-        vec![
-            DVec3::new(-1.0, 0.0, -1.0),
-            DVec3::new(1.0, 0.0, -1.0),
-            DVec3::new(1.0, 0.0, 1.0),
-            DVec3::new(-1.0, 0.0, 1.0),
-        ],
-        [[0u32, 1, 2, 3]],
-    );
-    let hexagon = PolyMesh::from_faces(
-        (0..6)
-            .map(|k| {
-                let a = f64::from(k) * std::f64::consts::PI / 3.0;
-                DVec3::new(a.cos(), 0.0, a.sin())
-            })
-            .collect(),
-        [[0u32, 1, 2, 3, 4, 5]],
-    );
+    let square = front_polygon([(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]);
+    let hexagon = front_polygon((0..6).map(|k| {
+        let a = f64::from(k) * std::f64::consts::PI / 3.0;
+        (a.cos(), a.sin())
+    }));
     let o = RenderOptions {
         view: View::Front,
         edges: true,
@@ -553,14 +551,7 @@ fn creases_stay_sharp() {
 /// Per-vertex colours are interpolated across the face.
 #[test]
 fn vertex_colours_blend() {
-    let tri = PolyMesh::from_faces(
-        vec![
-            DVec3::new(-1.0, 0.0, -1.0),
-            DVec3::new(1.0, 0.0, -1.0),
-            DVec3::new(0.0, 0.0, 1.0),
-        ],
-        [[0u32, 1, 2]],
-    );
+    let tri = front_polygon([(-1.0, -1.0), (1.0, -1.0), (0.0, 1.0)]);
     let colors = [[255, 0, 0], [0, 255, 0], [0, 0, 255]];
     let o = RenderOptions {
         view: View::Front,

@@ -605,6 +605,19 @@ mod tests {
         assert_eq!(encode_masked(&d, 0, 2, None, None), encode(&d, 0, 2, None));
     }
 
+    /// One section of a patch frame starting at word `*at`, as PROTOCOL.md
+    /// lays out all three (positions, triangles, edges): a count `n`, the
+    /// `n` slots it rewrites, then `words_per_slot · n` words of data.
+    /// Gives the slots and the word where their data starts, and moves
+    /// `*at` past the section, so the oracle reads the layout in one place.
+    fn patch_section(b: &[u8], at: &mut usize, words_per_slot: usize) -> (Vec<usize>, usize) {
+        let n = word(b, *at) as usize;
+        let slots = (0..n).map(|j| word(b, *at + 1 + j) as usize).collect();
+        let data = *at + 1 + n;
+        *at = data + words_per_slot * n;
+        (slots, data)
+    }
+
     /// Applies a patch frame to what a page holds (`old`): an oracle
     /// written from the layout in PROTOCOL.md, apart from the encoder.
     /// Slots the patch must fill start as `u32::MAX`/NaN, so a new slot it
@@ -627,37 +640,29 @@ mod tests {
         d.edges.resize(ne, [u32::MAX; 2]);
         d.faces = nf;
         let mut at = 11;
-        let k = word(b, at) as usize;
-        at += 1;
-        for j in 0..k {
-            let v = word(b, at + j) as usize;
-            let p = at + k + 3 * j;
+        let (moved, data) = patch_section(b, &mut at, 3);
+        for (j, &v) in moved.iter().enumerate() {
+            let p = data + 3 * j;
             d.positions[v] = DVec3::new(
                 f64::from(f32_at(p)),
                 f64::from(f32_at(p + 1)),
                 f64::from(f32_at(p + 2)),
             );
         }
-        at += 4 * k;
-        let m = word(b, at) as usize;
-        at += 1;
-        for j in 0..m {
-            let t = word(b, at + j) as usize;
-            let c = at + m + 3 * j;
+        let (triangles, data) = patch_section(b, &mut at, 4);
+        let faces_at = data + 3 * triangles.len();
+        for (j, &t) in triangles.iter().enumerate() {
+            let c = data + 3 * j;
             d.triangles[t] = [word(b, c), word(b, c + 1), word(b, c + 2)];
-            d.triangle_face[t] = word(b, at + 4 * m + j);
+            d.triangle_face[t] = word(b, faces_at + j);
         }
-        at += 5 * m;
-        let q = word(b, at) as usize;
-        at += 1;
-        for j in 0..q {
-            let e = word(b, at + j) as usize;
-            let c = at + q + 2 * j;
+        let (edges, data) = patch_section(b, &mut at, 2);
+        for (j, &e) in edges.iter().enumerate() {
+            let c = data + 2 * j;
             d.edges[e] = [word(b, c), word(b, c + 1)];
         }
-        at += 3 * q;
         let mask_bytes = if flags & FLAG_SCULPT_MASK != 0 {
-            k.div_ceil(4) * 4
+            moved.len().div_ceil(4) * 4
         } else {
             0
         };
