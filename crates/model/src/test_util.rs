@@ -10,6 +10,20 @@ pub(crate) fn prim(spec: &str) -> Mesh {
     to_dlfl(&poly, ImportOptions::default()).unwrap().mesh
 }
 
+/// `@cube` with every original edge split by `split` (a subdivision or a
+/// trisection): the cube's shape with valence-2 vertices along its edges,
+/// which the hull and the mesh tools must see through or remove.
+pub(crate) fn cube_with_split_edges<T>(
+    split: impl Fn(&mut Mesh, EdgeId) -> holey_dlfl::Result<T>,
+) -> Mesh {
+    let mut m = prim("@cube");
+    let edges: Vec<EdgeId> = m.edges().collect();
+    for e in edges {
+        split(&mut m, e).unwrap();
+    }
+    m
+}
+
 /// (V, E, F, components, genus) of `m`: what an operator's counting
 /// formula predicts.
 pub(crate) type State = (i64, i64, i64, usize, i64);

@@ -7,6 +7,7 @@
 #![allow(clippy::unwrap_used)] // test helpers: a failure is a test failure
 
 use std::collections::HashSet;
+use std::path::Path;
 
 use glam::DVec3;
 use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
@@ -18,16 +19,23 @@ use holey_model::handle::{
 };
 use holey_model::numbering::Numbering;
 
-/// A mesh file of the shared folder as a kernel mesh and its file-order
-/// numbering, or `None` (after a SKIP line) when the folder is absent.
-fn shared(test: &str, name: &str) -> Option<(Mesh, Numbering)> {
-    let dir = holey_testkit::shared_meshes_or_skip(test)?;
+/// The mesh file `name` of the shared folder `dir` (from
+/// [`holey_testkit::shared_meshes_or_return`]) as a kernel mesh and its
+/// file-order numbering.
+fn shared(dir: &Path, name: &str) -> (Mesh, Numbering) {
     let MeshFile::Poly(soup) = holey_io::read_path(&dir.join(name)).unwrap() else {
         panic!("{name} is not a polygon file");
     };
-    Some(Numbering::from_import(
-        to_dlfl(&soup, ImportOptions::default()).unwrap(),
-    ))
+    Numbering::from_import(to_dlfl(&soup, ImportOptions::default()).unwrap())
+}
+
+/// The error of a multi-face handle on `sel` in a copy of `m0`, after
+/// checking that the refused call left the copy as it was.
+fn refusal(m0: &Mesh, sel: &[FaceId], params: &MultiHandleParams) -> MultiHandleError {
+    let mut m = m0.clone();
+    let err = create_multi_face_handle(&mut m, sel, params).unwrap_err();
+    assert_eq!(m.to_raw(), m0.to_raw(), "a refusal changes nothing");
+    err
 }
 
 /// The soup `holey` writes for `mesh` (its non-hole faces).
@@ -75,20 +83,16 @@ fn fan_planes(mesh: &Mesh, f: FaceId) -> Vec<(DVec3, DVec3)> {
 
 #[test]
 fn spot_faces_looking_outward_are_refused_naming_faces_with_no_common_view() {
-    let Some((m0, numbering)) = shared(
-        "spot_faces_looking_outward_are_refused_naming_faces_with_no_common_view",
-        "spot_control_mesh.obj",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "spot_faces_looking_outward_are_refused_naming_faces_with_no_common_view"
+    );
+    let (m0, numbering) = shared(&dir, "spot_control_mesh.obj");
     // The selection: horns, ears, a hoof, the tail end and the
     // muzzle, each looking outward. TopMod's hub went inside the cow and
     // the result had 329 crossing pairs; now it is refused.
     let sel = faces(&numbering, &[39, 129, 59, 26, 89, 56]);
     let p = MultiHandleParams::new(HandleParams::new(3, 1.0, 1.0), 0.3);
-    let mut m = m0.clone();
-    let err = create_multi_face_handle(&mut m, &sel, &p).unwrap_err();
-    assert_eq!(m.to_raw(), m0.to_raw(), "a refusal changes nothing");
+    let err = refusal(&m0, &sel, &p);
     let MultiHandleError::NoCommonView(named) = &err else {
         panic!("{err}");
     };
@@ -126,12 +130,10 @@ fn spot_faces_looking_outward_are_refused_naming_faces_with_no_common_view() {
 
 #[test]
 fn spot_handles_to_a_hub_above_its_head_do_not_cross() {
-    let Some((m0, numbering)) = shared(
-        "spot_handles_to_a_hub_above_its_head_do_not_cross",
-        "spot_quadrangulated.obj",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "spot_handles_to_a_hub_above_its_head_do_not_cross"
+    );
+    let (m0, numbering) = shared(&dir, "spot_quadrangulated.obj");
     // Six quads around a point above the cow's head and neck (a horn,
     // both ears, the top of the head, the neck, the back): each looks at
     // that point, and it lies inside their centroids' hull.
@@ -160,21 +162,17 @@ fn spot_handles_to_a_hub_above_its_head_do_not_cross() {
 
 #[test]
 fn spot_faces_too_large_for_their_gap_are_refused_for_crossing() {
-    let Some((m0, numbering)) = shared(
-        "spot_faces_too_large_for_their_gap_are_refused_for_crossing",
-        "spot_control_mesh.obj",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "spot_faces_too_large_for_their_gap_are_refused_for_crossing"
+    );
+    let (m0, numbering) = shared(&dir, "spot_control_mesh.obj");
     // Six faces of the coarse cow that do see a common point under its
     // chest (between the front legs), but the quads on the legs' inner
     // sides are wider than the gap between the legs: the handles' sections
     // cannot pass, and the exact check refuses them.
     let sel = faces(&numbering, &[33, 123, 145, 35, 125, 133]);
-    let mut m = m0.clone();
     let p = MultiHandleParams::new(HandleParams::new(4, 0.3, 0.3), 0.2);
-    let err = create_multi_face_handle(&mut m, &sel, &p).unwrap_err();
-    assert_eq!(m.to_raw(), m0.to_raw());
+    let err = refusal(&m0, &sel, &p);
     let MultiHandleError::Crosses { faces, pairs } = &err else {
         panic!("{err}");
     };
@@ -229,10 +227,8 @@ fn a_body_between_the_faces_and_the_hub_blocks_the_view() {
         .iter()
         .map(|&a| face_towards(&m0, -a, a * 3.0))
         .collect();
-    let mut m = m0.clone();
     let p = MultiHandleParams::new(HandleParams::new(3, 0.5, 0.5), 0.5);
-    let err = create_multi_face_handle(&mut m, &sel, &p).unwrap_err();
-    assert_eq!(m.to_raw(), m0.to_raw());
+    let err = refusal(&m0, &sel, &p);
     let MultiHandleError::Blocked { face, by, .. } = err else {
         panic!("{err}");
     };
@@ -260,10 +256,8 @@ fn faces_all_looking_one_way_are_refused_as_one_sided() {
     let grid = holey_shapes::parse_primitive("@plane:4:4").unwrap();
     let (m0, numbering) = Numbering::from_import(to_dlfl(&grid, ImportOptions::default()).unwrap());
     let sel = faces(&numbering, &[0, 3, 12, 15]);
-    let mut m = m0.clone();
     let p = MultiHandleParams::new(HandleParams::new(3, 0.5, 0.5), 0.5);
-    let err = create_multi_face_handle(&mut m, &sel, &p).unwrap_err();
-    assert_eq!(m.to_raw(), m0.to_raw());
+    let err = refusal(&m0, &sel, &p);
     assert_eq!(err, MultiHandleError::OneSided(sel.clone()), "{err}");
     // The six faces of one cube look away from each other: no point is in
     // front of two opposite faces, so a pair of them is named.

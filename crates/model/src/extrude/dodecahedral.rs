@@ -4,7 +4,7 @@
 //! walls are two rings of pentagons: a regular pentagon grows a regular
 //! dodecahedron.
 
-use holey_dlfl::{DVec3, EdgeId, FaceId, Mesh};
+use holey_dlfl::{CornerId, DVec3, EdgeId, FaceId, Mesh};
 
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
@@ -12,6 +12,49 @@ use super::{ExtrudeError, Extruded, check_rings, solid_base, turned_ring};
 
 /// The golden ratio.
 pub(crate) const PHI: f64 = 1.618_033_988_749_895;
+
+/// The base face of a golden extrusion (dodecahedral or icosahedral) and
+/// what both place their rings by: the layers of either solid stand at
+/// heights `0, h, φh, φ²h` over the base (`h = height_factor·R`, `R` the
+/// base's mean circumradius) and both end in the same top, the base
+/// turned half a step at height `φ²h`.
+pub(crate) struct GoldenBase {
+    /// The base's corners from [`Mesh::face_corner`].
+    pub corners: Vec<CornerId>,
+    /// Their positions.
+    pub points: Vec<DVec3>,
+    /// The base's centroid.
+    pub centre: DVec3,
+    /// The base's unit normal.
+    pub normal: DVec3,
+    /// The height step `h`.
+    pub h: f64,
+}
+
+impl GoldenBase {
+    /// The checked base `face` for `height_factor` (see [`solid_base`]).
+    pub fn new(mesh: &Mesh, face: FaceId, height_factor: f64) -> Result<Self, ExtrudeError> {
+        let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
+        Ok(GoldenBase {
+            corners,
+            points,
+            centre: frame.centroid,
+            normal: frame.normal,
+            h: height_factor * frame.radius,
+        })
+    }
+
+    /// The base turned half a step, scaled by `scale` about the centre and
+    /// lifted by `height` (see [`turned_ring`]).
+    pub fn turned(&self, scale: f64, height: f64) -> Vec<DVec3> {
+        turned_ring(&self.points, self.centre, self.normal, scale, height)
+    }
+
+    /// The top both solids end in: the base turned half a step, at `φ²h`.
+    pub fn top(&self) -> Vec<DVec3> {
+        self.turned(1.0, PHI * PHI * self.h)
+    }
+}
 
 /// Dodecahedral extrusion of `face`.
 ///
@@ -33,14 +76,17 @@ pub fn extrude_face_dodecahedral(
     face: FaceId,
     height_factor: f64,
 ) -> Result<Extruded, ExtrudeError> {
-    let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
-    let (c, n) = (frame.centroid, frame.normal);
-    let h = height_factor * frame.radius;
-    let ring1: Vec<DVec3> = points.iter().map(|&p| c + (p - c) * PHI + n * h).collect();
-    let mids = turned_ring(&points, c, n, PHI, PHI * h);
-    let ring3 = turned_ring(&points, c, n, 1.0, PHI * PHI * h);
+    let base = GoldenBase::new(mesh, face, height_factor)?;
+    let (c, n, h) = (base.centre, base.normal, base.h);
+    let ring1: Vec<DVec3> = base
+        .points
+        .iter()
+        .map(|&p| c + (p - c) * PHI + n * h)
+        .collect();
+    let mids = base.turned(PHI, PHI * h);
+    let ring3 = base.top();
     check_rings(face, &[&ring1, &mids, &ring3])?;
-    let first = extrude_to(mesh, face, corners[0], &ring1)?;
+    let first = extrude_to(mesh, face, base.corners[0], &ring1)?;
     let first_top = face_edges(mesh, first.top)?;
     let second = dual_extrude_at(mesh, first.top_start, &mids)?;
     // Each old top edge lies between a quad of ring 1 and the triangle on

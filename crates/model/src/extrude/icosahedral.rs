@@ -6,11 +6,11 @@
 
 use holey_dlfl::{DVec3, FaceId, Mesh};
 
-use super::dodecahedral::{PHI, face_edges};
+use super::dodecahedral::{GoldenBase, PHI, face_edges};
 use super::octahedral::dual_extrude_at;
 use super::plain::extrude_to;
 use super::stellate::stellate_at;
-use super::{ExtrudeError, Extruded, check_rings, solid_base, turned_ring};
+use super::{ExtrudeError, Extruded, check_rings};
 
 /// Icosahedral extrusion of `face`.
 ///
@@ -31,17 +31,17 @@ pub fn extrude_face_icosahedral(
     face: FaceId,
     height_factor: f64,
 ) -> Result<Extruded, ExtrudeError> {
-    let (corners, points, frame) = solid_base(mesh, face, height_factor)?;
-    let (c, n) = (frame.centroid, frame.normal);
-    let h = height_factor * frame.radius;
+    let base = GoldenBase::new(mesh, face, height_factor)?;
+    let (c, n, h) = (base.centre, base.normal, base.h);
+    let points = &base.points;
     let d = points.len();
-    let mids = turned_ring(&points, c, n, PHI, h);
+    let mids = base.turned(PHI, h);
     let apexes: Vec<DVec3> = (0..d)
         .map(|i| c + (points[(i + 1) % d] - c) * PHI + n * (PHI * h))
         .collect();
-    let ring = turned_ring(&points, c, n, 1.0, PHI * PHI * h);
+    let ring = base.top();
     check_rings(face, &[&mids, &apexes, &ring])?;
-    let dual = dual_extrude_at(mesh, corners[0], &mids)?;
+    let dual = dual_extrude_at(mesh, base.corners[0], &mids)?;
     let dual_top = face_edges(mesh, dual.top)?;
     let last = extrude_to(mesh, dual.top, dual.top_start, &ring)?;
     // Each dual-top edge lies between a corner triangle and a quad of the

@@ -4,7 +4,7 @@
 //! polytope, both by Euler's formula), convexity and containment checked
 //! face by face, refusals.
 
-use crate::test_util::{counts, prim};
+use crate::test_util::{counts, cube_with_split_edges, prim};
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
@@ -192,11 +192,7 @@ fn inner_points_and_points_on_faces_and_edges_are_not_corners() {
     // Every edge of the cube split at its midpoint, a point inside, and
     // point-spheres at the centre of the top face and of a top edge: the
     // hull is the cube, 8/12/6.
-    let mut m = prim("@cube");
-    let edges: Vec<_> = m.edges().collect();
-    for e in edges {
-        m.subdivide_edge(e).unwrap();
-    }
+    let mut m = cube_with_split_edges(Mesh::subdivide_edge);
     for p in [
         DVec3::ZERO,
         DVec3::new(0.0, 0.0, 1.0),

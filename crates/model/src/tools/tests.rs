@@ -2,7 +2,7 @@
 //! definitions, counts worked out per tool, refusals leaving the mesh
 //! unchanged.
 
-use crate::test_util::{counts, prim, unchanged};
+use crate::test_util::{counts, cube_with_split_edges, prim, unchanged};
 use holey_dlfl::{DVec3, Mesh};
 use holey_testkit::Rng;
 
@@ -142,18 +142,9 @@ fn cleanup_two_gons_merges_edges() {
     assert_eq!(cleanup_two_gons(&mut m), 0);
 }
 
-fn subdivided_cube() -> Mesh {
-    let mut m = prim("@cube");
-    let edges: Vec<EdgeId> = m.edges().collect();
-    for e in edges {
-        m.subdivide_edge(e).unwrap();
-    }
-    m
-}
-
 #[test]
 fn valence_two_vertices_are_removed_and_split() {
-    let m0 = subdivided_cube();
+    let m0 = cube_with_split_edges(Mesh::subdivide_edge);
     assert_eq!(counts(&m0), (20, 24, 6));
     let mut m = m0.clone();
     // Each removal: −1 vertex, −1 edge.
@@ -198,11 +189,7 @@ fn valence_two_vertices_are_removed_and_split() {
 #[test]
 fn adjacent_valence_two_vertices_split_cleanly() {
     // Trisected edges: two valence-2 vertices next to each other.
-    let mut m = prim("@cube");
-    let edges: Vec<EdgeId> = m.edges().collect();
-    for e in edges {
-        m.trisect_edge(e).unwrap();
-    }
+    let mut m = cube_with_split_edges(Mesh::trisect_edge);
     assert_eq!(counts(&m), (32, 36, 6));
     let n = split_valence_two_vertices(&mut m, 0.1).unwrap();
     assert_eq!(n, 24);
