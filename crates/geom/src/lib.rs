@@ -15,6 +15,7 @@
 //! | [`identity`] | identities by exact position class (welded in the perturbed world) or by index |
 //! | [`intersect`] | segment × triangle, triangle × triangle segment, triple points, order of crossings along a segment |
 //! | [`construct`] | coordinates and barycentric coordinates of edge × triangle and triple points, correctly rounded from exact values |
+//! | [`distance`] | floating-point point–segment distance, for brushes and for filters in front of the exact tests |
 //! | [`dd`] | double-double values with error bounds: the certified fast path of the constructions (bit-identical results, exact fallback) |
 //! | [`bvh`] | median-split BVH: box queries, streamed batches, self-overlap, refit |
 //! | [`frame`] | the frame in which a turned CAD mesh's triangle boxes are tight (its dominant normal and edge direction), each box widened by its rounding bound |
@@ -44,6 +45,7 @@ pub mod bvh;
 pub mod ccd;
 pub mod construct;
 pub mod dd;
+pub mod distance;
 pub mod error;
 pub mod expansion;
 pub mod frame;

@@ -322,6 +322,21 @@ impl TriMesh {
             self.positions[c as usize],
         ]
     }
+
+    /// Area of triangle `t`: half the length of the cross product of two of
+    /// its edges (the parallelogram they span, halved).
+    pub fn triangle_area(&self, t: usize) -> f64 {
+        let [a, b, c] = self.corners(t);
+        0.5 * (b - a).cross(c - a).length()
+    }
+
+    /// Total surface area: the sum of [`TriMesh::triangle_area`] over the
+    /// triangles, in order. Overlapping or coincident triangles each count.
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| self.triangle_area(t))
+            .sum()
+    }
 }
 
 /// Per vertex of `n`: 0 where some triangle uses it, `u32::MAX` elsewhere.
@@ -635,6 +650,15 @@ mod tests {
             positions: vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
             triangles: vec![[0, 1, 2], [0, 2, 3]],
         }
+    }
+
+    #[test]
+    fn area_sums_the_triangles() {
+        // The unit square as two right triangles of area ½ each.
+        let m = quad();
+        assert_eq!(m.triangle_area(0), 0.5);
+        assert_eq!(m.area(), 1.0);
+        assert_eq!(TriMesh::default().area(), 0.0);
     }
 
     #[test]

@@ -15,6 +15,7 @@
 use std::time::Instant;
 
 use glam::DVec3;
+use holey_geom::distance::point_segment_distance;
 use holey_geom::position_key;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
@@ -187,7 +188,7 @@ impl Dab {
     fn within(self, p: DVec3, radius: f64) -> bool {
         match self {
             Dab::At(c) => p.distance(c) < radius,
-            Dab::Pull(a, b) => distance_to_segment(p, a, b) < radius,
+            Dab::Pull(a, b) => point_segment_distance(p, a, b) < radius,
         }
     }
 
@@ -636,7 +637,9 @@ impl LiveStroke {
             // The stretched region of a grab: within the radius of the
             // segment from the picked point to where it was dragged.
             let radius = self.settings.radius;
-            let active = remesh_active(&mesh, |p| distance_to_segment(p, tube.0, tube.1) < radius);
+            let active = remesh_active(&mesh, |p| {
+                point_segment_distance(p, tube.0, tube.1) < radius
+            });
             if active.contains(&true) {
                 let r = remesh_in_place_checked(&mut mesh, &active, opts).map_err(|source| {
                     SculptError::Remesh {
@@ -1320,17 +1323,6 @@ fn check_pick(
 /// blended into the rest.
 pub fn move_falloff(distance: f64, radius: f64) -> f64 {
     crate::brush::falloff::plateau(distance, radius)
-}
-
-fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
 }
 
 /// Remeshing operations counted over a stroke.

@@ -52,9 +52,18 @@ impl Rng {
     /// Uniform in the cube [lo, hi)³, drawn x, then y, then z (so it gives
     /// the numbers three calls of [`Rng::range`] would).
     pub fn point(&mut self, lo: f64, hi: f64) -> [f64; 3] {
-        let x = self.range(lo, hi);
-        let y = self.range(lo, hi);
-        let z = self.range(lo, hi);
+        self.in_box([lo; 3], [hi; 3])
+    }
+
+    /// Uniform in the axis-aligned box from `lo` to `hi` (each coordinate
+    /// in [lo, hi)), drawn x, then y, then z: the numbers three calls of
+    /// [`Rng::range`] would give. Sampling a box this way is how the tests
+    /// estimate volumes (the share of points inside) and check
+    /// classifications at random points.
+    pub fn in_box(&mut self, lo: [f64; 3], hi: [f64; 3]) -> [f64; 3] {
+        let x = self.range(lo[0], hi[0]);
+        let y = self.range(lo[1], hi[1]);
+        let z = self.range(lo[2], hi[2]);
         [x, y, z]
     }
 

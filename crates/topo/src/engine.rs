@@ -18,8 +18,8 @@ use crate::correct::{Graph, Scheme, correct};
 use crate::cut::{Cut, CutReport, Deletion, cut, mixed_curves};
 use crate::drag_path::{DragPath, Keyframes, Numbering, PathSampler};
 use crate::intersect::{
-    Intersections, Node, PointKind, default_pair_limit, intersections, intersections_limited,
-    pair_count_at, pairs_intersect_at,
+    Intersections, Node, PointKind, cut_edges_at_shared, default_pair_limit, intersections,
+    intersections_limited, pair_count_at, pairs_intersect_at, shared_ids,
 };
 use crate::mesh::{Edges, MeshError, TriMesh, check_positions};
 use crate::orient::orient_consistently;
@@ -319,35 +319,24 @@ fn new_cut_edges(x: &Intersections, edges: &Edges, ids: &[u32], old: &[bool]) ->
     if !old.contains(&true) {
         return x.cut_edges.clone();
     }
+    let new_pieces = || {
+        x.pieces
+            .iter()
+            .zip(&x.curve_of_piece)
+            .filter(|&(_, &c)| !old[c as usize])
+            .map(|(piece, _)| piece)
+    };
     let mut cut = vec![false; edges.len()];
-    let mut shared: Vec<u32> = Vec::new();
-    for (piece, &c) in x.pieces.iter().zip(&x.curve_of_piece) {
-        if old[c as usize] {
-            continue;
-        }
+    for piece in new_pieces() {
         for node in piece.ends {
-            match node {
-                Node::Point(i) => {
-                    if let PointKind::EdgeTri { edge, .. } = x.points[i as usize].kind {
-                        cut[edge as usize] = true;
-                    }
-                }
-                Node::Shared(id) => shared.push(id),
-            }
-        }
-    }
-    if !shared.is_empty() {
-        shared.sort_unstable();
-        shared.dedup();
-        for (e, ends) in edges.ends.iter().enumerate() {
-            if ends
-                .iter()
-                .any(|&v| shared.binary_search(&ids[v as usize]).is_ok())
+            if let Node::Point(i) = node
+                && let PointKind::EdgeTri { edge, .. } = x.points[i as usize].kind
             {
-                cut[e] = true;
+                cut[edge as usize] = true;
             }
         }
     }
+    cut_edges_at_shared(edges, ids, &shared_ids(new_pieces()), &mut cut);
     cut
 }
 

@@ -1408,18 +1408,26 @@ fn cut_edge_flags(points: &[IPoint], pieces: &[Piece], edges: &Edges, ids: &[u32
     // point, or sheets meeting at a welded vertex) puts that vertex on the
     // curve even after perturbation: it has no side, so its edges carry no
     // coupling either.
-    let shared = shared_ids(pieces);
-    if !shared.is_empty() {
-        for (e, ends) in edges.ends.iter().enumerate() {
-            if ends
-                .iter()
-                .any(|&v| shared.binary_search(&ids[v as usize]).is_ok())
-            {
-                cut_edges[e] = true;
-            }
+    cut_edges_at_shared(edges, ids, &shared_ids(pieces), &mut cut_edges);
+    cut_edges
+}
+
+/// Marks in `cut` the mesh edges with an end whose identity (in `ids`) is
+/// one of `shared` (sorted, as [`shared_ids`] gives them): a curve through
+/// a vertex keeps it on the curve even after perturbation, so the vertex
+/// has no side and its edges carry no coupling.
+pub(crate) fn cut_edges_at_shared(edges: &Edges, ids: &[u32], shared: &[u32], cut: &mut [bool]) {
+    if shared.is_empty() {
+        return;
+    }
+    for (e, ends) in edges.ends.iter().enumerate() {
+        if ends
+            .iter()
+            .any(|&v| shared.binary_search(&ids[v as usize]).is_ok())
+        {
+            cut[e] = true;
         }
     }
-    cut_edges
 }
 
 /// The identities of the vertices that curve pieces pass through

@@ -18,6 +18,8 @@
 
 use glam::DVec3;
 
+use crate::distance::point_segment_distance;
+
 /// Rounding allowance, times the scale of the coordinates involved.
 const ROUNDING: f64 = 1e-9;
 
@@ -73,17 +75,6 @@ fn point_triangle_distance(p: DVec3, t: [DVec3; 3]) -> f64 {
     (0..3)
         .map(|k| point_segment_distance(p, t[k], t[(k + 1) % 3]))
         .fold(f64::INFINITY, f64::min)
-}
-
-fn point_segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let s = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * s)).length()
 }
 
 /// Distance between the segments `[p0, p1]` and `[q0, q1]`: the minimum
