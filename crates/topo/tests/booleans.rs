@@ -26,6 +26,27 @@ fn check(a: &TriMesh, b: &TriMesh, op: Operation, samples: usize, what: &str) ->
     out
 }
 
+/// Asserts what the shared-mesh cases compare with manifold3d (`Mesh64` on
+/// the same float64 input): `out` is a closed 2-manifold, no edge with more
+/// than two triangles, in `pieces` surface pieces, whose volume is
+/// `volume_want` to within `relative` of it.
+fn assert_manifold_like_manifold3d(
+    out: &TriMesh,
+    pieces: usize,
+    volume_want: f64,
+    relative: f64,
+    what: &str,
+) {
+    assert!(out.is_closed_manifold(), "{what}");
+    assert_eq!(max_edge_degree(out), 2, "{what}");
+    assert_eq!(components(out), pieces, "{what}");
+    let v = volume(out);
+    assert!(
+        (v - volume_want).abs() < relative * volume_want,
+        "{what}: volume {v}"
+    );
+}
+
 /// Two boxes overlapping in general position: every volume has a closed
 /// form. A = [0,1]³, B = [0.3,1.4] × [0.2,1.3] × [0.1,1.2], overlap
 /// 0.7 × 0.8 × 0.9 = 0.504.
@@ -153,11 +174,9 @@ fn open_solids_are_refused_by_name() {
 /// sampled by winding numbers summed in the test follow the rule.
 #[test]
 fn menger_sponge_level3_and_a_turned_copy_give_closed_manifolds() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "menger_sponge_level3_and_a_turned_copy_give_closed_manifolds",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "menger_sponge_level3_and_a_turned_copy_give_closed_manifolds"
+    );
     let a = read_shared(&dir, "menger_sponge_level3.obj");
     let (sin, cos) = 0.3f64.sin_cos();
     let b = map_positions(&a, |p| {
@@ -170,14 +189,7 @@ fn menger_sponge_level3_and_a_turned_copy_give_closed_manifolds() {
     ] {
         let what = format!("sponge {} turned sponge", op.name());
         let out = check(&a, &b, op, 120, &what);
-        assert!(out.is_closed_manifold(), "{what}");
-        assert_eq!(max_edge_degree(&out), 2, "{what}");
-        assert_eq!(components(&out), pieces, "{what}");
-        let v = volume(&out);
-        assert!(
-            (v - volume_want).abs() < 1e-9 * volume_want,
-            "{what}: volume {v}"
-        );
+        assert_manifold_like_manifold3d(&out, pieces, volume_want, 1e-9, &what);
     }
 }
 
@@ -195,11 +207,9 @@ fn menger_sponge_level3_and_a_turned_copy_give_closed_manifolds() {
 /// manifold3d's volume (`Mesh64`, same input: halves of the lattice).
 #[test]
 fn snapped_menger_sponge_and_its_copy_half_a_cell_away_give_closed_manifolds() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "snapped_menger_sponge_and_its_copy_half_a_cell_away_give_closed_manifolds",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "snapped_menger_sponge_and_its_copy_half_a_cell_away_give_closed_manifolds"
+    );
     let sponge = read_shared(&dir, "menger_sponge_level3.obj");
     let a = map_positions(&sponge, |p| ((p + DVec3::splat(0.5)) * 81.0).round());
     let b = translate(&a, DVec3::splat(1.5));
@@ -215,14 +225,7 @@ fn snapped_menger_sponge_and_its_copy_half_a_cell_away_give_closed_manifolds() {
         assert_eq!(report.zero_area_removed, 2 * 36, "{what}");
         assert_eq!(report.perturbation_retries, 0, "{what}");
         let out = check(&a, &b, op, 60, &what);
-        assert!(out.is_closed_manifold(), "{what}");
-        assert_eq!(max_edge_degree(&out), 2, "{what}");
-        assert_eq!(components(&out), 1, "{what}");
-        let v = volume(&out);
-        assert!(
-            (v - volume_want).abs() < 1e-12 * volume_want,
-            "{what}: volume {v}"
-        );
+        assert_manifold_like_manifold3d(&out, 1, volume_want, 1e-12, &what);
     }
 }
 
@@ -299,11 +302,9 @@ fn a_nudged_result_counts_its_own_crossings() {
 /// volume, 0.2776503044188431.
 #[test]
 fn spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex"
+    );
     let a = read_shared(&dir, "spot_triangulated.obj");
     let b = translate(&a, DVec3::new(0.18862080000000003, 0.0, 0.0));
     let out = check(&a, &b, Operation::Difference, 200, "spot − moved spot");
@@ -329,11 +330,9 @@ fn spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex() {
 /// winding-number rule.
 #[test]
 fn spot_and_a_quarter_turned_copy_give_results_that_do_not_cross() {
-    let Some(dir) = holey_testkit::shared_meshes_or_skip(
-        "spot_and_a_quarter_turned_copy_give_results_that_do_not_cross",
-    ) else {
-        return;
-    };
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "spot_and_a_quarter_turned_copy_give_results_that_do_not_cross"
+    );
     let a = read_shared(&dir, "spot_triangulated.obj");
     let (lo, hi) = a
         .positions

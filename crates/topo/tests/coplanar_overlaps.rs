@@ -332,7 +332,7 @@ fn resolve_merges_two_boxes_sharing_face_strips() {
         (report.coplanar_groups_merged, report.coplanar_groups_left),
         (4, 0)
     );
-    let area = common::area(&out);
+    let area = out.area();
     assert!((area - 40.0).abs() <= 1e-12, "area {area}, not 40");
     assert_eq!(overlapping_pairs_brute_force(&out), 0, "overlaps left");
     assert_eq!(holey_topo::coplanar_overlaps(&out), 0);
@@ -365,7 +365,7 @@ fn resolve_merges_stacked_duplicates_into_one_covering() {
         "volume {}",
         volume(&out)
     );
-    assert!((common::area(&out) - 24.0).abs() <= 1e-12);
+    assert!((out.area() - 24.0).abs() <= 1e-12);
 }
 
 /// Two unit boxes in one mesh, the second shifted by (1, ½, 0), so that
@@ -393,7 +393,7 @@ fn resolve_cancels_the_wall_where_two_boxes_touch_face_to_face() {
         "volume {}",
         volume(&out)
     );
-    let area = common::area(&out);
+    let area = out.area();
     assert!((area - 11.0).abs() <= 1e-12, "area {area}");
 }
 
@@ -456,9 +456,9 @@ fn resolve_of_lattice_boxes_merges_without_opening() {
         let (out, _, report) = resolve(&input).expect("resolve");
         common::well_formed(&out);
         assert_eq!(common::boundary(&out).0, 0, "round {round}: opened");
-        let area = common::area(&out);
-        let total: f64 = boxes.iter().map(common::area).sum();
-        let largest = boxes.iter().map(common::area).fold(0.0, f64::max);
+        let area = out.area();
+        let total: f64 = boxes.iter().map(TriMesh::area).sum();
+        let largest = boxes.iter().map(TriMesh::area).fold(0.0, f64::max);
         assert!(
             area <= total + 1e-9 && area >= largest - 1e-9,
             "round {round}: area {area}, boxes {total}, largest {largest}"

@@ -30,10 +30,7 @@ fn coplanar_overlapping_grids() {
         assert!(!out.mesh.triangles.is_empty());
     }
     // Two single coplanar triangles.
-    let t = TriMesh {
-        positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
-        triangles: vec![[0, 1, 2]],
-    };
+    let t = triangle([DVec3::ZERO, DVec3::X, DVec3::Y]);
     let _ = collide(
         &t,
         &translate(&t, DVec3::new(0.25, 0.25, 0.0)),
@@ -43,25 +40,19 @@ fn coplanar_overlapping_grids() {
 
 #[test]
 fn edge_through_vertex_and_edge() {
-    let t = TriMesh {
-        positions: vec![
-            DVec3::new(-1.0, -1.0, 0.0),
-            DVec3::new(1.0, -1.0, 0.0),
-            DVec3::new(0.0, 1.0, 0.0),
-        ],
-        triangles: vec![[0, 1, 2]],
-    };
+    let t = triangle([
+        DVec3::new(-1.0, -1.0, 0.0),
+        DVec3::new(1.0, -1.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+    ]);
     // A vertical triangle whose edge passes exactly through t's vertex 2,
     // then exactly through t's edge 0–1 at its midpoint.
     for hit in [DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, -1.0, 0.0)] {
-        let v = TriMesh {
-            positions: vec![
-                hit + DVec3::new(0.0, 0.0, -1.0),
-                hit + DVec3::new(0.0, 0.0, 1.0),
-                hit + DVec3::new(0.0, 0.5, 2.0),
-            ],
-            triangles: vec![[0, 1, 2]],
-        };
+        let v = triangle([
+            hit + DVec3::new(0.0, 0.0, -1.0),
+            hit + DVec3::new(0.0, 0.0, 1.0),
+            hit + DVec3::new(0.0, 0.5, 2.0),
+        ]);
         let _ = collide(&t, &v, DVec3::new(3.0, 0.0, 0.0));
         let _ = collide(&t, &v, DVec3::ZERO);
     }

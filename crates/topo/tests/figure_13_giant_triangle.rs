@@ -7,8 +7,6 @@
 
 mod common;
 
-use std::collections::HashMap;
-
 use common::*;
 use glam::DVec3;
 use holey_topo::{Options, TriMesh};
@@ -16,30 +14,16 @@ use holey_topo::{Options, TriMesh};
 /// Euler characteristic over used vertices, and the largest number of
 /// triangles on one edge.
 fn euler_and_max_edge_degree(m: &TriMesh) -> (i64, usize) {
-    let mut used = vec![false; m.positions.len()];
-    let mut degree: HashMap<(u32, u32), usize> = HashMap::new();
-    for t in &m.triangles {
-        for k in 0..3 {
-            used[t[k] as usize] = true;
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *degree.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let v = used.iter().filter(|&&u| u).count() as i64;
-    let chi = v - degree.len() as i64 + m.triangles.len() as i64;
-    (chi, degree.values().copied().max().unwrap_or(0))
+    (euler(m), max_edge_degree(m))
 }
 
 #[test]
 fn cylinder_through_one_giant_triangle() {
-    let giant = TriMesh {
-        positions: vec![
-            DVec3::new(-20.0, -17.0, 0.0),
-            DVec3::new(23.0, -15.0, 0.0),
-            DVec3::new(1.0, 21.0, 0.0),
-        ],
-        triangles: vec![[0, 1, 2]],
-    };
+    let giant = triangle([
+        DVec3::new(-20.0, -17.0, 0.0),
+        DVec3::new(23.0, -15.0, 0.0),
+        DVec3::new(1.0, 21.0, 0.0),
+    ]);
     let cylinder = primitive("@cylinder:24:3");
     // From well above the plane (z in [2.1, 4.1]) to halfway through it
     // (z in [-0.9, 1.1]); no cylinder vertex ends on the plane.

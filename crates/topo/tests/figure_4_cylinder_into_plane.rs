@@ -86,7 +86,7 @@ fn check_top_hat(out: &TriMesh, above: bool) {
         1.0 - OFFSET.z
     };
     let expected = 36.0 + perimeter * height;
-    let a = area(out);
+    let a = out.area();
     assert!(
         (a - expected).abs() < 1e-6 * expected,
         "area {a} vs {expected}"

@@ -139,7 +139,7 @@ fn verify(m: &TriMesh, end: &[DVec3], outcome: holey_topo::Outcome) {
     let x = 1.0 - 1.0 / SLOPE;
     let deleted = 0.8 * (x - TIP) * (1.0 + (1.0 + SLOPE * SLOPE).sqrt());
     let before = before_area(m, end);
-    let a = area(&out);
+    let a = out.area();
     // The new cut is within about one floor cell (0.0625 × 0.05) of the
     // trace, around the strip's perimeter of about 1.2.
     assert!(
@@ -152,10 +152,11 @@ fn verify(m: &TriMesh, end: &[DVec3], outcome: holey_topo::Outcome) {
 }
 
 fn before_area(m: &TriMesh, end: &[DVec3]) -> f64 {
-    area(&TriMesh {
+    TriMesh {
         positions: end.to_vec(),
         triangles: m.triangles.clone(),
-    })
+    }
+    .area()
 }
 
 /// Genus of a connected orientable surface with boundary: χ = 2 − 2g − b.

@@ -79,8 +79,8 @@ fn plane_and_cap_areas(m: &TriMesh) -> (f64, f64) {
             .copied()
             .collect(),
     };
-    let a = area(&plane);
-    (a, area(m) - a)
+    let a = plane.area();
+    (a, m.area() - a)
 }
 
 #[test]
@@ -91,10 +91,10 @@ fn soup_and_welded_plane_agree() {
     let cap = std::f64::consts::TAU * R * (R + CENTRE.z);
     let welded_in = welded();
     let (w, _) = push_sphere(&welded_in);
-    let mut results = vec![("welded", w, area(&welded_in))];
+    let mut results = vec![("welded", w, welded_in.area())];
     for seed in [1, 2] {
         let s = jittered_soup(seed);
-        let plane_area = area(&s);
+        let plane_area = s.area();
         results.push(("soup", push_sphere(&s).0, plane_area));
     }
     let mut rng = Rng::new(99);
@@ -171,7 +171,7 @@ fn soups_of_many_sizes_and_jitters() {
                     rng.range(-jitter, jitter),
                 );
             }
-            let plane_area = area(&plane);
+            let plane_area = plane.area();
             // The solids: a sphere of radius R whose centre ends 0.1 over
             // the plane, and a cylinder of radius 0.5 and height 1.2 whose
             // bottom ends 0.6 under it.
@@ -219,17 +219,9 @@ fn soups_of_many_sizes_and_jitters() {
                     "{tag}: {} triangles left under the plane",
                     below.len()
                 );
-                let kept_plane: f64 = m
-                    .triangles
-                    .iter()
-                    .filter(|t| {
-                        t.iter()
-                            .all(|&v| m.positions[v as usize].z.abs() <= jitter + 1e-12)
-                    })
-                    .map(|t| {
-                        let [a, b, c] = t.map(|v| m.positions[v as usize]);
-                        0.5 * (b - a).cross(c - a).length()
-                    })
+                let kept_plane: f64 = (0..m.triangles.len())
+                    .filter(|&t| m.corners(t).iter().all(|p| p.z.abs() <= jitter + 1e-12))
+                    .map(|t| m.triangle_area(t))
                     .sum();
                 let hole = plane_area - kept_plane;
                 assert!(

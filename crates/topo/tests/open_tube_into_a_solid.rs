@@ -80,8 +80,8 @@ fn open_tube_pushed_into_a_sphere_opens_into_it() {
     // what stands above the loop at height R − h.
     let h = big_r - (big_r * big_r - r * r).sqrt();
     let cap = std::f64::consts::TAU * big_r * h;
-    let tube_left = area(&pipe) * (1.25 * big_r - (big_r - h)) / big_r;
-    let missing = area(&sphere) + tube_left - area(m);
+    let tube_left = pipe.area() * (1.25 * big_r - (big_r - h)) / big_r;
+    let missing = sphere.area() + tube_left - m.area();
     assert!(
         (missing - cap).abs() < 0.25 * cap,
         "area missing {missing}, the cap's {cap}"

@@ -182,12 +182,7 @@ fn shared_and_coplanar_faces() {
         assert_volume(&out, want, 1e-12, op.name());
         // Each result is a box: the unit square times its height, whose
         // surface has area 2 + 4·height (a wall would add its two faces).
-        let area: f64 = (0..out.mesh.triangles.len())
-            .map(|t| {
-                let [p, q, r] = out.mesh.corners(t);
-                0.5 * (q - p).cross(r - p).length()
-            })
-            .sum();
+        let area = out.mesh.area();
         assert!(
             (area - (2.0 + 4.0 * want)).abs() < 1e-12,
             "{}: area {area}",
@@ -451,17 +446,84 @@ fn an_open_input_counts_by_its_generalized_winding_number() {
 }
 
 /// libigl's volumes (`bench/peers/winding_reference.py`, libigl 2.5.1,
-/// exact CGAL kernel), summed about the first vertex as [`volume`] does.
-const SELF_INTERSECT_A_UNION_B: f64 = 0.2767854863586102;
-const SELF_INTERSECT_A_MEET_B: f64 = 0.00854110053362745;
-const SELF_INTERSECT_A_MINUS_B: f64 = 0.13412105493429186;
-const SELF_INTERSECT_A_ALONE: f64 = 0.14266215546791938;
-const SELF_INTERSECT_B_ALONE: f64 = 0.14266443142431762;
-const OFFSET1_UNION_OFFSET2: f64 = 1814903.1541467225;
-const OFFSET1_MEET_OFFSET2: f64 = 8840.069432354345;
-const OFFSET1_MINUS_OFFSET2: f64 = 1605876.435121631;
-const OFFSET1_ALONE: f64 = 1614716.5045544542;
-const OFFSET2_ALONE: f64 = 209026.7190249297;
+/// exact CGAL kernel) for solids A and B, summed about the first vertex
+/// as [`volume`] does.
+struct LibiglVolumes {
+    /// A ∪ B.
+    union: f64,
+    /// A ∩ B.
+    meet: f64,
+    /// A − B.
+    minus: f64,
+    /// A alone (its union with nothing, which resolves its own crossings).
+    a_alone: f64,
+    /// B alone.
+    b_alone: f64,
+}
+
+const SELF_INTERSECT_A_B: LibiglVolumes = LibiglVolumes {
+    union: 0.2767854863586102,
+    meet: 0.00854110053362745,
+    minus: 0.13412105493429186,
+    a_alone: 0.14266215546791938,
+    b_alone: 0.14266443142431762,
+};
+const OFFSET1_OFFSET2: LibiglVolumes = LibiglVolumes {
+    union: 1814903.1541467225,
+    meet: 8840.069432354345,
+    minus: 1605876.435121631,
+    a_alone: 1614716.5045544542,
+    b_alone: 209026.7190249297,
+};
+
+/// The five runs compared with libigl for solids `a` and `b` (each with
+/// its name): A ∪ B, A ∩ B, A − B, and each alone, with the volume libigl
+/// gives and the run's name.
+fn libigl_cases<'m>(
+    (a, name_a): (&'m TriMesh, &str),
+    (b, name_b): (&'m TriMesh, &str),
+    volumes: &LibiglVolumes,
+) -> Vec<(Vec<&'m TriMesh>, Operation, f64, String)> {
+    let LibiglVolumes {
+        union,
+        meet,
+        minus,
+        a_alone,
+        b_alone,
+    } = *volumes;
+    vec![
+        (
+            vec![a, b],
+            Operation::Union,
+            union,
+            format!("{name_a} ∪ {name_b}"),
+        ),
+        (
+            vec![a, b],
+            Operation::Intersection,
+            meet,
+            format!("{name_a} ∩ {name_b}"),
+        ),
+        (
+            vec![a, b],
+            Operation::Difference,
+            minus,
+            format!("{name_a} − {name_b}"),
+        ),
+        (
+            vec![a],
+            Operation::Union,
+            a_alone,
+            format!("{name_a} alone"),
+        ),
+        (
+            vec![b],
+            Operation::Union,
+            b_alone,
+            format!("{name_b} alone"),
+        ),
+    ]
+}
 
 /// `self_intersectA.obj` and `self_intersectB.obj` (closed, each crossing
 /// itself): the three operations and each alone match libigl within
@@ -471,41 +533,10 @@ fn self_intersect_a_and_b_match_libigl() {
     let dir = holey_testkit::shared_meshes_or_return!("self_intersect_a_and_b_match_libigl");
     let a = read_shared(&dir, "self_intersectA.obj");
     let b = read_shared(&dir, "self_intersectB.obj");
-    for (inputs, op, want, what) in [
-        (
-            vec![&a, &b],
-            Operation::Union,
-            SELF_INTERSECT_A_UNION_B,
-            "A ∪ B",
-        ),
-        (
-            vec![&a, &b],
-            Operation::Intersection,
-            SELF_INTERSECT_A_MEET_B,
-            "A ∩ B",
-        ),
-        (
-            vec![&a, &b],
-            Operation::Difference,
-            SELF_INTERSECT_A_MINUS_B,
-            "A − B",
-        ),
-        (
-            vec![&a],
-            Operation::Union,
-            SELF_INTERSECT_A_ALONE,
-            "A alone",
-        ),
-        (
-            vec![&b],
-            Operation::Union,
-            SELF_INTERSECT_B_ALONE,
-            "B alone",
-        ),
-    ] {
+    for (inputs, op, want, what) in libigl_cases((&a, "A"), (&b, "B"), &SELF_INTERSECT_A_B) {
         let out = run(&inputs, op);
-        assert_volume(&out, want, 1e-8, what);
-        check(&inputs, op, &out, 60, what);
+        assert_volume(&out, want, 1e-8, &what);
+        check(&inputs, op, &out, 60, &what);
     }
 }
 
@@ -525,30 +556,10 @@ fn offset1_and_offset2_match_libigl() {
     let dir = holey_testkit::shared_corpus_or_return!("offset1_and_offset2_match_libigl");
     let a = read_shared(&dir, "Offset1.obj");
     let b = read_shared(&dir, "Offset2.obj");
-    for (inputs, op, want, what) in [
-        (
-            vec![&a, &b],
-            Operation::Union,
-            OFFSET1_UNION_OFFSET2,
-            "Offset1 ∪ Offset2",
-        ),
-        (
-            vec![&a, &b],
-            Operation::Intersection,
-            OFFSET1_MEET_OFFSET2,
-            "Offset1 ∩ Offset2",
-        ),
-        (
-            vec![&a, &b],
-            Operation::Difference,
-            OFFSET1_MINUS_OFFSET2,
-            "Offset1 − Offset2",
-        ),
-        (vec![&a], Operation::Union, OFFSET1_ALONE, "Offset1 alone"),
-        (vec![&b], Operation::Union, OFFSET2_ALONE, "Offset2 alone"),
-    ] {
+    for (inputs, op, want, what) in libigl_cases((&a, "Offset1"), (&b, "Offset2"), &OFFSET1_OFFSET2)
+    {
         let out = run(&inputs, op);
-        assert_volume(&out, want, 1e-8, what);
+        assert_volume(&out, want, 1e-8, &what);
         assert_eq!(out.report.unpaired_edges, 0, "{what}: open");
         assert_eq!(closedness_defects(&out.mesh).0, 0, "{what}: boundary");
     }

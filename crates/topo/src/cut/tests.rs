@@ -6,16 +6,6 @@ use super::*;
 use crate::intersect::intersections;
 use crate::intersect::tests::{join, octahedron, two_octahedra};
 
-fn area(m: &TriMesh) -> f64 {
-    m.triangles
-        .iter()
-        .map(|t| {
-            let p = t.map(|v| m.positions[v as usize]);
-            0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
-        })
-        .sum()
-}
-
 fn volume(m: &TriMesh) -> f64 {
     m.triangles
         .iter()
@@ -83,7 +73,7 @@ fn resolve_cuts_and_glues_without_deleting() {
     let out = s.cut(&m, Deletion::Nothing);
     assert_eq!(out.report.curves_kept, 1);
     assert_eq!(out.report.triangles_deleted, 0);
-    assert!((area(&out.mesh) - area(&m)).abs() < 1e-12 * area(&m));
+    assert!((out.mesh.area() - m.area()).abs() < 1e-12 * m.area());
     assert!((volume(&out.mesh) - volume(&m)).abs() < 1e-12);
     // The curve's edges are shared by four triangles, all others by two.
     let d = edge_degrees(&out.mesh.triangles);
@@ -128,11 +118,7 @@ fn deleting_the_odd_parts_of_two_octahedra_gives_their_union() {
     let samples = 200_000;
     let hits = (0..samples)
         .filter(|_| {
-            let p = DVec3::new(
-                rng.range(lo.x, hi.x),
-                rng.range(lo.y, hi.y),
-                rng.range(lo.z, hi.z),
-            );
+            let p = DVec3::from_array(rng.in_box(lo.to_array(), hi.to_array()));
             inside_octahedron(p, ca, 1.0) || inside_octahedron(p, cb, 1.0)
         })
         .count();
@@ -172,7 +158,7 @@ fn false_edges_close_a_parity_change_that_no_curve_separates() {
     // every edge has one or two triangle sides.
     let d = edge_degrees(&out.mesh.triangles);
     assert!(d.values().all(|&k| k == 1 || k == 2));
-    let hole = area(&m) - area(&out.mesh);
+    let hole = m.area() - out.mesh.area();
     assert!(hole > 9.0 && hole < 30.0, "hole area {hole}");
     // No vertex of the result lies strictly inside the odd disk.
     assert!(out.mesh.positions.iter().all(|p| p.distance(c) > 1.4));

@@ -31,6 +31,14 @@ pub fn primitive(spec: &str) -> TriMesh {
     p.triangulated()
 }
 
+/// One triangle with the given corners, as a mesh of its own.
+pub fn triangle(corners: [DVec3; 3]) -> TriMesh {
+    TriMesh {
+        positions: corners.to_vec(),
+        triangles: vec![[0, 1, 2]],
+    }
+}
+
 /// An axis-aligned box from `lo` to `hi`, outward, 12 triangles.
 pub fn cuboid(lo: DVec3, hi: DVec3) -> TriMesh {
     let positions = (0..8)
@@ -101,16 +109,6 @@ pub fn volume(m: &TriMesh) -> f64 {
         .map(|t| {
             let p = t.map(|v| m.positions[v as usize] - c);
             p[0].dot(p[1].cross(p[2])) / 6.0
-        })
-        .sum()
-}
-
-pub fn area(m: &TriMesh) -> f64 {
-    m.triangles
-        .iter()
-        .map(|t| {
-            let p = t.map(|v| m.positions[v as usize]);
-            0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
         })
         .sum()
 }
@@ -202,11 +200,7 @@ pub fn union_volume_sampled(a: &TriMesh, b: &TriMesh, samples: usize, seed: u64)
     let mut rng = Rng::new(seed);
     let hits = (0..samples)
         .filter(|_| {
-            let p = DVec3::new(
-                rng.range(lo.x, hi.x),
-                rng.range(lo.y, hi.y),
-                rng.range(lo.z, hi.z),
-            );
+            let p = DVec3::from_array(rng.in_box(lo.to_array(), hi.to_array()));
             inside(a, p) || inside(b, p)
         })
         .count();
@@ -438,19 +432,6 @@ pub fn closedness_defects(m: &TriMesh) -> (usize, usize, usize) {
     (boundary, nonmanifold, misoriented)
 }
 
-/// Area-weighted vertex normals.
-pub fn vertex_normals(m: &TriMesh) -> Vec<DVec3> {
-    let mut n = vec![DVec3::ZERO; m.positions.len()];
-    for t in &m.triangles {
-        let [a, b, c] = t.map(|v| m.positions[v as usize]);
-        let f = (b - a).cross(c - a);
-        for &v in t {
-            n[v as usize] += f;
-        }
-    }
-    n.into_iter().map(|v| v.normalize_or_zero()).collect()
-}
-
 /// Edges whose two triangles face opposite ways (normals at more than
 /// 90°): creases where a deformation folded the surface over itself
 /// locally, which no smooth immersion produces at this resolution.
@@ -548,14 +529,11 @@ pub fn assert_classifies_by_rule(
         .fold(TriMesh::default(), |acc, m| join(&acc, m));
     let (lo, hi) = used_bounds(&all);
     let pad = (hi - lo) * 0.1;
+    let (lo, hi) = ((lo - pad).to_array(), (hi + pad).to_array());
     let mut rng = Rng::new(seed);
     let mut decided = 0;
     for _ in 0..samples {
-        let p = DVec3::new(
-            rng.range(lo.x - pad.x, hi.x + pad.x),
-            rng.range(lo.y - pad.y, hi.y + pad.y),
-            rng.range(lo.z - pad.z, hi.z + pad.z),
-        );
+        let p = DVec3::from_array(rng.in_box(lo, hi));
         let w: Vec<f64> = inputs.iter().map(|m| winding(m, p)).collect();
         let wo = winding(out, p);
         let unsure = |w: f64| (w - w.round()).abs() > 1e-6;
