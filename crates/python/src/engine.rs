@@ -271,6 +271,7 @@ fn stroke_reports(reports: &[holey::sculpt::StrokeReport]) -> Value {
                     "held_frames": r.held_frames,
                     "held_vertices": r.held_vertices,
                     "subframes": r.subframes,
+                    "whole_mesh_frames": r.whole_mesh_frames,
                     "refused": r.refused,
                     "held_because": r.held_because,
                     "seconds": r.seconds,

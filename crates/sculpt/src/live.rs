@@ -1042,6 +1042,7 @@ impl PaintStep<'_> {
                         self.report.held_frames += usize::from(guarded.held_all);
                     }
                     let out = guarded.local;
+                    self.report.whole_mesh_frames += usize::from(out.whole_mesh);
                     tally(self.report, &out.report);
                     *self.diagnostics = Some(Diagnostics {
                         raw_odd: out.raw_odd,

@@ -124,6 +124,11 @@ pub struct StrokeReport {
     /// Frames split in two because the engine found the motion crumpled
     /// the surface too much for one frame (each split counts once).
     pub subframes: usize,
+    /// Frames the engine had to recompute on the whole mesh: neither the
+    /// region the motion reaches nor the wider one around it gave a
+    /// result that splices back exactly (`holey_topo::guard`). Such a
+    /// frame costs what the mesh holds, not what the brush touches.
+    pub whole_mesh_frames: usize,
     /// Wall-clock seconds from the start of the stroke to its finish, any
     /// pauses between frames included.
     pub seconds: f64,

@@ -19,7 +19,8 @@
 //! or reoriented along it. That holds for a surface free of intersections
 //! away from the brush, which is what sculpting keeps; when it fails (an
 //! intersection the input already had that touches the interface, say),
-//! the frame is recomputed on the whole mesh. Correctness never depends
+//! the frame is recomputed on the whole mesh (a guarded frame,
+//! `crate::guard`, tries a wider region first). Correctness never depends
 //! on the region; only speed does.
 
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -142,7 +143,19 @@ pub(crate) fn swept_box(tris: &[[u32; 3]], start: &[DVec3], end: &[DVec3]) -> Op
 /// `b` grown by half its largest side on every side: context for the
 /// error correction around what moved.
 pub(crate) fn with_margin(b: Bounds) -> Bounds {
-    let m = DVec3::splat(0.5 * (b.1 - b.0).max_element());
+    grown(b, 0.5)
+}
+
+/// `b` grown by twice its largest side on every side: the second region a
+/// guarded frame tries when the result on [`with_margin`]'s cannot be
+/// spliced exactly, before the whole mesh (`crate::guard`).
+pub(crate) fn with_wide_margin(b: Bounds) -> Bounds {
+    grown(b, 2.0)
+}
+
+/// `b` grown on every side by `share` of its largest side.
+fn grown(b: Bounds, share: f64) -> Bounds {
+    let m = DVec3::splat(share * (b.1 - b.0).max_element());
     (b.0 - m, b.1 + m)
 }
 
