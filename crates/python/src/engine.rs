@@ -272,6 +272,7 @@ fn stroke_reports(reports: &[holey::sculpt::StrokeReport]) -> Value {
                     "held_vertices": r.held_vertices,
                     "subframes": r.subframes,
                     "whole_mesh_frames": r.whole_mesh_frames,
+                    "specks_removed": r.specks_removed,
                     "refused": r.refused,
                     "held_because": r.held_because,
                     "seconds": r.seconds,

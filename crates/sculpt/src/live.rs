@@ -1019,6 +1019,9 @@ impl PaintStep<'_> {
             };
             let options = Options {
                 outward: outward || holds,
+                // An inflate's specks are a fold's tip poked through a
+                // sheet: debris, taken out (`holey_topo::guard`).
+                take_out_debris: outward,
                 ..*self.options
             };
             let run = if uncut {
@@ -1360,6 +1363,7 @@ fn tally(report: &mut StrokeReport, r: &Report) {
     }
     report.raw_odd_vertices += r.raw_odd_vertices;
     report.corrected_odd_vertices += r.corrected_odd_vertices;
+    report.specks_removed += r.cut.specks_removed;
 }
 
 /// The cleanup after a topology change when remeshing is off: collapses

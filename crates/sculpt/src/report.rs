@@ -129,6 +129,10 @@ pub struct StrokeReport {
     /// result that splices back exactly (`holey_topo::guard`). Such a
     /// frame costs what the mesh holds, not what the brush touches.
     pub whole_mesh_frames: usize,
+    /// Debris the guard took out of frames' results: pieces the cut
+    /// closed off, below the surface's resolution
+    /// (`holey_topo::CutReport::specks_removed`).
+    pub specks_removed: usize,
     /// Wall-clock seconds from the start of the stroke to its finish, any
     /// pauses between frames included.
     pub seconds: f64,

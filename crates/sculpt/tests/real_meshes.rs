@@ -885,6 +885,36 @@ fn stanford_bunny_six_rim_dwells_stay_within_the_brushs_region() {
     );
 }
 
+/// The six rim dwells of `bench/sculpt/rim_dwells.py` on `bigguyhalf.obj`
+/// (an open mask). In the fifth, the rim's fold pokes its tip through the
+/// sheet beside it and the cut closes off tetrahedra of the tip, each
+/// below the mask's resolution and inside it: the guard takes them out
+/// of the frame's result (`specks_removed`) instead of holding the frame,
+/// and the dwell changes topology four times where it changed it twice
+/// and then stalled. Every stroke keeps item 1's properties (the oracle
+/// of this file) and the mask stays one piece without a non-manifold
+/// curve.
+#[test]
+fn bigguyhalf_rim_dwell_takes_out_the_debris_of_its_fold() {
+    let test = "bigguyhalf_rim_dwell_takes_out_the_debris_of_its_fold";
+    let Some(mask) = load(test, "bigguyhalf.obj") else {
+        return;
+    };
+    let rim = boundary_vertices(&mask);
+    let step = (rim.len() / 6).max(1);
+    let (radius, strength) = radius_and_strength(&mask, 0.05, 1.0);
+    let dwells: Vec<Stroke> = (0..6)
+        .map(|k| {
+            let at = mask.positions[rim[k * step] as usize];
+            paint(Brush::Inflate, radius, strength, vec![at; 40])
+        })
+        .collect();
+    let (_, reports, end) = sculpt(test, mask.clone(), &dwells, true);
+    assert!(reports[4].specks_removed >= 1, "{:?}", reports[4]);
+    assert!(reports[4].changes >= 4, "{:?}", reports[4]);
+    assert_eq!((end.components, end.nonmanifold_curves), (1, 0));
+}
+
 /// How many connected pieces of `m` lie inside the rest of it: the
 /// generalized winding number of every other piece, summed here from
 /// the solid angles of their triangles (Van Oosterom and Strackee), is at

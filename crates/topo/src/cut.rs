@@ -95,6 +95,11 @@ pub struct CutReport {
     /// source triangles, facing opposite ways, a pillow of no volume
     /// (`cut/coincident.rs`).
     pub opposite_pairs_cancelled: usize,
+    /// Closed-off debris the guard took out of a frame's result
+    /// (`crate::guard`): pieces of their own, made with points of the cut,
+    /// touching nothing outside the frame's region and smaller than
+    /// [`crate::hidden`]'s speck scale.
+    pub specks_removed: usize,
     /// Vertices split because the solid guard's result touched itself
     /// there at a single point (one vertex per fan).
     pub pinches_split: usize,

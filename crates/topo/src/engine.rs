@@ -73,6 +73,15 @@ pub struct Options {
     /// sets it for a frame that holds vertices earlier frames had to hold:
     /// a piece pinched off at the crease they make is the hold's making.
     pub outward: bool,
+    /// A guarded frame ([`crate::topology_change_guarded`]) takes debris
+    /// out of its result, new specks the cut closed off whole within its
+    /// region (`crate::hidden::debris`), instead of holding the frame for
+    /// them. Off by default. Sculpting sets it for an inflate: the specks
+    /// of a frame that only grows the solid are the tip of a fold poked
+    /// through a sheet, inside it. A deflate's specks mark a crumple, and
+    /// carving on through it left the Stanford bunny's haunch in two
+    /// pieces with genus 8 where holding keeps it one piece.
+    pub take_out_debris: bool,
 }
 
 impl Default for Options {
@@ -86,6 +95,7 @@ impl Default for Options {
             max_intersecting_pairs: None,
             nonmanifold_joins: false,
             outward: false,
+            take_out_debris: false,
         }
     }
 }

@@ -17,7 +17,11 @@
 //!   the motion makes is resolved;
 //! - no piece cut loose and left hidden inside the surface, and no
 //!   speck, a piece hardly wider than the edges the surface had there
-//!   are long ([`crate::hidden`]);
+//!   are long ([`crate::hidden`]). With [`Options::take_out_debris`]
+//!   (an inflate), a speck the cut closed off, with its own points and
+//!   whole within the frame's region, is debris below the surface's
+//!   resolution: it is taken out of the result before the audit
+//!   ([`crate::hidden::debris`]) rather than holding the frame;
 //! - for an inflate ([`Options::outward`]), no new piece at all;
 //! - no crumple: two or more new intersection curves within one piece,
 //!   each smaller than the shortest edge there and within one such edge
@@ -57,7 +61,7 @@ use crate::engine::{
     Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
 use crate::hidden::{
-    hidden_pieces, median_edge_near, pieces, shortest_edge_near, specks, tiny_new_curves,
+    debris, hidden_pieces, median_edge_near, pieces, shortest_edge_near, specks, tiny_new_curves,
     vertex_components,
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
@@ -280,9 +284,14 @@ fn run_with(
             Freedom::Changes(g) if containment && options.solid_guard => {
                 let surroundings = Surroundings::new(mesh, &tight.mask, end);
                 let local_end = moved.positions;
-                if let Some(out) =
+                if let Some(mut out) =
                     by_containment(&sub, &local_end, options, &surroundings, Some(*g))?
-                    && let Some(run) = spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
+                    && let Some(run) = {
+                        if options.take_out_debris {
+                            take_out_debris(mesh, &tight, &mut out);
+                        }
+                        spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
+                    }
                     && run.worse.is_empty()
                 {
                     return Ok(run);
@@ -305,7 +314,10 @@ fn run_with(
         }
         tried = region.count;
         let sub = region.submesh(&mesh.positions);
-        let out = resolve_frame(mesh, end, &region, &sub, options, motion, containment)?;
+        let mut out = resolve_frame(mesh, end, &region, &sub, options, motion, containment)?;
+        if options.take_out_debris {
+            take_out_debris(mesh, &region, &mut out);
+        }
         if let Some(mut run) = spliced_and_audited(mesh, end, &region, &sub, &out, options)? {
             run.worse.extend(unreached_deleted(&sub, &out, bx));
             return Ok(run);
@@ -319,7 +331,10 @@ fn run_with(
         (DVec3::NEG_INFINITY, DVec3::INFINITY),
     );
     let sub = everything.submesh(&mesh.positions);
-    let out = resolve_frame(mesh, end, &everything, &sub, options, motion, containment)?;
+    let mut out = resolve_frame(mesh, end, &everything, &sub, options, motion, containment)?;
+    if options.take_out_debris {
+        take_out_debris(mesh, &everything, &mut out);
+    }
     let (result, mut report) = from_whole(&sub, out.clone());
     report.raw_odd = everything.scatter(&report.raw_odd, n, false);
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
@@ -494,6 +509,62 @@ fn spliced_and_audited(
         report,
         worse,
     }))
+}
+
+/// `out`, the engine's result for `region` of `mesh`, without its debris ([`crate::hidden::debris`]): pieces the cut closed
+/// off (with a point of the cut or a copy of a split vertex), whole
+/// within the region, smaller than [`SPECK_EDGES`] of the median edge
+/// at the region's vertices (the specks [`piece_growth`] would count). Their triangles go and the output's vertices are
+/// renumbered in order (the engine's new points stay last);
+/// [`crate::cut::CutReport::specks_removed`] counts the pieces.
+fn take_out_debris(mesh: &TriMesh, region: &Region, out: &mut Outcome) {
+    let mut on_interface = vec![false; region.global.len()];
+    for &t in region.ring(&mesh.triangles) {
+        for v in mesh.triangles[t as usize] {
+            if let Some(&l) = region.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+                on_interface[l as usize] = true;
+            }
+        }
+    }
+    // An input vertex the engine split at a pinch has several outputs;
+    // only the first keeps its number in the splice (`Region::splice`),
+    // so only it can join the rest of the surface, and the others are
+    // new vertices as much as the cut's points are.
+    let origin = &out.vertex_origin;
+    let mut first = vec![u32::MAX; region.global.len()];
+    for (v, &o) in origin.iter().enumerate() {
+        if let Some(f) = first.get_mut(o as usize).filter(|f| **f == u32::MAX) {
+            *f = v as u32;
+        }
+    }
+    let keeps_its_number = |v: u32| {
+        let o = origin[v as usize];
+        o != u32::MAX && first[o as usize] == v
+    };
+    let made = |v: u32| !keeps_its_number(v);
+    let interface = |v: u32| keeps_its_number(v) && on_interface[origin[v as usize] as usize];
+    // The scale `piece_growth` measures specks by: the median edge of the
+    // surface's triangles at the region's vertices.
+    let near = |v: u32| region.local.get(v as usize).is_some_and(|&l| l != u32::MAX);
+    let scale = || SPECK_EDGES * median_edge_near(mesh, &near);
+    let Some((gone, count)) = debris(&out.mesh, &made, &interface, &scale) else {
+        return;
+    };
+    let kept: Vec<[u32; 3]> = out
+        .mesh
+        .triangles
+        .iter()
+        .zip(&gone)
+        .filter(|(_, g)| !**g)
+        .map(|(t, _)| *t)
+        .collect();
+    let (compact, used) = TriMesh::of_used(&out.mesh.positions, kept);
+    out.vertex_origin = used
+        .iter()
+        .map(|&v| out.vertex_origin[v as usize])
+        .collect();
+    out.mesh = compact;
+    out.report.cut.specks_removed += count;
 }
 
 /// How many of the surface's edges (their median near the change) a new
@@ -872,6 +943,86 @@ mod tests {
                 speck,
                 "side {side}: {worse:?}"
             );
+        }
+    }
+
+    /// Where an output tetrahedron's vertices come from.
+    #[derive(Clone, Copy, Debug)]
+    enum Corners {
+        /// Points the cut made.
+        Made,
+        /// Second copies of input vertices 0 to 3 (a pinch split).
+        Copies,
+        /// Input vertices of their own: the tetrahedron was there before.
+        Input,
+    }
+
+    /// The grid and, over its middle at height 1, a closed tetrahedron of
+    /// side `side`, as the engine's output for a region of the whole
+    /// input, with the input it came from.
+    fn grid_and_tetrahedron(side: f64, corners: Corners) -> (TriMesh, Outcome) {
+        let mut with_tetrahedron = grid(6);
+        let n = with_tetrahedron.positions.len() as u32;
+        let (tetrahedron, faces) = holey_testkit::meshes::tetrahedron();
+        let c = DVec3::new(3.0, 3.0, 1.0);
+        let k = side / 8f64.sqrt();
+        with_tetrahedron
+            .positions
+            .extend(tetrahedron.map(|p| c + DVec3::from_array(p) * k));
+        with_tetrahedron
+            .triangles
+            .extend(faces.map(|t| t.map(|v| v + n)));
+        let (_, mut out) = outcome(&[], false);
+        out.mesh = with_tetrahedron.clone();
+        out.vertex_origin = (0..n).collect();
+        out.vertex_origin.extend((0..4).map(|i| match corners {
+            Corners::Made => u32::MAX,
+            Corners::Copies => i,
+            Corners::Input => n + i,
+        }));
+        let input = match corners {
+            Corners::Input => with_tetrahedron,
+            Corners::Made | Corners::Copies => grid(6),
+        };
+        (input, out)
+    }
+
+    /// A speck the cut closed off (with its points or with copies of
+    /// split vertices) is taken out of the result, its triangles and
+    /// vertices, and the report counts it; one three times the grid's
+    /// edge across stays, and so does a speck that was there before.
+    #[test]
+    fn debris_the_cut_closed_off_is_taken_out() {
+        for (side, corners, goes) in [
+            (1.0, Corners::Made, true),
+            (1.0, Corners::Copies, true),
+            (3.0, Corners::Made, false),
+            (1.0, Corners::Input, false),
+        ] {
+            let (input, mut out) = grid_and_tetrahedron(side, corners);
+            let everything = Region::select(
+                &input.triangles,
+                &input.positions,
+                &input.positions,
+                (DVec3::NEG_INFINITY, DVec3::INFINITY),
+            );
+            take_out_debris(&input, &everything, &mut out);
+            let grid_triangles = grid(6).triangles.len();
+            let left = if goes { 0 } else { 4 };
+            let what = format!("side {side}, {corners:?}");
+            assert_eq!(
+                out.mesh.triangles.len(),
+                grid_triangles + 4 - 4 * usize::from(goes),
+                "{what}"
+            );
+            assert_eq!(
+                out.mesh.positions.len(),
+                grid(6).positions.len() + left,
+                "{what}"
+            );
+            assert_eq!(out.vertex_origin.len(), out.mesh.positions.len(), "{what}");
+            assert_eq!(out.report.cut.specks_removed, usize::from(goes), "{what}");
+            out.mesh.check().unwrap();
         }
     }
 

@@ -150,6 +150,59 @@ pub(crate) fn specks(
         .count()
 }
 
+/// Per triangle of `m`: whether it belongs to debris a change made, a
+/// connected piece that has a vertex the change made (`made`), no vertex
+/// on the interface with the rest of the surface (`interface`: the piece
+/// is whole within `m`), and a bounding box whose diagonal is shorter
+/// than `scale()` ([`specks`]; asked only when `m` has two pieces or
+/// more). Such a piece is no part of anything the
+/// brush shaped: the arrangement of a crumple closed it off, below the
+/// surface's resolution, so the guard takes it out instead of holding
+/// the frame (a dwell inflate at bigguy's rim left two tetrahedra of a
+/// fold's tip, each inside the body, and stalled for 37 frames). With
+/// the number of such pieces; `None` when there is none.
+pub(crate) fn debris(
+    m: &TriMesh,
+    made: &dyn Fn(u32) -> bool,
+    interface: &dyn Fn(u32) -> bool,
+    scale: &dyn Fn() -> f64,
+) -> Option<(Vec<bool>, usize)> {
+    let (root, count) = pieces(m);
+    if count < 2 {
+        return None;
+    }
+    let scale = scale();
+    struct Piece {
+        made: bool,
+        interface: bool,
+        lo: DVec3,
+        hi: DVec3,
+    }
+    let mut found: rustc_hash::FxHashMap<u32, Piece> = rustc_hash::FxHashMap::default();
+    for (t, &r) in m.triangles.iter().zip(&root) {
+        let piece = found.entry(r).or_insert(Piece {
+            made: false,
+            interface: false,
+            lo: DVec3::INFINITY,
+            hi: DVec3::NEG_INFINITY,
+        });
+        for &v in t {
+            piece.made |= made(v);
+            piece.interface |= interface(v);
+            let p = m.positions[v as usize];
+            (piece.lo, piece.hi) = (piece.lo.min(p), piece.hi.max(p));
+        }
+    }
+    found.retain(|_, p| p.made && !p.interface && (p.hi - p.lo).length() < scale);
+    if found.is_empty() {
+        return None;
+    }
+    Some((
+        root.iter().map(|r| found.contains_key(r)).collect(),
+        found.len(),
+    ))
+}
+
 /// The components of `m` (named by `root`, as [`pieces`] gives them)
 /// with a vertex that `near` flags, each with `empty()` to fill in.
 fn near_components<T>(
@@ -310,6 +363,33 @@ mod tests {
         m.triangles
             .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
         m
+    }
+
+    /// A small box beside a big one is debris when it has a vertex the
+    /// change made, none on the interface with the rest of the surface,
+    /// and is smaller than the scale; the big one never is.
+    #[test]
+    fn debris_is_small_made_and_whole_within_the_mesh() {
+        let big = cube(DVec3::splat(-2.0), DVec3::splat(2.0));
+        let m = joined(
+            &big,
+            &cube(DVec3::new(3.0, -0.5, -0.5), DVec3::new(4.0, 0.5, 0.5)),
+        );
+        let small = |v: u32| v >= 8;
+        let none = |_: u32| false;
+        let (mask, count) = debris(&m, &small, &none, &|| 2.0).unwrap();
+        assert_eq!(count, 1);
+        assert_eq!(
+            mask,
+            m.triangles.iter().map(|t| t[0] >= 8).collect::<Vec<_>>()
+        );
+        // Nothing made there, one of its vertices on the interface, or
+        // wider than the scale: it stays.
+        assert!(debris(&m, &none, &none, &|| 2.0).is_none());
+        assert!(debris(&m, &small, &|v| v == 9, &|| 2.0).is_none());
+        assert!(debris(&m, &small, &none, &|| 1.5).is_none());
+        // One piece alone is never debris.
+        assert!(debris(&big, &|_| true, &none, &|| 100.0).is_none());
     }
 
     /// A small box inside a big one is hidden, beside it is not; the big

@@ -14,7 +14,7 @@ impl Report {
     /// the fields, the cut's flattened in) and `seconds` per stage.
     pub fn to_json(&self) -> Value {
         let (r, c) = (self, &self.cut);
-        json!({
+        let mut report = json!({
             "collisions": r.collisions,
             "collision_tests": r.collision_tests,
             "containment_rays": r.containment_rays,
@@ -57,7 +57,10 @@ impl Report {
                 "cut": r.timings.cut,
                 "total": r.timings.total,
             },
-        })
+        });
+        // One more key than `json!` expands in one go.
+        report["specks_removed"] = json!(c.specks_removed);
+        report
     }
 }
 

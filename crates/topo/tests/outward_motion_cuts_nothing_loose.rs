@@ -86,6 +86,40 @@ fn a_waist_squeezed_through_its_axis_leaves_no_specks() {
     }
 }
 
+/// The same squeeze with [`Options::take_out_debris`] (what sculpting
+/// sets for an inflate): the 33 specks are debris the guard takes out of
+/// the result, so none is counted or cut loose, and what is left is
+/// still a crumple, the rod glued along curves far smaller than its
+/// edges, handles nobody can see: the frame is held for those.
+#[test]
+fn a_waist_squeezed_through_its_axis_is_held_for_its_handles_once_its_debris_is_out() {
+    let m = rod();
+    let end = squeezed(&m);
+    let options = Options {
+        outward: true,
+        take_out_debris: true,
+        ..Options::default()
+    };
+    let mut held = m.clone();
+    let r = topology_change_guarded(&mut held, &end, &options).unwrap();
+    assert!(r.held_all, "{r:?}");
+    assert_eq!(held, m, "a held frame changes nothing");
+    assert!(
+        r.refused
+            .iter()
+            .any(|why| why.starts_with("tiny handles: 0 -> ")),
+        "{:?}",
+        r.refused
+    );
+    assert!(
+        !r.refused
+            .iter()
+            .any(|why| why.starts_with("specks") || why.starts_with("pieces cut loose")),
+        "the debris is taken out: {:?}",
+        r.refused
+    );
+}
+
 /// The engine's options for an inflate.
 fn outward() -> Options {
     Options {
