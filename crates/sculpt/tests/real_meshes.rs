@@ -810,6 +810,21 @@ fn stanford_bunny_dwell_on_a_base_hole_rim_unremeshed_holds_and_says_why() {
     bunny_one_piece_with_its_five_holes(&d.end);
 }
 
+/// The six rim dwells of `bench/sculpt/rim_dwells.py` on `m`: inflates of
+/// 40 frames at one point each (radius 5% of the diagonal), at rim
+/// vertices spread along the rims by index.
+fn rim_dwells(m: &TriMesh) -> Vec<Stroke> {
+    let rim = boundary_vertices(m);
+    let step = (rim.len() / 6).max(1);
+    let (radius, strength) = radius_and_strength(m, 0.05, 1.0);
+    (0..6)
+        .map(|k| {
+            let at = m.positions[rim[k * step] as usize];
+            paint(Brush::Inflate, radius, strength, vec![at; 40])
+        })
+        .collect()
+}
+
 /// Two dwell inflates (40 frames each, radius 5%, slider 1, remeshing) on
 /// the bunny's base-hole rims, at the fifth and sixth of six rim vertices
 /// spread along the rims by index, as `bench/sculpt/rim_dwells.py` picks
@@ -827,14 +842,8 @@ fn stanford_bunny_rim_dwell_through_a_raised_sheet_fuses_it() {
     let Some(bunny) = load(test, "stanford-bunny.obj") else {
         return;
     };
-    let rim = boundary_vertices(&bunny);
-    let step = (rim.len() / 6).max(1);
-    let (radius, strength) = radius_and_strength(&bunny, 0.05, 1.0);
-    let dwell = |k: usize| {
-        let at = bunny.positions[rim[k * step] as usize];
-        paint(Brush::Inflate, radius, strength, vec![at; 40])
-    };
-    let (_, reports, end) = sculpt(test, bunny.clone(), &[dwell(4), dwell(5)], true);
+    let dwells = rim_dwells(&bunny);
+    let (_, reports, end) = sculpt(test, bunny.clone(), &dwells[4..], true);
     assert_eq!(reports[0].guarded_frames, 0, "{:?}", reports[0]);
     assert!(
         reports[1].changes >= 1,
@@ -861,16 +870,7 @@ fn stanford_bunny_six_rim_dwells_stay_within_the_brushs_region() {
     let Some(bunny) = load(test, "stanford-bunny.obj") else {
         return;
     };
-    let rim = boundary_vertices(&bunny);
-    let step = (rim.len() / 6).max(1);
-    let (radius, strength) = radius_and_strength(&bunny, 0.05, 1.0);
-    let dwells: Vec<Stroke> = (0..6)
-        .map(|k| {
-            let at = bunny.positions[rim[k * step] as usize];
-            paint(Brush::Inflate, radius, strength, vec![at; 40])
-        })
-        .collect();
-    let (_, reports, end) = sculpt(test, bunny.clone(), &dwells, true);
+    let (_, reports, end) = sculpt(test, bunny.clone(), &rim_dwells(&bunny), true);
     assert!(
         reports[5].changes >= 1,
         "the last dwell folds its lip through: {:?}",
@@ -900,16 +900,7 @@ fn bigguyhalf_rim_dwell_takes_out_the_debris_of_its_fold() {
     let Some(mask) = load(test, "bigguyhalf.obj") else {
         return;
     };
-    let rim = boundary_vertices(&mask);
-    let step = (rim.len() / 6).max(1);
-    let (radius, strength) = radius_and_strength(&mask, 0.05, 1.0);
-    let dwells: Vec<Stroke> = (0..6)
-        .map(|k| {
-            let at = mask.positions[rim[k * step] as usize];
-            paint(Brush::Inflate, radius, strength, vec![at; 40])
-        })
-        .collect();
-    let (_, reports, end) = sculpt(test, mask.clone(), &dwells, true);
+    let (_, reports, end) = sculpt(test, mask.clone(), &rim_dwells(&mask), true);
     assert!(reports[4].specks_removed >= 1, "{:?}", reports[4]);
     assert!(reports[4].changes >= 4, "{:?}", reports[4]);
     assert_eq!((end.components, end.nonmanifold_curves), (1, 0));

@@ -920,6 +920,21 @@ mod tests {
         }
     }
 
+    /// [`grid`] of 6 and, over its middle at height 1, a closed
+    /// tetrahedron of side `side`, numbered after the grid.
+    fn grid_with_tetrahedron(side: f64) -> TriMesh {
+        let mut m = grid(6);
+        let n = m.positions.len() as u32;
+        // The testkit's tetrahedron has sides 2√2.
+        let (corners, faces) = holey_testkit::meshes::tetrahedron();
+        let c = DVec3::new(3.0, 3.0, 1.0);
+        let k = side / 8f64.sqrt();
+        m.positions
+            .extend(corners.map(|p| c + DVec3::from_array(p) * k));
+        m.triangles.extend(faces.map(|t| t.map(|v| v + n)));
+        m
+    }
+
     /// A closed tetrahedron of side about `side` above the grid joins it
     /// as a piece of its own: one whose sides are the grid's edge length
     /// (about 1.2 edges across) is a speck, one three times that is not.
@@ -927,16 +942,7 @@ mod tests {
     fn a_tetrahedron_at_the_surfaces_edge_length_is_a_speck() {
         let before = grid(6);
         for (side, speck) in [(1.0, true), (3.0, false)] {
-            let mut after = before.clone();
-            let n = after.positions.len() as u32;
-            // The testkit's tetrahedron has sides 2√2.
-            let (corners, faces) = holey_testkit::meshes::tetrahedron();
-            let c = DVec3::new(3.0, 3.0, 1.0);
-            let k = side / 8f64.sqrt();
-            after
-                .positions
-                .extend(corners.map(|p| c + DVec3::from_array(p) * k));
-            after.triangles.extend(faces.map(|t| t.map(|v| v + n)));
+            let after = grid_with_tetrahedron(side);
             let worse = piece_growth(&before, &after, &|_| true, &|_| true, &Options::default());
             assert_eq!(
                 worse.contains(&"specks cut off: 0 -> 1".to_owned()),
@@ -961,17 +967,8 @@ mod tests {
     /// side `side`, as the engine's output for a region of the whole
     /// input, with the input it came from.
     fn grid_and_tetrahedron(side: f64, corners: Corners) -> (TriMesh, Outcome) {
-        let mut with_tetrahedron = grid(6);
-        let n = with_tetrahedron.positions.len() as u32;
-        let (tetrahedron, faces) = holey_testkit::meshes::tetrahedron();
-        let c = DVec3::new(3.0, 3.0, 1.0);
-        let k = side / 8f64.sqrt();
-        with_tetrahedron
-            .positions
-            .extend(tetrahedron.map(|p| c + DVec3::from_array(p) * k));
-        with_tetrahedron
-            .triangles
-            .extend(faces.map(|t| t.map(|v| v + n)));
+        let with_tetrahedron = grid_with_tetrahedron(side);
+        let n = grid(6).positions.len() as u32;
         let (_, mut out) = outcome(&[], false);
         out.mesh = with_tetrahedron.clone();
         out.vertex_origin = (0..n).collect();
