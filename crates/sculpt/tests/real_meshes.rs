@@ -810,6 +810,16 @@ fn stanford_bunny_dwell_on_a_base_hole_rim_unremeshed_holds_and_says_why() {
     bunny_one_piece_with_its_five_holes(&d.end);
 }
 
+/// The six rim dwells ([`rim_dwells`]) replayed one after another on the
+/// shared mesh `file`, checked stroke by stroke as [`sculpt`] does, with
+/// remeshing: the reports and the final shape, or `None` when the shared
+/// meshes are absent.
+fn sculpt_rim_dwells(test: &str, file: &str) -> Option<(Vec<StrokeReport>, Shape)> {
+    let m = load(test, file)?;
+    let (_, reports, end) = sculpt(test, m.clone(), &rim_dwells(&m), true);
+    Some((reports, end))
+}
+
 /// The six rim dwells of `bench/sculpt/rim_dwells.py` on `m`: inflates of
 /// 40 frames at one point each (radius 5% of the diagonal), at rim
 /// vertices spread along the rims by index.
@@ -867,10 +877,9 @@ fn stanford_bunny_rim_dwell_through_a_raised_sheet_fuses_it() {
 #[test]
 fn stanford_bunny_six_rim_dwells_stay_within_the_brushs_region() {
     let test = "stanford_bunny_six_rim_dwells_stay_within_the_brushs_region";
-    let Some(bunny) = load(test, "stanford-bunny.obj") else {
+    let Some((reports, end)) = sculpt_rim_dwells(test, "stanford-bunny.obj") else {
         return;
     };
-    let (_, reports, end) = sculpt(test, bunny.clone(), &rim_dwells(&bunny), true);
     assert!(
         reports[5].changes >= 1,
         "the last dwell folds its lip through: {:?}",
@@ -897,10 +906,9 @@ fn stanford_bunny_six_rim_dwells_stay_within_the_brushs_region() {
 #[test]
 fn bigguyhalf_rim_dwell_takes_out_the_debris_of_its_fold() {
     let test = "bigguyhalf_rim_dwell_takes_out_the_debris_of_its_fold";
-    let Some(mask) = load(test, "bigguyhalf.obj") else {
+    let Some((reports, end)) = sculpt_rim_dwells(test, "bigguyhalf.obj") else {
         return;
     };
-    let (_, reports, end) = sculpt(test, mask.clone(), &rim_dwells(&mask), true);
     assert!(reports[4].specks_removed >= 1, "{:?}", reports[4]);
     assert!(reports[4].changes >= 4, "{:?}", reports[4]);
     assert_eq!((end.components, end.nonmanifold_curves), (1, 0));

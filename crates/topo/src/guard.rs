@@ -287,9 +287,7 @@ fn run_with(
                 if let Some(mut out) =
                     by_containment(&sub, &local_end, options, &surroundings, Some(*g))?
                     && let Some(run) = {
-                        if options.take_out_debris {
-                            take_out_debris(mesh, &tight, &mut out);
-                        }
+                        take_out_debris(mesh, &tight, &mut out, options);
                         spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
                     }
                     && run.worse.is_empty()
@@ -315,9 +313,7 @@ fn run_with(
         tried = region.count;
         let sub = region.submesh(&mesh.positions);
         let mut out = resolve_frame(mesh, end, &region, &sub, options, motion, containment)?;
-        if options.take_out_debris {
-            take_out_debris(mesh, &region, &mut out);
-        }
+        take_out_debris(mesh, &region, &mut out, options);
         if let Some(mut run) = spliced_and_audited(mesh, end, &region, &sub, &out, options)? {
             run.worse.extend(unreached_deleted(&sub, &out, bx));
             return Ok(run);
@@ -332,9 +328,7 @@ fn run_with(
     );
     let sub = everything.submesh(&mesh.positions);
     let mut out = resolve_frame(mesh, end, &everything, &sub, options, motion, containment)?;
-    if options.take_out_debris {
-        take_out_debris(mesh, &everything, &mut out);
-    }
+    take_out_debris(mesh, &everything, &mut out, options);
     let (result, mut report) = from_whole(&sub, out.clone());
     report.raw_odd = everything.scatter(&report.raw_odd, n, false);
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
@@ -511,13 +505,23 @@ fn spliced_and_audited(
     }))
 }
 
-/// `out`, the engine's result for `region` of `mesh`, without its debris ([`crate::hidden::debris`]): pieces the cut closed
-/// off (with a point of the cut or a copy of a split vertex), whole
-/// within the region, smaller than [`SPECK_EDGES`] of the median edge
-/// at the region's vertices (the specks [`piece_growth`] would count). Their triangles go and the output's vertices are
-/// renumbered in order (the engine's new points stay last);
-/// [`crate::cut::CutReport::specks_removed`] counts the pieces.
-fn take_out_debris(mesh: &TriMesh, region: &Region, out: &mut Outcome) {
+/// With [`Options::take_out_debris`], `out`, the engine's result for
+/// `region` of `mesh`, without its debris ([`crate::hidden::debris`]):
+/// pieces the cut closed off (with a point of the cut or a copy of a
+/// split vertex), whole within the region, smaller than [`SPECK_EDGES`]
+/// of the median edge at the region's vertices (the specks
+/// [`piece_growth`] would count). Their triangles go and the output's
+/// vertices are renumbered in order (the engine's new points stay last);
+/// [`crate::cut::CutReport::specks_removed`] counts the pieces. A result
+/// in one piece costs one pass over its triangles.
+fn take_out_debris(mesh: &TriMesh, region: &Region, out: &mut Outcome, options: &Options) {
+    if !options.take_out_debris {
+        return;
+    }
+    let (root, count) = pieces(&out.mesh);
+    if count < 2 {
+        return;
+    }
     let mut on_interface = vec![false; region.global.len()];
     for &t in region.ring(&mesh.triangles) {
         for v in mesh.triangles[t as usize] {
@@ -546,8 +550,8 @@ fn take_out_debris(mesh: &TriMesh, region: &Region, out: &mut Outcome) {
     // The scale `piece_growth` measures specks by: the median edge of the
     // surface's triangles at the region's vertices.
     let near = |v: u32| region.local.get(v as usize).is_some_and(|&l| l != u32::MAX);
-    let scale = || SPECK_EDGES * median_edge_near(mesh, &near);
-    let Some((gone, count)) = debris(&out.mesh, &made, &interface, &scale) else {
+    let scale = SPECK_EDGES * median_edge_near(mesh, &near);
+    let Some((gone, count)) = debris(&out.mesh, (&root, count), &made, &interface, scale) else {
         return;
     };
     let kept: Vec<[u32; 3]> = out
@@ -1003,7 +1007,16 @@ mod tests {
                 &input.positions,
                 (DVec3::NEG_INFINITY, DVec3::INFINITY),
             );
-            take_out_debris(&input, &everything, &mut out);
+            let debris_on = Options {
+                take_out_debris: true,
+                ..Options::default()
+            };
+            take_out_debris(&input, &everything, &mut out, &debris_on);
+            // Off, the same output is left alone.
+            let (_, mut untouched) = grid_and_tetrahedron(side, corners);
+            let before = untouched.mesh.clone();
+            take_out_debris(&input, &everything, &mut untouched, &Options::default());
+            assert_eq!(untouched.mesh, before);
             let grid_triangles = grid(6).triangles.len();
             let left = if goes { 0 } else { 4 };
             let what = format!("side {side}, {corners:?}");

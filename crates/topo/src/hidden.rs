@@ -154,24 +154,23 @@ pub(crate) fn specks(
 /// connected piece that has a vertex the change made (`made`), no vertex
 /// on the interface with the rest of the surface (`interface`: the piece
 /// is whole within `m`), and a bounding box whose diagonal is shorter
-/// than `scale()` ([`specks`]; asked only when `m` has two pieces or
-/// more). Such a piece is no part of anything the
-/// brush shaped: the arrangement of a crumple closed it off, below the
-/// surface's resolution, so the guard takes it out instead of holding
-/// the frame (a dwell inflate at bigguy's rim left two tetrahedra of a
-/// fold's tip, each inside the body, and stalled for 37 frames). With
-/// the number of such pieces; `None` when there is none.
+/// than `scale` ([`specks`]). `root` and `count` are [`pieces`] of `m`.
+/// Such a piece is no part of anything the brush shaped: the arrangement
+/// of a crumple closed it off, below the surface's resolution, so the
+/// guard takes it out instead of holding the frame (a dwell inflate at
+/// bigguy's rim left two tetrahedra of a fold's tip, each inside the
+/// body, and stalled for 37 frames). With the number of such pieces;
+/// `None` when there is none.
 pub(crate) fn debris(
     m: &TriMesh,
+    (root, count): (&[u32], usize),
     made: &dyn Fn(u32) -> bool,
     interface: &dyn Fn(u32) -> bool,
-    scale: &dyn Fn() -> f64,
+    scale: f64,
 ) -> Option<(Vec<bool>, usize)> {
-    let (root, count) = pieces(m);
     if count < 2 {
         return None;
     }
-    let scale = scale();
     struct Piece {
         made: bool,
         interface: bool,
@@ -179,7 +178,7 @@ pub(crate) fn debris(
         hi: DVec3,
     }
     let mut found: rustc_hash::FxHashMap<u32, Piece> = rustc_hash::FxHashMap::default();
-    for (t, &r) in m.triangles.iter().zip(&root) {
+    for (t, &r) in m.triangles.iter().zip(root) {
         let piece = found.entry(r).or_insert(Piece {
             made: false,
             interface: false,
@@ -377,7 +376,14 @@ mod tests {
         );
         let small = |v: u32| v >= 8;
         let none = |_: u32| false;
-        let (mask, count) = debris(&m, &small, &none, &|| 2.0).unwrap();
+        let debris = |m: &TriMesh,
+                      made: &dyn Fn(u32) -> bool,
+                      interface: &dyn Fn(u32) -> bool,
+                      scale: f64| {
+            let (root, count) = pieces(m);
+            debris(m, (&root, count), made, interface, scale)
+        };
+        let (mask, count) = debris(&m, &small, &none, 2.0).unwrap();
         assert_eq!(count, 1);
         assert_eq!(
             mask,
@@ -385,11 +391,11 @@ mod tests {
         );
         // Nothing made there, one of its vertices on the interface, or
         // wider than the scale: it stays.
-        assert!(debris(&m, &none, &none, &|| 2.0).is_none());
-        assert!(debris(&m, &small, &|v| v == 9, &|| 2.0).is_none());
-        assert!(debris(&m, &small, &none, &|| 1.5).is_none());
+        assert!(debris(&m, &none, &none, 2.0).is_none());
+        assert!(debris(&m, &small, &|v| v == 9, 2.0).is_none());
+        assert!(debris(&m, &small, &none, 1.5).is_none());
         // One piece alone is never debris.
-        assert!(debris(&big, &|_| true, &none, &|| 100.0).is_none());
+        assert!(debris(&big, &|_| true, &none, 100.0).is_none());
     }
 
     /// A small box inside a big one is hidden, beside it is not; the big
