@@ -162,6 +162,85 @@ pub fn uv_spheres(
     (pos, tris)
 }
 
+/// The closed surface of a set of unit lattice cubes (cube `c` spans
+/// `c .. c + 1` on each axis): every square face between a cube of the
+/// set and a cell outside it, outward, as two triangles split along the
+/// diagonal from its first corner, vertices welded by lattice point.
+/// Where cubes of the set meet only along an edge or at a corner, the
+/// surface is not a 2-manifold there (an edge of four faces, a vertex of
+/// two fans), as the solid is not.
+pub fn lattice_cubes(cells: &[[i32; 3]]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let set: std::collections::HashSet<[i32; 3]> = cells.iter().copied().collect();
+    let mut index: std::collections::HashMap<[i32; 3], u32> = Default::default();
+    let mut pos: Vec<[f64; 3]> = Vec::new();
+    let mut tris = Vec::new();
+    for c in cells {
+        for axis in 0..3 {
+            for dir in [-1, 1] {
+                let mut n = *c;
+                n[axis] += dir;
+                if set.contains(&n) {
+                    continue;
+                }
+                let (u, w) = ((axis + 1) % 3, (axis + 2) % 3);
+                let mut base = *c;
+                base[axis] += i32::from(dir > 0);
+                let mut quad: Vec<[i32; 3]> = [(0, 0), (1, 0), (1, 1), (0, 1)]
+                    .iter()
+                    .map(|&(du, dw)| {
+                        let mut q = base;
+                        q[u] += du;
+                        q[w] += dw;
+                        q
+                    })
+                    .collect();
+                if dir < 0 {
+                    quad.reverse();
+                }
+                let q: Vec<u32> = quad
+                    .iter()
+                    .map(|q| {
+                        *index.entry(*q).or_insert_with(|| {
+                            pos.push(q.map(f64::from));
+                            (pos.len() - 1) as u32
+                        })
+                    })
+                    .collect();
+                tris.push([q[0], q[1], q[2]]);
+                tris.push([q[0], q[2], q[3]]);
+            }
+        }
+    }
+    (pos, tris)
+}
+
+/// The cubes of the Menger sponge of `level` on the lattice `0..3^level`:
+/// those none of whose base-3 digit triples has two or more ones.
+pub fn menger_cells(level: u32) -> Vec<[i32; 3]> {
+    let n = 3i32.pow(level);
+    let kept = |c: [i32; 3]| {
+        let mut c = c;
+        while c != [0, 0, 0] {
+            if c.iter().filter(|&&x| x % 3 == 1).count() >= 2 {
+                return false;
+            }
+            c = c.map(|x| x / 3);
+        }
+        true
+    };
+    let mut cells = Vec::new();
+    for x in 0..n {
+        for y in 0..n {
+            for z in 0..n {
+                if kept([x, y, z]) {
+                    cells.push([x, y, z]);
+                }
+            }
+        }
+    }
+    cells
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -226,5 +305,25 @@ mod tests {
             let d = ((q[0] - 1.0).powi(2) + (q[1] - 2.0).powi(2) + (q[2] - 3.0).powi(2)).sqrt();
             assert!((d - 0.5).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn menger_cells_are_20_to_the_level_and_their_surface_is_closed() {
+        assert_eq!(menger_cells(1).len(), 20);
+        assert_eq!(menger_cells(2).len(), 400);
+        let (pos, tris) = lattice_cubes(&menger_cells(1));
+        // Every edge has two faces, one each way: closed, oriented.
+        let mut net = std::collections::HashMap::new();
+        for t in &tris {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *net.entry((a.min(b), a.max(b))).or_insert(0i32) += if a < b { 1 } else { -1 };
+            }
+        }
+        assert!(net.values().all(|&n| n == 0));
+        // The level-1 sponge of side 3 has area 72 = 9·(2·20/9 + 4·8/9):
+        // 48 squares outside, 24 in its tunnels.
+        assert_eq!(tris.len(), 2 * 72);
+        assert_eq!(pos.len(), 64);
     }
 }

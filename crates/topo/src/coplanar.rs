@@ -29,6 +29,7 @@
 use glam::{DVec2, DVec3};
 use holey_geom::expansion::Expansion;
 use holey_geom::{Aabb, Bvh, Sign, orient2d, orient3d};
+use rayon::prelude::*;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use crate::cut::{ChartVertex, NONE};
@@ -195,16 +196,28 @@ pub(crate) fn for_each_overlapping_pair(
     let Ok(tree) = Bvh::build(&boxes) else {
         return;
     };
-    for (i, b) in boxes.iter().enumerate() {
-        tree.for_each_overlap(b, |j| {
-            let j = j as usize;
-            if j > i {
-                let how = overlap(positions, faces[i], faces[j]);
-                if how != Overlap::Apart {
-                    f(i, j, how);
+    // Found in parallel (nearly every face's box meets a few of its
+    // neighbours', which the filters reject one by one), then reported
+    // in order.
+    let found: Vec<(u32, u32, Overlap)> = (0..faces.len())
+        .into_par_iter()
+        .with_min_len(1 << 10)
+        .flat_map_iter(|i| {
+            let mut hits = Vec::new();
+            tree.for_each_overlap(&boxes[i], |j| {
+                let j = j as usize;
+                if j > i {
+                    let how = overlap(positions, faces[i], faces[j]);
+                    if how != Overlap::Apart {
+                        hits.push((i as u32, j as u32, how));
+                    }
                 }
-            }
-        });
+            });
+            hits
+        })
+        .collect();
+    for (i, j, how) in found {
+        f(i as usize, j as usize, how);
     }
 }
 

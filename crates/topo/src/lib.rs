@@ -31,6 +31,7 @@ pub mod solids;
 mod test_meshes;
 pub mod union;
 mod union_find;
+mod unzip;
 mod weights;
 pub mod winding;
 pub mod winding_boolean;

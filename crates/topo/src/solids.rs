@@ -31,7 +31,8 @@ use crate::engine::{Options, Outcome, TopoError, topology_change};
 use crate::mesh::TriMesh;
 use crate::union::{NUDGES, Operation, PreparedPair, UnionError, boolean, boolean_robust, nudge};
 use crate::winding_boolean::{
-    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_robust,
+    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_if_embedded,
+    boolean_by_winding_robust,
 };
 
 /// The default direction B arrives from in the motion: generic, so that
@@ -296,7 +297,24 @@ pub fn solid_boolean(
     };
     let direct = match (prepared, options.exact) {
         (Some(pair), true) => pair.exact(&options.engine),
-        (Some(pair), false) => pair.robust(&options.engine),
+        // Where the exact containment is not clean (coplanar contact),
+        // the exact winding-number arrangement before any nudge: when
+        // the contact is embedded exactly (faces of lattice solids) its
+        // answer is exact and clean, where a nudge moves the answer.
+        (Some(pair), false) => match pair.exact(&options.engine) {
+            Ok(mut out) => {
+                let mut best = None;
+                if pair.first_is_clean(&mut out, &mut best) {
+                    Ok(out)
+                } else if let Some(mut w) = exact_winding_if_clean(inputs, op, options)? {
+                    w.report.seconds.total = started.elapsed().as_secs_f64();
+                    return Ok(finish(Method::Winding, Computed::Winding(w), None));
+                } else {
+                    pair.nudged(&options.engine, out, best)
+                }
+            }
+            Err(e) => Err(e),
+        },
         (None, true) => boolean(a, b, op, &options.engine),
         (None, false) => boolean_robust(a, b, op, &options.engine),
     };
@@ -319,6 +337,28 @@ pub fn solid_boolean(
         }
         Err(e) => Err(e.into()),
     }
+}
+
+/// The exact winding-number Boolean of `inputs` when the arrangement
+/// embeds their contact exactly ([`boolean_by_winding_if_embedded`]) and
+/// the result is clean: closed, a 2-manifold at edges and vertices, and
+/// crossing itself nowhere (checked exactly; the count goes in the
+/// report). `None` otherwise.
+fn exact_winding_if_clean(
+    inputs: &[&TriMesh],
+    op: Operation,
+    options: &BooleanOptions,
+) -> Result<Option<WindingOutcome>, BooleanError> {
+    let Some(mut out) = boolean_by_winding_if_embedded(inputs, op, &options.engine)? else {
+        return Ok(None);
+    };
+    let r = &out.report;
+    if r.unpaired_edges + r.nonmanifold_edges + r.pinched_vertices > 0 {
+        return Ok(None);
+    }
+    let crossing = crate::engine::self_intersections(&out.mesh)?.pairs.len();
+    out.report.output_intersecting_pairs = Some(crossing);
+    Ok((crossing == 0).then_some(out))
 }
 
 /// The start positions of `a` joined with `b` moved away along `d` (a

@@ -135,7 +135,7 @@ impl Operation {
 /// triangles ([`crate::zero_area`]), which the symbolic perturbation
 /// would turn into slivers overlapping their neighbours (the solid would
 /// seem to cross itself there). The same points, so the same solid.
-fn solid(m: &TriMesh) -> (Cow<'_, TriMesh>, usize) {
+pub(crate) fn solid(m: &TriMesh) -> (Cow<'_, TriMesh>, usize) {
     match repaired(m) {
         Some((repaired, r)) => (Cow::Owned(repaired), r.pinched_removed + r.flat_removed),
         None => (Cow::Borrowed(m), 0),
@@ -625,8 +625,12 @@ impl<'a> PreparedPair<'a> {
     /// inputs that are closed 2-manifolds give an output that is not, the
     /// same with B nudged ([`NUDGES`]).
     pub(crate) fn robust(&self, options: &Options) -> Result<Outcome, UnionError> {
-        self.robust_attempts(options)
-            .map(|out| self.with_repair(out))
+        let mut out = self.exact(options)?;
+        let mut best = None;
+        if self.first_is_clean(&mut out, &mut best) {
+            return Ok(out);
+        }
+        self.nudged(options, out, best)
     }
 
     /// The outcome `out` of the pair, its report saying what the inputs'
@@ -636,37 +640,35 @@ impl<'a> PreparedPair<'a> {
         out
     }
 
-    /// [`PreparedPair::robust`] but for the report's repair count.
-    fn robust_attempts(&self, options: &Options) -> Result<Outcome, UnionError> {
+    /// Whether the first, exact attempt `out` is the answer: inputs that
+    /// are not both oriented 2-manifolds get no other; otherwise it must
+    /// be a closed 2-manifold that does not cross itself. An attempt that
+    /// crosses itself may move into `best` ([`keep_if_clean`]).
+    pub(crate) fn first_is_clean(&self, out: &mut Outcome, best: &mut Option<Outcome>) -> bool {
+        if !(self.pa.oriented() && self.pb.oriented()) {
+            return true;
+        }
+        // Exact in the perturbed world, the result can cross itself only
+        // where points it keeps apart were rounded onto each other (a cut
+        // that merged points: mirror images, quarter turns); only then is
+        // it counted.
+        out.mesh.is_closed_manifold()
+            && (out.report.cut.merged_points == 0 || keep_if_clean(out, best))
+    }
+
+    /// The attempts with B nudged ([`NUDGES`]) after the exact one `out`
+    /// was not clean: the first closed 2-manifold that does not cross
+    /// itself, else the closed one that crosses itself least (`best`
+    /// holds the exact one's rank), its crossings counted in the report
+    /// (never silently), else the last attempt.
+    pub(crate) fn nudged(
+        &self,
+        options: &Options,
+        mut out: Outcome,
+        mut best: Option<Outcome>,
+    ) -> Result<Outcome, UnionError> {
         let (a, b, op) = (self.a.as_ref(), self.b.as_ref(), self.op);
-        let manifold_inputs = self.pa.oriented() && self.pb.oriented();
         let started = self.started();
-        let mut out = unite(
-            a,
-            &self.pa,
-            b,
-            &self.pb,
-            op,
-            options,
-            started,
-            Some(&self.near),
-        )?;
-        if !manifold_inputs {
-            return Ok(out);
-        }
-        let mut best: Option<Outcome> = None;
-        if out.mesh.is_closed_manifold() {
-            // Exact in the perturbed world, the result can cross itself
-            // only where points it keeps apart were rounded onto each
-            // other (a cut that merged points: mirror images, quarter
-            // turns); only then is it counted.
-            if out.report.cut.merged_points == 0 || keep_if_clean(&mut out, &mut best) {
-                return Ok(out);
-            }
-        }
-        // Nudged: the first closed 2-manifold that does not cross itself,
-        // else the closed one that crosses itself least, its crossings
-        // counted in the report (never silently), else the last attempt.
         for k in 1..NUDGES.len() {
             let d = nudge(a, b, k);
             let moved = TriMesh {
@@ -677,13 +679,14 @@ impl<'a> PreparedPair<'a> {
             out = unite(a, &self.pa, &moved, &pm, op, options, started, None)?;
             out.report.perturbation_retries = k;
             if out.mesh.is_closed_manifold() && keep_if_clean(&mut out, &mut best) {
-                return Ok(out);
+                return Ok(self.with_repair(out));
             }
         }
-        Ok(best.unwrap_or(out))
+        Ok(self.with_repair(best.unwrap_or(out)))
     }
 
-    /// [`boolean`] of the pair.
+    /// [`boolean`] of the pair, its report saying what the inputs'
+    /// zero-area triangles lost.
     pub(crate) fn exact(&self, options: &Options) -> Result<Outcome, UnionError> {
         unite(
             &self.a,

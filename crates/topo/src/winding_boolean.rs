@@ -54,11 +54,23 @@
 //!    sheets that meet along the line).
 //! 6. Coplanar faces of opposite orientation that touch are apart in the
 //!    perturbed world, and where the perturbation leaves a gap between
-//!    them both are kept: a wall of no thickness. Where the inputs touch
-//!    degenerately, such walls are found exactly and replaced by their
-//!    overlay, in which the faces cancel where they overlap
-//!    ([`crate::coplanar`]); each wall is merged only when that leaves the
-//!    result no more open and no less manifold (`coplanar_walls_merged`).
+//!    them both are kept: a wall of no thickness. Such walls are looked
+//!    for in every result (inputs can touch without crossing in the
+//!    perturbed world: a box resting on another's face), found exactly
+//!    and replaced by their overlay, in which the faces cancel where they
+//!    overlap ([`crate::coplanar`]); each wall is merged only when that
+//!    leaves the result no more open and no less manifold
+//!    (`coplanar_walls_merged`).
+//! 7. Where the solid touches itself along an edge or at a point (two
+//!    cubes of a lattice meeting diagonally), the faces around the edge
+//!    are paired across the solid's inside by their exact angle about it
+//!    and the vertices split into their fans ([`crate::unzip`]): a
+//!    2-manifold with the same points (`unzipped_edges`,
+//!    `split_vertices`).
+//!
+//! The inputs' zero-area triangles are taken out first, the points kept
+//! ([`crate::zero_area`]): under the perturbation they would be slivers
+//! crossing their neighbours.
 //!
 //! **Open inputs.** The winding number of a surface with holes is not an
 //! integer; it is the generalized winding number (Jacobson, Kavan &
@@ -129,6 +141,9 @@ pub struct WindingReport {
     /// Per input: whether it is closed (its winding number is then exact;
     /// an open input's is the generalized one).
     pub inputs_closed: Vec<bool>,
+    /// Zero-area triangles the inputs lost before the arrangement
+    /// ([`crate::zero_area`]: the same points, the same solids).
+    pub zero_area_removed: usize,
     /// Triangle pairs (of any inputs, or of one) that intersect.
     pub intersecting_pairs: usize,
     /// Intersection points among all the inputs' triangles: edge × triangle
@@ -172,6 +187,15 @@ pub struct WindingReport {
     pub nonmanifold_edges: usize,
     /// See [`WindingReport::nonmanifold_edges`].
     pub pinched_vertices: usize,
+    /// Edges of more than two kept faces where the solid touches itself
+    /// (two parts meeting along the edge), whose faces were paired by
+    /// their angle about it so that the result is a 2-manifold there
+    /// (`crate::unzip`).
+    pub unzipped_edges: usize,
+    /// Vertices added where the solid touches itself at a point or along
+    /// an unzipped edge: one copy, at the same position, per fan after
+    /// the first.
+    pub split_vertices: usize,
     /// Pairs of the result's triangles that cross, when they were counted
     /// ([`boolean_by_winding_robust`] does).
     pub output_intersecting_pairs: Option<usize>,
@@ -237,6 +261,32 @@ pub fn boolean_by_winding(
     op: Operation,
     options: &Options,
 ) -> Result<WindingOutcome, WindingError> {
+    arranged(inputs, op, options, true)?.ok_or(WindingError::NoInput)
+}
+
+/// [`boolean_by_winding`] when no input triangle meets another
+/// degenerately (a vertex of one exactly in the other's plane, where the
+/// two cross), else `None`, found once the intersections are (the first
+/// stage). Coplanar faces that touch without crossing (the lattice faces
+/// of two solids shifted by whole cells) are embedded exactly then: the
+/// arrangement's regions are the perturbed world's, and only walls of no
+/// thickness and contacts along edges are left to close up.
+pub(crate) fn boolean_by_winding_if_embedded(
+    inputs: &[&TriMesh],
+    op: Operation,
+    options: &Options,
+) -> Result<Option<WindingOutcome>, WindingError> {
+    arranged(inputs, op, options, false)
+}
+
+/// [`boolean_by_winding`]; `None` when an input triangle meets another
+/// degenerately and `degenerate_too` is false.
+fn arranged(
+    inputs: &[&TriMesh],
+    op: Operation,
+    options: &Options,
+    degenerate_too: bool,
+) -> Result<Option<WindingOutcome>, WindingError> {
     let started = Instant::now();
     if inputs.is_empty() {
         return Err(WindingError::NoInput);
@@ -244,10 +294,21 @@ pub fn boolean_by_winding(
     if op == Operation::Difference && inputs.len() < 2 {
         return Err(WindingError::DifferenceNeedsTwo);
     }
+    for m in inputs {
+        m.check()?;
+    }
+    // Zero-area triangles repaired first, the points kept: the symbolic
+    // perturbation would make slivers of them that cross their
+    // neighbours, each a region of its own ([`crate::zero_area`]).
+    let repaired: Vec<(std::borrow::Cow<'_, TriMesh>, usize)> =
+        inputs.iter().map(|m| crate::union::solid(m)).collect();
+    let inputs: Vec<&TriMesh> = repaired.iter().map(|(m, _)| m.as_ref()).collect();
+    let inputs = &inputs[..];
     let (joined, owner) = join(inputs)?;
     let ids = position_classes(&joined.positions).map_err(TopoError::from)?;
     let mut report = WindingReport {
         inputs_closed: closed_inputs(&joined.triangles, &ids, &owner, inputs.len()),
+        zero_area_removed: repaired.iter().map(|(_, n)| n).sum(),
         ..WindingReport::default()
     };
 
@@ -269,6 +330,9 @@ pub fn boolean_by_winding(
     report.triple_points = x.triple_points();
     report.intersection_curves = x.curve_count;
     let degenerate = degenerate_contacts(&joined, &ids, &x.pairs);
+    if !degenerate_too && degenerate.contains(&true) {
+        return Ok(None);
+    }
     report.seconds.intersections = started.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -311,12 +375,11 @@ pub fn boolean_by_winding(
     let mut faces = classify(&arrangement, &source, &degenerate, &rays, op, &mut report)?;
     cancel_opposite_twins(&mut faces);
     let mut positions = arrangement.positions;
-    let faces = close_up(
-        &mut positions,
-        faces,
-        degenerate.contains(&true),
-        &mut report,
-    );
+    let faces = close_up(&mut positions, faces, &mut report);
+    let mut faces = faces;
+    let unzipped = crate::unzip::unzip(&mut positions, &mut faces);
+    report.unzipped_edges = unzipped.edges;
+    report.split_vertices = unzipped.vertices;
     report.unpaired_edges = unpaired_edges(&faces).len();
     report.seconds.classify = t.elapsed().as_secs_f64();
     let mesh = TriMesh {
@@ -327,12 +390,12 @@ pub fn boolean_by_winding(
     report.nonmanifold_edges = nonmanifold_edges(&mesh.triangles);
     report.pinched_vertices = mesh.pinched_vertices().iter().filter(|&&p| p).count();
     report.seconds.total = started.elapsed().as_secs_f64();
-    Ok(WindingOutcome { mesh, report })
+    Ok(Some(WindingOutcome { mesh, report }))
 }
 
-/// The kept faces closed up: T-junctions repaired and, where the inputs
-/// touched degenerately (`degenerate`: coplanar faces can touch only
-/// so), walls of no thickness merged by the coplanar overlay
+/// The kept faces closed up: T-junctions repaired and walls of no
+/// thickness (coplanar kept faces facing opposite ways that overlap,
+/// wherever the inputs touch) merged by the coplanar overlay
 /// ([`crate::coplanar`]) when that leaves the result no more open and no
 /// less manifold than without: every wall at once (one repair pass over
 /// the result, the common case), and when that is worse, one wall at a
@@ -340,18 +403,19 @@ pub fn boolean_by_winding(
 fn close_up(
     positions: &mut Vec<DVec3>,
     faces: Vec<[u32; 3]>,
-    degenerate: bool,
     report: &mut WindingReport,
 ) -> Vec<[u32; 3]> {
     let repaired = |positions: &[DVec3], mut faces: Vec<[u32; 3]>| {
         let n = repair_t_junctions(positions, &mut faces) + split_open_sides(positions, &mut faces);
         (faces, n)
     };
-    let groups = if degenerate {
-        crate::coplanar::wall_groups(positions, &faces)
-    } else {
-        Vec::new()
-    };
+    // Walls are coplanar faces of opposite orientation that overlap.
+    // They are looked for in every result: inputs that touch without
+    // crossing in the perturbed world (a box resting on another's face,
+    // lattice faces of two solids triangulated differently) leave them
+    // as well as inputs that meet degenerately, and a wall can be whole
+    // shells' faces with no defect of edges or vertices to show for it.
+    let groups = crate::coplanar::wall_groups(positions, &faces);
     if groups.is_empty() {
         let (faces, n) = repaired(positions, faces);
         report.t_junctions_repaired = n;
