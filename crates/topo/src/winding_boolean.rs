@@ -1444,30 +1444,22 @@ fn classify(
         }
     }
     let mut unsampled: Vec<Vec<[u32; 3]>> = unsampled.into_values().collect();
-    for group in &groups {
-        let first = group[0] as usize;
-        let reference = tris[first];
-        // Same cyclic order as the first cell: faces the same way.
-        let same =
-            |t: [u32; 3]| (0..3).any(|k| [t[k], t[(k + 1) % 3], t[(k + 2) % 3]] == reference);
-        let on: Vec<(u32, i64)> = group
-            .iter()
-            .map(|&g| {
-                (
-                    source[g as usize].0,
-                    if same(tris[g as usize]) { 1 } else { -1 },
-                )
-            })
-            .collect();
-        report.rays += 1;
-        let Some(sides) = rays.sides(source[first], &on)? else {
-            unsampled.push(vec![reference]);
-            continue;
-        };
-        match fate(op, &sides) {
-            Fate::Deleted => {}
-            Fate::Kept => out.push(reference),
-            Fate::Flipped => out.push([reference[0], reference[2], reference[1]]),
+    let joined_groups = stacks(arr, &edges, &through, &groups, alone);
+    for (group, fate) in groups.iter().zip(classify_stacks(
+        arr,
+        source,
+        &groups,
+        &joined_groups,
+        rays,
+        op,
+        report,
+    )?) {
+        let reference = tris[group[0] as usize];
+        match fate {
+            Some(Fate::Deleted) => {}
+            Some(Fate::Kept) => out.push(reference),
+            Some(Fate::Flipped) => out.push([reference[0], reference[2], reference[1]]),
+            None => unsampled.push(vec![reference]),
         }
     }
     // Largest first: a big piece's choice settles its small neighbours'.
@@ -1475,6 +1467,124 @@ fn classify(
     report.unsampled_regions = unsampled.len();
     close_unsampled(&mut out, unsampled);
     Ok(out)
+}
+
+/// The groups of identical coincident cells ([`coincident_groups`])
+/// joined into stacks: two groups whose cells are all the faces of an
+/// edge they share (no other sheet meets there, nor a vertex inside it),
+/// their first cells running it opposite ways, bound the same two wedges
+/// of space about it, so the winding numbers on their fronts are one and
+/// on their backs are one, and so are their fates (a solid united with
+/// itself is one stack of pairs). Returns the stack of each group, as the
+/// union-find root of group indices. Cells from a triangle met
+/// degenerately (`alone`) are joined to nothing.
+fn stacks(
+    arr: &TriMesh,
+    edges: &Edges,
+    through: &[bool],
+    groups: &[Vec<u32>],
+    alone: impl Fn(u32) -> bool,
+) -> Vec<u32> {
+    let tris = &arr.triangles;
+    let mut group_of = vec![u32::MAX; tris.len()];
+    for (g, group) in groups.iter().enumerate() {
+        for &t in group {
+            group_of[t as usize] = g as u32;
+        }
+    }
+    let runs = |t: [u32; 3], a: u32, b: u32| (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b);
+    let mut sets = UnionFind::new(groups.len());
+    for (e, &t_junction) in through.iter().enumerate() {
+        let faces = edges.triangles(e);
+        if t_junction || faces.len() < 4 || faces.iter().any(|&t| alone(t)) {
+            continue;
+        }
+        let g = group_of[faces[0] as usize];
+        let Some(&h) = faces
+            .iter()
+            .map(|&t| &group_of[t as usize])
+            .find(|&&h| h != g)
+        else {
+            continue;
+        };
+        if g == u32::MAX
+            || h == u32::MAX
+            || groups[g as usize].len() + groups[h as usize].len() != faces.len()
+            || faces
+                .iter()
+                .any(|&t| group_of[t as usize] != g && group_of[t as usize] != h)
+        {
+            continue;
+        }
+        let [a, b] = edges.ends[e];
+        let (r, s) = (
+            tris[groups[g as usize][0] as usize],
+            tris[groups[h as usize][0] as usize],
+        );
+        if runs(r, a, b) != runs(s, a, b) {
+            sets.union(g, h);
+        }
+    }
+    (0..groups.len() as u32).map(|g| sets.find(g)).collect()
+}
+
+/// The fate of each group of identical coincident cells, its first cell
+/// the reference: one ray per stack ([`stacks`]), from the first of its
+/// groups (up to [`SAMPLE_TRIES`]) whose ray decides, the stacks in
+/// parallel; `None` where none does.
+fn classify_stacks(
+    arr: &TriMesh,
+    source: &[Source],
+    groups: &[Vec<u32>],
+    stack_of: &[u32],
+    rays: &Rays<'_>,
+    op: Operation,
+    report: &mut WindingReport,
+) -> Result<Vec<Option<Fate>>, WindingError> {
+    let tris = &arr.triangles;
+    let mut members: Vec<(u32, u32)> = stack_of
+        .iter()
+        .enumerate()
+        .map(|(g, &s)| (s, g as u32))
+        .collect();
+    members.sort_unstable();
+    let runs: Vec<&[(u32, u32)]> = members.chunk_by(|a, b| a.0 == b.0).collect();
+    let decided: Vec<(u32, usize, Option<Fate>)> = runs
+        .par_iter()
+        .map(|run| {
+            let mut tried = 0;
+            for &(_, g) in run.iter().take(SAMPLE_TRIES) {
+                let group = &groups[g as usize];
+                let first = group[0] as usize;
+                let reference = tris[first];
+                // Same cyclic order as the first cell: faces the same way.
+                let same = |t: [u32; 3]| {
+                    (0..3).any(|k| [t[k], t[(k + 1) % 3], t[(k + 2) % 3]] == reference)
+                };
+                let on: Vec<(u32, i64)> = group
+                    .iter()
+                    .map(|&c| {
+                        let sign = if same(tris[c as usize]) { 1 } else { -1 };
+                        (source[c as usize].0, sign)
+                    })
+                    .collect();
+                tried += 1;
+                if let Some(sides) = rays.sides(source[first], &on)? {
+                    return Ok((run[0].0, tried, Some(fate(op, &sides))));
+                }
+            }
+            Ok((run[0].0, tried, None))
+        })
+        .collect::<Result<_, WindingError>>()?;
+    let mut stack_fate: HashMap<u32, Option<Fate>> = HashMap::default();
+    for (stack, tried, f) in decided {
+        report.rays += tried;
+        stack_fate.insert(stack, f);
+    }
+    Ok(stack_of
+        .iter()
+        .map(|s| stack_fate.get(s).copied().flatten())
+        .collect())
 }
 
 /// Gives each region no sample could classify (slivers of no area along

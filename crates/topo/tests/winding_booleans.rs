@@ -144,10 +144,17 @@ fn nested_shells_by_orientation() {
 
 /// A solid and an exact copy of it (every triangle duplicated, vertices
 /// at the same places): union and intersection are the solid, the
-/// difference is empty.
+/// difference is empty. Every cell is a pair of identical cells, and
+/// every edge has only the two pairs on either side: one stack, whose
+/// winding numbers propagate across its edges, so one ray classifies
+/// each connected piece (two here: a sphere and a second sphere beside
+/// it), where it took one per pair of cells.
 #[test]
 fn duplicate_solids() {
-    let a = primitive("@sphere:2");
+    let a = join(
+        &primitive("@sphere:2"),
+        &translate(&primitive("@sphere:2"), DVec3::new(3.0, 0.0, 0.0)),
+    );
     let va = volume(&a);
     for (op, want) in [
         (Operation::Union, va),
@@ -159,6 +166,8 @@ fn duplicate_solids() {
         assert_volume(&out, want, 1e-12, op.name());
         let expected = if want == 0.0 { 0 } else { a.triangles.len() };
         assert_eq!(out.mesh.triangles.len(), expected, "{}", op.name());
+        assert_eq!(out.report.coincident_groups, a.triangles.len());
+        assert_eq!(out.report.rays, 2, "{}: a ray per piece", op.name());
     }
 }
 
