@@ -304,9 +304,16 @@ pub fn solid_boolean(
         (Some(pair), false) => match pair.exact(&options.engine) {
             Ok(mut out) => {
                 let mut best = None;
+                // Before `first_is_clean`, which may take `out` away; a
+                // pass over the pairs found, each a few exact signs.
+                let degenerate = pair.crosses_degenerately(&out);
                 if pair.first_is_clean(&mut out, &mut best) {
                     Ok(out)
-                } else if let Some(mut w) = exact_winding_if_clean(inputs, op, options)? {
+                } else if let Some(mut w) = (!degenerate)
+                    .then(|| exact_winding_if_clean(inputs, op, options))
+                    .transpose()?
+                    .flatten()
+                {
                     w.report.seconds.total = started.elapsed().as_secs_f64();
                     return Ok(finish(Method::Winding, Computed::Winding(w), None));
                 } else {
