@@ -684,9 +684,14 @@ impl<'a> PreparedPair<'a> {
         // Exact in the perturbed world, the result can cross itself only
         // where points it keeps apart were rounded onto each other (a cut
         // that merged points: mirror images, quarter turns); only then is
-        // it counted.
+        // it counted. So can it fold onto itself there: faces facing
+        // opposite ways over one another (a cube less its copy came out
+        // as three of its faces, twice, closed and of no volume).
         out.mesh.is_closed_manifold()
-            && (out.report.cut.merged_points == 0 || keep_if_clean(out, best))
+            && (out.report.cut.merged_points == 0
+                || (keep_if_clean(out, best)
+                    && crate::coplanar::wall_groups(&out.mesh.positions, &out.mesh.triangles)
+                        .is_empty()))
     }
 
     /// The attempts with B nudged ([`NUDGES`]) after the exact one `out`
