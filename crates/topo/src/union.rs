@@ -282,6 +282,17 @@ impl Surface {
     fn oriented(&self) -> bool {
         self.proper && self.edges.summary.all_opposite
     }
+
+    /// No edge has more than two triangles: where one has four (two
+    /// cubes of a lattice meeting along an edge) the solid touches
+    /// itself, which containment parity cannot tell from two sheets
+    /// crossing.
+    fn manifold_edges(&self) -> bool {
+        self.edges.summary.all_opposite
+            || (0..self.edges.len())
+                .into_par_iter()
+                .all(|e| self.edges.triangles(e).len() <= 2)
+    }
 }
 
 /// A tree of every triangle of `mesh` (checked) in the world's axes.
@@ -567,7 +578,8 @@ impl<'a> PreparedPair<'a> {
     /// check's tree built in the frame [`NearSets::with_check_frames`]
     /// picks, then kept for the rays and the pairs across. `None` when
     /// the winding-number arrangement is needed instead: a surface is
-    /// open, crosses itself or has a piece inside another.
+    /// open, has an edge of more than two triangles, crosses itself or
+    /// has a piece inside another.
     pub(crate) fn with_checks(
         a: &'a TriMesh,
         b: &'a TriMesh,
@@ -588,7 +600,7 @@ impl<'a> PreparedPair<'a> {
                 (near, checked)
             },
         );
-        if !(sa.closed() && sb.closed()) {
+        if !(sa.closed() && sb.closed() && sa.manifold_edges() && sb.manifold_edges()) {
             return Ok(None);
         }
         let (needs, [ta, tb]) = checked?;

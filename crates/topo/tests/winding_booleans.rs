@@ -848,3 +848,79 @@ fn a_solid_and_its_copy_through_the_policy() {
         }
     }
 }
+
+/// Random sets of lattice cubes (a 2³ to 4³ block, each cell taken with
+/// probability 0.3 to 0.7), and another shifted by up to a cell on each
+/// axis, through the policy: inputs that touch themselves along edges
+/// and at corners, in coplanar contact with each other wherever they
+/// meet. Every result must be exact (not nudged, its volume the count of
+/// cubes the rule keeps, computed on the cell sets), a closed 2-manifold
+/// at edges and vertices, and free of crossing pairs. Such inputs are
+/// closed but have edges of four triangles; they went to the containment
+/// parity, and 248 of about 300 results of the first 100 rounds came out
+/// open or non-manifold, with no retry and no warning.
+#[test]
+fn fuzz_lattice_cube_sets() {
+    use holey_topo::solids::{BooleanOptions, solid_boolean};
+    use std::collections::HashSet;
+    let mut rng = Rng::new(2026);
+    let mesh = |cells: &[[i32; 3]]| {
+        let (p, t) = holey_testkit::lattice_cubes(cells);
+        TriMesh {
+            positions: p.into_iter().map(DVec3::from).collect(),
+            triangles: t,
+        }
+    };
+    for round in 0..100 {
+        let n = 2 + rng.below(3) as i32;
+        let p = *rng.pick(&[0.3, 0.5, 0.7]);
+        let cells = |rng: &mut Rng| -> Vec<[i32; 3]> {
+            let mut c = Vec::new();
+            for x in 0..n {
+                for y in 0..n {
+                    for z in 0..n {
+                        if rng.chance(p) {
+                            c.push([x, y, z]);
+                        }
+                    }
+                }
+            }
+            c
+        };
+        let a_cells = cells(&mut rng);
+        let shift = [0; 3].map(|_| rng.below(3) as i32 - 1);
+        let b_cells: Vec<[i32; 3]> = cells(&mut rng)
+            .into_iter()
+            .map(|c| [c[0] + shift[0], c[1] + shift[1], c[2] + shift[2]])
+            .collect();
+        if a_cells.is_empty() || b_cells.is_empty() {
+            continue;
+        }
+        let (a, b) = (mesh(&a_cells), mesh(&b_cells));
+        let in_a: HashSet<[i32; 3]> = a_cells.iter().copied().collect();
+        let in_b: HashSet<[i32; 3]> = b_cells.iter().copied().collect();
+        for op in [
+            Operation::Union,
+            Operation::Intersection,
+            Operation::Difference,
+        ] {
+            let what = format!("round {round}, {}", op.name());
+            let out = solid_boolean(&[&a, &b], op, &BooleanOptions::default())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let m = out.mesh();
+            let kept = in_a
+                .union(&in_b)
+                .filter(|c| op.contains(&[in_a.contains(*c), in_b.contains(*c)]))
+                .count();
+            assert_eq!(out.perturbation_retries(), 0, "{what}");
+            assert_eq!(six_volume(m), 6.0 * kept as f64, "{what}");
+            assert!(
+                m.triangles.is_empty() || closed_oriented(m),
+                "{what}: not closed and oriented"
+            );
+            assert!(max_edge_degree(m) <= 2, "{what}: an edge of more than two");
+            assert_eq!(pinch_vertices(m), 0, "{what}");
+            assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
+        }
+    }
+}
