@@ -31,7 +31,7 @@ use crate::engine::{Options, Outcome, TopoError, topology_change};
 use crate::mesh::TriMesh;
 use crate::union::{NUDGES, Operation, PreparedPair, UnionError, boolean, boolean_robust, nudge};
 use crate::winding_boolean::{
-    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_if_embedded,
+    WindingError, WindingOutcome, boolean_by_winding, boolean_by_winding_first_try,
     boolean_by_winding_robust,
 };
 
@@ -298,24 +298,31 @@ pub fn solid_boolean(
     let direct = match (prepared, options.exact) {
         (Some(pair), true) => pair.exact(&options.engine),
         // Where the exact containment is not clean (coplanar contact),
-        // the exact winding-number arrangement before any nudge: when
-        // the contact is embedded exactly (faces of lattice solids) its
-        // answer is exact and clean, where a nudge moves the answer.
+        // the exact winding-number arrangement before any nudge: where
+        // its answer is clean it is exact, where a nudge moves the answer
+        // (lattice solids, boxes on a lattice, a part against its own
+        // quarter turn).
         (Some(pair), false) => match pair.exact(&options.engine) {
             Ok(mut out) => {
                 let mut best = None;
-                // Before `first_is_clean`, which may take `out` away; a
-                // pass over the pairs found, each a few exact signs.
-                let degenerate = pair.crosses_degenerately(&out);
-                if pair.first_is_clean(&mut out, &mut best) {
+                // A cut that merged points put together what the perturbed
+                // world kept apart: there even a closed 2-manifold can be
+                // the wrong solid (two boxes on a lattice came out empty
+                // for their intersection), so the arrangement answers
+                // first.
+                let merged = out.report.cut.merged_points > 0;
+                if !merged && pair.first_is_clean(&mut out, &mut best) {
                     Ok(out)
-                } else if let Some(mut w) = (!degenerate)
+                } else if let Some(mut w) = pair
+                    .both_oriented()
                     .then(|| exact_winding_if_clean(inputs, op, options))
                     .transpose()?
                     .flatten()
                 {
                     w.report.seconds.total = started.elapsed().as_secs_f64();
                     return Ok(finish(Method::Winding, Computed::Winding(w), None));
+                } else if merged && pair.first_is_clean(&mut out, &mut best) {
+                    Ok(out)
                 } else {
                     pair.nudged(&options.engine, out, best)
                 }
@@ -346,19 +353,16 @@ pub fn solid_boolean(
     }
 }
 
-/// The exact winding-number Boolean of `inputs` when the arrangement
-/// embeds their contact exactly ([`boolean_by_winding_if_embedded`]) and
-/// the result is clean: closed, a 2-manifold at edges and vertices, and
-/// crossing itself nowhere (checked exactly; the count goes in the
-/// report). `None` otherwise.
+/// The exact winding-number Boolean of `inputs`
+/// ([`boolean_by_winding_first_try`]) when its result is clean: closed, a
+/// 2-manifold at edges and vertices, and crossing itself nowhere
+/// (checked exactly; the count goes in the report). `None` otherwise.
 fn exact_winding_if_clean(
     inputs: &[&TriMesh],
     op: Operation,
     options: &BooleanOptions,
 ) -> Result<Option<WindingOutcome>, BooleanError> {
-    let Some(mut out) = boolean_by_winding_if_embedded(inputs, op, &options.engine)? else {
-        return Ok(None);
-    };
+    let mut out = boolean_by_winding_first_try(inputs, op, &options.engine)?;
     let r = &out.report;
     if r.unpaired_edges + r.nonmanifold_edges + r.pinched_vertices > 0 {
         return Ok(None);

@@ -652,37 +652,10 @@ impl<'a> PreparedPair<'a> {
         out
     }
 
-    /// Whether a triangle of A and one of B that the exact attempt `out`
-    /// found crossing meet degenerately where no corner position is
-    /// shared: not coplanar, yet a corner of one lies exactly in the
-    /// other's plane (a face of one ending on a face of the other, as a
-    /// quarter turn of a part with flat sides makes). The winding-number
-    /// arrangement finds the same contact degenerate and stops; coplanar
-    /// contact along shared lattice points does not count.
-    pub(crate) fn crosses_degenerately(&self, out: &Outcome) -> bool {
-        let (a, b) = (self.a.as_ref(), self.b.as_ref());
-        let split = a.triangles.len() as u32;
-        let corners = |t: u32| -> [DVec3; 3] {
-            if t < split {
-                a.triangles[t as usize].map(|v| a.positions[v as usize])
-            } else {
-                b.triangles[(t - split) as usize].map(|v| b.positions[v as usize])
-            }
-        };
-        let signs =
-            |f: &[DVec3; 3], g: &[DVec3; 3]| g.map(|q| holey_geom::orient3d(f[0], f[1], f[2], q));
-        let touches = |s: [holey_geom::Sign; 3]| {
-            s.contains(&holey_geom::Sign::Zero) && s.iter().any(|&x| x != holey_geom::Sign::Zero)
-        };
-        out.intersections
-            .pairs
-            .par_iter()
-            .filter(|&&(s, t)| (s < split) != (t < split))
-            .any(|&(s, t)| {
-                let (f, g) = (corners(s), corners(t));
-                !f.iter().any(|p| g.contains(p))
-                    && (touches(signs(&f, &g)) || touches(signs(&g, &f)))
-            })
+    /// Both surfaces are closed and consistently oriented: their winding
+    /// numbers mean what containment means.
+    pub(crate) fn both_oriented(&self) -> bool {
+        self.pa.oriented() && self.pb.oriented()
     }
 
     /// Whether the first, exact attempt `out` is the answer: inputs that
@@ -1115,28 +1088,6 @@ mod tests {
         assert_eq!(pair.pa.tree.frame, pair.pb.tree.frame);
         assert!(!pair.pa.tree.frame.is_identity());
         same_as_with_trees_built(&a, &b, &pair);
-    }
-
-    /// A box resting on the middle of a larger box's top: the small box's
-    /// sides end on the large top where neither has a corner, a degenerate
-    /// crossing the arrangement would stop at. Two lattice cubes side by
-    /// side share their whole touching face, corner for corner, and are
-    /// not degenerate.
-    #[test]
-    fn crossings_that_end_on_a_face_are_degenerate_and_shared_faces_are_not() {
-        let degenerate = |a: &TriMesh, b: &TriMesh| {
-            let pair = PreparedPair::with_checks(a, b, Operation::Union)
-                .unwrap()
-                .expect("two clean solids");
-            let out = pair.exact(&Options::default()).unwrap();
-            pair.crosses_degenerately(&out)
-        };
-        let big = cuboid(DVec3::ZERO, DVec3::splat(4.0));
-        let small = cuboid(DVec3::new(1.0, 1.0, 4.0), DVec3::new(2.0, 2.0, 5.0));
-        assert!(degenerate(&big, &small));
-        let unit = cuboid(DVec3::ZERO, DVec3::ONE);
-        let beside = cuboid(DVec3::X, DVec3::new(2.0, 1.0, 1.0));
-        assert!(!degenerate(&unit, &beside));
     }
 
     /// A small part at one end of a long one: most of the small part is

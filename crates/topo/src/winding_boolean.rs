@@ -261,32 +261,30 @@ pub fn boolean_by_winding(
     op: Operation,
     options: &Options,
 ) -> Result<WindingOutcome, WindingError> {
-    arranged(inputs, op, options, true)?.ok_or(WindingError::NoInput)
+    arranged(inputs, op, options, true)
 }
 
-/// [`boolean_by_winding`] when no input triangle meets another
-/// degenerately (a vertex of one exactly in the other's plane, where the
-/// two cross), else `None`, found once the intersections are (the first
-/// stage). Coplanar faces that touch without crossing (the lattice faces
-/// of two solids shifted by whole cells) are embedded exactly then: the
-/// arrangement's regions are the perturbed world's, and only walls of no
-/// thickness and contacts along edges are left to close up.
-pub(crate) fn boolean_by_winding_if_embedded(
+/// [`boolean_by_winding`] as a first try, for a caller that keeps only a
+/// clean result: where merging every wall at once leaves the result more
+/// open or less manifold, the walls are not tried one at a time (a pass
+/// over the whole result per wall: a minute on a snapped sponge and its
+/// copy a cell away, which came out unclean anyway).
+pub(crate) fn boolean_by_winding_first_try(
     inputs: &[&TriMesh],
     op: Operation,
     options: &Options,
-) -> Result<Option<WindingOutcome>, WindingError> {
+) -> Result<WindingOutcome, WindingError> {
     arranged(inputs, op, options, false)
 }
 
-/// [`boolean_by_winding`]; `None` when an input triangle meets another
-/// degenerately and `degenerate_too` is false.
+/// [`boolean_by_winding`]; the walls are merged one at a time where all
+/// at once is worse only with `walls_one_by_one`.
 fn arranged(
     inputs: &[&TriMesh],
     op: Operation,
     options: &Options,
-    degenerate_too: bool,
-) -> Result<Option<WindingOutcome>, WindingError> {
+    walls_one_by_one: bool,
+) -> Result<WindingOutcome, WindingError> {
     let started = Instant::now();
     if inputs.is_empty() {
         return Err(WindingError::NoInput);
@@ -330,9 +328,6 @@ fn arranged(
     report.triple_points = x.triple_points();
     report.intersection_curves = x.curve_count;
     let degenerate = degenerate_contacts(&joined, &ids, &x.pairs);
-    if !degenerate_too && degenerate.contains(&true) {
-        return Ok(None);
-    }
     report.seconds.intersections = started.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -375,7 +370,7 @@ fn arranged(
     let mut faces = classify(&arrangement, &source, &degenerate, &rays, op, &mut report)?;
     cancel_opposite_twins(&mut faces);
     let mut positions = arrangement.positions;
-    let faces = close_up(&mut positions, faces, &mut report);
+    let faces = close_up(&mut positions, faces, walls_one_by_one, &mut report);
     let mut faces = faces;
     let unzipped = crate::unzip::unzip(&mut positions, &mut faces);
     report.unzipped_edges = unzipped.edges;
@@ -390,7 +385,7 @@ fn arranged(
     report.nonmanifold_edges = nonmanifold_edges(&mesh.triangles);
     report.pinched_vertices = mesh.pinched_vertices().iter().filter(|&&p| p).count();
     report.seconds.total = started.elapsed().as_secs_f64();
-    Ok(Some(WindingOutcome { mesh, report }))
+    Ok(WindingOutcome { mesh, report })
 }
 
 /// The kept faces closed up: T-junctions repaired and walls of no
@@ -403,6 +398,7 @@ fn arranged(
 fn close_up(
     positions: &mut Vec<DVec3>,
     faces: Vec<[u32; 3]>,
+    one_by_one: bool,
     report: &mut WindingReport,
 ) -> Vec<[u32; 3]> {
     let repaired = |positions: &[DVec3], mut faces: Vec<[u32; 3]>| {
@@ -457,6 +453,10 @@ fn close_up(
         }
     }
     positions.truncate(first_new);
+    if !one_by_one {
+        report.t_junctions_repaired = n;
+        return best;
+    }
     gone.fill(false);
     added.clear();
     for group in &groups {
