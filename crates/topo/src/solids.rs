@@ -308,9 +308,11 @@ pub fn solid_boolean(
                 // A cut that merged points put together what the perturbed
                 // world kept apart: there even a closed 2-manifold can be
                 // the wrong solid (two boxes on a lattice came out empty
-                // for their intersection), so the arrangement answers
-                // first.
-                let merged = out.report.cut.merged_points > 0;
+                // for their intersection). Solids that meet without a
+                // crossing in the perturbed world may touch at exact
+                // coordinates (a box resting on another kept as two boxes
+                // and a wall). In both, the arrangement answers first.
+                let merged = pair.suspect(&out);
                 if !merged && pair.first_is_clean(&mut out, &mut best) {
                     Ok(out)
                 } else if let Some(mut w) = pair

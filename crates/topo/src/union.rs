@@ -652,6 +652,15 @@ impl<'a> PreparedPair<'a> {
         out
     }
 
+    /// Whether the exact attempt `out` can be wrong at exact coordinates
+    /// though the perturbed world's answer is right: its cut merged
+    /// points, or A and B cross nowhere, where they may still touch (a
+    /// face resting on a face, an edge along an edge), which the
+    /// perturbation decides as apart or overlapping.
+    pub(crate) fn suspect(&self, out: &Outcome) -> bool {
+        out.report.cut.merged_points > 0 || out.intersections.pairs.is_empty()
+    }
+
     /// Both surfaces are closed and consistently oriented: their winding
     /// numbers mean what containment means.
     pub(crate) fn both_oriented(&self) -> bool {
@@ -668,12 +677,14 @@ impl<'a> PreparedPair<'a> {
         }
         // Exact in the perturbed world, the result can cross itself only
         // where points it keeps apart were rounded onto each other (a cut
-        // that merged points: mirror images, quarter turns); only then is
-        // it counted. So can it fold onto itself there: faces facing
-        // opposite ways over one another (a cube less its copy came out
-        // as three of its faces, twice, closed and of no volume).
+        // that merged points: mirror images, quarter turns) or where the
+        // solids touch without crossing ([`PreparedPair::suspect`]); only
+        // then is it counted. So can it fold onto itself there: faces
+        // facing opposite ways over one another (a cube less its copy
+        // came out as three of its faces, twice, closed and of no
+        // volume).
         out.mesh.is_closed_manifold()
-            && (out.report.cut.merged_points == 0
+            && (!self.suspect(out)
                 || (keep_if_clean(out, best)
                     && crate::coplanar::wall_groups(&out.mesh.positions, &out.mesh.triangles)
                         .is_empty()))

@@ -924,3 +924,74 @@ fn fuzz_lattice_cube_sets() {
         }
     }
 }
+
+/// Random pairs of boxes with corners on a quarter lattice in [0, 1]³
+/// through the policy: faces in one plane, faces ending on faces, edges
+/// along edges. Every result must be exact (not nudged; its volume the
+/// count of lattice cells the rule keeps, counted here), a closed
+/// 2-manifold, free of crossing pairs. Before the policy let the exact
+/// arrangement answer where the containment's cut merged points or its
+/// result was not clean, 91 of these 450 operations were nudged off the
+/// exact volume and 3 intersections came out empty (round 34: the boxes
+/// [0,1]×[¼,½]×[0,1] and [0,¼]×[0,1]×[½,1] meet in a box of 1/32).
+#[test]
+fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
+    use holey_topo::solids::{BooleanOptions, solid_boolean};
+    let mut rng = Rng::new(34);
+    let corner = |rng: &mut Rng| [0; 3].map(|_| rng.below(5) as i32);
+    let boxed = |rng: &mut Rng| loop {
+        let (p, q) = (corner(rng), corner(rng));
+        let lo = [0, 1, 2].map(|k| p[k].min(q[k]));
+        let hi = [0, 1, 2].map(|k| p[k].max(q[k]));
+        if (0..3).all(|k| hi[k] > lo[k]) {
+            return (lo, hi);
+        }
+    };
+    let quarter = |c: [i32; 3]| DVec3::from(c.map(|x| f64::from(x) / 4.0));
+    let inside =
+        |b: ([i32; 3], [i32; 3]), c: [i32; 3]| (0..3).all(|k| b.0[k] <= c[k] && c[k] < b.1[k]);
+    let mut cases = vec![(([0, 1, 0], [4, 2, 4]), ([0, 0, 2], [1, 4, 4]))];
+    for _ in 0..150 {
+        cases.push((boxed(&mut rng), boxed(&mut rng)));
+    }
+    for (round, &(ba, bb)) in cases.iter().enumerate() {
+        let a = cuboid(quarter(ba.0), quarter(ba.1));
+        let b = cuboid(quarter(bb.0), quarter(bb.1));
+        for op in [
+            Operation::Union,
+            Operation::Intersection,
+            Operation::Difference,
+        ] {
+            let what = format!("round {round}, {}: {ba:?} and {bb:?}", op.name());
+            let mut cells = 0usize;
+            for x in 0..4 {
+                for y in 0..4 {
+                    for z in 0..4 {
+                        let c = [x, y, z];
+                        cells += usize::from(op.contains(&[inside(ba, c), inside(bb, c)]));
+                    }
+                }
+            }
+            let out = solid_boolean(&[&a, &b], op, &BooleanOptions::default())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let m = out.mesh();
+            assert_eq!(out.perturbation_retries(), 0, "{what}");
+            // The overlay of coplanar faces can add points inside a face
+            // (thirds, not dyadic), so the sum is exact only to rounding;
+            // a nudge moved it by 1e-9 and more.
+            let want = cells as f64 / 64.0;
+            assert!(
+                (six_volume(m) / 6.0 - want).abs() <= 1e-14,
+                "{what}: volume {}, expected {want}",
+                six_volume(m) / 6.0
+            );
+            assert!(
+                m.triangles.is_empty() || closed_oriented(m),
+                "{what}: not closed and oriented"
+            );
+            assert!(max_edge_degree(m) <= 2, "{what}");
+            assert_eq!(pinch_vertices(m), 0, "{what}");
+            assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
+        }
+    }
+}
