@@ -5,12 +5,16 @@
 //!
 //! - **Containment** ([`crate::union()`], Theorem 5.2 of Bernstein & Wojtan
 //!   2013 without the motion): two closed, consistently oriented
-//!   2-manifolds, neither crossing itself, no piece nested in another;
-//!   robust to coplanar contact by the scale-relative nudges of
-//!   [`crate::union::NUDGES`] unless `exact`.
+//!   2-manifolds, neither crossing itself, no piece nested in another.
+//!   Where its exact result is not clean, or may be wrong at exact
+//!   coordinates though clean (its cut merged points, or the solids cross
+//!   nowhere and may only touch), the exact winding-number arrangement
+//!   answers first and is kept when clean; then the scale-relative nudges
+//!   of [`crate::union::NUDGES`], unless `exact`.
 //! - **Winding** ([`crate::winding_boolean`]): anything else (open input,
-//!   self-crossing or nested shells, one input or more than two), by the
-//!   winding-number rule; nudged per piece unless `exact`.
+//!   an edge of more than two triangles, self-crossing or nested shells,
+//!   one input or more than two), by the winding-number rule; nudged per
+//!   piece unless `exact`.
 //! - **Motion** (Theorem 5.2 itself): B arrives from far away along a
 //!   direction in one frame and the whole pipeline (collisions,
 //!   intersections, correction, cut) deletes what ends up inside; only

@@ -36,10 +36,13 @@ shared by an even number of triangles); otherwise the command says which
 one and stops.
 
 As for `holey union`, where coplanar faces of A and B overlap and the
-exactly placed result is not a closed surface, the run is retried with B
-moved by a deterministic nudge of 2^-30 of the scene's diagonal (then 16
-and 256 times that, while each nudge leaves fewer open edges,
-non-manifold edges and vertices, and crossing pairs); --exact makes the first attempt the only one.
+exactly placed result is not a clean closed surface (or its points were
+rounded together, or the solids only touch), the winding-number
+arrangement answers first, exactly; only if that is not clean is the
+run retried with B moved by a deterministic nudge of 2^-30 of the
+scene's diagonal (then 16 and 256 times that, while each nudge leaves
+fewer open edges, non-manifold edges and vertices, and crossing pairs);
+--exact makes the containment's first attempt the only one.
 
 Examples:
   holey intersection a.obj b.obj meet.obj

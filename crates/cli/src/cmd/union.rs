@@ -63,15 +63,19 @@ Degenerate contact (faces of A and B coplanar, vertices or edges
 coinciding: a copy of a mesh shifted by a lattice step) is resolved by
 symbolic perturbation. Where coplanar faces of A and B overlap, the
 perturbed result, placed at the exact coordinates, can have duplicate
-triangles or cracks; so if A and B are closed 2-manifolds and the union
-is not, the run is retried with B moved by a deterministic,
-scale-relative nudge: 2^-30 of the scene's diagonal along a fixed
-generic direction (about 1e-9 relative, far below any modelling
-precision), then 16 and 256 times that along other directions, while
-each nudge leaves fewer open edges, non-manifold edges and vertices,
-and crossing pairs. The report counts the retries. Faces that merely touch from opposite sides
-come out exact on the first try (the wall between them is removed).
---exact makes the first attempt the only one.
+triangles or cracks, or be the wrong solid where its points were
+rounded together or the solids only touch. There the winding-number
+arrangement answers first, exactly: coplanar faces facing opposite ways
+cancel, and where the result touches itself along an edge or at a point
+it is split there into a 2-manifold without moving a point (the report
+names the method: winding). Only if that result is not clean is the run
+retried with B moved by a deterministic, scale-relative nudge: 2^-30 of
+the scene's diagonal along a fixed generic direction (about 1e-9
+relative, far below any modelling precision), then 16 and 256 times
+that along other directions, while each nudge leaves fewer open edges,
+non-manifold edges and vertices, and crossing pairs. The report counts
+the retries. --exact makes the containment's first attempt the only
+one.
 
 The default direction is generic (not along an axis) so that the paths
 of B's vertices avoid A's vertices and edges even when A and B are
