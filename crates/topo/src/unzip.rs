@@ -312,6 +312,23 @@ mod tests {
         }
     }
 
+    /// `cells` as lattice cubes, unzipped: checks what [`unzip`] did
+    /// against `want`, that the result is a closed 2-manifold without
+    /// pinches, and that no point moved (the volume is the same).
+    fn unzipped_as(cells: &[[i32; 3]], want: Unzipped) -> TriMesh {
+        let mut m = cubes(cells);
+        let volume = crate::solid::signed_volume(&m.positions, &m.triangles);
+        assert_eq!(unzip(&mut m.positions, &mut m.triangles), want);
+        assert!(m.is_closed_manifold());
+        assert!(m.pinched_vertices().iter().all(|&p| !p));
+        assert_eq!(
+            crate::solid::signed_volume(&m.positions, &m.triangles),
+            volume
+        );
+        assert_eq!(volume, cells.len() as f64);
+        m
+    }
+
     fn nonmanifold_edges(faces: &[[u32; 3]]) -> usize {
         let edges = Edges::of_triangles(faces);
         (0..edges.len())
@@ -321,47 +338,32 @@ mod tests {
 
     #[test]
     fn two_cubes_meeting_along_an_edge_come_apart_there() {
-        let mut m = cubes(&[[0, 0, 0], [1, 1, 0]]);
-        assert_eq!(nonmanifold_edges(&m.triangles), 1);
-        let volume = crate::solid::signed_volume(&m.positions, &m.triangles);
-        let done = unzip(&mut m.positions, &mut m.triangles);
         assert_eq!(
-            done,
-            Unzipped {
-                edges: 1,
-                vertices: 2,
-                points: 0
-            }
+            nonmanifold_edges(&cubes(&[[0, 0, 0], [1, 1, 0]]).triangles),
+            1
         );
-        assert!(m.is_closed_manifold());
-        assert!(m.pinched_vertices().iter().all(|&p| !p));
-        // Two cubes again, each closed on its own, and nothing moved.
+        let want = Unzipped {
+            edges: 1,
+            vertices: 2,
+            points: 0,
+        };
+        let m = unzipped_as(&[[0, 0, 0], [1, 1, 0]], want);
+        // Two cubes again, each closed on its own.
         assert_eq!(crate::hidden::vertex_components(&m).iter().max(), Some(&1));
-        assert_eq!(
-            crate::solid::signed_volume(&m.positions, &m.triangles),
-            volume
-        );
-        assert_eq!(volume, 2.0);
     }
 
     #[test]
     fn two_cubes_meeting_at_a_corner_get_a_vertex_each() {
-        let mut m = cubes(&[[0, 0, 0], [1, 1, 1]]);
-        assert_eq!(nonmanifold_edges(&m.triangles), 0);
-        assert_eq!(m.pinched_vertices().iter().filter(|&&p| p).count(), 1);
-        let done = unzip(&mut m.positions, &mut m.triangles);
-        assert_eq!(
-            done,
-            Unzipped {
-                edges: 0,
-                vertices: 1,
-                points: 0
-            }
-        );
-        assert!(m.is_closed_manifold());
-        assert!(m.pinched_vertices().iter().all(|&p| !p));
+        let before = cubes(&[[0, 0, 0], [1, 1, 1]]);
+        assert_eq!(nonmanifold_edges(&before.triangles), 0);
+        assert_eq!(before.pinched_vertices().iter().filter(|&&p| p).count(), 1);
+        let want = Unzipped {
+            edges: 0,
+            vertices: 1,
+            points: 0,
+        };
+        let m = unzipped_as(&[[0, 0, 0], [1, 1, 1]], want);
         assert_eq!(crate::hidden::vertex_components(&m).iter().max(), Some(&1));
-        assert_eq!(crate::solid::signed_volume(&m.positions, &m.triangles), 2.0);
     }
 
     #[test]
@@ -373,27 +375,15 @@ mod tests {
         for z in [-1, 1] {
             cells.extend([[0, 0, z], [1, 0, z], [1, 1, z]]);
         }
-        let mut m = cubes(&cells);
-        assert_eq!(nonmanifold_edges(&m.triangles), 1);
-        let volume = crate::solid::signed_volume(&m.positions, &m.triangles);
-        let done = unzip(&mut m.positions, &mut m.triangles);
-        assert_eq!(
-            done,
-            Unzipped {
-                edges: 1,
-                vertices: 0,
-                points: 2
-            }
-        );
-        assert!(m.is_closed_manifold());
-        assert!(m.pinched_vertices().iter().all(|&p| !p));
+        assert_eq!(nonmanifold_edges(&cubes(&cells).triangles), 1);
+        let want = Unzipped {
+            edges: 1,
+            vertices: 0,
+            points: 2,
+        };
+        let m = unzipped_as(&cells, want);
         let mid = DVec3::new(1.0, 1.0, 0.5);
         assert_eq!(m.positions[m.positions.len() - 2..], [mid, mid]);
-        assert_eq!(
-            crate::solid::signed_volume(&m.positions, &m.triangles),
-            volume
-        );
-        assert_eq!(volume, 8.0);
     }
 
     #[test]

@@ -97,6 +97,68 @@ fn six_volume(m: &TriMesh) -> f64 {
         .sum()
 }
 
+/// The three operations, in the order the tests run them.
+const OPERATIONS: [Operation; 3] = [
+    Operation::Union,
+    Operation::Intersection,
+    Operation::Difference,
+];
+
+/// `op` on `a` and `b` through the policy (`solid_boolean` with its
+/// defaults), checked not to be nudged: a nudge moves the answer.
+fn through_policy(
+    a: &TriMesh,
+    b: &TriMesh,
+    op: Operation,
+    what: &str,
+) -> holey_topo::solids::BooleanOutcome {
+    use holey_topo::solids::{BooleanOptions, solid_boolean};
+    let out = solid_boolean(&[a, b], op, &BooleanOptions::default())
+        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert_eq!(out.perturbation_retries(), 0, "{what}: nudged");
+    out
+}
+
+/// Empty, or closed and consistently oriented, a 2-manifold at edges and
+/// vertices, and crossing itself nowhere.
+fn assert_clean_solid(m: &TriMesh, what: &str) {
+    assert!(
+        m.triangles.is_empty() || closed_oriented(m),
+        "{what}: not closed and oriented"
+    );
+    assert!(max_edge_degree(m) <= 2, "{what}: an edge of more than two");
+    assert_eq!(pinch_vertices(m), 0, "{what}: a pinched vertex");
+    assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
+}
+
+/// The closed surface of lattice cubes, as testkit builds it.
+fn lattice_solid(cells: &[[i32; 3]]) -> TriMesh {
+    let (p, t) = holey_testkit::lattice_cubes(cells);
+    TriMesh {
+        positions: p.into_iter().map(DVec3::from).collect(),
+        triangles: t,
+    }
+}
+
+/// `op` on the cube sets `a` and `b` (as [`lattice_solid`]s) through the
+/// policy: not nudged, a clean solid, and its volume exactly the count of
+/// cubes the rule keeps.
+fn cube_sets_through_policy(
+    a: (&TriMesh, &std::collections::HashSet<[i32; 3]>),
+    b: (&TriMesh, &std::collections::HashSet<[i32; 3]>),
+    op: Operation,
+    what: &str,
+) -> holey_topo::solids::BooleanOutcome {
+    let out = through_policy(a.0, b.0, op, what);
+    let kept =
+        a.1.union(b.1)
+            .filter(|c| op.contains(&[a.1.contains(*c), b.1.contains(*c)]))
+            .count();
+    assert_eq!(six_volume(out.mesh()), 6.0 * kept as f64, "{what}");
+    assert_clean_solid(out.mesh(), what);
+    out
+}
+
 /// `m` with every triangle turned over.
 fn reversed(m: &TriMesh) -> TriMesh {
     TriMesh {
@@ -762,17 +824,10 @@ fn lattice_round_556_keeps_the_whole_difference() {
 /// not cross, these came out of the nudges 1e-9 to 4e-8 off in volume.
 #[test]
 fn menger_sponge_cubes_and_their_copy_shifted_by_whole_cells() {
-    use holey_topo::solids::{BooleanOptions, Method, solid_boolean};
+    use holey_topo::solids::Method;
     use std::collections::HashSet;
     let cells = holey_testkit::menger_cells(2);
-    let solid = |cells: &[[i32; 3]]| {
-        let (p, t) = holey_testkit::lattice_cubes(cells);
-        TriMesh {
-            positions: p.into_iter().map(DVec3::from).collect(),
-            triangles: t,
-        }
-    };
-    let a = solid(&cells);
+    let a = lattice_solid(&cells);
     let in_a: HashSet<[i32; 3]> = cells.iter().copied().collect();
     for shift in [[1, 0, 0], [3, 0, 0], [1, 1, 0], [1, 1, 1]] {
         let moved: Vec<[i32; 3]> = cells
@@ -780,28 +835,12 @@ fn menger_sponge_cubes_and_their_copy_shifted_by_whole_cells() {
             .map(|c| [c[0] + shift[0], c[1] + shift[1], c[2] + shift[2]])
             .collect();
         let in_b: HashSet<[i32; 3]> = moved.iter().copied().collect();
-        let b = solid(&moved);
-        for op in [
-            Operation::Union,
-            Operation::Intersection,
-            Operation::Difference,
-        ] {
+        let b = lattice_solid(&moved);
+        for op in OPERATIONS {
             let what = format!("{} by {shift:?}", op.name());
-            let out = solid_boolean(&[&a, &b], op, &BooleanOptions::default())
-                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let out = cube_sets_through_policy((&a, &in_a), (&b, &in_b), op, &what);
             assert_eq!(out.method, Method::Winding, "{what}");
-            assert_eq!(out.perturbation_retries(), 0, "{what}");
-            let m = out.mesh();
-            let kept = in_a
-                .union(&in_b)
-                .filter(|c| op.contains(&[in_a.contains(*c), in_b.contains(*c)]))
-                .count();
-            assert_eq!(six_volume(m), 6.0 * kept as f64, "{what}");
-            assert!(closed_oriented(m), "{what}: not closed and oriented");
-            assert_eq!(max_edge_degree(m), 2, "{what}");
-            assert_eq!(pinch_vertices(m), 0, "{what}");
-            assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
-            assert_classifies_by_rule(&[&a, &b], op, m, 60, 141, &what);
+            assert_classifies_by_rule(&[&a, &b], op, out.mesh(), 60, 141, &what);
         }
     }
 }
@@ -815,22 +854,15 @@ fn menger_sponge_cubes_and_their_copy_shifted_by_whole_cells() {
 /// and A ∩ A are A, triangle for triangle.
 #[test]
 fn a_solid_and_its_copy_through_the_policy() {
-    use holey_topo::solids::{BooleanOptions, solid_boolean};
     for (name, a) in [
         ("cube", cuboid(DVec3::ZERO, DVec3::splat(2.0))),
         ("sphere", primitive("@sphere:2")),
     ] {
         let copy = a.clone();
-        for op in [
-            Operation::Union,
-            Operation::Intersection,
-            Operation::Difference,
-        ] {
+        for op in OPERATIONS {
             let what = format!("{name} {}", op.name());
-            let out = solid_boolean(&[&a, &copy], op, &BooleanOptions::default())
-                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let out = through_policy(&a, &copy, op, &what);
             let m = out.mesh();
-            assert_eq!(out.perturbation_retries(), 0, "{what}");
             if op == Operation::Difference {
                 assert!(
                     m.triangles.is_empty(),
@@ -861,16 +893,8 @@ fn a_solid_and_its_copy_through_the_policy() {
 /// open or non-manifold, with no retry and no warning.
 #[test]
 fn fuzz_lattice_cube_sets() {
-    use holey_topo::solids::{BooleanOptions, solid_boolean};
     use std::collections::HashSet;
     let mut rng = Rng::new(2026);
-    let mesh = |cells: &[[i32; 3]]| {
-        let (p, t) = holey_testkit::lattice_cubes(cells);
-        TriMesh {
-            positions: p.into_iter().map(DVec3::from).collect(),
-            triangles: t,
-        }
-    };
     for round in 0..100 {
         let n = 2 + rng.below(3) as i32;
         let p = *rng.pick(&[0.3, 0.5, 0.7]);
@@ -896,31 +920,12 @@ fn fuzz_lattice_cube_sets() {
         if a_cells.is_empty() || b_cells.is_empty() {
             continue;
         }
-        let (a, b) = (mesh(&a_cells), mesh(&b_cells));
+        let (a, b) = (lattice_solid(&a_cells), lattice_solid(&b_cells));
         let in_a: HashSet<[i32; 3]> = a_cells.iter().copied().collect();
         let in_b: HashSet<[i32; 3]> = b_cells.iter().copied().collect();
-        for op in [
-            Operation::Union,
-            Operation::Intersection,
-            Operation::Difference,
-        ] {
+        for op in OPERATIONS {
             let what = format!("round {round}, {}", op.name());
-            let out = solid_boolean(&[&a, &b], op, &BooleanOptions::default())
-                .unwrap_or_else(|e| panic!("{what}: {e}"));
-            let m = out.mesh();
-            let kept = in_a
-                .union(&in_b)
-                .filter(|c| op.contains(&[in_a.contains(*c), in_b.contains(*c)]))
-                .count();
-            assert_eq!(out.perturbation_retries(), 0, "{what}");
-            assert_eq!(six_volume(m), 6.0 * kept as f64, "{what}");
-            assert!(
-                m.triangles.is_empty() || closed_oriented(m),
-                "{what}: not closed and oriented"
-            );
-            assert!(max_edge_degree(m) <= 2, "{what}: an edge of more than two");
-            assert_eq!(pinch_vertices(m), 0, "{what}");
-            assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
+            cube_sets_through_policy((&a, &in_a), (&b, &in_b), op, &what);
         }
     }
 }
@@ -936,7 +941,6 @@ fn fuzz_lattice_cube_sets() {
 /// [0,1]×[¼,½]×[0,1] and [0,¼]×[0,1]×[½,1] meet in a box of 1/32).
 #[test]
 fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
-    use holey_topo::solids::{BooleanOptions, solid_boolean};
     let mut rng = Rng::new(34);
     let corner = |rng: &mut Rng| [0; 3].map(|_| rng.below(5) as i32);
     let boxed = |rng: &mut Rng| loop {
@@ -957,11 +961,7 @@ fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
     for (round, &(ba, bb)) in cases.iter().enumerate() {
         let a = cuboid(quarter(ba.0), quarter(ba.1));
         let b = cuboid(quarter(bb.0), quarter(bb.1));
-        for op in [
-            Operation::Union,
-            Operation::Intersection,
-            Operation::Difference,
-        ] {
+        for op in OPERATIONS {
             let what = format!("round {round}, {}: {ba:?} and {bb:?}", op.name());
             let mut cells = 0usize;
             for x in 0..4 {
@@ -972,10 +972,8 @@ fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
                     }
                 }
             }
-            let out = solid_boolean(&[&a, &b], op, &BooleanOptions::default())
-                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let out = through_policy(&a, &b, op, &what);
             let m = out.mesh();
-            assert_eq!(out.perturbation_retries(), 0, "{what}");
             // The overlay of coplanar faces can add points inside a face
             // (thirds, not dyadic), so the sum is exact only to rounding;
             // a nudge moved it by 1e-9 and more.
@@ -985,13 +983,7 @@ fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
                 "{what}: volume {}, expected {want}",
                 six_volume(m) / 6.0
             );
-            assert!(
-                m.triangles.is_empty() || closed_oriented(m),
-                "{what}: not closed and oriented"
-            );
-            assert!(max_edge_degree(m) <= 2, "{what}");
-            assert_eq!(pinch_vertices(m), 0, "{what}");
-            assert_eq!(self_intersecting_pairs(m), 0, "{what}: crosses itself");
+            assert_clean_solid(m, &what);
         }
     }
 }
