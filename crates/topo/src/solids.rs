@@ -316,8 +316,8 @@ pub fn solid_boolean(
                 // crossing in the perturbed world may touch at exact
                 // coordinates (a box resting on another kept as two boxes
                 // and a wall). In both, the arrangement answers first.
-                let merged = pair.suspect(&out);
-                if !merged && pair.first_is_clean(&mut out, &mut best) {
+                let suspect = pair.suspect(&out);
+                if !suspect && pair.first_is_clean(&mut out, &mut best) {
                     Ok(out)
                 } else if let Some(mut w) = pair
                     .both_oriented()
@@ -327,7 +327,7 @@ pub fn solid_boolean(
                 {
                     w.report.seconds.total = started.elapsed().as_secs_f64();
                     return Ok(finish(Method::Winding, Computed::Winding(w), None));
-                } else if merged && pair.first_is_clean(&mut out, &mut best) {
+                } else if suspect && pair.first_is_clean(&mut out, &mut best) {
                     Ok(out)
                 } else {
                     pair.nudged(&options.engine, out, best)

@@ -672,7 +672,7 @@ impl<'a> PreparedPair<'a> {
     /// be a closed 2-manifold that does not cross itself. An attempt that
     /// crosses itself may move into `best` ([`keep_if_clean`]).
     pub(crate) fn first_is_clean(&self, out: &mut Outcome, best: &mut Option<Outcome>) -> bool {
-        if !(self.pa.oriented() && self.pb.oriented()) {
+        if !self.both_oriented() {
             return true;
         }
         // Exact in the perturbed world, the result can cross itself only
