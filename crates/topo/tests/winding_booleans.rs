@@ -987,3 +987,62 @@ fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
         }
     }
 }
+
+/// The shared Menger sponge (level 3, 21,598 triangles) with an exact
+/// copy of itself, and with its quarter turn about the z axis (its box is
+/// centred on the origin, so the turn itself is exact; its coordinates
+/// are not symmetric to the last bit, so the turn is nearly the same
+/// solid, triangulated differently: faces lie on, or a hair from, faces
+/// of the other). Through the policy: with the copy, A ∪ A is the sponge
+/// and A − A empty; with the turn, the union and the intersection have
+/// manifold3d's volumes (recorded from `Mesh64` on the same float64
+/// arrays; trueform agrees on the union) within 1e-12, and all are clean
+/// and not nudged. Before this stop all of them were nudged and crossed
+/// themselves (48, 77 and 9 pairs with the copy; 17 and 64 with the
+/// turn). A − turn is still nudged with 9 crossing pairs (the note of
+/// stop 44), and is not checked here. Reads ../shared/data/meshes;
+/// skipped visibly without it.
+#[test]
+fn shared_menger_sponge_with_its_copy_and_its_quarter_turn() {
+    let dir = holey_testkit::shared_meshes_or_return!(
+        "shared_menger_sponge_with_its_copy_and_its_quarter_turn"
+    );
+    let a = read_shared(&dir, "menger_sponge_level3.obj");
+    let turned = map_positions(&a, |p| DVec3::new(-p.y, p.x, p.z));
+    let whole = volume(&a);
+    let cases = [
+        (&a, "copy", Operation::Union, whole),
+        (&a, "copy", Operation::Difference, 0.0),
+        (
+            &turned,
+            "quarter turn",
+            Operation::Union,
+            0.406_442_150_288_593_43,
+        ),
+        (
+            &turned,
+            "quarter turn",
+            Operation::Intersection,
+            0.406_442_052_365_286_7,
+        ),
+    ];
+    for (b, name, op, want) in cases {
+        let what = format!("{} with its {name}", op.name());
+        let out = through_policy(&a, b, op, &what);
+        let m = out.mesh();
+        assert_clean_solid(m, &what);
+        if want == 0.0 {
+            assert!(
+                m.triangles.is_empty(),
+                "{what}: {} triangles",
+                m.triangles.len()
+            );
+        } else {
+            let v = volume(m);
+            assert!(
+                (v - want).abs() <= 1e-12 * want,
+                "{what}: {v} against {want}"
+            );
+        }
+    }
+}
