@@ -25,13 +25,11 @@ process touches its heap for the first time: in a profile of
 1706459 - 1514499 the kernel zeroing fresh pages was 27-34% of the
 samples. Timed in process, holey was not measurably faster, 2026-12-03.)
 """
-import argparse, json, os, subprocess, sys, tempfile, time
+import argparse, json, os, tempfile
 
 import numpy as np
-import manifold3d as m3d
-import trueform as tf
 
-from peer_io import best, read_stl, volume, write_obj
+from peer_io import best, holey_info, holey_run, peer_booleans, read_stl, write_obj
 
 try:
     import holey as holey_py
@@ -42,26 +40,6 @@ except ImportError:
 def transform(v, m):
     m = np.asarray(m, dtype=np.float64)
     return v @ m[:, :3].T + m[:, 3]
-
-
-def holey_run(holey, op, pa, pb, out, report, runs, extra=()):
-    wall, engine, err = None, None, None
-    for _ in range(runs):
-        t = time.perf_counter()
-        p = subprocess.run([holey, op, pa, pb, out, "--report", report, *extra], capture_output=True, text=True)
-        dt = time.perf_counter() - t
-        if p.returncode != 0:
-            return None, None, p.stderr.strip().splitlines()[-1]
-        r = json.load(open(report))
-        wall = dt if wall is None else min(wall, dt)
-        e = r["seconds"]["total"]
-        engine = e if engine is None else min(engine, e)
-    return wall, engine, err
-
-
-def holey_info(holey, path):
-    p = subprocess.run([holey, "info", "--json", path], capture_output=True, text=True)
-    return json.loads(p.stdout)
 
 
 def main():
@@ -83,22 +61,10 @@ def main():
             write_obj(pa, va, fa)
             write_obj(pb, vb, fb)
             name = f'{pair["a"][9:-4]} {{}} {pair["b"][9:-4]}'
-            for op, sym, tf_op, m3d_op in [
-                ("difference", "-", tf.boolean_difference, lambda A, B: A - B),
-                ("union", "+", tf.boolean_union, lambda A, B: A + B),
-            ]:
-                t_tf, r_tf = best(lambda: tf_op(tf.Mesh(fa, va), tf.Mesh(fb, vb)), args.runs)
-                (f_tf, p_tf) = r_tf[0]
-                v_tf = volume(p_tf, f_tf)
-
-                def m3d_run():
-                    A = m3d.Manifold(m3d.Mesh64(vert_properties=va, tri_verts=fa.astype(np.uint64)))
-                    B = m3d.Manifold(m3d.Mesh64(vert_properties=vb, tri_verts=fb.astype(np.uint64)))
-                    r = m3d_op(A, B)
-                    return r.volume()
-                t_m3d, v_m3d = best(m3d_run, args.runs)
+            for op, sym in [("difference", "-"), ("union", "+")]:
+                t_tf, v_tf, t_m3d, v_m3d = peer_booleans(op, (va, fa), (vb, fb), args.runs)
                 out, rep = os.path.join(d, "out.obj"), os.path.join(d, "r.json")
-                wall, engine, err = holey_run(holey, op, pa, pb, out, rep, args.runs, args.holey_args.split())
+                wall, engine, _, err = holey_run(holey, op, [pa, pb], out, rep, args.runs, args.holey_args.split())
                 if err is None:
                     info = holey_info(holey, out)
                     v_h = info.get("volume")

@@ -20,13 +20,11 @@ trueform as float64 `tf.Mesh`); holey's time is its engine's own
     cargo build --release -p holey-cli
     python3 bench/peers/lattice_booleans.py [--holey target/release/holey] [--level 2] [--runs 3]
 """
-import argparse, json, os, subprocess, tempfile, time
+import argparse, os, tempfile
 
 import numpy as np
-import manifold3d as m3d
-import trueform as tf
 
-from peer_io import best, volume, write_obj
+from peer_io import holey_info, holey_run, peer_booleans, write_obj
 
 
 def menger_cells(level):
@@ -76,20 +74,6 @@ def lattice_surface(cells):
     return np.array(verts, dtype=np.float64), np.array(tris, dtype=np.int64)
 
 
-def holey_run(holey, op, pa, pb, out, report, runs):
-    wall = engine = None
-    for _ in range(runs):
-        t = time.perf_counter()
-        p = subprocess.run([holey, op, pa, pb, out, "--report", report], capture_output=True, text=True)
-        dt = time.perf_counter() - t
-        if p.returncode != 0:
-            return None, None, None, p.stderr.strip().splitlines()[-1]
-        r = json.load(open(report))
-        wall = dt if wall is None else min(wall, dt)
-        engine = r["seconds"]["total"] if engine is None else min(engine, r["seconds"]["total"])
-    return wall, engine, r, None
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--holey", default="target/release/holey")
@@ -110,26 +94,17 @@ def main():
             pb = os.path.join(d, "b.obj")
             write_obj(pb, vb, fb)
             in_a, in_b = set(cells), set(moved)
-            for op, tf_op, m3d_op, keep in [
-                ("union", tf.boolean_union, lambda A, B: A + B, lambda x, y: x or y),
-                ("intersection", tf.boolean_intersection, lambda A, B: A ^ B, lambda x, y: x and y),
-                ("difference", tf.boolean_difference, lambda A, B: A - B, lambda x, y: x and not y),
+            for op, keep in [
+                ("union", lambda x, y: x or y),
+                ("intersection", lambda x, y: x and y),
+                ("difference", lambda x, y: x and not y),
             ]:
                 want = sum(1 for c in in_a | in_b if keep(c in in_a, c in in_b))
-                t_tf, r_tf = best(lambda: tf_op(tf.Mesh(fa, va), tf.Mesh(fb, vb)), args.runs)
-                (f_tf, p_tf) = r_tf[0]
-                v_tf = volume(p_tf, f_tf)
-
-                def m3d_run():
-                    A = m3d.Manifold(m3d.Mesh64(vert_properties=va, tri_verts=fa.astype(np.uint64)))
-                    B = m3d.Manifold(m3d.Mesh64(vert_properties=vb, tri_verts=fb.astype(np.uint64)))
-                    return m3d_op(A, B).volume()
-
-                t_m3d, v_m3d = best(m3d_run, args.runs)
+                t_tf, v_tf, t_m3d, v_m3d = peer_booleans(op, (va, fa), (vb, fb), args.runs)
                 out, rep = os.path.join(d, "out.obj"), os.path.join(d, "r.json")
-                wall, engine, report, err = holey_run(holey, op, pa, pb, out, rep, args.runs)
+                wall, engine, report, err = holey_run(holey, op, [pa, pb], out, rep, args.runs)
                 if err is None:
-                    info = json.loads(subprocess.run([holey, "info", "--json", out], capture_output=True, text=True).stdout)
+                    info = holey_info(holey, out)
                     v_h = info.get("volume")
                     shape = "closed 2-manifold" if info.get("closed") and info.get("manifold") else "NOT a closed 2-manifold"
                     how = f'{report["method"]}, {report["perturbation_retries"]} nudges'

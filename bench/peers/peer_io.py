@@ -2,7 +2,9 @@
 for what they all need (OBJ and STL as float64 arrays, volumes, best-of-n
 timing)."""
 import argparse
+import json
 import os
+import subprocess
 import time
 
 import numpy as np
@@ -64,6 +66,56 @@ def best(fn, runs):
         out = fn()
         times.append(time.perf_counter() - t)
     return min(times), out
+
+
+def peer_booleans(op, a, b, runs):
+    """trueform's and manifold3d's `op` ("union", "intersection" or
+    "difference", A − B) of `a` and `b`, each a (vertices float64,
+    triangles) pair, built afresh from the arrays in every run (manifold3d
+    through `Mesh64`): (trueform seconds, its volume, manifold3d seconds,
+    its volume), each the best of `runs`."""
+    import manifold3d as m3d
+    import trueform as tf
+
+    (va, fa), (vb, fb) = a, b
+    tf_op = {"union": tf.boolean_union, "intersection": tf.boolean_intersection,
+             "difference": tf.boolean_difference}[op]
+    m3d_op = {"union": lambda A, B: A + B, "intersection": lambda A, B: A ^ B,
+              "difference": lambda A, B: A - B}[op]
+    t_tf, r_tf = best(lambda: tf_op(tf.Mesh(fa, va), tf.Mesh(fb, vb)), runs)
+    v_tf = volume(r_tf[0][1], r_tf[0][0])
+
+    def m3d_run():
+        A = m3d.Manifold(m3d.Mesh64(vert_properties=va, tri_verts=fa.astype(np.uint64)))
+        B = m3d.Manifold(m3d.Mesh64(vert_properties=vb, tri_verts=fb.astype(np.uint64)))
+        return m3d_op(A, B).volume()
+
+    t_m3d, v_m3d = best(m3d_run, runs)
+    return t_tf, v_tf, t_m3d, v_m3d
+
+
+def holey_run(holey, op, inputs, out, report, runs, extra=()):
+    """`holey op inputs... out --report report`, `runs` times: (the best
+    whole-process seconds, the best engine seconds `seconds.total`, the
+    last report, None), or (None, None, None, the error's last line)."""
+    wall = engine = r = None
+    for _ in range(runs):
+        t = time.perf_counter()
+        p = subprocess.run([holey, op, *inputs, out, "--report", report, *extra],
+                           capture_output=True, text=True)
+        dt = time.perf_counter() - t
+        if p.returncode != 0:
+            return None, None, None, p.stderr.strip().splitlines()[-1]
+        r = json.load(open(report))
+        wall = dt if wall is None else min(wall, dt)
+        engine = r["seconds"]["total"] if engine is None else min(engine, r["seconds"]["total"])
+    return wall, engine, r, None
+
+
+def holey_info(holey, path):
+    """`holey info --json path`, parsed."""
+    p = subprocess.run([holey, "info", "--json", path], capture_output=True, text=True)
+    return json.loads(p.stdout)
 
 
 def bench_args(description=None):

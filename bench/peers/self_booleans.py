@@ -12,14 +12,9 @@ the same float64 arrays (manifold3d through `Mesh64`).
     cargo build --release -p holey-cli
     python3 bench/peers/self_booleans.py [--holey target/release/holey] [--shared ../shared] [--runs 3]
 """
-import argparse, json, os, subprocess, tempfile
+import argparse, os, tempfile
 
-import numpy as np
-import manifold3d as m3d
-import trueform as tf
-
-from lattice_booleans import holey_run
-from peer_io import best, read_obj, read_stl, volume, write_obj
+from peer_io import holey_info, holey_run, peer_booleans, read_obj, read_stl, volume, write_obj
 
 SOLIDS = [
     "data/meshes/menger_sponge_level3.obj",
@@ -45,24 +40,13 @@ def main():
             pa = os.path.join(d, "a.obj")
             write_obj(pa, v, f)
             whole = volume(v, f)
-            for op, tf_op, m3d_op, want in [
-                ("union", tf.boolean_union, lambda A, B: A + B, whole),
-                ("intersection", tf.boolean_intersection, lambda A, B: A ^ B, whole),
-                ("difference", tf.boolean_difference, lambda A, B: A - B, 0.0),
-            ]:
-                t_tf, r_tf = best(lambda: tf_op(tf.Mesh(f, v), tf.Mesh(f, v)), args.runs)
-                v_tf = volume(r_tf[0][1], r_tf[0][0])
-
-                def m3d_run():
-                    A = m3d.Manifold(m3d.Mesh64(vert_properties=v, tri_verts=f.astype(np.uint64)))
-                    return m3d_op(A, A).volume()
-
-                t_m3d, v_m3d = best(m3d_run, args.runs)
+            for op, want in [("union", whole), ("intersection", whole), ("difference", 0.0)]:
+                t_tf, v_tf, t_m3d, v_m3d = peer_booleans(op, (v, f), (v, f), args.runs)
                 out, rep = os.path.join(d, "out.obj"), os.path.join(d, "r.json")
-                wall, engine, report, err = holey_run(holey, op, pa, pa, out, rep, args.runs)
+                wall, engine, report, err = holey_run(holey, op, [pa, pa], out, rep, args.runs)
                 err_of = lambda x: "-" if x is None else f"{abs(x - want) / whole:.1e}"
                 if err is None:
-                    info = json.loads(subprocess.run([holey, "info", "--json", out], capture_output=True, text=True).stdout)
+                    info = holey_info(holey, out)
                     v_h = info.get("volume") if want else 0.0 if info.get("faces", 0) == 0 else info.get("volume")
                     shape = "closed 2-manifold" if info.get("closed") and info.get("manifold") else "NOT a closed 2-manifold"
                     how = (f'{report["method"]}, {report["perturbation_retries"]} nudges, '
