@@ -369,8 +369,7 @@ fn exact_winding_if_clean(
     options: &BooleanOptions,
 ) -> Result<Option<WindingOutcome>, BooleanError> {
     let mut out = boolean_by_winding_first_try(inputs, op, &options.engine)?;
-    let r = &out.report;
-    if r.unpaired_edges + r.nonmanifold_edges + r.pinched_vertices > 0 {
+    if out.report.shape_defects() > 0 {
         return Ok(None);
     }
     let crossing = crate::engine::self_intersections(&out.mesh)?.pairs.len();

@@ -62,32 +62,34 @@ pub(crate) fn unzip(positions: &mut Vec<DVec3>, faces: &mut Vec<[u32; 3]>) -> Un
         if a == b || around.len() < 2 {
             continue;
         }
-        let pairs = if around.len() == 2 {
-            Some(vec![(around[0], around[1])])
-        } else {
-            pair_around(positions, faces, a, b, around)
-        };
-        let joins: Vec<(u32, u32)> = match pairs {
-            Some(pairs) => {
-                if around.len() > 2 {
-                    let ends = |&(t, u): &(u32, u32)| {
-                        [
-                            corner(faces, t, a),
-                            corner(faces, t, b),
-                            corner(faces, u, a),
-                            corner(faces, u, b),
-                        ]
-                    };
-                    paired.push(pairs.iter().map(ends).collect());
-                }
-                pairs
-            }
-            None => around.windows(2).map(|w| (w[0], w[1])).collect(),
-        };
-        for (t, u) in joins {
+        let mut join = |t: u32, u: u32| {
             for v in [a, b] {
                 fans.union(corner(faces, t, v), corner(faces, u, v));
             }
+        };
+        if let [t, u] = *around {
+            join(t, u);
+            continue;
+        }
+        match pair_around(positions, faces, a, b, around) {
+            Some(pairs) => {
+                paired.push(
+                    pairs
+                        .iter()
+                        .map(|&(t, u)| {
+                            [
+                                corner(faces, t, a),
+                                corner(faces, t, b),
+                                corner(faces, u, a),
+                                corner(faces, u, b),
+                            ]
+                        })
+                        .collect(),
+                );
+                pairs.into_iter().for_each(|(t, u)| join(t, u));
+            }
+            // Not a contact to separate: all its faces stay one fan.
+            None => around.windows(2).for_each(|w| join(w[0], w[1])),
         }
     }
     let before = positions.len();
@@ -278,12 +280,10 @@ fn pair_around(
             }
         })
     });
-    let start_or_opposite = |h: Half| matches!(h, Half::Start | Half::Opposite);
     let repeated = |h: Half| halves.iter().filter(|&&x| x == h).count() > 1;
     if tied || [Half::Start, Half::Opposite].iter().any(|&h| repeated(h)) {
         return None;
     }
-    debug_assert!(halves.iter().any(|&h| start_or_opposite(h)));
     let n = order.len();
     if n % 2 == 1 || (0..n).any(|i| sides[order[i]].1 == sides[order[(i + 1) % n]].1) {
         return None;

@@ -209,6 +209,14 @@ pub struct WindingReport {
     pub seconds: WindingTimings,
 }
 
+impl WindingReport {
+    /// Unpaired edges, non-manifold edges and pinched vertices of the
+    /// result: 0 for a closed 2-manifold.
+    pub(crate) fn shape_defects(&self) -> usize {
+        self.unpaired_edges + self.nonmanifold_edges + self.pinched_vertices
+    }
+}
+
 /// Seconds spent in each stage.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct WindingTimings {
@@ -560,10 +568,7 @@ pub fn boolean_by_winding_robust(
         out.report.output_intersecting_pairs = Some(crossing);
         out.report.perturbation_retries = k;
         let closed = out.report.inputs_closed.iter().all(|&c| c);
-        let defects = out.report.unpaired_edges
-            + crossing
-            + out.report.nonmanifold_edges
-            + out.report.pinched_vertices;
+        let defects = out.report.shape_defects() + crossing;
         // The exact attempt, unless a nudged one is clean: a nudge moves
         // the answer by its size, worth it only for a clean result.
         if best.is_none() || defects == 0 {
@@ -607,12 +612,12 @@ fn generic_direction(j: usize) -> DVec3 {
     DVec3::new(r * theta.cos(), r * theta.sin(), z)
 }
 
-/// All inputs in one mesh, and the input of each triangle.
+/// All inputs (each checked already) in one mesh, and the input of each
+/// triangle.
 fn join(inputs: &[&TriMesh]) -> Result<(TriMesh, Vec<u32>), WindingError> {
     let mut joined = TriMesh::default();
     let mut owner = Vec::new();
     for (i, m) in inputs.iter().enumerate() {
-        m.check()?;
         let base = joined.positions.len();
         let total = base + m.positions.len();
         if total >= u32::MAX as usize - 2 {
