@@ -10,7 +10,7 @@ diagonal, slider 0.2-1: inflate, deflate, a dwell, smooth or a grab of
 up to 30% of the box), written as one stroke file and replayed by
 `holey sculpt --audit -v` with remeshing. A run fails when the CLI exits
 non-zero (a refusal or a panic) or when a stroke leaves more boundary
-loops, non-manifold curves, pinched vertices, degenerate triangles or
+loops, non-manifold curves, misoriented edges, pinched vertices, degenerate triangles or
 intersecting pairs than its input had. Usage:
 
     cargo build --release -p holey-cli

@@ -54,6 +54,9 @@ struct Shape {
     components: usize,
     boundary_loops: usize,
     nonmanifold_curves: usize,
+    /// Edges of two triangles that run along them the same way: the
+    /// surface's sides meet back to front there.
+    misoriented: usize,
     pinched: usize,
     degenerate: usize,
     intersecting_pairs: usize,
@@ -72,6 +75,21 @@ fn measure(m: &TriMesh) -> Shape {
         .filter(|(_, c)| **c > 2)
         .map(|(e, _)| *e)
         .collect();
+    // Directed sides: an edge of two triangles is misoriented when both
+    // run it from the same end.
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            *directed.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    let misoriented = degree
+        .iter()
+        .filter(|&(&(a, b), &c)| {
+            let (ab, ba) = (directed.get(&(a, b)), directed.get(&(b, a)));
+            c == 2 && a != b && (ab == Some(&2) || ba == Some(&2))
+        })
+        .count();
     let components = components(&m.triangles);
     let used: HashSet<u32> = m.triangles.iter().flatten().copied().collect();
     // Fans: the triangles at a vertex joined through edges at it.
@@ -127,6 +145,7 @@ fn measure(m: &TriMesh) -> Shape {
         components,
         boundary_loops: pieces(&boundary),
         nonmanifold_curves: pieces(&nonmanifold),
+        misoriented,
         pinched,
         degenerate,
         intersecting_pairs: self_intersections(m).unwrap().pairs.len(),
@@ -172,6 +191,7 @@ fn no_worse(what: &str, before: &Shape, after: &Shape) {
             before.nonmanifold_curves,
             after.nonmanifold_curves,
         ),
+        ("misoriented edges", before.misoriented, after.misoriented),
         ("pinched vertices", before.pinched, after.pinched),
         ("degenerate triangles", before.degenerate, after.degenerate),
         (

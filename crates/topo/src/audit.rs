@@ -2,7 +2,7 @@
 //! must keep (issue 15's "what a stroke changes") and the tests check.
 //!
 //! [`SurfaceAudit::of`] counts, for any triangle list, its components,
-//! boundary and non-manifold edges, pinched vertices, exactly degenerate
+//! boundary, non-manifold and misoriented edges, pinched vertices, exactly degenerate
 //! triangles and exactly intersecting triangle pairs. [`SurfaceAudit::regressions`]
 //! says in words what got worse from one audit to the next.
 //!
@@ -43,6 +43,11 @@ pub struct SurfaceAudit {
     /// Connected pieces of the non-manifold edges (joined through shared
     /// vertices): the non-manifold curves, however finely split.
     pub nonmanifold_curves: usize,
+    /// Edges with two triangles that run along them the same way: the
+    /// surface's two sides meet there back to front, and no choice of
+    /// orientation makes it consistent if the count does not drop to zero
+    /// by flipping whole components (a one-sided surface).
+    pub misoriented_edges: usize,
     /// Vertices whose triangles form more than one fan (joined through
     /// edges at the vertex): the surface is pinched there.
     pub pinched_vertices: usize,
@@ -100,6 +105,15 @@ impl SurfaceAudit {
             boundary_loops: pieces(&|e| degree(e) == 1),
             nonmanifold_edges: (0..edges.len()).filter(|&e| degree(e) > 2).count(),
             nonmanifold_curves: pieces(&|e| degree(e) > 2),
+            misoriented_edges: (0..edges.len())
+                .filter(|&e| match *edges.triangles(e) {
+                    [t, u] => {
+                        let way = |t| edges.runs_forward(&mesh.triangles, t, e);
+                        matches!((way(t), way(u)), (Some(a), Some(b)) if a == b)
+                    }
+                    _ => false,
+                })
+                .count(),
             pinched_vertices: mesh.pinched_vertices().iter().filter(|&&p| p).count(),
             degenerate_triangles: mesh
                 .triangles
@@ -116,8 +130,8 @@ impl SurfaceAudit {
     }
 
     /// What is worse in `after` than in `self`, in words: more boundary
-    /// loops, non-manifold curves, pinches, degenerate triangles or
-    /// intersecting pairs. Empty when nothing is. Edge counts are not
+    /// loops, non-manifold curves, misoriented edges, pinches, degenerate
+    /// triangles or intersecting pairs. Empty when nothing is. Edge counts are not
     /// compared: remeshing splits and collapses boundary and non-manifold
     /// edges without changing what the surface is.
     pub fn regressions(&self, after: &SurfaceAudit) -> Vec<String> {
@@ -127,6 +141,11 @@ impl SurfaceAudit {
                 "non-manifold curves",
                 self.nonmanifold_curves,
                 after.nonmanifold_curves,
+            ),
+            (
+                "misoriented edges",
+                self.misoriented_edges,
+                after.misoriented_edges,
             ),
             (
                 "pinched vertices",
@@ -156,11 +175,15 @@ impl SurfaceAudit {
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {
-    const WORDS: [(&str, &str); 10] = [
+    const WORDS: [(&str, &str); 11] = [
         ("boundary loops", "open a hole"),
         (
             "non-manifold curves",
             "join surfaces along an edge shared by more than two faces",
+        ),
+        (
+            "misoriented edges",
+            "join the surface to itself back to front, outside to inside",
         ),
         ("pinched vertices", "pinch the surface at a point"),
         ("degenerate triangles", "leave a flat sliver triangle"),
@@ -197,14 +220,16 @@ impl std::fmt::Display for SurfaceAudit {
         write!(
             f,
             "{} triangles, {} components, {} boundary edges in {} loops, \
-             {} non-manifold edges in {} curves, {} pinched vertices, \
-             {} degenerate triangles, {} intersecting pairs, euler {}",
+             {} non-manifold edges in {} curves, {} misoriented edges, \
+             {} pinched vertices, {} degenerate triangles, {} intersecting \
+             pairs, euler {}",
             self.triangles,
             self.components,
             self.boundary_edges,
             self.boundary_loops,
             self.nonmanifold_edges,
             self.nonmanifold_curves,
+            self.misoriented_edges,
             self.pinched_vertices,
             self.degenerate_triangles,
             self.intersecting_pairs,
@@ -302,5 +327,28 @@ mod tests {
         assert_eq!(a.components, 1);
         assert_eq!(a.boundary_edges, 6);
         assert_eq!(a.boundary_loops, 1);
+    }
+
+    /// Two triangles on an edge: misoriented when both run it the same
+    /// way; flipping one makes it consistent, and a regression names it.
+    #[test]
+    fn an_edge_run_the_same_way_twice_is_misoriented() {
+        let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::Y];
+        let same = TriMesh {
+            positions: positions.clone(),
+            triangles: vec![[0, 1, 2], [0, 1, 3]],
+        };
+        let opposite = TriMesh {
+            positions,
+            triangles: vec![[0, 1, 2], [1, 0, 3]],
+        };
+        let (a, b) = (
+            SurfaceAudit::topology(&same),
+            SurfaceAudit::topology(&opposite),
+        );
+        assert_eq!((a.misoriented_edges, b.misoriented_edges), (1, 0));
+        assert_eq!(b.regressions(&a), ["misoriented edges: 0 -> 1"]);
+        assert!(a.regressions(&b).is_empty());
+        assert_eq!(SurfaceAudit::topology(&tetra()).misoriented_edges, 0);
     }
 }

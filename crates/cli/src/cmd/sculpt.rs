@@ -86,8 +86,8 @@ pub struct Args {
     #[arg(long)]
     pub no_remesh: bool,
     /// Measure the surface exactly before and after every stroke (with
-    /// -v: every frame): components, boundary and non-manifold edges,
-    /// pinched vertices, degenerate triangles and intersecting triangle
+    /// -v: every frame): components, boundary, non-manifold and
+    /// misoriented edges, pinched vertices, degenerate triangles and intersecting triangle
     /// pairs, and name whatever got worse.
     #[arg(long)]
     pub audit: bool,
