@@ -1098,6 +1098,60 @@ fn arduino_soup_inflate_and_smooth() {
     sculpt("arduino soup", soup, &strokes, true);
 }
 
+/// The edges of `m` taken by exact position (a soup's copies of a corner
+/// as one point): how many have one triangle, and how many more than two.
+fn welded_rim_and_fins(m: &TriMesh) -> (usize, usize) {
+    let mut class: HashMap<[u64; 3], u32> = HashMap::new();
+    let id: Vec<u32> = m
+        .positions
+        .iter()
+        .map(|p| {
+            let key = [p.x, p.y, p.z].map(|c| if c == 0.0 { 0 } else { c.to_bits() });
+            let next = class.len() as u32;
+            *class.entry(key).or_insert(next)
+        })
+        .collect();
+    let welded: Vec<[u32; 3]> = m
+        .triangles
+        .iter()
+        .map(|t| t.map(|v| id[v as usize]))
+        .collect();
+    let degree = edge_degrees(&welded);
+    (
+        degree.values().filter(|&&d| d == 1).count(),
+        degree.values().filter(|&&d| d > 2).count(),
+    )
+}
+
+/// A dwell inflate at a corner of the Arduino case soup (12 frames at
+/// one of its vertices, radius 4.92 and 0.111 a frame: the fourth stroke
+/// of `bench/sculpt/fuzz_strokes.py`, seed 1303). Welded by position the
+/// soup is closed, and the inflate pushes the corner's walls into each
+/// other, so frames cut soup triangles. The guard counted pieces by
+/// vertex number, where a soup is a piece per triangle and every cut
+/// triangle's kept part a speck: it took 50 of them out as debris,
+/// leaving 74 edges of holes in the welded surface. Pieces are counted
+/// with a rim's copies joined by position now: nothing is taken out, and
+/// the welded surface stays closed, without a fin.
+#[test]
+fn arduino_soup_dwell_at_a_corner_keeps_its_welded_surface_closed() {
+    let test = "arduino_soup_dwell_at_a_corner_keeps_its_welded_surface_closed";
+    let Some(soup) = load(test, "thingi10k_65004_arduino_case_soup.obj") else {
+        return;
+    };
+    assert_eq!(welded_rim_and_fins(&soup), (0, 0), "the soup welds closed");
+    let corner = DVec3::new(-36.80595016479492, -25.0, 19.34903907775879);
+    let dwell = paint(
+        Brush::Inflate,
+        4.924809611945693,
+        0.11085714840578006,
+        vec![corner; 12],
+    );
+    let (session, reports, _) = sculpt(test, soup, &[dwell], true);
+    assert_eq!(reports[0].specks_removed, 0, "{:?}", reports[0]);
+    assert_eq!(welded_rim_and_fins(session.mesh()), (0, 0));
+}
+
 /// Move: a copy of the watertight bunny moved into it merges with it into
 /// one closed piece of genus 0.
 #[test]

@@ -67,8 +67,27 @@ impl SurfaceAudit {
     }
 
     /// Everything but the intersections (linear time).
+    ///
+    /// Vertices on a rim (an edge at them has one triangle) that lie at
+    /// one exact position are counted as one: a soup's copies of a corner
+    /// and the two sides of an unwelded seam are one point of the surface,
+    /// as the brushes and the engine's identities by position take them.
+    /// So a soup that welds closed is closed here, and a frame that opens
+    /// a hole in it is seen to (counted by vertex numbers, a soup is all
+    /// rim, a loop per triangle, and no hole can be told from its seams).
+    /// Copies with whole fans (a split pinch, sheets fused at a crossing)
+    /// stay apart. A mesh without such copies costs one pass over its rim.
     pub fn topology(mesh: &TriMesh) -> SurfaceAudit {
         let edges = Edges::new(mesh);
+        match welded_rims(mesh, &edges) {
+            Some(welded) => SurfaceAudit::by_number(&welded, &Edges::new(&welded)),
+            None => SurfaceAudit::by_number(mesh, &edges),
+        }
+    }
+
+    /// [`SurfaceAudit::topology`] of `mesh` by vertex number, with its
+    /// `edges`.
+    fn by_number(mesh: &TriMesh, edges: &Edges) -> SurfaceAudit {
         let degree = |e: usize| edges.triangles(e).len();
         let mut used = vec![false; mesh.positions.len()];
         let mut sets = UnionFind::new(mesh.positions.len());
@@ -171,7 +190,44 @@ impl SurfaceAudit {
     }
 }
 
-/// What a regression of [`SurfaceAudit::regressions`] means to someone
+/// `mesh` with its rim vertices at one exact position renamed to one of
+/// them ([`SurfaceAudit::topology`]), or `None` when no two rim vertices
+/// share a position.
+fn welded_rims(mesh: &TriMesh, edges: &Edges) -> Option<TriMesh> {
+    let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
+    let mut rename: Vec<(u32, u32)> = Vec::new();
+    let mut seen = vec![false; mesh.positions.len()];
+    for e in (0..edges.len()).filter(|&e| edges.triangles(e).len() == 1) {
+        for v in edges.ends[e] {
+            if std::mem::replace(&mut seen[v as usize], true) {
+                continue;
+            }
+            let at = *first
+                .entry(holey_geom::position_key(mesh.positions[v as usize]))
+                .or_insert(v);
+            if at != v {
+                rename.push((v, at));
+            }
+        }
+    }
+    if rename.is_empty() {
+        return None;
+    }
+    let mut to: Vec<u32> = (0..mesh.positions.len() as u32).collect();
+    for (v, at) in rename {
+        to[v as usize] = at;
+    }
+    Some(TriMesh {
+        positions: mesh.positions.clone(),
+        triangles: mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| to[v as usize]))
+            .collect(),
+    })
+}
+
+/// What a regression of [`SurfaceAudit::regressions`] means to someone/// What a regression of [`SurfaceAudit::regressions`] means to someone
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {
@@ -327,6 +383,52 @@ mod tests {
         assert_eq!(a.components, 1);
         assert_eq!(a.boundary_edges, 6);
         assert_eq!(a.boundary_loops, 1);
+    }
+
+    /// A tetrahedron as a soup (every triangle its own three corners)
+    /// audits as the closed tetrahedron it welds to; without one triangle
+    /// it has one hole. Copies with whole fans (two tetrahedra touching
+    /// at a corner, each its own vertex there) are not joined.
+    #[test]
+    fn a_soup_audits_as_the_surface_it_welds_to() {
+        let t = tetra();
+        let soup = TriMesh {
+            positions: t
+                .triangles
+                .iter()
+                .flat_map(|f| f.map(|v| t.positions[v as usize]))
+                .collect(),
+            triangles: (0..t.triangles.len() as u32)
+                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                .collect(),
+        };
+        let a = SurfaceAudit::topology(&soup);
+        let b = SurfaceAudit::topology(&t);
+        assert_eq!(
+            (
+                a.components,
+                a.boundary_edges,
+                a.boundary_loops,
+                a.nonmanifold_edges,
+                a.pinched_vertices,
+                a.euler()
+            ),
+            (b.components, 0, 0, 0, 0, 2)
+        );
+        let mut holed = soup.clone();
+        holed.triangles.pop();
+        let h = SurfaceAudit::topology(&holed);
+        assert_eq!((h.boundary_edges, h.boundary_loops), (3, 1));
+        assert_eq!(a.regressions(&h), ["boundary loops: 0 -> 1"]);
+        // Two tetrahedra, the second's corner 0 a vertex of its own at the
+        // first's corner 0: two pieces, one touching the other.
+        let mut two = t.clone();
+        let n = two.positions.len() as u32;
+        two.positions
+            .extend(t.positions.iter().map(|p| 2.0 * t.positions[0] - *p));
+        two.triangles
+            .extend(t.triangles.iter().map(|f| f.map(|v| v + n)));
+        assert_eq!(SurfaceAudit::topology(&two).components, 2);
     }
 
     /// Two triangles on an edge: misoriented when both run it the same

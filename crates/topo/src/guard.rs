@@ -61,8 +61,8 @@ use crate::engine::{
     Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
 };
 use crate::hidden::{
-    debris, hidden_pieces, median_edge_near, pieces, shortest_edge_near, specks, tiny_new_curves,
-    vertex_components,
+    debris, hidden_pieces, median_edge_near, pieces_welded, shortest_edge_near, specks,
+    tiny_new_curves, vertex_components,
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{
@@ -518,7 +518,7 @@ fn take_out_debris(mesh: &TriMesh, region: &Region, out: &mut Outcome, options: 
     if !options.take_out_debris {
         return;
     }
-    let (root, count) = pieces(&out.mesh);
+    let (root, count) = pieces_welded(&out.mesh, &|_| true);
     if count < 2 {
         return;
     }
@@ -595,7 +595,7 @@ fn piece_growth(
     near_after: &dyn Fn(u32) -> bool,
     options: &Options,
 ) -> Vec<String> {
-    let (root_after, count_after) = pieces(after);
+    let (root_after, count_after) = pieces_welded(after, near_after);
     if count_after < 2 {
         return Vec::new();
     }
@@ -603,7 +603,9 @@ fn piece_growth(
     let mut counted: Option<(Vec<u32>, usize)> = None;
     let mut worse = Vec::new();
     if options.outward {
-        let count_before = counted.get_or_insert_with(|| pieces(before)).1;
+        let count_before = counted
+            .get_or_insert_with(|| pieces_welded(before, near_before))
+            .1;
         if count_after > count_before {
             worse.push(format!("pieces cut loose: {count_before} -> {count_after}"));
         }
@@ -611,7 +613,8 @@ fn piece_growth(
     let scale = SPECK_EDGES * median_edge_near(before, near_before);
     let a = specks(after, (&root_after, count_after), near_after, scale);
     if a > 0 {
-        let (root_before, count_before) = counted.get_or_insert_with(|| pieces(before));
+        let (root_before, count_before) =
+            counted.get_or_insert_with(|| pieces_welded(before, near_before));
         let b = specks(before, (root_before, *count_before), near_before, scale);
         if a > b {
             worse.push(format!("specks cut off: {b} -> {a}"));
@@ -619,7 +622,8 @@ fn piece_growth(
     }
     let a = hidden_pieces(after, (&root_after, count_after), near_after);
     if a > 0 {
-        let (root_before, count_before) = counted.get_or_insert_with(|| pieces(before));
+        let (root_before, count_before) =
+            counted.get_or_insert_with(|| pieces_welded(before, near_before));
         let b = hidden_pieces(before, (root_before, *count_before), near_before);
         if a > b {
             worse.push(format!("pieces hidden inside the surface: {b} -> {a}"));
@@ -810,6 +814,7 @@ fn neighbourhoods(
     let ring: Vec<[u32; 3]> = region
         .ring(&mesh.triangles)
         .iter()
+        .chain(&ring_by_position(mesh, region))
         .map(|&t| mesh.triangles[t as usize])
         .collect();
     let before = compact_of(
@@ -850,6 +855,35 @@ fn neighbourhoods(
         &position,
     );
     (before, after)
+}
+
+/// The triangles outside `region` and its ring that have a corner at the
+/// exact position of a region vertex: across an unwelded seam, or a
+/// soup's neighbours. The audit joins such copies on a rim
+/// ([`SurfaceAudit::topology`]), so the neighbourhood needs them to count
+/// what the region's rim becomes (a seam the cut tore open, a fin at a
+/// soup's corner). Only triangles with a corner in the region's box are
+/// hashed.
+fn ring_by_position(mesh: &TriMesh, region: &Region) -> Vec<u32> {
+    let ring = region.ring(&mesh.triangles);
+    let mut at: rustc_hash::FxHashSet<[u64; 3]> = rustc_hash::FxHashSet::default();
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for &v in &region.global {
+        let p = mesh.positions[v as usize];
+        at.insert(holey_geom::position_key(p));
+        (lo, hi) = (lo.min(p), hi.max(p));
+    }
+    let in_box = |p: DVec3| p.cmpge(lo).all() && p.cmple(hi).all();
+    (0..mesh.triangles.len() as u32)
+        .filter(|&t| {
+            !region.mask[t as usize]
+                && mesh.triangles[t as usize].iter().any(|&v| {
+                    let p = mesh.positions[v as usize];
+                    in_box(p) && at.contains(&holey_geom::position_key(p))
+                })
+                && ring.binary_search(&t).is_err()
+        })
+        .collect()
 }
 
 /// A mesh of `triangles` (any vertex numbers) with only their vertices,

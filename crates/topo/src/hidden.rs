@@ -53,11 +53,50 @@ const SAMPLES: usize = 8;
 /// The connected component of every triangle of `m` (named by a root
 /// vertex; components are joined through shared vertices) and how many
 /// components there are.
+#[cfg(test)]
 pub(crate) fn pieces(m: &TriMesh) -> (Vec<u32>, usize) {
+    pieces_welded(m, &|_| false)
+}
+
+/// [`pieces`], with the vertices `near` flags that lie on a rim (an edge
+/// at them has one triangle) also joined wherever they lie at one exact
+/// position: a soup's corners and the two sides of an unwelded seam are
+/// one surface there, as the brushes and the engine's identities by
+/// position take them. Counted by vertex numbers alone, a soup is a piece
+/// per triangle, every one smaller than a speck, and a cut through a
+/// triangle makes more of them: the guard held frames that cut a soup for
+/// "specks cut off" and took the cut triangles out as debris (61 of the
+/// Arduino case soup's in one inflate of the fuzz). Copies with whole
+/// fans stay apart: where a pinch was split or sheets fused, the pieces
+/// only touch. Only the flagged vertices are looked at: the region a
+/// frame changed.
+pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32>, usize) {
     let mut uf = UnionFind::new(m.positions.len());
+    // The sides at the flagged vertices, each from its vertex.
+    let mut sides: Vec<(u32, u32)> = Vec::new();
     for t in &m.triangles {
         uf.union(t[0], t[1]);
         uf.union(t[0], t[2]);
+        for k in 0..3 {
+            if near(t[k]) {
+                sides.push((t[k], t[(k + 1) % 3]));
+                sides.push((t[k], t[(k + 2) % 3]));
+            }
+        }
+    }
+    sides.sort_unstable();
+    let mut rim: Vec<u32> = sides
+        .chunk_by(|x, y| x == y)
+        .filter(|run| run.len() == 1)
+        .map(|run| run[0].0)
+        .collect();
+    rim.dedup();
+    let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
+    for v in rim {
+        let at = *first
+            .entry(holey_geom::position_key(m.positions[v as usize]))
+            .or_insert(v);
+        uf.union(at, v);
     }
     let root: Vec<u32> = m.triangles.iter().map(|t| uf.find(t[0])).collect();
     let mut seen = vec![false; m.positions.len()];
@@ -362,6 +401,31 @@ mod tests {
         m.triangles
             .extend(b.triangles.iter().map(|t| t.map(|v| v + n)));
         m
+    }
+
+    /// A box as a soup (each triangle its own corners) is one piece when
+    /// its rim copies are joined by position, twelve by vertex numbers,
+    /// and twelve still where only some vertices are looked at; two boxes
+    /// touching at a corner through vertices of their own, each with a
+    /// whole fan, stay two pieces.
+    #[test]
+    fn a_soup_is_one_piece_by_position_and_whole_fans_stay_apart() {
+        let c = cube(DVec3::ZERO, DVec3::ONE);
+        let soup = TriMesh {
+            positions: c
+                .triangles
+                .iter()
+                .flat_map(|t| t.map(|v| c.positions[v as usize]))
+                .collect(),
+            triangles: (0..c.triangles.len() as u32)
+                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                .collect(),
+        };
+        assert_eq!(pieces_welded(&soup, &|_| true).1, 1);
+        assert_eq!(pieces(&soup).1, 12);
+        assert_eq!(pieces_welded(&soup, &|_| false).1, 12);
+        let touching = joined(&c, &cube(DVec3::ONE, DVec3::splat(2.0)));
+        assert_eq!(pieces_welded(&touching, &|_| true).1, 2);
     }
 
     /// A small box beside a big one is debris when it has a vertex the
