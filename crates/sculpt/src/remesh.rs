@@ -409,6 +409,18 @@ struct Work {
     origin: Vec<u32>,
     /// Cached class and valence per local vertex.
     info: Vec<Option<(Class, i64)>>,
+    /// Per local vertex: another loaded vertex lies at its exact position
+    /// (a soup's copies of a corner, the sides of an unwelded seam, or
+    /// sheets the engine fused at a crossing). On a rim, such a vertex is
+    /// never collapsed or flipped across, and a rim edge between two of
+    /// them is never split: each acts on one copy by number and not on
+    /// its twin, which would tear the surface open by position (a
+    /// T-junction on a seam, a copy pulled off its corner) or fold two
+    /// copies' triangles onto one edge, where an audit that joins rim
+    /// copies ([`holey_topo::SurfaceAudit::topology`]) sees the holes and
+    /// fins remeshing made. A copy with a whole fan (fused sheets) is a
+    /// sheet of its own and is remeshed as any vertex.
+    copy: Vec<bool>,
     /// Scratch of [`Work::classify`], reused: a ring's (neighbour,
     /// triangle) pairs and its union-find parents.
     scratch_pairs: Vec<(u32, u32)>,
@@ -428,6 +440,27 @@ struct Work {
 const SPLITS: usize = 0;
 const COLLAPSES: usize = 1;
 const FLIPS: usize = 2;
+
+/// Per vertex of `global` (input numbers), whether another of them lies
+/// at its exact position ([`Work::copy`]).
+fn copies(global: &[u32], positions: &[DVec3]) -> Vec<bool> {
+    let mut keyed: Vec<([u64; 3], usize)> = global
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (holey_geom::position_key(positions[v as usize]), i))
+        .collect();
+    keyed.sort_unstable();
+    let mut copy = vec![false; global.len()];
+    for run in keyed
+        .chunk_by(|x, y| x.0 == y.0)
+        .filter(|run| run.len() > 1)
+    {
+        for &(_, i) in run {
+            copy[i] = true;
+        }
+    }
+    copy
+}
 
 /// Edges packed one to a `u64` (smaller end high, so that the integers'
 /// order is the pairs'), sorted, each once, unpacked.
@@ -516,6 +549,7 @@ impl Work {
                 }
             }
         }
+        let copy = copies(&global, &mesh.positions);
         let deg = |d: f64| d.to_radians();
         Some(Work {
             opts: *opts,
@@ -527,6 +561,7 @@ impl Work {
             full: (0..nl).map(|i| (i as u32) < full_count).collect(),
             alive_v: vec![true; nl],
             info: vec![None; nl],
+            copy,
             scratch_pairs: Vec::new(),
             scratch_parents: Vec::new(),
             changed: vec![1; nl],
@@ -716,7 +751,8 @@ impl Work {
         }
         let class = match (groups, boundary) {
             (1, 0) => Class::Interior,
-            (1, 2) => Class::Boundary,
+            // A rim vertex with a copy is one side of a seam ([`Work::copy`]).
+            (1, 2) if !self.copy[v as usize] => Class::Boundary,
             _ => Class::Singular,
         };
         (class, valence)
@@ -780,6 +816,7 @@ impl Work {
         self.full.push(true);
         self.alive_v.push(true);
         self.info.push(None);
+        self.copy.push(false);
         self.clock += 1;
         self.changed.push(self.clock);
         self.ring.push(Vec::new());
@@ -838,6 +875,11 @@ impl Work {
     fn split(&mut self, a: u32, b: u32) -> bool {
         let ts = self.edge_tris(a, b);
         if ts.is_empty() || ts.iter().any(|&t| degenerate(self.tris[t as usize])) {
+            return false;
+        }
+        // A rim edge between two copies is one side of a seam, whose twin
+        // would keep its ends ([`Work::copy`]).
+        if ts.len() == 1 && self.copy[a as usize] && self.copy[b as usize] {
             return false;
         }
         // Both halves of every triangle must keep an area: a triangle
@@ -1925,6 +1967,56 @@ pub(crate) mod tests {
                     };
                     assert!(on_side(p, q), "boundary edge {p} {q}");
                 }
+            }
+            assert!(clean_triangles(&out));
+        }
+    }
+
+    /// The open grid cut along x = 0 into two patches that do not share
+    /// their seam's vertices (each side has its own copies, as a
+    /// teapot's patches do): remeshing finer and coarser never splits a
+    /// seam edge on one side, nor moves a seam copy off its twin, so taken
+    /// by position the surface keeps its seam closed: every edge with one
+    /// triangle lies on the square's outline, none has more than two.
+    #[test]
+    fn an_unwelded_seam_stays_closed_by_position() {
+        let mut m = grid(20);
+        let n = m.positions.len() as u32;
+        let mut copy_of = std::collections::HashMap::new();
+        for t in 0..m.triangles.len() {
+            let centre: f64 = m.corners(t).iter().map(|p| p.x).sum::<f64>() / 3.0;
+            if centre <= 0.0 {
+                continue;
+            }
+            for k in 0..3 {
+                let v = m.triangles[t][k];
+                if m.positions[v as usize].x == 0.0 {
+                    let c = *copy_of.entry(v).or_insert_with(|| {
+                        m.positions.push(m.positions[v as usize]);
+                        m.positions.len() as u32 - 1
+                    });
+                    m.triangles[t][k] = c;
+                }
+            }
+        }
+        assert_eq!(m.positions.len() as u32, n + 21, "21 seam copies");
+        for r in [range(0.15, 0.4), range(0.03, 0.07)] {
+            let (out, rep) = remesh_checked(&m, &all(&m), &RemeshOptions::new(r));
+            assert!(rep.splits + rep.collapses > 0);
+            let key = |v: u32| out.positions[v as usize].to_array().map(f64::to_bits);
+            let mut by_position: std::collections::HashMap<_, usize> = Default::default();
+            for t in &out.triangles {
+                for k in 0..3 {
+                    let (a, b) = (key(t[k]), key(t[(k + 1) % 3]));
+                    *by_position.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+                }
+            }
+            for (&(a, b), &d) in &by_position {
+                let (p, q) = (a.map(f64::from_bits), b.map(f64::from_bits));
+                let on_side =
+                    (p[0].abs() == 1.0 && q[0] == p[0]) || (p[1].abs() == 1.0 && q[1] == p[1]);
+                assert!(d <= 2, "an edge of {d} triangles at {p:?} {q:?}");
+                assert!(d == 2 || on_side, "a hole's edge at {p:?} {q:?}");
             }
             assert!(clean_triangles(&out));
         }
