@@ -112,6 +112,7 @@ def main():
                     continue
                 worse = [line for line in p.stderr.splitlines() if "worse" in line.lower() and "held" not in line]
                 held = sum(int(x) for x in re.findall(r"(\d+) guarded frame", p.stderr))
+                specks = sum(int(x) for x in re.findall(r"(\d+) speck\(s\) of debris", p.stderr))
                 for line in p.stderr.splitlines():
                     if "held frames that would have left" in line:
                         for why in line.split("would have left", 1)[1].split(","):
@@ -121,7 +122,8 @@ def main():
                     failures += 1
                     print(f"{name} seed {seed}: " + "; ".join(worse))
                 else:
-                    print(f"{name} seed {seed}: ok ({held} guarded frames)")
+                    taken = f", {specks} specks of debris taken out" if specks else ""
+                    print(f"{name} seed {seed}: ok ({held} guarded frames{taken})")
     for why, n in sorted(reasons.items(), key=lambda x: -x[1]):
         print(f"strokes held for {why}: {n}")
     print(f"failures: {failures}")

@@ -200,7 +200,7 @@ pub fn run(args: Args) -> Result<()> {
         for (i, r) in reports.iter().enumerate() {
             let brush = r.brush.map(|b| b.name()).unwrap_or("?");
             eprintln!(
-                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} remeshing operation(s), {} guarded frame(s) ({} held whole, {} vertex-frames held), {} sub-frame split(s), {} whole-mesh frame(s), {} -> {} triangles, {:.3} s",
+                "stroke {i} ({brush}): {} frame(s), {} engine run(s), {} topology change(s), {} remeshing operation(s), {} guarded frame(s) ({} held whole, {} vertex-frames held), {} sub-frame split(s), {} whole-mesh frame(s), {} speck(s) of debris taken out, {} -> {} triangles, {:.3} s",
                 r.frames,
                 r.engine_runs,
                 r.changes,
@@ -210,6 +210,7 @@ pub fn run(args: Args) -> Result<()> {
                 r.held_vertices,
                 r.subframes,
                 r.whole_mesh_frames,
+                r.specks_removed,
                 r.triangles_before,
                 r.triangles_after,
                 r.seconds
