@@ -81,49 +81,62 @@ def group(drawn, most, rng):
         s["frames"] = frames
 
 
-def main():
+def fuzz_args(first_seed=100):
+    """The options of the fuzz scripts: the holey binary and the shared
+    folder, and which seeds and frame grouping to draw."""
     ap = sculpt_args()
     ap.add_argument("--seeds", type=int, default=10)
-    ap.add_argument("--first-seed", type=int, default=100)
+    ap.add_argument("--first-seed", type=int, default=first_seed)
     ap.add_argument("--frames-of", type=int, default=1,
                     help="group each paint stroke's points into frames of 1 to N dabs, drawn at "
                          "random (\"frames\" in the stroke file), as the modeler sends the dabs "
                          "that queue while a frame is computed")
-    args = ap.parse_args()
+    return ap
+
+
+def stroke_files(args, d):
+    """For every shared mesh and seed of `args`: (name, path, seed, file),
+    the strokes drawn for it written to `file` in the folder `d`."""
+    for name, path in shared_meshes(args.shared, MESHES):
+        points = used_points(path)
+        for seed in range(args.first_seed, args.first_seed + args.seeds):
+            file = os.path.join(d, f"s{seed}.json")
+            rng = random.Random(seed)
+            drawn = strokes(points, rng)
+            if args.frames_of > 1:
+                group(drawn, args.frames_of, rng)
+            with open(file, "w") as fh:
+                json.dump({"strokes": drawn}, fh)
+            yield name, path, seed, file
+
+
+def main():
+    args = fuzz_args().parse_args()
     failures = 0
     # Why the guard held frames, by what would have got worse: strokes per reason.
     reasons = {}
     with tempfile.TemporaryDirectory() as d:
-        for name, path in shared_meshes(args.shared, MESHES):
-            points = used_points(path)
-            for seed in range(args.first_seed, args.first_seed + args.seeds):
-                file = os.path.join(d, f"s{seed}.json")
-                rng = random.Random(seed)
-                drawn = strokes(points, rng)
-                if args.frames_of > 1:
-                    group(drawn, args.frames_of, rng)
-                with open(file, "w") as fh:
-                    json.dump({"strokes": drawn}, fh)
-                p = subprocess.run([args.holey, "sculpt", path, file, os.path.join(d, "out.obj"), "--audit", "-v"],
-                                   capture_output=True, text=True)
-                if p.returncode != 0:
-                    failures += 1
-                    print(f"{name} seed {seed}: exit {p.returncode}: {p.stderr.strip().splitlines()[-1:]}")
-                    continue
-                worse = [line for line in p.stderr.splitlines() if "worse" in line.lower() and "held" not in line]
-                held = sum(int(x) for x in re.findall(r"(\d+) guarded frame", p.stderr))
-                specks = sum(int(x) for x in re.findall(r"(\d+) speck\(s\) of debris", p.stderr))
-                for line in p.stderr.splitlines():
-                    if "held frames that would have left" in line:
-                        for why in line.split("would have left", 1)[1].split(","):
-                            why = why.strip().split(":")[0]
-                            reasons[why] = reasons.get(why, 0) + 1
-                if worse:
-                    failures += 1
-                    print(f"{name} seed {seed}: " + "; ".join(worse))
-                else:
-                    taken = f", {specks} specks of debris taken out" if specks else ""
-                    print(f"{name} seed {seed}: ok ({held} guarded frames{taken})")
+        for name, path, seed, file in stroke_files(args, d):
+            p = subprocess.run([args.holey, "sculpt", path, file, os.path.join(d, "out.obj"), "--audit", "-v"],
+                               capture_output=True, text=True)
+            if p.returncode != 0:
+                failures += 1
+                print(f"{name} seed {seed}: exit {p.returncode}: {p.stderr.strip().splitlines()[-1:]}")
+                continue
+            worse = [line for line in p.stderr.splitlines() if "worse" in line.lower() and "held" not in line]
+            held = sum(int(x) for x in re.findall(r"(\d+) guarded frame", p.stderr))
+            specks = sum(int(x) for x in re.findall(r"(\d+) speck\(s\) of debris", p.stderr))
+            for line in p.stderr.splitlines():
+                if "held frames that would have left" in line:
+                    for why in line.split("would have left", 1)[1].split(","):
+                        why = why.strip().split(":")[0]
+                        reasons[why] = reasons.get(why, 0) + 1
+            if worse:
+                failures += 1
+                print(f"{name} seed {seed}: " + "; ".join(worse))
+            else:
+                taken = f", {specks} specks of debris taken out" if specks else ""
+                print(f"{name} seed {seed}: ok ({held} guarded frames{taken})")
     for why, n in sorted(reasons.items(), key=lambda x: -x[1]):
         print(f"strokes held for {why}: {n}")
     print(f"failures: {failures}")

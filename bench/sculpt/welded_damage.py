@@ -10,11 +10,11 @@ way to compare builds from before it did. Usage:
 
     python3 bench/sculpt/welded_damage.py --holey OLD,NEW [--seeds 10] [--first-seed 910] [--frames-of 8]
 """
-import json, os, random, subprocess, tempfile
+import os, subprocess, tempfile
 from collections import Counter
 
-from fuzz_strokes import MESHES, group, strokes, used_points
-from shared_obj import read_obj, sculpt_args, shared_meshes
+from fuzz_strokes import fuzz_args, stroke_files
+from shared_obj import read_obj
 
 
 def welded_loops_and_fins(path):
@@ -49,37 +49,25 @@ def welded_loops_and_fins(path):
 
 
 def main():
-    ap = sculpt_args()
-    ap.add_argument("--seeds", type=int, default=10)
-    ap.add_argument("--first-seed", type=int, default=910)
-    ap.add_argument("--frames-of", type=int, default=1)
-    args = ap.parse_args()
+    args = fuzz_args(first_seed=910).parse_args()
     builds = args.holey.split(",")
     damaged = Counter()
     runs = 0
     with tempfile.TemporaryDirectory() as d:
-        file, out = os.path.join(d, "strokes.json"), os.path.join(d, "out.obj")
-        for name, path in shared_meshes(args.shared, MESHES):
+        out = os.path.join(d, "out.obj")
+        for name, path, seed, file in stroke_files(args, d):
             base = welded_loops_and_fins(path)
-            points = used_points(path)
-            for seed in range(args.first_seed, args.first_seed + args.seeds):
-                rng = random.Random(seed)
-                drawn = strokes(points, rng)
-                if args.frames_of > 1:
-                    group(drawn, args.frames_of, rng)
-                with open(file, "w") as fh:
-                    json.dump({"strokes": drawn}, fh)
-                runs += 1
-                row = []
-                for b in builds:
-                    if subprocess.run([b, "sculpt", path, file, out], capture_output=True).returncode:
-                        row.append("refused")
-                        continue
-                    loops, fins = welded_loops_and_fins(out)
-                    if loops > base[0] or fins > base[1]:
-                        damaged[b] += 1
-                    row.append(f"loops {loops - base[0]:+d}, curves {fins - base[1]:+d}")
-                print(f"{name} seed {seed}: " + " | ".join(row))
+            runs += 1
+            row = []
+            for b in builds:
+                if subprocess.run([b, "sculpt", path, file, out], capture_output=True).returncode:
+                    row.append("refused")
+                    continue
+                loops, fins = welded_loops_and_fins(out)
+                if loops > base[0] or fins > base[1]:
+                    damaged[b] += 1
+                row.append(f"loops {loops - base[0]:+d}, curves {fins - base[1]:+d}")
+            print(f"{name} seed {seed}: " + " | ".join(row))
     for b in builds:
         print(f"{b}: {damaged[b]} of {runs} outputs with more welded boundary loops or non-manifold curves")
 

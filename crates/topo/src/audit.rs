@@ -392,16 +392,7 @@ mod tests {
     #[test]
     fn a_soup_audits_as_the_surface_it_welds_to() {
         let t = tetra();
-        let soup = TriMesh {
-            positions: t
-                .triangles
-                .iter()
-                .flat_map(|f| f.map(|v| t.positions[v as usize]))
-                .collect(),
-            triangles: (0..t.triangles.len() as u32)
-                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
-                .collect(),
-        };
+        let soup = t.unwelded();
         let a = SurfaceAudit::topology(&soup);
         let b = SurfaceAudit::topology(&t);
         assert_eq!(

@@ -411,16 +411,7 @@ mod tests {
     #[test]
     fn a_soup_is_one_piece_by_position_and_whole_fans_stay_apart() {
         let c = cube(DVec3::ZERO, DVec3::ONE);
-        let soup = TriMesh {
-            positions: c
-                .triangles
-                .iter()
-                .flat_map(|t| t.map(|v| c.positions[v as usize]))
-                .collect(),
-            triangles: (0..c.triangles.len() as u32)
-                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
-                .collect(),
-        };
+        let soup = c.unwelded();
         assert_eq!(pieces_welded(&soup, &|_| true).1, 1);
         assert_eq!(pieces(&soup).1, 12);
         assert_eq!(pieces_welded(&soup, &|_| false).1, 12);
