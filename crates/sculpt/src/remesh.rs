@@ -409,17 +409,19 @@ struct Work {
     origin: Vec<u32>,
     /// Cached class and valence per local vertex.
     info: Vec<Option<(Class, i64)>>,
-    /// Per local vertex: another loaded vertex lies at its exact position
-    /// (a soup's copies of a corner, the sides of an unwelded seam, or
-    /// sheets the engine fused at a crossing). On a rim, such a vertex is
-    /// never collapsed or flipped across, and a rim edge between two of
-    /// them is never split: each acts on one copy by number and not on
-    /// its twin, which would tear the surface open by position (a
-    /// T-junction on a seam, a copy pulled off its corner) or fold two
-    /// copies' triangles onto one edge, where an audit that joins rim
-    /// copies ([`holey_topo::SurfaceAudit::topology`]) sees the holes and
-    /// fins remeshing made. A copy with a whole fan (fused sheets) is a
-    /// sheet of its own and is remeshed as any vertex.
+    /// Per local vertex: it is one of several loaded vertices at one exact
+    /// position, one of them on a rim (a soup's copies of a corner, the
+    /// sides of an unwelded seam, and any vertex the cut left there). Such
+    /// a vertex is never collapsed, into or away, nor flipped across, and
+    /// a rim edge between two of them is never split: each acted on one
+    /// copy by number and not its twin, tearing the surface open by
+    /// position (a T-junction on a seam, a copy pulled off its corner) or
+    /// folding triangles of two copies onto one edge (a cut point
+    /// collapsed into one of a soup corner's copies), where an audit that
+    /// joins rim copies ([`holey_topo::SurfaceAudit::topology`]) sees the
+    /// holes and fins remeshing made. Copies that all have whole fans
+    /// (sheets fused at a crossing) are sheets of their own and are
+    /// remeshed as any vertex.
     copy: Vec<bool>,
     /// Scratch of [`Work::classify`], reused: a ring's (neighbour,
     /// triangle) pairs and its union-find parents.
@@ -441,9 +443,19 @@ const SPLITS: usize = 0;
 const COLLAPSES: usize = 1;
 const FLIPS: usize = 2;
 
-/// Per vertex of `global` (input numbers), whether another of them lies
-/// at its exact position ([`Work::copy`]).
-fn copies(global: &[u32], positions: &[DVec3]) -> Vec<bool> {
+/// Per loaded vertex (`global`: input numbers; `tris`: the loaded
+/// triangles in local numbers, `ring` around each vertex, `full` where
+/// the whole ring is loaded): whether it is one of several at one exact
+/// position of which one is on a rim, or may be ([`Work::copy`]). Copies
+/// that all have whole fans (sheets fused at a crossing) are not: each is
+/// a sheet of its own.
+fn copies(
+    global: &[u32],
+    positions: &[DVec3],
+    tris: &[[u32; 3]],
+    ring: &[Vec<u32>],
+    full: &[bool],
+) -> Vec<bool> {
     let mut keyed: Vec<([u64; 3], usize)> = global
         .iter()
         .enumerate()
@@ -451,12 +463,26 @@ fn copies(global: &[u32], positions: &[DVec3]) -> Vec<bool> {
         .collect();
     keyed.sort_unstable();
     let mut copy = vec![false; global.len()];
+    let mut sides: Vec<u32> = Vec::new();
+    let mut rim = |v: usize| {
+        if !full[v] {
+            return true;
+        }
+        sides.clear();
+        for &t in &ring[v] {
+            sides.extend(tris[t as usize].iter().filter(|&&x| x as usize != v));
+        }
+        sides.sort_unstable();
+        sides.chunk_by(|x, y| x == y).any(|run| run.len() == 1)
+    };
     for run in keyed
         .chunk_by(|x, y| x.0 == y.0)
         .filter(|run| run.len() > 1)
     {
-        for &(_, i) in run {
-            copy[i] = true;
+        if run.iter().any(|&(_, i)| rim(i)) {
+            for &(_, i) in run {
+                copy[i] = true;
+            }
         }
     }
     copy
@@ -549,7 +575,8 @@ impl Work {
                 }
             }
         }
-        let copy = copies(&global, &mesh.positions);
+        let full: Vec<bool> = (0..nl).map(|i| (i as u32) < full_count).collect();
+        let copy = copies(&global, &mesh.positions, &tris, &ring, &full);
         let deg = |d: f64| d.to_radians();
         Some(Work {
             opts: *opts,
@@ -558,7 +585,7 @@ impl Work {
             max_angle: deg(opts.max_angle),
             pos: global.iter().map(|&v| mesh.positions[v as usize]).collect(),
             active: global.iter().map(|&v| active[v as usize]).collect(),
-            full: (0..nl).map(|i| (i as u32) < full_count).collect(),
+            full,
             alive_v: vec![true; nl],
             info: vec![None; nl],
             copy,
@@ -710,7 +737,7 @@ impl Work {
         parents: &mut Vec<u32>,
     ) -> (Class, i64) {
         let ring = &self.ring[v as usize];
-        if !self.full[v as usize] || ring.is_empty() {
+        if !self.full[v as usize] || ring.is_empty() || self.copy[v as usize] {
             return (Class::Singular, 0);
         }
         pairs.clear();
@@ -751,8 +778,7 @@ impl Work {
         }
         let class = match (groups, boundary) {
             (1, 0) => Class::Interior,
-            // A rim vertex with a copy is one side of a seam ([`Work::copy`]).
-            (1, 2) if !self.copy[v as usize] => Class::Boundary,
+            (1, 2) => Class::Boundary,
             _ => Class::Singular,
         };
         (class, valence)
@@ -1013,6 +1039,23 @@ impl Work {
             .filter(|v| nb.binary_search(v).is_ok())
             .collect();
         if common != opposite {
+            return false;
+        }
+        // The same by position: copies of one point ([`Work::copy`]) are
+        // one neighbour, so the ends must not have two copies of a point
+        // for neighbours, one each: joined, their triangles would lie on
+        // one edge by position (a cut point collapsed beside a soup's
+        // corner once folded four triangles onto one).
+        let copies_of = |n: &[u32], other: u32| -> Vec<[u64; 3]> {
+            n.iter()
+                .filter(|&&v| {
+                    v != other && self.copy[v as usize] && opposite.binary_search(&v).is_err()
+                })
+                .map(|&v| holey_geom::position_key(self.pos[v as usize]))
+                .collect()
+        };
+        let (ca, cb) = (copies_of(&na, b), copies_of(&nb, a));
+        if ca.iter().any(|k| cb.contains(k)) {
             return false;
         }
         match opposite[..] {
@@ -2019,6 +2062,47 @@ pub(crate) mod tests {
                 assert!(d == 2 || on_side, "a hole's edge at {p:?} {q:?}");
             }
             assert!(clean_triangles(&out));
+        }
+    }
+
+    /// A short edge x–y whose ends each touch one copy of a point (a1 and
+    /// a2 at the origin, each on a rim, as a soup's corner): collapsing
+    /// it would put triangles of both copies on one edge by position, so
+    /// the link condition refuses it; with the second copy moved off the
+    /// point it allows it.
+    #[test]
+    fn a_collapse_never_joins_the_rings_of_two_copies_of_a_point() {
+        let mesh = |a2: DVec3| TriMesh {
+            positions: vec![
+                DVec3::ZERO,                 // a1
+                a2,                          // a2
+                DVec3::new(1.0, 0.02, 0.0),  // x
+                DVec3::new(1.0, -0.02, 0.0), // y
+                DVec3::new(1.0, 1.0, 0.0),   // t
+                DVec3::new(1.0, -1.0, 0.0),  // b
+                DVec3::new(2.0, 0.0, 0.0),   // r
+                DVec3::new(0.5, 0.0, 0.0),   // m
+            ],
+            triangles: vec![
+                [0, 2, 4],
+                [2, 6, 4],
+                [2, 3, 6],
+                [3, 2, 7],
+                [0, 7, 2],
+                [1, 3, 7],
+                [1, 5, 3],
+                [3, 5, 6],
+            ],
+        };
+        let opts = RemeshOptions::new(range(0.05, 0.3));
+        for (a2, joins) in [(DVec3::ZERO, false), (DVec3::new(0.0, -0.001, 0.0), true)] {
+            let m = mesh(a2);
+            let mut report = RemeshReport::default();
+            let work = Work::load(&m, &all(&m), &opts, &mut report).unwrap();
+            let local = |v: u32| work.global.iter().position(|&g| g == v).unwrap();
+            assert_eq!([work.copy[local(0)], work.copy[local(1)]], [!joins; 2]);
+            let (x, y) = (local(2) as u32, local(3) as u32);
+            assert_eq!(work.link_condition(x, y), joins, "a2 at {a2}");
         }
     }
 
