@@ -71,35 +71,59 @@ pub(crate) fn pieces(m: &TriMesh) -> (Vec<u32>, usize) {
 /// only touch. Only the flagged vertices are looked at: the region a
 /// frame changed.
 pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32>, usize) {
-    let mut uf = UnionFind::new(m.positions.len());
-    // The sides at the flagged vertices, each from its vertex.
-    let mut sides: Vec<(u32, u32)> = Vec::new();
+    let n = m.positions.len();
+    let mut uf = UnionFind::new(n);
+    let mut used = vec![false; n];
     for t in &m.triangles {
         uf.union(t[0], t[1]);
         uf.union(t[0], t[2]);
-        for k in 0..3 {
-            if near(t[k]) {
-                sides.push((t[k], t[(k + 1) % 3]));
-                sides.push((t[k], t[(k + 2) % 3]));
-            }
+        for &v in t {
+            used[v as usize] = true;
         }
     }
-    sides.sort_unstable();
-    let mut rim: Vec<u32> = sides
-        .chunk_by(|x, y| x == y)
-        .filter(|run| run.len() == 1)
-        .map(|run| run[0].0)
-        .collect();
-    rim.dedup();
+    // The flagged vertices that share their position with another: most
+    // meshes have none, and then one pass of hashing is all this costs.
     let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
-    for v in rim {
+    let mut copy = vec![false; n];
+    let mut any = false;
+    for v in (0..n as u32).filter(|&v| used[v as usize] && near(v)) {
         let at = *first
             .entry(holey_geom::position_key(m.positions[v as usize]))
             .or_insert(v);
-        uf.union(at, v);
+        if at != v {
+            copy[v as usize] = true;
+            copy[at as usize] = true;
+            any = true;
+        }
+    }
+    if any {
+        // Of those, the ones on a rim: a side at them with one triangle.
+        let mut sides: Vec<(u32, u32)> = Vec::new();
+        for t in &m.triangles {
+            for k in 0..3 {
+                if copy[t[k] as usize] {
+                    sides.push((t[k], t[(k + 1) % 3]));
+                    sides.push((t[k], t[(k + 2) % 3]));
+                }
+            }
+        }
+        sides.sort_unstable();
+        let mut rim: Vec<u32> = sides
+            .chunk_by(|x, y| x == y)
+            .filter(|run| run.len() == 1)
+            .map(|run| run[0].0)
+            .collect();
+        rim.dedup();
+        first.clear();
+        for v in rim {
+            let at = *first
+                .entry(holey_geom::position_key(m.positions[v as usize]))
+                .or_insert(v);
+            uf.union(at, v);
+        }
     }
     let root: Vec<u32> = m.triangles.iter().map(|t| uf.find(t[0])).collect();
-    let mut seen = vec![false; m.positions.len()];
+    let mut seen = vec![false; n];
     let count = root
         .iter()
         .filter(|&&r| !std::mem::replace(&mut seen[r as usize], true))
