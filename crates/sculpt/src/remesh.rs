@@ -1045,17 +1045,15 @@ impl Work {
         // one neighbour, so the ends must not have two copies of a point
         // for neighbours, one each: joined, their triangles would lie on
         // one edge by position (a cut point collapsed beside a soup's
-        // corner once folded four triangles onto one).
-        let copies_of = |n: &[u32], other: u32| -> Vec<[u64; 3]> {
-            n.iter()
-                .filter(|&&v| {
-                    v != other && self.copy[v as usize] && opposite.binary_search(&v).is_err()
-                })
-                .map(|&v| holey_geom::position_key(self.pos[v as usize]))
-                .collect()
+        // corner once folded four triangles onto one). Valences are small:
+        // a pair loop, no allocation.
+        let copy_beside = |v: u32, other: u32| {
+            v != other && self.copy[v as usize] && opposite.binary_search(&v).is_err()
         };
-        let (ca, cb) = (copies_of(&na, b), copies_of(&nb, a));
-        if ca.iter().any(|k| cb.contains(k)) {
+        let same_point = |u: u32, w: u32| self.pos[u as usize] == self.pos[w as usize];
+        if na.iter().any(|&u| {
+            copy_beside(u, b) && nb.iter().any(|&w| copy_beside(w, a) && same_point(u, w))
+        }) {
             return false;
         }
         match opposite[..] {

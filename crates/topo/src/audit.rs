@@ -17,7 +17,7 @@ use holey_geom::{Sign, orient2d};
 use rayon::prelude::*;
 
 use crate::intersect::{COORDINATE_PLANES, IntersectError, intersecting_pair_count};
-use crate::mesh::{Edges, TriMesh};
+use crate::mesh::{Edges, TriMesh, coincident_pairs};
 use crate::union_find::UnionFind;
 
 /// The exact properties of a triangle mesh.
@@ -194,27 +194,19 @@ impl SurfaceAudit {
 /// them ([`SurfaceAudit::topology`]), or `None` when no two rim vertices
 /// share a position.
 fn welded_rims(mesh: &TriMesh, edges: &Edges) -> Option<TriMesh> {
-    let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
-    let mut rename: Vec<(u32, u32)> = Vec::new();
-    let mut seen = vec![false; mesh.positions.len()];
+    let mut on_rim = vec![false; mesh.positions.len()];
     for e in (0..edges.len()).filter(|&e| edges.triangles(e).len() == 1) {
         for v in edges.ends[e] {
-            if std::mem::replace(&mut seen[v as usize], true) {
-                continue;
-            }
-            let at = *first
-                .entry(holey_geom::position_key(mesh.positions[v as usize]))
-                .or_insert(v);
-            if at != v {
-                rename.push((v, at));
-            }
+            on_rim[v as usize] = true;
         }
     }
-    if rename.is_empty() {
+    let rim = (0..mesh.positions.len() as u32).filter(|&v| on_rim[v as usize]);
+    let pairs = coincident_pairs(&mesh.positions, rim);
+    if pairs.is_empty() {
         return None;
     }
     let mut to: Vec<u32> = (0..mesh.positions.len() as u32).collect();
-    for (v, at) in rename {
+    for (v, at) in pairs {
         to[v as usize] = at;
     }
     Some(TriMesh {

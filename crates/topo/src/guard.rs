@@ -858,20 +858,40 @@ fn neighbourhoods(
 }
 
 /// The triangles outside `region` and its ring that have a corner at the
-/// exact position of a region vertex: across an unwelded seam, or a
-/// soup's neighbours. The audit joins such copies on a rim
+/// exact position of a region vertex on a rim: across an unwelded seam,
+/// or a soup's neighbours. The audit joins such copies on a rim
 /// ([`SurfaceAudit::topology`]), so the neighbourhood needs them to count
 /// what the region's rim becomes (a seam the cut tore open, a fin at a
-/// soup's corner). Only triangles with a corner in the region's box are
-/// hashed.
+/// soup's corner). A region with no rim vertex (most frames on a closed
+/// surface) has none, and the mesh is not scanned; else only triangles
+/// with a corner in the box of the rim's vertices are hashed.
 fn ring_by_position(mesh: &TriMesh, region: &Region) -> Vec<u32> {
     let ring = region.ring(&mesh.triangles);
+    // The region's rim vertices: a side at them with one triangle among
+    // the region's and its ring's, which hold every triangle at them.
+    let mut sides: Vec<(u32, u32)> = Vec::new();
+    let in_region = |v: u32| region.local[v as usize] != u32::MAX;
+    for t in region
+        .global_triangles()
+        .chain(ring.iter().map(|&t| mesh.triangles[t as usize]))
+    {
+        for k in 0..3 {
+            if in_region(t[k]) {
+                sides.push((t[k], t[(k + 1) % 3]));
+                sides.push((t[k], t[(k + 2) % 3]));
+            }
+        }
+    }
+    sides.sort_unstable();
     let mut at: rustc_hash::FxHashSet<[u64; 3]> = rustc_hash::FxHashSet::default();
     let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-    for &v in &region.global {
-        let p = mesh.positions[v as usize];
+    for run in sides.chunk_by(|x, y| x == y).filter(|run| run.len() == 1) {
+        let p = mesh.positions[run[0].0 as usize];
         at.insert(holey_geom::position_key(p));
         (lo, hi) = (lo.min(p), hi.max(p));
+    }
+    if at.is_empty() {
+        return Vec::new();
     }
     let in_box = |p: DVec3| p.cmpge(lo).all() && p.cmple(hi).all();
     (0..mesh.triangles.len() as u32)

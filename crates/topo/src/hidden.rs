@@ -38,7 +38,7 @@
 use glam::DVec3;
 
 use crate::intersect::{Intersections, Node};
-use crate::mesh::TriMesh;
+use crate::mesh::{TriMesh, coincident_pairs};
 use crate::union_find::UnionFind;
 use crate::winding::winding_numbers_at;
 
@@ -83,21 +83,16 @@ pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32
     }
     // The flagged vertices that share their position with another: most
     // meshes have none, and then one pass of hashing is all this costs.
-    let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
-    let mut copy = vec![false; n];
-    let mut any = false;
-    for v in (0..n as u32).filter(|&v| used[v as usize] && near(v)) {
-        let at = *first
-            .entry(holey_geom::position_key(m.positions[v as usize]))
-            .or_insert(v);
-        if at != v {
+    let flagged = (0..n as u32).filter(|&v| used[v as usize] && near(v));
+    let shared = coincident_pairs(&m.positions, flagged);
+    if !shared.is_empty() {
+        let mut copy = vec![false; n];
+        for &(v, at) in &shared {
             copy[v as usize] = true;
             copy[at as usize] = true;
-            any = true;
         }
-    }
-    if any {
-        // Of those, the ones on a rim: a side at them with one triangle.
+        // Of those, the ones on a rim (a side at them with one triangle)
+        // are one point.
         let mut sides: Vec<(u32, u32)> = Vec::new();
         for t in &m.triangles {
             for k in 0..3 {
@@ -114,11 +109,7 @@ pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32
             .map(|run| run[0].0)
             .collect();
         rim.dedup();
-        first.clear();
-        for v in rim {
-            let at = *first
-                .entry(holey_geom::position_key(m.positions[v as usize]))
-                .or_insert(v);
+        for (v, at) in coincident_pairs(&m.positions, rim) {
             uf.union(at, v);
         }
     }

@@ -8,3 +8,26 @@
 //! triangles of a soup that only touch at equal positions share no edge.
 
 pub use holey_mesh::tri::*;
+
+/// Each of the vertices `among` (any order, each once) that
+/// lies at the exact position of an earlier one of them (`-0.0 == 0.0`),
+/// paired with the first at that position. Soups and unwelded seams meet
+/// only there: where the audit and the piece rules take such copies on a
+/// rim as one point of the surface ([`crate::audit::SurfaceAudit::topology`],
+/// `hidden::pieces_welded`).
+pub(crate) fn coincident_pairs(
+    positions: &[glam::DVec3],
+    among: impl IntoIterator<Item = u32>,
+) -> Vec<(u32, u32)> {
+    let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
+    let mut pairs = Vec::new();
+    for v in among {
+        let at = *first
+            .entry(holey_geom::position_key(positions[v as usize]))
+            .or_insert(v);
+        if at != v {
+            pairs.push((v, at));
+        }
+    }
+    pairs
+}
