@@ -20,7 +20,7 @@ use holey_geom::position_key;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
     Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
-    topology_change_guarded_uncut,
+    topology_change_guarded_if_sure,
 };
 
 use crate::brush::region::Region;
@@ -893,8 +893,8 @@ impl PaintStep<'_> {
         // The dabs share a brush, and pressure scales a strength without
         // turning its sign.
         let outward = brush == Brush::Inflate && run_dabs.iter().all(|d| d.2 > 0.0);
-        let uncut = long(&piece);
-        match self.settle(mesh, &end, outward, None, &reach, uncut)? {
+        let sure_only = long(&piece);
+        match self.settle(mesh, &end, outward, None, &reach, sure_only)? {
             Settled::Done => {
                 self.report.subframes += subframes;
                 Ok(Some(taken))
@@ -967,8 +967,9 @@ impl PaintStep<'_> {
     /// admits. `outward`: the brush only pushes the surface outward, so the
     /// frame may cut no piece loose. `hook`: a snake hook's target and
     /// radius, which has met something when the cut makes points within
-    /// that radius of it. `uncut`: the motion may only move the surface
-    /// (a collision or a hold is [`Settled::TooCrumpled`]). Around the
+    /// that radius of it. `sure_only`: the motion is taken as one frame
+    /// only where that is sure (`holey_topo::topology_change_guarded_if_sure`;
+    /// otherwise [`Settled::TooCrumpled`]). Around the
     /// vertices held in earlier frames the motion ramps up over
     /// [`EASE_SHARE`] of the widest dab's radius (`crate::ease`).
     /// [`Settled::TooCrumpled`] leaves `mesh` as it was, for the caller to
@@ -980,7 +981,7 @@ impl PaintStep<'_> {
         outward: bool,
         hook: Option<(DVec3, f64)>,
         reach: &Reach,
-        uncut: bool,
+        sure_only: bool,
     ) -> Result<Settled, StepError> {
         // A frame that moves nothing cannot collide; skipping it also
         // keeps a brush that wanders off the surface from re-cutting
@@ -1024,8 +1025,8 @@ impl PaintStep<'_> {
                 take_out_debris: outward,
                 ..*self.options
             };
-            let run = if uncut {
-                topology_change_guarded_uncut(mesh, end, &options, &already)
+            let run = if sure_only {
+                topology_change_guarded_if_sure(mesh, end, &options, &already)
             } else {
                 topology_change_guarded_holding(mesh, end, &options, &already).map(Some)
             };

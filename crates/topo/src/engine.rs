@@ -761,9 +761,13 @@ fn collisions_and_geometry(
 pub(crate) enum Freedom {
     /// No collision and no crossing at the end: the motion only moves.
     Free,
-    /// It collides or crosses; the static intersections at the end, for
-    /// a later stage that needs them on the same mesh.
-    Changes(Box<Geometry>),
+    /// It collides or crosses: the static intersections at the end, for
+    /// a later stage that needs them on the same mesh, and the raw
+    /// collision parity per vertex (§3.2).
+    Changes {
+        geometry: Box<Geometry>,
+        odd: Vec<bool>,
+    },
     /// One of the two halves failed (too many pairs, say): the full run
     /// reports it.
     Unknown,
@@ -778,7 +782,10 @@ pub(crate) enum Freedom {
 pub(crate) fn freedom(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Freedom {
     match collisions_and_geometry(mesh, end, options) {
         (Ok((c, _)), Ok(g)) if g.x.pairs.is_empty() && !c.odd.contains(&true) => Freedom::Free,
-        (Ok(_), Ok(g)) => Freedom::Changes(Box::new(g)),
+        (Ok((c, _)), Ok(g)) => Freedom::Changes {
+            geometry: Box::new(g),
+            odd: c.odd,
+        },
         _ => Freedom::Unknown,
     }
 }

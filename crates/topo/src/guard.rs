@@ -58,7 +58,8 @@ use crate::audit::SurfaceAudit;
 use crate::containment::{Surroundings, by_containment};
 use crate::drag_path::{DragPath, Numbering};
 use crate::engine::{
-    Freedom, Options, Outcome, Path, TopoError, check, finish, freedom, geometry, topology_change,
+    Freedom, Geometry, Options, Outcome, Path, TopoError, check, finish, freedom, geometry,
+    topology_change,
 };
 use crate::hidden::{
     debris, hidden_pieces, median_edge_near, pieces_welded, shortest_edge_near, specks,
@@ -116,16 +117,19 @@ pub fn topology_change_guarded_holding(
     guarded(mesh, end, options, already, false).map(|r| r.unwrap_or_default())
 }
 
-/// [`topology_change_guarded_holding`] for a motion that may only move the
-/// surface: when the motion collides (its result would cut and glue) or
-/// would be held, `mesh` is left as it was and the answer is `None`, so
-/// that the caller can take the motion in shorter frames instead. A
-/// sculpting frame whose dabs together move farther than its edges are
-/// long is tried this way first: where nothing collides one frame is
-/// exact, and where something does, the collision parity of so long a
-/// linear motion through folding surface is the error-prone case (§3.1:
-/// the parity samples only the straight paths), so the caller steps it.
-pub fn topology_change_guarded_uncut(
+/// [`topology_change_guarded_holding`] for a motion that is to be taken
+/// as one frame only where that is sure: it collides with nothing and
+/// crosses nothing, or the change it makes is resolved by containment
+/// number and the motion's collision parity agrees with it vertex for
+/// vertex ([`run_if_sure`]), and the result is clean. Otherwise (it
+/// would need the parity's correction, or would be held) `mesh` is left
+/// as it was and the answer is `None`, so that the caller can take the
+/// motion in shorter frames instead. A sculpting frame whose dabs
+/// together move farther than its edges are long is tried this way
+/// first: the collision parity of so long a linear motion through
+/// folding surface is the error-prone case (§3.1: the parity samples
+/// only the straight paths).
+pub fn topology_change_guarded_if_sure(
     mesh: &mut TriMesh,
     end: &[DVec3],
     options: &Options,
@@ -134,14 +138,14 @@ pub fn topology_change_guarded_uncut(
     guarded(mesh, end, options, already, true)
 }
 
-/// [`topology_change_guarded_holding`]; with `uncut`, `None` (and `mesh`
-/// untouched) instead of a cut or a hold.
+/// [`topology_change_guarded_holding`]; with `sure_only`, `None` (and
+/// `mesh` untouched) instead of a run that is not sure or is held.
 fn guarded(
     mesh: &mut TriMesh,
     end: &[DVec3],
     options: &Options,
     already: &[bool],
-    uncut: bool,
+    sure_only: bool,
 ) -> Result<Option<GuardedReport>, TopoError> {
     check(mesh, end)?;
     let n = mesh.positions.len();
@@ -155,10 +159,11 @@ fn guarded(
             }
         })
         .collect();
-    let first = if uncut {
-        // Whether it collides is all that is asked: the engine does not
-        // run on a motion the caller will take in shorter frames anyway.
-        match run_if_free(mesh, &target, options)? {
+    let first = if sure_only {
+        // Whether the motion is sure as one frame is all that is asked:
+        // the engine's correction does not run on a motion the caller
+        // will take in shorter frames anyway.
+        match run_if_sure(mesh, &target, options)? {
             Some(run) if run.worse.is_empty() => run,
             _ => return Ok(None),
         }
@@ -265,15 +270,10 @@ fn run_with(
     // as context (the box grown by half its size: four times the
     // triangles on a surface) is gathered at all.
     if matches!(motion, Motion::Frame)
-        && let Some(Tight {
-            region: tight,
-            sub,
-            moved,
-            freedom,
-        }) = Tight::of(mesh, end, options, bx)
+        && let Some((tight, freedom)) = Tight::of(mesh, end, options, bx)
     {
         match freedom {
-            Freedom::Free => return Ok(free_run(n, &tight, &sub, &moved)),
+            Freedom::Free => return Ok(free_run(n, &tight)),
             // The containment number needs no context around what
             // moved (every curve the motion makes lies among the
             // triangles the motion's box meets, and the rest of the
@@ -281,17 +281,8 @@ fn run_with(
             // of a solid is resolved on the tight region, with the
             // intersections just found. Parity's correction does
             // need the context: anything else goes on below.
-            Freedom::Changes(g) if containment && options.solid_guard => {
-                let surroundings = Surroundings::new(mesh, &tight.mask, end);
-                let local_end = moved.positions;
-                if let Some(mut out) =
-                    by_containment(&sub, &local_end, options, &surroundings, Some(*g))?
-                    && let Some(run) = {
-                        take_out_debris(mesh, &tight, &mut out, options);
-                        spliced_and_audited(mesh, end, &tight, &sub, &out, options)?
-                    }
-                    && run.worse.is_empty()
-                {
+            Freedom::Changes { geometry, .. } if containment && options.solid_guard => {
+                if let Some(run) = contained(mesh, end, &tight, *geometry, None, options)? {
                     return Ok(run);
                 }
             }
@@ -345,19 +336,23 @@ fn run_with(
 }
 
 /// The triangles a motion's box meets, every one a moving triangle can
-/// touch (`region`; `sub` at the start, `moved` at the end), and whether
-/// they collide or cross ([`freedom`]).
+/// touch (`region`; `sub` at the start, `moved` at the end).
 struct Tight {
     region: Region,
     sub: TriMesh,
     moved: TriMesh,
-    freedom: Freedom,
 }
 
 impl Tight {
-    /// The motion of `mesh` to `end` within its box `bx`; `None` when the
-    /// box meets too much of the mesh for a region to pay.
-    fn of(mesh: &TriMesh, end: &[DVec3], options: &Options, bx: Bounds) -> Option<Tight> {
+    /// The motion of `mesh` to `end` within its box `bx`, and whether it
+    /// collides or crosses there ([`freedom`]); `None` when the box meets
+    /// too much of the mesh for a region to pay.
+    fn of(
+        mesh: &TriMesh,
+        end: &[DVec3],
+        options: &Options,
+        bx: Bounds,
+    ) -> Option<(Tight, Freedom)> {
         let region = Region::select(&mesh.triangles, &mesh.positions, end, bx);
         if !region.worth_it() {
             return None;
@@ -365,34 +360,75 @@ impl Tight {
         let sub = region.submesh(&mesh.positions);
         let moved = region.submesh(end);
         let freedom = freedom(&sub, &moved.positions, options);
-        Some(Tight {
-            region,
-            sub,
-            moved,
-            freedom,
-        })
+        Some((Tight { region, sub, moved }, freedom))
     }
 }
 
 /// A frame that only moves the surface: the triangles its box meets
-/// (`tight`, as `sub` at the start and `moved` at the end) neither
-/// collide nor cross at the end. Worse only if it flattens a triangle.
-fn free_run(n: usize, tight: &Region, sub: &TriMesh, moved: &TriMesh) -> Run {
+/// neither collide nor cross at the end. Worse only if it flattens a
+/// triangle.
+fn free_run(n: usize, tight: &Tight) -> Run {
     Run {
         mesh: None,
         report: LocalReport {
-            region_triangles: tight.count,
+            region_triangles: tight.region.count,
             ..LocalReport::no_motion(n)
         },
-        worse: flat_growth(sub, moved).into_iter().collect(),
+        worse: flat_growth(&tight.sub, &tight.moved).into_iter().collect(),
     }
 }
 
-/// [`run_once`] of a frame that may only move the surface: its run when
-/// the triangles its motion's box meets neither collide nor cross at the
-/// end, else `None` (it collides, crosses, or its box meets too much of
-/// the mesh to tell cheaply), without running the engine on it.
-fn run_if_free(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Option<Run>, TopoError> {
+/// The frame of `mesh` to `end` resolved by containment number on the
+/// triangles its box meets (`tight`, whose intersections at the end are
+/// `geometry`), its debris taken out, spliced back and audited: the run
+/// when that is clean, else `None`. With `parity` (the motion's raw
+/// collision parity per vertex of `tight`), only when containment
+/// deletes exactly the vertices of odd parity.
+fn contained(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    tight: &Tight,
+    geometry: Geometry,
+    parity: Option<&[bool]>,
+    options: &Options,
+) -> Result<Option<Run>, TopoError> {
+    let surroundings = Surroundings::new(mesh, &tight.region.mask, end);
+    let Some(mut out) = by_containment(
+        &tight.sub,
+        &tight.moved.positions,
+        options,
+        &surroundings,
+        Some(geometry),
+    )?
+    else {
+        return Ok(None);
+    };
+    if parity.is_some_and(|odd| odd != out.corrected_odd.as_slice()) {
+        return Ok(None);
+    }
+    take_out_debris(mesh, &tight.region, &mut out, options);
+    Ok(
+        spliced_and_audited(mesh, end, &tight.region, &tight.sub, &out, options)?
+            .filter(|run| run.worse.is_empty()),
+    )
+}
+
+/// [`run_once`] of a frame that may only be taken whole, when that is
+/// sure: the triangles its motion's box meets neither collide nor cross
+/// at the end; or they do, the change is resolved by containment number
+/// on them (a piece of a solid), clean, and containment deletes exactly
+/// the vertices the motion's collision parity finds odd. Else `None`
+/// (also when its box meets too much of the mesh to tell cheaply),
+/// without running the engine further.
+///
+/// Why the agreement: the parity of a long linear motion through
+/// folding surface is the error-prone case (§3.1: it samples only the
+/// straight paths), and the containment number reads only the end, so
+/// it misses a part carried through a sheet and out again within the
+/// motion. The two are independent readings of which vertices end up
+/// inside; where they agree, the shorter frames the caller would take
+/// instead have nothing to add.
+fn run_if_sure(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Option<Run>, TopoError> {
     let n = mesh.positions.len();
     let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
         return Ok(Some(Run {
@@ -402,12 +438,10 @@ fn run_if_free(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Optio
         }));
     };
     Ok(match Tight::of(mesh, end, options, bx) {
-        Some(Tight {
-            region,
-            sub,
-            moved,
-            freedom: Freedom::Free,
-        }) => Some(free_run(n, &region, &sub, &moved)),
+        Some((tight, Freedom::Free)) => Some(free_run(n, &tight)),
+        Some((tight, Freedom::Changes { geometry, odd })) if options.solid_guard => {
+            contained(mesh, end, &tight, *geometry, Some(&odd), options)?
+        }
         _ => None,
     })
 }
@@ -1113,5 +1147,121 @@ mod tests {
         let (sub, out) = outcome(&[], false);
         let everywhere = (DVec3::splat(-1.0), DVec3::splat(12.0));
         assert_eq!(unreached_deleted(&sub, &out, everywhere), None);
+    }
+
+    /// Spheres of 16 × 10 as one mesh, `(centre, radius)` each, with three
+    /// more far off (so that the two a motion moves are under half the
+    /// mesh, the share a region must stay below).
+    fn spheres_and_far_ones(spheres: &[([f64; 3], f64)]) -> TriMesh {
+        let mut all = spheres.to_vec();
+        all.extend((0..3).map(|k| ([40.0 + 5.0 * f64::from(k), 0.0, 0.0], 1.0)));
+        let (p, triangles) = holey_testkit::uv_spheres(16, 10, &all);
+        TriMesh {
+            positions: p.into_iter().map(DVec3::from_array).collect(),
+            triangles,
+        }
+    }
+
+    /// The winding number of the triangles `tris` of `positions` at `p`:
+    /// their solid angles (Van Oosterom and Strackee's formula) over 4π.
+    fn winding_at(positions: &[DVec3], tris: &[[u32; 3]], p: DVec3) -> f64 {
+        let sum: f64 = tris
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| positions[v as usize] - p);
+                let (la, lb, lc) = (a.length(), b.length(), c.length());
+                let num = a.dot(b.cross(c));
+                let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+                2.0 * num.atan2(den)
+            })
+            .sum();
+        sum / (4.0 * std::f64::consts::PI)
+    }
+
+    /// A sphere pushed deep into another in one motion longer than their
+    /// edges (as a sculpting frame of several dabs is) is taken whole: the
+    /// motion's collision parity and the containment number at its end
+    /// agree on every vertex. The result is the union: closed, with no
+    /// edge of more than two triangles, the two spheres one piece, and
+    /// its winding number at points of a grid 1 inside the union of the
+    /// two moved spheres (by their own winding numbers, computed here)
+    /// and 0 outside.
+    #[test]
+    fn a_long_fuse_where_parity_and_containment_agree_is_taken_whole() {
+        let mut mesh = spheres_and_far_ones(&[([0.0, 0.0, 0.0], 1.0), ([2.6, 0.0, 0.0], 0.8)]);
+        let second = 130..260u32;
+        let shift = DVec3::new(-1.3, 0.05, 0.03);
+        let end: Vec<DVec3> = (0..mesh.positions.len() as u32)
+            .map(|v| {
+                mesh.positions[v as usize]
+                    + if second.contains(&v) {
+                        shift
+                    } else {
+                        DVec3::ZERO
+                    }
+            })
+            .collect();
+        let input = mesh.clone();
+        let report = topology_change_guarded_if_sure(&mut mesh, &end, &Options::default(), &[])
+            .unwrap()
+            .expect("a fuse both readings agree on is sure");
+        assert!(!report.local.positions_only && report.local.new_vertices > 0);
+        let degrees = holey_testkit::edge_degrees(&mesh.triangles);
+        assert!(degrees.values().all(|&d| d == 2), "closed and manifold");
+        assert_eq!(holey_testkit::components(&mesh.triangles), 4);
+        let (mut inside, mut outside) = (0, 0);
+        for i in 0..24 {
+            for j in 0..12 {
+                for k in 0..12 {
+                    let p = DVec3::new(-1.2, -1.2, -1.2)
+                        + DVec3::new(f64::from(i), f64::from(j), f64::from(k)) * 0.11;
+                    let expected = winding_at(&end, &input.triangles, p);
+                    if (expected - expected.round()).abs() > 0.05 {
+                        continue;
+                    }
+                    let expected = if expected > 0.5 { 1.0 } else { 0.0 };
+                    let got = winding_at(&mesh.positions, &mesh.triangles, p);
+                    assert!(
+                        (got - expected).abs() < 0.05,
+                        "at {p}: {got}, not {expected}"
+                    );
+                    if expected > 0.5 {
+                        inside += 1;
+                    } else {
+                        outside += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            inside > 300 && outside > 300,
+            "{inside} inside, {outside} outside"
+        );
+    }
+
+    /// A small sphere carried whole into a larger one in one motion crosses
+    /// nothing at the end, so the containment number deletes nothing, but
+    /// every vertex of it passed the larger one's surface once (odd
+    /// parity): the readings disagree, the motion is not sure as one frame,
+    /// and the mesh is left as it was for the caller to step.
+    #[test]
+    fn a_part_carried_whole_into_a_solid_is_not_taken_whole() {
+        let mut mesh = spheres_and_far_ones(&[([0.0, 0.0, 0.0], 1.0), ([2.6, 0.05, 0.03], 0.3)]);
+        let second = 130..260u32;
+        let end: Vec<DVec3> = (0..mesh.positions.len() as u32)
+            .map(|v| {
+                let p = mesh.positions[v as usize];
+                if second.contains(&v) {
+                    p - DVec3::new(2.5, 0.0, 0.0)
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let input = mesh.clone();
+        let sure =
+            topology_change_guarded_if_sure(&mut mesh, &end, &Options::default(), &[]).unwrap();
+        assert!(sure.is_none());
+        assert_eq!(mesh, input);
     }
 }

@@ -48,7 +48,7 @@ pub use engine::{
 };
 pub use guard::{
     GuardedReport, topology_change_guarded, topology_change_guarded_holding,
-    topology_change_guarded_uncut,
+    topology_change_guarded_if_sure,
 };
 pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
