@@ -42,7 +42,10 @@ use crate::engine::{
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::{regions, signed_volume};
 use crate::union_find::UnionFind;
-use crate::winding::{FEW_POINTS, WindingField, winding_numbers_at, winding_numbers_without_own};
+use crate::winding::{
+    FEW_POINTS, WindingField, winding_numbers_and_volume_at, winding_numbers_at,
+    winding_numbers_without_own,
+};
 
 /// How far a winding number may be from an integer for its piece to be
 /// labelled by it: a quarter (holes far away shift it by the solid angle
@@ -84,13 +87,9 @@ impl<'a> Surroundings<'a> {
     /// The sign of the whole surface's signed volume at the end: +1 when
     /// it faces outward (inside has winding number +1), −1 when inward.
     pub fn orientation(&self) -> f64 {
-        *self.orientation.get_or_init(|| {
-            if signed_volume(self.positions, &self.mesh.triangles) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            }
-        })
+        *self
+            .orientation
+            .get_or_init(|| orientation_of(signed_volume(self.positions, &self.mesh.triangles)))
     }
 
     /// The winding numbers of the outside triangles at `points`: up to
@@ -100,7 +99,15 @@ impl<'a> Surroundings<'a> {
         let at = |v: u32| self.positions[v as usize];
         if points.len() <= FEW_POINTS {
             let keep = |t: usize| !self.inside[t];
-            return winding_numbers_at(&self.mesh.triangles, &keep, &at, points);
+            if self.orientation.get().is_some() {
+                return winding_numbers_at(&self.mesh.triangles, &keep, &at, points);
+            }
+            // The orientation comes with the pass: one pass over the
+            // whole surface instead of two.
+            let (far, volume) =
+                winding_numbers_and_volume_at(&self.mesh.triangles, &keep, &at, points);
+            let _ = self.orientation.set(orientation_of(volume));
+            return far;
         }
         let outside = self.outside.get_or_init(|| {
             self.mesh
@@ -114,6 +121,12 @@ impl<'a> Surroundings<'a> {
         let field = WindingField::new(outside, &at);
         points.iter().map(|&p| field.at(p, None)).collect()
     }
+}
+
+/// +1 for a surface of positive signed volume (facing outward), −1 for
+/// one of negative volume.
+fn orientation_of(volume: f64) -> f64 {
+    if volume < 0.0 { -1.0 } else { 1.0 }
 }
 
 /// The frame of `sub` (a region of a mesh, at its start positions)
@@ -349,7 +362,6 @@ fn label_pieces(
     // counted with the surface's own orientation, is at least 1.
     let inside = |w: f64| surroundings.orientation() * w >= 0.5;
     let arr_at = |v: u32| arr.positions[v as usize];
-    let outward = surroundings.orientation() > 0.0;
     // Per region: keep, and flip (its inside lies on the other side of it
     // than the rest of the surface's does).
     let mut label = vec![(true, false); count];
@@ -373,7 +385,9 @@ fn label_pieces(
     let points: Vec<DVec3> = samples.iter().map(|s| s.2).collect();
     let own: Vec<Option<usize>> = samples.iter().map(|s| Some(s.1)).collect();
     let near = winding_numbers_without_own(&arr.triangles, &arr_at, &points, &own);
+    // The far field first: its pass also finds the orientation.
     let far = surroundings.winding_numbers_at(&points);
+    let outward = surroundings.orientation() > 0.0;
     for ((&(r, _, _), far), near) in samples.iter().zip(far).zip(near) {
         let w = near + far;
         // The seed's own triangle adds ±1/2 on its two sides.
