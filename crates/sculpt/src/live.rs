@@ -134,11 +134,15 @@ enum State {
 /// last frame reached. The centre advances by `strength ×` the pointer's
 /// motion, so it stays on the part it pulls whatever the strength.
 ///
-/// The hook lets go once a step changes topology within its radius: what
-/// it pulled has met something and fused (a tip pressed into a body is
-/// now a handle), or torn. Pulling on would drag the fused seam, and the
-/// body around it, along after the pointer. A change elsewhere (the thin
-/// tentacle touching itself far behind the tip) does not let go.
+/// The hook lets go once a step changes the surface's topology within its
+/// radius: what it pulled has met something and fused (a tip pressed into
+/// a body is now a handle), or torn. Pulling on would drag the fused seam,
+/// and the body around it, along after the pointer. A change elsewhere
+/// (the thin tentacle touching itself far behind the tip) does not let
+/// go, nor does a cut that leaves the Euler characteristic as it was: the
+/// engine trimming the tip where one long step crumpled it through itself
+/// (the Stanford bunny's ear hooked with the mouse in the modeler let go
+/// that way above the head, short of the crown).
 #[derive(Clone, Copy, Debug)]
 struct Hook {
     centre: DVec3,
@@ -684,7 +688,8 @@ struct PaintStep<'a> {
     diagnostics: &'a mut Option<Diagnostics>,
     connectivity_changed: bool,
     topology_changed: bool,
-    /// A snake hook's step changed topology within the hook's reach.
+    /// A snake hook's step changed the topology (the Euler
+    /// characteristic) within the hook's reach.
     hook_met: bool,
 }
 
@@ -940,8 +945,8 @@ impl PaintStep<'_> {
         // An inflate only pushes the surface outward: it may join parts,
         // never cut one loose (`Options::outward`).
         let outward = brush == Brush::Inflate && strength > 0.0;
-        // A snake hook has met something when the cut made points within
-        // its reach.
+        // A snake hook has met something when the cut changed the
+        // topology and made points within its reach.
         let hook = match dab {
             Dab::Pull(_, to) => Some((to, radius)),
             Dab::At(_) => None,
@@ -966,8 +971,8 @@ impl PaintStep<'_> {
     /// topology change, then remeshing around the vertices `reach`
     /// admits. `outward`: the brush only pushes the surface outward, so the
     /// frame may cut no piece loose. `hook`: a snake hook's target and
-    /// radius, which has met something when the cut makes points within
-    /// that radius of it. `sure_only`: the motion is taken as one frame
+    /// radius, which has met something when the cut changes the Euler
+    /// characteristic and makes points within that radius of it. `sure_only`: the motion is taken as one frame
     /// only where that is sure (`holey_topo::topology_change_guarded_if_sure`;
     /// otherwise [`Settled::TooCrumpled`]). Around the
     /// vertices held in earlier frames the motion ramps up over
@@ -1045,6 +1050,7 @@ impl PaintStep<'_> {
                         self.report.held_vertices += guarded.held_vertices;
                         self.report.held_frames += usize::from(guarded.held_all);
                     }
+                    let euler_change = guarded.euler_change;
                     let out = guarded.local;
                     self.report.whole_mesh_frames += usize::from(out.whole_mesh);
                     tally(self.report, &out.report);
@@ -1058,6 +1064,7 @@ impl PaintStep<'_> {
                     // The engine appends the points it makes.
                     if let Some((to, radius)) = hook
                         && !out.positions_only
+                        && euler_change != 0
                     {
                         let n = mesh.positions.len();
                         self.hook_met |= mesh.positions[n.saturating_sub(out.new_vertices)..]

@@ -1412,6 +1412,29 @@ fn stanford_bunny_reinflate_over_a_flat_fold_holds_no_frame() {
     );
 }
 
+/// A browser run of scenarios 10 and 11 (three inflates across the
+/// haunch, then the snake hook pulling the long ear's tip up, over and
+/// down into the crown with the mouse; `tests/data`, as the modeler sent
+/// it, which ended at genus 0). On the way over, one long step of the
+/// hook crumpled the tentacle's tip through itself and the engine trimmed
+/// it: a cut that made points within the hook's reach, so the hook let go
+/// above the head, short of the crown. A cut that leaves the Euler
+/// characteristic as it was meets nothing: the hook now holds on until
+/// the tip fuses into the crown, a handle.
+#[test]
+fn stanford_bunny_ear_hooked_with_the_mouse_holds_on_past_a_trimmed_tip() {
+    let test = "stanford_bunny_ear_hooked_with_the_mouse_holds_on_past_a_trimmed_tip";
+    let strokes = include_str!("data/bunny_haunch_then_ear_snake_hook_browser.json");
+    let Some((bunny, session, reports)) = replay_on_the_bunny(test, strokes) else {
+        return;
+    };
+    let before = measure(&bunny);
+    let after = measure(session.mesh());
+    no_worse(test, &before, &after);
+    assert!(reports[3].changes >= 2, "{:?}", reports[3]);
+    bunny_whole_of_genus(&after, 1, "the ear fused to the crown: a handle");
+}
+
 /// How far the vertex that stands out most stands out of its ring: over
 /// the vertices with a closed ring of three or more neighbours (a rim
 /// vertex's ring is open), the distance from the centroid of its

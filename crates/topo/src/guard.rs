@@ -90,6 +90,14 @@ pub struct GuardedReport {
     /// What the first attempt would have made worse, in words (empty when
     /// it was clean).
     pub refused: Vec<String>,
+    /// How the kept attempt changed the Euler characteristic V − E + F of
+    /// the surface (counted on the region and the triangles around it,
+    /// before and after, welded at rims as the audit counts; the rest of
+    /// the surface is the same on both sides): negative where the frame
+    /// joined the surface to itself (a handle, −2 each) or two pieces
+    /// into one (−2 each), positive where it cut one loose or opened a
+    /// handle; 0 when it only moved the surface or was held.
+    pub euler_change: i64,
 }
 
 /// [`crate::topology_change_local`] that keeps the surface's invariants
@@ -191,6 +199,7 @@ fn guarded(
         .collect();
     report.held_vertices = report.held_positions.len();
     report.local = run.report;
+    report.euler_change = run.euler_change;
     match (run.mesh, moved_to) {
         (Some(result), _) => *mesh = result,
         (None, Some(positions)) => mesh.positions = positions,
@@ -208,6 +217,8 @@ pub(crate) struct Run {
     pub report: LocalReport,
     /// What got worse (empty: the result is clean).
     pub worse: Vec<String>,
+    /// The change of the Euler characteristic ([`GuardedReport::euler_change`]).
+    pub euler_change: i64,
 }
 
 /// Where the collision parity of a motion comes from, when the motion is
@@ -262,6 +273,7 @@ fn run_with(
             mesh: None,
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
+            euler_change: 0,
         });
     };
     // Most frames collide with nothing and cross nothing: that is settled
@@ -323,7 +335,8 @@ fn run_with(
     let (result, mut report) = from_whole(&sub, out.clone());
     report.raw_odd = everything.scatter(&report.raw_odd, n, false);
     report.corrected_odd = everything.scatter(&report.corrected_odd, n, false);
-    let mut worse = audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
+    let (mut worse, euler_change) =
+        audit_region(mesh, end, &everything, &sub, &out, &report, options)?;
     if !report.positions_only {
         worse.extend(piece_growth(mesh, &result, &|_| true, &|_| true, options));
         worse.extend(unreached_deleted(&sub, &out, bx));
@@ -332,6 +345,7 @@ fn run_with(
         mesh: Some(result),
         report,
         worse,
+        euler_change,
     })
 }
 
@@ -375,6 +389,7 @@ fn free_run(n: usize, tight: &Tight) -> Run {
             ..LocalReport::no_motion(n)
         },
         worse: flat_growth(&tight.sub, &tight.moved).into_iter().collect(),
+        euler_change: 0,
     }
 }
 
@@ -435,6 +450,7 @@ fn run_if_sure(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Optio
             mesh: None,
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
+            euler_change: 0,
         }));
     };
     Ok(match Tight::of(mesh, end, options, bx) {
@@ -530,12 +546,13 @@ fn spliced_and_audited(
         Spliced::Mesh(m) => Some(m),
         Spliced::NotExact => return Ok(None),
     };
-    let mut worse = audited?;
+    let (mut worse, euler_change) = audited?;
     worse.extend(growth);
     Ok(Some(Run {
         mesh: result,
         report,
         worse,
+        euler_change,
     }))
 }
 
@@ -718,7 +735,9 @@ fn resolve_frame(
 /// the engine's output `out` for it, each with the ring of outside
 /// triangles around the region (so that every region vertex has its whole
 /// fan and every region edge all its triangles), and returns what got
-/// worse and the vertices to hold if anything did (global numbers).
+/// worse, and the change of the Euler characteristic: that of the region
+/// and its ring is the whole surface's, since everything else is the same
+/// before and after.
 fn audit_region(
     mesh: &TriMesh,
     end: &[DVec3],
@@ -727,7 +746,7 @@ fn audit_region(
     out: &Outcome,
     report: &LocalReport,
     options: &Options,
-) -> Result<Vec<String>, TopoError> {
+) -> Result<(Vec<String>, i64), TopoError> {
     // New contacts: the end's intersecting pairs that did not intersect at
     // the start.
     let pairs = &out.intersections.pairs;
@@ -754,7 +773,7 @@ fn audit_region(
             }
         }
         worse.extend(flat_growth(sub, &region.submesh(end)));
-        worse
+        (worse, 0)
     } else {
         let (before, after) = neighbourhoods(mesh, end, region, out);
         // Crossings: a triangle the cut made lies inside a triangle of a
@@ -788,7 +807,7 @@ fn audit_region(
         }
         let mut worse = b.regressions(&a);
         worse.extend(crumple(mesh, end, region, sub, out, &was));
-        worse
+        (worse, a.euler() - b.euler())
     };
     Ok(worse)
 }
@@ -1182,7 +1201,8 @@ mod tests {
     /// edges (as a sculpting frame of several dabs is) is taken whole: the
     /// motion's collision parity and the containment number at its end
     /// agree on every vertex. The result is the union: closed, with no
-    /// edge of more than two triangles, the two spheres one piece, and
+    /// edge of more than two triangles, the two spheres one piece (the
+    /// Euler characteristic 2 less), and
     /// its winding number at points of a grid 1 inside the union of the
     /// two moved spheres (by their own winding numbers, computed here)
     /// and 0 outside.
@@ -1206,6 +1226,8 @@ mod tests {
             .unwrap()
             .expect("a fuse both readings agree on is sure");
         assert!(!report.local.positions_only && report.local.new_vertices > 0);
+        // Two spheres (χ = 2 each) became one: χ 4 -> 2.
+        assert_eq!(report.euler_change, -2);
         let degrees = holey_testkit::edge_degrees(&mesh.triangles);
         assert!(degrees.values().all(|&d| d == 2), "closed and manifold");
         assert_eq!(holey_testkit::components(&mesh.triangles), 4);
