@@ -38,7 +38,7 @@
 use glam::DVec3;
 
 use crate::intersect::{Intersections, Node};
-use crate::mesh::{TriMesh, coincident_pairs};
+use crate::mesh::{TriMesh, coincident_pairs_at};
 use crate::union_find::UnionFind;
 use crate::winding::winding_numbers_at;
 
@@ -71,20 +71,67 @@ pub(crate) fn pieces(m: &TriMesh) -> (Vec<u32>, usize) {
 /// only touch. Only the flagged vertices are looked at: the region a
 /// frame changed.
 pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32>, usize) {
-    let n = m.positions.len();
+    let mut uf = welded_union_find(
+        m.positions.len(),
+        &|v| m.positions[v as usize],
+        &|f| m.triangles.iter().for_each(|&t| f(t)),
+        near,
+    );
+    let root: Vec<u32> = m.triangles.iter().map(|t| uf.find(t[0])).collect();
+    let mut seen = vec![false; m.positions.len()];
+    let count = root
+        .iter()
+        .filter(|&&r| !std::mem::replace(&mut seen[r as usize], true))
+        .count();
+    (root, count)
+}
+
+/// A surface's triangles, visited: the function calls its argument once
+/// per triangle.
+pub(crate) type Triangles<'a> = dyn Fn(&mut dyn FnMut([u32; 3])) + 'a;
+
+/// The count of [`pieces_welded`] of the surface of the triangles
+/// `triangles` visits (in any order, more than once) over `n` vertices at
+/// `position`, without the surface built: a frame's splice and the count
+/// of the pieces it leaves run side by side on a million triangles.
+pub(crate) fn piece_count_welded(
+    n: usize,
+    position: &dyn Fn(u32) -> DVec3,
+    triangles: &Triangles<'_>,
+    near: &dyn Fn(u32) -> bool,
+) -> usize {
+    let mut uf = welded_union_find(n, position, triangles, near);
+    let mut seen = vec![false; n];
+    let mut count = 0;
+    triangles(&mut |t| {
+        let r = uf.find(t[0]) as usize;
+        count += usize::from(!std::mem::replace(&mut seen[r], true));
+    });
+    count
+}
+
+/// The union-find of [`pieces_welded`]: vertices joined along the
+/// triangles `triangles` visits, and rim copies among the flagged ones
+/// at one exact position joined too.
+fn welded_union_find(
+    n: usize,
+    position: &dyn Fn(u32) -> DVec3,
+    triangles: &Triangles<'_>,
+    near: &dyn Fn(u32) -> bool,
+) -> UnionFind {
     let mut uf = UnionFind::new(n);
     let mut used = vec![false; n];
-    for t in &m.triangles {
+    triangles(&mut |t| {
         uf.union(t[0], t[1]);
         uf.union(t[0], t[2]);
-        for &v in t {
+        for &v in &t {
             used[v as usize] = true;
         }
-    }
+    });
     // The flagged vertices that share their position with another: most
     // meshes have none, and then one pass of hashing is all this costs.
     let flagged = (0..n as u32).filter(|&v| used[v as usize] && near(v));
-    let shared = coincident_pairs(&m.positions, flagged);
+    let shared = coincident_pairs_at(position, flagged);
     if !shared.is_empty() {
         let mut copy = vec![false; n];
         for &(v, at) in &shared {
@@ -94,14 +141,14 @@ pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32
         // Of those, the ones on a rim (a side at them with one triangle)
         // are one point.
         let mut sides: Vec<(u32, u32)> = Vec::new();
-        for t in &m.triangles {
+        triangles(&mut |t| {
             for k in 0..3 {
                 if copy[t[k] as usize] {
                     sides.push((t[k], t[(k + 1) % 3]));
                     sides.push((t[k], t[(k + 2) % 3]));
                 }
             }
-        }
+        });
         sides.sort_unstable();
         let mut rim: Vec<u32> = sides
             .chunk_by(|x, y| x == y)
@@ -109,17 +156,11 @@ pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32
             .map(|run| run[0].0)
             .collect();
         rim.dedup();
-        for (v, at) in coincident_pairs(&m.positions, rim) {
+        for (v, at) in coincident_pairs_at(position, rim) {
             uf.union(at, v);
         }
     }
-    let root: Vec<u32> = m.triangles.iter().map(|t| uf.find(t[0])).collect();
-    let mut seen = vec![false; n];
-    let count = root
-        .iter()
-        .filter(|&&r| !std::mem::replace(&mut seen[r as usize], true))
-        .count();
-    (root, count)
+    uf
 }
 
 /// How many connected components of `m` with a vertex that `near` flags
@@ -432,6 +473,36 @@ mod tests {
         assert_eq!(pieces_welded(&soup, &|_| false).1, 12);
         let touching = joined(&c, &cube(DVec3::ONE, DVec3::splat(2.0)));
         assert_eq!(pieces_welded(&touching, &|_| true).1, 2);
+    }
+
+    /// The count without the surface built, from its triangles in any
+    /// order and its positions from a function, is the count of the
+    /// surface: the testkit's components of a welded mesh (two cubes
+    /// touching at a corner: two), and one for a cube's soup welded at
+    /// its rims, twelve unflagged.
+    #[test]
+    fn the_count_of_pieces_from_the_triangles_alone_is_the_surfaces() {
+        let c = cube(DVec3::ZERO, DVec3::ONE);
+        let touching = joined(&c, &cube(DVec3::ONE, DVec3::splat(2.0)));
+        let soup = c.unwelded();
+        for (m, flag, expected) in [
+            (
+                &touching,
+                true,
+                holey_testkit::components(&touching.triangles),
+            ),
+            (&soup, true, 1),
+            (&soup, false, 12),
+        ] {
+            let count = piece_count_welded(
+                m.positions.len(),
+                &|v| m.positions[v as usize],
+                &|f| m.triangles.iter().rev().for_each(|&t| f(t)),
+                &|_| flag,
+            );
+            assert_eq!(count, expected);
+            assert_eq!(count, pieces_welded(m, &|_| flag).1);
+        }
     }
 
     /// A small box beside a big one is debris when it has a vertex the

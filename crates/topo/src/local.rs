@@ -397,6 +397,22 @@ impl Region {
         out: &TriMesh,
         origin: &[u32],
     ) -> Option<TriMesh> {
+        let map = self.splice_map(mesh, end.len(), out, origin)?;
+        Some(self.spliced(mesh, end, out, &map))
+    }
+
+    /// Where each vertex of the engine's output `out` goes in the spliced
+    /// mesh before it is compacted (see [`Region::splice`]): an input vertex
+    /// keeps its number (the first of its copies, where the engine split
+    /// it), the others follow the mesh's `n` vertices in order. `None` when
+    /// the output does not keep the region's interface.
+    pub(crate) fn splice_map(
+        &self,
+        mesh: &TriMesh,
+        n: usize,
+        out: &TriMesh,
+        origin: &[u32],
+    ) -> Option<SpliceMap> {
         let mut interface: HashSet<(u32, u32)> = HashSet::default();
         for t in self
             .ring(&mesh.triangles)
@@ -430,23 +446,37 @@ impl Region {
                 }
             }
         }
-        let mut positions = end.to_vec();
         // An input vertex the engine split (one copy per fan where the
         // surface was pinched) has several outputs: the first keeps its
         // number, the others are new vertices.
         let mut taken = vec![false; self.global.len()];
-        let map: Vec<u32> = origin
+        let mut added = Vec::new();
+        let vertex: Vec<u32> = origin
             .iter()
             .zip(&out.positions)
             .map(|(&o, &p)| {
                 if o == u32::MAX || std::mem::replace(&mut taken[o as usize], true) {
-                    positions.push(p);
-                    (positions.len() - 1) as u32
+                    added.push(p);
+                    (n + added.len() - 1) as u32
                 } else {
                     self.global[o as usize]
                 }
             })
             .collect();
+        Some(SpliceMap { vertex, added })
+    }
+
+    /// The spliced mesh of [`Region::splice_map`]'s `map`, compacted.
+    pub(crate) fn spliced(
+        &self,
+        mesh: &TriMesh,
+        end: &[DVec3],
+        out: &TriMesh,
+        map: &SpliceMap,
+    ) -> TriMesh {
+        let mut positions = Vec::with_capacity(end.len() + map.added.len());
+        positions.extend_from_slice(end);
+        positions.extend_from_slice(&map.added);
         // The outside triangles in order, copied a run at a time.
         let mut triangles: Vec<[u32; 3]> =
             Vec::with_capacity(mesh.triangles.len() - self.count + out.triangles.len());
@@ -456,15 +486,50 @@ impl Region {
             run = t + 1;
         }
         triangles.extend_from_slice(&mesh.triangles[run..]);
-        triangles.extend(out.triangles.iter().map(|t| t.map(|v| map[v as usize])));
-        Some(
-            TriMesh {
-                positions,
-                triangles,
-            }
-            .compacted(),
-        )
+        triangles.extend(
+            out.triangles
+                .iter()
+                .map(|t| t.map(|v| map.vertex[v as usize])),
+        );
+        TriMesh {
+            positions,
+            triangles,
+        }
+        .compacted()
     }
+
+    /// Every triangle of the spliced mesh of `map` before it is compacted
+    /// (the outside triangles of `mesh`, then `out`'s), in no particular
+    /// order, without building it.
+    pub(crate) fn for_each_spliced_triangle(
+        &self,
+        mesh: &TriMesh,
+        out: &TriMesh,
+        map: &SpliceMap,
+        f: &mut dyn FnMut([u32; 3]),
+    ) {
+        for (t, _) in mesh
+            .triangles
+            .iter()
+            .zip(&self.mask)
+            .filter(|(_, inside)| !**inside)
+        {
+            f(*t);
+        }
+        for t in &out.triangles {
+            f(t.map(|v| map.vertex[v as usize]));
+        }
+    }
+}
+
+/// Where a region's output goes in the mesh it is spliced into
+/// ([`Region::splice_map`]).
+pub(crate) struct SpliceMap {
+    /// Per output vertex, its number in the spliced mesh before
+    /// compaction.
+    pub vertex: Vec<u32>,
+    /// The positions of the vertices numbered after the mesh's own.
+    pub added: Vec<DVec3>,
 }
 
 /// [`topology_change`] of `mesh` moving to `end`,

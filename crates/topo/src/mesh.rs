@@ -19,11 +19,19 @@ pub(crate) fn coincident_pairs(
     positions: &[glam::DVec3],
     among: impl IntoIterator<Item = u32>,
 ) -> Vec<(u32, u32)> {
+    coincident_pairs_at(&|v| positions[v as usize], among)
+}
+
+/// [`coincident_pairs`] of the vertices whose positions `position` gives.
+pub(crate) fn coincident_pairs_at(
+    position: &dyn Fn(u32) -> glam::DVec3,
+    among: impl IntoIterator<Item = u32>,
+) -> Vec<(u32, u32)> {
     let mut first: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::default();
     let mut pairs = Vec::new();
     for v in among {
         let at = *first
-            .entry(holey_geom::position_key(positions[v as usize]))
+            .entry(holey_geom::position_key(position(v)))
             .or_insert(v);
         if at != v {
             pairs.push((v, at));
