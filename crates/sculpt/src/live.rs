@@ -972,10 +972,11 @@ impl PaintStep<'_> {
     /// admits. `outward`: the brush only pushes the surface outward, so the
     /// frame may cut no piece loose. `hook`: a snake hook's target and
     /// radius, which has met something when the cut changes the Euler
-    /// characteristic and makes points within that radius of it. `sure_only`: the motion is taken as one frame
-    /// only where that is sure (`holey_topo::topology_change_guarded_if_sure`;
-    /// otherwise [`Settled::TooCrumpled`]). Around the
-    /// vertices held in earlier frames the motion ramps up over
+    /// characteristic and makes points within that radius of it.
+    /// `sure_only`: the motion is taken as one frame only where that is
+    /// sure (`holey_topo::topology_change_guarded_if_sure`; otherwise
+    /// [`Settled::TooCrumpled`]). Around the vertices held in earlier
+    /// frames the motion ramps up over
     /// [`EASE_SHARE`] of the widest dab's radius (`crate::ease`).
     /// [`Settled::TooCrumpled`] leaves `mesh` as it was, for the caller to
     /// split the motion.
