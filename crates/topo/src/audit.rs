@@ -201,7 +201,7 @@ fn welded_rims(mesh: &TriMesh, edges: &Edges) -> Option<TriMesh> {
         }
     }
     let rim = (0..mesh.positions.len() as u32).filter(|&v| on_rim[v as usize]);
-    let pairs = coincident_pairs(&mesh.positions, rim);
+    let pairs = coincident_pairs(&|v| mesh.positions[v as usize], rim);
     if pairs.is_empty() {
         return None;
     }
@@ -219,7 +219,7 @@ fn welded_rims(mesh: &TriMesh, edges: &Edges) -> Option<TriMesh> {
     })
 }
 
-/// What a regression of [`SurfaceAudit::regressions`] means to someone/// What a regression of [`SurfaceAudit::regressions`] means to someone
+/// What a regression of [`SurfaceAudit::regressions`] means to someone
 /// sculpting, in plain words ("open a hole", "pinch the surface at a
 /// point"); the regression itself when it is not one of those.
 pub fn in_plain_words(regression: &str) -> &str {

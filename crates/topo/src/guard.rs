@@ -547,13 +547,9 @@ fn spliced_and_audited(
         || {
             let audited = audit_region(mesh, end, region, sub, out, &report, options);
             let pieces = map.as_ref().map(|map| {
-                let at = |v: u32| match (v as usize).checked_sub(n) {
-                    None => end[v as usize],
-                    Some(k) => map.added[k],
-                };
                 piece_count_welded(
                     n + map.added.len(),
-                    &at,
+                    &|v| map.position(end, v),
                     &|f| region.for_each_spliced_triangle(mesh, &out.mesh, map, f),
                     &near_after,
                 )
@@ -895,36 +891,15 @@ fn neighbourhoods(
     );
     // The output's vertices: region vertices by their global number, new
     // ones after every global number.
-    let n = mesh.positions.len() as u32;
-    // The copies of a vertex the engine split at a pinch are new vertices
-    // but the first.
-    let mut taken = vec![false; region.global.len()];
-    let global: Vec<u32> = out
-        .vertex_origin
-        .iter()
-        .enumerate()
-        .map(|(i, &o)| {
-            if o == u32::MAX || std::mem::replace(&mut taken[o as usize], true) {
-                n + i as u32
-            } else {
-                region.global[o as usize]
-            }
-        })
-        .collect();
-    let position = |v: u32| {
-        if v < n {
-            end[v as usize]
-        } else {
-            out.mesh.positions[(v - n) as usize]
-        }
-    };
+    let n = mesh.positions.len();
+    let map = region.output_map(n, &out.mesh, &out.vertex_origin);
     let after = compact_of(
         out.mesh
             .triangles
             .iter()
-            .map(|t| t.map(|v| global[v as usize]))
+            .map(|t| t.map(|v| map.vertex[v as usize]))
             .chain(ring.iter().copied()),
-        &position,
+        &|v| map.position(end, v),
     );
     (before, after)
 }

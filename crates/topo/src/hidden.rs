@@ -38,7 +38,7 @@
 use glam::DVec3;
 
 use crate::intersect::{Intersections, Node};
-use crate::mesh::{TriMesh, coincident_pairs_at};
+use crate::mesh::{TriMesh, coincident_pairs};
 use crate::union_find::UnionFind;
 use crate::winding::winding_numbers_at;
 
@@ -131,7 +131,7 @@ fn welded_union_find(
     // The flagged vertices that share their position with another: most
     // meshes have none, and then one pass of hashing is all this costs.
     let flagged = (0..n as u32).filter(|&v| used[v as usize] && near(v));
-    let shared = coincident_pairs_at(position, flagged);
+    let shared = coincident_pairs(position, flagged);
     if !shared.is_empty() {
         let mut copy = vec![false; n];
         for &(v, at) in &shared {
@@ -156,7 +156,7 @@ fn welded_union_find(
             .map(|run| run[0].0)
             .collect();
         rim.dedup();
-        for (v, at) in coincident_pairs_at(position, rim) {
+        for (v, at) in coincident_pairs(position, rim) {
             uf.union(at, v);
         }
     }

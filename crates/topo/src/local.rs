@@ -446,6 +446,15 @@ impl Region {
                 }
             }
         }
+        Some(self.output_map(n, out, origin))
+    }
+
+    /// [`Region::splice_map`] without the check of the interface: where
+    /// each vertex of the output `out` (`origin` as for
+    /// [`Region::splice`]) goes among the `n` vertices of the mesh and the
+    /// new ones after them. The splice and the guard's audit number the
+    /// output so.
+    pub(crate) fn output_map(&self, n: usize, out: &TriMesh, origin: &[u32]) -> SpliceMap {
         // An input vertex the engine split (one copy per fan where the
         // surface was pinched) has several outputs: the first keeps its
         // number, the others are new vertices.
@@ -463,7 +472,7 @@ impl Region {
                 }
             })
             .collect();
-        Some(SpliceMap { vertex, added })
+        SpliceMap { vertex, added }
     }
 
     /// The spliced mesh of [`Region::splice_map`]'s `map`, compacted.
@@ -530,6 +539,17 @@ pub(crate) struct SpliceMap {
     pub vertex: Vec<u32>,
     /// The positions of the vertices numbered after the mesh's own.
     pub added: Vec<DVec3>,
+}
+
+impl SpliceMap {
+    /// The position of vertex `v` of the spliced mesh before compaction:
+    /// the mesh's own at `end`, then the added ones.
+    pub fn position(&self, end: &[DVec3], v: u32) -> DVec3 {
+        match (v as usize).checked_sub(end.len()) {
+            None => end[v as usize],
+            Some(k) => self.added[k],
+        }
+    }
 }
 
 /// [`topology_change`] of `mesh` moving to `end`,

@@ -9,21 +9,13 @@
 
 pub use holey_mesh::tri::*;
 
-/// Each of the vertices `among` (any order, each once) that
-/// lies at the exact position of an earlier one of them (`-0.0 == 0.0`),
-/// paired with the first at that position. Soups and unwelded seams meet
-/// only there: where the audit and the piece rules take such copies on a
-/// rim as one point of the surface ([`crate::audit::SurfaceAudit::topology`],
-/// `hidden::pieces_welded`).
+/// Each of the vertices `among` (any order, each once) that lies at the
+/// exact position (`position` gives it; `-0.0 == 0.0`) of an earlier one
+/// of them, paired with the first at that position. Soups and unwelded
+/// seams meet only there: where the audit and the piece rules take such
+/// copies on a rim as one point of the surface
+/// ([`crate::audit::SurfaceAudit::topology`], `hidden::pieces_welded`).
 pub(crate) fn coincident_pairs(
-    positions: &[glam::DVec3],
-    among: impl IntoIterator<Item = u32>,
-) -> Vec<(u32, u32)> {
-    coincident_pairs_at(&|v| positions[v as usize], among)
-}
-
-/// [`coincident_pairs`] of the vertices whose positions `position` gives.
-pub(crate) fn coincident_pairs_at(
     position: &dyn Fn(u32) -> glam::DVec3,
     among: impl IntoIterator<Item = u32>,
 ) -> Vec<(u32, u32)> {
