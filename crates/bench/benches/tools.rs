@@ -153,16 +153,22 @@ fn rind_100k_faces_punch_all(bencher: Bencher) {
     });
 }
 
+/// The 64 × 64 torus of quads (4,096 faces) both subdivision benches
+/// start from: four levels take it to about a million faces.
+fn torus_64() -> Mesh {
+    primitive("@torus:64:64")
+}
+
 /// Subdivision to about a million faces from a 4k-face torus.
 #[divan::bench(sample_count = 5)]
 fn catmull_clark_to_1m(bencher: Bencher) {
-    let base = primitive("@torus:64:64");
+    let base = torus_64();
     on_new_meshes(bencher, &base, |m| catmull_clark(m, 4));
 }
 
 #[divan::bench(sample_count = 5)]
 fn doo_sabin_to_1m(bencher: Bencher) {
-    let base = primitive("@torus:64:64");
+    let base = torus_64();
     on_new_meshes(bencher, &base, |m| doo_sabin(m, 4));
 }
 

@@ -9,6 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{ok, refused};
+use holey_subdiv::RemeshScheme;
 use serde_json::Value;
 
 /// V, E, F, genus, components, boundary loops of a mesh argument.
@@ -131,18 +132,28 @@ fn truncation_stellation_and_corner_cutting_of_a_cube() {
     let d = Dir::new();
     let k = counts("@cube");
     let c = 2 * k.e;
-    // Vertex truncation: 2E, E + C, F + V.
-    let t = remesh(&d, "@cube", "vertex-truncation", &[]);
-    assert_eq!(vef(t), (2 * k.e, k.e + c, k.f + k.v));
-    assert_eq!(vef(t), (24, 36, 14));
-    // Stellate: V + F, E + C, C.
-    let s = remesh(&d, "@cube", "stellate", &[]);
-    assert_eq!(vef(s), (k.v + k.f, k.e + c, c));
-    assert_eq!(vef(s), (14, 36, 24));
-    // Corner cutting (Doo–Sabin connectivity): C, 2C, F + E + V.
-    let cc = remesh(&d, "@cube", "corner-cutting", &["--alpha", "0.7"]);
-    assert_eq!(vef(cc), (c, 2 * c, k.f + k.e + k.v));
-    assert_eq!(vef(cc), (24, 48, 26));
+    for (scheme, args, formula, cube) in [
+        // Vertex truncation: 2E, E + C, F + V.
+        (
+            "vertex-truncation",
+            &[][..],
+            (2 * k.e, k.e + c, k.f + k.v),
+            (24, 36, 14),
+        ),
+        // Stellate: V + F, E + C, C.
+        ("stellate", &[], (k.v + k.f, k.e + c, c), (14, 36, 24)),
+        // Corner cutting (Doo–Sabin connectivity): C, 2C, F + E + V.
+        (
+            "corner-cutting",
+            &["--alpha", "0.7"],
+            (c, 2 * c, k.f + k.e + k.v),
+            (24, 48, 26),
+        ),
+    ] {
+        let out = remesh(&d, "@cube", scheme, args);
+        assert_eq!(vef(out), formula, "{scheme}");
+        assert_eq!(vef(out), cube, "{scheme}");
+    }
 }
 
 #[test]
@@ -192,47 +203,11 @@ fn twelve_six_four_names_are_accepted() {
     );
 }
 
-/// Every scheme name the issue lists, and TopMod's others the library has.
-const SCHEMES: &[&str] = &[
-    "dual",
-    "triangulate",
-    "sqrt3",
-    "loop",
-    "root4",
-    "linear-vertex-insertion",
-    "vertex-truncation",
-    "dual-vertex-truncation",
-    "stellate",
-    "double-stellate",
-    "corner-cutting",
-    "modified-corner-cutting",
-    "simplest",
-    "honeycomb",
-    "12.6.4",
-    "dual-12.6.4",
-    "pentagonalization",
-    "dual-pentagonalization",
-    "checkerboard",
-    "dual-checkerboard",
-    "global-extrude",
-    "dual-global-extrude",
-    "dome",
-    "fractal",
-    "cubic-pentagonalization",
-    "pentagon-preserving",
-    "dual-pentagon-preserving",
-    "hexagon-preserving",
-    "dual-hexagon-preserving",
-    "loop-style",
-    "dual-loop",
-    "stellate-edge-removal",
-    "modified-double-stellate",
-    "doo-sabin-bc",
-    "doo-sabin-bc-new",
-    "subdivide-face",
-    "catmull-clark",
-    "doo-sabin",
-];
+/// Every scheme the library has, by the name the command line takes
+/// (the library's own tests check these are the names the issue lists).
+fn schemes() -> impl Iterator<Item = &'static str> {
+    RemeshScheme::ALL.iter().map(|scheme| scheme.name())
+}
 
 /// The schemes built from the dual, which need a closed surface.
 const CLOSED_ONLY: &[&str] = &[
@@ -254,7 +229,7 @@ fn every_scheme_keeps_the_topology_of_a_torus_and_a_grid() {
     assert_eq!((torus.genus, torus.components, torus.loops), (1, 1, 0));
     let grid = counts("@plane:3:3");
     assert_eq!((grid.genus, grid.components, grid.loops), (0, 1, 1));
-    for scheme in SCHEMES {
+    for scheme in schemes() {
         let r = remesh(&d, "@torus:8:4", scheme, &[]);
         assert_eq!(
             (r.genus, r.components, r.loops),
@@ -265,7 +240,7 @@ fn every_scheme_keeps_the_topology_of_a_torus_and_a_grid() {
         assert_eq!(r.v - r.e + r.f, 0, "{scheme}: χ of a torus");
         let out = d.path("grid.dlfl");
         let args = ["remesh", "@plane:3:3", &out, "--scheme", scheme];
-        if CLOSED_ONLY.contains(scheme) {
+        if CLOSED_ONLY.contains(&scheme) {
             let err = refused(&args);
             assert!(err.contains("boundary"), "{scheme} on a grid: {err}");
         } else {
@@ -362,12 +337,12 @@ const RULES: &[(&str, Rule)] = &[
 #[test]
 fn every_scheme_gives_its_counts() {
     let d = Dir::new();
-    assert_eq!(RULES.len(), SCHEMES.len(), "a rule for every scheme");
+    assert_eq!(RULES.len(), schemes().count(), "a rule for every scheme");
     for mesh in ["@cube", "@torus:8:4"] {
         let m = counts(mesh);
         let c = 2 * m.e; // closed, so every edge has two corners
         for (scheme, rule) in RULES {
-            assert!(SCHEMES.contains(scheme), "{scheme}");
+            assert!(schemes().any(|s| s == *scheme), "{scheme}");
             let got = remesh(&d, mesh, scheme, &[]);
             assert_eq!(vef(got), rule(m.v, m.e, m.f, c), "{scheme} of {mesh}");
             // Euler's formula: the genus is kept.
@@ -379,7 +354,7 @@ fn every_scheme_gives_its_counts() {
 #[test]
 fn the_help_lists_every_scheme() {
     let help = ok(&["remesh", "--help"]);
-    for scheme in SCHEMES {
+    for scheme in schemes() {
         assert!(
             help.contains(&format!("  {scheme} ")),
             "remesh --help does not list {scheme}"

@@ -65,84 +65,60 @@ pub struct Mesh {
     pub(crate) corners: Arena<Corner>,
 }
 
-/// Handle constructors and checks.
+/// The accessors every entity kind has, alike but for names: the handle of
+/// slot `i` (`$id`), the slot of a handle after checking it (`$check`),
+/// and slot `i`'s record (`$get`, and `$get_mut` where the kernel changes
+/// records of that kind in place).
+macro_rules! entity_accessors {
+    ($arena:ident: $Record:ident, $Id:ident, $id:ident, $check:ident, $get:ident $(, $get_mut:ident)?) => {
+        #[inline]
+        pub(crate) fn $id(&self, i: u32) -> $Id {
+            $Id {
+                index: i,
+                generation: self.$arena.generation(i),
+            }
+        }
+        #[inline]
+        pub(crate) fn $check(&self, handle: $Id) -> Result<u32> {
+            self.$arena
+                .check(EntityKind::$Record, handle.index, handle.generation)
+        }
+        #[inline]
+        pub(crate) fn $get(&self, i: u32) -> &$Record {
+            self.$arena.get(i)
+        }
+        $(
+            #[inline]
+            pub(crate) fn $get_mut(&mut self, i: u32) -> &mut $Record {
+                self.$arena.get_mut(i)
+            }
+        )?
+    };
+}
+
+/// The public lookups every entity kind has, alike but for names: the
+/// handle in slot `index` (`$at`) and whether a handle is live
+/// (`$contains`).
+macro_rules! entity_lookups {
+    ($arena:ident, $Id:ident, $id:ident, $check:ident, $at:ident, $contains:ident, $noun:literal) => {
+        #[doc = concat!("The handle currently living in ", $noun, " slot `index`, if any.")]
+        pub fn $at(&self, index: usize) -> Option<$Id> {
+            let i = u32::try_from(index).ok()?;
+            self.$arena.is_live(i).then(|| self.$id(i))
+        }
+        /// True if the handle names a live entity of this mesh.
+        pub fn $contains(&self, handle: $Id) -> bool {
+            self.$check(handle).is_ok()
+        }
+    };
+}
+
+/// Handle constructors and checks, and raw slot access.
 impl Mesh {
-    #[inline]
-    pub(crate) fn vid(&self, i: u32) -> VertexId {
-        VertexId {
-            index: i,
-            generation: self.vertices.generation(i),
-        }
-    }
-    #[inline]
-    pub(crate) fn eid(&self, i: u32) -> EdgeId {
-        EdgeId {
-            index: i,
-            generation: self.edges.generation(i),
-        }
-    }
-    #[inline]
-    pub(crate) fn fid(&self, i: u32) -> FaceId {
-        FaceId {
-            index: i,
-            generation: self.faces.generation(i),
-        }
-    }
-    #[inline]
-    pub(crate) fn cid(&self, i: u32) -> CornerId {
-        CornerId {
-            index: i,
-            generation: self.corners.generation(i),
-        }
-    }
-
-    #[inline]
-    pub(crate) fn check_vertex(&self, v: VertexId) -> Result<u32> {
-        self.vertices
-            .check(EntityKind::Vertex, v.index, v.generation)
-    }
-    #[inline]
-    pub(crate) fn check_edge(&self, e: EdgeId) -> Result<u32> {
-        self.edges.check(EntityKind::Edge, e.index, e.generation)
-    }
-    #[inline]
-    pub(crate) fn check_face(&self, f: FaceId) -> Result<u32> {
-        self.faces.check(EntityKind::Face, f.index, f.generation)
-    }
-    #[inline]
-    pub(crate) fn check_corner(&self, c: CornerId) -> Result<u32> {
-        self.corners
-            .check(EntityKind::Corner, c.index, c.generation)
-    }
-
-    #[inline]
-    pub(crate) fn c(&self, i: u32) -> &Corner {
-        self.corners.get(i)
-    }
-    #[inline]
-    pub(crate) fn c_mut(&mut self, i: u32) -> &mut Corner {
-        self.corners.get_mut(i)
-    }
-    #[inline]
-    pub(crate) fn f(&self, i: u32) -> &Face {
-        self.faces.get(i)
-    }
-    #[inline]
-    pub(crate) fn f_mut(&mut self, i: u32) -> &mut Face {
-        self.faces.get_mut(i)
-    }
-    #[inline]
-    pub(crate) fn v(&self, i: u32) -> &Vertex {
-        self.vertices.get(i)
-    }
-    #[inline]
-    pub(crate) fn v_mut(&mut self, i: u32) -> &mut Vertex {
-        self.vertices.get_mut(i)
-    }
-    #[inline]
-    pub(crate) fn e(&self, i: u32) -> &Edge {
-        self.edges.get(i)
-    }
+    entity_accessors!(vertices: Vertex, VertexId, vid, check_vertex, v, v_mut);
+    entity_accessors!(edges: Edge, EdgeId, eid, check_edge, e);
+    entity_accessors!(faces: Face, FaceId, fid, check_face, f, f_mut);
+    entity_accessors!(corners: Corner, CornerId, cid, check_corner, c, c_mut);
 
     /// The rotation successor of corner `i` around its vertex: the corner
     /// of the same vertex in the face on the other side of the edge that
@@ -195,6 +171,14 @@ impl Mesh {
             .filter(|&f| self.f(f).hole)
             .count()
     }
+    /// `Ok` on a closed surface, else `Err` with the number of hole faces:
+    /// the refusal of the operators defined only on closed surfaces.
+    pub fn require_closed(&self) -> std::result::Result<(), usize> {
+        match self.hole_count() {
+            0 => Ok(()),
+            holes => Err(holes),
+        }
+    }
     /// True when the mesh has no vertices.
     pub fn is_empty(&self) -> bool {
         self.vertices.len() == 0
@@ -235,43 +219,42 @@ impl Mesh {
             + self.corners.heap_bytes()
     }
 
-    /// The handle currently living in vertex slot `index`, if any.
-    pub fn vertex_at(&self, index: usize) -> Option<VertexId> {
-        let i = u32::try_from(index).ok()?;
-        self.vertices.is_live(i).then(|| self.vid(i))
-    }
-    /// The handle currently living in face slot `index`, if any.
-    pub fn face_at(&self, index: usize) -> Option<FaceId> {
-        let i = u32::try_from(index).ok()?;
-        self.faces.is_live(i).then(|| self.fid(i))
-    }
-    /// The handle currently living in edge slot `index`, if any.
-    pub fn edge_at(&self, index: usize) -> Option<EdgeId> {
-        let i = u32::try_from(index).ok()?;
-        self.edges.is_live(i).then(|| self.eid(i))
-    }
-    /// The handle currently living in corner slot `index`, if any.
-    pub fn corner_at(&self, index: usize) -> Option<CornerId> {
-        let i = u32::try_from(index).ok()?;
-        self.corners.is_live(i).then(|| self.cid(i))
-    }
-
-    /// True if the handle names a live entity of this mesh.
-    pub fn contains_vertex(&self, v: VertexId) -> bool {
-        self.check_vertex(v).is_ok()
-    }
-    /// True if the handle names a live entity of this mesh.
-    pub fn contains_edge(&self, e: EdgeId) -> bool {
-        self.check_edge(e).is_ok()
-    }
-    /// True if the handle names a live entity of this mesh.
-    pub fn contains_face(&self, f: FaceId) -> bool {
-        self.check_face(f).is_ok()
-    }
-    /// True if the handle names a live entity of this mesh.
-    pub fn contains_corner(&self, c: CornerId) -> bool {
-        self.check_corner(c).is_ok()
-    }
+    entity_lookups!(
+        vertices,
+        VertexId,
+        vid,
+        check_vertex,
+        vertex_at,
+        contains_vertex,
+        "vertex"
+    );
+    entity_lookups!(
+        edges,
+        EdgeId,
+        eid,
+        check_edge,
+        edge_at,
+        contains_edge,
+        "edge"
+    );
+    entity_lookups!(
+        faces,
+        FaceId,
+        fid,
+        check_face,
+        face_at,
+        contains_face,
+        "face"
+    );
+    entity_lookups!(
+        corners,
+        CornerId,
+        cid,
+        check_corner,
+        corner_at,
+        contains_corner,
+        "corner"
+    );
 }
 
 /// Accessors. Each checks its handle and fails with [`Error::Stale`].
@@ -308,23 +291,26 @@ impl Mesh {
 
     /// The corners of a vertex, in ring order (not rotation order).
     pub fn vertex_corners(&self, v: VertexId) -> Result<VertexCorners<'_>> {
-        let i = self.check_vertex(v)?;
-        let vx = self.v(i);
         Ok(VertexCorners {
-            mesh: self,
-            next: vx.corner,
-            left: vx.count,
+            walk: self.vertex_walk(v)?,
         })
     }
 
     /// The corners of a vertex in rotation order (the cyclic order around
     /// the vertex, taken through the faces), starting at any corner.
     pub fn vertex_rotation(&self, v: VertexId) -> Result<VertexRotation<'_>> {
-        let i = self.check_vertex(v)?;
-        let vx = self.v(i);
+        let walk = self.vertex_walk(v)?;
         Ok(VertexRotation {
+            start: walk.next,
+            walk,
+        })
+    }
+
+    /// A walk of as many corners as vertex `v` has, from its first.
+    fn vertex_walk(&self, v: VertexId) -> Result<Countdown<'_>> {
+        let vx = self.v(self.check_vertex(v)?);
+        Ok(Countdown {
             mesh: self,
-            start: vx.corner,
             next: vx.corner,
             left: vx.count,
         })
@@ -407,18 +393,22 @@ impl Mesh {
     pub fn face_corners(&self, f: FaceId) -> Result<FaceCorners<'_>> {
         let fx = *self.f(self.check_face(f)?);
         Ok(FaceCorners {
-            mesh: self,
-            next: fx.corner,
-            left: fx.len,
+            walk: Countdown {
+                mesh: self,
+                next: fx.corner,
+                left: fx.len,
+            },
         })
     }
     /// The corners of a face in cyclic order, starting at `c`.
     pub fn face_corners_from(&self, c: CornerId) -> Result<FaceCorners<'_>> {
         let i = self.check_corner(c)?;
         Ok(FaceCorners {
-            mesh: self,
-            next: i,
-            left: self.f(self.c(i).face).len,
+            walk: Countdown {
+                mesh: self,
+                next: i,
+                left: self.f(self.c(i).face).len,
+            },
         })
     }
     /// The vertices of a face in cyclic order.
@@ -455,26 +445,22 @@ pub type VertexCorners<'a> = CornerCycle<'a, true>;
 /// [`VertexCorners`]. Both cycles know their length, so neither walk has
 /// to look for its start.
 pub struct CornerCycle<'a, const RING: bool> {
-    mesh: &'a Mesh,
-    next: u32,
-    left: u32,
+    walk: Countdown<'a>,
 }
 
 impl<const RING: bool> Iterator for CornerCycle<'_, RING> {
     type Item = CornerId;
     #[inline]
     fn next(&mut self) -> Option<CornerId> {
-        if self.left == 0 {
-            return None;
-        }
-        self.left -= 1;
-        let c = self.next;
-        let corner = self.mesh.c(c);
-        self.next = if RING { corner.vnext } else { corner.next };
-        Some(self.mesh.cid(c))
+        let c = self.walk.step(|mesh, c| {
+            let corner = mesh.c(c);
+            if RING { corner.vnext } else { corner.next }
+        })?;
+        Some(self.walk.mesh.cid(c))
     }
     fn size_hint(&self) -> (usize, Option<usize>) {
-        (self.left as usize, Some(self.left as usize))
+        let left = self.walk.left as usize;
+        (left, Some(left))
     }
 }
 
@@ -482,26 +468,44 @@ impl<const RING: bool> ExactSizeIterator for CornerCycle<'_, RING> {}
 
 /// Corners of a vertex in rotation order.
 pub struct VertexRotation<'a> {
-    mesh: &'a Mesh,
+    walk: Countdown<'a>,
     start: u32,
-    next: u32,
-    left: u32,
 }
 
 impl Iterator for VertexRotation<'_> {
     type Item = CornerId;
     #[inline]
     fn next(&mut self) -> Option<CornerId> {
+        let c = self.walk.step(Mesh::rot)?;
+        // Back at the start early: the rotation is a shorter cycle than
+        // the vertex's corners (a vertex that is not a 2-manifold point).
+        if self.walk.next == self.start {
+            self.walk.left = 0;
+        }
+        Some(self.walk.mesh.cid(c))
+    }
+}
+
+/// The state of a walk from corner to corner that stops after `left`
+/// corners, which the corner iterators share.
+struct Countdown<'a> {
+    mesh: &'a Mesh,
+    next: u32,
+    left: u32,
+}
+
+impl Countdown<'_> {
+    /// The walk's next corner, the walk moved on to `link(mesh, corner)`;
+    /// `None` once `left` corners have been met.
+    #[inline]
+    fn step(&mut self, link: impl FnOnce(&Mesh, u32) -> u32) -> Option<u32> {
         if self.left == 0 {
             return None;
         }
         self.left -= 1;
         let c = self.next;
-        self.next = self.mesh.rot(c);
-        if self.next == self.start {
-            self.left = 0;
-        }
-        Some(self.mesh.cid(c))
+        self.next = link(self.mesh, c);
+        Some(c)
     }
 }
 

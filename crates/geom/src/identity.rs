@@ -40,10 +40,12 @@ pub fn position_key(p: DVec3) -> [u64; 3] {
     [key_bits(p.x), key_bits(p.y), key_bits(p.z)]
 }
 
-/// A small multiplicative hasher for `[u64; 3]` keys (keys are not
-/// adversarial here; this keeps the pass at memory speed).
+/// A small multiplicative hasher for integer keys such as `[u64; 3]`
+/// position keys or packed index pairs (keys are not adversarial here;
+/// this keeps hash passes at memory speed). Use it through
+/// [`std::hash::BuildHasherDefault`].
 #[derive(Default)]
-struct MulHasher(u64);
+pub struct MulHasher(u64);
 
 impl Hasher for MulHasher {
     fn finish(&self) -> u64 {

@@ -33,19 +33,14 @@ const NONE: u32 = u32::MAX;
 pub fn parse(bytes: &[u8], source: &str) -> Result<RawMesh, IoError> {
     let mut c = Cursor::new(bytes, false, true);
     header(&mut c, source)?;
-    let Statements {
-        mut raw,
-        vertex_lines,
-        face_lines,
-        edges,
-    } = statements(&mut c, source)?;
-    check_vertices_used(&raw, &vertex_lines, &face_lines, source)?;
+    let mut st = statements(&mut c, source)?;
+    st.check_vertices_used(source)?;
     // Resolve edges to global corners, checking each against its line.
-    let edge_of = resolve_edges(&mut raw, &edges, source)?;
-    if !edges.is_empty() {
-        check_corners_start_edges(&raw, &face_lines, &edge_of, source)?;
+    let edge_of = resolve_edges(&mut st.raw, &st.edges, source)?;
+    if !st.edges.is_empty() {
+        st.check_corners_start_edges(&edge_of, source)?;
     }
-    Ok(raw)
+    Ok(st.raw)
 }
 
 /// An `e` line as written: its two (face, corner) pairs and its line.
@@ -63,6 +58,68 @@ struct Statements {
     /// Edges as written, (face, corner) pairs, with their lines; resolved
     /// once every face is known.
     edges: Vec<WrittenEdge>,
+}
+
+impl Statements {
+    /// Checks that the vertices fit 32-bit indices, that every face refers
+    /// to defined vertices only, and that every vertex is used by a face.
+    fn check_vertices_used(&self, source: &str) -> Result<(), IoError> {
+        let (raw, vertex_lines, face_lines) = (&self.raw, &self.vertex_lines, &self.face_lines);
+        let err = |line: usize, m: String| IoError::line(source, line, m);
+        let nv = raw.positions.len();
+        if nv >= NONE as usize {
+            return Err(IoError::content(
+                source,
+                format!("{nv} vertices exceed 32-bit indices"),
+            ));
+        }
+        let mut used = vec![false; nv];
+        for (f, &line) in face_lines.iter().enumerate() {
+            for &v in raw.face(f) {
+                match used.get_mut(v as usize) {
+                    Some(u) => *u = true,
+                    None => {
+                        return Err(err(
+                            line,
+                            format!(
+                                "face refers to vertex {v}, but only {nv} vertices are defined"
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        if let Some(v) = used.iter().position(|&u| !u) {
+            return Err(err(
+                vertex_lines[v],
+                format!("vertex {v} is not used by any face"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks that every corner starts an edge (`edge_of`, from
+    /// [`resolve_edges`]), except a point-sphere's lone corner.
+    fn check_corners_start_edges(&self, edge_of: &[u32], source: &str) -> Result<(), IoError> {
+        let (raw, face_lines) = (&self.raw, &self.face_lines);
+        let err = |line: usize, m: String| IoError::line(source, line, m);
+        for (f, &line) in face_lines.iter().enumerate() {
+            let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
+            if hi - lo == 1 {
+                continue; // a point-sphere's lone corner may start no edge
+            }
+            if let Some(g) = (lo..hi).find(|&g| edge_of[g as usize] == NONE) {
+                return Err(err(
+                    line,
+                    format!(
+                        "corner {f}:{} starts no edge (no \"e\" line names it)",
+                        g - lo
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Reads the header `dlfl 1` (after any blank or comment lines) and moves
@@ -206,45 +263,6 @@ fn edge_statement(c: &mut Cursor<'_>, line: usize, source: &str) -> Result<[[u64
     Ok(ends)
 }
 
-/// Checks that the vertices fit 32-bit indices, that every face refers
-/// to defined vertices only, and that every vertex is used by a face.
-fn check_vertices_used(
-    raw: &RawMesh,
-    vertex_lines: &[usize],
-    face_lines: &[usize],
-    source: &str,
-) -> Result<(), IoError> {
-    let err = |line: usize, m: String| IoError::line(source, line, m);
-    let nv = raw.positions.len();
-    if nv >= NONE as usize {
-        return Err(IoError::content(
-            source,
-            format!("{nv} vertices exceed 32-bit indices"),
-        ));
-    }
-    let mut used = vec![false; nv];
-    for (f, &line) in face_lines.iter().enumerate() {
-        for &v in raw.face(f) {
-            match used.get_mut(v as usize) {
-                Some(u) => *u = true,
-                None => {
-                    return Err(err(
-                        line,
-                        format!("face refers to vertex {v}, but only {nv} vertices are defined"),
-                    ));
-                }
-            }
-        }
-    }
-    if let Some(v) = used.iter().position(|&u| !u) {
-        return Err(err(
-            vertex_lines[v],
-            format!("vertex {v} is not used by any face"),
-        ));
-    }
-    Ok(())
-}
-
 /// Resolves the written `edges` to global corners in `raw.edges`,
 /// checking each against its line; returns the edge each corner starts
 /// (`NONE` for none; empty when there are no edges).
@@ -312,33 +330,6 @@ fn side(raw: &RawMesh, g: u32) -> (u32, u32) {
         raw.face_vertices[g as usize],
         raw.face_vertices[next as usize],
     )
-}
-
-/// Checks that every corner starts an edge (`edge_of`, from
-/// [`resolve_edges`]), except a point-sphere's lone corner.
-fn check_corners_start_edges(
-    raw: &RawMesh,
-    face_lines: &[usize],
-    edge_of: &[u32],
-    source: &str,
-) -> Result<(), IoError> {
-    let err = |line: usize, m: String| IoError::line(source, line, m);
-    for (f, &line) in face_lines.iter().enumerate() {
-        let (lo, hi) = (raw.face_offsets[f], raw.face_offsets[f + 1]);
-        if hi - lo == 1 {
-            continue; // a point-sphere's lone corner may start no edge
-        }
-        if let Some(g) = (lo..hi).find(|&g| edge_of[g as usize] == NONE) {
-            return Err(err(
-                line,
-                format!(
-                    "corner {f}:{} starts no edge (no \"e\" line names it)",
-                    g - lo
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// Checks that a [`RawMesh`] can be written: well-formed offsets, no empty

@@ -315,7 +315,7 @@ fn agrees_with_naive_reference_on_random_soups() {
         assert_eq!(with, info);
         assert_eq!(comps.len(), info.components);
         assert_eq!(
-            comps.iter().map(|c| c.boundary_loops).sum::<usize>(),
+            comps.iter().map(|c| c.counts.boundary_loops).sum::<usize>(),
             info.boundary_loops
         );
         // Welding never breaks the analysis either.

@@ -149,10 +149,8 @@ pub fn sierpinski_capped(
     iterations: usize,
     max_faces: usize,
 ) -> Result<SierpinskiReport, SierpinskiError> {
-    let holes = mesh.hole_count();
-    if holes > 0 {
-        return Err(SierpinskiError::OpenSurface { holes });
-    }
+    mesh.require_closed()
+        .map_err(|holes| SierpinskiError::OpenSurface { holes })?;
     let bound = face_bound(mesh, iterations, max_faces)?;
     if bound > max_faces as u128 {
         return Err(SierpinskiError::TooManyFaces {

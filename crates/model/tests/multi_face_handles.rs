@@ -206,24 +206,20 @@ fn face_towards(m: &Mesh, n: DVec3, at: DVec3) -> FaceId {
         .unwrap()
 }
 
-const AXES: [DVec3; 6] = [
-    DVec3::X,
-    DVec3::NEG_X,
-    DVec3::Y,
-    DVec3::NEG_Y,
-    DVec3::Z,
-    DVec3::NEG_Z,
-];
+/// The six unit axis directions.
+fn axes() -> [DVec3; 6] {
+    holey_testkit::AXES.map(DVec3::from_array)
+}
 
 #[test]
 fn a_body_between_the_faces_and_the_hub_blocks_the_view() {
     // Six cubes around the origin, their inner faces selected, and a
     // seventh small cube at the origin: every face looks at the origin,
     // but the small cube is in the way.
-    let mut centres: Vec<(DVec3, f64)> = AXES.iter().map(|&a| (a * 4.0, 1.0)).collect();
+    let mut centres: Vec<(DVec3, f64)> = axes().iter().map(|&a| (a * 4.0, 1.0)).collect();
     centres.push((DVec3::ZERO, 0.5));
     let m0 = cubes(&centres);
-    let sel: Vec<FaceId> = AXES
+    let sel: Vec<FaceId> = axes()
         .iter()
         .map(|&a| face_towards(&m0, -a, a * 3.0))
         .collect();
@@ -239,7 +235,7 @@ fn a_body_between_the_faces_and_the_hub_blocks_the_view() {
     assert!((q.iter().sum::<DVec3>() / q.len() as f64).length() <= 0.5 + 1e-12);
     // Without the small cube the same faces are joined, with no crossing.
     let m1 = cubes(&centres[..6]);
-    let sel1: Vec<FaceId> = AXES
+    let sel1: Vec<FaceId> = axes()
         .iter()
         .map(|&a| face_towards(&m1, -a, a * 3.0))
         .collect();

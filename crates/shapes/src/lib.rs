@@ -109,8 +109,7 @@ pub const MAX_FACES: u64 = 10_000_000;
 /// from outside, starting at its corner with the smallest coordinates
 /// (its lowest-numbered vertex). V = 6n²+2, E = 12n², F = 6n².
 pub fn cube(n: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::CUBE, &[f64::from(n)])?;
-    Ok(grid::cube(n))
+    spec::generate(&spec::CUBE, &[f64::from(n)])
 }
 
 /// The unit sphere as `n × n` quads on each of six cube sides: `@cube:n`
@@ -119,8 +118,7 @@ pub fn cube(n: u32) -> Result<PolyMesh, ShapeError> {
 /// quads are close to equal in size. Same order and counts as
 /// [`cube`]; `1 ≤ n ≤ 1290`.
 pub fn quad_sphere(n: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::QUAD_SPHERE, &[f64::from(n)])?;
-    Ok(grid::quad_sphere(n))
+    spec::generate(&spec::QUAD_SPHERE, &[f64::from(n)])
 }
 
 /// An open grid of `nx × ny` quads covering `[-1, 1]²` in the plane
@@ -132,8 +130,7 @@ pub fn quad_sphere(n: u32) -> Result<PolyMesh, ShapeError> {
 /// seen from +z, starting at its lowest-numbered corner.
 /// V = (nx+1)(ny+1), E = nx(ny+1) + ny(nx+1), F = nx·ny.
 pub fn plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::PLANE, &[f64::from(nx), f64::from(ny)])?;
-    Ok(grid::plane(nx, ny))
+    spec::generate(&spec::PLANE, &[f64::from(nx), f64::from(ny)])
 }
 
 /// [`plane`] with each square split into two triangles along its
@@ -144,8 +141,7 @@ pub fn plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
 /// `(i,j), (i+1,j), (i+1,j+1)` and `(i,j), (i+1,j+1), (i,j+1)`.
 /// V = (nx+1)(ny+1), E = nx(ny+1) + ny(nx+1) + nx·ny, F = 2·nx·ny.
 pub fn tri_plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::TRI_PLANE, &[f64::from(nx), f64::from(ny)])?;
-    Ok(grid::tri_plane(nx, ny))
+    spec::generate(&spec::TRI_PLANE, &[f64::from(nx), f64::from(ny)])
 }
 
 /// The unit icosphere: the icosahedron scaled to radius 1 and subdivided
@@ -161,8 +157,7 @@ pub fn tri_plane(nx: u32, ny: u32) -> Result<PolyMesh, ShapeError> {
 /// each face's edges a–b, b–c, c–a. So the base-4 digits of a face number
 /// below its icosahedron face spell its path: corner 0, 1, 2 or middle 3.
 pub fn icosphere(level: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::SPHERE, &[f64::from(level)])?;
-    Ok(round::icosphere(level))
+    spec::generate(&spec::SPHERE, &[f64::from(level)])
 }
 
 /// The unit sphere of latitude–longitude quads with triangle fans around
@@ -179,8 +174,7 @@ pub fn icosphere(level: u32) -> Result<PolyMesh, ShapeError> {
 /// `((last,i), (last,i+1), pole)`, where `(k,i)` is vertex `i` of ring `k`
 /// (rings numbered from 1) and indices wrap around.
 pub fn uv_sphere(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::UV_SPHERE, &[f64::from(segments), f64::from(rings)])?;
-    Ok(round::uv_sphere(segments, rings))
+    spec::generate(&spec::UV_SPHERE, &[f64::from(segments), f64::from(rings)])
 }
 
 /// A quad torus of genus 1 about the z axis: a circle of radius
@@ -199,7 +193,7 @@ pub fn torus(
     major_radius: f64,
     minor_radius: f64,
 ) -> Result<PolyMesh, ShapeError> {
-    spec::validate(
+    spec::generate(
         &spec::TORUS,
         &[
             f64::from(major),
@@ -207,8 +201,7 @@ pub fn torus(
             major_radius,
             minor_radius,
         ],
-    )?;
-    Ok(round::torus(major, minor, major_radius, minor_radius))
+    )
 }
 
 /// A closed cylinder of radius 1 along z from −1 to 1, with `segments ≥ 3`
@@ -223,8 +216,7 @@ pub fn torus(
 /// `2 + k·segments + i` is the side quad `(k,i), (k,i+1), (k+1,i+1),
 /// (k+1,i)`.
 pub fn cylinder(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::CYLINDER, &[f64::from(segments), f64::from(rings)])?;
-    Ok(round::cylinder(segments, rings))
+    spec::generate(&spec::CYLINDER, &[f64::from(segments), f64::from(rings)])
 }
 
 /// A closed cone: a base polygon of radius 1 at z = −1 with `segments ≥ 3`
@@ -236,8 +228,7 @@ pub fn cylinder(segments: u32, rings: u32) -> Result<PolyMesh, ShapeError> {
 /// the base, starting at vertex 0 and running clockwise seen from +z;
 /// face `1 + i` is the triangle `(i, i+1, apex)`.
 pub fn cone(segments: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::CONE, &[f64::from(segments)])?;
-    Ok(round::cone(segments))
+    spec::generate(&spec::CONE, &[f64::from(segments)])
 }
 
 /// The geodesic sphere of frequency `n` (`1 ≤ n ≤ 707`): every face of
@@ -257,6 +248,5 @@ pub fn cone(segments: u32) -> Result<PolyMesh, ShapeError> {
 /// `((u,v), (u+1,v), (u,v+1))` followed, where it exists, by
 /// `((u+1,v), (u+1,v+1), (u,v+1))`.
 pub fn geodesic(n: u32) -> Result<PolyMesh, ShapeError> {
-    spec::validate(&spec::GEODESIC, &[f64::from(n)])?;
-    Ok(geodesic::geodesic(n))
+    spec::generate(&spec::GEODESIC, &[f64::from(n)])
 }

@@ -324,6 +324,13 @@ pub(crate) fn validate(primitive: &Primitive, args: &[f64]) -> Result<(), ShapeE
     Ok(())
 }
 
+/// Checks `args` ([`validate`]) and builds the mesh: the public
+/// generators are this with their own arguments.
+pub(crate) fn generate(primitive: &Primitive, args: &[f64]) -> Result<PolyMesh, ShapeError> {
+    validate(primitive, args)?;
+    (primitive.build)(args)
+}
+
 fn spec_string(primitive: &Primitive, args: &[f64]) -> String {
     let mut s = format!("@{}", primitive.name);
     for a in args {

@@ -362,7 +362,7 @@ mod tests {
 
     use super::corner_points;
     use crate::catmull_clark::tests::volume;
-    use crate::tests::{checked, counts, dlfl, prim, signature};
+    use crate::tests::{checked, counts, cube_levels, dlfl, prim};
     use crate::{Scheme, doo_sabin};
 
     const DS: Scheme = Scheme::DooSabin;
@@ -418,13 +418,8 @@ mod tests {
 
     #[test]
     fn cube_counts_and_two_levels() {
-        let m = prim("@cube");
-        let one = checked(&m, DS, 1);
-        assert_eq!(counts(&one), (24, 48, 26));
-        assert_eq!(signature(&one), vec![(0, 0, false)]);
         // V' = corners = 2E, E' = 4E, F' = F + E + V.
-        let two = checked(&m, DS, 2);
-        assert_eq!(counts(&two), (2 * 48, 4 * 48, 26 + 48 + 24));
+        let (one, _) = cube_levels(DS, (24, 48, 26), (2 * 48, 4 * 48, 26 + 48 + 24));
         // The cube's corner points sit at (±1/2, ±1/2, ±1) and permutations
         // (9/16·1 + 3/16·1 + 1/16·(−1) + 3/16·(−1) = 1/2 in-plane).
         for v in one.vertices() {

@@ -53,6 +53,22 @@ pub(crate) fn counts(m: &Mesh) -> (usize, usize, usize) {
     (m.vertex_count(), m.edge_count(), m.face_count())
 }
 
+/// One and two levels of `scheme` on the cube, [`checked`], with the
+/// counts `one` and `two` (V, E, F) and one sphere after one level.
+pub(crate) fn cube_levels(
+    scheme: Scheme,
+    one: (usize, usize, usize),
+    two: (usize, usize, usize),
+) -> (Mesh, Mesh) {
+    let m = prim("@cube");
+    let first = checked(&m, scheme, 1);
+    assert_eq!(counts(&first), one);
+    assert_eq!(signature(&first), vec![(0, 0, false)]);
+    let second = checked(&m, scheme, 2);
+    assert_eq!(counts(&second), two);
+    (first, second)
+}
+
 /// Subdivides with `scheme`, validates, and checks that the topology and
 /// the predicted sizes hold. Returns the output.
 pub(crate) fn checked(m: &Mesh, scheme: Scheme, levels: usize) -> Mesh {

@@ -12,8 +12,8 @@ pub mod meshes;
 pub mod oracles;
 
 pub use meshes::{
-    grid_triangles, lattice_cubes, menger_cells, octahedron, quad_torus, tetrahedron, unit_cube,
-    uv_sphere, uv_spheres,
+    AXES, grid_triangles, lattice_cubes, menger_cells, octahedron, quad_torus, tetrahedron,
+    unit_cube, uv_sphere, uv_spheres,
 };
 pub use oracles::{Groups, boundary, components, edge_degrees, pieces};
 

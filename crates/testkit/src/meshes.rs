@@ -3,6 +3,17 @@
 //! depends on none of them: each test turns them into its own crate's
 //! type.
 
+/// The six unit axis directions, `+x`, `−x`, `+y`, `−y`, `+z`, `−z`: where
+/// tests put the six neighbours of a hub or the six faces of a cube.
+pub const AXES: [[f64; 3]; 6] = [
+    [1., 0., 0.],
+    [-1., 0., 0.],
+    [0., 1., 0.],
+    [0., -1., 0.],
+    [0., 0., 1.],
+    [0., 0., -1.],
+];
+
 /// The unit cube `[0, 1]³`: corners in the order `(0,0,0)`, `(1,0,0)`,
 /// `(1,1,0)`, `(0,1,0)`, then the same at `z = 1`; six quads, outward.
 pub fn unit_cube() -> ([[f64; 3]; 8], [[u32; 4]; 6]) {
@@ -33,14 +44,7 @@ pub fn unit_cube() -> ([[f64; 3]; 8], [[u32; 4]; 6]) {
 /// its eight triangles, outward.
 pub fn octahedron() -> ([[f64; 3]; 6], [[u32; 3]; 8]) {
     (
-        [
-            [1., 0., 0.],
-            [-1., 0., 0.],
-            [0., 1., 0.],
-            [0., -1., 0.],
-            [0., 0., 1.],
-            [0., 0., -1.],
-        ],
+        AXES,
         [
             [0, 2, 4],
             [2, 1, 4],

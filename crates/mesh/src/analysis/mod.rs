@@ -94,6 +94,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::PolyMesh;
+pub use topology::{Counts, Surface};
 pub use weld::{WeldError, Welded, weld_by_distance, weld_exact};
 
 /// Measures of a whole mesh. See the [module documentation](self) for the
@@ -162,37 +163,14 @@ pub struct MeshInfo {
 /// [`MeshInfo`] restricted to it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ComponentInfo {
-    /// Vertices of this component (its V).
-    pub vertices: usize,
-    /// Distinct undirected edges of this component, self-loops included (its E).
-    pub edges: usize,
-    /// Valid faces of this component, of every size (its F).
-    pub faces: usize,
-    /// Edges of this component with exactly one side.
-    pub boundary_edges: usize,
-    /// Connected pieces of this component's boundary-edge graph (its b).
-    pub boundary_loops: usize,
-    /// Edges of this component with three or more sides.
-    pub nonmanifold_edges: usize,
-    /// Vertices of this component with more than one fan.
-    pub nonmanifold_vertices: usize,
-    /// Two-sided edges of this component whose two sides run the same way.
-    pub misoriented_edges: usize,
-    /// Faces of this component that use some vertex more than once.
-    pub degenerate_faces: usize,
-    /// Edges of this component whose two ends are the same vertex.
-    pub self_loops: usize,
-    /// This component has no boundary edge.
-    pub closed: bool,
-    /// This component has no non-manifold edge or vertex and no degenerate
-    /// face.
-    pub manifold: bool,
-    /// This component has no misoriented edge.
-    pub oriented: bool,
-    /// χ = V − E + F of this component.
-    pub euler: i64,
-    /// (2 − χ − b)/2; `None` unless this component is manifold and oriented.
-    pub genus: Option<i64>,
+    /// This component's counts (its V, E, F, b, ...), serialized as fields
+    /// of the component.
+    #[serde(flatten)]
+    pub counts: Counts,
+    /// What the counts say of this component (its genus is
+    /// (2 − χ − b)/2), serialized as fields of the component.
+    #[serde(flatten)]
+    pub surface: Surface,
     /// Signed volume; `None` unless this component is closed, manifold,
     /// oriented and finite.
     pub volume: Option<f64>,
@@ -214,7 +192,10 @@ pub fn analyze_components(mesh: &PolyMesh) -> Vec<ComponentInfo> {
 /// The genus of every component (`None` where it is not manifold and
 /// oriented), components numbered by smallest vertex index.
 pub fn component_genera(mesh: &PolyMesh) -> Vec<Option<i64>> {
-    analyze_components(mesh).iter().map(|c| c.genus).collect()
+    analyze_components(mesh)
+        .iter()
+        .map(|c| c.surface.genus)
+        .collect()
 }
 
 /// [`analyze`] and [`analyze_components`] in one pass.
@@ -235,33 +216,19 @@ fn measure(mesh: &PolyMesh, per_component: bool) -> (MeshInfo, Vec<ComponentInfo
         .iter()
         .zip(geo.area.iter().zip(&geo.volume))
         .map(|(c, (&area, &volume))| {
-            let closed = c.boundary_edges == 0;
+            let surface = c.surface(1);
             ComponentInfo {
-                vertices: c.vertices,
-                edges: c.edges,
-                faces: c.faces,
-                boundary_edges: c.boundary_edges,
-                boundary_loops: c.boundary_loops,
-                nonmanifold_edges: c.nonmanifold_edges,
-                nonmanifold_vertices: c.nonmanifold_vertices,
-                misoriented_edges: c.misoriented_edges,
-                degenerate_faces: c.degenerate_faces,
-                self_loops: c.self_loops,
-                closed,
-                manifold: c.manifold(),
-                oriented: c.oriented(),
-                euler: c.euler(),
-                genus: c.genus(1),
-                volume: volume.filter(|_| closed && c.manifold() && c.oriented()),
+                counts: c.clone(),
+                surface,
+                volume: volume.filter(|_| surface.bounds_volume()),
                 area,
             }
         })
         .collect();
 
     let t = &topo.total;
-    let closed = t.boundary_edges == 0;
-    let (manifold, oriented) = (t.manifold(), t.oriented());
-    let volume = geo.total_volume.filter(|_| closed && manifold && oriented);
+    let surface = t.surface(topo.component_count);
+    let volume = geo.total_volume.filter(|_| surface.bounds_volume());
     let info = MeshInfo {
         vertices: t.vertices,
         unreferenced_vertices: mesh.positions.len() - t.vertices,
@@ -276,11 +243,11 @@ fn measure(mesh: &PolyMesh, per_component: bool) -> (MeshInfo, Vec<ComponentInfo
         misoriented_edges: t.misoriented_edges,
         degenerate_faces: t.degenerate_faces,
         nonfinite_vertices: geo.nonfinite_vertices,
-        closed,
-        manifold,
-        oriented,
-        euler: t.euler(),
-        genus: t.genus(topo.component_count),
+        closed: surface.closed,
+        manifold: surface.manifold,
+        oriented: surface.oriented,
+        euler: surface.euler,
+        genus: surface.genus,
         self_loops: t.self_loops,
         two_gons: topo.two_gons,
         point_spheres: topo.point_spheres,

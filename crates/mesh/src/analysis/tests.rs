@@ -205,11 +205,9 @@ fn triangle_soup_is_one_component_per_triangle() {
         (0..n as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]),
     ));
     assert_eq!(comps.len(), n);
-    assert!(
-        comps
-            .iter()
-            .all(|c| c.euler == 1 && c.boundary_loops == 1 && c.genus == Some(0))
-    );
+    assert!(comps.iter().all(|c| c.surface.euler == 1
+        && c.counts.boundary_loops == 1
+        && c.surface.genus == Some(0)));
 }
 
 #[test]
@@ -384,9 +382,15 @@ fn components_and_their_genera() {
     assert_eq!(info.volume, None);
     assert_eq!(comps[2].volume, Some(1.0));
     assert_eq!(comps[1].volume, None);
-    assert_eq!(comps[1].boundary_loops, 1);
-    assert_eq!(comps.iter().map(|c| c.faces).sum::<usize>(), info.faces);
-    assert_eq!(comps.iter().map(|c| c.euler).sum::<i64>(), info.euler);
+    assert_eq!(comps[1].counts.boundary_loops, 1);
+    assert_eq!(
+        comps.iter().map(|c| c.counts.faces).sum::<usize>(),
+        info.faces
+    );
+    assert_eq!(
+        comps.iter().map(|c| c.surface.euler).sum::<i64>(),
+        info.euler
+    );
     assert_eq!(comps.iter().map(|c| c.area).sum::<f64>(), info.area);
 }
 

@@ -7,6 +7,8 @@
 
 use std::collections::BTreeMap;
 
+use serde::Serialize;
+
 use super::soup::Soup;
 use crate::union_find::UnionFind;
 
@@ -17,18 +19,29 @@ pub(crate) const NONE: u32 = u32::MAX;
 /// [`Soup`] treats index `u32::MAX` as out of range.
 const POINT: u32 = u32::MAX;
 
-/// Combinatorial counts of one connected component (or of a whole mesh).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub(crate) struct Counts {
+/// Combinatorial counts of one connected component (or of a whole mesh),
+/// with the definitions of the [module documentation](super).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Counts {
+    /// Referenced vertices (V).
     pub vertices: usize,
+    /// Distinct undirected edges, self-loops included (E).
     pub edges: usize,
+    /// Valid faces, of every size (F).
     pub faces: usize,
+    /// Edges with exactly one side.
     pub boundary_edges: usize,
+    /// Connected pieces of the boundary-edge graph (b).
     pub boundary_loops: usize,
+    /// Edges with three or more sides.
     pub nonmanifold_edges: usize,
+    /// Vertices with more than one fan.
     pub nonmanifold_vertices: usize,
+    /// Two-sided edges whose two sides run the same way.
     pub misoriented_edges: usize,
+    /// Faces that use some vertex more than once.
     pub degenerate_faces: usize,
+    /// Edges whose two ends are the same vertex.
     pub self_loops: usize,
 }
 
@@ -66,6 +79,41 @@ impl Counts {
     pub(crate) fn genus(&self, components: usize) -> Option<i64> {
         let twice = 2 * components as i64 - self.euler() - self.boundary_loops as i64;
         (self.manifold() && self.oriented() && twice % 2 == 0).then_some(twice / 2)
+    }
+
+    /// The surface these counts describe, made of `components` components.
+    pub(crate) fn surface(&self, components: usize) -> Surface {
+        Surface {
+            closed: self.boundary_edges == 0,
+            manifold: self.manifold(),
+            oriented: self.oriented(),
+            euler: self.euler(),
+            genus: self.genus(components),
+        }
+    }
+}
+
+/// What a mesh's (or a component's) [`Counts`] say about its surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Surface {
+    /// No boundary edge.
+    pub closed: bool,
+    /// No non-manifold edge or vertex and no degenerate face.
+    pub manifold: bool,
+    /// No misoriented edge.
+    pub oriented: bool,
+    /// χ = V − E + F.
+    pub euler: i64,
+    /// Σ over components of (2 − χᵢ − bᵢ)/2; `None` unless manifold and
+    /// oriented.
+    pub genus: Option<i64>,
+}
+
+impl Surface {
+    /// Closed, manifold and oriented: a surface whose signed volume means
+    /// something.
+    pub fn bounds_volume(&self) -> bool {
+        self.closed && self.manifold && self.oriented
     }
 }
 

@@ -153,10 +153,25 @@ fn extrusion_moves_turns_and_scales_the_top() {
 }
 
 #[test]
-fn zero_distance_extrusion_is_valid() {
-    let mut m = prim("@cube");
-    let f = face(&m, 0);
-    expect_plain_delta(&mut m, f, 0.0, 1, (4, 8, 4));
+fn zero_distance_and_next_to_a_hole_extrusions_are_valid() {
+    for (spec, index, distance, count, delta) in [
+        ("@cube", 0, 0.0, 1, (4, 8, 4)),
+        // A corner quad of an open grid touches the boundary loop on two
+        // edges.
+        ("@plane:2:2", 0, 0.5, 2, (8, 16, 8)),
+    ] {
+        let mut m = prim(spec);
+        let f = face(&m, index);
+        expect_plain_delta(&mut m, f, distance, count, delta);
+    }
+}
+
+/// Checks that an extrusion was refused as too large (a count whose size
+/// would wrap) and left `m` as `m0` was.
+fn too_large_and_unchanged(result: Result<Extruded, ExtrudeError>, m: &Mesh, m0: &Mesh) {
+    let err = result.unwrap_err();
+    assert!(matches!(err, ExtrudeError::TooLarge { .. }), "{err}");
+    unchanged(m, m0);
 }
 
 #[test]
@@ -193,9 +208,8 @@ fn degenerate_parameters_are_refused_and_change_nothing() {
         unchanged(&m, &m0);
     }
     let mut m = m0.clone();
-    let err = extrude_face(&mut m, f, &ExtrudeParams::new(1.0, usize::MAX)).unwrap_err();
-    assert!(matches!(err, ExtrudeError::TooLarge { .. }), "{err}");
-    unchanged(&m, &m0);
+    let result = extrude_face(&mut m, f, &ExtrudeParams::new(1.0, usize::MAX));
+    too_large_and_unchanged(result, &m, &m0);
 }
 
 #[test]
@@ -252,14 +266,6 @@ fn faces_of_different_sizes_and_open_meshes() {
         expect_plain_delta(&mut m, f, 0.25, 1, (d, 2 * d, d));
         assert_eq!(m.hole_count(), holes, "{spec}");
     }
-}
-
-#[test]
-fn extruding_a_face_next_to_a_hole() {
-    // A corner quad of an open grid touches the boundary loop on two edges.
-    let mut m = prim("@plane:2:2");
-    let f = face(&m, 0);
-    expect_plain_delta(&mut m, f, 0.5, 2, (8, 16, 8));
 }
 
 #[test]
@@ -493,27 +499,29 @@ fn octahedral_extrusion_of_a_regular_triangle_is_a_regular_octahedron() {
 }
 
 #[test]
-fn dodecahedral_extrusion_of_a_regular_pentagon_is_a_regular_dodecahedron() {
-    let m = grows_regular(
-        "@dodecahedron",
-        11,
-        extrude_face_dodecahedral,
-        (15, 25, 10),
-        (10, 5),
-    );
-    is_two_glued(&m, "@dodecahedron");
-}
-
-#[test]
-fn icosahedral_extrusion_of_a_regular_triangle_is_a_regular_icosahedron() {
-    let m = grows_regular(
-        "@icosahedron",
-        19,
-        extrude_face_icosahedral,
-        (9, 27, 18),
-        (18, 3),
-    );
-    is_two_glued(&m, "@icosahedron");
+fn golden_extrusions_of_a_regular_face_are_regular_solids() {
+    // A regular pentagon grows a regular dodecahedron, a regular triangle
+    // a regular icosahedron, glued to the solid it stood on.
+    type Extrude = fn(&mut Mesh, FaceId, f64) -> Result<Extruded, ExtrudeError>;
+    for (spec, index, extrude, delta, sides) in [
+        (
+            "@dodecahedron",
+            11,
+            extrude_face_dodecahedral as Extrude,
+            (15, 25, 10),
+            (10, 5),
+        ),
+        (
+            "@icosahedron",
+            19,
+            extrude_face_icosahedral,
+            (9, 27, 18),
+            (18, 3),
+        ),
+    ] {
+        let m = grows_regular(spec, index, extrude, delta, sides);
+        is_two_glued(&m, spec);
+    }
 }
 
 #[test]
@@ -598,9 +606,8 @@ fn stellation_apex_and_refusals() {
         height_factor: 1.0,
         rings: usize::MAX,
     };
-    let err = extrude_face_dome(&mut m, face(&m0, 0), &endless).unwrap_err();
-    assert!(matches!(err, ExtrudeError::TooLarge { .. }), "{err}");
-    unchanged(&m, &m0);
+    let result = extrude_face_dome(&mut m, face(&m0, 0), &endless);
+    too_large_and_unchanged(result, &m, &m0);
 }
 
 #[test]

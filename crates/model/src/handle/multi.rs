@@ -461,14 +461,10 @@ mod tests {
             .unwrap()
     }
 
-    const AXES: [DVec3; 6] = [
-        DVec3::X,
-        DVec3::NEG_X,
-        DVec3::Y,
-        DVec3::NEG_Y,
-        DVec3::Z,
-        DVec3::NEG_Z,
-    ];
+    /// The six unit axis directions.
+    fn axes() -> [DVec3; 6] {
+        holey_testkit::AXES.map(DVec3::from_array)
+    }
 
     #[test]
     fn six_cubes_around_a_hub_become_one_sphere() {
@@ -478,10 +474,10 @@ mod tests {
         // selected quad: no subdivision. Each handle of s segments between
         // quads adds 4(s − 1) / 4(2s − 1) / 4s − 2. Seven components (six
         // cubes and the hub) joined by six handles: one sphere, genus 0.
-        let centres: Vec<DVec3> = AXES.iter().map(|&a| a * 4.0).collect();
+        let centres: Vec<DVec3> = axes().iter().map(|&a| a * 4.0).collect();
         let m0 = cubes(&centres);
         assert_eq!(m0.topology().component_count(), 6);
-        let faces: Vec<FaceId> = AXES
+        let faces: Vec<FaceId> = axes()
             .iter()
             .map(|&a| face_towards(&m0, -a, a * 3.0))
             .collect();
@@ -527,7 +523,7 @@ mod tests {
         // multi-face handle: the hub (8 / 12 / 6) and six handles between
         // quads; the first joins the hub, each of the other five adds a
         // handle: genus 0 + 6 − 1 = 5.
-        let mut m = cubes(&AXES.map(|a| a * 4.0));
+        let mut m = cubes(&axes().map(|a| a * 4.0));
         let (x, nx, y, ny, z, nz) = (
             DVec3::X * 4.0,
             DVec3::NEG_X * 4.0,
@@ -553,7 +549,7 @@ mod tests {
         let (v, e, f) = (m.vertex_count(), m.edge_count(), m.face_count());
         assert_eq!((v, e, f), (48, 72 + 5 * 4, 36 + 5 * 2));
         assert_eq!((m.topology().component_count(), m.genus()), (1, 0));
-        let faces: Vec<FaceId> = AXES
+        let faces: Vec<FaceId> = axes()
             .iter()
             .map(|&a| face_towards(&m, -a, a * 3.0))
             .collect();
@@ -687,8 +683,8 @@ mod tests {
 
     #[test]
     fn bad_selections_are_refused_and_leave_the_mesh_unchanged() {
-        let m0 = cubes(&AXES.map(|a| a * 4.0));
-        let faces: Vec<FaceId> = AXES
+        let m0 = cubes(&axes().map(|a| a * 4.0));
+        let faces: Vec<FaceId> = axes()
             .iter()
             .map(|&a| face_towards(&m0, -a, a * 3.0))
             .collect();

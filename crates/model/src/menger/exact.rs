@@ -10,9 +10,10 @@
 //! construction, and by the kernel's validation of the result).
 
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
+use std::hash::BuildHasherDefault;
 
 use holey_dlfl::{DVec3, Mesh, RawMesh, VertexId};
+use holey_geom::identity::MulHasher;
 
 use super::MengerError;
 
@@ -146,25 +147,6 @@ fn signed_volume(mesh: &Mesh) -> Result<f64, MengerError> {
     Ok(v)
 }
 
-/// A multiplicative hasher for the integer keys of the edge pairing.
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0.rotate_left(8) ^ u64::from(b)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (x ^ (x >> 29)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        self.0 ^= self.0 >> 32;
-    }
-}
-
 /// Builds the level-`level` true sponge on the parallelepiped `mesh`.
 pub(crate) fn build(
     mesh: &Mesh,
@@ -210,7 +192,7 @@ pub(crate) fn build(
         ..RawMesh::default()
     };
     raw.face_offsets.push(0);
-    let mut open: HashMap<u64, u32, BuildHasherDefault<KeyHasher>> = HashMap::default();
+    let mut open: HashMap<u64, u32, BuildHasherDefault<MulHasher>> = HashMap::default();
     let inv = 1.0 / n as f64;
     for x in 0..n {
         for y in 0..n {

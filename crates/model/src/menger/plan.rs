@@ -93,10 +93,8 @@ impl Plan {
         collapse_below: f64,
         level: usize,
     ) -> Result<Plan, MengerError> {
-        let holes = mesh.hole_count();
-        if holes > 0 {
-            return Err(MengerError::OpenSurface { holes });
-        }
+        mesh.require_closed()
+            .map_err(|holes| MengerError::OpenSurface { holes })?;
         if mesh.face_count() == 0 {
             return Err(MengerError::Empty);
         }

@@ -50,15 +50,30 @@ fn iterate_expecting(spec: &str, expected: &[(usize, usize, usize, i64, usize)])
 }
 
 #[test]
-fn tetrahedron_matches_the_thesis_counts() {
-    iterate_expecting(
-        "@tetrahedron",
-        &[
-            (10, 30, 16, 3, 6),
-            (34, 126, 64, 15, 30),
-            (130, 510, 256, 63, 126),
-        ],
-    );
+fn tetrahedron_and_cube_match_the_thesis_and_the_closed_form() {
+    for (spec, expected) in [
+        // The thesis's counts.
+        (
+            "@tetrahedron",
+            [
+                (10, 30, 16, 3, 6),
+                (34, 126, 64, 15, 30),
+                (130, 510, 256, 63, 126),
+            ],
+        ),
+        // Derived by hand from the closed form (module docs), starting
+        // from (V, E, F, L) = (8, 12, 6, 0): n = 12, 48, 192.
+        (
+            "@cube",
+            [
+                (20, 60, 32, 5, 12),
+                (68, 252, 128, 29, 60),
+                (260, 1020, 512, 125, 252),
+            ],
+        ),
+    ] {
+        iterate_expecting(spec, &expected);
+    }
 }
 
 #[test]
@@ -72,20 +87,6 @@ fn three_iterations_at_once_equal_three_single_ones() {
     assert_eq!(subdivided, [6, 24, 96]);
     let cuts: Vec<usize> = report.steps.iter().map(|s| s.corner_cuts).collect();
     assert_eq!(cuts, [12, 48, 192]);
-}
-
-#[test]
-fn cube_follows_the_closed_form() {
-    // Derived by hand from the closed form (module docs), starting from
-    // (V, E, F, L) = (8, 12, 6, 0): n = 12, 48, 192.
-    iterate_expecting(
-        "@cube",
-        &[
-            (20, 60, 32, 5, 12),
-            (68, 252, 128, 29, 60),
-            (260, 1020, 512, 125, 252),
-        ],
-    );
 }
 
 #[test]

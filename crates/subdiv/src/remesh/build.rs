@@ -96,8 +96,16 @@ impl Builder {
         }
     }
 
-    /// Appends a face of the given corners (vertex, label), in walk order.
-    pub fn face(&mut self, hole: bool, corners: &[(u32, usize)]) {
+    /// Appends a face of the surface (not a hole) of the given corners
+    /// (vertex, label), in walk order: the faces the schemes write one by
+    /// one are never holes.
+    pub fn face(&mut self, corners: &[(u32, usize)]) {
+        self.add_face(false, corners);
+    }
+
+    /// Appends a face, a hole if `hole`, of the given corners (vertex,
+    /// label), in walk order.
+    fn add_face(&mut self, hole: bool, corners: &[(u32, usize)]) {
         let face = self.out.hole.len() as u32;
         self.out.off.push(self.out.cv.len() as u32);
         self.out.hole.push(hole);
@@ -142,7 +150,7 @@ impl Builder {
         for c in corners {
             each(c, &mut walk);
         }
-        self.face(hole, &walk);
+        self.add_face(hole, &walk);
         self.walk = walk;
     }
 

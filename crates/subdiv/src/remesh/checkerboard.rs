@@ -34,8 +34,7 @@ pub(super) fn step(src: &Flat, budget: &Budget, t: f64) -> Result<Flat, SubdivEr
     budget.check(sizes)?;
     let mut pos = m.kept_positions(sizes.v);
     pos.extend(m.cut_points(t));
-    for face in m.normal_faces() {
-        let (lo, hi) = m.range(face);
+    for (_, lo, hi) in m.normal_face_ranges() {
         pos.extend(
             (lo..hi).map(|c| (1.0 - 2.0 * t) * m.p(c) + t * (m.p(src.prev(c)) + m.p(src.next(c)))),
         );
@@ -55,24 +54,18 @@ pub(super) fn step(src: &Flat, budget: &Budget, t: f64) -> Result<Flat, SubdivEr
             b.walk(false, lo..hi, |c, w| w.push((inner(c), l(c, 0))));
             for c in lo..hi {
                 let (p, d) = (src.prev(c), src.next(c));
-                b.face(
-                    false,
-                    &[
-                        (far(p), m.third(p, 2)),
-                        (src.cv[c], m.third(c, 0)),
-                        (near(c), a_edge(c, 0)),
-                        (inner(c), b_edge(c, 0)),
-                    ],
-                );
-                b.face(
-                    false,
-                    &[
-                        (near(c), m.third(c, 1)),
-                        (far(c), b_edge(d, 1)),
-                        (inner(d), l(c, 1)),
-                        (inner(c), a_edge(c, 1)),
-                    ],
-                );
+                b.face(&[
+                    (far(p), m.third(p, 2)),
+                    (src.cv[c], m.third(c, 0)),
+                    (near(c), a_edge(c, 0)),
+                    (inner(c), b_edge(c, 0)),
+                ]);
+                b.face(&[
+                    (near(c), m.third(c, 1)),
+                    (far(c), b_edge(d, 1)),
+                    (inner(d), l(c, 1)),
+                    (inner(c), a_edge(c, 1)),
+                ]);
             }
         },
     );

@@ -36,8 +36,9 @@
 
 use glam::DVec3;
 
+use super::DooSabinBcNewParams;
 use super::build::{Budget, Builder, Sizes};
-use super::map::{Map, lab, scale_about_centroid, tension_mask};
+use super::map::{Map, lab, move_interior, scale_about_centroid, tension_mask};
 use crate::SubdivError;
 use crate::flat::Flat;
 
@@ -60,8 +61,7 @@ fn doo_sabin_alpha(n: usize) -> f64 {
 pub(super) fn step(
     src: &Flat,
     budget: &Budget,
-    scale: f64,
-    length: f64,
+    params: DooSabinBcNewParams,
 ) -> Result<Flat, SubdivError> {
     let m = Map::new(src);
     let st = m.st;
@@ -73,7 +73,7 @@ pub(super) fn step(
         c: 2 * nc + 10 * st.e_nn + 5 * st.b_sides + st.hc + st.ps,
     };
     budget.check(sizes)?;
-    let pos = positions(&m, sizes.v, scale, length);
+    let pos = positions(&m, sizes.v, params);
     let v = |c: usize| src.cv[c];
     let p = |c: usize| (st.v + 2 * m.nidx(c)) as u32;
     let q = |c: usize| (st.v + 2 * m.nidx(c) + 1) as u32;
@@ -90,31 +90,25 @@ pub(super) fn step(
                 w.push((q(c), rim(c, 1, 0)));
             });
             for (c, d) in m.boundary_corners(lo, hi) {
-                b.face(
-                    false,
-                    &[
-                        (q(c), rim(c, 0, 1)),
-                        (p(c), spoke(c, 1)),
-                        (v(c), old(c, m.side(c))),
-                        (v(d), spoke(d, 0)),
-                        (p(d), rim(c, 1, 1)),
-                    ],
-                );
+                b.face(&[
+                    (q(c), rim(c, 0, 1)),
+                    (p(c), spoke(c, 1)),
+                    (v(c), old(c, m.side(c))),
+                    (v(d), spoke(d, 0)),
+                    (p(d), rim(c, 1, 1)),
+                ]);
             }
         },
     );
     for (_, a, bb, na, nb) in m.interior_edges() {
         for (x, y, ny) in [(a, bb, nb), (bb, a, na)] {
-            b.face(
-                false,
-                &[
-                    (q(x), rim(x, 0, 1)),
-                    (p(x), spoke(x, 1)),
-                    (v(x), spoke(ny, 0)),
-                    (p(ny), rim(y, 1, 1)),
-                    (q(y), old(y, m.side(y))),
-                ],
-            );
+            b.face(&[
+                (q(x), rim(x, 0, 1)),
+                (p(x), spoke(x, 1)),
+                (v(x), spoke(ny, 0)),
+                (p(ny), rim(y, 1, 1)),
+                (q(y), old(y, m.side(y))),
+            ]);
         }
     }
     b.finish()
@@ -125,14 +119,13 @@ pub(super) fn step(
 /// `c`'s edge), scaled about its centroid by `|scale|` unless that is 0
 /// or 1; then every interior old vertex moved to
 /// `length · p + (1 − length) · avg P(c)` over its corners.
-fn positions(m: &Map, nv: usize, scale: f64, length: f64) -> Vec<DVec3> {
+fn positions(m: &Map, nv: usize, params: DooSabinBcNewParams) -> Vec<DVec3> {
     let src = m.f;
     let mut pos = m.kept_positions(nv);
-    let scale = scale.abs();
+    let (scale, length) = (params.scale.abs(), params.length);
     let mut pts = Vec::new();
     let mut out = Vec::new();
-    for face in m.normal_faces() {
-        let (lo, hi) = m.range(face);
+    for (_, lo, hi) in m.normal_face_ranges() {
         pts.clear();
         for c in lo..hi {
             pts.push(m.p(c));
@@ -148,11 +141,9 @@ fn positions(m: &Map, nv: usize, scale: f64, length: f64) -> Vec<DVec3> {
     }
     if length != 1.0 {
         let sums = m.interior_sums(|c| pos[src.pos.len() + 2 * m.nidx(c)]);
-        for (x, sum) in pos.iter_mut().zip(sums) {
-            if let Some((sum, k)) = sum {
-                *x = length * *x + (1.0 - length) * sum / k;
-            }
-        }
+        move_interior(&mut pos, sums, |p, sum, k| {
+            length * p + (1.0 - length) * sum / k
+        });
     }
     pos
 }

@@ -18,6 +18,7 @@
 
 use glam::DVec3;
 
+use super::Extrusion;
 use super::build::{Budget, Builder, Sizes};
 use super::map::{Map, lab, scale_about_centroid};
 use crate::SubdivError;
@@ -29,12 +30,8 @@ use crate::flat::Flat;
 /// face's area). Edges: the old
 /// ones, then the ring's edges `L`, then the verticals `W`, by normal
 /// corner.
-pub(super) fn global(
-    src: &Flat,
-    budget: &Budget,
-    length: f64,
-    scale: f64,
-) -> Result<Flat, SubdivError> {
+pub(super) fn global(src: &Flat, budget: &Budget, lift: Extrusion) -> Result<Flat, SubdivError> {
+    let Extrusion { length, scale } = lift;
     let m = Map::new(src);
     let st = m.st;
     let sizes = Sizes {
@@ -45,8 +42,7 @@ pub(super) fn global(
     };
     budget.check(sizes)?;
     let mut pos = m.kept_positions(sizes.v);
-    for face in m.normal_faces() {
-        let (lo, hi) = m.range(face);
+    for (face, lo, hi) in m.normal_face_ranges() {
         let (z, n) = (m.centroid(face), m.normal(face));
         let lift = length * m.size(face) * n;
         pos.extend((lo..hi).map(|c| z + scale * (m.p(c) - z) + lift));
@@ -62,15 +58,12 @@ pub(super) fn global(
         |b, _, lo, hi| {
             for c in lo..hi {
                 let d = src.next(c);
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], m.own(c)),
-                        (src.cv[d], up(d, 0)),
-                        (top(d), ring(c, 1)),
-                        (top(c), up(c, 1)),
-                    ],
-                );
+                b.face(&[
+                    (src.cv[c], m.own(c)),
+                    (src.cv[d], up(d, 0)),
+                    (top(d), ring(c, 1)),
+                    (top(c), up(c, 1)),
+                ]);
             }
             b.walk(false, lo..hi, |c, w| w.push((top(c), ring(c, 0))));
         },
@@ -97,12 +90,8 @@ const RINGS: usize = DOME.len();
 /// then per normal face its seven rings of `4n` vertices. Edges: the
 /// quarters `4e + k` (`k` from corner `edges[e][0]`'s end), then per
 /// normal face its ring edges and its verticals, ring by ring.
-pub(super) fn dome(
-    src: &Flat,
-    budget: &Budget,
-    length: f64,
-    scale: f64,
-) -> Result<Flat, SubdivError> {
+pub(super) fn dome(src: &Flat, budget: &Budget, lift: Extrusion) -> Result<Flat, SubdivError> {
+    let Extrusion { length, scale } = lift;
     let m = Map::new(src);
     let st = m.st;
     let per = 4 * RINGS; // ring vertices per input corner
@@ -134,8 +123,7 @@ pub(super) fn dome(
     let mut pts = Vec::new();
     let mut next = Vec::new();
     let mut trig = Vec::new();
-    for face in m.normal_faces() {
-        let (lo, hi) = m.range(face);
+    for (face, lo, hi) in m.normal_face_ranges() {
         r0.clear();
         for c in lo..hi {
             ring0(c, &mut r0);
@@ -186,15 +174,12 @@ pub(super) fn dome(
                 } else {
                     ring_edge(r - 1, i, 0)
                 };
-                b.face(
-                    false,
-                    &[
-                        (vert(r - 1, i), below),
-                        (vert(r - 1, i + 1), up(r, i + 1, 0)),
-                        (vert(r, i + 1), ring_edge(r, i, 1)),
-                        (vert(r, i), up(r, i, 1)),
-                    ],
-                );
+                b.face(&[
+                    (vert(r - 1, i), below),
+                    (vert(r - 1, i + 1), up(r, i + 1, 0)),
+                    (vert(r, i + 1), ring_edge(r, i, 1)),
+                    (vert(r, i), up(r, i, 1)),
+                ]);
             }
         }
         b.walk(false, 0..w, |i, out| {

@@ -13,7 +13,7 @@
 use glam::DVec3;
 
 use super::build::{Budget, Builder, Sizes};
-use super::map::{Map, lab};
+use super::map::{Map, lab, move_interior};
 use crate::SubdivError;
 use crate::flat::{Flat, Kind};
 
@@ -46,14 +46,11 @@ fn corners_and_holes(
         |b, face, lo, hi| {
             for c in lo..hi {
                 let p = src.prev(c);
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], m.half(c, false)),
-                        (ep(c), cut(c, 0)),
-                        (ep(p), m.half(p, true)),
-                    ],
-                );
+                b.face(&[
+                    (src.cv[c], m.half(c, false)),
+                    (ep(c), cut(c, 0)),
+                    (ep(p), m.half(p, true)),
+                ]);
             }
             middle(b, face, lo, hi);
         },
@@ -147,11 +144,9 @@ fn style_positions(m: &Map, nv: usize, length: f64) -> Vec<DVec3> {
     let mut pos = m.kept_positions(nv);
     if length != 1.0 {
         let sums = m.interior_sums(|c| m.midpoint(m.edge(c)));
-        for (p, sum) in pos.iter_mut().zip(sums) {
-            if let Some((sum, k)) = sum {
-                *p = length * *p + (1.0 - length) * sum / k;
-            }
-        }
+        move_interior(&mut pos, sums, |p, sum, k| {
+            length * p + (1.0 - length) * sum / k
+        });
     }
     pos.extend(m.midpoints());
     pos
@@ -182,14 +177,11 @@ pub(super) fn fractal(src: &Flat, budget: &Budget, offset: f64) -> Result<Flat, 
         let spoke = |c: usize, side: u32| lab(2 * ne + nc + m.nidx(c), side);
         for c in lo..hi {
             let d = if c + 1 == hi { lo } else { c + 1 };
-            b.face(
-                false,
-                &[
-                    (nv + m.edge(c) as u32, lab(2 * ne + m.nidx(d), 1)),
-                    (nv + m.edge(d) as u32, spoke(d, 0)),
-                    (z, spoke(c, 1)),
-                ],
-            );
+            b.face(&[
+                (nv + m.edge(c) as u32, lab(2 * ne + m.nidx(d), 1)),
+                (nv + m.edge(d) as u32, spoke(d, 0)),
+                (z, spoke(c, 1)),
+            ]);
         }
     });
     b.finish()

@@ -54,6 +54,15 @@ pub(super) struct Stats {
     pub nt_corners: usize,
 }
 
+impl Stats {
+    /// The edges that do not have a normal face on both sides: what the
+    /// schemes that delete the interior old edges keep (numbered by
+    /// [`Map::kept_edges`]).
+    pub fn kept_edge_count(&self) -> usize {
+        self.e - self.e_nn
+    }
+}
+
 /// A read-only view of one step's input: the flat map and, per face, its
 /// kind and where its corners fall in the numberings the schemes use.
 pub(super) struct Map<'a> {
@@ -204,6 +213,14 @@ impl<'a> Map<'a> {
         (0..self.f.face_count()).filter(|&face| self.kind[face] == Kind::Normal)
     }
 
+    /// The normal faces with their corner ranges, as `(face, lo, hi)`.
+    pub fn normal_face_ranges(&self) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+        self.normal_faces().map(|face| {
+            let (lo, hi) = self.range(face);
+            (face, lo, hi)
+        })
+    }
+
     /// The corners `c` of face `lo..hi` whose edge is not interior, each
     /// as `(c, next c)`.
     pub fn boundary_corners(
@@ -322,8 +339,7 @@ impl<'a> Map<'a> {
     pub fn interior_sums(&self, value: impl Fn(usize) -> DVec3) -> Vec<Option<(DVec3, f64)>> {
         let (n, h) = self.corner_counts();
         let mut sum = vec![DVec3::ZERO; self.f.pos.len()];
-        for face in self.normal_faces() {
-            let (lo, hi) = self.range(face);
+        for (_, lo, hi) in self.normal_face_ranges() {
             for c in lo..hi {
                 sum[self.f.cv[c] as usize] += value(c);
             }
@@ -477,6 +493,22 @@ pub(super) fn tension_mask(s: &[DVec3], alpha: impl Fn(usize) -> f64, out: &mut 
         let (si, co) = (std::f64::consts::TAU * i as f64 / nf).sin_cos();
         let others = 3.0 * (sum - *q) + 2.0 * (co * cs + si * sn - *q);
         out[i] = a * *q + w * others;
+    }
+}
+
+/// Moves every vertex that has a sum in `sums` (those of
+/// [`Map::interior_sums`]) to `rule(p, sum, k)`, `p` its position, `sum`
+/// and `k` its sum and corner count; the others stay. The smoothing
+/// schemes differ only in `rule`.
+pub(super) fn move_interior(
+    pos: &mut [DVec3],
+    sums: Vec<Option<(DVec3, f64)>>,
+    rule: impl Fn(DVec3, DVec3, f64) -> DVec3,
+) {
+    for (p, sum) in pos.iter_mut().zip(sums) {
+        if let Some((sum, k)) = sum {
+            *p = rule(*p, sum, k);
+        }
     }
 }
 

@@ -851,6 +851,34 @@ impl RemeshParams {
     }
 }
 
+/// The two numbers both extrusion steps read: the copy moves
+/// `length × √A` along the face's unit normal (`A` the face's area) and is
+/// scaled by `scale` about its centroid (the dome applies both per ring,
+/// times its own constants).
+#[derive(Clone, Copy, Debug)]
+struct Extrusion {
+    pub length: f64,
+    pub scale: f64,
+}
+
+/// Root-4's two numbers: how far each interior old vertex moves towards
+/// the copy vertices joined to it (`weight`), and where along each edge
+/// the points the copy's mask averages lie (`twist`, 0 at its start).
+#[derive(Clone, Copy, Debug)]
+struct Root4Params {
+    pub weight: f64,
+    pub twist: f64,
+}
+
+/// Doo–Sabin BC New's two numbers: the scale of each face's copy about
+/// its centroid (TopMod's `sf`) and the weight of each old vertex's own
+/// position when it moves (`length`).
+#[derive(Clone, Copy, Debug)]
+struct DooSabinBcNewParams {
+    pub scale: f64,
+    pub length: f64,
+}
+
 /// One primitive step on the flat map; a scheme's level is a sequence of
 /// them ([`plan`]).
 #[derive(Clone, Copy, Debug)]
@@ -869,14 +897,14 @@ enum Op {
     CornerCutting { alpha: f64 },
     InsetCornerCutting { thickness: f64 },
     DooSabinBc,
-    DooSabinBcNew { scale: f64, length: f64 },
+    DooSabinBcNew(DooSabinBcNewParams),
     Honeycomb,
-    Root4 { weight: f64, twist: f64 },
+    Root4(Root4Params),
     Pentagonal { offset: f64 },
     PentagonPreserving { scale: f64 },
     Checkerboard { thickness: f64 },
-    GlobalExtrude { length: f64, scale: f64 },
-    Dome { length: f64, scale: f64 },
+    GlobalExtrude(Extrusion),
+    Dome(Extrusion),
     Omnitruncate { scale: f64 },
     CatmullClark,
     DooSabin,
@@ -885,10 +913,14 @@ enum Op {
 /// The steps of one level of `scheme`.
 fn plan(scheme: RemeshScheme, p: &RemeshParams) -> Vec<Op> {
     use RemeshScheme as S;
-    let root4 = Op::Root4 {
+    let root4 = Op::Root4(Root4Params {
         weight: p.root4_weight,
         twist: p.root4_twist,
-    };
+    });
+    let global_extrude = Op::GlobalExtrude(Extrusion {
+        length: p.extrude_length,
+        scale: p.extrude_scale,
+    });
     let dual_of = |op: Op| vec![Op::Dual, op, Op::Dual];
     match scheme {
         S::Dual => vec![Op::Dual],
@@ -946,14 +978,8 @@ fn plan(scheme: RemeshScheme, p: &RemeshParams) -> Vec<Op> {
         }],
         S::Root4 | S::HexagonPreserving => vec![root4],
         S::DualLoop => dual_of(Op::Loop),
-        S::GlobalExtrude => vec![Op::GlobalExtrude {
-            length: p.extrude_length,
-            scale: p.extrude_scale,
-        }],
-        S::DualGlobalExtrude => dual_of(Op::GlobalExtrude {
-            length: p.extrude_length,
-            scale: p.extrude_scale,
-        }),
+        S::GlobalExtrude => vec![global_extrude],
+        S::DualGlobalExtrude => dual_of(global_extrude),
         S::Checkerboard => vec![Op::Checkerboard {
             thickness: p.checkerboard_thickness,
         }],
@@ -980,14 +1006,14 @@ fn plan(scheme: RemeshScheme, p: &RemeshParams) -> Vec<Op> {
             },
         ],
         S::DooSabinBc => vec![Op::DooSabinBc],
-        S::DooSabinBcNew => vec![Op::DooSabinBcNew {
+        S::DooSabinBcNew => vec![Op::DooSabinBcNew(DooSabinBcNewParams {
             scale: p.doo_sabin_bc_new_scale,
             length: p.doo_sabin_bc_new_length,
-        }],
-        S::Dome => vec![Op::Dome {
+        })],
+        S::Dome => vec![Op::Dome(Extrusion {
             length: p.dome_length,
             scale: p.dome_scale,
-        }],
+        })],
         S::SubdivideFace if p.subdivide_face_quads => vec![Op::QuadSplit],
         S::SubdivideFace => vec![Op::Stellate {
             height: 0.0,
@@ -1024,16 +1050,14 @@ impl Op {
                 corner_cut::step(src, budget, corner_cut::Rule::Inset(thickness))
             }
             Op::DooSabinBc => corner_cut::doo_sabin_bc(src, budget),
-            Op::DooSabinBcNew { scale, length } => {
-                doo_sabin_bc_new::step(src, budget, scale, length)
-            }
+            Op::DooSabinBcNew(params) => doo_sabin_bc_new::step(src, budget, params),
             Op::Honeycomb => honeycomb::step(src, budget),
-            Op::Root4 { weight, twist } => root4::step(src, budget, weight, twist),
+            Op::Root4(params) => root4::step(src, budget, params),
             Op::Pentagonal { offset } => pentagonal::pentagonalize(src, budget, offset),
             Op::PentagonPreserving { scale } => pentagonal::preserve(src, budget, scale),
             Op::Checkerboard { thickness } => checkerboard::step(src, budget, thickness),
-            Op::GlobalExtrude { length, scale } => extrude::global(src, budget, length, scale),
-            Op::Dome { length, scale } => extrude::dome(src, budget, length, scale),
+            Op::GlobalExtrude(lift) => extrude::global(src, budget, lift),
+            Op::Dome(lift) => extrude::dome(src, budget, lift),
             Op::Omnitruncate { scale } => omnitruncate::step(src, budget, scale),
             Op::CatmullClark => corner_cut::catmull_clark(src, budget),
             Op::DooSabin => corner_cut::doo_sabin(src, budget),

@@ -63,15 +63,12 @@ pub(super) fn step(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, Subd
     });
     for &[a, bb] in &src.edges {
         let (a, bb) = (a as usize, bb as usize);
-        b.face(
-            false,
-            &[
-                (t2(a), g(a, 1)),
-                (t1(a), rung(a, 0)),
-                (t2(bb), g(bb, 1)),
-                (t1(bb), rung(bb, 0)),
-            ],
-        );
+        b.face(&[
+            (t2(a), g(a, 1)),
+            (t1(a), rung(a, 0)),
+            (t2(bb), g(bb, 1)),
+            (t1(bb), rung(bb, 0)),
+        ]);
     }
     b.vertex_faces(&m, |c, w| {
         let p = src.prev(c);

@@ -67,16 +67,13 @@ pub(super) fn pentagonalize(src: &Flat, budget: &Budget, offset: f64) -> Result<
             let z = (zbase + m.nrank[face] as usize) as u32;
             for c in lo..hi {
                 let d = src.next(c);
-                b.face(
-                    false,
-                    &[
-                        (z, spoke(c, 0)),
-                        (near(c), m.third(c, 1)),
-                        (far(c), m.third(c, 2)),
-                        (src.cv[d], m.third(d, 0)),
-                        (near(d), spoke(d, 1)),
-                    ],
-                );
+                b.face(&[
+                    (z, spoke(c, 0)),
+                    (near(c), m.third(c, 1)),
+                    (far(c), m.third(c, 2)),
+                    (src.cv[d], m.third(d, 0)),
+                    (near(d), spoke(d, 1)),
+                ]);
             }
         },
     );
@@ -101,8 +98,7 @@ pub(super) fn preserve(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, 
     pos.extend(m.midpoints());
     let nv = st.v;
     let mid = |c: usize| (nv + m.edge(c)) as u32;
-    for face in m.normal_faces() {
-        let (lo, hi) = m.range(face);
+    for (face, lo, hi) in m.normal_face_ranges() {
         let centre = m.centroid(face);
         // The midpoints' centroid is the corners' centroid.
         for c in lo..hi {
@@ -121,16 +117,13 @@ pub(super) fn preserve(src: &Flat, budget: &Budget, scale: f64) -> Result<Flat, 
             b.walk(false, lo..hi, |c, w| w.push((inner(c), l(src.next(c), 0))));
             for c in lo..hi {
                 let p = src.prev(c);
-                b.face(
-                    false,
-                    &[
-                        (mid(p), m.half(p, true)),
-                        (src.cv[c], m.half(c, false)),
-                        (mid(c), q(c, 0)),
-                        (inner(c), l(c, 1)),
-                        (inner(p), q(p, 1)),
-                    ],
-                );
+                b.face(&[
+                    (mid(p), m.half(p, true)),
+                    (src.cv[c], m.half(c, false)),
+                    (mid(c), q(c, 0)),
+                    (inner(c), l(c, 1)),
+                    (inner(p), q(p, 1)),
+                ]);
             }
         },
     );

@@ -41,15 +41,12 @@ pub(super) fn step(src: &Flat, budget: &Budget) -> Result<Flat, SubdivError> {
             let z = zbase + m.nrank[face];
             for c in lo..hi {
                 let p = src.prev(c);
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], m.half(c, false)),
-                        (ep(c), spoke(c, 0)),
-                        (z, spoke(p, 1)),
-                        (ep(p), m.half(p, true)),
-                    ],
-                );
+                b.face(&[
+                    (src.cv[c], m.half(c, false)),
+                    (ep(c), spoke(c, 0)),
+                    (z, spoke(p, 1)),
+                    (ep(p), m.half(p, true)),
+                ]);
             }
         },
     );

@@ -13,35 +13,30 @@
 
 use glam::DVec3;
 
+use super::Root4Params;
 use super::build::{Budget, Builder, Sizes};
-use super::map::{Map, honeycomb_alpha, lab, tension_mask};
+use super::map::{Map, honeycomb_alpha, lab, move_interior, tension_mask};
 use crate::SubdivError;
 use crate::flat::Flat;
 
 /// One level. Output vertices: the input's, then `I(c)` by normal corner.
 /// Edges: the kept old edges, then `L`, then `J`, each by normal corner.
-pub(super) fn step(
-    src: &Flat,
-    budget: &Budget,
-    weight: f64,
-    twist: f64,
-) -> Result<Flat, SubdivError> {
+pub(super) fn step(src: &Flat, budget: &Budget, params: Root4Params) -> Result<Flat, SubdivError> {
     let m = Map::new(src);
     let st = m.st;
-    let kept_count = st.e - st.e_nn;
     let sizes = Sizes {
         v: st.v + st.nc,
-        e: kept_count + 2 * st.nc,
+        e: st.kept_edge_count() + 2 * st.nc,
         f: st.nf + st.e_nn + st.b_sides + st.hf + st.ps,
         c: st.nc + 6 * st.e_nn + 4 * st.b_sides + st.hc + st.ps,
     };
     budget.check(sizes)?;
-    let pos = positions(&m, sizes.v, weight, twist);
+    let pos = positions(&m, sizes.v, params);
     let kept = m.kept_edges();
     let old = |c: usize| lab(kept[m.edge(c)] as usize, m.side(c));
     let inner = |c: usize| (st.v + m.nidx(c)) as u32;
-    let l = |c: usize, side: u32| lab(kept_count + m.nidx(c), side);
-    let j = |c: usize, side: u32| lab(kept_count + st.nc + m.nidx(c), side);
+    let l = |c: usize, side: u32| lab(st.kept_edge_count() + m.nidx(c), side);
+    let j = |c: usize, side: u32| lab(st.kept_edge_count() + st.nc + m.nidx(c), side);
     let mut b = Builder::new(pos, sizes);
     b.kept_faces(
         &m,
@@ -49,30 +44,24 @@ pub(super) fn step(
         |b, _, lo, hi| {
             b.walk(false, lo..hi, |c, w| w.push((inner(c), l(c, 0))));
             for (c, d) in m.boundary_corners(lo, hi) {
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], old(c)),
-                        (src.cv[d], j(d, 0)),
-                        (inner(d), l(c, 1)),
-                        (inner(c), j(c, 1)),
-                    ],
-                );
+                b.face(&[
+                    (src.cv[c], old(c)),
+                    (src.cv[d], j(d, 0)),
+                    (inner(d), l(c, 1)),
+                    (inner(c), j(c, 1)),
+                ]);
             }
         },
     );
     for (_, a, bb, na, nb) in m.interior_edges() {
-        b.face(
-            false,
-            &[
-                (src.cv[a], j(nb, 0)),
-                (inner(nb), l(bb, 1)),
-                (inner(bb), j(bb, 1)),
-                (src.cv[bb], j(na, 0)),
-                (inner(na), l(a, 1)),
-                (inner(a), j(a, 1)),
-            ],
-        );
+        b.face(&[
+            (src.cv[a], j(nb, 0)),
+            (inner(nb), l(bb, 1)),
+            (inner(bb), j(bb, 1)),
+            (src.cv[bb], j(na, 0)),
+            (inner(na), l(a, 1)),
+            (inner(a), j(a, 1)),
+        ]);
     }
     b.finish()
 }
@@ -82,13 +71,13 @@ pub(super) fn step(
 /// `weight` towards the average of the copy vertices joined to it (TopMod
 /// moves it towards the midpoints of its edges after the old edges are
 /// gone, which are these). Boundary vertices stay.
-fn positions(m: &Map, nv: usize, weight: f64, twist: f64) -> Vec<DVec3> {
+fn positions(m: &Map, nv: usize, params: Root4Params) -> Vec<DVec3> {
+    let Root4Params { weight, twist } = params;
     let src = m.f;
     let mut pos = m.kept_positions(nv);
     let mut pts = Vec::new();
     let mut out = Vec::new();
-    for face in m.normal_faces() {
-        let (lo, hi) = m.range(face);
+    for (_, lo, hi) in m.normal_face_ranges() {
         pts.clear();
         pts.extend((lo..hi).map(|c| (1.0 - twist) * m.p(c) + twist * m.p(src.next(c))));
         out.clear();
@@ -98,11 +87,9 @@ fn positions(m: &Map, nv: usize, weight: f64, twist: f64) -> Vec<DVec3> {
     }
     if weight != 0.0 {
         let sums = m.interior_sums(|c| pos[src.pos.len() + m.nidx(c)]);
-        for (p, sum) in pos.iter_mut().zip(sums) {
-            if let Some((sum, k)) = sum {
-                *p = (1.0 - weight) * *p + weight * sum / k;
-            }
-        }
+        move_interior(&mut pos, sums, |p, sum, k| {
+            (1.0 - weight) * p + weight * sum / k
+        });
     }
     pos
 }

@@ -13,7 +13,7 @@
 use glam::DVec3;
 
 use super::build::{Budget, Builder, Sizes};
-use super::map::{Map, lab};
+use super::map::{Map, lab, move_interior};
 use super::stellate::hole_side_triangles;
 use crate::SubdivError;
 use crate::flat::Flat;
@@ -38,22 +38,16 @@ pub(super) fn step(src: &Flat, budget: &Budget, smooth: bool) -> Result<Flat, Su
     let mut b = Builder::new(pos, sizes);
     hole_side_triangles(&mut b, &m, |c| m.own(c), zc, spoke);
     for (e, a, bb, na, nb) in m.interior_edges() {
-        b.face(
-            false,
-            &[
-                (src.cv[a], spoke(nb, 0)),
-                (zc(bb), lab(e, 0)),
-                (zc(a), spoke(a, 1)),
-            ],
-        );
-        b.face(
-            false,
-            &[
-                (zc(bb), spoke(bb, 1)),
-                (src.cv[bb], spoke(na, 0)),
-                (zc(a), lab(e, 1)),
-            ],
-        );
+        b.face(&[
+            (src.cv[a], spoke(nb, 0)),
+            (zc(bb), lab(e, 0)),
+            (zc(a), spoke(a, 1)),
+        ]);
+        b.face(&[
+            (zc(bb), spoke(bb, 1)),
+            (src.cv[bb], spoke(na, 0)),
+            (zc(a), lab(e, 1)),
+        ]);
     }
     b.finish()
 }
@@ -67,12 +61,10 @@ fn positions(m: &Map, nv: usize, smooth: bool) -> Vec<DVec3> {
     let mut pos = m.kept_positions(nv);
     if smooth {
         let sums = m.interior_sums(|c| m.p(src.next(c)));
-        for (p, sum) in pos.iter_mut().zip(sums) {
-            if let Some((sum, k)) = sum {
-                let alpha = (4.0 - 2.0 * (std::f64::consts::TAU / k).cos()) / 9.0;
-                *p = (1.0 - alpha) * *p + alpha * sum / k;
-            }
-        }
+        move_interior(&mut pos, sums, |p, sum, k| {
+            let alpha = (4.0 - 2.0 * (std::f64::consts::TAU / k).cos()) / 9.0;
+            (1.0 - alpha) * p + alpha * sum / k
+        });
     }
     pos.extend(m.normal_faces().map(|face| m.centroid(face)));
     pos

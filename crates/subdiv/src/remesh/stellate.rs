@@ -75,14 +75,11 @@ pub(super) fn stellate(
             let n = hi - lo;
             for j in 0..n {
                 let (c, d) = (lo + j, lo + (j + 1) % n);
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], m.own(c)),
-                        (src.cv[d], lab(spoke + (j + 1) % n, 0)),
-                        (z, lab(spoke + j, 1)),
-                    ],
-                );
+                b.face(&[
+                    (src.cv[c], m.own(c)),
+                    (src.cv[d], lab(spoke + (j + 1) % n, 0)),
+                    (z, lab(spoke + j, 1)),
+                ]);
             }
             z += 1;
             spoke += n;
@@ -112,14 +109,11 @@ pub(super) fn hole_side_triangles(
         |c, hole| hole.push((src.cv[c], old(c))),
         |b, _, lo, hi| {
             for (c, d) in m.boundary_corners(lo, hi) {
-                b.face(
-                    false,
-                    &[
-                        (src.cv[c], old(c)),
-                        (src.cv[d], spoke(d, 0)),
-                        (centre(c), spoke(c, 1)),
-                    ],
-                );
+                b.face(&[
+                    (src.cv[c], old(c)),
+                    (src.cv[d], spoke(d, 0)),
+                    (centre(c), spoke(c, 1)),
+                ]);
             }
         },
     );
@@ -138,10 +132,9 @@ pub(super) fn hole_side_triangles(
 pub(super) fn edge_removal(src: &Flat, budget: &Budget, height: f64) -> Result<Flat, SubdivError> {
     let m = Map::new(src);
     let st = m.st;
-    let kept_count = st.e - st.e_nn;
     let sizes = Sizes {
         v: st.v + st.nf,
-        e: kept_count + st.nc,
+        e: st.kept_edge_count() + st.nc,
         f: st.e_nn + st.b_sides + st.hf + st.ps,
         c: 4 * st.e_nn + 3 * st.b_sides + st.hc + st.ps,
     };
@@ -151,20 +144,17 @@ pub(super) fn edge_removal(src: &Flat, budget: &Budget, height: f64) -> Result<F
     let mut pos = m.kept_positions(sizes.v);
     pos.extend(m.normal_faces().map(|face| centre(&m, face, height)));
     let zc = |c: usize| st.v as u32 + m.nrank[src.cf[c] as usize];
-    let spoke = |c: usize, side: u32| lab(kept_count + m.nidx(c), side);
+    let spoke = |c: usize, side: u32| lab(st.kept_edge_count() + m.nidx(c), side);
     let old = |c: usize| lab(kept[m.edge(c)] as usize, m.side(c));
     let mut b = Builder::new(pos, sizes);
     hole_side_triangles(&mut b, &m, old, zc, spoke);
     for (_, a, bb, na, nb) in m.interior_edges() {
-        b.face(
-            false,
-            &[
-                (src.cv[a], spoke(nb, 0)),
-                (zc(bb), spoke(bb, 1)),
-                (src.cv[bb], spoke(na, 0)),
-                (zc(a), spoke(a, 1)),
-            ],
-        );
+        b.face(&[
+            (src.cv[a], spoke(nb, 0)),
+            (zc(bb), spoke(bb, 1)),
+            (src.cv[bb], spoke(na, 0)),
+            (zc(a), spoke(a, 1)),
+        ]);
     }
     b.finish()
 }

@@ -721,22 +721,23 @@ fn extrusions_and_stellations_move_along_the_face_normal() {
 
 #[test]
 fn extrusion_lengths_are_relative_to_each_face() {
-    // A triangle of legs 1 (area ½) and a square of side 3 (area 9), apart:
-    // global extrude lifts each new vertex by length × √area along its
-    // face's normal (+z), dome's cap rises 0.665 × length × √area.
-    let mut soup = PolyMesh::new();
-    soup.positions = vec![
-        DVec3::new(0.0, 0.0, 0.0),
-        DVec3::new(1.0, 0.0, 0.0),
-        DVec3::new(0.0, 1.0, 0.0),
-        DVec3::new(5.0, 0.0, 0.0),
-        DVec3::new(8.0, 0.0, 0.0),
-        DVec3::new(8.0, 3.0, 0.0),
-        DVec3::new(5.0, 3.0, 0.0),
-    ];
-    soup.face_offsets = vec![0, 3, 7];
-    soup.face_indices = vec![0, 1, 2, 3, 4, 5, 6];
-    let m = to_dlfl(&soup, ImportOptions::default()).unwrap().mesh;
+    // A triangle of legs 1 (area ½) and a square of side 3 (area 9), apart
+    // (the square at x = 5 to 8): global extrude lifts each new vertex by
+    // length × √area along its face's normal (+z), dome's cap rises
+    // 0.665 × length × √area.
+    let polygon = |corners: Vec<DVec3>| {
+        let face: Vec<u32> = (0..corners.len() as u32).collect();
+        let soup = PolyMesh::from_faces(corners, [face]);
+        to_dlfl(&soup, ImportOptions::default()).unwrap().mesh
+    };
+    let triangle = polygon(vec![DVec3::ZERO, DVec3::X, DVec3::Y]);
+    let square = polygon(vec![
+        DVec3::ZERO,
+        3.0 * DVec3::X,
+        DVec3::new(3.0, 3.0, 0.0),
+        3.0 * DVec3::Y,
+    ]);
+    let m = disjoint(&triangle, &square);
     let sizes = [0.5f64.sqrt(), 3.0];
     let p = RemeshParams {
         extrude_length: 0.7,
