@@ -107,6 +107,12 @@ pub struct LiveFrame<'a> {
     /// During a drag with preview on: the corrected parity per vertex of
     /// `mesh` (`true` = deleted at release).
     pub corrected_odd: Option<Vec<bool>>,
+    /// The stroke knows the surface is one piece
+    /// ([`holey_topo::is_one_piece`]): counted when a paint stroke began
+    /// and carried since by the guard ([`holey_topo::Options::one_piece`]);
+    /// false where it does not know (a drag, or a frame whose region could
+    /// not show it), not that the surface is in pieces.
+    pub one_piece: bool,
     /// Wall-clock time the frame took.
     pub seconds: f64,
 }
@@ -293,6 +299,13 @@ pub struct LiveStroke {
     cleanup: Option<RemeshOptions>,
     /// Positions of the vertices the guard held in earlier frames.
     held: std::collections::HashSet<[u64; 3]>,
+    /// The mesh is one piece (`holey_topo::is_one_piece`): counted when
+    /// a paint stroke begins, then carried from frame to frame by the
+    /// guard, which skips its count of the result's pieces while it can
+    /// show from a frame's region that one piece stays one
+    /// (`holey_topo::Options::one_piece`). Moving and remeshing keep a
+    /// piece whole.
+    one_piece: bool,
     remeshed: RemeshTally,
     state: State,
     frames: usize,
@@ -368,6 +381,7 @@ impl LiveStroke {
             remesh: None,
             cleanup: cleanup_options(mesh),
             held: std::collections::HashSet::new(),
+            one_piece: !settings.brush.is_drag() && holey_topo::is_one_piece(mesh),
             remeshed: RemeshTally::default(),
             state,
             frames: 0,
@@ -490,6 +504,7 @@ impl LiveStroke {
                     mask: &self.mask,
                     options: &self.options,
                     held: &mut self.held,
+                    one_piece: &mut self.one_piece,
                     remesh: self.remesh.as_ref(),
                     cleanup: self.cleanup.as_ref(),
                     report: &mut self.report,
@@ -597,6 +612,7 @@ impl LiveStroke {
             connectivity_changed,
             topology_changed,
             corrected_odd,
+            one_piece: self.one_piece,
             seconds: started.elapsed().as_secs_f64(),
         })
     }
@@ -681,6 +697,8 @@ struct PaintStep<'a> {
     options: &'a Options,
     /// Positions of the vertices the stroke's frames had to hold.
     held: &'a mut std::collections::HashSet<[u64; 3]>,
+    /// The mesh is one piece ([`LiveStroke`]'s `one_piece`).
+    one_piece: &'a mut bool,
     remesh: Option<&'a RemeshOptions>,
     cleanup: Option<&'a RemeshOptions>,
     report: &'a mut StrokeReport,
@@ -1029,6 +1047,7 @@ impl PaintStep<'_> {
                 // An inflate's specks are a fold's tip poked through a
                 // sheet: debris, taken out (`holey_topo::guard`).
                 take_out_debris: outward,
+                one_piece: *self.one_piece,
                 ..*self.options
             };
             let run = if sure_only {
@@ -1039,6 +1058,7 @@ impl PaintStep<'_> {
             match run {
                 Ok(None) => return Ok(Settled::TooCrumpled),
                 Ok(Some(guarded)) => {
+                    *self.one_piece = guarded.local.one_piece;
                     self.held
                         .extend(guarded.held_positions.iter().map(|&p| position_key(p)));
                     for why in &guarded.refused {

@@ -50,6 +50,28 @@ const MAX_CANDIDATES: usize = 16;
 /// Points sampled on each candidate piece.
 const SAMPLES: usize = 8;
 
+/// Whether the triangles of `mesh` are one piece: connected through
+/// shared vertex numbers (a mesh without triangles is not). What
+/// [`crate::Options::one_piece`] asks a caller to know.
+///
+/// ```
+/// use glam::DVec3;
+/// use holey_topo::{TriMesh, is_one_piece};
+///
+/// // Two triangles sharing the edge 1-2, and a third one apart.
+/// let positions = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [1., 1., 0.], [5., 0., 0.], [6., 0., 0.], [5., 1., 0.]];
+/// let mut mesh = TriMesh {
+///     positions: positions.iter().map(|&p| DVec3::from_array(p)).collect(),
+///     triangles: vec![[0, 1, 2], [2, 1, 3]],
+/// };
+/// assert!(is_one_piece(&mesh));
+/// mesh.triangles.push([4, 5, 6]);
+/// assert!(!is_one_piece(&mesh));
+/// ```
+pub fn is_one_piece(mesh: &TriMesh) -> bool {
+    !mesh.triangles.is_empty() && pieces_welded(mesh, &|_| false).1 == 1
+}
+
 /// The connected component of every triangle of `m` (named by a root
 /// vertex; components are joined through shared vertices) and how many
 /// components there are.

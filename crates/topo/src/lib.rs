@@ -50,6 +50,7 @@ pub use guard::{
     GuardedReport, topology_change_guarded, topology_change_guarded_holding,
     topology_change_guarded_if_sure,
 };
+pub use hidden::is_one_piece;
 pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::{MeshError, TriMesh};

@@ -56,6 +56,12 @@ pub struct LocalReport {
     /// Vertices the frame made (intersection points, split vertices,
     /// copies at pinches): the result's last `new_vertices` vertices.
     pub new_vertices: usize,
+    /// With [`crate::Options::one_piece`], a guarded frame's result is one
+    /// piece too, as the guard showed from the region alone (or the frame
+    /// only moved the surface); false where that was not shown, which is
+    /// not "in pieces": the caller must count them to know
+    /// ([`crate::is_one_piece`]).
+    pub one_piece: bool,
 }
 
 impl LocalReport {
@@ -243,6 +249,21 @@ impl Region {
                 .map(|(i, _)| i as u32)
                 .collect()
         })
+    }
+
+    /// Per region vertex (the region's numbering): whether a triangle of
+    /// the ring uses it, that is, whether the region shares it with the
+    /// rest of the mesh (its interface).
+    pub(crate) fn interface_vertices(&self, tris: &[[u32; 3]]) -> Vec<bool> {
+        let mut interface = vec![false; self.global.len()];
+        for &t in self.ring(tris) {
+            for v in tris[t as usize] {
+                if let Some(&l) = self.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+                    interface[l as usize] = true;
+                }
+            }
+        }
+        interface
     }
 
     /// The region's triangles in the mesh's vertex numbers, in mesh order.
@@ -531,6 +552,21 @@ impl Region {
     }
 }
 
+/// Per region vertex (`count` of them): the first vertex of an engine's
+/// output that comes from it (`origin` as for [`Region::splice`]), or
+/// `u32::MAX` where none does. Where the engine split a vertex into
+/// copies, that first one keeps its number in the splice
+/// ([`Region::output_map`]) and is the one the rest of the mesh meets.
+pub(crate) fn first_copies(origin: &[u32], count: usize) -> Vec<u32> {
+    let mut first = vec![u32::MAX; count];
+    for (v, &o) in origin.iter().enumerate() {
+        if let Some(f) = first.get_mut(o as usize).filter(|f| **f == u32::MAX) {
+            *f = v as u32;
+        }
+    }
+    first
+}
+
 /// Where a region's output goes in the mesh it is spliced into
 /// ([`Region::splice_map`]).
 pub(crate) struct SpliceMap {
@@ -617,6 +653,7 @@ pub(crate) fn from_whole(mesh: &TriMesh, out: Outcome) -> (TriMesh, LocalReport)
         report: out.report,
         raw_odd: out.raw_odd,
         corrected_odd: out.corrected_odd,
+        one_piece: false,
     };
     (out.mesh, report)
 }

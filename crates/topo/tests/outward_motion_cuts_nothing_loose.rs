@@ -62,14 +62,22 @@ fn a_waist_squeezed_through_its_axis_leaves_no_specks() {
         "every piece but the rod is a speck"
     );
 
-    for outward in [false, true] {
+    // The rod is one piece: told so ([`Options::one_piece`]), the guard
+    // cannot show from the region that it stays one, so it counts, and
+    // refuses as it does untold.
+    for (outward, one_piece) in [(false, false), (true, false), (false, true), (true, true)] {
         let options = Options {
             outward,
+            one_piece,
             ..Options::default()
         };
         let mut held = m.clone();
         let r = topology_change_guarded(&mut held, &end, &options).unwrap();
         assert!(r.held_all, "outward {outward}: {r:?}");
+        assert_eq!(
+            r.local.one_piece, one_piece,
+            "held: the surface is as it was"
+        );
         assert_eq!(held, m, "outward {outward}: a held frame changes nothing");
         let want = format!("specks cut off: 0 -> {specks}");
         assert!(r.refused.contains(&want), "{:?}", r.refused);
