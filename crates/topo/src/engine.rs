@@ -89,7 +89,11 @@ pub struct Options {
     /// result's pieces (a pass over the whole mesh: 1.6 ms of a 14 ms
     /// topology frame on the Stanford bunny, 14-23 ms on a million
     /// triangles), and says so in [`crate::LocalReport::one_piece`], for
-    /// the caller to pass on to its next frame. A caller that sets it for
+    /// the caller to pass on to its next frame; where it could not show
+    /// it, the count that runs instead may (a frame that leaves two sheets
+    /// of its region apart, joined through the rest of the mesh), so one
+    /// such frame does not cost the rest of a stroke the shortcut. A
+    /// caller that sets it for
     /// a mesh of more pieces may miss a piece the frame cut loose. Off by
     /// default.
     pub one_piece: bool,

@@ -63,8 +63,8 @@ use crate::engine::{
     topology_change,
 };
 use crate::hidden::{
-    debris, hidden_pieces, median_edge_near, piece_count_welded, pieces_welded, shortest_edge_near,
-    specks, tiny_new_curves, vertex_components,
+    PieceCount, debris, hidden_pieces, median_edge_near, piece_count_welded, pieces_welded,
+    shortest_edge_near, specks, tiny_new_curves, vertex_components,
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{
@@ -611,10 +611,9 @@ fn spliced_and_audited(
         },
     };
     // A mesh of one piece whose region's result provably keeps it one
-    // needs no count.
+    // needs no count; one that only moved keeps its triangles.
     let one_piece = options.one_piece
-        && map.is_some()
-        && stays_one_piece(mesh, region, &out.mesh, &out.vertex_origin);
+        && (map.is_none() || stays_one_piece(mesh, region, &out.mesh, &out.vertex_origin));
     report.one_piece = one_piece;
     // The splice and the count of the result's pieces are passes over the
     // whole mesh, the audit works on the region: on two cores the splice
@@ -640,9 +639,12 @@ fn spliced_and_audited(
         },
     );
     let (mut worse, euler_change) = audited?;
+    // A count of one by shared vertices alone tells the next frame that
+    // it starts on one piece, where this one could not show it.
+    report.one_piece |= pieces.is_some_and(PieceCount::one_piece);
     // One piece cannot have grown in pieces: the rules that compare
     // pieces run only on a result of more than one.
-    if let (Some(m), Some(2..)) = (&result, pieces) {
+    if let (Some(m), Some(2..)) = (&result, pieces.map(|p| p.count)) {
         worse.extend(piece_growth(mesh, m, &near, &near_after, options));
     }
     Ok(Some(Run {

@@ -93,7 +93,7 @@ pub(crate) fn pieces(m: &TriMesh) -> (Vec<u32>, usize) {
 /// only touch. Only the flagged vertices are looked at: the region a
 /// frame changed.
 pub(crate) fn pieces_welded(m: &TriMesh, near: &dyn Fn(u32) -> bool) -> (Vec<u32>, usize) {
-    let mut uf = welded_union_find(
+    let (mut uf, _) = welded_union_find(
         m.positions.len(),
         &|v| m.positions[v as usize],
         &|f| m.triangles.iter().for_each(|&t| f(t)),
@@ -121,26 +121,44 @@ pub(crate) fn piece_count_welded(
     position: &dyn Fn(u32) -> DVec3,
     triangles: &Triangles<'_>,
     near: &dyn Fn(u32) -> bool,
-) -> usize {
-    let mut uf = welded_union_find(n, position, triangles, near);
+) -> PieceCount {
+    let (mut uf, welded) = welded_union_find(n, position, triangles, near);
     let mut seen = vec![false; n];
     let mut count = 0;
     triangles(&mut |t| {
         let r = uf.find(t[0]) as usize;
         count += usize::from(!std::mem::replace(&mut seen[r], true));
     });
-    count
+    PieceCount { count, welded }
+}
+
+/// What [`piece_count_welded`] found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PieceCount {
+    /// The pieces, rim copies at one position joined.
+    pub count: usize,
+    /// Whether any rim copies were joined by position. Without, the
+    /// count is by shared vertices alone, [`is_one_piece`]'s.
+    pub welded: bool,
+}
+
+impl PieceCount {
+    /// One piece by shared vertices alone: what [`is_one_piece`] says of
+    /// the surface counted.
+    pub fn one_piece(self) -> bool {
+        self.count == 1 && !self.welded
+    }
 }
 
 /// The union-find of [`pieces_welded`]: vertices joined along the
 /// triangles `triangles` visits, and rim copies among the flagged ones
-/// at one exact position joined too.
+/// at one exact position joined too; and whether any were.
 fn welded_union_find(
     n: usize,
     position: &dyn Fn(u32) -> DVec3,
     triangles: &Triangles<'_>,
     near: &dyn Fn(u32) -> bool,
-) -> UnionFind {
+) -> (UnionFind, bool) {
     let mut uf = UnionFind::new(n);
     let mut used = vec![false; n];
     triangles(&mut |t| {
@@ -178,11 +196,13 @@ fn welded_union_find(
             .map(|run| run[0].0)
             .collect();
         rim.dedup();
-        for (v, at) in coincident_pairs(position, rim) {
+        let joined = coincident_pairs(position, rim);
+        for &(v, at) in &joined {
             uf.union(at, v);
         }
+        return (uf, !joined.is_empty());
     }
-    uf
+    (uf, false)
 }
 
 /// How many connected components of `m` with a vertex that `near` flags
@@ -500,8 +520,10 @@ mod tests {
     /// The count without the surface built, from its triangles in any
     /// order and its positions from a function, is the count of the
     /// surface: the testkit's components of a welded mesh (two cubes
-    /// touching at a corner: two), and one for a cube's soup welded at
-    /// its rims, twelve unflagged.
+    /// touching at a corner: two), one for a cube's soup welded at its
+    /// rims, twelve unflagged, one for a cube. It is one piece by shared
+    /// vertices ([`PieceCount::one_piece`]) only where `is_one_piece`
+    /// says so: the cube, not the soup welded.
     #[test]
     fn the_count_of_pieces_from_the_triangles_alone_is_the_surfaces() {
         let c = cube(DVec3::ZERO, DVec3::ONE);
@@ -515,6 +537,7 @@ mod tests {
             ),
             (&soup, true, 1),
             (&soup, false, 12),
+            (&c, true, 1),
         ] {
             let count = piece_count_welded(
                 m.positions.len(),
@@ -522,8 +545,13 @@ mod tests {
                 &|f| m.triangles.iter().rev().for_each(|&t| f(t)),
                 &|_| flag,
             );
-            assert_eq!(count, expected);
-            assert_eq!(count, pieces_welded(m, &|_| flag).1);
+            assert_eq!(count.count, expected);
+            assert_eq!(count.count, pieces_welded(m, &|_| flag).1);
+            // Welded exactly where rim copies were joined: the soup
+            // flagged; and one piece by shared vertices only where
+            // `is_one_piece` says so.
+            assert_eq!(count.welded, flag && std::ptr::eq(m, &soup));
+            assert_eq!(count.one_piece(), is_one_piece(m));
         }
     }
 

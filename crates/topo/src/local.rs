@@ -56,11 +56,12 @@ pub struct LocalReport {
     /// Vertices the frame made (intersection points, split vertices,
     /// copies at pinches): the result's last `new_vertices` vertices.
     pub new_vertices: usize,
-    /// With [`crate::Options::one_piece`], a guarded frame's result is one
-    /// piece too, as the guard showed from the region alone (or the frame
-    /// only moved the surface); false where that was not shown, which is
-    /// not "in pieces": the caller must count them to know
-    /// ([`crate::is_one_piece`]).
+    /// A guarded frame's result is one piece ([`crate::is_one_piece`]):
+    /// with [`crate::Options::one_piece`], as the guard showed from the
+    /// region alone (or the frame only moved the surface); with or
+    /// without, as its count of the result's pieces found (by shared
+    /// vertices alone). False where neither showed it, which is not "in
+    /// pieces": the caller must count them to know.
     pub one_piece: bool,
 }
 
