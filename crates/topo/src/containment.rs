@@ -119,6 +119,24 @@ impl<'a> Surroundings<'a> {
                 .collect()
         });
         let field = WindingField::new(outside, &at);
+        if self.orientation.get().is_none() {
+            // The orientation from the field's volume and the region's
+            // triangles: no pass over the whole surface of its own.
+            let region: f64 = self
+                .mesh
+                .triangles
+                .iter()
+                .zip(self.inside)
+                .filter(|(_, inside)| **inside)
+                .map(|(t, _)| {
+                    let [a, b, c] = t.map(at);
+                    a.dot(b.cross(c))
+                })
+                .sum();
+            let _ = self
+                .orientation
+                .set(orientation_of(field.signed_volume() + region / 6.0));
+        }
         points.iter().map(|&p| field.at(p, None)).collect()
     }
 }
