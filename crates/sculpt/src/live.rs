@@ -19,7 +19,7 @@ use holey_geom::distance::point_segment_distance;
 use holey_geom::position_key;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
-    Accumulator, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
+    Accumulator, FarField, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
     topology_change_guarded_if_sure,
 };
 
@@ -306,6 +306,11 @@ pub struct LiveStroke {
     /// (`holey_topo::Options::one_piece`). Moving and remeshing keep a
     /// piece whole.
     one_piece: bool,
+    /// The surface's far field, kept between a paint stroke's frames
+    /// (`holey_topo::FarField`): built by the engine when frames keep
+    /// asking for it, and told of every change a frame and its remeshing
+    /// make.
+    far: Option<FarField>,
     remeshed: RemeshTally,
     state: State,
     frames: usize,
@@ -382,6 +387,7 @@ impl LiveStroke {
             cleanup: cleanup_options(mesh),
             held: std::collections::HashSet::new(),
             one_piece: !settings.brush.is_drag() && holey_topo::is_one_piece(mesh),
+            far: (!settings.brush.is_drag()).then(FarField::new),
             remeshed: RemeshTally::default(),
             state,
             frames: 0,
@@ -505,6 +511,7 @@ impl LiveStroke {
                     options: &self.options,
                     held: &mut self.held,
                     one_piece: &mut self.one_piece,
+                    far: self.far.as_ref(),
                     remesh: self.remesh.as_ref(),
                     cleanup: self.cleanup.as_ref(),
                     report: &mut self.report,
@@ -699,6 +706,8 @@ struct PaintStep<'a> {
     held: &'a mut std::collections::HashSet<[u64; 3]>,
     /// The mesh is one piece ([`LiveStroke`]'s `one_piece`).
     one_piece: &'a mut bool,
+    /// The stroke's kept far field ([`LiveStroke`]'s `far`).
+    far: Option<&'a FarField>,
     remesh: Option<&'a RemeshOptions>,
     cleanup: Option<&'a RemeshOptions>,
     report: &'a mut StrokeReport,
@@ -775,8 +784,17 @@ impl PaintStep<'_> {
             *a = true;
         }
         let r = remesh_in_place_checked(mesh, &active, opts).map_err(StepError::Remesh)?;
+        self.changed_within(r.changed);
         self.remeshed.add(&r);
         Ok(())
+    }
+
+    /// Tells the stroke's kept far field that the surface changed within
+    /// `b` (a frame's or its remeshing's box), if it did.
+    fn changed_within(&self, b: Option<(DVec3, DVec3)>) {
+        if let (Some(far), Some(b)) = (self.far, b) {
+            far.changed_within(b);
+        }
     }
 
     /// One frame of a paint brush: a pull longer than the snake hook's
@@ -1051,14 +1069,15 @@ impl PaintStep<'_> {
                 ..*self.options
             };
             let run = if sure_only {
-                topology_change_guarded_if_sure(mesh, end, &options, &already)
+                topology_change_guarded_if_sure(mesh, end, &options, &already, self.far)
             } else {
-                topology_change_guarded_holding(mesh, end, &options, &already).map(Some)
+                topology_change_guarded_holding(mesh, end, &options, &already, self.far).map(Some)
             };
             match run {
                 Ok(None) => return Ok(Settled::TooCrumpled),
                 Ok(Some(guarded)) => {
                     *self.one_piece = guarded.local.one_piece;
+                    self.changed_within(guarded.local.changed);
                     self.held
                         .extend(guarded.held_positions.iter().map(|&p| position_key(p)));
                     for why in &guarded.refused {
@@ -1116,6 +1135,7 @@ impl PaintStep<'_> {
                     remesh_in_place_checked(mesh, &active, opts)
                 }
                 .map_err(StepError::Remesh)?;
+                self.changed_within(r.changed);
                 if self.remeshed.add(&r) {
                     self.connectivity_changed = true;
                 }

@@ -134,6 +134,11 @@ pub struct RemeshReport {
     pub removed_vertices: Vec<u32>,
     /// Vertices made by splits (output numbering).
     pub new_vertices: Vec<u32>,
+    /// A box every triangle the run made or unmade meets (at its corners
+    /// before or after; `None` when it wrote nothing): the box of the
+    /// work set's vertices, before and after. A stroke's kept far field
+    /// is told it (`holey_topo::FarField::changed_within`).
+    pub changed: Option<(DVec3, DVec3)>,
     /// Surviving input vertices whose number changed, `(input, output)`:
     /// the last vertices move into the slots collapses freed, so the
     /// output has no unused vertex the input did not have. Every other
@@ -331,6 +336,9 @@ fn remesh_run(
     if checked && changed && work.worse_than(mesh) {
         report.undone = true;
         return Ok(report);
+    }
+    if changed {
+        report.changed = work.bounds(mesh);
     }
     work.store(mesh, &mut report);
     Ok(report)
@@ -1285,6 +1293,22 @@ impl Work {
     /// the last vertices and triangles fill what remains.
     // Local vertex numbers index several parallel arrays here.
     #[allow(clippy::needless_range_loop)]
+    /// The box of the work set's vertices at their positions in `mesh`
+    /// and after the run: every triangle the run makes or unmakes has its
+    /// corners among them, and a vertex the run moves moves within it.
+    fn bounds(&self, mesh: &TriMesh) -> Option<(DVec3, DVec3)> {
+        let before = self
+            .global
+            .iter()
+            .filter(|&&g| g != NONE)
+            .map(|&g| mesh.positions[g as usize]);
+        before
+            .chain(self.pos.iter().copied())
+            .fold(None, |b: Option<(DVec3, DVec3)>, p| {
+                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            })
+    }
+
     /// The triangles the run made and unmade ([`Changes`]), found from
     /// the work set alone: a loaded triangle is unchanged when its
     /// corners are still the input's and none of them moved.

@@ -195,6 +195,7 @@ impl Accumulator {
                 frames: self.frame,
                 path: self.path.as_ref(),
             },
+            None,
         )?;
         let release = if run.worse.is_empty() {
             Release {

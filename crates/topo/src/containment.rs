@@ -39,6 +39,8 @@ use crate::cut::{AroundCurve, Deletion, cancel_opposite, cut, reconnect_crossing
 use crate::engine::{
     Geometry, Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches,
 };
+use crate::far_field::FarField;
+use crate::local::Bounds;
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::{regions, signed_volume};
 use crate::union_find::UnionFind;
@@ -70,17 +72,28 @@ pub(crate) struct Surroundings<'a> {
     pub positions: &'a [DVec3],
     orientation: std::sync::OnceLock<f64>,
     outside: std::sync::OnceLock<Vec<[u32; 3]>>,
+    /// A stroke's kept field, and the box of the region's vertices at the
+    /// start and the end ([`FarField`]).
+    far: Option<(&'a FarField, Bounds)>,
 }
 
 impl<'a> Surroundings<'a> {
-    /// The triangles of `mesh` that `inside` does not flag, at `end`.
-    pub fn new(mesh: &'a TriMesh, inside: &'a [bool], end: &'a [DVec3]) -> Surroundings<'a> {
+    /// The triangles of `mesh` that `inside` does not flag, at `end`;
+    /// with `far`, a stroke's kept field and the box of the region's
+    /// vertices at the start and at `end`.
+    pub fn new(
+        mesh: &'a TriMesh,
+        inside: &'a [bool],
+        end: &'a [DVec3],
+        far: Option<(&'a FarField, Bounds)>,
+    ) -> Surroundings<'a> {
         Surroundings {
             mesh,
             inside,
             positions: end,
             orientation: std::sync::OnceLock::new(),
             outside: std::sync::OnceLock::new(),
+            far,
         }
     }
 
@@ -94,8 +107,21 @@ impl<'a> Surroundings<'a> {
 
     /// The winding numbers of the outside triangles at `points`: up to
     /// [`FEW_POINTS`] points summed over them once for all, for more
-    /// from the octree field.
+    /// from the stroke's kept field ([`FarField`]) where the caller keeps
+    /// one, else from an octree field built for this query.
     pub fn winding_numbers_at(&self, points: &[DVec3]) -> Vec<f64> {
+        if let Some((far, region)) = self.far
+            && let Some((w, volume)) = far.winding_numbers_and_volume_at(
+                self.mesh,
+                self.inside,
+                self.positions,
+                region,
+                points,
+            )
+        {
+            let _ = self.orientation.set(orientation_of(volume));
+            return w;
+        }
         let at = |v: u32| self.positions[v as usize];
         if points.len() <= FEW_POINTS {
             let keep = |t: usize| !self.inside[t];

@@ -62,6 +62,7 @@ use crate::engine::{
     Freedom, Geometry, Options, Outcome, Path, TopoError, check, finish, freedom, geometry,
     topology_change,
 };
+use crate::far_field::FarField;
 use crate::hidden::{
     PieceCount, debris, hidden_pieces, median_edge_near, piece_count_welded, pieces_welded,
     shortest_edge_near, specks, tiny_new_curves, vertex_components,
@@ -112,20 +113,25 @@ pub fn topology_change_guarded(
     end: &[DVec3],
     options: &Options,
 ) -> Result<GuardedReport, TopoError> {
-    topology_change_guarded_holding(mesh, end, options, &[])
+    topology_change_guarded_holding(mesh, end, options, &[], None)
 }
 
 /// [`topology_change_guarded`] with the vertices `already` flags held
 /// from the first attempt (a stroke passes on those its earlier frames had
 /// to hold, so that a contact no frame can resolve is not tried again at
-/// every frame). An empty `already` holds nothing to begin with.
+/// every frame). An empty `already` holds nothing to begin with. With
+/// `far`, a stroke's kept far field ([`FarField`]), a frame resolved by
+/// containment number reads the surface around its region from it; the
+/// caller then reports each change it makes to the surface to it,
+/// this frame's included ([`LocalReport::changed`]).
 pub fn topology_change_guarded_holding(
     mesh: &mut TriMesh,
     end: &[DVec3],
     options: &Options,
     already: &[bool],
+    far: Option<&FarField>,
 ) -> Result<GuardedReport, TopoError> {
-    guarded(mesh, end, options, already, false).map(|r| r.unwrap_or_default())
+    guarded(mesh, end, options, already, false, far).map(|r| r.unwrap_or_default())
 }
 
 /// [`topology_change_guarded_holding`] for a motion that is to be taken
@@ -145,8 +151,9 @@ pub fn topology_change_guarded_if_sure(
     end: &[DVec3],
     options: &Options,
     already: &[bool],
+    far: Option<&FarField>,
 ) -> Result<Option<GuardedReport>, TopoError> {
-    guarded(mesh, end, options, already, true)
+    guarded(mesh, end, options, already, true, far)
 }
 
 /// [`topology_change_guarded_holding`]; with `sure_only`, `None` (and
@@ -157,6 +164,7 @@ fn guarded(
     options: &Options,
     already: &[bool],
     sure_only: bool,
+    far: Option<&FarField>,
 ) -> Result<Option<GuardedReport>, TopoError> {
     check(mesh, end)?;
     let n = mesh.positions.len();
@@ -174,12 +182,12 @@ fn guarded(
         // Whether the motion is sure as one frame is all that is asked:
         // the engine's correction does not run on a motion the caller
         // will take in shorter frames anyway.
-        match run_if_sure(mesh, &target, options)? {
+        match run_if_sure(mesh, &target, options, far)? {
             Some(run) if run.worse.is_empty() => run,
             _ => return Ok(None),
         }
     } else {
-        run_once(mesh, &target, options, &Motion::Frame)?
+        run_once(mesh, &target, options, &Motion::Frame, far)?
     };
     let mut report = GuardedReport {
         attempts: 1,
@@ -193,7 +201,7 @@ fn guarded(
         report.held_all = true;
         report.attempts += 1;
         let still = mesh.positions.clone();
-        let run = run_once(mesh, &still, options, &Motion::Frame)?;
+        let run = run_once(mesh, &still, options, &Motion::Frame, far)?;
         (run, vec![true; n], None)
     };
     report.held_positions = (0..n)
@@ -245,6 +253,15 @@ pub(crate) enum Motion<'a> {
     },
 }
 
+/// Whether a run may resolve its frame by containment number where the
+/// region is a piece of a solid, and the stroke's kept far field for it
+/// ([`FarField`]).
+#[derive(Clone, Copy)]
+struct Containment<'a> {
+    allowed: bool,
+    far: Option<&'a FarField>,
+}
+
 /// The frame of `mesh` moving to `end` on the region the motion reaches,
 /// spliced back, and audited: by containment number where the region is
 /// a piece of a solid, by parity where it is not or where containment's
@@ -254,12 +271,28 @@ pub(crate) fn run_once(
     end: &[DVec3],
     options: &Options,
     motion: &Motion<'_>,
+    far: Option<&FarField>,
 ) -> Result<Run, TopoError> {
-    let first = run_with(mesh, end, options, motion, true)?;
+    let first = run_with(
+        mesh,
+        end,
+        options,
+        motion,
+        Containment { allowed: true, far },
+    )?;
     if first.worse.is_empty() || !first.report.report.cut.solid_relabelled {
         return Ok(first);
     }
-    let second = run_with(mesh, end, options, motion, false)?;
+    let second = run_with(
+        mesh,
+        end,
+        options,
+        motion,
+        Containment {
+            allowed: false,
+            far,
+        },
+    )?;
     Ok(if second.worse.len() < first.worse.len() {
         second
     } else {
@@ -272,7 +305,7 @@ fn run_with(
     end: &[DVec3],
     options: &Options,
     motion: &Motion<'_>,
-    containment: bool,
+    containment: Containment<'_>,
 ) -> Result<Run, TopoError> {
     let n = mesh.positions.len();
     let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
@@ -292,7 +325,7 @@ fn run_with(
         && let Some((tight, freedom)) = Tight::of(mesh, end, options, bx)
     {
         match freedom {
-            Freedom::Free => return Ok(free_run(n, &tight)),
+            Freedom::Free => return Ok(free_run(mesh, end, &tight)),
             // The containment number needs no context around what
             // moved (every curve the motion makes lies among the
             // triangles the motion's box meets, and the rest of the
@@ -300,8 +333,10 @@ fn run_with(
             // of a solid is resolved on the tight region, with the
             // intersections just found. Parity's correction does
             // need the context: anything else goes on below.
-            Freedom::Changes { geometry, .. } if containment && options.solid_guard => {
-                if let Some(run) = contained(mesh, end, &tight, *geometry, None, options)? {
+            Freedom::Changes { geometry, .. } if containment.allowed && options.solid_guard => {
+                if let Some(run) =
+                    contained(mesh, end, &tight, *geometry, None, options, containment.far)?
+                {
                     return Ok(run);
                 }
             }
@@ -350,6 +385,7 @@ fn run_with(
     }
     // Only moved: as whole as it was.
     report.one_piece = options.one_piece && report.positions_only;
+    report.changed = Some((DVec3::NEG_INFINITY, DVec3::INFINITY));
     Ok(Run {
         mesh: Some(result),
         report,
@@ -390,12 +426,13 @@ impl Tight {
 /// A frame that only moves the surface: the triangles its box meets
 /// neither collide nor cross at the end. Worse only if it flattens a
 /// triangle.
-fn free_run(n: usize, tight: &Tight) -> Run {
+fn free_run(mesh: &TriMesh, end: &[DVec3], tight: &Tight) -> Run {
     Run {
         mesh: None,
         report: LocalReport {
             region_triangles: tight.region.count,
-            ..LocalReport::no_motion(n)
+            changed: tight.region.bounds(&mesh.positions, end),
+            ..LocalReport::no_motion(mesh.positions.len())
         },
         worse: flat_growth(&tight.sub, &tight.moved).into_iter().collect(),
         euler_change: 0,
@@ -416,8 +453,10 @@ fn contained(
     geometry: Geometry,
     parity: Option<&[Option<bool>]>,
     options: &Options,
+    far: Option<&FarField>,
 ) -> Result<Option<Run>, TopoError> {
-    let surroundings = Surroundings::new(mesh, &tight.region.mask, end);
+    let far = far.zip(tight.region.bounds(&mesh.positions, end));
+    let surroundings = Surroundings::new(mesh, &tight.region.mask, end, far);
     let Some(mut out) = by_containment(
         &tight.sub,
         &tight.moved.positions,
@@ -461,7 +500,12 @@ fn contained(
 /// motion. The two are independent readings of which vertices end up
 /// inside; where they agree, the shorter frames the caller would take
 /// instead have nothing to add.
-fn run_if_sure(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Option<Run>, TopoError> {
+fn run_if_sure(
+    mesh: &TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    far: Option<&FarField>,
+) -> Result<Option<Run>, TopoError> {
     let n = mesh.positions.len();
     let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
         return Ok(Some(Run {
@@ -472,7 +516,7 @@ fn run_if_sure(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Optio
         }));
     };
     Ok(match Tight::of(mesh, end, options, bx) {
-        Some((tight, Freedom::Free)) => Some(free_run(n, &tight)),
+        Some((tight, Freedom::Free)) => Some(free_run(mesh, end, &tight)),
         Some((
             tight,
             Freedom::Changes {
@@ -481,7 +525,7 @@ fn run_if_sure(mesh: &TriMesh, end: &[DVec3], options: &Options) -> Result<Optio
             },
         )) if options.solid_guard => {
             let odd = parity_across_sheets(&tight.sub, &odd_pairs);
-            contained(mesh, end, &tight, *geometry, Some(&odd), options)?
+            contained(mesh, end, &tight, *geometry, Some(&odd), options, far)?
         }
         _ => None,
     })
@@ -597,6 +641,7 @@ fn spliced_and_audited(
     options: &Options,
 ) -> Result<Option<Run>, TopoError> {
     let (mut report, plan) = region.plan(mesh, out, options.solid_guard);
+    report.changed = region.bounds(&mesh.positions, end);
     // The spliced result keeps every input vertex's number; new ones
     // follow.
     let n = mesh.positions.len();
@@ -821,11 +866,12 @@ fn resolve_frame(
     sub: &TriMesh,
     options: &Options,
     motion: &Motion<'_>,
-    containment: bool,
+    containment: Containment<'_>,
 ) -> Result<Outcome, TopoError> {
     let local_end = region.gather(end);
-    if containment && options.solid_guard {
-        let surroundings = Surroundings::new(mesh, &region.mask, end);
+    if containment.allowed && options.solid_guard {
+        let far = containment.far.zip(region.bounds(&mesh.positions, end));
+        let surroundings = Surroundings::new(mesh, &region.mask, end, far);
         if let Some(out) = by_containment(sub, &local_end, options, &surroundings, None)? {
             return Ok(out);
         }
@@ -1328,9 +1374,10 @@ mod tests {
             })
             .collect();
         let input = mesh.clone();
-        let report = topology_change_guarded_if_sure(&mut mesh, &end, &Options::default(), &[])
-            .unwrap()
-            .expect("a fuse both readings agree on is sure");
+        let report =
+            topology_change_guarded_if_sure(&mut mesh, &end, &Options::default(), &[], None)
+                .unwrap()
+                .expect("a fuse both readings agree on is sure");
         assert!(!report.local.positions_only && report.local.new_vertices > 0);
         // Two spheres (χ = 2 each) became one: χ 4 -> 2.
         assert_eq!(report.euler_change, -2);
@@ -1432,8 +1479,8 @@ mod tests {
             })
             .collect();
         let input = mesh.clone();
-        let sure =
-            topology_change_guarded_if_sure(&mut mesh, &end, &Options::default(), &[]).unwrap();
+        let sure = topology_change_guarded_if_sure(&mut mesh, &end, &Options::default(), &[], None)
+            .unwrap();
         assert!(sure.is_none());
         assert_eq!(mesh, input);
     }

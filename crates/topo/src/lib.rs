@@ -14,6 +14,7 @@ mod correct;
 mod cut;
 mod drag_path;
 mod engine;
+mod far_field;
 mod guard;
 mod hidden;
 pub mod internals;
@@ -46,6 +47,7 @@ pub use engine::{
     Options, Outcome, Report, Timings, TopoError, crosses_itself, resolve, self_intersections,
     topology_change,
 };
+pub use far_field::FarField;
 pub use guard::{
     GuardedReport, topology_change_guarded, topology_change_guarded_holding,
     topology_change_guarded_if_sure,

@@ -63,6 +63,12 @@ pub struct LocalReport {
     /// vertices alone). False where neither showed it, which is not "in
     /// pieces": the caller must count them to know.
     pub one_piece: bool,
+    /// A box that every triangle the frame added, removed or moved meets
+    /// (at its positions before or after): what a stroke's kept far field
+    /// is told ([`crate::FarField::changed_within`]). Set by the guarded
+    /// frames; `None` when nothing changed; the infinite box when the
+    /// frame ran on the whole mesh.
+    pub changed: Option<(DVec3, DVec3)>,
 }
 
 impl LocalReport {
@@ -265,6 +271,17 @@ impl Region {
             }
         }
         interface
+    }
+
+    /// The box of the region's vertices at `start` and at `end` (global
+    /// positions): every triangle of the region, before and after the
+    /// frame, and every point a cut of it makes lies in it. `None` for an
+    /// empty region.
+    pub fn bounds(&self, start: &[DVec3], end: &[DVec3]) -> Option<Bounds> {
+        self.global
+            .iter()
+            .flat_map(|&v| [start[v as usize], end[v as usize]])
+            .fold(None, |b, p| union(b, Some((p, p))))
     }
 
     /// The region's triangles in the mesh's vertex numbers, in mesh order.
@@ -655,6 +672,7 @@ pub(crate) fn from_whole(mesh: &TriMesh, out: Outcome) -> (TriMesh, LocalReport)
         raw_odd: out.raw_odd,
         corrected_odd: out.corrected_odd,
         one_piece: false,
+        changed: Some((DVec3::NEG_INFINITY, DVec3::INFINITY)),
     };
     (out.mesh, report)
 }

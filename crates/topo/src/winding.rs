@@ -9,6 +9,7 @@
 //! sculpted.
 
 use glam::DVec3;
+use holey_geom::Aabb;
 use rayon::prelude::*;
 
 /// The signed solid angle of triangle `abc` seen from `p` (Van Oosterom &
@@ -102,10 +103,27 @@ where
     K: Fn(usize) -> bool + Sync + ?Sized,
     P: Fn(u32) -> DVec3 + Sync + ?Sized,
 {
-    let k = points.len();
-    if k == 0 && !volume {
+    if points.is_empty() && !volume {
         return (Vec::new(), 0.0);
     }
+    classified_sums(triangles, position, points, &|t, _| (keep(t), volume))
+}
+
+/// The winding numbers at `points` of the triangles `class` keeps, and
+/// the signed volume of those it counts in the volume, in one parallel
+/// pass: `class(t, corners)` is (kept for the winding numbers, counted
+/// in the volume).
+pub(crate) fn classified_sums<C, P>(
+    triangles: &[[u32; 3]],
+    position: &P,
+    points: &[DVec3],
+    class: &C,
+) -> (Vec<f64>, f64)
+where
+    C: Fn(usize, &[DVec3; 3]) -> (bool, bool) + Sync + ?Sized,
+    P: Fn(u32) -> DVec3 + Sync + ?Sized,
+{
+    let k = points.len();
     let add = |(mut x, u): (Vec<f64>, f64), (y, v): (Vec<f64>, f64)| {
         for (a, b) in x.iter_mut().zip(y) {
             *a += b;
@@ -122,16 +140,15 @@ where
                 let mut items = [Dipole::default(); RUN];
                 let mut count = 0;
                 for (i, tri) in run.iter().enumerate() {
-                    let kept = keep(r * RUN + i);
-                    if kept || volume {
-                        let [a, b, c] = tri.map(position);
-                        if volume {
-                            six += a.dot(b.cross(c));
-                        }
-                        if kept {
-                            items[count] = Dipole::of([a, b, c]);
-                            count += 1;
-                        }
+                    let corners = tri.map(position);
+                    let (kept, in_volume) = class(r * RUN + i, &corners);
+                    if in_volume {
+                        let [a, b, c] = corners;
+                        six += a.dot(b.cross(c));
+                    }
+                    if kept {
+                        items[count] = Dipole::of(corners);
+                        count += 1;
                     }
                 }
                 let items = &items[..count];
@@ -251,6 +268,13 @@ pub const TRIANGLE_FAR: f64 = 6.0;
 pub struct WindingField<'a> {
     triangles: &'a [[u32; 3]],
     position: &'a (dyn Fn(u32) -> DVec3 + Sync),
+    tree: Octree,
+}
+
+/// The octree of a [`WindingField`], without the triangles it was built
+/// over: a field that owns its surface ([`crate::far_field::FarField`])
+/// keeps it beside them.
+pub(crate) struct Octree {
     /// Finest cells per side (a power of two) and the octree's depth.
     side: usize,
     depth: u32,
@@ -263,16 +287,30 @@ pub struct WindingField<'a> {
     levels: Vec<Vec<Summary>>,
 }
 
+/// Whether [`Octree::sum`] may count a cell (its level, its coordinates
+/// there, its summary) by its dipole when it is far.
+pub(crate) type WholeCell<'a> = dyn Fn(u32, (usize, usize, usize), &Summary) -> bool + 'a;
+
 /// What a cell of a [`WindingField`] holds, for its far field.
 #[derive(Clone, Copy, Debug, Default)]
-struct Summary {
+pub(crate) struct Summary {
     area_vector: DVec3,
     centre: DVec3,
     radius: f64,
     area: f64,
     count: u32,
-    /// Six times the signed volume of its triangles, `Σ a·(b×c)`.
+    /// The box of its triangles' corners, and six times their signed
+    /// volume `Σ a·(b×c)`.
+    lo: DVec3,
+    hi: DVec3,
     six_volume: f64,
+}
+
+impl Summary {
+    /// Whether the box of the cell's triangles meets `b`.
+    pub(crate) fn meets(&self, b: &Aabb) -> bool {
+        Aabb::new(self.lo, self.hi).overlaps(b)
+    }
 }
 
 impl<'a> WindingField<'a> {
@@ -281,6 +319,83 @@ impl<'a> WindingField<'a> {
         triangles: &'a [[u32; 3]],
         position: &'a (dyn Fn(u32) -> DVec3 + Sync),
     ) -> WindingField<'a> {
+        WindingField {
+            triangles,
+            position,
+            tree: Octree::new(triangles, position),
+        }
+    }
+
+    /// The signed volume of the field's triangles, `Σ a·(b×c) / 6`
+    /// (summed with the cells, so a caller that needs the orientation
+    /// too makes no other pass over them).
+    pub fn signed_volume(&self) -> f64 {
+        self.tree
+            .levels
+            .first()
+            .and_then(|root| root.first())
+            .map_or(0.0, |root| root.six_volume / 6.0)
+    }
+
+    /// The winding number at `p` of every triangle but `skip`.
+    pub fn at(&self, p: DVec3, skip: Option<usize>) -> f64 {
+        self.at_skipping(p, skip.as_slice())
+    }
+
+    /// The winding number at `p` of every triangle but those of `skip`
+    /// (the triangles `p` lies on: their solid angle there is ±2π by side,
+    /// which the caller adds).
+    ///
+    /// A few skipped triangles are looked up in place (no allocation: this
+    /// runs per vertex in sculpting's containment); many (a cell shared by
+    /// 300,000 coincident triangles of a degenerate storm) are sorted
+    /// once with the cells that hold them, so the cost stays
+    /// `O((n + k) log k)` instead of `n · k`.
+    pub fn at_skipping(&self, p: DVec3, skip: &[usize]) -> f64 {
+        let tree = &self.tree;
+        let sum = |holds: &dyn Fn(u32, (usize, usize, usize)) -> bool,
+                   skipped: &dyn Fn(usize) -> bool| {
+            tree.sum(
+                self.triangles,
+                self.position,
+                p,
+                &|level, cell, _| !holds(level, cell),
+                skipped,
+            )
+        };
+        if skip.len() <= FEW_SKIPPED {
+            let holds = |level: u32, (x, y, z): (usize, usize, usize)| {
+                let shift = tree.depth - level;
+                skip.iter().filter_map(|&t| tree.cell.get(t)).any(|&k| {
+                    let (kx, ky, kz) = tree.finest(k as usize);
+                    (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
+                })
+            };
+            return sum(&holds, &|t| skip.contains(&t));
+        }
+        let mut skipped = skip.to_vec();
+        skipped.sort_unstable();
+        skipped.dedup();
+        let mut cells: Vec<(u32, usize, usize, usize)> = Vec::new();
+        for k in skipped.iter().filter_map(|&t| tree.cell.get(t)) {
+            let (kx, ky, kz) = tree.finest(*k as usize);
+            for level in 0..=tree.depth {
+                let shift = tree.depth - level;
+                cells.push((level, kx >> shift, ky >> shift, kz >> shift));
+            }
+        }
+        cells.sort_unstable();
+        cells.dedup();
+        sum(
+            &|level, (x, y, z)| cells.binary_search(&(level, x, y, z)).is_ok(),
+            &|t| skipped.binary_search(&t).is_ok(),
+        )
+    }
+}
+
+impl Octree {
+    /// The octree of `triangles` with corners at `position`.
+    pub(crate) fn new(triangles: &[[u32; 3]], position: &(dyn Fn(u32) -> DVec3 + Sync)) -> Octree {
         let centroid = |t: &[u32; 3]| t.map(position).iter().sum::<DVec3>() / 3.0;
         // Rebuilt every frame a sculpting stroke changes topology, over
         // the whole surface around the brush: each pass is parallel.
@@ -300,7 +415,6 @@ impl<'a> WindingField<'a> {
         let depth = wanted.next_power_of_two().trailing_zeros();
         let side = 1usize << depth;
         let size = ((hi - lo) / side as f64).max(DVec3::splat(f64::MIN_POSITIVE));
-        let index = |x: usize, y: usize, z: usize, side: usize| (x * side + y) * side + z;
         let cell_of = |c: DVec3| -> usize {
             let k = ((c - lo) / size).floor();
             let clamp = |x: f64| (x.max(0.0) as usize).min(side - 1);
@@ -325,37 +439,11 @@ impl<'a> WindingField<'a> {
             .into_par_iter()
             .map(|c| {
                 let members = &order[start[c] as usize..start[c + 1] as usize];
-                if members.is_empty() {
-                    return Summary::default();
-                }
-                let (mut n, mut weighted, mut area, mut six) = (DVec3::ZERO, DVec3::ZERO, 0.0, 0.0);
-                for &t in members {
-                    let [a, b, d] = triangles[t as usize].map(position);
-                    let v = 0.5 * (b - a).cross(d - a);
-                    let len = v.length();
-                    n += v;
-                    weighted += len * (a + b + d) / 3.0;
-                    area += len;
-                    six += a.dot(b.cross(d));
-                }
-                let centre = if area > 0.0 {
-                    weighted / area
-                } else {
-                    centroids[members[0] as usize]
-                };
-                let radius = members
-                    .iter()
-                    .flat_map(|&t| triangles[t as usize].map(position))
-                    .map(|p| p.distance(centre))
-                    .fold(0.0, f64::max);
-                Summary {
-                    area_vector: n,
-                    centre,
-                    radius,
-                    area,
-                    count: members.len() as u32,
-                    six_volume: six,
-                }
+                summary(
+                    members,
+                    &|t| triangles[t as usize].map(position),
+                    &centroids,
+                )
             })
             .collect();
         let mut levels = vec![finest];
@@ -386,9 +474,7 @@ impl<'a> WindingField<'a> {
             s = half;
         }
         levels.reverse();
-        WindingField {
-            triangles,
-            position,
+        Octree {
             side,
             depth,
             start,
@@ -398,75 +484,24 @@ impl<'a> WindingField<'a> {
         }
     }
 
-    /// The signed volume of the field's triangles, `Σ a·(b×c) / 6`
-    /// (summed with the cells, so a caller that needs the orientation
-    /// too makes no other pass over them).
-    pub fn signed_volume(&self) -> f64 {
-        self.levels
-            .first()
-            .and_then(|root| root.first())
-            .map_or(0.0, |root| root.six_volume / 6.0)
-    }
-
-    /// The winding number at `p` of every triangle but `skip`.
-    pub fn at(&self, p: DVec3, skip: Option<usize>) -> f64 {
-        self.at_skipping(p, skip.as_slice())
-    }
-
-    /// The winding number at `p` of every triangle but those of `skip`
-    /// (the triangles `p` lies on: their solid angle there is ±2π by side,
-    /// which the caller adds).
-    ///
-    /// A few skipped triangles are looked up in place (no allocation: this
-    /// runs per vertex in sculpting's containment); many (a cell shared by
-    /// 300,000 coincident triangles of a degenerate storm) are sorted
-    /// once with the cells that hold them, so the cost stays
-    /// `O((n + k) log k)` instead of `n · k`.
-    pub fn at_skipping(&self, p: DVec3, skip: &[usize]) -> f64 {
-        if skip.len() <= FEW_SKIPPED {
-            let holds = |level: u32, (x, y, z): (usize, usize, usize)| {
-                let shift = self.depth - level;
-                skip.iter().filter_map(|&t| self.cell.get(t)).any(|&k| {
-                    let (kx, ky, kz) = self.finest(k as usize);
-                    (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
-                })
-            };
-            return self.sum_skipping(p, holds, |t| skip.contains(&t));
-        }
-        let mut skipped = skip.to_vec();
-        skipped.sort_unstable();
-        skipped.dedup();
-        let mut cells: Vec<(u32, usize, usize, usize)> = Vec::new();
-        for k in skipped.iter().filter_map(|&t| self.cell.get(t)) {
-            let (kx, ky, kz) = self.finest(*k as usize);
-            for level in 0..=self.depth {
-                let shift = self.depth - level;
-                cells.push((level, kx >> shift, ky >> shift, kz >> shift));
-            }
-        }
-        cells.sort_unstable();
-        cells.dedup();
-        self.sum_skipping(
-            p,
-            |level, (x, y, z)| cells.binary_search(&(level, x, y, z)).is_ok(),
-            |t| skipped.binary_search(&t).is_ok(),
-        )
-    }
-
     /// The finest cell's coordinates of cell index `k`.
     fn finest(&self, k: usize) -> (usize, usize, usize) {
         let fs = self.side;
         (k / (fs * fs), (k / fs) % fs, k % fs)
     }
 
-    /// [`WindingField::at_skipping`] with its two lookups: whether the cell
-    /// `(x, y, z)` of `level` holds a skipped triangle (it is then always
-    /// opened), and whether triangle `t` is skipped.
-    fn sum_skipping(
+    /// The winding number at `p` of the triangles of the tree (`triangles`
+    /// at `position`, those it was built over), by cells: a cell counts by
+    /// its dipole when it is far and `whole(level, (x, y, z), cell)`
+    /// admits it whole, else it is opened, down to the finest cells,
+    /// whose triangles count exactly unless `skipped(t)`.
+    pub(crate) fn sum(
         &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
         p: DVec3,
-        holds_skip: impl Fn(u32, (usize, usize, usize)) -> bool,
-        skipped: impl Fn(usize) -> bool,
+        whole: &WholeCell<'_>,
+        skipped: &dyn Fn(usize) -> bool,
     ) -> f64 {
         let mut total = 0.0;
         // (level, x, y, z)
@@ -474,18 +509,18 @@ impl<'a> WindingField<'a> {
         while let Some((level, x, y, z)) = stack.pop() {
             let s = 1usize << level;
             let c = (x * s + y) * s + z;
-            let cell = self.levels[level as usize][c];
+            let cell = &self.levels[level as usize][c];
             if cell.count == 0 {
                 continue;
             }
             let d = cell.centre - p;
             let dist = d.length();
-            if dist > FAR * cell.radius && !holds_skip(level, (x, y, z)) {
+            if dist > FAR * cell.radius && whole(level, (x, y, z), cell) {
                 total += cell.area_vector.dot(d) / (dist * dist * dist);
             } else if level == self.depth {
                 for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
                     if !skipped(t as usize) {
-                        let [a, b, e] = self.triangles[t as usize].map(self.position);
+                        let [a, b, e] = triangles[t as usize].map(position);
                         total += solid_angle(p, a, b, e);
                     }
                 }
@@ -501,6 +536,136 @@ impl<'a> WindingField<'a> {
             }
         }
         total / (4.0 * std::f64::consts::PI)
+    }
+
+    /// Six times the signed volume of the tree's triangles whose box
+    /// misses `b`: whole cells whose box misses it by their sums, the
+    /// finest cells that meet it triangle by triangle.
+    pub(crate) fn six_volume_missing(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        b: &Aabb,
+    ) -> f64 {
+        let mut cells = 0.0;
+        let mut triangles_missing = 0.0;
+        self.split_by_box(
+            triangles,
+            position,
+            b,
+            &mut |cell| cells += cell.six_volume,
+            &mut |corners| {
+                if let Some([a, bb, e]) = corners {
+                    triangles_missing += a.dot(bb.cross(e));
+                }
+            },
+        );
+        cells + triangles_missing
+    }
+
+    /// How many of the tree's triangles have a box meeting `b`.
+    pub(crate) fn count_meeting(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        b: &Aabb,
+    ) -> usize {
+        let mut meeting = 0;
+        self.split_by_box(triangles, position, b, &mut |_| {}, &mut |corners| {
+            meeting += usize::from(corners.is_none());
+        });
+        meeting
+    }
+
+    /// The tree's triangles split by whether their box meets `b`: the
+    /// cells whose box misses it go to `missing_cell` whole; in the
+    /// finest cells that meet it, each triangle goes to `triangle`, with
+    /// its corners where its box misses `b`, `None` where it meets it.
+    fn split_by_box(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        b: &Aabb,
+        missing_cell: &mut dyn FnMut(&Summary),
+        triangle: &mut dyn FnMut(Option<[DVec3; 3]>),
+    ) {
+        let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
+        while let Some((level, x, y, z)) = stack.pop() {
+            let s = 1usize << level;
+            let c = (x * s + y) * s + z;
+            let cell = &self.levels[level as usize][c];
+            if cell.count == 0 {
+                continue;
+            }
+            if !cell.meets(b) {
+                missing_cell(cell);
+            } else if level == self.depth {
+                for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
+                    let corners = triangles[t as usize].map(position);
+                    triangle((!corners_meet(&corners, b)).then_some(corners));
+                }
+            } else {
+                for k in 0..8 {
+                    stack.push((
+                        level + 1,
+                        2 * x + (k >> 2),
+                        2 * y + ((k >> 1) & 1),
+                        2 * z + (k & 1),
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// Whether the box of a triangle's corners meets `b`: not all three
+/// beyond one face of it ([`Aabb::outcode`]).
+pub(crate) fn corners_meet(corners: &[DVec3; 3], b: &Aabb) -> bool {
+    corners.iter().fold(0x3f, |code, &p| code & b.outcode(p)) == 0
+}
+
+/// The index of cell `(x, y, z)` in a level of `side` cells a side.
+fn index(x: usize, y: usize, z: usize, side: usize) -> usize {
+    (x * side + y) * side + z
+}
+
+/// The summary of a finest cell holding the triangles `members`.
+fn summary(members: &[u32], corners: &dyn Fn(u32) -> [DVec3; 3], centroids: &[DVec3]) -> Summary {
+    if members.is_empty() {
+        return Summary::default();
+    }
+    let (mut n, mut weighted, mut area, mut six) = (DVec3::ZERO, DVec3::ZERO, 0.0, 0.0);
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for &t in members {
+        let [a, b, d] = corners(t);
+        let v = 0.5 * (b - a).cross(d - a);
+        let len = v.length();
+        n += v;
+        weighted += len * (a + b + d) / 3.0;
+        area += len;
+        six += a.dot(b.cross(d));
+        lo = lo.min(a).min(b).min(d);
+        hi = hi.max(a).max(b).max(d);
+    }
+    let centre = if area > 0.0 {
+        weighted / area
+    } else {
+        centroids[members[0] as usize]
+    };
+    let radius = members
+        .iter()
+        .flat_map(|&t| corners(t))
+        .map(|p| p.distance(centre))
+        .fold(0.0, f64::max);
+    Summary {
+        area_vector: n,
+        centre,
+        radius,
+        area,
+        count: members.len() as u32,
+        lo,
+        hi,
+        six_volume: six,
     }
 }
 
@@ -531,6 +696,8 @@ fn merge(kids: &[Summary]) -> Summary {
             .fold(0.0, f64::max),
         area,
         count,
+        lo: kids.iter().fold(DVec3::INFINITY, |l, k| l.min(k.lo)),
+        hi: kids.iter().fold(DVec3::NEG_INFINITY, |h, k| h.max(k.hi)),
         six_volume: kids.iter().map(|k| k.six_volume).sum(),
     }
 }
