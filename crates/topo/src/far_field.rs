@@ -69,6 +69,8 @@ struct State {
     snapshot: Option<Snapshot>,
     /// The box every change since the snapshot lies in.
     changed: Option<Bounds>,
+    /// Snapshots built so far.
+    builds: usize,
 }
 
 /// The surface as it was, with its octree.
@@ -101,6 +103,13 @@ impl FarField {
     /// Whether a snapshot is kept (for tests and measurements).
     pub fn is_built(&self) -> bool {
         self.state.lock().is_ok_and(|s| s.snapshot.is_some())
+    }
+
+    /// How many snapshots were built: the first, and one for each time
+    /// the changes covered a quarter of the last (for tests and
+    /// measurements).
+    pub fn builds(&self) -> usize {
+        self.state.lock().map_or(0, |s| s.builds)
     }
 
     /// The winding numbers at `points` of the triangles of `mesh` that
@@ -140,6 +149,7 @@ impl FarField {
                 tree,
             });
             state.changed = None;
+            state.builds += 1;
         }
         kept_query(&state, mesh, inside, end, region, points)
     }

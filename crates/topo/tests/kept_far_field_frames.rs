@@ -1,0 +1,100 @@
+//! [`FarField`]: a stroke's kept far field gives its frames the result
+//! they get without it. A plate pushed into a row of balls cuts them
+//! into more pieces than one pass over the triangles serves
+//! (`winding::FEW_POINTS` samples), so the frame reads the far field from
+//! the kept octree, told after every frame what the frame changed; the
+//! same frames without it build an octree at every ask. The results are
+//! the same meshes.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use holey_topo::{FarField, Options, TriMesh, topology_change_guarded_holding};
+
+/// `m` stretched into the box from `lo` to `hi`.
+fn fitted(m: &TriMesh, lo: DVec3, hi: DVec3) -> TriMesh {
+    let (a, b) = used_bounds(m);
+    map_positions(m, |p| lo + (p - a) / (b - a) * (hi - lo))
+}
+
+/// The scene: three rows of eight balls along x (at y = 0, 3 and 6), a
+/// plate over each, and a big ball off to the side (so that a frame's
+/// region, and all the frames' changes, are a small part of the mesh);
+/// and each plate's box.
+fn scene() -> (TriMesh, Vec<(DVec3, DVec3)>) {
+    let ball = primitive("@sphere:2");
+    // Fine enough that the rows, where the frames change the surface, are
+    // a small share of it.
+    let mut m = fitted(
+        &primitive("@sphere:6"),
+        DVec3::new(-6.0, -1.0, -1.0),
+        DVec3::new(-4.0, 1.0, 1.0),
+    );
+    let mut plates = Vec::new();
+    for row in 0..3 {
+        let y = 3.0 * f64::from(row);
+        for i in 0..8 {
+            let x = 0.5 * f64::from(i);
+            m.append(&fitted(
+                &ball,
+                DVec3::new(x - 0.15, y - 0.15, -0.15),
+                DVec3::new(x + 0.15, y + 0.15, 0.15),
+            ));
+        }
+        let plate = (
+            DVec3::new(-0.4, y - 0.3, 0.2),
+            DVec3::new(3.9, y + 0.3, 0.3),
+        );
+        m.append(&fitted(&primitive("@cube:8"), plate.0, plate.1));
+        plates.push(plate);
+    }
+    (m, plates)
+}
+
+/// The vertices of `m` in the box `(lo, hi)` moved down by `dz`.
+fn pushed(m: &TriMesh, (lo, hi): (DVec3, DVec3), dz: f64) -> Vec<DVec3> {
+    m.positions
+        .iter()
+        .map(|&p| {
+            if p.cmpge(lo).all() && p.cmple(hi).all() {
+                p - DVec3::Z * dz
+            } else {
+                p
+            }
+        })
+        .collect()
+}
+
+/// Each frame pushes one plate into its row of balls, cutting them and
+/// the plate into more pieces than one pass serves; the first frame
+/// builds the kept field, the later ones read it, told what the earlier
+/// ones changed.
+#[test]
+fn plates_pushed_into_rows_of_balls_read_their_kept_far_field() {
+    let (start, plates) = scene();
+    assert!(closed_oriented(&start));
+    let far = FarField::new();
+    let (mut with, mut without) = (start.clone(), start.clone());
+    for (frame, &plate) in plates.iter().enumerate() {
+        // A plate is where it began until its frame.
+        let end = pushed(&with, plate, 0.15);
+        let r =
+            topology_change_guarded_holding(&mut with, &end, &Options::default(), &[], Some(&far))
+                .expect("a valid frame");
+        assert!(!r.local.positions_only, "frame {frame} fuses");
+        if let Some(b) = r.local.changed {
+            far.changed_within(b);
+        }
+        assert!(far.is_built(), "frame {frame} read the kept field");
+        let end = pushed(&without, plate, 0.15);
+        topology_change_guarded_holding(&mut without, &end, &Options::default(), &[], None)
+            .expect("a valid frame");
+        assert_eq!(with, without, "frame {frame}: the same result");
+        assert!(closed_oriented(&with), "frame {frame}");
+    }
+    // Built once, read by the later frames.
+    assert_eq!(far.builds(), 1);
+    // Each plate fused with its row: the big ball and three pieces.
+    assert_eq!(components(&with), 4);
+}
