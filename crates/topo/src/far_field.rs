@@ -142,7 +142,7 @@ impl FarField {
         if stale {
             // The snapshot at the frame's start: only the region differs
             // at its end, and the region is in the changed box.
-            let tree = Octree::new(&mesh.triangles, &|v| mesh.positions[v as usize]);
+            let tree = Octree::with_boxes(&mesh.triangles, &|v| mesh.positions[v as usize]);
             state.snapshot = Some(Snapshot {
                 positions: mesh.positions.clone(),
                 triangles: mesh.triangles.clone(),
@@ -182,11 +182,13 @@ fn kept_query(
     );
     let unchanged = |t: usize| !corners_meet(&s.triangles[t].map(old), &b);
     for (w, &p) in w.iter_mut().zip(points) {
-        *w += s
-            .tree
-            .sum(&s.triangles, &old, p, &|_, _, cell| !cell.meets(&b), &|t| {
-                !unchanged(t)
-            });
+        *w += s.tree.sum(
+            &s.triangles,
+            &old,
+            p,
+            |level, _, c| !s.tree.cell_meets(level, c, &b),
+            |t| !unchanged(t),
+        );
     }
     let six_kept = s.tree.six_volume_missing(&s.triangles, &old, &b);
     // `classified_sums` gives the volume, the octree six times it.

@@ -285,11 +285,10 @@ pub(crate) struct Octree {
     /// Per level, from the root (1 cell) to the finest: per cell,
     /// Σ area vector, area-weighted centre, radius, triangle count.
     levels: Vec<Vec<Summary>>,
+    /// Per level likewise, the box of each cell's triangles' corners
+    /// (empty unless built [`Octree::with_boxes`]).
+    boxes: Vec<Vec<Aabb>>,
 }
-
-/// Whether [`Octree::sum`] may count a cell (its level, its coordinates
-/// there, its summary) by its dipole when it is far.
-pub(crate) type WholeCell<'a> = dyn Fn(u32, (usize, usize, usize), &Summary) -> bool + 'a;
 
 /// What a cell of a [`WindingField`] holds, for its far field.
 #[derive(Clone, Copy, Debug, Default)]
@@ -299,18 +298,8 @@ pub(crate) struct Summary {
     radius: f64,
     area: f64,
     count: u32,
-    /// The box of its triangles' corners, and six times their signed
-    /// volume `Σ a·(b×c)`.
-    lo: DVec3,
-    hi: DVec3,
+    /// Six times the signed volume of its triangles, `Σ a·(b×c)`.
     six_volume: f64,
-}
-
-impl Summary {
-    /// Whether the box of the cell's triangles meets `b`.
-    pub(crate) fn meets(&self, b: &Aabb) -> bool {
-        Aabb::new(self.lo, self.hi).overlaps(b)
-    }
 }
 
 impl<'a> WindingField<'a> {
@@ -353,16 +342,6 @@ impl<'a> WindingField<'a> {
     /// `O((n + k) log k)` instead of `n · k`.
     pub fn at_skipping(&self, p: DVec3, skip: &[usize]) -> f64 {
         let tree = &self.tree;
-        let sum = |holds: &dyn Fn(u32, (usize, usize, usize)) -> bool,
-                   skipped: &dyn Fn(usize) -> bool| {
-            tree.sum(
-                self.triangles,
-                self.position,
-                p,
-                &|level, cell, _| !holds(level, cell),
-                skipped,
-            )
-        };
         if skip.len() <= FEW_SKIPPED {
             let holds = |level: u32, (x, y, z): (usize, usize, usize)| {
                 let shift = tree.depth - level;
@@ -371,7 +350,13 @@ impl<'a> WindingField<'a> {
                     (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
                 })
             };
-            return sum(&holds, &|t| skip.contains(&t));
+            return tree.sum(
+                self.triangles,
+                self.position,
+                p,
+                |level, cell, _| !holds(level, cell),
+                |t| skip.contains(&t),
+            );
         }
         let mut skipped = skip.to_vec();
         skipped.sort_unstable();
@@ -386,9 +371,12 @@ impl<'a> WindingField<'a> {
         }
         cells.sort_unstable();
         cells.dedup();
-        sum(
-            &|level, (x, y, z)| cells.binary_search(&(level, x, y, z)).is_ok(),
-            &|t| skipped.binary_search(&t).is_ok(),
+        tree.sum(
+            self.triangles,
+            self.position,
+            p,
+            |level, (x, y, z), _| cells.binary_search(&(level, x, y, z)).is_err(),
+            |t| skipped.binary_search(&t).is_ok(),
         )
     }
 }
@@ -396,6 +384,33 @@ impl<'a> WindingField<'a> {
 impl Octree {
     /// The octree of `triangles` with corners at `position`.
     pub(crate) fn new(triangles: &[[u32; 3]], position: &(dyn Fn(u32) -> DVec3 + Sync)) -> Octree {
+        Octree::build(triangles, position, false)
+    }
+
+    /// [`Octree::new`], with the box of every cell's triangles, for
+    /// [`Octree::split_by_box`] and a `whole` that asks
+    /// [`Octree::cell_meets`].
+    pub(crate) fn with_boxes(
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+    ) -> Octree {
+        Octree::build(triangles, position, true)
+    }
+
+    /// Whether the box of the triangles of cell `c` of `level` meets `b`
+    /// (always, without boxes).
+    pub(crate) fn cell_meets(&self, level: u32, c: usize, b: &Aabb) -> bool {
+        self.boxes
+            .get(level as usize)
+            .and_then(|l| l.get(c))
+            .is_none_or(|cell| cell.overlaps(b))
+    }
+
+    fn build(
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        with_boxes: bool,
+    ) -> Octree {
         let centroid = |t: &[u32; 3]| t.map(position).iter().sum::<DVec3>() / 3.0;
         // Rebuilt every frame a sculpting stroke changes topology, over
         // the whole surface around the brush: each pass is parallel.
@@ -439,13 +454,16 @@ impl Octree {
             .into_par_iter()
             .map(|c| {
                 let members = &order[start[c] as usize..start[c + 1] as usize];
-                summary(
-                    members,
-                    &|t| triangles[t as usize].map(position),
-                    &centroids,
-                )
+                summary(members, |t| triangles[t as usize].map(position), &centroids)
             })
             .collect();
+        let boxes = if with_boxes {
+            cell_boxes(side, &start, &order, &|t| {
+                triangles[t as usize].map(position)
+            })
+        } else {
+            Vec::new()
+        };
         let mut levels = vec![finest];
         let mut s = side;
         while s > 1 {
@@ -481,6 +499,7 @@ impl Octree {
             order,
             cell,
             levels,
+            boxes,
         }
     }
 
@@ -492,7 +511,8 @@ impl Octree {
 
     /// The winding number at `p` of the triangles of the tree (`triangles`
     /// at `position`, those it was built over), by cells: a cell counts by
-    /// its dipole when it is far and `whole(level, (x, y, z), cell)`
+    /// its dipole when it is far and `whole(level, (x, y, z), c)` (`c` the
+    /// cell's index in its level)
     /// admits it whole, else it is opened, down to the finest cells,
     /// whose triangles count exactly unless `skipped(t)`.
     pub(crate) fn sum(
@@ -500,8 +520,8 @@ impl Octree {
         triangles: &[[u32; 3]],
         position: &(dyn Fn(u32) -> DVec3 + Sync),
         p: DVec3,
-        whole: &WholeCell<'_>,
-        skipped: &dyn Fn(usize) -> bool,
+        whole: impl Fn(u32, (usize, usize, usize), usize) -> bool,
+        skipped: impl Fn(usize) -> bool,
     ) -> f64 {
         let mut total = 0.0;
         // (level, x, y, z)
@@ -515,7 +535,7 @@ impl Octree {
             }
             let d = cell.centre - p;
             let dist = d.length();
-            if dist > FAR * cell.radius && whole(level, (x, y, z), cell) {
+            if dist > FAR * cell.radius && whole(level, (x, y, z), c) {
                 total += cell.area_vector.dot(d) / (dist * dist * dist);
             } else if level == self.depth {
                 for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
@@ -597,7 +617,7 @@ impl Octree {
             if cell.count == 0 {
                 continue;
             }
-            if !cell.meets(b) {
+            if !self.cell_meets(level, c, b) {
                 missing_cell(cell);
             } else if level == self.depth {
                 for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
@@ -618,6 +638,46 @@ impl Octree {
     }
 }
 
+/// Per level of an octree of `side` finest cells a side (triangles by
+/// cell in `start` and `order`), from the root: the box of each cell's
+/// triangles' corners ([`Aabb::EMPTY`] for an empty cell).
+fn cell_boxes(
+    side: usize,
+    start: &[u32],
+    order: &[u32],
+    corners: &(dyn Fn(u32) -> [DVec3; 3] + Sync),
+) -> Vec<Vec<Aabb>> {
+    let finest: Vec<Aabb> = (0..side * side * side)
+        .into_par_iter()
+        .map(|c| {
+            order[start[c] as usize..start[c + 1] as usize]
+                .iter()
+                .flat_map(|&t| corners(t))
+                .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(p, p)))
+        })
+        .collect();
+    let mut levels = vec![finest];
+    let mut s = side;
+    while s > 1 {
+        let half = s / 2;
+        let below = levels.last().map(Vec::as_slice).unwrap_or(&[]);
+        let up = (0..half * half * half)
+            .map(|c| {
+                let (x, y, z) = (c / (half * half), (c / half) % half, c % half);
+                (0..8).fold(Aabb::EMPTY, |b, k| {
+                    b.union(
+                        &below[index(2 * x + (k >> 2), 2 * y + ((k >> 1) & 1), 2 * z + (k & 1), s)],
+                    )
+                })
+            })
+            .collect();
+        levels.push(up);
+        s = half;
+    }
+    levels.reverse();
+    levels
+}
+
 /// Whether the box of a triangle's corners meets `b`: not all three
 /// beyond one face of it ([`Aabb::outcode`]).
 pub(crate) fn corners_meet(corners: &[DVec3; 3], b: &Aabb) -> bool {
@@ -630,12 +690,12 @@ fn index(x: usize, y: usize, z: usize, side: usize) -> usize {
 }
 
 /// The summary of a finest cell holding the triangles `members`.
-fn summary(members: &[u32], corners: &dyn Fn(u32) -> [DVec3; 3], centroids: &[DVec3]) -> Summary {
+#[inline]
+fn summary(members: &[u32], corners: impl Fn(u32) -> [DVec3; 3], centroids: &[DVec3]) -> Summary {
     if members.is_empty() {
         return Summary::default();
     }
     let (mut n, mut weighted, mut area, mut six) = (DVec3::ZERO, DVec3::ZERO, 0.0, 0.0);
-    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     for &t in members {
         let [a, b, d] = corners(t);
         let v = 0.5 * (b - a).cross(d - a);
@@ -644,8 +704,6 @@ fn summary(members: &[u32], corners: &dyn Fn(u32) -> [DVec3; 3], centroids: &[DV
         weighted += len * (a + b + d) / 3.0;
         area += len;
         six += a.dot(b.cross(d));
-        lo = lo.min(a).min(b).min(d);
-        hi = hi.max(a).max(b).max(d);
     }
     let centre = if area > 0.0 {
         weighted / area
@@ -663,8 +721,6 @@ fn summary(members: &[u32], corners: &dyn Fn(u32) -> [DVec3; 3], centroids: &[DV
         radius,
         area,
         count: members.len() as u32,
-        lo,
-        hi,
         six_volume: six,
     }
 }
@@ -696,8 +752,6 @@ fn merge(kids: &[Summary]) -> Summary {
             .fold(0.0, f64::max),
         area,
         count,
-        lo: kids.iter().fold(DVec3::INFINITY, |l, k| l.min(k.lo)),
-        hi: kids.iter().fold(DVec3::NEG_INFINITY, |h, k| h.max(k.hi)),
         six_volume: kids.iter().map(|k| k.six_volume).sum(),
     }
 }
