@@ -39,7 +39,7 @@ use crate::cut::{AroundCurve, Deletion, cancel_opposite, cut, reconnect_crossing
 use crate::engine::{
     Geometry, Options, Outcome, Report, TopoError, geometry, old_curves, split_new_pinches,
 };
-use crate::far_field::FarField;
+use crate::far_field::{Ask, FarField};
 use crate::local::Bounds;
 use crate::mesh::{Edges, TriMesh};
 use crate::solid::{regions, signed_volume};
@@ -111,13 +111,13 @@ impl<'a> Surroundings<'a> {
     /// one, else from an octree field built for this query.
     pub fn winding_numbers_at(&self, points: &[DVec3]) -> Vec<f64> {
         if let Some((far, region)) = self.far
-            && let Some((w, volume)) = far.winding_numbers_and_volume_at(
-                self.mesh,
-                self.inside,
-                self.positions,
+            && let Some((w, volume)) = far.winding_numbers_and_volume_at(&Ask {
+                mesh: self.mesh,
+                inside: self.inside,
+                end: self.positions,
                 region,
                 points,
-            )
+            })
         {
             let _ = self.orientation.set(orientation_of(volume));
             return w;

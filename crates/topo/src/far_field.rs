@@ -73,6 +73,18 @@ struct State {
     builds: usize,
 }
 
+impl State {
+    /// The changed box with the box `region` of a frame's region: every
+    /// triangle that differs between the snapshot and the surface at the
+    /// frame's end meets it.
+    fn dirty(&self, region: Bounds) -> Aabb {
+        let (lo, hi) = self
+            .changed
+            .map_or(region, |c| (c.0.min(region.0), c.1.max(region.1)));
+        Aabb::new(lo, hi)
+    }
+}
+
 /// The surface as it was, with its octree.
 struct Snapshot {
     positions: Vec<DVec3>,
@@ -112,32 +124,27 @@ impl FarField {
         self.state.lock().map_or(0, |s| s.builds)
     }
 
-    /// The winding numbers at `points` of the triangles of `mesh` that
-    /// `inside` does not flag, at `end` (equal to `mesh`'s positions
-    /// outside the region), and the signed volume of all of them at `end`;
-    /// `region` bounds the region's vertices at the start and at `end`.
+    /// What the frame asks ([`Ask`]).
     /// `None` for up to [`FEW_POINTS`] points: one pass over the triangles
     /// is as cheap as the kept field's query there (whose own pass reads
     /// every triangle's corners too), so the caller sums them itself.
-    pub(crate) fn winding_numbers_and_volume_at(
-        &self,
-        mesh: &TriMesh,
-        inside: &[bool],
-        end: &[DVec3],
-        region: Bounds,
-        points: &[DVec3],
-    ) -> Option<(Vec<f64>, f64)> {
+    pub(crate) fn winding_numbers_and_volume_at(&self, ask: &Ask<'_>) -> Option<(Vec<f64>, f64)> {
+        let Ask {
+            mesh,
+            region,
+            points,
+            ..
+        } = *ask;
         if points.len() <= FEW_POINTS {
             return None;
         }
         let mut state = self.state.lock().ok()?;
-        let dirty = crate::local::union(state.changed, Some(region))?;
-        let dirty = Aabb::new(dirty.0, dirty.1);
+        let dirty = state.dirty(region);
         let stale = state.snapshot.as_ref().is_none_or(|s| {
-            s.tree
-                .count_meeting(&s.triangles, &|v| s.positions[v as usize], &dirty)
-                as f64
-                > STALE_SHARE * s.triangles.len() as f64
+            let (meeting, _) =
+                s.tree
+                    .split_sums(&s.triangles, &|v| s.positions[v as usize], &dirty);
+            meeting as f64 > STALE_SHARE * s.triangles.len() as f64
         });
         if stale {
             // The snapshot at the frame's start: only the region differs
@@ -151,22 +158,35 @@ impl FarField {
             state.changed = None;
             state.builds += 1;
         }
-        kept_query(&state, mesh, inside, end, region, points)
+        kept_query(&state, ask)
     }
 }
 
+/// What a frame asks of a [`FarField`]: the winding numbers at `points` of
+/// the triangles of `mesh` that `inside` does not flag, at `end` (equal
+/// to `mesh`'s positions outside the region), and the signed volume of
+/// all of them at `end`; `region` bounds the region's vertices at the
+/// start and at `end`.
+#[derive(Clone, Copy)]
+pub(crate) struct Ask<'a> {
+    pub mesh: &'a TriMesh,
+    pub inside: &'a [bool],
+    pub end: &'a [DVec3],
+    pub region: Bounds,
+    pub points: &'a [DVec3],
+}
+
 /// [`FarField::winding_numbers_and_volume_at`] on a kept snapshot.
-fn kept_query(
-    state: &State,
-    mesh: &TriMesh,
-    inside: &[bool],
-    end: &[DVec3],
-    region: Bounds,
-    points: &[DVec3],
-) -> Option<(Vec<f64>, f64)> {
+fn kept_query(state: &State, ask: &Ask<'_>) -> Option<(Vec<f64>, f64)> {
+    let Ask {
+        mesh,
+        inside,
+        end,
+        region,
+        points,
+    } = *ask;
     let s = state.snapshot.as_ref()?;
-    let b = crate::local::union(state.changed, Some(region))?;
-    let b = Aabb::new(b.0, b.1);
+    let b = state.dirty(region);
     let old = |v: u32| s.positions[v as usize];
     // The triangles of the surface now whose box meets the changed box:
     // outside the region they count in the winding numbers, all of them
@@ -190,7 +210,7 @@ fn kept_query(
             |t| !unchanged(t),
         );
     }
-    let six_kept = s.tree.six_volume_missing(&s.triangles, &old, &b);
+    let (_, six_kept) = s.tree.split_sums(&s.triangles, &old, &b);
     // `classified_sums` gives the volume, the octree six times it.
     Some((w, six_now + six_kept / 6.0))
 }
@@ -200,6 +220,22 @@ mod tests {
     use super::*;
     use crate::test_meshes::uv_sphere;
     use crate::winding::winding_numbers_and_volume_at;
+
+    /// What `field` answers for `m` at `points`, with no region (the
+    /// region's box: `m`'s first vertex).
+    fn asked(field: &FarField, m: &TriMesh, points: &[DVec3]) -> (Vec<f64>, f64) {
+        let nothing = vec![false; m.triangles.len()];
+        let first = m.positions[0];
+        field
+            .winding_numbers_and_volume_at(&Ask {
+                mesh: m,
+                inside: &nothing,
+                end: &m.positions,
+                region: (first, first),
+                points,
+            })
+            .expect("built")
+    }
 
     /// The exact pass over the surface now, beside the kept field, as a
     /// surface changes patch by patch and the changes are reported: the
@@ -227,13 +263,24 @@ mod tests {
         let nothing = vec![false; m.triangles.len()];
         let first = |m: &TriMesh| m.positions[0];
         let region = (first(&m), first(&m));
-        let few =
-            field.winding_numbers_and_volume_at(&m, &nothing, &m.positions, region, &points[..3]);
+        let few = field.winding_numbers_and_volume_at(&Ask {
+            mesh: &m,
+            inside: &nothing,
+            end: &m.positions,
+            region,
+            points: &points[..3],
+        });
         assert!(
             few.is_none() && !field.is_built(),
             "a few points are the caller's pass"
         );
-        let _ = field.winding_numbers_and_volume_at(&m, &nothing, &m.positions, region, &points);
+        let _ = field.winding_numbers_and_volume_at(&Ask {
+            mesh: &m,
+            inside: &nothing,
+            end: &m.positions,
+            region,
+            points: &points,
+        });
         assert!(field.is_built());
         for step in 0..6 {
             // Move a cap of the outer sphere outward, a different one
@@ -263,11 +310,7 @@ mod tests {
                 });
             field.changed_within(bound);
             assert!(lost.is_some());
-            let keep = vec![false; m.triangles.len()];
-            let region = (first(&m), first(&m));
-            let (kept, volume) = field
-                .winding_numbers_and_volume_at(&m, &keep, &m.positions, region, &points)
-                .expect("built");
+            let (kept, volume) = asked(&field, &m, &points);
             let at = |v: u32| m.positions[v as usize];
             let (exact, exact_volume) =
                 winding_numbers_and_volume_at(&m.triangles, &|_| true, &at, &points);
@@ -288,11 +331,7 @@ mod tests {
                 m.positions[v] *= 1.2;
             }
         }
-        let keep = vec![false; m.triangles.len()];
-        let region = (first(&m), first(&m));
-        let (_, volume) = field
-            .winding_numbers_and_volume_at(&m, &keep, &m.positions, region, &points)
-            .expect("built");
+        let (_, volume) = asked(&field, &m, &points);
         let at = |v: u32| m.positions[v as usize];
         let (_, exact_volume) = winding_numbers_and_volume_at(&m.triangles, &|_| true, &at, &[]);
         assert!(

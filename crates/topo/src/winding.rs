@@ -503,6 +503,26 @@ impl Octree {
         }
     }
 
+    /// The cells from the root down: `visit(level, (x, y, z), index,
+    /// summary)` for every cell that holds triangles and whose parent it
+    /// asked to open (by returning true), the root first.
+    fn walk(&self, mut visit: impl FnMut(u32, (usize, usize, usize), usize, &Summary) -> bool) {
+        let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
+        while let Some((level, x, y, z)) = stack.pop() {
+            let s = 1usize << level;
+            let c = (x * s + y) * s + z;
+            let cell = &self.levels[level as usize][c];
+            if cell.count > 0 && visit(level, (x, y, z), c, cell) && level < self.depth {
+                push_children(&mut stack, level, (x, y, z));
+            }
+        }
+    }
+
+    /// The triangles of finest cell `c`.
+    fn members(&self, c: usize) -> &[u32] {
+        &self.order[self.start[c] as usize..self.start[c + 1] as usize]
+    }
+
     /// The finest cell's coordinates of cell index `k`.
     fn finest(&self, k: usize) -> (usize, usize, usize) {
         let fs = self.side;
@@ -524,77 +544,49 @@ impl Octree {
         skipped: impl Fn(usize) -> bool,
     ) -> f64 {
         let mut total = 0.0;
-        // (level, x, y, z)
-        let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
-        while let Some((level, x, y, z)) = stack.pop() {
-            let s = 1usize << level;
-            let c = (x * s + y) * s + z;
-            let cell = &self.levels[level as usize][c];
-            if cell.count == 0 {
-                continue;
-            }
+        self.walk(|level, xyz, c, cell| {
             let d = cell.centre - p;
             let dist = d.length();
-            if dist > FAR * cell.radius && whole(level, (x, y, z), c) {
+            if dist > FAR * cell.radius && whole(level, xyz, c) {
                 total += cell.area_vector.dot(d) / (dist * dist * dist);
+                false
             } else if level == self.depth {
-                for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
+                for &t in self.members(c) {
                     if !skipped(t as usize) {
                         let [a, b, e] = triangles[t as usize].map(position);
                         total += solid_angle(p, a, b, e);
                     }
                 }
+                false
             } else {
-                for k in 0..8 {
-                    stack.push((
-                        level + 1,
-                        2 * x + (k >> 2),
-                        2 * y + ((k >> 1) & 1),
-                        2 * z + (k & 1),
-                    ));
-                }
+                true
             }
-        }
+        });
         total / (4.0 * std::f64::consts::PI)
     }
 
-    /// Six times the signed volume of the tree's triangles whose box
-    /// misses `b`: whole cells whose box misses it by their sums, the
-    /// finest cells that meet it triangle by triangle.
-    pub(crate) fn six_volume_missing(
+    /// Of the tree's triangles, how many have a box meeting `b`, and six
+    /// times the signed volume of those whose box misses it: whole cells
+    /// whose box misses it by their sums, the finest cells that meet it
+    /// triangle by triangle.
+    pub(crate) fn split_sums(
         &self,
         triangles: &[[u32; 3]],
         position: &(dyn Fn(u32) -> DVec3 + Sync),
         b: &Aabb,
-    ) -> f64 {
-        let mut cells = 0.0;
-        let mut triangles_missing = 0.0;
+    ) -> (usize, f64) {
+        let (mut meeting, mut cells, mut missing) = (0, 0.0, 0.0);
         self.split_by_box(
             triangles,
             position,
             b,
             &mut |cell| cells += cell.six_volume,
-            &mut |corners| {
-                if let Some([a, bb, e]) = corners {
-                    triangles_missing += a.dot(bb.cross(e));
-                }
+            &mut |corners| match corners {
+                Some([a, bb, e]) => missing += a.dot(bb.cross(e)),
+                None => meeting += 1,
             },
         );
-        cells + triangles_missing
-    }
-
-    /// How many of the tree's triangles have a box meeting `b`.
-    pub(crate) fn count_meeting(
-        &self,
-        triangles: &[[u32; 3]],
-        position: &(dyn Fn(u32) -> DVec3 + Sync),
-        b: &Aabb,
-    ) -> usize {
-        let mut meeting = 0;
-        self.split_by_box(triangles, position, b, &mut |_| {}, &mut |corners| {
-            meeting += usize::from(corners.is_none());
-        });
-        meeting
+        (meeting, cells + missing)
     }
 
     /// The tree's triangles split by whether their box meets `b`: the
@@ -609,32 +601,37 @@ impl Octree {
         missing_cell: &mut dyn FnMut(&Summary),
         triangle: &mut dyn FnMut(Option<[DVec3; 3]>),
     ) {
-        let mut stack = vec![(0u32, 0usize, 0usize, 0usize)];
-        while let Some((level, x, y, z)) = stack.pop() {
-            let s = 1usize << level;
-            let c = (x * s + y) * s + z;
-            let cell = &self.levels[level as usize][c];
-            if cell.count == 0 {
-                continue;
-            }
+        self.walk(|level, _, c, cell| {
             if !self.cell_meets(level, c, b) {
                 missing_cell(cell);
+                false
             } else if level == self.depth {
-                for &t in &self.order[self.start[c] as usize..self.start[c + 1] as usize] {
+                for &t in self.members(c) {
                     let corners = triangles[t as usize].map(position);
                     triangle((!corners_meet(&corners, b)).then_some(corners));
                 }
+                false
             } else {
-                for k in 0..8 {
-                    stack.push((
-                        level + 1,
-                        2 * x + (k >> 2),
-                        2 * y + ((k >> 1) & 1),
-                        2 * z + (k & 1),
-                    ));
-                }
+                true
             }
-        }
+        });
+    }
+}
+
+/// The eight cells of the level below cell `(x, y, z)` of `level`, onto
+/// a traversal's stack.
+fn push_children(
+    stack: &mut Vec<(u32, usize, usize, usize)>,
+    level: u32,
+    (x, y, z): (usize, usize, usize),
+) {
+    for k in 0..8 {
+        stack.push((
+            level + 1,
+            2 * x + (k >> 2),
+            2 * y + ((k >> 1) & 1),
+            2 * z + (k & 1),
+        ));
     }
 }
 
