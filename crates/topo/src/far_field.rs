@@ -139,26 +139,38 @@ impl FarField {
             return None;
         }
         let mut state = self.state.lock().ok()?;
-        let dirty = state.dirty(region);
-        let stale = state.snapshot.as_ref().is_none_or(|s| {
-            let (meeting, _) =
-                s.tree
-                    .split_sums(&s.triangles, &|v| s.positions[v as usize], &dirty);
-            meeting as f64 > STALE_SHARE * s.triangles.len() as f64
-        });
-        if stale {
-            // The snapshot at the frame's start: only the region differs
-            // at its end, and the region is in the changed box.
-            let tree = Octree::with_boxes(&mesh.triangles, &|v| mesh.positions[v as usize]);
-            state.snapshot = Some(Snapshot {
-                positions: mesh.positions.clone(),
-                triangles: mesh.triangles.clone(),
-                tree,
-            });
-            state.changed = None;
-            state.builds += 1;
-        }
-        kept_query(&state, ask)
+        // How much of the snapshot the changes cover, and the volume of
+        // the rest, in one walk down its octree.
+        let split = |state: &State| {
+            state.snapshot.as_ref().map(|s| {
+                let (meeting, six_kept) = s.tree.split_sums(
+                    &s.triangles,
+                    &|v| s.positions[v as usize],
+                    &state.dirty(region),
+                );
+                (
+                    meeting as f64 > STALE_SHARE * s.triangles.len() as f64,
+                    six_kept,
+                )
+            })
+        };
+        let six_kept = match split(&state) {
+            Some((false, six_kept)) => six_kept,
+            _ => {
+                // The snapshot at the frame's start: only the region differs
+                // at its end, and the region is in the changed box.
+                let tree = Octree::with_boxes(&mesh.triangles, &|v| mesh.positions[v as usize]);
+                state.snapshot = Some(Snapshot {
+                    positions: mesh.positions.clone(),
+                    triangles: mesh.triangles.clone(),
+                    tree,
+                });
+                state.changed = None;
+                state.builds += 1;
+                split(&state)?.1
+            }
+        };
+        kept_query(&state, ask, six_kept)
     }
 }
 
@@ -177,7 +189,9 @@ pub(crate) struct Ask<'a> {
 }
 
 /// [`FarField::winding_numbers_and_volume_at`] on a kept snapshot.
-fn kept_query(state: &State, ask: &Ask<'_>) -> Option<(Vec<f64>, f64)> {
+/// `six_kept` is six times the signed volume of the snapshot's triangles
+/// whose box misses the changed box.
+fn kept_query(state: &State, ask: &Ask<'_>, six_kept: f64) -> Option<(Vec<f64>, f64)> {
     let Ask {
         mesh,
         inside,
@@ -210,7 +224,6 @@ fn kept_query(state: &State, ask: &Ask<'_>) -> Option<(Vec<f64>, f64)> {
             |t| !unchanged(t),
         );
     }
-    let (_, six_kept) = s.tree.split_sums(&s.triangles, &old, &b);
     // `classified_sums` gives the volume, the octree six times it.
     Some((w, six_now + six_kept / 6.0))
 }

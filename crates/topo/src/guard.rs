@@ -455,7 +455,7 @@ fn contained(
     options: &Options,
     far: Option<&FarField>,
 ) -> Result<Option<Run>, TopoError> {
-    let far = far.zip(tight.region.bounds(&mesh.positions, end));
+    let far = far.and_then(|f| Some((f, tight.region.bounds(&mesh.positions, end)?)));
     let surroundings = Surroundings::new(mesh, &tight.region.mask, end, far);
     let Some(mut out) = by_containment(
         &tight.sub,
@@ -870,7 +870,9 @@ fn resolve_frame(
 ) -> Result<Outcome, TopoError> {
     let local_end = region.gather(end);
     if containment.allowed && options.solid_guard {
-        let far = containment.far.zip(region.bounds(&mesh.positions, end));
+        let far = containment
+            .far
+            .and_then(|f| Some((f, region.bounds(&mesh.positions, end)?)));
         let surroundings = Surroundings::new(mesh, &region.mask, end, far);
         if let Some(out) = by_containment(sub, &local_end, options, &surroundings, None)? {
             return Ok(out);
