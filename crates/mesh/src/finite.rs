@@ -8,6 +8,7 @@
 use std::fmt;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// A point with a NaN or infinite coordinate where a finite one is needed:
 /// what the point is, which one, its coordinates when known, and what to
@@ -91,20 +92,23 @@ impl NonFinite {
     /// all are finite.
     pub fn check(what: &'static str, positions: &[DVec3]) -> Result<(), NonFinite> {
         // A branch-free pass over blocks first (every live stroke frame
-        // checks a whole mesh, a million points at a time); only a block
-        // with a bad point is searched for it.
+        // checks a whole mesh, a million points at a time), in parallel
+        // runs; only the first block with a bad point is searched for it.
         const BLOCK: usize = 256;
         let finite = |block: &[DVec3]| {
             block.iter().fold(true, |ok, p| {
                 ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
             })
         };
-        for (b, block) in positions.chunks(BLOCK).enumerate() {
-            if !finite(block) {
-                let k = block.iter().position(|p| !p.is_finite()).unwrap_or(0);
-                let index = b * BLOCK + k;
-                return Err(NonFinite::new(what, index, positions[index]));
-            }
+        let bad = positions
+            .par_chunks(BLOCK)
+            .with_min_len(crate::PARALLEL_RUN / BLOCK)
+            .position_first(|block| !finite(block));
+        if let Some(b) = bad {
+            let block = &positions[b * BLOCK..positions.len().min((b + 1) * BLOCK)];
+            let k = block.iter().position(|p| !p.is_finite()).unwrap_or(0);
+            let index = b * BLOCK + k;
+            return Err(NonFinite::new(what, index, positions[index]));
         }
         Ok(())
     }

@@ -157,6 +157,24 @@ impl TriMesh {
     /// copying the rest of it. Every index of `triangles` must be below
     /// `positions.len()`.
     pub fn of_used(positions: &[DVec3], triangles: Vec<[u32; 3]>) -> (TriMesh, Vec<u32>) {
+        // A small piece of a large mesh (a brush's on a million
+        // triangles) is numbered by its sorted vertices, without a pass
+        // over every position.
+        if triangles.len().saturating_mul(16) < positions.len() {
+            let mut origin: Vec<u32> = triangles.iter().flatten().copied().collect();
+            origin.sort_unstable();
+            origin.dedup();
+            let local = |v: u32| origin.binary_search(&v).unwrap_or_else(|i| i) as u32;
+            let triangles = triangles.iter().map(|t| t.map(local)).collect();
+            let positions = origin.iter().map(|&v| positions[v as usize]).collect();
+            return (
+                TriMesh {
+                    positions,
+                    triangles,
+                },
+                origin,
+            );
+        }
         let index = marked_used(positions.len(), &triangles);
         renumbered(positions, triangles, index)
     }
@@ -293,20 +311,25 @@ impl TriMesh {
         if n >= u32::MAX as usize {
             return Err(MeshError::TooLarge(n));
         }
-        // The largest index of each block first, branch-free; only a block
-        // with a bad index is searched for its first one.
+        // The largest index of each block first, branch-free and in
+        // parallel runs; only the first block with a bad index is searched
+        // for its first one.
         const BLOCK: usize = 256;
-        for (b, block) in self.triangles.chunks(BLOCK).enumerate() {
-            let largest = block.iter().flatten().fold(0, |m, &i| m.max(i));
-            if largest as usize >= n {
-                for (k, tri) in block.iter().enumerate() {
-                    if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
-                        return Err(MeshError::IndexOutOfRange {
-                            triangle: b * BLOCK + k,
-                            index,
-                            count: n,
-                        });
-                    }
+        let largest = |block: &[[u32; 3]]| block.iter().flatten().fold(0, |m, &i| m.max(i));
+        let bad = self
+            .triangles
+            .par_chunks(BLOCK)
+            .with_min_len(crate::PARALLEL_RUN / BLOCK)
+            .position_first(|block| largest(block) as usize >= n);
+        if let Some(b) = bad {
+            let block = &self.triangles[b * BLOCK..self.triangles.len().min((b + 1) * BLOCK)];
+            for (k, tri) in block.iter().enumerate() {
+                if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
+                    return Err(MeshError::IndexOutOfRange {
+                        triangle: b * BLOCK + k,
+                        index,
+                        count: n,
+                    });
                 }
             }
         }
@@ -816,6 +839,26 @@ mod tests {
             [0.0, 1.0, 0.0],
         ];
         assert_eq!(TriMesh::from_arrays(&arrays, &[[0, 1, 2], [0, 2, 3]]), t);
+    }
+
+    #[test]
+    fn a_small_piece_is_numbered_as_the_pass_over_every_vertex_numbers_it() {
+        // 200 points, and pieces of 1 to 12 triangles over scattered ones:
+        // the sorted-vertex path and the whole pass must agree exactly.
+        let positions: Vec<DVec3> = (0..200).map(|i| DVec3::new(i as f64, 0.5, -1.0)).collect();
+        for k in 1..=12u32 {
+            let tris: Vec<[u32; 3]> = (0..k)
+                .map(|t| [(t * 37) % 200, (t * 91 + 5) % 200, (t * 13 + 150) % 200])
+                .collect();
+            assert!(tris.len() * 16 < positions.len());
+            let small = TriMesh::of_used(&positions, tris.clone());
+            let whole = renumbered(
+                &positions,
+                tris.clone(),
+                marked_used(positions.len(), &tris),
+            );
+            assert_eq!(small, whole, "{k} triangles");
+        }
     }
 
     #[test]

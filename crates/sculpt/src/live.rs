@@ -17,11 +17,13 @@ use std::time::Instant;
 use glam::DVec3;
 use holey_geom::distance::point_segment_distance;
 use holey_geom::position_key;
+use holey_mesh::PARALLEL_RUN;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
     Accumulator, FarField, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
     topology_change_guarded_if_sure,
 };
+use rayon::prelude::*;
 
 use crate::brush::region::Region;
 use crate::brush::{
@@ -1167,46 +1169,67 @@ struct Piece {
 }
 
 impl Piece {
-    fn around(mesh: &TriMesh, reaches: &dyn Fn(DVec3) -> bool) -> Piece {
+    fn around(mesh: &TriMesh, reaches: &(dyn Fn(DVec3) -> bool + Sync)) -> Piece {
+        // Each pass over the whole mesh runs in parallel runs and gathers
+        // what the piece needs, which is small beside it.
         let n = mesh.positions.len();
-        let near: Vec<bool> = mesh.positions.iter().map(|&p| reaches(p)).collect();
+        let near: Vec<bool> = mesh
+            .positions
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .map(|&p| reaches(p))
+            .collect();
         // The first ring: the vertices of the triangles at a reached one.
+        let touching = |ring: &[bool]| -> Vec<usize> {
+            mesh.triangles
+                .par_iter()
+                .with_min_len(PARALLEL_RUN)
+                .enumerate()
+                .filter(|(_, t)| t.iter().any(|&v| ring[v as usize]))
+                .map(|(i, _)| i)
+                .collect()
+        };
         let mut ring = vec![false; n];
-        for t in &mesh.triangles {
-            if t.iter().any(|&v| near[v as usize]) {
-                for &v in t {
-                    ring[v as usize] = true;
-                }
+        for t in touching(&near) {
+            for v in mesh.triangles[t] {
+                ring[v as usize] = true;
             }
         }
+        drop(near);
         // And every vertex at the position of one of them: only those in
         // the ring's box need their position looked up.
-        let keys: rustc_hash::FxHashSet<[u64; 3]> = (0..n)
-            .filter(|&v| ring[v])
-            .map(|v| position_key(mesh.positions[v]))
+        let first: Vec<u32> = (0..n as u32).filter(|&v| ring[v as usize]).collect();
+        let keys: rustc_hash::FxHashSet<[u64; 3]> = first
+            .iter()
+            .map(|&v| position_key(mesh.positions[v as usize]))
             .collect();
-        if let Some((lo, hi)) = (0..n).filter(|&v| ring[v]).map(|v| mesh.positions[v]).fold(
+        if let Some((lo, hi)) = first.iter().map(|&v| mesh.positions[v as usize]).fold(
             None,
             |b: Option<(DVec3, DVec3)>, p| {
                 Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
             },
         ) {
-            for (v, p) in mesh.positions.iter().enumerate() {
-                if !ring[v]
-                    && p.cmpge(lo).all()
-                    && p.cmple(hi).all()
-                    && keys.contains(&position_key(*p))
-                {
-                    ring[v] = true;
-                }
+            let copies: Vec<usize> = mesh
+                .positions
+                .par_iter()
+                .with_min_len(PARALLEL_RUN)
+                .enumerate()
+                .filter(|&(v, p)| {
+                    !ring[v]
+                        && p.cmpge(lo).all()
+                        && p.cmple(hi).all()
+                        && keys.contains(&position_key(*p))
+                })
+                .map(|(v, _)| v)
+                .collect();
+            for v in copies {
+                ring[v] = true;
             }
         }
         // The second ring's triangles, and their vertices in mesh order.
-        let kept: Vec<[u32; 3]> = mesh
-            .triangles
-            .iter()
-            .filter(|t| t.iter().any(|&v| ring[v as usize]))
-            .copied()
+        let kept: Vec<[u32; 3]> = touching(&ring)
+            .into_iter()
+            .map(|t| mesh.triangles[t])
             .collect();
         let (mesh, global) = TriMesh::of_used(&mesh.positions, kept);
         Piece { mesh, global }
@@ -1436,8 +1459,13 @@ fn cleanup_options(mesh: &TriMesh) -> Option<RemeshOptions> {
 /// of a seam split or collapsed alone would open a crack there, so seams
 /// are left as they are (the collapse of a neighbour onto them never
 /// moves them: inactive vertices stay put).
-fn remesh_active(mesh: &TriMesh, near: impl Fn(DVec3) -> bool) -> Vec<bool> {
-    let mut active: Vec<bool> = mesh.positions.iter().map(|&p| near(p)).collect();
+fn remesh_active(mesh: &TriMesh, near: impl Fn(DVec3) -> bool + Sync) -> Vec<bool> {
+    let mut active: Vec<bool> = mesh
+        .positions
+        .par_iter()
+        .with_min_len(PARALLEL_RUN)
+        .map(|&p| near(p))
+        .collect();
     let key = holey_geom::position_key;
     let mut first: std::collections::HashMap<[u64; 3], u32> = std::collections::HashMap::new();
     let mut copies: Vec<u32> = Vec::new();

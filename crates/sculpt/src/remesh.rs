@@ -35,11 +35,13 @@
 
 use glam::DVec3;
 use holey_geom::Aabb;
+use holey_mesh::PARALLEL_RUN;
 use holey_mesh::slots::fill_holes;
 use holey_topo::TriMesh;
 use holey_topo::audit::{is_degenerate, is_flat};
 use holey_topo::intersect::crossing_pairs_involving;
 use holey_topo::mesh::MeshError;
+use rayon::prelude::*;
 
 use crate::strokes::Remesh;
 
@@ -344,6 +346,18 @@ fn remesh_run(
     Ok(report)
 }
 
+/// The slots of the triangles of `tris` with a vertex `pick` takes, in
+/// order: a parallel pass over the whole mesh, whose few finds the caller
+/// then numbers in order.
+fn with_vertex(tris: &[[u32; 3]], pick: impl Fn(u32) -> bool + Sync) -> Vec<usize> {
+    tris.par_iter()
+        .with_min_len(PARALLEL_RUN)
+        .enumerate()
+        .filter(|(_, t)| t.iter().any(|&v| pick(v)))
+        .map(|(slot, _)| slot)
+        .collect()
+}
+
 /// What a run changed, as corners: the triangles it made (at their new
 /// corners) and those it unmade (as the mesh still has them), with the
 /// mesh slots of the unmade ones, sorted. Every other triangle of the
@@ -372,9 +386,15 @@ impl Changes {
                 (lo.min(p), hi.max(p))
             });
         let region = Aabb::new(lo, hi);
-        let code: Vec<u8> = mesh.positions.iter().map(|&p| region.outcode(p)).collect();
+        let code: Vec<u8> = mesh
+            .positions
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .map(|&p| region.outcode(p))
+            .collect();
         mesh.triangles
-            .iter()
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
             .enumerate()
             .filter(|(slot, t)| {
                 code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] == 0
@@ -541,14 +561,13 @@ impl Work {
         let mut global = Vec::new();
         // Scan 1: the vertices of triangles with an active vertex get
         // their whole rings loaded.
-        for t in &mesh.triangles {
-            if t.iter().any(|&v| active[v as usize]) {
-                report.active_triangles += 1;
-                for &v in t {
-                    if local[v as usize] == NONE {
-                        local[v as usize] = global.len() as u32;
-                        global.push(v);
-                    }
+        let first = with_vertex(&mesh.triangles, |v| active[v as usize]);
+        report.active_triangles += first.len();
+        for &slot in &first {
+            for v in mesh.triangles[slot] {
+                if local[v as usize] == NONE {
+                    local[v as usize] = global.len() as u32;
+                    global.push(v);
                 }
             }
         }
@@ -557,20 +576,19 @@ impl Work {
         }
         let full_count = global.len() as u32;
         // Scan 2: every triangle around those vertices.
-        let mut tris = Vec::new();
-        let mut origin = Vec::new();
-        for (slot, t) in mesh.triangles.iter().enumerate() {
-            if t.iter().any(|&v| local[v as usize] < full_count) {
-                let lt = t.map(|v| {
-                    if local[v as usize] == NONE {
-                        local[v as usize] = global.len() as u32;
-                        global.push(v);
-                    }
-                    local[v as usize]
-                });
-                tris.push(lt);
-                origin.push(slot as u32);
-            }
+        let around = with_vertex(&mesh.triangles, |v| local[v as usize] < full_count);
+        let mut tris = Vec::with_capacity(around.len());
+        let mut origin = Vec::with_capacity(around.len());
+        for slot in around {
+            let lt = mesh.triangles[slot].map(|v| {
+                if local[v as usize] == NONE {
+                    local[v as usize] = global.len() as u32;
+                    global.push(v);
+                }
+                local[v as usize]
+            });
+            tris.push(lt);
+            origin.push(slot as u32);
         }
         report.loaded_triangles = tris.len();
         let nl = global.len();

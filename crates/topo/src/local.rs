@@ -27,6 +27,8 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use glam::DVec3;
 use holey_geom::Aabb;
+use holey_mesh::PARALLEL_RUN;
+use rayon::prelude::*;
 
 use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
 use crate::intersect::intersecting_pair_count;
@@ -130,27 +132,34 @@ pub(crate) fn union(a: Option<Bounds>, b: Option<Bounds>) -> Option<Bounds> {
 /// vertex whose position changes), over both positions; `None` when no
 /// triangle moves.
 pub(crate) fn swept_box(tris: &[[u32; 3]], start: &[DVec3], end: &[DVec3]) -> Option<Bounds> {
-    // Flags first, in one sequential pass: the triangle scan then reads a
-    // byte per corner, and positions only around what moved.
-    let moved: Vec<bool> = start.iter().zip(end).map(|(p, q)| p != q).collect();
+    // Flags first: the triangle scan then reads a byte per corner, and
+    // positions only around what moved. Both passes run in parallel runs
+    // (a frame on a million triangles spends milliseconds in each); the
+    // box is a min and a max, the same in any order.
+    let moved: Vec<bool> = start
+        .par_iter()
+        .zip(end)
+        .with_min_len(PARALLEL_RUN)
+        .map(|(p, q)| p != q)
+        .collect();
     if !moved.contains(&true) {
         return None;
     }
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    let mut any = false;
-    for t in tris {
-        if t.iter().any(|&v| moved[v as usize]) {
-            any = true;
-            for &v in t {
-                for p in [start[v as usize], end[v as usize]] {
-                    lo = lo.min(p);
-                    hi = hi.max(p);
-                }
-            }
-        }
-    }
-    any.then_some((lo, hi))
+    tris.par_iter()
+        .with_min_len(PARALLEL_RUN)
+        .filter(|t| t.iter().any(|&v| moved[v as usize]))
+        .fold(
+            || None,
+            |b, t| {
+                let corners = t.iter().flat_map(|&v| [start[v as usize], end[v as usize]]);
+                let (lo, hi) = corners
+                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                        (lo.min(p), hi.max(p))
+                    });
+                union(b, Some((lo, hi)))
+            },
+        )
+        .reduce(|| None, union)
 }
 
 /// `b` grown by half its largest side on every side: context for the
@@ -197,38 +206,40 @@ impl Region {
     /// A box misses `bx` exactly when all its points lie beyond one face
     /// of `bx`; with a 6-bit outcode per point (below/above on each axis)
     /// that is a nonzero AND of the codes of the triangle's six points.
-    /// The codes are computed per vertex in one sequential pass, so the
-    /// triangle scan reads a byte per corner.
+    /// The codes are computed per vertex first, so the triangle scan
+    /// reads a byte per corner; both passes run in parallel runs.
     pub fn select(tris: &[[u32; 3]], a: &[DVec3], b: &[DVec3], bx: Bounds) -> Region {
         let bx = Aabb::new(bx.0, bx.1);
         let code: Vec<u8> = a
-            .iter()
+            .par_iter()
             .zip(b)
+            .with_min_len(PARALLEL_RUN)
             .map(|(&p, &q)| bx.outcode(p) & bx.outcode(q))
             .collect();
         let mask: Vec<bool> = tris
-            .iter()
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
             .map(|t| code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] == 0)
             .collect();
-        let n = a.len();
-        let mut local = vec![u32::MAX; n];
-        for (t, _) in tris.iter().zip(&mask).filter(|(_, m)| **m) {
-            for &v in t {
-                local[v as usize] = 0;
-            }
-        }
-        let mut global = Vec::new();
-        for (v, l) in local.iter_mut().enumerate() {
-            if *l == 0 {
-                *l = global.len() as u32;
-                global.push(v as u32);
-            }
-        }
-        let triangles: Vec<[u32; 3]> = tris
-            .iter()
-            .zip(&mask)
+        // The region is small beside the mesh: its triangles and vertices
+        // are gathered from the mask, not by passes over every vertex.
+        let inside: Vec<usize> = mask
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .enumerate()
             .filter(|(_, m)| **m)
-            .map(|(t, _)| t.map(|v| local[v as usize]))
+            .map(|(t, _)| t)
+            .collect();
+        let mut global: Vec<u32> = inside.iter().flat_map(|&t| tris[t]).collect();
+        global.sort_unstable();
+        global.dedup();
+        let mut local = vec![u32::MAX; a.len()];
+        for (l, &v) in global.iter().enumerate() {
+            local[v as usize] = l as u32;
+        }
+        let triangles: Vec<[u32; 3]> = inside
+            .iter()
+            .map(|&t| tris[t].map(|v| local[v as usize]))
             .collect();
         Region {
             count: triangles.len(),
@@ -247,8 +258,9 @@ impl Region {
     /// frame need only them, not the whole mesh.
     pub fn ring(&self, tris: &[[u32; 3]]) -> &[u32] {
         self.ring.get_or_init(|| {
-            tris.iter()
+            tris.par_iter()
                 .zip(&self.mask)
+                .with_min_len(PARALLEL_RUN)
                 .enumerate()
                 .filter(|(_, (t, inside))| {
                     !**inside && t.iter().any(|&v| self.local[v as usize] != u32::MAX)
