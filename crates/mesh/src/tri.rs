@@ -8,6 +8,7 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use crate::NonFinite;
 use crate::rows::Rows;
@@ -364,33 +365,79 @@ impl TriMesh {
 
 /// Per vertex of `n`: 0 where some triangle uses it, `u32::MAX` elsewhere.
 fn marked_used(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
-    let mut index = vec![u32::MAX; n];
-    for t in triangles {
-        for &v in t {
-            index[v as usize] = 0;
+    if triangles.len() < 2 * crate::PARALLEL_RUN {
+        let mut index = vec![u32::MAX; n];
+        for t in triangles {
+            for &v in t {
+                index[v as usize] = 0;
+            }
         }
+        return index;
     }
-    index
+    // In parallel runs: threads that mark the same vertex store the
+    // same value, so relaxed stores suffice.
+    let marks: Vec<AtomicU32> = (0..n)
+        .into_par_iter()
+        .with_min_len(crate::PARALLEL_RUN)
+        .map(|_| AtomicU32::new(u32::MAX))
+        .collect();
+    triangles
+        .par_iter()
+        .with_min_len(crate::PARALLEL_RUN)
+        .for_each(|t| {
+            for &v in t {
+                marks[v as usize].store(0, Ordering::Relaxed);
+            }
+        });
+    marks.into_iter().map(AtomicU32::into_inner).collect()
 }
 
 /// `triangles` over the positions `index` marks used ([`marked_used`]),
-/// numbered in increasing order, and each kept vertex's old index.
+/// numbered in increasing order, and each kept vertex's old index. The
+/// numbering goes in parallel runs: each run counts its used vertices,
+/// and then numbers them from the count of the runs before it.
 fn renumbered(
     positions: &[DVec3],
     mut triangles: Vec<[u32; 3]>,
     mut index: Vec<u32>,
 ) -> (TriMesh, Vec<u32>) {
-    let mut kept = Vec::new();
-    let mut origin = Vec::new();
-    for (k, (i, &p)) in index.iter_mut().zip(positions).enumerate() {
-        if *i == 0 {
-            *i = kept.len() as u32;
-            kept.push(p);
-            origin.push(k as u32);
-        }
-    }
+    const RUN: usize = crate::PARALLEL_RUN;
+    let counts: Vec<u32> = index
+        .par_chunks(RUN)
+        .map(|run| run.iter().filter(|&&i| i == 0).count() as u32)
+        .collect();
+    let firsts: Vec<u32> = counts
+        .iter()
+        .scan(0, |next, &c| {
+            let first = *next;
+            *next += c;
+            Some(first)
+        })
+        .collect();
+    index
+        .par_chunks_mut(RUN)
+        .zip(firsts)
+        .for_each(|(run, mut next)| {
+            for i in run.iter_mut().filter(|i| **i == 0) {
+                *i = next;
+                next += 1;
+            }
+        });
+    let origin: Vec<u32> = index
+        .par_iter()
+        .with_min_len(RUN)
+        .enumerate()
+        .filter(|(_, i)| **i != u32::MAX)
+        .map(|(k, _)| k as u32)
+        .collect();
+    let kept: Vec<DVec3> = origin
+        .par_iter()
+        .with_min_len(RUN)
+        .map(|&k| positions[k as usize])
+        .collect();
     triangles
         .par_iter_mut()
+        .with_min_len(RUN)
         .for_each(|t| *t = t.map(|v| index[v as usize]));
     (
         TriMesh {
@@ -839,6 +886,40 @@ mod tests {
             [0.0, 1.0, 0.0],
         ];
         assert_eq!(TriMesh::from_arrays(&arrays, &[[0, 1, 2], [0, 2, 3]]), t);
+    }
+
+    #[test]
+    fn compaction_in_parallel_runs_numbers_as_one_pass_in_order_would() {
+        // 100k points, 40k triangles over every third one (past the size
+        // where marking and numbering go in parallel runs).
+        let n = 100_000u32;
+        let positions: Vec<DVec3> = (0..n).map(|i| DVec3::new(f64::from(i), 1.0, 2.0)).collect();
+        let mut x = 12345u64;
+        let mut next = || {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((x >> 33) as u32 % (n / 3)) * 3
+        };
+        let triangles: Vec<[u32; 3]> = (0..40_000).map(|_| [next(), next(), next()]).collect();
+        // The oracle: one sequential pass in vertex order.
+        let mut used = vec![false; n as usize];
+        for &v in triangles.iter().flatten() {
+            used[v as usize] = true;
+        }
+        let origin: Vec<u32> = (0..n).filter(|&v| used[v as usize]).collect();
+        let new = |v: u32| origin.binary_search(&v).expect("used") as u32;
+        let expected = TriMesh {
+            positions: origin.iter().map(|&v| positions[v as usize]).collect(),
+            triangles: triangles.iter().map(|t| t.map(new)).collect(),
+        };
+        let (m, o) = TriMesh {
+            positions,
+            triangles,
+        }
+        .compacted_with_origin();
+        assert_eq!(o, origin);
+        assert_eq!(m, expected);
     }
 
     #[test]
