@@ -43,6 +43,8 @@ use std::sync::Mutex;
 
 use glam::DVec3;
 use holey_geom::Aabb;
+use holey_mesh::PARALLEL_RUN;
+use rayon::prelude::*;
 
 use crate::local::Bounds;
 use crate::mesh::TriMesh;
@@ -204,16 +206,19 @@ fn kept_query(state: &State, ask: &Ask<'_>, six_kept: f64) -> Option<(Vec<f64>, 
     let old = |v: u32| s.positions[v as usize];
     // The triangles of the surface now whose box meets the changed box:
     // outside the region they count in the winding numbers, all of them
-    // in the volume.
-    let (mut w, six_now) = classified_sums(
-        &mesh.triangles,
-        &|v| end[v as usize],
-        points,
-        &|t, corners| {
-            let meets = corners_meet(corners, &b);
+    // in the volume. A triangle's box misses it exactly when its corners'
+    // outcodes share a bit (`corners_meet`), so the pass reads a code
+    // byte per corner and only the meeting triangles' corners.
+    let code: Vec<u8> = end
+        .par_iter()
+        .with_min_len(PARALLEL_RUN)
+        .map(|&p| b.outcode(p))
+        .collect();
+    let (mut w, six_now) =
+        classified_sums(&mesh.triangles, &|v| end[v as usize], points, &|t, tri| {
+            let meets = tri.iter().fold(0x3f, |c, &v| c & code[v as usize]) == 0;
             (meets && !inside[t], meets)
-        },
-    );
+        });
     let unchanged = |t: usize| !corners_meet(&s.triangles[t].map(old), &b);
     for (w, &p) in w.iter_mut().zip(points) {
         *w += s.tree.sum(

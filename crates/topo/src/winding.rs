@@ -111,8 +111,9 @@ where
 
 /// The winding numbers at `points` of the triangles `class` keeps, and
 /// the signed volume of those it counts in the volume, in one parallel
-/// pass: `class(t, corners)` is (kept for the winding numbers, counted
-/// in the volume).
+/// pass: `class(t, triangle)` is (kept for the winding numbers, counted
+/// in the volume), from the triangle's number and its vertices, so that
+/// a triangle counted in neither has its corners never read.
 pub(crate) fn classified_sums<C, P>(
     triangles: &[[u32; 3]],
     position: &P,
@@ -120,7 +121,7 @@ pub(crate) fn classified_sums<C, P>(
     class: &C,
 ) -> (Vec<f64>, f64)
 where
-    C: Fn(usize, &[DVec3; 3]) -> (bool, bool) + Sync + ?Sized,
+    C: Fn(usize, &[u32; 3]) -> (bool, bool) + Sync + ?Sized,
     P: Fn(u32) -> DVec3 + Sync + ?Sized,
 {
     let k = points.len();
@@ -140,8 +141,11 @@ where
                 let mut items = [Dipole::default(); RUN];
                 let mut count = 0;
                 for (i, tri) in run.iter().enumerate() {
+                    let (kept, in_volume) = class(r * RUN + i, tri);
+                    if !(kept || in_volume) {
+                        continue;
+                    }
                     let corners = tri.map(position);
-                    let (kept, in_volume) = class(r * RUN + i, &corners);
                     if in_volume {
                         let [a, b, c] = corners;
                         six += a.dot(b.cross(c));
