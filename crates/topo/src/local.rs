@@ -221,8 +221,10 @@ impl Region {
             .with_min_len(PARALLEL_RUN)
             .map(|t| code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] == 0)
             .collect();
-        // The region is small beside the mesh: its triangles and vertices
-        // are gathered from the mask, not by passes over every vertex.
+        // The region's triangles, and its vertices in increasing order:
+        // those of a region much smaller than the mesh (a frame's, on a
+        // million triangles) sorted, a larger one's by a pass over every
+        // vertex.
         let inside: Vec<usize> = mask
             .par_iter()
             .with_min_len(PARALLEL_RUN)
@@ -230,10 +232,22 @@ impl Region {
             .filter(|(_, m)| **m)
             .map(|(t, _)| t)
             .collect();
-        let mut global: Vec<u32> = inside.iter().flat_map(|&t| tris[t]).collect();
-        global.sort_unstable();
-        global.dedup();
-        let mut local = vec![u32::MAX; a.len()];
+        let n = a.len();
+        let mut local = vec![u32::MAX; n];
+        let mut global = Vec::new();
+        for &t in &inside {
+            for v in tris[t] {
+                if local[v as usize] == u32::MAX {
+                    local[v as usize] = 0;
+                    global.push(v);
+                }
+            }
+        }
+        if global.len().saturating_mul(16) < n {
+            global.sort_unstable();
+        } else {
+            global = (0..n as u32).filter(|&v| local[v as usize] == 0).collect();
+        }
         for (l, &v) in global.iter().enumerate() {
             local[v as usize] = l as u32;
         }
