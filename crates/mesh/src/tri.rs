@@ -363,6 +363,23 @@ impl TriMesh {
     }
 }
 
+/// The numbers of the triangles of `triangles` with a vertex `pick`
+/// takes, in order: one pass over a whole mesh in parallel runs, for a
+/// caller that then handles the few it finds in order (a brush's piece, a
+/// remeshing work set).
+pub fn triangles_with_vertex(
+    triangles: &[[u32; 3]],
+    pick: impl Fn(u32) -> bool + Sync,
+) -> Vec<usize> {
+    triangles
+        .par_iter()
+        .with_min_len(crate::PARALLEL_RUN)
+        .enumerate()
+        .filter(|(_, t)| t.iter().any(|&v| pick(v)))
+        .map(|(i, _)| i)
+        .collect()
+}
+
 /// Per vertex of `n`: 0 where some triangle uses it, `u32::MAX` elsewhere.
 fn marked_used(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
     if triangles.len() < 2 * crate::PARALLEL_RUN {

@@ -18,6 +18,7 @@ use glam::DVec3;
 use holey_geom::distance::point_segment_distance;
 use holey_geom::position_key;
 use holey_mesh::PARALLEL_RUN;
+use holey_mesh::tri::triangles_with_vertex;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
     Accumulator, FarField, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
@@ -1180,15 +1181,7 @@ impl Piece {
             .map(|&p| reaches(p))
             .collect();
         // The first ring: the vertices of the triangles at a reached one.
-        let touching = |ring: &[bool]| -> Vec<usize> {
-            mesh.triangles
-                .par_iter()
-                .with_min_len(PARALLEL_RUN)
-                .enumerate()
-                .filter(|(_, t)| t.iter().any(|&v| ring[v as usize]))
-                .map(|(i, _)| i)
-                .collect()
-        };
+        let touching = |ring: &[bool]| triangles_with_vertex(&mesh.triangles, |v| ring[v as usize]);
         let mut ring = vec![false; n];
         for t in touching(&near) {
             for v in mesh.triangles[t] {

@@ -37,6 +37,7 @@ use glam::DVec3;
 use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
 use holey_mesh::slots::fill_holes;
+use holey_mesh::tri::triangles_with_vertex;
 use holey_topo::TriMesh;
 use holey_topo::audit::{is_degenerate, is_flat};
 use holey_topo::intersect::crossing_pairs_involving;
@@ -346,18 +347,6 @@ fn remesh_run(
     Ok(report)
 }
 
-/// The slots of the triangles of `tris` with a vertex `pick` takes, in
-/// order: a parallel pass over the whole mesh, whose few finds the caller
-/// then numbers in order.
-fn with_vertex(tris: &[[u32; 3]], pick: impl Fn(u32) -> bool + Sync) -> Vec<usize> {
-    tris.par_iter()
-        .with_min_len(PARALLEL_RUN)
-        .enumerate()
-        .filter(|(_, t)| t.iter().any(|&v| pick(v)))
-        .map(|(slot, _)| slot)
-        .collect()
-}
-
 /// What a run changed, as corners: the triangles it made (at their new
 /// corners) and those it unmade (as the mesh still has them), with the
 /// mesh slots of the unmade ones, sorted. Every other triangle of the
@@ -561,7 +550,7 @@ impl Work {
         let mut global = Vec::new();
         // Scan 1: the vertices of triangles with an active vertex get
         // their whole rings loaded.
-        let first = with_vertex(&mesh.triangles, |v| active[v as usize]);
+        let first = triangles_with_vertex(&mesh.triangles, |v| active[v as usize]);
         report.active_triangles += first.len();
         for &slot in &first {
             for v in mesh.triangles[slot] {
@@ -576,7 +565,7 @@ impl Work {
         }
         let full_count = global.len() as u32;
         // Scan 2: every triangle around those vertices.
-        let around = with_vertex(&mesh.triangles, |v| local[v as usize] < full_count);
+        let around = triangles_with_vertex(&mesh.triangles, |v| local[v as usize] < full_count);
         let mut tris = Vec::with_capacity(around.len());
         let mut origin = Vec::with_capacity(around.len());
         for slot in around {
