@@ -135,33 +135,32 @@ impl<'a> Surroundings<'a> {
             let _ = self.orientation.set(orientation_of(volume));
             return far;
         }
+        // One pass gathers the outside triangles and sums six times the
+        // signed volume of the region's: the orientation then comes from
+        // the field's volume and the region's, with no pass of its own.
+        let mut region_six = None;
         let outside = self.outside.get_or_init(|| {
-            self.mesh
-                .triangles
-                .iter()
-                .zip(self.inside)
-                .filter(|(_, inside)| !**inside)
-                .map(|(t, _)| *t)
-                .collect()
+            let mut six = 0.0;
+            let mut outside = Vec::new();
+            for (t, &inside) in self.mesh.triangles.iter().zip(self.inside) {
+                if inside {
+                    let [a, b, c] = t.map(at);
+                    six += a.dot(b.cross(c));
+                } else {
+                    outside.push(*t);
+                }
+            }
+            region_six = Some(six);
+            outside
         });
         let field = WindingField::new(outside, &at);
         if self.orientation.get().is_none() {
-            // The orientation from the field's volume and the region's
-            // triangles: no pass over the whole surface of its own.
-            let region: f64 = self
-                .mesh
-                .triangles
-                .iter()
-                .zip(self.inside)
-                .filter(|(_, inside)| **inside)
-                .map(|(t, _)| {
-                    let [a, b, c] = t.map(at);
-                    a.dot(b.cross(c))
-                })
-                .sum();
+            // Every call that gathers the outside sets the orientation,
+            // so it is unset only here, where the pass just ran.
+            let region = region_six.unwrap_or(0.0) / 6.0;
             let _ = self
                 .orientation
-                .set(orientation_of(field.signed_volume() + region / 6.0));
+                .set(orientation_of(field.signed_volume() + region));
         }
         points.iter().map(|&p| field.at(p, None)).collect()
     }
