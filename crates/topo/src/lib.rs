@@ -47,7 +47,7 @@ pub use engine::{
     Options, Outcome, Report, Timings, TopoError, crosses_itself, resolve, self_intersections,
     topology_change,
 };
-pub use far_field::FarField;
+pub use far_field::{EVERY_ASK_FROM, FarField};
 pub use guard::{
     GuardedReport, topology_change_guarded, topology_change_guarded_holding,
     topology_change_guarded_if_sure,

@@ -10,7 +10,7 @@ mod common;
 
 use common::*;
 use glam::DVec3;
-use holey_topo::{FarField, Options, TriMesh, topology_change_guarded_holding};
+use holey_topo::{EVERY_ASK_FROM, FarField, Options, TriMesh, topology_change_guarded_holding};
 
 /// `m` stretched into the box from `lo` to `hi`.
 fn fitted(m: &TriMesh, lo: DVec3, hi: DVec3) -> TriMesh {
@@ -97,4 +97,81 @@ fn plates_pushed_into_rows_of_balls_read_their_kept_far_field() {
     assert_eq!(far.builds(), 1);
     // Each plate fused with its row: the big ball and three pieces.
     assert_eq!(components(&with), 4);
+}
+
+/// On a surface of at least [`EVERY_ASK_FROM`] triangles a built field
+/// answers asks of any size. The first frame pushes a plate into a row of
+/// balls (more samples than one pass serves: the field is built); the
+/// second pushes a small plate into one ball, whose few pieces one pass
+/// would serve on a smaller surface, and the kept field answers it. The
+/// results are those of the same frames without a field.
+#[test]
+fn a_few_samples_on_a_large_surface_read_the_built_field() {
+    let (mut start, plates) = scene();
+    // The big ball finer: the surface passes the threshold, the frames'
+    // changes stay a small part of it.
+    start = {
+        let mut m = fitted(
+            &primitive("@sphere:7"),
+            DVec3::new(-9.0, -1.0, -1.0),
+            DVec3::new(-7.0, 1.0, 1.0),
+        );
+        m.append(&start);
+        m
+    };
+    let lone = (DVec3::new(6.85, -0.15, -0.15), DVec3::new(7.15, 0.15, 0.15));
+    start.append(&fitted(&primitive("@sphere:2"), lone.0, lone.1));
+    let small = (DVec3::new(6.8, -0.2, 0.2), DVec3::new(7.2, 0.2, 0.3));
+    start.append(&fitted(&primitive("@cube:8"), small.0, small.1));
+    assert!(start.triangles.len() >= EVERY_ASK_FROM);
+    assert!(closed_oriented(&start));
+    let far = FarField::new();
+    let (mut with, mut without) = (start.clone(), start.clone());
+    for (frame, plate) in [plates[0], small].into_iter().enumerate() {
+        let answered = far.answers();
+        let end = pushed(&with, plate, 0.15);
+        let r =
+            topology_change_guarded_holding(&mut with, &end, &Options::default(), &[], Some(&far))
+                .expect("a valid frame");
+        assert!(!r.local.positions_only, "frame {frame} fuses");
+        if let Some(b) = r.local.changed {
+            far.changed_within(b);
+        }
+        assert!(far.answers() > answered, "frame {frame} read the field");
+        let end = pushed(&without, plate, 0.15);
+        topology_change_guarded_holding(&mut without, &end, &Options::default(), &[], None)
+            .expect("a valid frame");
+        assert_eq!(with, without, "frame {frame}: the same result");
+        assert!(closed_oriented(&with), "frame {frame}");
+    }
+    assert_eq!(far.builds(), 1);
+}
+
+/// Below [`EVERY_ASK_FROM`] triangles a frame with a few samples sums
+/// them in one pass, even with a field built: the small plate pushed
+/// into a lone ball after the first row's frame.
+#[test]
+fn a_few_samples_on_a_smaller_surface_take_one_pass() {
+    let (mut start, plates) = scene();
+    let lone = (DVec3::new(6.85, -0.15, -0.15), DVec3::new(7.15, 0.15, 0.15));
+    start.append(&fitted(&primitive("@sphere:2"), lone.0, lone.1));
+    let small = (DVec3::new(6.8, -0.2, 0.2), DVec3::new(7.2, 0.2, 0.3));
+    start.append(&fitted(&primitive("@cube:8"), small.0, small.1));
+    assert!(start.triangles.len() < EVERY_ASK_FROM);
+    let far = FarField::new();
+    let mut m = start;
+    let mut answers = Vec::new();
+    for plate in [plates[0], small] {
+        let end = pushed(&m, plate, 0.15);
+        let r = topology_change_guarded_holding(&mut m, &end, &Options::default(), &[], Some(&far))
+            .expect("a valid frame");
+        assert!(!r.local.positions_only);
+        if let Some(b) = r.local.changed {
+            far.changed_within(b);
+        }
+        answers.push(far.answers());
+    }
+    assert!(answers[0] >= 1, "the row's frame read the field");
+    assert_eq!(answers[1], answers[0], "the lone ball's frame did not");
+    assert!(closed_oriented(&m));
 }
