@@ -65,6 +65,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("input: {a}");
     }
     let mut frame_no = 0usize;
+    // Each paint stroke hands its far field to the next, as a session
+    // does.
+    let mut kept = None;
     for (s, stroke) in file.strokes.iter().enumerate() {
         // Mirror planes through the origin (the stroke file's default).
         let settings = BrushSettings {
@@ -77,6 +80,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;
+        if let Some(far) = kept.take() {
+            live.keep_far_field(far);
+        }
         if !no_remesh {
             // The stroke's own range (the modeler records it), else the
             // file's, else one derived from the mesh the stroke starts on,
@@ -138,7 +144,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             before = Some(now);
             frame_no += 1;
         }
-        mesh = live.finish()?.mesh;
+        let done = live.finish()?;
+        mesh = done.mesh;
+        kept = done.far_field;
         // Each stroke's end is audited even with `--no-audit`.
         println!("stroke {s} done: {}", SurfaceAudit::of(&mesh)?);
     }

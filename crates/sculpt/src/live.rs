@@ -314,6 +314,10 @@ pub struct LiveStroke {
     /// asking for it, and told of every change a frame and its remeshing
     /// make.
     far: Option<FarField>,
+    /// Whether `far` may be handed on when the stroke ends: false once a
+    /// frame failed, since a failed frame may have changed the surface
+    /// without telling the field.
+    far_sound: bool,
     remeshed: RemeshTally,
     state: State,
     frames: usize,
@@ -391,6 +395,7 @@ impl LiveStroke {
             held: std::collections::HashSet::new(),
             one_piece: !settings.brush.is_drag() && holey_topo::is_one_piece(mesh),
             far: (!settings.brush.is_drag()).then(FarField::new),
+            far_sound: true,
             remeshed: RemeshTally::default(),
             state,
             frames: 0,
@@ -399,6 +404,18 @@ impl LiveStroke {
             started: Instant::now(),
             grab_tube: None,
         })
+    }
+
+    /// Takes over the far field an earlier paint stroke finished with
+    /// ([`FinishedStroke::far_field`]), so that this one need not build
+    /// its own. The field must be the one a stroke finished with on the
+    /// very surface this stroke began on: a field that does not describe
+    /// the surface gives wrong winding numbers. A drag keeps no field and
+    /// drops it.
+    pub fn keep_far_field(&mut self, far: FarField) {
+        if self.far.is_some() {
+            self.far = Some(far);
+        }
     }
 
     /// Masks the vertices at `positions` (exact positions, as
@@ -499,6 +516,8 @@ impl LiveStroke {
     /// painted one by one before the failing one stay painted.
     pub fn frame_together(&mut self, dabs: &[(DVec3, f64)]) -> Result<LiveFrame<'_>, SculptError> {
         let started = Instant::now();
+        // Unsound until the frame returns well (`far_sound`).
+        let far_sound = std::mem::replace(&mut self.far_sound, false);
         let index = self.frames;
         let settings = self.settings;
         let mut connectivity_changed = false;
@@ -616,6 +635,7 @@ impl LiveStroke {
             }
         }
         self.frames += 1;
+        self.far_sound = far_sound;
         Ok(LiveFrame {
             index,
             mesh: self.mesh(),
@@ -635,6 +655,13 @@ impl LiveStroke {
         let mut report = self.report;
         report.frames = self.frames;
         let last = self.frames.saturating_sub(1);
+        // A paint stroke's surface ends as its last frame left it, every
+        // change told to its field: the next stroke on it may keep the
+        // field. A drag's release is not told to any.
+        let far_field = match self.state {
+            State::Paint { .. } => self.far.filter(|_| self.far_sound),
+            State::Drag { .. } => None,
+        };
         let (mesh, diagnostics) = match self.state {
             State::Paint { mesh, .. } => (mesh, self.diagnostics),
             State::Drag { start, acc, .. } => {
@@ -687,6 +714,7 @@ impl LiveStroke {
             mesh,
             diagnostics,
             report,
+            far_field,
         })
     }
 }
@@ -1316,6 +1344,11 @@ pub struct FinishedStroke {
     /// What the stroke did, its frame count, final triangle count and time
     /// filled in.
     pub report: StrokeReport,
+    /// A paint stroke's far field, valid for `mesh`: a caller that begins
+    /// its next stroke on `mesh` unchanged passes it on
+    /// ([`LiveStroke::keep_far_field`]) and spares that stroke the
+    /// field's build. `None` after a drag, or after a frame failed.
+    pub far_field: Option<FarField>,
 }
 
 /// The per-vertex drag weights of a grab or move, after checking that the

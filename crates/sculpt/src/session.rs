@@ -15,7 +15,7 @@
 //! gives the same mesh bit for bit.
 
 use glam::DVec3;
-use holey_topo::{Options, TriMesh};
+use holey_topo::{FarField, Options, TriMesh};
 
 use crate::live::{BrushSettings, LiveStroke};
 use crate::remesh::{RemeshOptions, default_range};
@@ -54,6 +54,21 @@ pub struct Session {
     undo: Vec<TriMesh>,
     redo: Vec<TriMesh>,
     diagnostics: Diagnostics,
+    /// The far field the last paint stroke finished with, for the next
+    /// stroke (`holey_topo::FarField`): valid while `mesh` is the surface
+    /// that stroke left, so every other change of `mesh` drops it.
+    kept: KeptField,
+}
+
+/// A [`FarField`] kept between strokes. A copy of a session starts
+/// without one: it is as cheap to build again as to share safely.
+#[derive(Debug, Default)]
+struct KeptField(Option<FarField>);
+
+impl Clone for KeptField {
+    fn clone(&self) -> KeptField {
+        KeptField(None)
+    }
 }
 
 impl Session {
@@ -75,6 +90,7 @@ impl Session {
             undo: Vec::new(),
             redo: Vec::new(),
             diagnostics: Diagnostics::default(),
+            kept: KeptField::default(),
         })
     }
 
@@ -135,12 +151,20 @@ impl Session {
     /// Undoes the last stroke, restoring the exact mesh before it. False
     /// when there is nothing to undo.
     pub fn undo(&mut self) -> bool {
-        step_back(&mut self.mesh, &mut self.undo, &mut self.redo)
+        let moved = step_back(&mut self.mesh, &mut self.undo, &mut self.redo);
+        if moved {
+            self.kept = KeptField::default();
+        }
+        moved
     }
 
     /// Redoes the last undone stroke, restoring the exact mesh after it.
     pub fn redo(&mut self) -> bool {
-        step_back(&mut self.mesh, &mut self.redo, &mut self.undo)
+        let moved = step_back(&mut self.mesh, &mut self.redo, &mut self.undo);
+        if moved {
+            self.kept = KeptField::default();
+        }
+        moved
     }
 
     /// Applies one stroke (one undo step).
@@ -174,6 +198,9 @@ impl Session {
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
+        if let Some(far) = self.kept.0.take() {
+            live.keep_far_field(far);
+        }
         // A stroke's own range wins over the file's, unless remeshing is
         // off altogether.
         let remesh = if self.remeshing {
@@ -218,12 +245,14 @@ impl Session {
             })?;
         }
         self.commit(done.mesh, done.diagnostics);
+        self.kept = KeptField(done.far_field);
         Ok(done.report)
     }
 
     /// Makes `mesh` the current mesh as one undo step (a stroke finished
     /// elsewhere, by a [`LiveStroke`] the caller drove).
     pub fn commit(&mut self, mesh: TriMesh, diagnostics: Option<Diagnostics>) {
+        self.kept = KeptField::default();
         self.undo.push(std::mem::replace(&mut self.mesh, mesh));
         self.redo.clear();
         if let Some(d) = diagnostics {
@@ -393,5 +422,48 @@ mod tests {
             run(inflate(Some(StrokeRemesh::Range(fine))), false),
             (0, sphere.triangles.len())
         );
+    }
+
+    /// A paint stroke hands its far field to the session, which gives it
+    /// to the next stroke; a drag keeps none, and undo, redo and a
+    /// commit from elsewhere drop it (the mesh it describes is gone).
+    #[test]
+    fn the_far_field_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
+        let sphere = holey_shapes::icosphere(3).unwrap().triangulated();
+        let inflate = Stroke {
+            brush: Brush::Inflate,
+            radius: 0.6,
+            strength: 0.05,
+            path: vec![DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.1, 0.0, 1.0)],
+            ..Stroke::default()
+        };
+        let grab = Stroke {
+            brush: Brush::Grab,
+            radius: 0.6,
+            strength: 1.0,
+            path: vec![DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.0, 0.0, 1.2)],
+            ..Stroke::default()
+        };
+        let mut s = Session::new(sphere.clone()).unwrap();
+        assert!(s.kept.0.is_none());
+        s.apply_stroke(&inflate).unwrap();
+        assert!(s.kept.0.is_some(), "a paint stroke hands its field on");
+        s.apply_stroke(&inflate).unwrap();
+        assert!(s.kept.0.is_some(), "and the next one, given it, too");
+        assert!(s.clone().kept.0.is_none(), "a copy starts without one");
+        s.undo();
+        assert!(s.kept.0.is_none(), "undo drops it");
+        s.apply_stroke(&inflate).unwrap();
+        s.undo();
+        assert!(s.redo());
+        assert!(s.kept.0.is_none(), "redo drops it");
+        s.apply_stroke(&inflate).unwrap();
+        assert!(!s.redo(), "nothing to redo after a stroke");
+        assert!(s.kept.0.is_some(), "and nothing dropped");
+        s.commit(sphere.clone(), None);
+        assert!(s.kept.0.is_none(), "a commit from elsewhere drops it");
+        s.apply_stroke(&inflate).unwrap();
+        s.apply_stroke(&grab).unwrap();
+        assert!(s.kept.0.is_none(), "a drag keeps none");
     }
 }

@@ -14,7 +14,7 @@ use holey_mesh::PolyMesh;
 use holey_mesh::analysis::{MeshInfo, analyze};
 use holey_model::rind::Rind;
 use holey_sculpt::LiveStroke;
-use holey_topo::TriMesh;
+use holey_topo::{FarField, TriMesh};
 use serde_json::{Value, json};
 
 use crate::frame::{Display, ModelIndex, display_model, display_triangles};
@@ -212,6 +212,10 @@ pub struct Document {
     version: u64,
     pub rind: Option<RindMode>,
     pub stroke: Option<ActiveStroke>,
+    /// The far field the last paint stroke finished with, and the version
+    /// it describes: the next stroke keeps it while the document is still
+    /// at that version (every change of the content bumps it).
+    pub kept_far: Option<(u64, FarField)>,
     /// A long operation in progress: its owner and name.
     pub busy: Option<(ConnId, String)>,
     /// Dynamic remeshing detail in [0, 1]; 0 is off.
@@ -233,6 +237,7 @@ impl Document {
             version,
             rind: None,
             stroke: None,
+            kept_far: None,
             busy: None,
             remesh_detail: DEFAULT_REMESH_DETAIL,
             mask: Arc::default(),

@@ -77,6 +77,13 @@ impl Shared {
         live.set_preview(brush.is_drag());
         let remesh = remesh_range(mesh, doc.remesh_detail);
         live.set_remesh(remesh.map(RemeshOptions::new));
+        // The last stroke's far field, if the document is still as that
+        // stroke left it.
+        if let Some((version, far)) = doc.kept_far.take()
+            && version == doc.version()
+        {
+            live.keep_far_field(far);
+        }
         let display = doc.display().clone();
         let sent = display.positions.clone();
         doc.stroke = Some(ActiveStroke {
@@ -116,6 +123,7 @@ impl Shared {
         if changed {
             doc.commit(Content::Sculpt(done.mesh));
         }
+        doc.kept_far = done.far_field.map(|far| (doc.version(), far));
         self.publish(doc);
         let mut reply = json!({
             "changes": r.changes,
