@@ -454,17 +454,19 @@ impl Octree {
             order[fill[c as usize] as usize] = t as u32;
             fill[c as usize] += 1;
         }
-        let finest: Vec<Summary> = (0..n_cells)
+        // Each finest cell's summary and box in one visit of its
+        // triangles' corners: they are read in cell order, scattered over
+        // the mesh, and on a million triangles each such pass costs tens
+        // of milliseconds.
+        let (finest, finest_boxes): (Vec<Summary>, Vec<Aabb>) = (0..n_cells)
             .into_par_iter()
             .map(|c| {
                 let members = &order[start[c] as usize..start[c + 1] as usize];
                 summary(members, |t| triangles[t as usize].map(position), &centroids)
             })
-            .collect();
+            .unzip();
         let boxes = if with_boxes {
-            cell_boxes(side, &start, &order, &|t| {
-                triangles[t as usize].map(position)
-            })
+            box_levels(side, finest_boxes)
         } else {
             Vec::new()
         };
@@ -477,18 +479,21 @@ impl Octree {
             for x in 0..half {
                 for y in 0..half {
                     for z in 0..half {
-                        let kids: Vec<Summary> = (0..8)
-                            .map(|k| {
-                                below[index(
-                                    2 * x + (k >> 2),
-                                    2 * y + ((k >> 1) & 1),
-                                    2 * z + (k & 1),
-                                    s,
-                                )]
-                            })
-                            .filter(|k| k.count > 0)
-                            .collect();
-                        up[index(x, y, z, half)] = merge(&kids);
+                        let mut kids = [Summary::default(); 8];
+                        let mut n = 0;
+                        for k in 0..8 {
+                            let kid = below[index(
+                                2 * x + (k >> 2),
+                                2 * y + ((k >> 1) & 1),
+                                2 * z + (k & 1),
+                                s,
+                            )];
+                            if kid.count > 0 {
+                                kids[n] = kid;
+                                n += 1;
+                            }
+                        }
+                        up[index(x, y, z, half)] = merge(&kids[..n]);
                     }
                 }
             }
@@ -639,24 +644,9 @@ fn push_children(
     }
 }
 
-/// Per level of an octree of `side` finest cells a side (triangles by
-/// cell in `start` and `order`), from the root: the box of each cell's
-/// triangles' corners ([`Aabb::EMPTY`] for an empty cell).
-fn cell_boxes(
-    side: usize,
-    start: &[u32],
-    order: &[u32],
-    corners: &(dyn Fn(u32) -> [DVec3; 3] + Sync),
-) -> Vec<Vec<Aabb>> {
-    let finest: Vec<Aabb> = (0..side * side * side)
-        .into_par_iter()
-        .map(|c| {
-            order[start[c] as usize..start[c + 1] as usize]
-                .iter()
-                .flat_map(|&t| corners(t))
-                .fold(Aabb::EMPTY, |b, p| b.union(&Aabb::new(p, p)))
-        })
-        .collect();
+/// The boxes of the cells of every level, the root's first, from those of
+/// the finest cells (`side` a side; [`Aabb::EMPTY`] for an empty cell).
+fn box_levels(side: usize, finest: Vec<Aabb>) -> Vec<Vec<Aabb>> {
     let mut levels = vec![finest];
     let mut s = side;
     while s > 1 {
@@ -692,9 +682,13 @@ fn index(x: usize, y: usize, z: usize, side: usize) -> usize {
 
 /// The summary of a finest cell holding the triangles `members`.
 #[inline]
-fn summary(members: &[u32], corners: impl Fn(u32) -> [DVec3; 3], centroids: &[DVec3]) -> Summary {
+fn summary(
+    members: &[u32],
+    corners: impl Fn(u32) -> [DVec3; 3],
+    centroids: &[DVec3],
+) -> (Summary, Aabb) {
     if members.is_empty() {
-        return Summary::default();
+        return (Summary::default(), Aabb::EMPTY);
     }
     let (mut n, mut weighted, mut area, mut six) = (DVec3::ZERO, DVec3::ZERO, 0.0, 0.0);
     for &t in members {
@@ -711,19 +705,23 @@ fn summary(members: &[u32], corners: impl Fn(u32) -> [DVec3; 3], centroids: &[DV
     } else {
         centroids[members[0] as usize]
     };
-    let radius = members
+    let (radius, bx) = members
         .iter()
         .flat_map(|&t| corners(t))
-        .map(|p| p.distance(centre))
-        .fold(0.0, f64::max);
-    Summary {
-        area_vector: n,
-        centre,
-        radius,
-        area,
-        count: members.len() as u32,
-        six_volume: six,
-    }
+        .fold((0.0, Aabb::EMPTY), |(r, b): (f64, Aabb), p| {
+            (r.max(p.distance(centre)), b.union(&Aabb::new(p, p)))
+        });
+    (
+        Summary {
+            area_vector: n,
+            centre,
+            radius,
+            area,
+            count: members.len() as u32,
+            six_volume: six,
+        },
+        bx,
+    )
 }
 
 /// Up to this many skipped triangles are looked up in place.
