@@ -525,6 +525,11 @@ impl LiveStroke {
         let mut corrected_odd = None;
         match &mut self.state {
             State::Paint { mesh, hook } => {
+                // On a large surface the field is built beside the
+                // frames, before any of them asks.
+                if let Some(far) = &self.far {
+                    far.prepare(mesh);
+                }
                 let mut step = PaintStep {
                     falloff: settings.falloff,
                     heights: &mut self.heights,

@@ -34,16 +34,19 @@
 //! reports what each frame changed ([`FarField::changed_within`]); the
 //! snapshot is rebuilt when `B'` holds a quarter of it.
 //!
-//! It is built at the first ask of more than [`FEW_POINTS`] samples, where
-//! the alternative is an octree built for that ask alone. The second
-//! sum's pass reads a code byte per corner, and corners only of the
-//! triangles that meet `B'`, where one pass over the triangles for a
-//! handful of samples reads every triangle's corners. So once built, on a
-//! large surface (at least [`EVERY_ASK_FROM`] triangles) the field
-//! answers every ask: on the 1.1M-triangle bunny 6–15 ms against 18–28
-//! ms for two to six samples. A build for a handful of samples would not
-//! pay (140–300 ms there), nor would one on a smaller surface, where the
-//! pass is cheap.
+//! The second sum's pass reads a code byte per corner, and corners only
+//! of the triangles that meet `B'`, where one pass over the triangles
+//! for a handful of samples reads every triangle's corners. So on a large
+//! surface (at least [`EVERY_ASK_FROM`] triangles) the field answers
+//! every ask: on the 1.1M-triangle bunny 6–15 ms against 18–28 ms for two
+//! to six samples. There a build (140–300 ms) would be a frame's longest
+//! wait, so the stroke starts it on a thread of its own as its first
+//! frame begins ([`FarField::prepare`]), and again when an ask finds the
+//! snapshot stale; the next ask takes it over, waiting for it if need
+//! be, so the answers never depend on the build's timing. On a smaller
+//! surface the pass is cheap: the field answers only asks of more than
+//! [`FEW_POINTS`] samples, where the alternative is an octree built for
+//! that ask alone, and is built at the first of them.
 //!
 //! A field may outlive its stroke: a session that hands it to the next
 //! stroke on the surface the last one left (`holey_sculpt`'s session and
@@ -75,9 +78,10 @@ pub const EVERY_ASK_FROM: usize = 1 << 18;
 /// frame built an octree over the whole surface at every ask (twice in
 /// the slowest frame of the 1.1M bunny's recorded stroke: a whole try,
 /// then the stepped run), and on a surface of at least
-/// [`EVERY_ASK_FROM`] triangles, once built, every ask. It is built at
-/// the first ask of more than [`FEW_POINTS`] points and again only when
-/// the changes cover a quarter of it.
+/// [`EVERY_ASK_FROM`] triangles every ask. It is built at the first ask
+/// of more than [`FEW_POINTS`] points, or beside the frames from
+/// [`FarField::prepare`] on a large surface, and again only when the
+/// changes cover a quarter of it.
 #[derive(Default)]
 pub struct FarField {
     state: Mutex<State>,
@@ -92,9 +96,62 @@ struct State {
     builds: usize,
     /// Asks answered so far.
     answers: usize,
+    /// A snapshot being built on a thread of its own ([`FarField::prepare`]).
+    pending: Option<Pending>,
+}
+
+/// A snapshot being built beside the frames, and the box every change
+/// since the surface it copies lies in.
+struct Pending {
+    build: std::thread::JoinHandle<Snapshot>,
+    changed: Option<Bounds>,
+}
+
+impl Pending {
+    /// Starts building the snapshot of `mesh` on a thread of its own,
+    /// whose parallel passes run in a pool of one thread so that they
+    /// take turns with the frames' rather than queueing before them.
+    /// `None` when no thread can be started.
+    fn start(mesh: &TriMesh) -> Option<Pending> {
+        let (positions, triangles) = (mesh.positions.clone(), mesh.triangles.clone());
+        let build = std::thread::Builder::new()
+            .name("holey-far-field".into())
+            .spawn(move || {
+                let tree = |triangles: &[[u32; 3]], positions: &[DVec3]| {
+                    Octree::with_boxes(triangles, &|v| positions[v as usize])
+                };
+                let tree = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+                    Ok(pool) => pool.install(|| tree(&triangles, &positions)),
+                    Err(_) => tree(&triangles, &positions),
+                };
+                Snapshot {
+                    positions,
+                    triangles,
+                    tree,
+                }
+            })
+            .ok()?;
+        Some(Pending {
+            build,
+            changed: None,
+        })
+    }
 }
 
 impl State {
+    /// Takes over the snapshot being built, waiting for it: every ask
+    /// after [`FarField::prepare`] reads it, so which asks the field
+    /// answers does not depend on how long the build took.
+    fn install_pending(&mut self) {
+        if let Some(p) = self.pending.take() {
+            // A build that panicked leaves no snapshot: the next ask of
+            // many points builds one in place.
+            self.snapshot = p.build.join().ok();
+            self.changed = p.changed;
+            self.builds += usize::from(self.snapshot.is_some());
+        }
+    }
+
     /// The changed box with the box `region` of a frame's region: every
     /// triangle that differs between the snapshot and the surface at the
     /// frame's end meets it.
@@ -135,23 +192,51 @@ impl FarField {
     /// passes the infinite box, and the snapshot is rebuilt when next
     /// asked.
     pub fn changed_within(&self, b: (DVec3, DVec3)) {
+        if let Ok(mut state) = self.state.lock() {
+            if state.snapshot.is_some() {
+                state.changed = crate::local::union(state.changed, Some(b));
+            }
+            if let Some(p) = state.pending.as_mut() {
+                p.changed = crate::local::union(p.changed, Some(b));
+            }
+        }
+    }
+
+    /// On a surface of at least [`EVERY_ASK_FROM`] triangles with no
+    /// snapshot kept or being built, starts building one of `mesh` (the
+    /// surface as it is now) on a thread of its own, so that the
+    /// frames' asks need not wait for a build of 140–300 ms (the 1.1M
+    /// bunny) when they come; the next ask takes it over, waiting if it
+    /// is not done. A stroke calls this as each frame begins; on a
+    /// smaller surface it does nothing.
+    pub fn prepare(&self, mesh: &TriMesh) {
+        if mesh.triangles.len() < EVERY_ASK_FROM {
+            return;
+        }
         if let Ok(mut state) = self.state.lock()
-            && state.snapshot.is_some()
+            && state.snapshot.is_none()
+            && state.pending.is_none()
         {
-            state.changed = crate::local::union(state.changed, Some(b));
+            state.pending = Pending::start(mesh);
         }
     }
 
     /// Whether a snapshot is kept (for tests and measurements).
     pub fn is_built(&self) -> bool {
-        self.state.lock().is_ok_and(|s| s.snapshot.is_some())
+        self.state.lock().is_ok_and(|mut s| {
+            s.install_pending();
+            s.snapshot.is_some()
+        })
     }
 
     /// How many snapshots were built: the first, and one for each time
     /// the changes covered a quarter of the last (for tests and
     /// measurements).
     pub fn builds(&self) -> usize {
-        self.state.lock().map_or(0, |s| s.builds)
+        self.state.lock().map_or(0, |mut s| {
+            s.install_pending();
+            s.builds
+        })
     }
 
     /// How many asks the field answered (for tests and measurements).
@@ -163,7 +248,8 @@ impl FarField {
     /// `None` for up to [`FEW_POINTS`] points, where one pass over the
     /// triangles serves and the caller sums them itself, unless the
     /// surface has at least [`EVERY_ASK_FROM`] triangles and a snapshot
-    /// is kept that the changes have not made stale.
+    /// is kept or being built that the changes have not made stale (a
+    /// stale one is then dropped and built again beside the frames).
     pub(crate) fn winding_numbers_and_volume_at(&self, ask: &Ask<'_>) -> Option<(Vec<f64>, f64)> {
         let Ask {
             mesh,
@@ -176,6 +262,7 @@ impl FarField {
             return None;
         }
         let mut state = self.state.lock().ok()?;
+        state.install_pending();
         // How much of the snapshot the changes cover, and the volume of
         // the rest, in one walk down its octree.
         let split = |state: &State| {
@@ -193,8 +280,17 @@ impl FarField {
         };
         let six_kept = match split(&state) {
             Some((false, six_kept)) => six_kept,
-            // A few points never pay for a build: one pass serves them.
-            _ if few => return None,
+            // A few points never pay for a build: one pass serves them,
+            // and a snapshot of the surface is built beside the frames
+            // for the asks after (`prepare`).
+            _ if few => {
+                state.snapshot = None;
+                state.changed = None;
+                if state.pending.is_none() {
+                    state.pending = Pending::start(mesh);
+                }
+                return None;
+            }
             _ => {
                 // The snapshot at the frame's start: only the region differs
                 // at its end, and the region is in the changed box.
@@ -291,6 +387,52 @@ mod tests {
                 points,
             })
             .expect("built")
+    }
+
+    /// On a surface past [`EVERY_ASK_FROM`] triangles a prepared field
+    /// answers a few points, exactly as one pass does up to the
+    /// octree's error; a change over the whole surface makes it stale,
+    /// and the next few points go to the caller's pass while a new
+    /// snapshot is built, which the ask after reads.
+    #[test]
+    fn a_prepared_field_answers_few_points_and_is_rebuilt_when_stale() {
+        let m = uv_sphere(DVec3::ZERO, 1.0, 300, 500);
+        assert!(m.triangles.len() >= EVERY_ASK_FROM);
+        let points = [DVec3::new(0.1, 0.2, 0.3), DVec3::new(0.0, 0.0, 1.5)];
+        let at = |v: u32| m.positions[v as usize];
+        let (exact, exact_volume) =
+            winding_numbers_and_volume_at(&m.triangles, &|_| true, &at, &points);
+        let field = FarField::new();
+        field.prepare(&m);
+        let (w, volume) = asked(&field, &m, &points);
+        for (w, e) in w.iter().zip(&exact) {
+            assert!((w - e).abs() < 1e-2, "{w} against {e}");
+        }
+        assert!((volume - exact_volume).abs() < 1e-9 * exact_volume.abs());
+        assert_eq!((field.builds(), field.answers()), (1, 1));
+        // Preparing again keeps the snapshot.
+        field.prepare(&m);
+        let _ = asked(&field, &m, &points);
+        assert_eq!((field.builds(), field.answers()), (1, 2));
+        field.changed_within((DVec3::splat(-2.0), DVec3::splat(2.0)));
+        let nothing = vec![false; m.triangles.len()];
+        let first = m.positions[0];
+        let stale = field.winding_numbers_and_volume_at(&Ask {
+            mesh: &m,
+            inside: &nothing,
+            end: &m.positions,
+            region: (first, first),
+            points: &points,
+        });
+        assert!(
+            stale.is_none(),
+            "a stale field leaves a few points to the pass"
+        );
+        let (w, _) = asked(&field, &m, &points);
+        assert_eq!((field.builds(), field.answers()), (2, 3));
+        for (w, e) in w.iter().zip(&exact) {
+            assert!((w - e).abs() < 1e-2, "{w} against {e}");
+        }
     }
 
     /// The exact pass over the surface now, beside the kept field, as a

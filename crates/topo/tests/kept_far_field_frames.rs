@@ -107,6 +107,64 @@ fn plates_pushed_into_rows_of_balls_read_their_kept_far_field() {
 /// results are those of the same frames without a field.
 #[test]
 fn a_few_samples_on_a_large_surface_read_the_built_field() {
+    let (start, plates, small) = large_scene();
+    let far = FarField::new();
+    let (mut with, mut without) = (start.clone(), start.clone());
+    for (frame, plate) in [plates[0], small].into_iter().enumerate() {
+        let answered = far.answers();
+        frame_both(&mut with, &mut without, &far, plate, frame);
+        assert!(far.answers() > answered, "frame {frame} read the field");
+    }
+    assert_eq!(far.builds(), 1);
+}
+
+/// A field prepared on a large surface ([`FarField::prepare`]) is built
+/// beside the frames, and the first frame's few samples read it: the lone
+/// ball's frame first, then the row's.
+#[test]
+fn a_prepared_field_answers_the_first_frame() {
+    let (start, plates, small) = large_scene();
+    let far = FarField::new();
+    let (mut with, mut without) = (start.clone(), start.clone());
+    for (frame, plate) in [small, plates[0]].into_iter().enumerate() {
+        far.prepare(&with);
+        let answered = far.answers();
+        frame_both(&mut with, &mut without, &far, plate, frame);
+        assert!(far.answers() > answered, "frame {frame} read the field");
+    }
+    // Built once, from `prepare`, and not again: the first frame's
+    // changes were told to the build in progress.
+    assert_eq!(far.builds(), 1);
+}
+
+/// One frame pushing `plate` into `with` (reading `far`, told what the
+/// frame changed) and into `without` (without a field): the same result,
+/// closed and fused.
+fn frame_both(
+    with: &mut TriMesh,
+    without: &mut TriMesh,
+    far: &FarField,
+    plate: (DVec3, DVec3),
+    frame: usize,
+) {
+    let end = pushed(with, plate, 0.15);
+    let r = topology_change_guarded_holding(with, &end, &Options::default(), &[], Some(far))
+        .expect("a valid frame");
+    assert!(!r.local.positions_only, "frame {frame} fuses");
+    if let Some(b) = r.local.changed {
+        far.changed_within(b);
+    }
+    let end = pushed(without, plate, 0.15);
+    topology_change_guarded_holding(without, &end, &Options::default(), &[], None)
+        .expect("a valid frame");
+    assert_eq!(with, without, "frame {frame}: the same result");
+    assert!(closed_oriented(with), "frame {frame}");
+}
+
+/// [`scene`] with a finer big ball, past [`EVERY_ASK_FROM`] triangles,
+/// and a lone ball with a small plate over it (whose frame cuts few
+/// pieces); the row plates, and the small plate's box.
+fn large_scene() -> (TriMesh, Vec<(DVec3, DVec3)>, (DVec3, DVec3)) {
     let (mut start, plates) = scene();
     // The big ball finer: the surface passes the threshold, the frames'
     // changes stay a small part of it.
@@ -125,26 +183,7 @@ fn a_few_samples_on_a_large_surface_read_the_built_field() {
     start.append(&fitted(&primitive("@cube:8"), small.0, small.1));
     assert!(start.triangles.len() >= EVERY_ASK_FROM);
     assert!(closed_oriented(&start));
-    let far = FarField::new();
-    let (mut with, mut without) = (start.clone(), start.clone());
-    for (frame, plate) in [plates[0], small].into_iter().enumerate() {
-        let answered = far.answers();
-        let end = pushed(&with, plate, 0.15);
-        let r =
-            topology_change_guarded_holding(&mut with, &end, &Options::default(), &[], Some(&far))
-                .expect("a valid frame");
-        assert!(!r.local.positions_only, "frame {frame} fuses");
-        if let Some(b) = r.local.changed {
-            far.changed_within(b);
-        }
-        assert!(far.answers() > answered, "frame {frame} read the field");
-        let end = pushed(&without, plate, 0.15);
-        topology_change_guarded_holding(&mut without, &end, &Options::default(), &[], None)
-            .expect("a valid frame");
-        assert_eq!(with, without, "frame {frame}: the same result");
-        assert!(closed_oriented(&with), "frame {frame}");
-    }
-    assert_eq!(far.builds(), 1);
+    (start, plates, small)
 }
 
 /// Below [`EVERY_ASK_FROM`] triangles a frame with a few samples sums
