@@ -382,9 +382,16 @@ pub fn triangles_with_vertex(
 
 /// Per vertex of `n`: 0 where some triangle uses it, `u32::MAX` elsewhere.
 fn marked_used(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
+    marked_used_where(n, triangles, None)
+}
+
+/// [`marked_used`] over the triangles `skip` does not flag (all of them
+/// without `skip`).
+fn marked_used_where(n: usize, triangles: &[[u32; 3]], skip: Option<&[bool]>) -> Vec<u32> {
+    let kept = |t: usize| skip.is_none_or(|s| !s[t]);
     if triangles.len() < 2 * crate::PARALLEL_RUN {
         let mut index = vec![u32::MAX; n];
-        for t in triangles {
+        for (_, t) in triangles.iter().enumerate().filter(|(t, _)| kept(*t)) {
             for &v in t {
                 index[v as usize] = 0;
             }
@@ -401,23 +408,22 @@ fn marked_used(n: usize, triangles: &[[u32; 3]]) -> Vec<u32> {
     triangles
         .par_iter()
         .with_min_len(crate::PARALLEL_RUN)
-        .for_each(|t| {
-            for &v in t {
-                marks[v as usize].store(0, Ordering::Relaxed);
+        .enumerate()
+        .for_each(|(t, tri)| {
+            if kept(t) {
+                for &v in tri {
+                    marks[v as usize].store(0, Ordering::Relaxed);
+                }
             }
         });
     marks.into_iter().map(AtomicU32::into_inner).collect()
 }
 
-/// `triangles` over the positions `index` marks used ([`marked_used`]),
-/// numbered in increasing order, and each kept vertex's old index. The
-/// numbering goes in parallel runs: each run counts its used vertices,
-/// and then numbers them from the count of the runs before it.
-fn renumbered(
-    positions: &[DVec3],
-    mut triangles: Vec<[u32; 3]>,
-    mut index: Vec<u32>,
-) -> (TriMesh, Vec<u32>) {
+/// Numbers the vertices `index` marks used (0; the rest `u32::MAX`) in
+/// increasing order, in place, and gives each numbered vertex's old
+/// index. The numbering goes in parallel runs: each run counts its used
+/// vertices, and then numbers them from the count of the runs before it.
+fn numbered(index: &mut [u32]) -> Vec<u32> {
     const RUN: usize = crate::PARALLEL_RUN;
     let counts: Vec<u32> = index
         .par_chunks(RUN)
@@ -440,13 +446,93 @@ fn renumbered(
                 next += 1;
             }
         });
-    let origin: Vec<u32> = index
+    index
         .par_iter()
         .with_min_len(RUN)
         .enumerate()
         .filter(|(_, i)| **i != u32::MAX)
         .map(|(k, _)| k as u32)
+        .collect()
+}
+
+/// The compacted mesh ([`TriMesh::compacted`]) of the triangles of
+/// `triangles` that `skip` does not flag, in order, then `extra`, over
+/// the positions `positions` followed by `added`: what building that
+/// mesh and compacting it gives, without building it. A splice of a
+/// region's new triangles into a mesh of a million (the sculpting
+/// frame's) would otherwise copy the mesh twice; here the kept triangles
+/// are read once, renumbered as they are copied, in parallel runs.
+/// `skip` has one flag per triangle, and every index is below
+/// `positions.len() + added.len()`.
+pub fn compacted_splice(
+    positions: &[DVec3],
+    added: &[DVec3],
+    triangles: &[[u32; 3]],
+    skip: &[bool],
+    extra: &[[u32; 3]],
+) -> TriMesh {
+    const RUN: usize = crate::PARALLEL_RUN;
+    let first = positions.len();
+    let mut index = marked_used_where(first + added.len(), triangles, Some(skip));
+    for &v in extra.iter().flatten() {
+        index[v as usize] = 0;
+    }
+    let origin = numbered(&mut index);
+    let kept: Vec<DVec3> = origin
+        .par_iter()
+        .with_min_len(RUN)
+        .map(|&k| match (k as usize).checked_sub(first) {
+            None => positions[k as usize],
+            Some(a) => added[a],
+        })
         .collect();
+    let renumber = |t: &[u32; 3]| t.map(|v| index[v as usize]);
+    // Each run of triangles writes its kept ones, renumbered, into its
+    // own slice of the result, placed by the kept counts of the runs
+    // before it.
+    let counts: Vec<usize> = skip
+        .par_chunks(RUN)
+        .map(|run| run.iter().filter(|s| !**s).count())
+        .collect();
+    let total: usize = counts.iter().sum();
+    let mut spliced = vec![[0u32; 3]; total + extra.len()];
+    let (outside, inside) = spliced.split_at_mut(total);
+    let mut slices = Vec::with_capacity(counts.len());
+    let mut rest = outside;
+    for &c in &counts {
+        let (slice, after) = rest.split_at_mut(c);
+        slices.push(slice);
+        rest = after;
+    }
+    triangles
+        .par_chunks(RUN)
+        .zip(skip.par_chunks(RUN))
+        .zip(slices)
+        .for_each(|((run, skipped), slice)| {
+            let kept = run.iter().zip(skipped).filter(|(_, s)| !**s);
+            for (to, (t, _)) in slice.iter_mut().zip(kept) {
+                *to = renumber(t);
+            }
+        });
+    for (to, t) in inside.iter_mut().zip(extra) {
+        *to = renumber(t);
+    }
+    TriMesh {
+        positions: kept,
+        triangles: spliced,
+    }
+}
+
+/// `triangles` over the positions `index` marks used ([`marked_used`]),
+/// numbered in increasing order ([`numbered`]), and each kept vertex's
+/// old index.
+fn renumbered(
+    positions: &[DVec3],
+    mut triangles: Vec<[u32; 3]>,
+    mut index: Vec<u32>,
+) -> (TriMesh, Vec<u32>) {
+    const RUN: usize = crate::PARALLEL_RUN;
+    let origin = numbered(&mut index);
     let kept: Vec<DVec3> = origin
         .par_iter()
         .with_min_len(RUN)
@@ -937,6 +1023,61 @@ mod tests {
         .compacted_with_origin();
         assert_eq!(o, origin);
         assert_eq!(m, expected);
+    }
+
+    /// The splice compacted in one pass is the mesh built and then
+    /// compacted: kept triangles in order, then the extra ones, over the
+    /// positions and the added ones; vertices unused before (every
+    /// fifth) and those only skipped triangles used are dropped. Small
+    /// and large (parallel runs), with and without skips.
+    #[test]
+    fn a_compacted_splice_is_the_built_mesh_compacted() {
+        let mut x = 99u64;
+        let mut next = |m: u32| {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 33) as u32 % m
+        };
+        for (n, t, a, e) in [
+            (50u32, 30usize, 4u32, 5usize),
+            (100_000, 40_000, 300, 2_000),
+        ] {
+            let positions: Vec<DVec3> =
+                (0..n).map(|i| DVec3::new(f64::from(i), 1.0, 0.5)).collect();
+            let added: Vec<DVec3> = (0..a)
+                .map(|i| DVec3::new(-f64::from(i), 2.0, 0.5))
+                .collect();
+            let mut used = || loop {
+                let v = next(n);
+                if v % 5 != 0 {
+                    return v;
+                }
+            };
+            let triangles: Vec<[u32; 3]> = (0..t).map(|_| [used(), used(), used()]).collect();
+            for share in [0, 3, 10] {
+                let skip: Vec<bool> = (0..t).map(|_| share > 0 && next(share) == 0).collect();
+                let extra: Vec<[u32; 3]> = (0..e)
+                    .map(|_| [next(n + a), next(n + a), next(n + a)])
+                    .collect();
+                let mut all = positions.clone();
+                all.extend(&added);
+                let mut tris: Vec<[u32; 3]> = triangles
+                    .iter()
+                    .zip(&skip)
+                    .filter(|(_, s)| !**s)
+                    .map(|(t, _)| *t)
+                    .collect();
+                tris.extend(&extra);
+                let expected = TriMesh {
+                    positions: all,
+                    triangles: tris,
+                }
+                .compacted();
+                let got = compacted_splice(&positions, &added, &triangles, &skip, &extra);
+                assert_eq!(got, expected, "{n} points, one in {share} skipped");
+            }
+        }
     }
 
     #[test]

@@ -548,28 +548,14 @@ impl Region {
         out: &TriMesh,
         map: &SpliceMap,
     ) -> TriMesh {
-        let mut positions = Vec::with_capacity(end.len() + map.added.len());
-        positions.extend_from_slice(end);
-        positions.extend_from_slice(&map.added);
-        // The outside triangles in order, copied a run at a time.
-        let mut triangles: Vec<[u32; 3]> =
-            Vec::with_capacity(mesh.triangles.len() - self.count + out.triangles.len());
-        let mut run = 0;
-        for (t, _) in self.mask.iter().enumerate().filter(|(_, inside)| **inside) {
-            triangles.extend_from_slice(&mesh.triangles[run..t]);
-            run = t + 1;
-        }
-        triangles.extend_from_slice(&mesh.triangles[run..]);
-        triangles.extend(
-            out.triangles
-                .iter()
-                .map(|t| t.map(|v| map.vertex[v as usize])),
-        );
-        TriMesh {
-            positions,
-            triangles,
-        }
-        .compacted()
+        // The outside triangles in order, then the output's, compacted
+        // as they are copied.
+        let extra: Vec<[u32; 3]> = out
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| map.vertex[v as usize]))
+            .collect();
+        holey_mesh::tri::compacted_splice(end, &map.added, &mesh.triangles, &self.mask, &extra)
     }
 
     /// Every triangle of the spliced mesh of `map` before it is compacted
