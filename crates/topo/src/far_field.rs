@@ -36,11 +36,12 @@
 //!
 //! The second sum's pass reads a code byte per corner, and corners only
 //! of the triangles that meet `B'`, where one pass over the triangles
-//! for a handful of samples reads every triangle's corners. So on a large
-//! surface (at least [`EVERY_ASK_FROM`] triangles) the field answers
+//! for a handful of samples reads every triangle's corners. So on a
+//! surface of at least [`EVERY_ASK_FROM`] triangles the field answers
 //! every ask: on the 1.1M-triangle bunny 6–15 ms against 18–28 ms for two
-//! to six samples. There a build (140–300 ms) would be a frame's longest
-//! wait, so the stroke starts it on a thread of its own as its first
+//! to six samples, on the 70k one 0.6–1.4 ms against 1.2–1.9 ms. A build
+//! (140–300 ms on the 1.1M bunny, 12–16 ms on the 70k one) would be a
+//! frame's longest wait, so the stroke starts it on a thread of its own as its first
 //! frame begins ([`FarField::prepare`]), and again when an ask finds the
 //! snapshot stale; the next ask takes it over, waiting for it if need
 //! be, so the answers never depend on the build's timing. On a smaller
@@ -69,8 +70,9 @@ const STALE_SHARE: f64 = 0.25;
 
 /// From this many triangles a field answers asks at any number of points
 /// (module documentation): the kept query then costs about half of one
-/// pass over the triangles, and a session's strokes share one build.
-pub const EVERY_ASK_FROM: usize = 1 << 18;
+/// pass over the triangles (measured on the 70k and the 1.1M bunny),
+/// and a session's strokes share one build, made beside the frames.
+pub const EVERY_ASK_FROM: usize = 1 << 15;
 
 /// A stroke's far field: winding numbers and orientation of a surface
 /// that changes a little at a time (module documentation). It answers

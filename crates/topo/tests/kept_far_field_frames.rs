@@ -23,11 +23,16 @@ fn fitted(m: &TriMesh, lo: DVec3, hi: DVec3) -> TriMesh {
 /// region, and all the frames' changes, are a small part of the mesh);
 /// and each plate's box.
 fn scene() -> (TriMesh, Vec<(DVec3, DVec3)>) {
-    let ball = primitive("@sphere:2");
     // Fine enough that the rows, where the frames change the surface, are
     // a small share of it.
+    scene_with("@sphere:6")
+}
+
+/// [`scene`] with the big ball `big`.
+fn scene_with(big: &str) -> (TriMesh, Vec<(DVec3, DVec3)>) {
+    let ball = primitive("@sphere:2");
     let mut m = fitted(
-        &primitive("@sphere:6"),
+        &primitive(big),
         DVec3::new(-6.0, -1.0, -1.0),
         DVec3::new(-4.0, 1.0, 1.0),
     );
@@ -161,22 +166,11 @@ fn frame_both(
     assert!(closed_oriented(with), "frame {frame}");
 }
 
-/// [`scene`] with a finer big ball, past [`EVERY_ASK_FROM`] triangles,
-/// and a lone ball with a small plate over it (whose frame cuts few
-/// pieces); the row plates, and the small plate's box.
+/// [`scene`], past [`EVERY_ASK_FROM`] triangles, and a lone ball with a
+/// small plate over it (whose frame cuts few pieces); the row plates,
+/// and the small plate's box.
 fn large_scene() -> (TriMesh, Vec<(DVec3, DVec3)>, (DVec3, DVec3)) {
     let (mut start, plates) = scene();
-    // The big ball finer: the surface passes the threshold, the frames'
-    // changes stay a small part of it.
-    start = {
-        let mut m = fitted(
-            &primitive("@sphere:7"),
-            DVec3::new(-9.0, -1.0, -1.0),
-            DVec3::new(-7.0, 1.0, 1.0),
-        );
-        m.append(&start);
-        m
-    };
     let lone = (DVec3::new(6.85, -0.15, -0.15), DVec3::new(7.15, 0.15, 0.15));
     start.append(&fitted(&primitive("@sphere:2"), lone.0, lone.1));
     let small = (DVec3::new(6.8, -0.2, 0.2), DVec3::new(7.2, 0.2, 0.3));
@@ -191,7 +185,7 @@ fn large_scene() -> (TriMesh, Vec<(DVec3, DVec3)>, (DVec3, DVec3)) {
 /// into a lone ball after the first row's frame.
 #[test]
 fn a_few_samples_on_a_smaller_surface_take_one_pass() {
-    let (mut start, plates) = scene();
+    let (mut start, plates) = scene_with("@sphere:3");
     let lone = (DVec3::new(6.85, -0.15, -0.15), DVec3::new(7.15, 0.15, 0.15));
     start.append(&fitted(&primitive("@sphere:2"), lone.0, lone.1));
     let small = (DVec3::new(6.8, -0.2, 0.2), DVec3::new(7.2, 0.2, 0.3));
