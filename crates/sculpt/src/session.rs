@@ -430,20 +430,16 @@ mod tests {
     #[test]
     fn the_far_field_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
         let sphere = holey_shapes::icosphere(3).unwrap().triangulated();
-        let inflate = Stroke {
-            brush: Brush::Inflate,
+        // From the top of the sphere to `to`.
+        let stroke = |brush, strength, to| Stroke {
+            brush,
             radius: 0.6,
-            strength: 0.05,
-            path: vec![DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.1, 0.0, 1.0)],
+            strength,
+            path: vec![DVec3::new(0.0, 0.0, 1.0), to],
             ..Stroke::default()
         };
-        let grab = Stroke {
-            brush: Brush::Grab,
-            radius: 0.6,
-            strength: 1.0,
-            path: vec![DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.0, 0.0, 1.2)],
-            ..Stroke::default()
-        };
+        let inflate = stroke(Brush::Inflate, 0.05, DVec3::new(0.1, 0.0, 1.0));
+        let grab = stroke(Brush::Grab, 1.0, DVec3::new(0.0, 0.0, 1.2));
         let mut s = Session::new(sphere.clone()).unwrap();
         assert!(s.kept.0.is_none());
         s.apply_stroke(&inflate).unwrap();
