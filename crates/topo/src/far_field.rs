@@ -174,9 +174,15 @@ struct Snapshot {
 
 impl std::fmt::Debug for FarField {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // Without waiting for a build in progress.
+        let state = self.state.lock();
+        let (built, building, builds) = state.as_ref().map_or((false, false, 0), |s| {
+            (s.snapshot.is_some(), s.pending.is_some(), s.builds)
+        });
         f.debug_struct("FarField")
-            .field("built", &self.is_built())
-            .field("builds", &self.builds())
+            .field("built", &built)
+            .field("building", &building)
+            .field("builds", &builds)
             .finish()
     }
 }
