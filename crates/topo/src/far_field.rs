@@ -41,13 +41,13 @@
 //! every ask: on the 1.1M-triangle bunny 6–15 ms against 18–28 ms for two
 //! to six samples, on the 70k one 0.6–1.4 ms against 1.2–1.9 ms. A build
 //! (140–300 ms on the 1.1M bunny, 12–16 ms on the 70k one) would be a
-//! frame's longest wait, so the stroke starts it on a thread of its own as its first
-//! frame begins ([`FarField::prepare`]), and again when an ask finds the
-//! snapshot stale; the next ask takes it over, waiting for it if need
-//! be, so the answers never depend on the build's timing. On a smaller
-//! surface the pass is cheap: the field answers only asks of more than
-//! [`FEW_POINTS`] samples, where the alternative is an octree built for
-//! that ask alone, and is built at the first of them.
+//! frame's longest wait, so the stroke starts it on a thread of its own
+//! as its first frame begins ([`FarField::prepare`]), and again when an
+//! ask finds the snapshot stale; the next ask takes it over, waiting for
+//! it if need be, so the answers never depend on the build's timing. On
+//! a smaller surface the pass is cheap: the field answers only asks of
+//! more than [`FEW_POINTS`] samples, where the alternative is an octree
+//! built for that ask alone, and is built at the first of them.
 //!
 //! A field may outlive its stroke: a session that hands it to the next
 //! stroke on the surface the last one left (`holey_sculpt`'s session and
@@ -292,11 +292,10 @@ impl FarField {
             // and a snapshot of the surface is built beside the frames
             // for the asks after (`prepare`).
             _ if few => {
+                // (Nothing is pending here: the ask took it over above.)
                 state.snapshot = None;
                 state.changed = None;
-                if state.pending.is_none() {
-                    state.pending = Pending::start(mesh);
-                }
+                state.pending = Pending::start(mesh);
                 return None;
             }
             _ => {

@@ -454,21 +454,23 @@ impl Octree {
             order[fill[c as usize] as usize] = t as u32;
             fill[c as usize] += 1;
         }
-        // Each finest cell's summary and box in one visit of its
-        // triangles' corners: they are read in cell order, scattered over
-        // the mesh, and on a million triangles each such pass costs tens
-        // of milliseconds.
-        let (finest, finest_boxes): (Vec<Summary>, Vec<Aabb>) = (0..n_cells)
-            .into_par_iter()
-            .map(|c| {
-                let members = &order[start[c] as usize..start[c + 1] as usize];
-                summary(members, |t| triangles[t as usize].map(position), &centroids)
-            })
-            .unzip();
-        let boxes = if with_boxes {
-            box_levels(side, finest_boxes)
+        // Each finest cell's summary, and its box when asked, in one
+        // visit of its triangles' corners: they are read in cell order,
+        // scattered over the mesh, and on a million triangles each such
+        // pass costs tens of milliseconds.
+        let cell_summary = |c: usize| {
+            let members = &order[start[c] as usize..start[c + 1] as usize];
+            summary(members, |t| triangles[t as usize].map(position), &centroids)
+        };
+        let (finest, boxes): (Vec<Summary>, _) = if with_boxes {
+            let (finest, finest_boxes) = (0..n_cells).into_par_iter().map(cell_summary).unzip();
+            (finest, box_levels(side, finest_boxes))
         } else {
-            Vec::new()
+            let finest = (0..n_cells)
+                .into_par_iter()
+                .map(|c| cell_summary(c).0)
+                .collect();
+            (finest, Vec::new())
         };
         let mut levels = vec![finest];
         let mut s = side;
