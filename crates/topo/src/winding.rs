@@ -11,6 +11,7 @@
 use glam::DVec3;
 use holey_geom::Aabb;
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 /// The signed solid angle of triangle `abc` seen from `p` (Van Oosterom &
 /// Strackee 1983): `tan(Ω/2) = det[a b c] / (|a||b||c| + (a·b)|c| +
@@ -195,7 +196,7 @@ where
     if points.len() > FEW_POINTS {
         let field = WindingField::new(triangles, position);
         return points
-            .iter()
+            .par_iter()
             .zip(own)
             .map(|(&p, &t)| field.at(p, t))
             .collect();
@@ -292,7 +293,31 @@ pub(crate) struct Octree {
     /// Per level likewise, the box of each cell's triangles' corners
     /// (empty unless built [`Octree::with_boxes`]).
     boxes: Vec<Vec<Aabb>>,
+    /// The finest cells holding more than [`DENSE`] triangles, each with
+    /// an octree of its own over them ([`Dense`]).
+    dense: FxHashMap<u32, Dense>,
 }
+
+/// A finest cell of an [`Octree`] that holds a cluster: more than
+/// [`DENSE`] triangles, where the grid's cells hold about eight on
+/// average. A uniform grid of at most 64 cells a side puts a cluster
+/// much smaller than the surface in one cell, such as the slivers of a
+/// contact storm in a sculpting frame's arrangement (about 2,000 pieces
+/// in 27k triangles on the 1.1M bunny), and every point near the cluster
+/// then summed each of its triangles exactly: [`Octree::sum`] descends
+/// into the cell's own tree instead.
+struct Dense {
+    /// The cell's triangles, in the order of its members.
+    triangles: Vec<[u32; 3]>,
+    tree: Octree,
+}
+
+/// More triangles than this in a finest cell get an octree of their own.
+const DENSE: usize = 64;
+
+/// Octrees of dense cells nest at most this deep (a cluster of
+/// coincident triangles does not split however fine the grid).
+const MAX_NEST: u32 = 2;
 
 /// What a cell of a [`WindingField`] holds, for its far field.
 #[derive(Clone, Copy, Debug, Default)]
@@ -304,6 +329,13 @@ pub(crate) struct Summary {
     count: u32,
     /// Six times the signed volume of its triangles, `Σ a·(b×c)`.
     six_volume: f64,
+}
+
+/// Per level of an [`Octree`], the area vector and triangle count of
+/// each cell whose box meets a box `b`, without the triangles whose own
+/// box meets `b` ([`Octree::residue`]).
+pub(crate) struct Residue {
+    levels: Vec<FxHashMap<u32, (DVec3, u32)>>,
 }
 
 impl<'a> WindingField<'a> {
@@ -345,50 +377,15 @@ impl<'a> WindingField<'a> {
     /// once with the cells that hold them, so the cost stays
     /// `O((n + k) log k)` instead of `n · k`.
     pub fn at_skipping(&self, p: DVec3, skip: &[usize]) -> f64 {
-        let tree = &self.tree;
-        if skip.len() <= FEW_SKIPPED {
-            let holds = |level: u32, (x, y, z): (usize, usize, usize)| {
-                let shift = tree.depth - level;
-                skip.iter().filter_map(|&t| tree.cell.get(t)).any(|&k| {
-                    let (kx, ky, kz) = tree.finest(k as usize);
-                    (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
-                })
-            };
-            return tree.sum(
-                self.triangles,
-                self.position,
-                p,
-                |level, cell, _| !holds(level, cell),
-                |t| skip.contains(&t),
-            );
-        }
-        let mut skipped = skip.to_vec();
-        skipped.sort_unstable();
-        skipped.dedup();
-        let mut cells: Vec<(u32, usize, usize, usize)> = Vec::new();
-        for k in skipped.iter().filter_map(|&t| tree.cell.get(t)) {
-            let (kx, ky, kz) = tree.finest(*k as usize);
-            for level in 0..=tree.depth {
-                let shift = tree.depth - level;
-                cells.push((level, kx >> shift, ky >> shift, kz >> shift));
-            }
-        }
-        cells.sort_unstable();
-        cells.dedup();
-        tree.sum(
-            self.triangles,
-            self.position,
-            p,
-            |level, (x, y, z), _| cells.binary_search(&(level, x, y, z)).is_err(),
-            |t| skipped.binary_search(&t).is_ok(),
-        )
+        self.tree
+            .sum_skipping(self.triangles, self.position, p, skip)
     }
 }
 
 impl Octree {
     /// The octree of `triangles` with corners at `position`.
     pub(crate) fn new(triangles: &[[u32; 3]], position: &(dyn Fn(u32) -> DVec3 + Sync)) -> Octree {
-        Octree::build(triangles, position, false)
+        Octree::build(triangles, position, false, 0)
     }
 
     /// [`Octree::new`], with the box of every cell's triangles, for
@@ -398,7 +395,7 @@ impl Octree {
         triangles: &[[u32; 3]],
         position: &(dyn Fn(u32) -> DVec3 + Sync),
     ) -> Octree {
-        Octree::build(triangles, position, true)
+        Octree::build(triangles, position, true, 0)
     }
 
     /// Whether the box of the triangles of cell `c` of `level` meets `b`
@@ -414,6 +411,7 @@ impl Octree {
         triangles: &[[u32; 3]],
         position: &(dyn Fn(u32) -> DVec3 + Sync),
         with_boxes: bool,
+        nest: u32,
     ) -> Octree {
         let centroid = |t: &[u32; 3]| t.map(position).iter().sum::<DVec3>() / 3.0;
         // Rebuilt every frame a sculpting stroke changes topology, over
@@ -503,6 +501,20 @@ impl Octree {
             s = half;
         }
         levels.reverse();
+        let dense = if nest < MAX_NEST && side > 1 {
+            (0..n_cells)
+                .filter(|&c| (start[c + 1] - start[c]) as usize > DENSE)
+                .map(|c| {
+                    let members = &order[start[c] as usize..start[c + 1] as usize];
+                    let triangles: Vec<[u32; 3]> =
+                        members.iter().map(|&t| triangles[t as usize]).collect();
+                    let tree = Octree::build(&triangles, position, false, nest + 1);
+                    (c as u32, Dense { triangles, tree })
+                })
+                .collect()
+        } else {
+            FxHashMap::default()
+        };
         Octree {
             side,
             depth,
@@ -511,6 +523,7 @@ impl Octree {
             cell,
             levels,
             boxes,
+            dense,
         }
     }
 
@@ -540,6 +553,54 @@ impl Octree {
         (k / (fs * fs), (k / fs) % fs, k % fs)
     }
 
+    /// The winding number at `p` of the tree's triangles but those of
+    /// `skip` ([`WindingField::at_skipping`]): no cell holding one of
+    /// them counts whole.
+    fn sum_skipping(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        p: DVec3,
+        skip: &[usize],
+    ) -> f64 {
+        if skip.len() <= FEW_SKIPPED {
+            let holds = |level: u32, (x, y, z): (usize, usize, usize)| {
+                let shift = self.depth - level;
+                skip.iter().filter_map(|&t| self.cell.get(t)).any(|&k| {
+                    let (kx, ky, kz) = self.finest(k as usize);
+                    (kx >> shift, ky >> shift, kz >> shift) == (x, y, z)
+                })
+            };
+            return self.sum(
+                triangles,
+                position,
+                p,
+                |level, cell, _| !holds(level, cell),
+                |t| skip.contains(&t),
+            );
+        }
+        let mut skipped = skip.to_vec();
+        skipped.sort_unstable();
+        skipped.dedup();
+        let mut cells: Vec<(u32, usize, usize, usize)> = Vec::new();
+        for k in skipped.iter().filter_map(|&t| self.cell.get(t)) {
+            let (kx, ky, kz) = self.finest(*k as usize);
+            for level in 0..=self.depth {
+                let shift = self.depth - level;
+                cells.push((level, kx >> shift, ky >> shift, kz >> shift));
+            }
+        }
+        cells.sort_unstable();
+        cells.dedup();
+        self.sum(
+            triangles,
+            position,
+            p,
+            |level, (x, y, z), _| cells.binary_search(&(level, x, y, z)).is_err(),
+            |t| skipped.binary_search(&t).is_ok(),
+        )
+    }
+
     /// The winding number at `p` of the triangles of the tree (`triangles`
     /// at `position`, those it was built over), by cells: a cell counts by
     /// its dipole when it is far and `whole(level, (x, y, z), c)` (`c` the
@@ -562,10 +623,133 @@ impl Octree {
                 total += cell.area_vector.dot(d) / (dist * dist * dist);
                 false
             } else if level == self.depth {
-                for &t in self.members(c) {
+                let members = self.members(c);
+                if let Some(d) = self.dense.get(&(c as u32)) {
+                    // Its own tree's cells count whole when far, unless
+                    // they hold a skipped triangle (by its place among
+                    // the members, which its tree was built over).
+                    let skip: Vec<usize> = (0..members.len())
+                        .filter(|&k| skipped(members[k] as usize))
+                        .collect();
+                    total += 4.0
+                        * std::f64::consts::PI
+                        * d.tree.sum_skipping(&d.triangles, position, p, &skip);
+                    return false;
+                }
+                for &t in members {
                     if !skipped(t as usize) {
                         let [a, b, e] = triangles[t as usize].map(position);
                         total += solid_angle(p, a, b, e);
+                    }
+                }
+                false
+            } else {
+                true
+            }
+        });
+        total / (4.0 * std::f64::consts::PI)
+    }
+
+    /// The area vectors and counts of the cells whose box meets `b`,
+    /// without the triangles whose own box meets it ([`Residue`]): what
+    /// [`Octree::sum_outside`] reads in place of those cells' sums. One
+    /// visit of the triangles of the finest cells that meet `b`.
+    pub(crate) fn residue(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        b: &Aabb,
+    ) -> Residue {
+        let mut residue = Residue {
+            levels: vec![FxHashMap::default(); self.depth as usize + 1],
+        };
+        if self.levels.first().and_then(|root| root.first()).is_some() {
+            self.residue_below(triangles, position, b, 0, (0, 0, 0), &mut residue);
+        }
+        residue
+    }
+
+    /// [`Octree::residue`] of cell `(x, y, z)` of `level` and the cells
+    /// below it; returns the cell's area vector and count without the
+    /// triangles meeting `b`.
+    fn residue_below(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        b: &Aabb,
+        level: u32,
+        (x, y, z): (usize, usize, usize),
+        residue: &mut Residue,
+    ) -> (DVec3, u32) {
+        let s = 1usize << level;
+        let c = index(x, y, z, s);
+        let cell = &self.levels[level as usize][c];
+        if cell.count == 0 || !self.cell_meets(level, c, b) {
+            return (cell.area_vector, cell.count);
+        }
+        let (mut area_vector, mut count) = (DVec3::ZERO, 0u32);
+        if level == self.depth {
+            for &t in self.members(c) {
+                let corners = triangles[t as usize].map(position);
+                if !corners_meet(&corners, b) {
+                    let [a, bb, e] = corners;
+                    area_vector += 0.5 * (bb - a).cross(e - a);
+                    count += 1;
+                }
+            }
+        } else {
+            for k in 0..8 {
+                let kid = (2 * x + (k >> 2), 2 * y + ((k >> 1) & 1), 2 * z + (k & 1));
+                let (v, n) = self.residue_below(triangles, position, b, level + 1, kid, residue);
+                area_vector += v;
+                count += n;
+            }
+        }
+        residue.levels[level as usize].insert(c as u32, (area_vector, count));
+        (area_vector, count)
+    }
+
+    /// The winding number at `p` of the tree's triangles whose box misses
+    /// `b` (`residue` is [`Octree::residue`] for `b`): [`Octree::sum`]
+    /// with each cell meeting `b` summed without the triangles meeting
+    /// it. Such a cell still counts by its dipole when it is far: about
+    /// its own centre and within its own radius, which bound what is
+    /// left of it. So a point costs what it costs in a tree without the
+    /// box, however many triangles the box holds, where opening every
+    /// cell that meets the box costs the number of triangles in it.
+    pub(crate) fn sum_outside(
+        &self,
+        triangles: &[[u32; 3]],
+        position: &(dyn Fn(u32) -> DVec3 + Sync),
+        p: DVec3,
+        b: &Aabb,
+        residue: &Residue,
+    ) -> f64 {
+        let mut total = 0.0;
+        self.walk(|level, _, c, cell| {
+            let meets = self.cell_meets(level, c, b);
+            let (area_vector, count) = if meets {
+                residue.levels[level as usize]
+                    .get(&(c as u32))
+                    .copied()
+                    .unwrap_or((DVec3::ZERO, 0))
+            } else {
+                (cell.area_vector, cell.count)
+            };
+            if count == 0 {
+                return false;
+            }
+            let d = cell.centre - p;
+            let dist = d.length();
+            if dist > FAR * cell.radius {
+                total += area_vector.dot(d) / (dist * dist * dist);
+                false
+            } else if level == self.depth {
+                for &t in self.members(c) {
+                    let corners = triangles[t as usize].map(position);
+                    if !(meets && corners_meet(&corners, b)) {
+                        let [a, bb, e] = corners;
+                        total += solid_angle(p, a, bb, e);
                     }
                 }
                 false
@@ -837,6 +1021,69 @@ mod tests {
             "{}",
             inward.signed_volume()
         );
+    }
+
+    /// A cluster much smaller than the surface (a sphere of radius 0.004
+    /// holding 7,200 triangles inside a unit sphere of 9,600, as the
+    /// slivers of a contact storm cluster in a frame's arrangement) falls
+    /// in one finest cell of the grid, which gets a tree of its own: the
+    /// field agrees with the exact sum inside the cluster, just outside
+    /// it, on one of its triangles without that triangle, and with a band
+    /// of its triangles left out, seen from nearby and from afar.
+    #[test]
+    fn a_dense_cluster_gets_a_tree_of_its_own_and_the_same_winding_numbers() {
+        let outer = crate::test_meshes::uv_sphere(DVec3::ZERO, 1.0, 60, 80);
+        let centre = DVec3::new(0.31, -0.07, 0.06);
+        let r = 0.004;
+        let small = crate::test_meshes::uv_sphere(centre, r, 60, 60);
+        let mut pos = outer.positions.clone();
+        let mut tris = outer.triangles.clone();
+        let base = pos.len() as u32;
+        let first_small = tris.len();
+        pos.extend(&small.positions);
+        tris.extend(small.triangles.iter().map(|t| t.map(|v| v + base)));
+        let at = |v: u32| pos[v as usize];
+        let field = WindingField::new(&tris, &at);
+        assert!(
+            field
+                .tree
+                .dense
+                .values()
+                .any(|d| d.triangles.len() >= small.triangles.len()),
+            "the cluster's cell has a tree of its own"
+        );
+        let own = first_small + 1234;
+        let on = tris[own].map(at).iter().sum::<DVec3>() / 3.0;
+        let cases: [(DVec3, Option<usize>, f64); 4] = [
+            (centre, None, 2.0),
+            (centre + DVec3::new(1.5 * r, 0.0, 0.0), None, 1.0),
+            (centre + DVec3::new(0.0, 0.0, 0.99 * r), None, 2.0),
+            (on, Some(own), 1.5),
+        ];
+        for (q, skip, expected) in cases {
+            let exact = winding_number(&tris, &at, q, skip);
+            let fast = field.at(q, skip);
+            assert!((exact - fast).abs() < 0.03, "{q}: {exact} vs {fast}");
+            assert!(
+                (fast - expected).abs() < 0.05,
+                "{q}: {fast}, not {expected}"
+            );
+        }
+        // A band of the cluster left out (the sorted path, in its tree).
+        let band: Vec<usize> = (first_small + 2000..first_small + 2600).collect();
+        for q in [
+            centre,
+            centre + DVec3::new(0.0, 3.0 * r, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+        ] {
+            let exact = winding_number(&tris, &at, q, None)
+                - band
+                    .iter()
+                    .map(|&t| winding_number(&tris[t..t + 1], &at, q, None))
+                    .sum::<f64>();
+            let fast = field.at_skipping(q, &band);
+            assert!((exact - fast).abs() < 0.03, "{q}: {exact} vs {fast}");
+        }
     }
 
     /// Many skipped triangles (the sorted path) give what summing every
