@@ -13,8 +13,8 @@ use super::request::{StrokeBegin, StrokeFrame, missing};
 use super::{Out, Reply, Shared};
 use crate::doc::{ActiveStroke, Content, Document, Mask, mask_flags};
 use crate::frame::{
-    EdgeBook, FLAG_PREVIEW, Patch, display_triangles, encode_masked, encode_patch,
-    encode_positions, encode_sparse, patch_triangles,
+    EdgeBook, FLAG_PREVIEW, Patch, changed_slots, display_triangles, encode_masked, encode_patch,
+    encode_positions, encode_sparse, patch_changed,
 };
 use crate::{ConnId, ServeError};
 
@@ -208,16 +208,18 @@ impl Shared {
             // Remeshing keeps most vertex and triangle numbers: only the
             // slots that changed travel (drag previews, whose vanish mask
             // covers every vertex, go whole).
+            // Whether a patch can be made is known before the book is
+            // built: after a cut, the splice's renumbering usually
+            // changes too much for one.
             let patched = if vanish.is_none() {
-                stroke
-                    .book
-                    .take()
-                    .or_else(|| EdgeBook::of(&stroke.display))
-                    .and_then(|mut book| {
-                        let patch =
-                            patch_triangles(&mut stroke.display, &mut book, mesh, MAX_PATCH_SHARE)?;
-                        Some((patch, book))
-                    })
+                changed_slots(&stroke.display, mesh, MAX_PATCH_SHARE).and_then(|changed| {
+                    let mut book = stroke
+                        .book
+                        .take()
+                        .or_else(|| EdgeBook::of(&stroke.display))?;
+                    let patch = patch_changed(&mut stroke.display, &mut book, mesh, changed)?;
+                    Some((patch, book))
+                })
             } else {
                 None
             };
