@@ -7,8 +7,14 @@
 //! frames as the modeler sent them.
 //!
 //! ```text
-//! cargo run --release -p holey-sculpt --example frame_trace -- MESH STROKES.json [--no-remesh] [--no-audit] [--dump K]
+//! cargo run --release -p holey-sculpt --example frame_trace -- MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--dump K]
 //! ```
+//!
+//! A recorded stroke remeshes to the range the modeller derived from the
+//! mesh it was recorded on; `--mesh-range` derives it from the mesh
+//! replayed instead, as the modeller would on that mesh (a recording of
+//! the 70k bunny replayed on the 1.1M one otherwise coarsens the brushed
+//! region to the 70k bunny's edge lengths).
 //!
 //! The last line sums up the frame times: the median and slowest of the
 //! frames that only moved the surface and of those where the engine cut
@@ -37,6 +43,7 @@ fn write_obj(path: &str, positions: &[glam::DVec3], tris: &[[u32; 3]]) -> std::i
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let no_remesh = args.iter().any(|a| a == "--no-remesh");
+    let mesh_range = args.iter().any(|a| a == "--mesh-range");
     let no_audit = args.iter().any(|a| a == "--no-audit");
     let (mut plain, mut changed): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
     let dump: Option<usize> = args
@@ -46,7 +53,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|k| k.parse().ok());
     if args.len() < 3 {
         return Err(
-            "usage: frame_trace MESH STROKES.json [--no-remesh] [--no-audit] [--dump K]".into(),
+            "usage: frame_trace MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--dump K]"
+                .into(),
         );
     }
     let MeshFile::Poly(poly) = holey_io::read_path(Path::new(&args[1]))? else {
@@ -87,7 +95,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             // The stroke's own range (the modeler records it), else the
             // file's, else one derived from the mesh the stroke starts on,
             // as the modeler does at its default detail.
-            let range = stroke.remesh_or(|| file.remesh.or_else(|| default_range(&mesh)));
+            let range = if mesh_range {
+                default_range(&mesh)
+            } else {
+                stroke.remesh_or(|| file.remesh.or_else(|| default_range(&mesh)))
+            };
             live.set_remesh(range.map(RemeshOptions::new));
         }
         let mut before = audit(&mesh)?;
