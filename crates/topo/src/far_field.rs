@@ -490,8 +490,6 @@ mod tests {
     fn many_points_and_a_large_changed_box_agree_with_the_exact_pass() {
         let mut m = uv_sphere(DVec3::ZERO, 1.0, 60, 90);
         let field = FarField::new();
-        let nothing = vec![false; m.triangles.len()];
-        let first = m.positions[0];
         let points: Vec<DVec3> = (0..40)
             .map(|i| {
                 let (polar, around) = (0.05 + 0.075 * i as f64, 2.4 * i as f64);
@@ -503,13 +501,7 @@ mod tests {
                 dir * [0.5, 0.97, 1.02, 1.5][i % 4]
             })
             .collect();
-        let _ = field.winding_numbers_and_volume_at(&Ask {
-            mesh: &m,
-            inside: &nothing,
-            end: &m.positions,
-            region: (first, first),
-            points: &points,
-        });
+        let _ = asked(&field, &m, &points);
         assert!(field.is_built());
         // The cap z > 0.8 (around the first vertex, the region's box
         // here), pushed out by 5%.

@@ -615,14 +615,10 @@ impl Octree {
         whole: impl Fn(u32, (usize, usize, usize), usize) -> bool,
         skipped: impl Fn(usize) -> bool,
     ) -> f64 {
-        let mut total = 0.0;
-        self.walk(|level, xyz, c, cell| {
-            let d = cell.centre - p;
-            let dist = d.length();
-            if dist > FAR * cell.radius && whole(level, xyz, c) {
-                total += cell.area_vector.dot(d) / (dist * dist * dist);
-                false
-            } else if level == self.depth {
+        self.dipoles_and_exact(
+            p,
+            |level, xyz, c, cell| (cell.area_vector, cell.count, whole(level, xyz, c)),
+            |c| {
                 let members = self.members(c);
                 if let Some(d) = self.dense.get(&(c as u32)) {
                     // Its own tree's cells count whole when far, unless
@@ -631,23 +627,53 @@ impl Octree {
                     let skip: Vec<usize> = (0..members.len())
                         .filter(|&k| skipped(members[k] as usize))
                         .collect();
-                    total += 4.0
+                    return 4.0
                         * std::f64::consts::PI
                         * d.tree.sum_skipping(&d.triangles, position, p, &skip);
-                    return false;
                 }
-                for &t in members {
-                    if !skipped(t as usize) {
+                members
+                    .iter()
+                    .filter(|&&t| !skipped(t as usize))
+                    .map(|&t| {
                         let [a, b, e] = triangles[t as usize].map(position);
-                        total += solid_angle(p, a, b, e);
-                    }
-                }
+                        solid_angle(p, a, b, e)
+                    })
+                    .sum()
+            },
+        ) / (4.0 * std::f64::consts::PI)
+    }
+
+    /// The walk of [`Octree::sum`] and [`Octree::sum_outside`] from `p`:
+    /// `cell(level, (x, y, z), c, summary)` gives the area vector and
+    /// triangle count a cell counts with (none: left out) and whether it
+    /// may count whole; such a cell farther than [`FAR`] times its radius
+    /// adds its dipole term, the other finest cells `exact(c)` (their
+    /// solid angles), and the rest are opened. The sum of solid angles.
+    fn dipoles_and_exact(
+        &self,
+        p: DVec3,
+        cell: impl Fn(u32, (usize, usize, usize), usize, &Summary) -> (DVec3, u32, bool),
+        exact: impl Fn(usize) -> f64,
+    ) -> f64 {
+        let mut total = 0.0;
+        self.walk(|level, xyz, c, summary| {
+            let (area_vector, count, may_be_whole) = cell(level, xyz, c, summary);
+            if count == 0 {
+                return false;
+            }
+            let d = summary.centre - p;
+            let dist = d.length();
+            if may_be_whole && dist > FAR * summary.radius {
+                total += area_vector.dot(d) / (dist * dist * dist);
+                false
+            } else if level == self.depth {
+                total += exact(c);
                 false
             } else {
                 true
             }
         });
-        total / (4.0 * std::f64::consts::PI)
+        total
     }
 
     /// The area vectors and counts of the cells whose box meets `b`,
@@ -725,39 +751,29 @@ impl Octree {
         b: &Aabb,
         residue: &Residue,
     ) -> f64 {
-        let mut total = 0.0;
-        self.walk(|level, _, c, cell| {
-            let meets = self.cell_meets(level, c, b);
-            let (area_vector, count) = if meets {
-                residue.levels[level as usize]
-                    .get(&(c as u32))
-                    .copied()
-                    .unwrap_or((DVec3::ZERO, 0))
-            } else {
-                (cell.area_vector, cell.count)
-            };
-            if count == 0 {
-                return false;
-            }
-            let d = cell.centre - p;
-            let dist = d.length();
-            if dist > FAR * cell.radius {
-                total += area_vector.dot(d) / (dist * dist * dist);
-                false
-            } else if level == self.depth {
-                for &t in self.members(c) {
-                    let corners = triangles[t as usize].map(position);
-                    if !(meets && corners_meet(&corners, b)) {
-                        let [a, bb, e] = corners;
-                        total += solid_angle(p, a, bb, e);
-                    }
-                }
-                false
-            } else {
-                true
-            }
-        });
-        total / (4.0 * std::f64::consts::PI)
+        self.dipoles_and_exact(
+            p,
+            |level, _, c, cell| {
+                let (area_vector, count) = if self.cell_meets(level, c, b) {
+                    residue.levels[level as usize]
+                        .get(&(c as u32))
+                        .copied()
+                        .unwrap_or((DVec3::ZERO, 0))
+                } else {
+                    (cell.area_vector, cell.count)
+                };
+                (area_vector, count, true)
+            },
+            |c| {
+                let meets = self.cell_meets(self.depth, c, b);
+                self.members(c)
+                    .iter()
+                    .map(|&t| triangles[t as usize].map(position))
+                    .filter(|corners| !(meets && corners_meet(corners, b)))
+                    .map(|[a, bb, e]| solid_angle(p, a, bb, e))
+                    .sum()
+            },
+        ) / (4.0 * std::f64::consts::PI)
     }
 
     /// Of the tree's triangles, how many have a box meeting `b`, and six
