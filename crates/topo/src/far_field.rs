@@ -70,7 +70,7 @@ use rayon::prelude::*;
 
 use crate::local::Bounds;
 use crate::mesh::TriMesh;
-use crate::winding::{FEW_POINTS, Octree, WindingField, classified_sums};
+use crate::winding::{FEW_POINTS, Octree, Residue, WindingField, classified_sums};
 
 /// A snapshot is rebuilt when more than this share of its triangles lies
 /// in the changed box: the pass over those costs as much as one over all.
@@ -279,23 +279,24 @@ impl FarField {
         }
         let mut state = self.state.lock().ok()?;
         state.install_pending();
-        // How much of the snapshot the changes cover, and the volume of
-        // the rest, in one walk down its octree.
+        // How much of the snapshot the changes cover, the volume of the
+        // rest, and the sums of the cells they meet without them, in one
+        // walk down its octree.
         let split = |state: &State| {
             state.snapshot.as_ref().map(|s| {
-                let (meeting, six_kept) = s.tree.split_sums(
+                let residue = s.tree.residue(
                     &s.triangles,
                     &|v| s.positions[v as usize],
                     &state.dirty(region),
                 );
                 (
-                    meeting as f64 > STALE_SHARE * s.triangles.len() as f64,
-                    six_kept,
+                    residue.meeting as f64 > STALE_SHARE * s.triangles.len() as f64,
+                    residue,
                 )
             })
         };
-        let six_kept = match split(&state) {
-            Some((false, six_kept)) => six_kept,
+        let residue = match split(&state) {
+            Some((false, residue)) => residue,
             // A few points never pay for a build: one pass serves them,
             // and a snapshot of the surface is built beside the frames
             // for the asks after (`prepare`).
@@ -321,7 +322,7 @@ impl FarField {
             }
         };
         state.answers += 1;
-        kept_query(&state, ask, six_kept)
+        kept_query(&state, ask, &residue)
     }
 }
 
@@ -339,10 +340,9 @@ pub(crate) struct Ask<'a> {
     pub points: &'a [DVec3],
 }
 
-/// [`FarField::winding_numbers_and_volume_at`] on a kept snapshot.
-/// `six_kept` is six times the signed volume of the snapshot's triangles
-/// whose box misses the changed box.
-fn kept_query(state: &State, ask: &Ask<'_>, six_kept: f64) -> Option<(Vec<f64>, f64)> {
+/// [`FarField::winding_numbers_and_volume_at`] on a kept snapshot, whose
+/// triangles `residue` splits by the changed box.
+fn kept_query(state: &State, ask: &Ask<'_>, residue: &Residue) -> Option<(Vec<f64>, f64)> {
     let Ask {
         mesh,
         inside,
@@ -399,14 +399,12 @@ fn kept_query(state: &State, ask: &Ask<'_>, six_kept: f64) -> Option<(Vec<f64>, 
         (w, six / 6.0)
     };
     // The snapshot's triangles that the changes left as they were: the
-    // cells meeting the changed box are summed without the ones meeting
-    // it, computed once for every point.
-    let residue = s.tree.residue(&s.triangles, &old, &b);
+    // cells meeting the changed box summed without the ones meeting it.
     w.par_iter_mut().zip(points).for_each(|(w, &p)| {
-        *w += s.tree.sum_outside(&s.triangles, &old, p, &b, &residue);
+        *w += s.tree.sum_outside(&s.triangles, &old, p, &b, residue);
     });
     // The sums give the volume, the octree six times it.
-    Some((w, volume_now + six_kept / 6.0))
+    Some((w, volume_now + residue.six_kept / 6.0))
 }
 
 #[cfg(test)]

@@ -331,11 +331,16 @@ pub(crate) struct Summary {
     six_volume: f64,
 }
 
-/// Per level of an [`Octree`], the area vector and triangle count of
-/// each cell whose box meets a box `b`, without the triangles whose own
-/// box meets `b` ([`Octree::residue`]).
+/// An [`Octree`]'s triangles split by whether their box meets a box `b`
+/// ([`Octree::residue`]).
 pub(crate) struct Residue {
+    /// Per level, the area vector and triangle count of each cell whose
+    /// box meets `b`, without the triangles whose own box meets it.
     levels: Vec<FxHashMap<u32, (DVec3, u32)>>,
+    /// How many triangles have a box meeting `b`.
+    pub meeting: usize,
+    /// Six times the signed volume of the triangles whose box misses `b`.
+    pub six_kept: f64,
 }
 
 impl<'a> WindingField<'a> {
@@ -389,8 +394,7 @@ impl Octree {
     }
 
     /// [`Octree::new`], with the box of every cell's triangles, for
-    /// [`Octree::split_by_box`] and a `whole` that asks
-    /// [`Octree::cell_meets`].
+    /// [`Octree::residue`] and [`Octree::sum_outside`].
     pub(crate) fn with_boxes(
         triangles: &[[u32; 3]],
         position: &(dyn Fn(u32) -> DVec3 + Sync),
@@ -676,10 +680,13 @@ impl Octree {
         total
     }
 
-    /// The area vectors and counts of the cells whose box meets `b`,
-    /// without the triangles whose own box meets it ([`Residue`]): what
-    /// [`Octree::sum_outside`] reads in place of those cells' sums. One
-    /// visit of the triangles of the finest cells that meet `b`.
+    /// The tree's triangles split by whether their box meets `b`
+    /// ([`Residue`]): how many meet it, six times the signed volume of
+    /// the others, and the area vectors and counts of the cells meeting
+    /// it without the triangles that meet it, which
+    /// [`Octree::sum_outside`] reads in place of those cells' sums. Cells
+    /// whose box misses `b` count whole; one visit of the triangles of the
+    /// finest cells that meet it.
     pub(crate) fn residue(
         &self,
         triangles: &[[u32; 3]],
@@ -688,16 +695,18 @@ impl Octree {
     ) -> Residue {
         let mut residue = Residue {
             levels: vec![FxHashMap::default(); self.depth as usize + 1],
+            meeting: 0,
+            six_kept: 0.0,
         };
-        if self.levels.first().and_then(|root| root.first()).is_some() {
-            self.residue_below(triangles, position, b, 0, (0, 0, 0), &mut residue);
-        }
+        residue.six_kept = self
+            .residue_below(triangles, position, b, 0, (0, 0, 0), &mut residue)
+            .2;
         residue
     }
 
     /// [`Octree::residue`] of cell `(x, y, z)` of `level` and the cells
-    /// below it; returns the cell's area vector and count without the
-    /// triangles meeting `b`.
+    /// below it; returns the cell's area vector, count and six times the
+    /// signed volume without the triangles meeting `b`.
     fn residue_below(
         &self,
         triangles: &[[u32; 3]],
@@ -706,33 +715,37 @@ impl Octree {
         level: u32,
         (x, y, z): (usize, usize, usize),
         residue: &mut Residue,
-    ) -> (DVec3, u32) {
+    ) -> (DVec3, u32, f64) {
         let s = 1usize << level;
         let c = index(x, y, z, s);
         let cell = &self.levels[level as usize][c];
         if cell.count == 0 || !self.cell_meets(level, c, b) {
-            return (cell.area_vector, cell.count);
+            return (cell.area_vector, cell.count, cell.six_volume);
         }
-        let (mut area_vector, mut count) = (DVec3::ZERO, 0u32);
+        let (mut area_vector, mut count, mut six) = (DVec3::ZERO, 0u32, 0.0);
         if level == self.depth {
             for &t in self.members(c) {
                 let corners = triangles[t as usize].map(position);
-                if !corners_meet(&corners, b) {
+                if corners_meet(&corners, b) {
+                    residue.meeting += 1;
+                } else {
                     let [a, bb, e] = corners;
                     area_vector += 0.5 * (bb - a).cross(e - a);
                     count += 1;
+                    six += a.dot(bb.cross(e));
                 }
             }
         } else {
             for k in 0..8 {
                 let kid = (2 * x + (k >> 2), 2 * y + ((k >> 1) & 1), 2 * z + (k & 1));
-                let (v, n) = self.residue_below(triangles, position, b, level + 1, kid, residue);
+                let (v, n, w) = self.residue_below(triangles, position, b, level + 1, kid, residue);
                 area_vector += v;
                 count += n;
+                six += w;
             }
         }
         residue.levels[level as usize].insert(c as u32, (area_vector, count));
-        (area_vector, count)
+        (area_vector, count, six)
     }
 
     /// The winding number at `p` of the tree's triangles whose box misses
@@ -774,58 +787,6 @@ impl Octree {
                     .sum()
             },
         ) / (4.0 * std::f64::consts::PI)
-    }
-
-    /// Of the tree's triangles, how many have a box meeting `b`, and six
-    /// times the signed volume of those whose box misses it: whole cells
-    /// whose box misses it by their sums, the finest cells that meet it
-    /// triangle by triangle.
-    pub(crate) fn split_sums(
-        &self,
-        triangles: &[[u32; 3]],
-        position: &(dyn Fn(u32) -> DVec3 + Sync),
-        b: &Aabb,
-    ) -> (usize, f64) {
-        let (mut meeting, mut cells, mut missing) = (0, 0.0, 0.0);
-        self.split_by_box(
-            triangles,
-            position,
-            b,
-            &mut |cell| cells += cell.six_volume,
-            &mut |corners| match corners {
-                Some([a, bb, e]) => missing += a.dot(bb.cross(e)),
-                None => meeting += 1,
-            },
-        );
-        (meeting, cells + missing)
-    }
-
-    /// The tree's triangles split by whether their box meets `b`: the
-    /// cells whose box misses it go to `missing_cell` whole; in the
-    /// finest cells that meet it, each triangle goes to `triangle`, with
-    /// its corners where its box misses `b`, `None` where it meets it.
-    fn split_by_box(
-        &self,
-        triangles: &[[u32; 3]],
-        position: &(dyn Fn(u32) -> DVec3 + Sync),
-        b: &Aabb,
-        missing_cell: &mut dyn FnMut(&Summary),
-        triangle: &mut dyn FnMut(Option<[DVec3; 3]>),
-    ) {
-        self.walk(|level, _, c, cell| {
-            if !self.cell_meets(level, c, b) {
-                missing_cell(cell);
-                false
-            } else if level == self.depth {
-                for &t in self.members(c) {
-                    let corners = triangles[t as usize].map(position);
-                    triangle((!corners_meet(&corners, b)).then_some(corners));
-                }
-                false
-            } else {
-                true
-            }
-        });
     }
 }
 
