@@ -455,71 +455,115 @@ fn numbered(index: &mut [u32]) -> Vec<u32> {
         .collect()
 }
 
-/// The compacted mesh ([`TriMesh::compacted`]) of the triangles of
-/// `triangles` that `skip` does not flag, in order, then `extra`, over
-/// the positions `positions` followed by `added`: what building that
-/// mesh and compacting it gives, without building it. A splice of a
-/// region's new triangles into a mesh of a million (the sculpting
-/// frame's) would otherwise copy the mesh twice; here the kept triangles
-/// are read once, renumbered as they are copied, in parallel runs.
-/// `skip` has one flag per triangle, and every index is below
-/// `positions.len() + added.len()`.
-pub fn compacted_splice(
+/// What [`splice_keeping_slots`] made.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlotSplice {
+    /// The spliced mesh.
+    pub mesh: TriMesh,
+    /// The vertices before the added ones that changed number, as
+    /// `(from, to)`: the last ones, moved into the slots of those the
+    /// splice dropped. Every other one kept its number.
+    pub moved: Vec<(u32, u32)>,
+    /// The number of the first added vertex: the surviving ones of
+    /// `positions` come before it, the used added ones from it on.
+    pub first_added: usize,
+}
+
+/// The mesh of the triangles of `triangles` that `skip` does not flag,
+/// and `extra`, over the positions `positions` followed by `added`, with
+/// every unused vertex dropped, numbered so that as little as possible
+/// changes number:
+/// - a kept triangle keeps its slot; `extra`'s triangles take the slots
+///   of the skipped ones in order, the rest of them go after the last;
+///   where fewer come than were skipped, the last triangles move into
+///   the slots left over ([`crate::slots::fill_holes`]);
+/// - a vertex of `positions` keeps its number, except the last ones,
+///   which move into the slots of the dropped ones; the used added
+///   vertices follow, in order.
+///
+/// A sculpting frame that cut the surface of a million triangles then
+/// renumbers the few dozen things it touched, not everything after the
+/// first vertex it dropped: the modeller sends the frame as a patch of
+/// those slots, and the points a frame made are still the last ones
+/// (which its snake hook reads). It is [`TriMesh::compacted`] of the
+/// built mesh up to that numbering. `skip` has one flag per triangle,
+/// and every index is below `positions.len() + added.len()`.
+pub fn splice_keeping_slots(
     positions: &[DVec3],
     added: &[DVec3],
     triangles: &[[u32; 3]],
     skip: &[bool],
     extra: &[[u32; 3]],
-) -> TriMesh {
+) -> SlotSplice {
     const RUN: usize = crate::PARALLEL_RUN;
-    let first = positions.len();
-    let mut index = marked_used_where(first + added.len(), triangles, Some(skip));
+    let n = positions.len();
+    // `index`: 0 where used, `u32::MAX` where not, then each vertex's
+    // new number.
+    let mut index = marked_used_where(n + added.len(), triangles, Some(skip));
     for &v in extra.iter().flatten() {
         index[v as usize] = 0;
     }
-    let origin = numbered(&mut index);
-    let kept: Vec<DVec3> = origin
+    let dropped: Vec<u32> = index[..n]
         .par_iter()
         .with_min_len(RUN)
-        .map(|&k| match (k as usize).checked_sub(first) {
-            None => positions[k as usize],
-            Some(a) => added[a],
-        })
+        .enumerate()
+        .filter(|(_, i)| **i == u32::MAX)
+        .map(|(v, _)| v as u32)
         .collect();
-    let renumber = |t: &[u32; 3]| t.map(|v| index[v as usize]);
-    // Each run of triangles writes its kept ones, renumbered, into its
-    // own slice of the result, placed by the kept counts of the runs
-    // before it.
-    let counts: Vec<usize> = skip
-        .par_chunks(RUN)
-        .map(|run| run.iter().filter(|s| !**s).count())
-        .collect();
-    let total: usize = counts.iter().sum();
-    let mut spliced = vec![[0u32; 3]; total + extra.len()];
-    let (outside, inside) = spliced.split_at_mut(total);
-    let mut slices = Vec::with_capacity(counts.len());
-    let mut rest = outside;
-    for &c in &counts {
-        let (slice, after) = rest.split_at_mut(c);
-        slices.push(slice);
-        rest = after;
-    }
-    triangles
-        .par_chunks(RUN)
-        .zip(skip.par_chunks(RUN))
-        .zip(slices)
-        .for_each(|((run, skipped), slice)| {
-            let kept = run.iter().zip(skipped).filter(|(_, s)| !**s);
-            for (to, (t, _)) in slice.iter_mut().zip(kept) {
-                *to = renumber(t);
+    index[..n]
+        .par_iter_mut()
+        .with_min_len(RUN)
+        .enumerate()
+        .for_each(|(v, i)| {
+            if *i == 0 {
+                *i = v as u32;
             }
         });
-    for (to, t) in inside.iter_mut().zip(extra) {
-        *to = renumber(t);
+    let mut kept = positions.to_vec();
+    let mut moved = Vec::new();
+    crate::slots::fill_holes(&mut kept, &dropped, |from, to| {
+        moved.push((from as u32, to as u32));
+    });
+    for &(from, to) in &moved {
+        index[from as usize] = to;
     }
-    TriMesh {
-        positions: kept,
-        triangles: spliced,
+    let first_added = kept.len();
+    for (k, &p) in added.iter().enumerate() {
+        if index[n + k] == 0 {
+            index[n + k] = kept.len() as u32;
+            kept.push(p);
+        }
+    }
+    let renumber = |t: &[u32; 3]| t.map(|v| index[v as usize]);
+    let mut spliced: Vec<[u32; 3]> = triangles
+        .par_iter()
+        .with_min_len(RUN)
+        .map(renumber)
+        .collect();
+    let free: Vec<u32> = skip
+        .par_iter()
+        .with_min_len(RUN)
+        .enumerate()
+        .filter(|(_, s)| **s)
+        .map(|(t, _)| t as u32)
+        .collect();
+    let mut extra = extra.iter().map(renumber);
+    let mut holes = Vec::new();
+    for &slot in &free {
+        match extra.next() {
+            Some(t) => spliced[slot as usize] = t,
+            None => holes.push(slot),
+        }
+    }
+    spliced.extend(extra);
+    crate::slots::fill_holes(&mut spliced, &holes, |_, _| {});
+    SlotSplice {
+        mesh: TriMesh {
+            positions: kept,
+            triangles: spliced,
+        },
+        moved,
+        first_added,
     }
 }
 
@@ -1025,13 +1069,17 @@ mod tests {
         assert_eq!(m, expected);
     }
 
-    /// The splice compacted in one pass is the mesh built and then
-    /// compacted: kept triangles in order, then the extra ones, over the
-    /// positions and the added ones; vertices unused before (every
-    /// fifth) and those only skipped triangles used are dropped. Small
-    /// and large (parallel runs), with and without skips.
+    /// The splice that keeps slots is the mesh built and then compacted,
+    /// up to numbering (kept triangles, then the extra ones, over the
+    /// positions and the added ones; vertices unused before, every fifth,
+    /// and those only skipped triangles used are dropped), and it
+    /// renumbers only what the splice touched: a kept triangle keeps its
+    /// slot, the extra ones fill the skipped slots in order, a kept
+    /// vertex keeps its number unless it is reported moved, and the used
+    /// added vertices come last, in order. Small and large (parallel
+    /// runs); with more, fewer and no extra triangles than skipped ones.
     #[test]
-    fn a_compacted_splice_is_the_built_mesh_compacted() {
+    fn a_splice_keeping_slots_is_the_built_mesh_compacted_and_renumbers_only_what_it_touched() {
         let mut x = 99u64;
         let mut next = |m: u32| {
             x = x
@@ -1039,10 +1087,7 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             (x >> 33) as u32 % m
         };
-        for (n, t, a, e) in [
-            (50u32, 30usize, 4u32, 5usize),
-            (100_000, 40_000, 300, 2_000),
-        ] {
+        for (n, t, a) in [(50u32, 30usize, 4u32), (100_000, 40_000, 300)] {
             let positions: Vec<DVec3> =
                 (0..n).map(|i| DVec3::new(f64::from(i), 1.0, 0.5)).collect();
             let added: Vec<DVec3> = (0..a)
@@ -1055,7 +1100,7 @@ mod tests {
                 }
             };
             let triangles: Vec<[u32; 3]> = (0..t).map(|_| [used(), used(), used()]).collect();
-            for share in [0, 3, 10] {
+            for (share, e) in [(0, t / 20), (3, t / 20), (10, t / 5), (10, 0)] {
                 let skip: Vec<bool> = (0..t).map(|_| share > 0 && next(share) == 0).collect();
                 let extra: Vec<[u32; 3]> = (0..e)
                     .map(|_| [next(n + a), next(n + a), next(n + a)])
@@ -1070,12 +1115,53 @@ mod tests {
                     .collect();
                 tris.extend(&extra);
                 let expected = TriMesh {
-                    positions: all,
+                    positions: all.clone(),
                     triangles: tris,
                 }
                 .compacted();
-                let got = compacted_splice(&positions, &added, &triangles, &skip, &extra);
-                assert_eq!(got, expected, "{n} points, one in {share} skipped");
+                let got = splice_keeping_slots(&positions, &added, &triangles, &skip, &extra);
+                let what = format!("{n} points, one in {share} skipped, {e} extra");
+                let at = |m: &TriMesh, t: [u32; 3]| t.map(|v| m.positions[v as usize].to_array());
+                let corners = |m: &TriMesh| {
+                    let mut c: Vec<_> = m.triangles.iter().map(|&t| at(m, t)).collect();
+                    c.sort_by(|p, q| p.partial_cmp(q).expect("finite"));
+                    c
+                };
+                assert_eq!(corners(&got.mesh), corners(&expected), "{what}");
+                assert_eq!(got.mesh.positions.len(), expected.positions.len(), "{what}");
+                let old = |t: [u32; 3]| t.map(|v| all[v as usize].to_array());
+                let free: Vec<usize> = (0..t).filter(|&s| skip[s]).collect();
+                for (slot, &tri) in got.mesh.triangles.iter().enumerate() {
+                    let want = if slot >= t {
+                        extra[free.len() + slot - t]
+                    } else if skip[slot] {
+                        let k = free.iter().position(|&s| s == slot).expect("skipped");
+                        if k < e { extra[k] } else { continue }
+                    } else {
+                        triangles[slot]
+                    };
+                    assert_eq!(at(&got.mesh, tri), old(want), "{what}: slot {slot}");
+                }
+                let moved_from: std::collections::HashMap<u32, u32> =
+                    got.moved.iter().map(|&(f, to)| (to, f)).collect();
+                for v in 0..got.first_added {
+                    let from = moved_from.get(&(v as u32)).map_or(v, |&f| f as usize);
+                    assert!(
+                        from == v || from >= got.first_added,
+                        "{what}: moves come from the end"
+                    );
+                    assert_eq!(got.mesh.positions[v], positions[from], "{what}: vertex {v}");
+                }
+                let used_added: Vec<DVec3> = expected.positions[got.first_added..].to_vec();
+                assert_eq!(
+                    &got.mesh.positions[got.first_added..],
+                    &used_added[..],
+                    "{what}"
+                );
+                assert!(
+                    used_added.iter().all(|p| p.y == 2.0),
+                    "{what}: added come last"
+                );
             }
         }
     }

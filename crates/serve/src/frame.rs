@@ -367,9 +367,7 @@ pub fn patch_triangles(
 /// mesh's vertices or triangles changed ([`patch_triangles`]'s first
 /// step). It needs no [`EdgeBook`]: a caller without one learns here,
 /// before building it (a hash of every edge, a sixth of a second on a
-/// million triangles), whether a patch can be made at all: after a
-/// frame that cut the surface, the splice renumbers the vertices after
-/// the first one it drops, and most of them then differ.
+/// million triangles), whether a patch can be made at all.
 pub fn changed_slots(display: &Display, mesh: &TriMesh, max_share: f64) -> Option<ChangedSlots> {
     let (nv0, nv1) = (display.positions.len(), mesh.positions.len());
     let (nt0, nt1) = (display.triangles.len(), mesh.triangles.len());

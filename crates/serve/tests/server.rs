@@ -2089,6 +2089,54 @@ fn remeshing_strokes_send_patches_that_build_the_committed_mesh() {
     assert_eq!(other, shown);
 }
 
+/// Issue 15 item 6, through the modeller: a frame that cuts the surface
+/// keeps every vertex and triangle number the cut did not touch (the
+/// engine's splice, `holey_mesh::tri::splice_keeping_slots`), so it
+/// travels as a patch, as a remeshing frame does, and not as the whole
+/// mesh (38 MB a frame on a million triangles). The snake hook pulled
+/// through the far side of a sphere opens a tunnel mid-stroke: each frame
+/// whose Euler characteristic (counted on what the page built) changes
+/// is a patch, and the patches build the committed mesh, of genus 1.
+#[test]
+fn frames_that_cut_the_surface_travel_as_patches() {
+    let (_dir, addr) = server();
+    let mut a = sculpt_sphere(addr);
+    let mut shown = Shown::default();
+    shown.take(a.frames.last().expect("the sphere"));
+    let euler =
+        |s: &Shown| s.positions.len() as i64 - s.edges.len() as i64 + s.triangles.len() as i64;
+    assert_eq!(euler(&shown), 2);
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "snake_hook", "radius": 0.45,
+                "strength": 1, "point": [0, 0, 1]}),
+    );
+    let flags = |f: &[u8]| u32::from_le_bytes(f[8..12].try_into().expect("flags"));
+    let (mut cuts, mut seen) = (0, a.frames.len());
+    for i in 1..=20 {
+        a.ok(json!({"op": "stroke_frame", "point": [0, 0, 1.0 - 2.4 * f64::from(i) / 20.0]}));
+        for f in &a.frames[seen..] {
+            let before = euler(&shown);
+            shown.take(f);
+            if euler(&shown) != before {
+                cuts += 1;
+                assert!(
+                    flags(f) & 32 != 0,
+                    "frame {i} cut the surface and went whole"
+                );
+            }
+        }
+        seen = a.frames.len();
+    }
+    assert!(cuts > 0, "the hook never cut the surface");
+    a.ok(json!({"op": "stroke_end"}));
+    assert_eq!(a.genus(), 1, "{}", a.state);
+    let mut committed = Shown::default();
+    committed.take(a.frames.last().expect("the commit"));
+    assert_eq!(shown.positions, committed.positions);
+    assert_eq!(shown.triangles, committed.triangles);
+    assert_eq!(shown.edge_set(), committed.edges);
+}
+
 /// A stroke on a fresh `@sphere:3` (remeshing at `detail`): `begin`, then
 /// `path` sent as `stroke_frame` requests of `sizes` dabs each (the first
 /// as `point`, the others as `points`), then `stroke_end`. Gives the

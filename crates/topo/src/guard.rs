@@ -53,7 +53,7 @@
 
 use glam::DVec3;
 use holey_geom::Aabb;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::audit::SurfaceAudit;
 use crate::containment::{Surroundings, by_containment};
@@ -665,7 +665,7 @@ fn spliced_and_audited(
     // goes beside the audit and the count, which reads the spliced
     // triangles without waiting for the spliced mesh (on a million
     // triangles each pass takes 10-30 ms).
-    let (result, (audited, pieces)) = rayon::join(
+    let (spliced, (audited, pieces)) = rayon::join(
         || {
             map.as_ref()
                 .map(|map| region.spliced(mesh, end, &out.mesh, map))
@@ -689,11 +689,16 @@ fn spliced_and_audited(
     report.one_piece |= pieces.is_some_and(PieceCount::one_piece);
     // One piece cannot have grown in pieces: the rules that compare
     // pieces run only on a result of more than one.
-    if let (Some(m), Some(2..)) = (&result, pieces.map(|p| p.count)) {
-        worse.extend(piece_growth(mesh, m, &near, &near_after, options));
+    if let (Some(s), Some(2..)) = (&spliced, pieces.map(|p| p.count)) {
+        // The splice numbers its result its own way: the region's
+        // vertices and the points the frame made are found through it.
+        let moved_from: FxHashMap<u32, u32> = s.moved.iter().map(|&(f, t)| (t, f)).collect();
+        let near_result =
+            |v: u32| v as usize >= s.first_added || near(moved_from.get(&v).copied().unwrap_or(v));
+        worse.extend(piece_growth(mesh, &s.mesh, &near, &near_result, options));
     }
     Ok(Some(Run {
-        mesh: result,
+        mesh: spliced.map(|s| s.mesh),
         report,
         worse,
         euler_change,

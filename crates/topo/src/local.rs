@@ -28,6 +28,7 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use glam::DVec3;
 use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
+use holey_mesh::tri::SlotSplice;
 use rayon::prelude::*;
 
 use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
@@ -463,13 +464,14 @@ impl Region {
         origin: &[u32],
     ) -> Option<TriMesh> {
         let map = self.splice_map(mesh, end.len(), out, origin)?;
-        Some(self.spliced(mesh, end, out, &map))
+        Some(self.spliced(mesh, end, out, &map).mesh)
     }
 
     /// Where each vertex of the engine's output `out` goes in the spliced
-    /// mesh before it is compacted (see [`Region::splice`]): an input vertex
-    /// keeps its number (the first of its copies, where the engine split
-    /// it), the others follow the mesh's `n` vertices in order. `None` when
+    /// mesh before its unused vertices are dropped (see
+    /// [`Region::splice`]): an input vertex keeps its number (the first
+    /// of its copies, where the engine split it), the others follow the
+    /// mesh's `n` vertices in order. `None` when
     /// the output does not keep the region's interface.
     pub(crate) fn splice_map(
         &self,
@@ -540,27 +542,29 @@ impl Region {
         SpliceMap { vertex, added }
     }
 
-    /// The spliced mesh of [`Region::splice_map`]'s `map`, compacted.
+    /// The spliced mesh of [`Region::splice_map`]'s `map`, without the
+    /// vertices it no longer uses, numbered to keep every slot it can
+    /// ([`holey_mesh::tri::splice_keeping_slots`]): the output's
+    /// triangles take the region's slots, and the points the frame made
+    /// come last.
     pub(crate) fn spliced(
         &self,
         mesh: &TriMesh,
         end: &[DVec3],
         out: &TriMesh,
         map: &SpliceMap,
-    ) -> TriMesh {
-        // The outside triangles in order, then the output's, compacted
-        // as they are copied.
+    ) -> SlotSplice {
         let extra: Vec<[u32; 3]> = out
             .triangles
             .iter()
             .map(|t| t.map(|v| map.vertex[v as usize]))
             .collect();
-        holey_mesh::tri::compacted_splice(end, &map.added, &mesh.triangles, &self.mask, &extra)
+        holey_mesh::tri::splice_keeping_slots(end, &map.added, &mesh.triangles, &self.mask, &extra)
     }
 
-    /// Every triangle of the spliced mesh of `map` before it is compacted
-    /// (the outside triangles of `mesh`, then `out`'s), in no particular
-    /// order, without building it.
+    /// Every triangle of the spliced mesh of `map` before its unused
+    /// vertices are dropped (the outside triangles of `mesh`, then
+    /// `out`'s), in no particular order, without building it.
     pub(crate) fn for_each_spliced_triangle(
         &self,
         mesh: &TriMesh,
@@ -601,15 +605,16 @@ pub(crate) fn first_copies(origin: &[u32], count: usize) -> Vec<u32> {
 /// ([`Region::splice_map`]).
 pub(crate) struct SpliceMap {
     /// Per output vertex, its number in the spliced mesh before
-    /// compaction.
+    /// the splice drops its unused vertices.
     pub vertex: Vec<u32>,
     /// The positions of the vertices numbered after the mesh's own.
     pub added: Vec<DVec3>,
 }
 
 impl SpliceMap {
-    /// The position of vertex `v` of the spliced mesh before compaction:
-    /// the mesh's own at `end`, then the added ones.
+    /// The position of vertex `v` of the spliced mesh before the splice
+    /// drops its unused vertices: the mesh's own at `end`, then the added
+    /// ones.
     pub fn position(&self, end: &[DVec3], v: u32) -> DVec3 {
         match (v as usize).checked_sub(end.len()) {
             None => end[v as usize],

@@ -205,12 +205,11 @@ impl Shared {
         let vanish = vanish_mask.as_deref();
         let moved = &mesh.positions;
         let bytes = if connectivity_changed {
-            // Remeshing keeps most vertex and triangle numbers: only the
-            // slots that changed travel (drag previews, whose vanish mask
-            // covers every vertex, go whole).
+            // Remeshing and the cut's splice keep most vertex and
+            // triangle numbers: only the slots that changed travel (drag
+            // previews, whose vanish mask covers every vertex, go whole).
             // Whether a patch can be made is known before the book is
-            // built: after a cut, the splice's renumbering usually
-            // changes too much for one.
+            // built: a frame that changed much of the mesh goes whole.
             let patched = if vanish.is_none() {
                 changed_slots(&stroke.display, mesh, MAX_PATCH_SHARE).and_then(|changed| {
                     let mut book = stroke
