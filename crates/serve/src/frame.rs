@@ -43,6 +43,16 @@ pub struct Display {
 }
 
 impl Display {
+    /// Whether this triangle display shows `mesh` exactly: its vertices
+    /// at the mesh's positions and its triangles the mesh's, slot for
+    /// slot. A stroke whose frames kept a display so (patches, whole
+    /// frames) ends with one that shows the mesh it commits.
+    pub fn shows(&self, mesh: &TriMesh) -> bool {
+        self.faces == mesh.triangles.len()
+            && self.positions == mesh.positions
+            && self.triangles == mesh.triangles
+    }
+
     /// The header counts of a frame over this connectivity with `nv`
     /// vertices: vertices, triangles, edges, faces.
     fn counts(&self, nv: usize) -> [usize; 4] {

@@ -11,7 +11,7 @@ use serde_json::json;
 
 use super::request::{StrokeBegin, StrokeFrame, missing};
 use super::{Out, Reply, Shared};
-use crate::doc::{ActiveStroke, Content, Document, Mask, mask_flags};
+use crate::doc::{ActiveStroke, Document, Mask, mask_flags};
 use crate::frame::{
     EdgeBook, FLAG_PREVIEW, Patch, changed_slots, display_triangles, encode_masked, encode_patch,
     encode_positions, encode_sparse, patch_changed,
@@ -86,12 +86,13 @@ impl Shared {
         }
         let display = doc.display().clone();
         let sent = display.positions.clone();
+        let book = doc.take_book();
         doc.stroke = Some(ActiveStroke {
             owner: conn,
             live,
             display,
             sent,
-            book: None,
+            book,
             stale: false,
         });
         // The first frame goes out before the answer, as every frame
@@ -121,7 +122,9 @@ impl Shared {
         let r = done.report;
         let changed = done.mesh != *doc.sculpt_mesh("sculpting")?;
         if changed {
-            doc.commit(Content::Sculpt(done.mesh));
+            // A paint stroke's frames left the tabs showing the mesh it
+            // commits, in the slots its patches kept.
+            doc.commit_shown(done.mesh, stroke.display, stroke.book);
         }
         doc.kept_far = done.far_field.map(|far| (doc.version(), far));
         self.publish(doc);
