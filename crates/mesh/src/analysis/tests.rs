@@ -144,6 +144,43 @@ fn disk_with_two_holes() {
     assert!(i.manifold && i.oriented && !i.closed);
 }
 
+/// A grid of 300 × 300 quads with 3,600 holes (a quad taken out wherever
+/// both its row and column are 2 mod 5: no two holes and no hole and the
+/// rim share a vertex), large enough that its vertices are counted in
+/// many parallel runs: V = 301², E = 2 · 300 · 301, F = 300² − k, so
+/// χ = 1 − k, with 4 · 300 + 4k boundary edges in 1 + k loops, genus 0.
+#[test]
+fn a_large_grid_with_many_holes_is_counted_in_parallel_runs_as_a_disk_with_holes() {
+    let n = 300u32;
+    let g = grid(n, n, false);
+    let hole = |f: usize| {
+        let (i, j) = (f as u32 / n, f as u32 % n);
+        i % 5 == 2 && j % 5 == 2
+    };
+    let faces: Vec<&[u32]> = g
+        .faces()
+        .enumerate()
+        .filter(|&(f, _)| !hole(f))
+        .map(|(_, q)| q)
+        .collect();
+    let k = (n * n) as usize - faces.len();
+    assert_eq!(k, 60 * 60);
+    assert!(g.positions.len() > 4 * crate::PARALLEL_RUN);
+    let i = analyze(&PolyMesh::from_faces(g.positions.clone(), faces));
+    let side = n as usize;
+    assert_eq!(i.vertices, (side + 1) * (side + 1));
+    assert_eq!(i.edges, 2 * side * (side + 1));
+    assert_eq!(i.faces, side * side - k);
+    assert_eq!(i.euler, 1 - k as i64);
+    assert_eq!(i.boundary_edges, 4 * side + 4 * k);
+    assert_eq!(i.boundary_loops, 1 + k);
+    assert_eq!(
+        (i.components, i.nonmanifold_edges, i.nonmanifold_vertices),
+        (1, 0, 0)
+    );
+    assert_eq!(i.genus, Some(0));
+}
+
 #[test]
 fn bowtie_has_one_nonmanifold_vertex() {
     let i = analyze(&PolyMesh::from_faces(

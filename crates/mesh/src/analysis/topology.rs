@@ -232,16 +232,98 @@ pub(crate) fn topology(soup: &Soup, vertex_slots: usize, per_component: bool) ->
     // Every vertex on its own: the sides at v are the outgoing side of each
     // corner at v and the incoming side of each corner at v, so all sides of
     // every edge {v, w} are seen here, together with the corners that join
-    // into fans. Each edge is classified at its smaller end.
-    let mut link: Vec<u64> = Vec::new();
-    let mut local = UnionFind::new(0);
+    // into fans. Each edge is classified at its smaller end. Without the
+    // per-component breakdown the vertices go in parallel runs, each with
+    // its own sums (the server counts a million-triangle sculpture after
+    // every stroke).
+    let corners_at =
+        |v: usize| &vertex_corners[corner_start[v] as usize..corner_start[v + 1] as usize];
     let mut boundary: Vec<(u32, u32)> = Vec::new();
-    for v in 0..nv as u32 {
-        let corners = &vertex_corners
-            [corner_start[v as usize] as usize..corner_start[v as usize + 1] as usize];
-        if corners.is_empty() {
-            continue;
+    if per_component {
+        let mut scratch = VertexScratch::default();
+        for v in 0..nv as u32 {
+            let corners = corners_at(v as usize);
+            if !corners.is_empty() {
+                scratch.count(v, corners, &mut bins[bin(v)], &mut boundary);
+            }
         }
+    } else {
+        use rayon::prelude::*;
+        let runs: Vec<(Counts, Vec<(u32, u32)>)> = (0..nv as u32)
+            .into_par_iter()
+            .with_min_len(crate::PARALLEL_RUN)
+            .fold(
+                || (VertexScratch::default(), Counts::default(), Vec::new()),
+                |(mut scratch, mut counts, mut boundary), v| {
+                    scratch.count(v, corners_at(v as usize), &mut counts, &mut boundary);
+                    (scratch, counts, boundary)
+                },
+            )
+            .map(|(_, counts, boundary)| (counts, boundary))
+            .collect();
+        for (counts, b) in runs {
+            bins[0].add(&counts);
+            boundary.extend(b);
+        }
+    }
+    drop(vertex_corners);
+    drop(corner_start);
+
+    // Boundary loops: the connected pieces of the graph of boundary edges,
+    // each counted once, at its root.
+    if !boundary.is_empty() {
+        let mut buf = UnionFind::new(nv);
+        for &(v, w) in &boundary {
+            buf.union(v, w);
+        }
+        let mut counted = vec![false; nv];
+        for &(v, _) in &boundary {
+            let r = buf.find(v);
+            if !std::mem::replace(&mut counted[r as usize], true) {
+                bins[bin(r)].boundary_loops += 1;
+            }
+        }
+    }
+
+    let mut total = Counts::default();
+    for c in &bins {
+        total.add(c);
+    }
+    Topology {
+        component,
+        component_count: component_count as usize,
+        components: if per_component { bins } else { Vec::new() },
+        total,
+        two_gons: face_sizes.get(&2).copied().unwrap_or(0),
+        point_spheres: face_sizes.get(&1).copied().unwrap_or(0),
+        face_sizes,
+    }
+}
+
+/// The buffers of [`VertexScratch::count`], reused from vertex to vertex.
+#[derive(Default)]
+struct VertexScratch {
+    link: Vec<u64>,
+    local: UnionFind,
+}
+
+impl VertexScratch {
+    /// Adds to `counts` what vertex `v` (whose corners give, each, the
+    /// vertices after and before it in its face) says: the edges at
+    /// their smaller end, with their sides (boundary ones also to
+    /// `boundary`), and whether the corners at `v` make more than one
+    /// fan.
+    fn count(
+        &mut self,
+        v: u32,
+        corners: &[[u32; 2]],
+        counts: &mut Counts,
+        boundary: &mut Vec<(u32, u32)>,
+    ) {
+        if corners.is_empty() {
+            return;
+        }
+        let (link, local) = (&mut self.link, &mut self.local);
         // Entries (w << 32 | k << 1 | out) for the corner numbered k here.
         link.clear();
         for (k, &[after, before]) in corners.iter().enumerate() {
@@ -253,7 +335,6 @@ pub(crate) fn topology(soup: &Soup, vertex_slots: usize, per_component: bool) ->
         }
         link.sort_unstable();
         local.reset(corners.len());
-        let counts = &mut bins[bin(v)];
         for group in link.chunk_by(|a, b| a >> 32 == b >> 32) {
             let corner = |e: u64| e as u32 >> 1;
             let k0 = corner(group[0]);
@@ -294,38 +375,6 @@ pub(crate) fn topology(soup: &Soup, vertex_slots: usize, per_component: bool) ->
         if fans > 1 {
             counts.nonmanifold_vertices += 1;
         }
-    }
-    drop(vertex_corners);
-    drop(corner_start);
-
-    // Boundary loops: the connected pieces of the graph of boundary edges,
-    // each counted once, at its root.
-    if !boundary.is_empty() {
-        let mut buf = UnionFind::new(nv);
-        for &(v, w) in &boundary {
-            buf.union(v, w);
-        }
-        let mut counted = vec![false; nv];
-        for &(v, _) in &boundary {
-            let r = buf.find(v);
-            if !std::mem::replace(&mut counted[r as usize], true) {
-                bins[bin(r)].boundary_loops += 1;
-            }
-        }
-    }
-
-    let mut total = Counts::default();
-    for c in &bins {
-        total.add(c);
-    }
-    Topology {
-        component,
-        component_count: component_count as usize,
-        components: if per_component { bins } else { Vec::new() },
-        total,
-        two_gons: face_sizes.get(&2).copied().unwrap_or(0),
-        point_spheres: face_sizes.get(&1).copied().unwrap_or(0),
-        face_sizes,
     }
 }
 
