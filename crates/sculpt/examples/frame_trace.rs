@@ -76,6 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Each paint stroke hands its far field to the next, as a session
     // does.
     let mut kept = None;
+    let mut one_piece = false;
     for (s, stroke) in file.strokes.iter().enumerate() {
         // Mirror planes through the origin (the stroke file's default).
         let settings = BrushSettings {
@@ -90,6 +91,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;
         if let Some(far) = kept.take() {
             live.keep_far_field(far);
+        }
+        if std::mem::take(&mut one_piece) {
+            live.keep_one_piece();
         }
         if !no_remesh {
             // The stroke's own range (the modeler records it), else the
@@ -159,6 +163,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let done = live.finish()?;
         mesh = done.mesh;
         kept = done.far_field;
+        one_piece = done.one_piece;
         // Each stroke's end is audited even with `--no-audit`.
         println!("stroke {s} done: {}", SurfaceAudit::of(&mesh)?);
     }

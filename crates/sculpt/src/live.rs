@@ -298,17 +298,24 @@ pub struct LiveStroke {
     preview: bool,
     remesh: Option<RemeshOptions>,
     /// Collapses of the short edges a topology change leaves, when
-    /// remeshing is off (see [`cleanup_options`]).
-    cleanup: Option<RemeshOptions>,
+    /// remeshing is off ([`cleanup_options`] of the surface the stroke
+    /// began on): `None` until the first frame of a stroke that does not
+    /// remesh counts them, so that a stroke that remeshes (every stroke
+    /// of the modeller's) skips a pass over every edge.
+    cleanup: Option<Option<RemeshOptions>>,
     /// Positions of the vertices the guard held in earlier frames.
     held: std::collections::HashSet<[u64; 3]>,
-    /// The mesh is one piece (`holey_topo::is_one_piece`): counted when
-    /// a paint stroke begins, then carried from frame to frame by the
-    /// guard, which skips its count of the result's pieces while it can
-    /// show from a frame's region that one piece stays one
+    /// The mesh is one piece (`holey_topo::is_one_piece`): counted at a
+    /// paint stroke's first frame (unless the stroke before handed it on,
+    /// [`LiveStroke::keep_one_piece`]), then carried from frame to frame
+    /// by the guard, which skips its count of the result's pieces while
+    /// it can show from a frame's region that one piece stays one
     /// (`holey_topo::Options::one_piece`). Moving and remeshing keep a
     /// piece whole.
     one_piece: bool,
+    /// Whether `one_piece` has been counted or handed on (a drag never
+    /// counts it).
+    one_piece_known: bool,
     /// The surface's far field, kept between a paint stroke's frames
     /// (`holey_topo::FarField`): built by the engine when frames keep
     /// asking for it, and told of every change a frame and its remeshing
@@ -391,9 +398,10 @@ impl LiveStroke {
             options,
             preview: false,
             remesh: None,
-            cleanup: cleanup_options(mesh),
+            cleanup: None,
             held: std::collections::HashSet::new(),
-            one_piece: !settings.brush.is_drag() && holey_topo::is_one_piece(mesh),
+            one_piece: false,
+            one_piece_known: settings.brush.is_drag(),
             far: (!settings.brush.is_drag()).then(FarField::new),
             far_sound: true,
             remeshed: RemeshTally::default(),
@@ -415,6 +423,19 @@ impl LiveStroke {
     pub fn keep_far_field(&mut self, far: FarField) {
         if self.far.is_some() {
             self.far = Some(far);
+        }
+    }
+
+    /// Takes over what an earlier paint stroke finished knowing
+    /// ([`FinishedStroke::one_piece`]): the surface this stroke begins on
+    /// is one piece, so this one need not count it (a pass over a
+    /// million triangles). As for [`LiveStroke::keep_far_field`], the
+    /// stroke must begin on the very surface that one finished with. A
+    /// drag does not use it.
+    pub fn keep_one_piece(&mut self) {
+        if !self.one_piece_known {
+            self.one_piece = true;
+            self.one_piece_known = true;
         }
     }
 
@@ -530,6 +551,15 @@ impl LiveStroke {
                 if let Some(far) = &self.far {
                     far.prepare(mesh);
                 }
+                // What the stroke knows of the surface it began on,
+                // counted before the first frame changes it.
+                if !self.one_piece_known {
+                    self.one_piece = holey_topo::is_one_piece(mesh);
+                    self.one_piece_known = true;
+                }
+                if self.remesh.is_none() && self.cleanup.is_none() {
+                    self.cleanup = Some(cleanup_options(mesh));
+                }
                 let mut step = PaintStep {
                     falloff: settings.falloff,
                     heights: &mut self.heights,
@@ -540,7 +570,7 @@ impl LiveStroke {
                     one_piece: &mut self.one_piece,
                     far: self.far.as_ref(),
                     remesh: self.remesh.as_ref(),
-                    cleanup: self.cleanup.as_ref(),
+                    cleanup: self.cleanup.as_ref().and_then(Option::as_ref),
                     report: &mut self.report,
                     remeshed: &mut self.remeshed,
                     diagnostics: &mut self.diagnostics,
@@ -663,9 +693,12 @@ impl LiveStroke {
         // A paint stroke's surface ends as its last frame left it, every
         // change told to its field: the next stroke on it may keep the
         // field. A drag's release is not told to any.
-        let far_field = match self.state {
-            State::Paint { .. } => self.far.filter(|_| self.far_sound),
-            State::Drag { .. } => None,
+        let (far_field, one_piece) = match self.state {
+            State::Paint { .. } => (
+                self.far.filter(|_| self.far_sound),
+                self.one_piece && self.far_sound,
+            ),
+            State::Drag { .. } => (None, false),
         };
         let (mesh, diagnostics) = match self.state {
             State::Paint { mesh, .. } => (mesh, self.diagnostics),
@@ -720,6 +753,7 @@ impl LiveStroke {
             diagnostics,
             report,
             far_field,
+            one_piece,
         })
     }
 }
@@ -1374,6 +1408,12 @@ pub struct FinishedStroke {
     /// ([`LiveStroke::keep_far_field`]) and spares that stroke the
     /// field's build. `None` after a drag, or after a frame failed.
     pub far_field: Option<FarField>,
+    /// A paint stroke knew `mesh` to be one piece when it ended (the
+    /// guard carried it; false is "not known", and is all a drag or a
+    /// stroke whose frame failed says): a caller that begins its next
+    /// stroke on `mesh` unchanged passes it on
+    /// ([`LiveStroke::keep_one_piece`]).
+    pub one_piece: bool,
 }
 
 /// The per-vertex drag weights of a grab or move, after checking that the

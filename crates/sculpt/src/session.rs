@@ -55,19 +55,23 @@ pub struct Session {
     redo: Vec<TriMesh>,
     diagnostics: Diagnostics,
     /// The far field the last paint stroke finished with, for the next
-    /// stroke (`holey_topo::FarField`): valid while `mesh` is the surface
-    /// that stroke left, so every other change of `mesh` drops it.
+    /// stroke (`holey_topo::FarField`), and whether it knew the surface to
+    /// be one piece: valid while `mesh` is the surface that stroke left,
+    /// so every other change of `mesh` drops them.
     kept: KeptField,
 }
 
-/// A [`FarField`] kept between strokes. A copy of a session starts
-/// without one: it is as cheap to build again as to share safely.
+/// A [`FarField`] kept between strokes, and whether the stroke that left
+/// it knew the surface to be one piece
+/// ([`FinishedStroke::one_piece`](crate::FinishedStroke::one_piece)). A
+/// copy of a session starts without either: it is as cheap to build
+/// again as to share safely.
 #[derive(Debug, Default)]
-struct KeptField(Option<FarField>);
+struct KeptField(Option<FarField>, bool);
 
 impl Clone for KeptField {
     fn clone(&self) -> KeptField {
-        KeptField(None)
+        KeptField(None, false)
     }
 }
 
@@ -201,6 +205,9 @@ impl Session {
         if let Some(far) = self.kept.0.take() {
             live.keep_far_field(far);
         }
+        if std::mem::take(&mut self.kept.1) {
+            live.keep_one_piece();
+        }
         // A stroke's own range wins over the file's, unless remeshing is
         // off altogether.
         let remesh = if self.remeshing {
@@ -245,7 +252,7 @@ impl Session {
             })?;
         }
         self.commit(done.mesh, done.diagnostics);
-        self.kept = KeptField(done.far_field);
+        self.kept = KeptField(done.far_field, done.one_piece);
         Ok(done.report)
     }
 
@@ -461,5 +468,40 @@ mod tests {
         s.apply_stroke(&inflate).unwrap();
         s.apply_stroke(&grab).unwrap();
         assert!(s.kept.0.is_none(), "a drag keeps none");
+    }
+
+    /// What a paint stroke knew of its surface's pieces passes on as its
+    /// far field does: a stroke on one sphere ends knowing it is one
+    /// piece, and the next, handed that, ends knowing it too; on two
+    /// spheres apart a stroke counts two and hands nothing on; a drag
+    /// never does; undo drops it.
+    #[test]
+    fn one_piece_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
+        let sphere = holey_shapes::icosphere(3).unwrap().triangulated();
+        let stroke = |brush, strength, to| Stroke {
+            brush,
+            radius: 0.6,
+            strength,
+            path: vec![DVec3::new(0.0, 0.0, 1.0), to],
+            ..Stroke::default()
+        };
+        let inflate = stroke(Brush::Inflate, 0.05, DVec3::new(0.1, 0.0, 1.0));
+        let grab = stroke(Brush::Grab, 1.0, DVec3::new(0.0, 0.0, 1.2));
+        let mut s = Session::new(sphere.clone()).unwrap();
+        assert!(!s.kept.1);
+        s.apply_stroke(&inflate).unwrap();
+        assert!(s.kept.1, "one sphere is one piece");
+        s.apply_stroke(&inflate).unwrap();
+        assert!(s.kept.1, "and stays one, handed on");
+        assert!(!s.clone().kept.1, "a copy starts without it");
+        s.undo();
+        assert!(!s.kept.1, "undo drops it");
+        s.apply_stroke(&grab).unwrap();
+        assert!(!s.kept.1, "a drag hands nothing on");
+        let mut two = sphere.clone();
+        two.append(&sphere.translated(DVec3::new(5.0, 0.0, 0.0)));
+        let mut s = Session::new(two).unwrap();
+        s.apply_stroke(&inflate).unwrap();
+        assert!(!s.kept.1, "two spheres are two pieces");
     }
 }

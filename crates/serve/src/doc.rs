@@ -217,6 +217,10 @@ pub struct Document {
     /// it describes: the next stroke keeps it while the document is still
     /// at that version (every change of the content bumps it).
     pub kept_far: Option<(u64, FarField)>,
+    /// The version at which the last paint stroke ended knowing the
+    /// surface to be one piece: the next stroke takes that on while the
+    /// document is still at that version.
+    pub kept_one_piece: Option<u64>,
     /// A long operation in progress: its owner and name.
     pub busy: Option<(ConnId, String)>,
     /// Dynamic remeshing detail in [0, 1]; 0 is off.
@@ -243,6 +247,7 @@ impl Document {
             rind: None,
             stroke: None,
             kept_far: None,
+            kept_one_piece: None,
             busy: None,
             remesh_detail: DEFAULT_REMESH_DETAIL,
             mask: Arc::default(),

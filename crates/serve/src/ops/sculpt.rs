@@ -84,6 +84,9 @@ impl Shared {
         {
             live.keep_far_field(far);
         }
+        if doc.kept_one_piece.take() == Some(doc.version()) {
+            live.keep_one_piece();
+        }
         let display = doc.display().clone();
         let sent = display.positions.clone();
         let book = doc.take_book();
@@ -127,6 +130,7 @@ impl Shared {
             doc.commit_shown(done.mesh, stroke.display, stroke.book);
         }
         doc.kept_far = done.far_field.map(|far| (doc.version(), far));
+        doc.kept_one_piece = done.one_piece.then(|| doc.version());
         self.publish(doc);
         let mut reply = json!({
             "changes": r.changes,
