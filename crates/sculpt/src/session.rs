@@ -434,8 +434,8 @@ mod tests {
     /// A paint stroke hands its far field to the session, which gives it
     /// to the next stroke; a drag keeps none, and undo, redo and a
     /// commit from elsewhere drop it (the mesh it describes is gone).
-    #[test]
-    fn the_far_field_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
+    /// A sphere, an inflate and a grab from its top.
+    fn sphere_inflate_and_grab() -> (TriMesh, Stroke, Stroke) {
         let sphere = holey_shapes::icosphere(3).unwrap().triangulated();
         // From the top of the sphere to `to`.
         let stroke = |brush, strength, to| Stroke {
@@ -447,6 +447,12 @@ mod tests {
         };
         let inflate = stroke(Brush::Inflate, 0.05, DVec3::new(0.1, 0.0, 1.0));
         let grab = stroke(Brush::Grab, 1.0, DVec3::new(0.0, 0.0, 1.2));
+        (sphere, inflate, grab)
+    }
+
+    #[test]
+    fn the_far_field_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
+        let (sphere, inflate, grab) = sphere_inflate_and_grab();
         let mut s = Session::new(sphere.clone()).unwrap();
         assert!(s.kept.0.is_none());
         s.apply_stroke(&inflate).unwrap();
@@ -477,16 +483,7 @@ mod tests {
     /// never does; undo drops it.
     #[test]
     fn one_piece_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
-        let sphere = holey_shapes::icosphere(3).unwrap().triangulated();
-        let stroke = |brush, strength, to| Stroke {
-            brush,
-            radius: 0.6,
-            strength,
-            path: vec![DVec3::new(0.0, 0.0, 1.0), to],
-            ..Stroke::default()
-        };
-        let inflate = stroke(Brush::Inflate, 0.05, DVec3::new(0.1, 0.0, 1.0));
-        let grab = stroke(Brush::Grab, 1.0, DVec3::new(0.0, 0.0, 1.2));
+        let (sphere, inflate, grab) = sphere_inflate_and_grab();
         let mut s = Session::new(sphere.clone()).unwrap();
         assert!(!s.kept.1);
         s.apply_stroke(&inflate).unwrap();
