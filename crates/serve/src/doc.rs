@@ -11,7 +11,7 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_dlfl::dlfl_info;
 use holey_dlfl::{CornerId, Mesh};
 use holey_mesh::PolyMesh;
-use holey_mesh::analysis::{MeshInfo, analyze};
+use holey_mesh::analysis::{MeshInfo, analyze_topology};
 use holey_model::rind::Rind;
 use holey_sculpt::LiveStroke;
 use holey_topo::{FarField, TriMesh};
@@ -294,12 +294,12 @@ impl Document {
     /// Makes `display` (with its edge book `book`, if known) what the
     /// document shows, and counts the stats of what it shows.
     fn show(&mut self, display: Display, book: Option<EdgeBook>, index: ModelIndex) {
-        let info = match (&self.rind, &self.content) {
-            (Some(r), _) => dlfl_info(r.rind.mesh()),
-            (None, Content::Model(m)) => dlfl_info(m),
-            (None, Content::Sculpt(t)) => analyze(&tri_to_poly(&t.clone().compacted())),
+        let triangles = display.triangles.len();
+        self.stats = match (&self.rind, &self.content) {
+            (Some(r), _) => stats_json(&dlfl_info(r.rind.mesh()), triangles),
+            (None, Content::Model(m)) => stats_json(&dlfl_info(m), triangles),
+            (None, Content::Sculpt(t)) => sculpt_stats_json(t, triangles),
         };
-        self.stats = stats_json(&info, display.triangles.len());
         self.display = display;
         self.book = book;
         self.index = index;
@@ -545,6 +545,25 @@ fn stats_json(info: &MeshInfo, triangles: usize) -> Value {
     })
 }
 
+/// [`stats_json`] of a sculpture: only the counts the stats show
+/// ([`analyze_topology`]; they count the vertices the triangles use, so
+/// the mesh needs no compaction), not the areas and volumes of a whole
+/// analysis, which the modeller would pay for after every stroke.
+fn sculpt_stats_json(mesh: &TriMesh, triangles: usize) -> Value {
+    let (counts, surface, components) = analyze_topology(&tri_to_poly(mesh));
+    json!({
+        "vertices": counts.vertices,
+        "edges": counts.edges,
+        "faces": counts.faces,
+        "triangles": triangles,
+        "components": components,
+        "genus": surface.genus,
+        "boundary_loops": counts.boundary_loops,
+        "closed": surface.closed,
+        "manifold": surface.manifold,
+    })
+}
+
 /// The kernel mesh of a built-in primitive, for the server's unit tests.
 #[cfg(test)]
 #[allow(clippy::unwrap_used)]
@@ -560,6 +579,33 @@ mod tests {
 
     fn model(spec: &str) -> Content {
         Content::Model(primitive_mesh(spec))
+    }
+
+    /// A sculpture's stats, counted without the geometry and without
+    /// compacting, are those of the whole analysis of the compacted
+    /// mesh: a torus with a triangle taken out and an unused vertex, and
+    /// two spheres.
+    #[test]
+    fn sculpt_stats_are_the_whole_analysis_counts() {
+        let mut torus = holey_shapes::parse_primitive("@torus")
+            .unwrap()
+            .triangulated();
+        torus.triangles.remove(7);
+        torus.positions.push(DVec3::splat(9.0));
+        let sphere = holey_shapes::parse_primitive("@sphere")
+            .unwrap()
+            .triangulated();
+        let mut two = sphere.clone();
+        two.append(&sphere.translated(DVec3::X * 3.0));
+        for m in [torus, two] {
+            let whole = holey_mesh::analysis::analyze(&tri_to_poly(&m.clone().compacted()));
+            assert_eq!(
+                sculpt_stats_json(&m, 5),
+                stats_json(&whole, 5),
+                "{} triangles",
+                m.triangles.len()
+            );
+        }
     }
 
     #[test]

@@ -184,6 +184,18 @@ pub fn analyze(mesh: &PolyMesh) -> MeshInfo {
     measure(mesh, false).0
 }
 
+/// The combinatorial part of [`analyze`] alone: the whole mesh's
+/// [`Counts`], what they say of its [`Surface`], and how many components
+/// it has, the same as [`analyze`] gives them; no areas, volumes or boxes
+/// (a pass over every corner's position fewer: the modeller counts its
+/// sculpture after every stroke).
+pub fn analyze_topology(mesh: &PolyMesh) -> (Counts, Surface, usize) {
+    let soup = soup::Soup::new(mesh);
+    let topo = topology::topology(&soup, mesh.positions.len(), false);
+    let surface = topo.total.surface(topo.component_count);
+    (topo.total, surface, topo.component_count)
+}
+
 /// Per-component measures, components numbered by smallest vertex index.
 pub fn analyze_components(mesh: &PolyMesh) -> Vec<ComponentInfo> {
     measure(mesh, true).1

@@ -181,6 +181,54 @@ fn a_large_grid_with_many_holes_is_counted_in_parallel_runs_as_a_disk_with_holes
     assert_eq!(i.genus, Some(0));
 }
 
+/// [`analyze_topology`] gives what [`analyze`] gives of the same
+/// counts, on closed, open, holed, non-manifold, misoriented and soup
+/// meshes.
+#[test]
+fn the_topology_alone_is_what_the_whole_analysis_counts() {
+    let g = grid(5, 5, false);
+    let holed: Vec<&[u32]> = g
+        .faces()
+        .enumerate()
+        .filter(|&(f, _)| f != 6 && f != 18)
+        .map(|(_, q)| q)
+        .collect();
+    let meshes = [
+        cube(),
+        grid(12, 8, true),
+        grid(4, 3, false),
+        PolyMesh::from_faces(g.positions.clone(), holed),
+        PolyMesh::from_faces(tri_positions(5), [[0, 1, 2], [0, 3, 4]]),
+        PolyMesh::from_faces(tri_positions(6), [[0, 1, 2], [1, 0, 3], [0, 1, 4]]),
+        PolyMesh::from_faces(tri_positions(4), [[0, 1, 2], [0, 1, 3]]),
+        PolyMesh::from_faces(tri_positions(9), [[0, 1, 2], [3, 4, 5], [6, 7, 8]]),
+    ];
+    for (k, m) in meshes.iter().enumerate() {
+        let i = analyze(m);
+        let (c, s, components) = analyze_topology(m);
+        assert_eq!(
+            (c.vertices, c.edges, c.faces, components),
+            (i.vertices, i.edges, i.faces, i.components),
+            "mesh {k}"
+        );
+        assert_eq!(
+            (c.boundary_edges, c.boundary_loops, c.nonmanifold_edges),
+            (i.boundary_edges, i.boundary_loops, i.nonmanifold_edges),
+            "mesh {k}"
+        );
+        assert_eq!(
+            (c.nonmanifold_vertices, c.misoriented_edges),
+            (i.nonmanifold_vertices, i.misoriented_edges),
+            "mesh {k}"
+        );
+        assert_eq!(
+            (s.closed, s.manifold, s.oriented, s.euler, s.genus),
+            (i.closed, i.manifold, i.oriented, i.euler, i.genus),
+            "mesh {k}"
+        );
+    }
+}
+
 #[test]
 fn bowtie_has_one_nonmanifold_vertex() {
     let i = analyze(&PolyMesh::from_faces(
