@@ -125,9 +125,8 @@ fn open_grid_is_a_disk() {
     assert_eq!(i.area, 12.0);
 }
 
-#[test]
-fn disk_with_two_holes() {
-    // A 5 × 5 grid without the quads at (1, 1) and (3, 3).
+/// A 5 × 5 grid without the quads at (1, 1) and (3, 3).
+fn grid_with_two_holes() -> PolyMesh {
     let g = grid(5, 5, false);
     let faces: Vec<&[u32]> = g
         .faces()
@@ -135,7 +134,12 @@ fn disk_with_two_holes() {
         .filter(|&(f, _)| f != 6 && f != 18)
         .map(|(_, q)| q)
         .collect();
-    let i = analyze(&PolyMesh::from_faces(g.positions.clone(), faces));
+    PolyMesh::from_faces(g.positions.clone(), faces)
+}
+
+#[test]
+fn disk_with_two_holes() {
+    let i = analyze(&grid_with_two_holes());
     assert_eq!(i.faces, 23);
     assert_eq!(i.boundary_loops, 3);
     assert_eq!(i.boundary_edges, 20 + 4 + 4);
@@ -186,18 +190,11 @@ fn a_large_grid_with_many_holes_is_counted_in_parallel_runs_as_a_disk_with_holes
 /// meshes.
 #[test]
 fn the_topology_alone_is_what_the_whole_analysis_counts() {
-    let g = grid(5, 5, false);
-    let holed: Vec<&[u32]> = g
-        .faces()
-        .enumerate()
-        .filter(|&(f, _)| f != 6 && f != 18)
-        .map(|(_, q)| q)
-        .collect();
     let meshes = [
         cube(),
         grid(12, 8, true),
         grid(4, 3, false),
-        PolyMesh::from_faces(g.positions.clone(), holed),
+        grid_with_two_holes(),
         PolyMesh::from_faces(tri_positions(5), [[0, 1, 2], [0, 3, 4]]),
         PolyMesh::from_faces(tri_positions(6), [[0, 1, 2], [1, 0, 3], [0, 1, 4]]),
         PolyMesh::from_faces(tri_positions(4), [[0, 1, 2], [0, 1, 3]]),
