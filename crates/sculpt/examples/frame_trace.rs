@@ -25,7 +25,9 @@ use std::path::Path;
 
 use holey_io::MeshFile;
 use holey_sculpt::brush::{inflate, smooth};
-use holey_sculpt::{Brush, BrushSettings, LiveStroke, RemeshOptions, default_range, parse_strokes};
+use holey_sculpt::{
+    Brush, BrushSettings, Handover, LiveStroke, RemeshOptions, default_range, parse_strokes,
+};
 use holey_topo::{Options, SurfaceAudit, TriMesh};
 
 fn write_obj(path: &str, positions: &[glam::DVec3], tris: &[[u32; 3]]) -> std::io::Result<()> {
@@ -75,8 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frame_no = 0usize;
     // Each paint stroke hands its far field to the next, as a session
     // does.
-    let mut kept = None;
-    let mut one_piece = false;
+    let mut kept = Handover::default();
     for (s, stroke) in file.strokes.iter().enumerate() {
         // Mirror planes through the origin (the stroke file's default).
         let settings = BrushSettings {
@@ -89,12 +90,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;
-        if let Some(far) = kept.take() {
-            live.keep_far_field(far);
-        }
-        if std::mem::take(&mut one_piece) {
-            live.keep_one_piece();
-        }
+        live.take_over(std::mem::take(&mut kept));
         if !no_remesh {
             // The stroke's own range (the modeler records it), else the
             // file's, else one derived from the mesh the stroke starts on,
@@ -162,8 +158,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         let done = live.finish()?;
         mesh = done.mesh;
-        kept = done.far_field;
-        one_piece = done.one_piece;
+        kept = done.handover;
         // Each stroke's end is audited even with `--no-audit`.
         println!("stroke {s} done: {}", SurfaceAudit::of(&mesh)?);
     }

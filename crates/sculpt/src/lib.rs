@@ -59,7 +59,7 @@ pub mod strokes;
 pub mod symmetry;
 
 pub use brush::{Brush, Falloff, PressureDrives, falloff};
-pub use live::{BrushSettings, FinishedStroke, LiveFrame, LiveStroke};
+pub use live::{BrushSettings, FinishedStroke, Handover, LiveFrame, LiveStroke};
 pub use remesh::{
     RemeshError, RemeshOptions, RemeshReport, default_range, remesh, remesh_in_place, remesh_with,
 };

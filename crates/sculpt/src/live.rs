@@ -307,7 +307,7 @@ pub struct LiveStroke {
     held: std::collections::HashSet<[u64; 3]>,
     /// The mesh is one piece (`holey_topo::is_one_piece`): counted at a
     /// paint stroke's first frame (unless the stroke before handed it on,
-    /// [`LiveStroke::keep_one_piece`]), then carried from frame to frame
+    /// [`LiveStroke::take_over`]), then carried from frame to frame
     /// by the guard, which skips its count of the result's pieces while
     /// it can show from a frame's region that one piece stays one
     /// (`holey_topo::Options::one_piece`). Moving and remeshing keep a
@@ -414,26 +414,19 @@ impl LiveStroke {
         })
     }
 
-    /// Takes over the far field an earlier paint stroke finished with
-    /// ([`FinishedStroke::far_field`]), so that this one need not build
-    /// its own. The field must be the one a stroke finished with on the
-    /// very surface this stroke began on: a field that does not describe
-    /// the surface gives wrong winding numbers. A drag keeps no field and
-    /// drops it.
-    pub fn keep_far_field(&mut self, far: FarField) {
-        if self.far.is_some() {
+    /// Takes over what an earlier paint stroke handed on
+    /// ([`FinishedStroke::handover`]), so that this one need not build
+    /// its far field or count its pieces. It must come from a stroke that
+    /// finished on the very surface this stroke began on: a field that
+    /// does not describe the surface gives wrong winding numbers. A drag
+    /// uses neither and drops it.
+    pub fn take_over(&mut self, handover: Handover) {
+        if self.far.is_some()
+            && let Some(far) = handover.far_field
+        {
             self.far = Some(far);
         }
-    }
-
-    /// Takes over what an earlier paint stroke finished knowing
-    /// ([`FinishedStroke::one_piece`]): the surface this stroke begins on
-    /// is one piece, so this one need not count it (a pass over a
-    /// million triangles). As for [`LiveStroke::keep_far_field`], the
-    /// stroke must begin on the very surface that one finished with. A
-    /// drag does not use it.
-    pub fn keep_one_piece(&mut self) {
-        if !self.one_piece_known {
+        if handover.one_piece && !self.one_piece_known {
             self.one_piece = true;
             self.one_piece_known = true;
         }
@@ -693,12 +686,12 @@ impl LiveStroke {
         // A paint stroke's surface ends as its last frame left it, every
         // change told to its field: the next stroke on it may keep the
         // field. A drag's release is not told to any.
-        let (far_field, one_piece) = match self.state {
-            State::Paint { .. } => (
-                self.far.filter(|_| self.far_sound),
-                self.one_piece && self.far_sound,
-            ),
-            State::Drag { .. } => (None, false),
+        let handover = match self.state {
+            State::Paint { .. } if self.far_sound => Handover {
+                far_field: self.far,
+                one_piece: self.one_piece,
+            },
+            _ => Handover::default(),
         };
         let (mesh, diagnostics) = match self.state {
             State::Paint { mesh, .. } => (mesh, self.diagnostics),
@@ -752,8 +745,7 @@ impl LiveStroke {
             mesh,
             diagnostics,
             report,
-            far_field,
-            one_piece,
+            handover,
         })
     }
 }
@@ -1403,16 +1395,22 @@ pub struct FinishedStroke {
     /// What the stroke did, its frame count, final triangle count and time
     /// filled in.
     pub report: StrokeReport,
-    /// A paint stroke's far field, valid for `mesh`: a caller that begins
-    /// its next stroke on `mesh` unchanged passes it on
-    /// ([`LiveStroke::keep_far_field`]) and spares that stroke the
-    /// field's build. `None` after a drag, or after a frame failed.
+    /// What a paint stroke knew of `mesh` when it ended: a caller that
+    /// begins its next stroke on `mesh` unchanged passes it on
+    /// ([`LiveStroke::take_over`]). Empty after a drag, or after a frame
+    /// failed.
+    pub handover: Handover,
+}
+
+/// What a paint stroke leaves the next stroke on the surface it finished
+/// with ([`FinishedStroke::handover`], [`LiveStroke::take_over`]).
+#[derive(Debug, Default)]
+pub struct Handover {
+    /// Its far field, valid for that surface: the next stroke is spared
+    /// the field's build.
     pub far_field: Option<FarField>,
-    /// A paint stroke knew `mesh` to be one piece when it ended (the
-    /// guard carried it; false is "not known", and is all a drag or a
-    /// stroke whose frame failed says): a caller that begins its next
-    /// stroke on `mesh` unchanged passes it on
-    /// ([`LiveStroke::keep_one_piece`]).
+    /// It knew the surface to be one piece (the guard carried it; false
+    /// is "not known"): the next stroke is spared the count.
     pub one_piece: bool,
 }
 

@@ -15,9 +15,9 @@
 //! gives the same mesh bit for bit.
 
 use glam::DVec3;
-use holey_topo::{FarField, Options, TriMesh};
+use holey_topo::{Options, TriMesh};
 
-use crate::live::{BrushSettings, LiveStroke};
+use crate::live::{BrushSettings, Handover, LiveStroke};
 use crate::remesh::{RemeshOptions, default_range};
 pub use crate::report::{Diagnostics, ObserverError, SculptError, StrokeReport};
 use crate::strokes::{Remesh, Stroke, StrokeFile};
@@ -61,17 +61,15 @@ pub struct Session {
     kept: KeptField,
 }
 
-/// A [`FarField`] kept between strokes, and whether the stroke that left
-/// it knew the surface to be one piece
-/// ([`FinishedStroke::one_piece`](crate::FinishedStroke::one_piece)). A
-/// copy of a session starts without either: it is as cheap to build
-/// again as to share safely.
+/// What the last paint stroke handed on ([`Handover`]), kept between
+/// strokes. A copy of a session starts without it: it is as cheap to
+/// build again as to share safely.
 #[derive(Debug, Default)]
-struct KeptField(Option<FarField>, bool);
+struct KeptField(Handover);
 
 impl Clone for KeptField {
     fn clone(&self) -> KeptField {
-        KeptField(None, false)
+        KeptField::default()
     }
 }
 
@@ -202,12 +200,7 @@ impl Session {
         };
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&self.mesh, settings, first, self.options)?;
-        if let Some(far) = self.kept.0.take() {
-            live.keep_far_field(far);
-        }
-        if std::mem::take(&mut self.kept.1) {
-            live.keep_one_piece();
-        }
+        live.take_over(std::mem::take(&mut self.kept.0));
         // A stroke's own range wins over the file's, unless remeshing is
         // off altogether.
         let remesh = if self.remeshing {
@@ -252,7 +245,7 @@ impl Session {
             })?;
         }
         self.commit(done.mesh, done.diagnostics);
-        self.kept = KeptField(done.far_field, done.one_piece);
+        self.kept = KeptField(done.handover);
         Ok(done.report)
     }
 
@@ -454,26 +447,38 @@ mod tests {
     fn the_far_field_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
         let (sphere, inflate, grab) = sphere_inflate_and_grab();
         let mut s = Session::new(sphere.clone()).unwrap();
-        assert!(s.kept.0.is_none());
+        assert!(s.kept.0.far_field.is_none());
         s.apply_stroke(&inflate).unwrap();
-        assert!(s.kept.0.is_some(), "a paint stroke hands its field on");
+        assert!(
+            s.kept.0.far_field.is_some(),
+            "a paint stroke hands its field on"
+        );
         s.apply_stroke(&inflate).unwrap();
-        assert!(s.kept.0.is_some(), "and the next one, given it, too");
-        assert!(s.clone().kept.0.is_none(), "a copy starts without one");
+        assert!(
+            s.kept.0.far_field.is_some(),
+            "and the next one, given it, too"
+        );
+        assert!(
+            s.clone().kept.0.far_field.is_none(),
+            "a copy starts without one"
+        );
         s.undo();
-        assert!(s.kept.0.is_none(), "undo drops it");
+        assert!(s.kept.0.far_field.is_none(), "undo drops it");
         s.apply_stroke(&inflate).unwrap();
         s.undo();
         assert!(s.redo());
-        assert!(s.kept.0.is_none(), "redo drops it");
+        assert!(s.kept.0.far_field.is_none(), "redo drops it");
         s.apply_stroke(&inflate).unwrap();
         assert!(!s.redo(), "nothing to redo after a stroke");
-        assert!(s.kept.0.is_some(), "and nothing dropped");
+        assert!(s.kept.0.far_field.is_some(), "and nothing dropped");
         s.commit(sphere.clone(), None);
-        assert!(s.kept.0.is_none(), "a commit from elsewhere drops it");
+        assert!(
+            s.kept.0.far_field.is_none(),
+            "a commit from elsewhere drops it"
+        );
         s.apply_stroke(&inflate).unwrap();
         s.apply_stroke(&grab).unwrap();
-        assert!(s.kept.0.is_none(), "a drag keeps none");
+        assert!(s.kept.0.far_field.is_none(), "a drag keeps none");
     }
 
     /// What a paint stroke knew of its surface's pieces passes on as its
@@ -485,20 +490,20 @@ mod tests {
     fn one_piece_passes_from_stroke_to_stroke_while_the_mesh_is_theirs() {
         let (sphere, inflate, grab) = sphere_inflate_and_grab();
         let mut s = Session::new(sphere.clone()).unwrap();
-        assert!(!s.kept.1);
+        assert!(!s.kept.0.one_piece);
         s.apply_stroke(&inflate).unwrap();
-        assert!(s.kept.1, "one sphere is one piece");
+        assert!(s.kept.0.one_piece, "one sphere is one piece");
         s.apply_stroke(&inflate).unwrap();
-        assert!(s.kept.1, "and stays one, handed on");
-        assert!(!s.clone().kept.1, "a copy starts without it");
+        assert!(s.kept.0.one_piece, "and stays one, handed on");
+        assert!(!s.clone().kept.0.one_piece, "a copy starts without it");
         s.undo();
-        assert!(!s.kept.1, "undo drops it");
+        assert!(!s.kept.0.one_piece, "undo drops it");
         s.apply_stroke(&grab).unwrap();
-        assert!(!s.kept.1, "a drag hands nothing on");
+        assert!(!s.kept.0.one_piece, "a drag hands nothing on");
         let mut two = sphere.clone();
         two.append(&sphere.translated(DVec3::new(5.0, 0.0, 0.0)));
         let mut s = Session::new(two).unwrap();
         s.apply_stroke(&inflate).unwrap();
-        assert!(!s.kept.1, "two spheres are two pieces");
+        assert!(!s.kept.0.one_piece, "two spheres are two pieces");
     }
 }

@@ -13,8 +13,8 @@ use holey_dlfl::{CornerId, Mesh};
 use holey_mesh::PolyMesh;
 use holey_mesh::analysis::{MeshInfo, analyze_topology};
 use holey_model::rind::Rind;
-use holey_sculpt::LiveStroke;
-use holey_topo::{FarField, TriMesh};
+use holey_sculpt::{Handover, LiveStroke};
+use holey_topo::TriMesh;
 use serde_json::{Value, json};
 
 use crate::frame::{Display, EdgeBook, ModelIndex, display_model, display_triangles};
@@ -213,14 +213,11 @@ pub struct Document {
     version: u64,
     pub rind: Option<RindMode>,
     pub stroke: Option<ActiveStroke>,
-    /// The far field the last paint stroke finished with, and the version
-    /// it describes: the next stroke keeps it while the document is still
-    /// at that version (every change of the content bumps it).
-    pub kept_far: Option<(u64, FarField)>,
-    /// The version at which the last paint stroke ended knowing the
-    /// surface to be one piece: the next stroke takes that on while the
-    /// document is still at that version.
-    pub kept_one_piece: Option<u64>,
+    /// What the last paint stroke handed on (its far field, whether it
+    /// knew the surface to be one piece), and the version it describes:
+    /// the next stroke takes it over while the document is still at that
+    /// version (every change of the content bumps it).
+    pub kept: Option<(u64, Handover)>,
     /// A long operation in progress: its owner and name.
     pub busy: Option<(ConnId, String)>,
     /// Dynamic remeshing detail in [0, 1]; 0 is off.
@@ -246,8 +243,7 @@ impl Document {
             version,
             rind: None,
             stroke: None,
-            kept_far: None,
-            kept_one_piece: None,
+            kept: None,
             busy: None,
             remesh_detail: DEFAULT_REMESH_DETAIL,
             mask: Arc::default(),

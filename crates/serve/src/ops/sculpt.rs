@@ -79,13 +79,10 @@ impl Shared {
         live.set_remesh(remesh.map(RemeshOptions::new));
         // The last stroke's far field, if the document is still as that
         // stroke left it.
-        if let Some((version, far)) = doc.kept_far.take()
+        if let Some((version, handover)) = doc.kept.take()
             && version == doc.version()
         {
-            live.keep_far_field(far);
-        }
-        if doc.kept_one_piece.take() == Some(doc.version()) {
-            live.keep_one_piece();
+            live.take_over(handover);
         }
         let display = doc.display().clone();
         let sent = display.positions.clone();
@@ -129,8 +126,7 @@ impl Shared {
             // commits, in the slots its patches kept.
             doc.commit_shown(done.mesh, stroke.display, stroke.book);
         }
-        doc.kept_far = done.far_field.map(|far| (doc.version(), far));
-        doc.kept_one_piece = done.one_piece.then(|| doc.version());
+        doc.kept = Some((doc.version(), done.handover));
         self.publish(doc);
         let mut reply = json!({
             "changes": r.changes,
