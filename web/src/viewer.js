@@ -532,6 +532,12 @@ export class Viewer {
     if (f.patch) return this.setPatch(f, prev);
     this.frame = f;
     if (f.positionsOnly && this.mesh && prev && prev.nv === f.nv) {
+      if (f.sparse && f.sparseIdx.length === 0 && !f.mask && !this.maskShown) {
+        // A commit frame (PROTOCOL.md): what is on screen is the
+        // document's mesh now. Nothing moved; nothing to draw.
+        f.positions = prev.positions;
+        return false;
+      }
       if (this.proxy) this.disposeProxy(); // the surface moved
       const attr = this.mesh.geometry.attributes.position;
       if (f.sparse) {

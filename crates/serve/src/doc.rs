@@ -306,8 +306,15 @@ impl Document {
     /// the document shows that display instead of building its own (a
     /// tenth of a second on a million triangles), in the slots the tabs
     /// already hold. `display` must show `mesh` ([`Display::shows`]);
-    /// where it does not, the document builds its own.
-    pub fn commit_shown(&mut self, mesh: TriMesh, display: Display, book: Option<EdgeBook>) {
+    /// where it does not, the document builds its own. Whether it showed
+    /// `display`: then the tabs that were sent the stroke's frames hold
+    /// the document's display already.
+    pub fn commit_shown(
+        &mut self,
+        mesh: TriMesh,
+        display: Display,
+        book: Option<EdgeBook>,
+    ) -> bool {
         let shown = self.rind.is_none() && display.shows(&mesh);
         let old = std::mem::replace(&mut self.content, Content::Sculpt(mesh));
         self.record(Some(old));
@@ -316,6 +323,7 @@ impl Document {
         } else {
             self.refresh();
         }
+        shown
     }
 
     /// The edge book of [`Document::display`], when one is known, given

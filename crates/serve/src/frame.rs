@@ -297,6 +297,27 @@ pub fn encode_sparse(
     Some(out)
 }
 
+/// A frame that commits what the tabs already show as `version`:
+/// positions only, sparse, with no vertex moved, and not a preview
+/// (`web/PROTOCOL.md`, "Commit frames"). A stroke whose frames left every
+/// tab showing the document's display slot for slot
+/// ([`crate::doc::Document::commit_shown`]) ends with it instead of the
+/// whole mesh, which on a million triangles is 38 MB every tab holds
+/// already. It clears a vanish mask, as any frame without one does; a tab
+/// whose counts differ cannot apply it and asks for the whole mesh.
+pub fn encode_commit(display: &Display, version: u64) -> Vec<u8> {
+    let mut out = Vec::with_capacity(36);
+    header(
+        &mut out,
+        FLAG_POSITIONS_ONLY | FLAG_SPARSE,
+        version,
+        display.counts(display.positions.len()),
+        None,
+    );
+    put(&mut out, 0);
+    out
+}
+
 /// The slots of a triangle mesh's display that changed from one frame to
 /// the next: what a patch frame carries (each list ascending).
 #[derive(Clone, Debug, Default, PartialEq)]

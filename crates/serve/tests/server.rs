@@ -1186,7 +1186,7 @@ fn hull_and_dual_hull_replace_the_mesh_and_undo() {
     let (v, e, f) = (8u64, 12u64, 6u64);
     assert_eq!(vef(&a), [v, e, f]);
     // The cube's half side h, from the picture.
-    let h = last_whole(&a)
+    let h = showing(&a)
         .positions
         .iter()
         .flatten()
@@ -1210,7 +1210,7 @@ fn hull_and_dual_hull_replace_the_mesh_and_undo() {
     // The plane at the corner (h, h, h) is normal to (1, 1, 1): x + y + z
     // = 3h, which meets the axes at 3h; so every corner of the octahedron
     // lies on an axis, 3h from the centre.
-    let oct = last_whole(&a);
+    let oct = showing(&a);
     assert_eq!(oct.positions.len(), 6);
     for p in &oct.positions {
         let mut m: Vec<f32> = p.iter().map(|c| c.abs()).collect();
@@ -1295,15 +1295,28 @@ fn decode(b: &[u8]) -> Decoded {
     }
 }
 
-/// The last whole (not positions-only, not patch) frame a tab received.
-fn last_whole(tab: &Tab) -> Decoded {
-    let b = tab
+/// What a tab shows: its last whole (not positions-only, not patch)
+/// frame's flags and sculpt mask, at the positions every frame since
+/// (positions only, sparse, patches, the commit) left, as a page applies
+/// them ([`Shown::take`]).
+fn showing(tab: &Tab) -> Decoded {
+    let flags = |f: &Vec<u8>| u32::from_le_bytes(f[8..12].try_into().expect("flags"));
+    let whole = tab
         .frames
         .iter()
-        .rev()
-        .find(|f| u32::from_le_bytes(f[8..12].try_into().expect("flags")) & (4 | 32) == 0)
+        .rposition(|f| flags(f) & (4 | 32) == 0)
         .expect("a whole frame");
-    decode(b)
+    let mut shown = Shown::default();
+    for f in &tab.frames[whole..] {
+        shown.take(f);
+    }
+    let mut d = decode(&tab.frames[whole]);
+    d.positions = shown
+        .positions
+        .iter()
+        .map(|p| p.map(f32::from_bits))
+        .collect();
+    d
 }
 
 /// The sculpt mask of a whole frame as flags (none masked without one).
@@ -1343,7 +1356,7 @@ fn sculpt_sphere(addr: SocketAddr) -> Tab {
 fn mask_paint_invert_clear_and_masked_vertices_never_move() {
     let (dir, addr) = server();
     let mut a = sculpt_sphere(addr);
-    let start = last_whole(&a);
+    let start = showing(&a);
     assert!(start.mask.is_none(), "nothing masked at first");
     let nv = start.positions.len();
 
@@ -1364,7 +1377,7 @@ fn mask_paint_invert_clear_and_masked_vertices_never_move() {
     assert!(n > 20 && n < nv / 2, "{n}");
     let r = a.ok(json!({"op": "mask_paint", "points": centres, "radius": 0.5}));
     assert_eq!(r["masked"], n);
-    let painted = last_whole(&a);
+    let painted = showing(&a);
     assert_eq!(painted.flags & 16, 16);
     let flags: Vec<bool> = painted
         .mask
@@ -1408,7 +1421,7 @@ fn mask_paint_invert_clear_and_masked_vertices_never_move() {
         a.state["version"].as_u64().expect("version") > v,
         "committed"
     );
-    let after = last_whole(&a);
+    let after = showing(&a);
     assert_eq!(after.positions.len(), nv, "no topology change here");
     let mut moved = 0;
     for (i, (&p, &q)) in start.positions.iter().zip(&after.positions).enumerate() {
@@ -1433,39 +1446,39 @@ fn mask_paint_invert_clear_and_masked_vertices_never_move() {
     // Undo takes back the stroke and keeps the mask it had; clear is an
     // undo step of its own.
     a.ok(json!({"op": "undo"}));
-    assert_eq!(last_whole(&a).positions, start.positions);
-    assert_eq!(masked_flags(&last_whole(&a)), want);
+    assert_eq!(showing(&a).positions, start.positions);
+    assert_eq!(masked_flags(&showing(&a)), want);
     let r = a.ok(json!({"op": "mask_clear"}));
     assert_eq!(r["masked"], 0);
-    let cleared = last_whole(&a);
+    let cleared = showing(&a);
     assert_eq!(cleared.flags & 16, 0);
     assert!(cleared.mask.is_none());
     assert_eq!(a.state["can_undo"], true);
     assert_eq!(a.state["can_redo"], false, "an edit drops the redo history");
     a.ok(json!({"op": "undo"}));
     assert_eq!(
-        masked_flags(&last_whole(&a)),
+        masked_flags(&showing(&a)),
         want,
         "undo brings the mask back"
     );
     a.ok(json!({"op": "redo"}));
-    assert!(last_whole(&a).mask.is_none(), "redo clears it again");
+    assert!(showing(&a).mask.is_none(), "redo clears it again");
     a.ok(json!({"op": "undo"}));
     // Undo steps back through the mask edits too: the second invert, the
     // first, the paint, the erase, the first paint.
     a.ok(json!({"op": "undo"}));
     assert_eq!(
-        masked_flags(&last_whole(&a)).iter().filter(|&&m| m).count(),
+        masked_flags(&showing(&a)).iter().filter(|&&m| m).count(),
         nv - n
     );
     for _ in 0..4 {
         a.ok(json!({"op": "undo"}));
     }
-    assert!(last_whole(&a).mask.is_none(), "before the first paint");
+    assert!(showing(&a).mask.is_none(), "before the first paint");
     for _ in 0..5 {
         a.ok(json!({"op": "redo"}));
     }
-    assert_eq!(masked_flags(&last_whole(&a)), want);
+    assert_eq!(masked_flags(&showing(&a)), want);
     // Clearing an empty mask or painting where it is masked already
     // makes no undo step.
     let v = a.state["version"].as_u64().expect("version");
@@ -1490,17 +1503,13 @@ fn mask_paint_invert_clear_and_masked_vertices_never_move() {
     }
     let again = self::start(dir.path(), 1 << 20);
     let mut b = Tab::open(again);
-    assert_eq!(
-        masked_flags(&last_whole(&b)),
-        want,
-        "restored with the mask"
-    );
+    assert_eq!(masked_flags(&showing(&b)), want, "restored with the mask");
     assert_eq!(b.state["can_undo"], false);
     // A new primitive starts unmasked, and undo brings the mask back.
     b.ok(json!({"op": "primitive", "spec": "@sphere:3"}));
-    assert!(last_whole(&b).mask.is_none());
+    assert!(showing(&b).mask.is_none());
     b.ok(json!({"op": "undo"}));
-    assert_eq!(masked_flags(&last_whole(&b)), want);
+    assert_eq!(masked_flags(&showing(&b)), want);
     drop(b);
 
     // Refusals say why and change nothing.
@@ -1551,7 +1560,7 @@ fn displacements(a: &Decoded, b: &Decoded) -> Vec<f64> {
 fn strokes_read_falloff_symmetry_and_pressure() {
     let (_dir, addr) = server();
     let mut a = sculpt_sphere(addr);
-    let start = last_whole(&a);
+    let start = showing(&a);
     let (r, s) = (0.6, 0.03);
     let centre = [0.6, 0.0, 0.8];
 
@@ -1562,7 +1571,7 @@ fn strokes_read_falloff_symmetry_and_pressure() {
                 "point": centre, "falloff": "constant"}),
     );
     a.ok(json!({"op": "stroke_end"}));
-    let one = last_whole(&a);
+    let one = showing(&a);
     let d = displacements(&start, &one);
     let mut inside = 0;
     for (i, &p) in start.positions.iter().enumerate() {
@@ -1587,7 +1596,7 @@ fn strokes_read_falloff_symmetry_and_pressure() {
                 "point": centre}),
     );
     a.ok(json!({"op": "stroke_end"}));
-    let d = displacements(&start, &last_whole(&a));
+    let d = displacements(&start, &showing(&a));
     let inner: Vec<f64> = (0..d.len())
         .filter(|&i| dist(start.positions[i], centre) < 0.95 * r)
         .map(|i| d[i])
@@ -1619,7 +1628,7 @@ fn strokes_read_falloff_symmetry_and_pressure() {
                 "pressure": 0.5}),
     );
     a.ok(json!({"op": "stroke_end"}));
-    let d = displacements(&start, &last_whole(&a));
+    let d = displacements(&start, &showing(&a));
     for (i, &p) in start.positions.iter().enumerate() {
         let from = dist(p, centre);
         if from < 0.45 * r {
@@ -1664,7 +1673,7 @@ fn strokes_read_falloff_symmetry_and_pressure() {
         );
         a.ok(json!({"op": "stroke_frame", "point": [0.8, 0.0, 0.6]}));
         a.ok(json!({"op": "stroke_end"}));
-        let worst = mirrored(&last_whole(&a));
+        let worst = mirrored(&showing(&a));
         if symmetry.is_empty() {
             assert!(
                 worst > 1e-2,
@@ -2026,6 +2035,23 @@ impl Shown {
     }
 }
 
+/// Whether `frame` is a commit frame (`web/PROTOCOL.md`): sparse, no
+/// vertex moved, not a preview.
+fn is_commit(frame: &[u8]) -> bool {
+    let w = |i: usize| u32::from_le_bytes(frame[4 * i..4 * i + 4].try_into().expect("word"));
+    w(2) == 4 | 8 && w(8) == 0 && frame.len() == 36
+}
+
+/// What the document shows, as a tab opened now is sent it (a whole
+/// frame of the document's display): the oracle for what a stroke's
+/// frames and its commit built on the tabs that were open.
+fn document_shown(addr: SocketAddr) -> Shown {
+    let late = Tab::open(addr);
+    let mut shown = Shown::default();
+    shown.take(late.frames.last().expect("the greeting's frame"));
+    shown
+}
+
 /// Remeshing strokes travel as patches that build the committed mesh,
 /// slot for slot, on every tab. Twice: the second stroke starts from the
 /// display (and the edge book) the first one's frames left, which the
@@ -2076,11 +2102,13 @@ fn remeshing_strokes_send_patches_that_build_the_committed_mesh() {
                 (0..shown.triangles.len() as u32).collect::<Vec<_>>()
             );
         }
-        // The commit is a whole frame of the stroke's last mesh: what the
-        // patches built, slot for slot (the document shows the stroke's
-        // display).
-        let mut committed = Shown::default();
-        committed.take(a.frames.last().expect("the commit"));
+        // The commit is a commit frame: the document shows what the
+        // patches built, slot for slot (the stroke's display), and a tab
+        // opened now is sent exactly that.
+        let commit = a.frames.last().expect("the commit");
+        assert!(is_commit(commit), "stroke {round}: the commit went whole");
+        shown.take(commit);
+        let committed = document_shown(addr);
         assert_eq!(shown, committed, "stroke {round}");
         assert!(
             committed.triangles.len() > triangles,
@@ -2088,7 +2116,6 @@ fn remeshing_strokes_send_patches_that_build_the_committed_mesh() {
             committed.triangles.len()
         );
         triangles = committed.triangles.len();
-        shown.take(a.frames.last().expect("the commit"));
     }
     // The other tab was sent the same frames.
     while b.frames.len() < a.frames.len() {
@@ -2143,8 +2170,10 @@ fn frames_that_cut_the_surface_travel_as_patches() {
     assert!(cuts > 0, "the hook never cut the surface");
     a.ok(json!({"op": "stroke_end"}));
     assert_eq!(a.genus(), 1, "{}", a.state);
-    let mut committed = Shown::default();
-    committed.take(a.frames.last().expect("the commit"));
+    let commit = a.frames.last().expect("the commit");
+    assert!(is_commit(commit), "the commit went whole");
+    shown.take(commit);
+    let committed = document_shown(addr);
     assert_eq!(shown.positions, committed.positions);
     assert_eq!(shown.triangles, committed.triangles);
     assert_eq!(shown.edges, committed.edges);
@@ -2154,7 +2183,9 @@ fn frames_that_cut_the_surface_travel_as_patches() {
 /// `path` sent as `stroke_frame` requests of `sizes` dabs each (the first
 /// as `point`, the others as `points`), then `stroke_end`. Gives the
 /// committed document as OBJ (exact `f64`s), what the frames built on the
-/// page before the commit, the commit's whole frame, and the genus.
+/// page before the commit, what the document shows after it (as a tab
+/// opened then is sent it), and the genus. A stroke that commits what its
+/// frames showed ends with a commit frame, any other with a whole one.
 fn stroke_in_batches(
     begin: &Value,
     detail: f64,
@@ -2183,8 +2214,15 @@ fn stroke_in_batches(
     for f in &a.frames[first..before_end] {
         shown.take(f);
     }
-    let mut committed = Shown::default();
-    committed.take(a.frames.last().expect("the commit"));
+    let commit = a.frames.last().expect("the commit");
+    let committed = document_shown(addr);
+    let mut after = shown.clone();
+    after.take(commit);
+    assert_eq!(
+        is_commit(commit),
+        after == committed && after == shown,
+        "{begin}: a commit frame where, and only where, the tabs showed the commit"
+    );
     (model(addr), shown, committed, a.genus())
 }
 

@@ -203,8 +203,15 @@ impl Shared {
     /// Sends every tab the state and the whole mesh (with the mask), and
     /// saves both.
     fn publish(&self, doc: &Document) {
+        self.publish_with(doc, whole_frame(doc));
+    }
+
+    /// [`Self::publish`] with `frame` for the whole mesh: a commit frame
+    /// ([`crate::frame::encode_commit`]) where every tab shows the
+    /// document's display already.
+    fn publish_with(&self, doc: &Document, frame: Vec<u8>) {
         self.hub.broadcast(&Out::Text(doc.state_json().to_string()));
-        self.hub.broadcast(&Out::Binary(whole_frame(doc)));
+        self.hub.broadcast(&Out::Binary(frame));
         if doc.rind.is_none() {
             self.saver
                 .save(doc.version(), doc.content().clone(), Arc::clone(doc.mask()));

@@ -13,8 +13,8 @@ use super::request::{StrokeBegin, StrokeFrame, missing};
 use super::{Out, Reply, Shared};
 use crate::doc::{ActiveStroke, Document, Mask, mask_flags};
 use crate::frame::{
-    EdgeBook, FLAG_PREVIEW, Patch, changed_slots, display_triangles, encode_masked, encode_patch,
-    encode_positions, encode_sparse, patch_changed,
+    EdgeBook, FLAG_PREVIEW, Patch, changed_slots, display_triangles, encode_commit, encode_masked,
+    encode_patch, encode_positions, encode_sparse, patch_changed,
 };
 use crate::{ConnId, ServeError};
 
@@ -115,19 +115,35 @@ impl Shared {
 
     /// `stroke_end`: the stroke finished and committed if it changed the mesh; a release the guard refused says why in plain words.
     pub(super) fn stroke_end(&self, doc: &mut Document) -> Reply {
-        let Some(stroke) = doc.stroke.take() else {
+        let Some(mut stroke) = doc.stroke.take() else {
             return Err(ServeError::Refused("no stroke in progress".into()));
         };
         let done = stroke.live.finish()?;
         let r = done.report;
         let changed = done.mesh != *doc.sculpt_mesh("sculpting")?;
-        if changed {
+        // What every tab shows: the stroke's connectivity at the positions
+        // it was last sent (sparse frames move those only).
+        if stroke.sent.len() == stroke.display.positions.len() {
+            stroke.display.positions = stroke.sent;
+        }
+        let shown = if changed {
             // A paint stroke's frames left the tabs showing the mesh it
             // commits, in the slots its patches kept.
-            doc.commit_shown(done.mesh, stroke.display, stroke.book);
-        }
+            doc.commit_shown(done.mesh, stroke.display, stroke.book)
+        } else {
+            // A stroke that moved nothing in the end shows the document's
+            // display if its frames left that, edges in their slots too.
+            stroke.display == *doc.display()
+        };
         doc.kept = Some((doc.version(), done.handover));
-        self.publish(doc);
+        if shown {
+            // Every tab holds the committed mesh already: a frame of a
+            // few bytes commits it, where the whole mesh is 38 MB on a
+            // million triangles.
+            self.publish_with(doc, encode_commit(doc.display(), doc.version()));
+        } else {
+            self.publish(doc);
+        }
         let mut reply = json!({
             "changes": r.changes,
             "engine_runs": r.engine_runs,
