@@ -854,19 +854,34 @@ const scenarios = [
     await waitFor(page, 'the end of the stroke', () => !window.__holey.stroking);
     await waitVersionAbove(page, v2, 60000);
     await waitFor(page, 'the committed frame', () => window.__holey.frameVersion === window.__holey.version && !window.__holey.viewer.frame.preview);
-    // An inflate commits its last frame's mesh: the whole frame of the
-    // commit holds what the patches built on the page.
+    // An inflate commits its last frame's mesh. The commit is a commit
+    // frame (PROTOCOL.md): the page keeps what its patches built. The
+    // document's whole frame, asked for again (hello), must be exactly
+    // that, edge slots included.
+    check.commitFrame = await page.evaluate(() => {
+      const f = window.__holey.viewer.frame;
+      return !!f.sparse && f.sparseIdx.length === 0;
+    });
+    const framesBefore = await page.evaluate(() => {
+      const f = window.__holey.viewer.frame;
+      window.__committedShown = { positions: Float32Array.from(f.positions), tris: Uint32Array.from(f.tris), edges: Uint32Array.from(f.edges) };
+      return window.__holey.frames;
+    });
+    await page.evaluate(() => window.__holey.request('hello'));
+    await waitFor(page, 'the whole frame asked for', (n) => window.__holey.frames > n && !window.__holey.viewer.frame.positionsOnly, framesBefore);
     check.commitMatchesPatches = await page.evaluate(() => {
-      const f = window.__holey.viewer.frame, m = window.__midStroke;
+      const f = window.__holey.viewer.frame, m = window.__midStroke, c = window.__committedShown;
       const same = (a, b) => a.length === b.length && a.every((x, i) => x === b[i]);
-      return same(m.positions, f.positions) && same(m.tris, f.tris);
+      return same(m.positions, c.positions) && same(m.tris, c.tris)
+        && same(c.positions, f.positions) && same(c.tris, f.tris) && same(c.edges, f.edges);
     });
     await page.click(tid('wireframe'));
     check.partialRendersInStroke = check.partialRenders - p0.renders;
     check.patchFrames = c2.patch - c1.patch;
     console.log(`  bunny patch check: ${JSON.stringify(check)}`);
     if (!(c1.patch - c0.patch > 0) || !(check.patchFrames > 0)) throw new Error(`no patch frame during the remeshing strokes: ${JSON.stringify({ c0, c1, c2 })}`);
-    if (!check.commitMatchesPatches) throw new Error('the committed whole frame differs from the mesh the patches built');
+    if (!check.commitFrame) throw new Error('the stroke was committed with a whole frame, not a commit frame');
+    if (!check.commitMatchesPatches) throw new Error('the document\'s whole frame differs from the mesh the patches built');
     if (!check.edges.same) throw new Error(`the patched edges are not the patched triangles' edges: ${JSON.stringify(check.edges)}`);
     if (p0.enabled) {
       if (!(check.partialRendersInStroke > 0)) throw new Error('no partial redraw during the bunny check stroke');

@@ -84,6 +84,15 @@ export function parseFrame(buf, prev) {
 }
 
 /**
+ * Whether a parsed frame is a commit frame (PROTOCOL.md): sparse, no
+ * vertex moved, no vanish mask, not a preview. The mesh the page shows is
+ * then the committed document at the frame's version.
+ */
+export function isCommit(f) {
+  return f.sparse && f.sparseIdx.length === 0 && !f.mask && !f.preview;
+}
+
+/**
  * A connectivity patch (bit 5): the slots of the previous frame's arrays
  * that changed. Like a sparse frame it borrows the previous arrays, NOT yet
  * updated: `patch` holds the changes (applyPatch writes them).

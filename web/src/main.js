@@ -4,7 +4,7 @@
 
 import { Viewer } from './viewer.js';
 import { Connection } from './connection.js';
-import { parseFrame, applySparse, applyPatch, FLAG_PATCH, FLAG_SPARSE } from './frame.js';
+import { parseFrame, applySparse, applyPatch, isCommit, FLAG_PATCH, FLAG_SPARSE } from './frame.js';
 
 const $ = (id) => document.querySelector(`[data-testid="${id}"]`);
 const num = (id) => Number($(id).value);
@@ -276,6 +276,9 @@ function onFrame(buf) {
     return;
   }
   if (!f.positionsOnly) showMaskCount();
+  // A commit frame settles the bounds a stroke moved: the brush's size
+  // is relative to them.
+  if (isCommit(f)) showSliderValues();
   if (newTopology) {
     // Huge meshes: the wireframe would cost more than the surface itself.
     if (f.nt > 300000 && $('wireframe').checked) setShading(viewer.flat, false);

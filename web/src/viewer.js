@@ -7,7 +7,7 @@
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { applySparse, applyPatch } from './frame.js';
+import { applySparse, applyPatch, isCommit } from './frame.js';
 import { vertexTriangles, indexRuns, clusterDecimate, areaNormals } from './proxy.js';
 
 /** Meshes above this many triangles are drawn as a decimated proxy while the
@@ -532,10 +532,20 @@ export class Viewer {
     if (f.patch) return this.setPatch(f, prev);
     this.frame = f;
     if (f.positionsOnly && this.mesh && prev && prev.nv === f.nv) {
-      if (f.sparse && f.sparseIdx.length === 0 && !f.mask && !this.maskShown) {
+      if (isCommit(f)) {
         // A commit frame (PROTOCOL.md): what is on screen is the
-        // document's mesh now. Nothing moved; nothing to draw.
+        // document's mesh now. Nothing moved; a drag's vanish tint goes
+        // (the only thing to draw), and what a whole frame would have
+        // settled is settled: the bounds the stroke moved (the view's
+        // fit, the brush's size) and the stand-in for orbiting.
         f.positions = prev.positions;
+        if (this.maskShown) {
+          this.keepMask(null);
+          this.updateMask();
+          this.requestRender();
+        }
+        this.computeBounds();
+        this.scheduleProxy();
         return false;
       }
       if (this.proxy) this.disposeProxy(); // the surface moved
