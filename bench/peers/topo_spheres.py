@@ -152,9 +152,11 @@ def main():
     print(f"two spheres, {tris} triangles; best of {args.runs}")
     print(f"union    from arrays: manifold3d {t_m3d_arrays:.3f} s  trueform {t_tf_arrays:.3f} s  holey engine {engine:.3f} s; "
           f"holey/manifold3d {engine / t_m3d_arrays:.2f}x  holey/trueform {engine / t_tf_arrays:.2f}x")
+    # The stages the report times depend on the method the policy took
+    # (`containment`, or `winding` where the exact arrangement answered).
+    stages = ", ".join(f"{k} {v:.3f}" for k, v in report["seconds"].items() if k != "total")
     print(f"         prepared: manifold3d {t_m3d:.3f} s  trueform {t_tf:.3f} s  holey engine {engine:.3f} s "
-          f"(collisions {report['seconds']['collisions']:.3f}, intersections {report['seconds']['intersections']:.3f}, "
-          f"correction {report['seconds']['correction']:.3f}, cut {report['seconds']['cut']:.3f})  "
+          f"(method {report.get('method')}: {stages})  "
           f"holey whole process {t_hu:.3f} s, peak {mem_hu / 1024:.0f} MB = {mem_hu * 1024 / tris:.0f} B/triangle")
     print(f"         holey/manifold3d {engine / t_m3d:.2f}x  holey/trueform {engine / t_tf:.2f}x (engine against prepared peers)")
     if warm_union is not None:
@@ -165,7 +167,7 @@ def main():
         print(f"         prepared both sides (holey PreparedSolid, union_prepared), best of {max(args.runs, 5)}: "
               f"holey {warm_prepared:.3f} s; holey/manifold3d {warm_prepared / t_m3d:.2f}x  "
               f"holey/trueform {warm_prepared / t_tf:.2f}x")
-    print(f"         --via-motion (collisions {motion['seconds']['collisions']:.3f} s): engine "
+    print(f"         --via-motion (collisions {motion['seconds'].get('collisions', 0.0):.3f} s): engine "
           f"{motion['seconds']['total']:.3f} s, whole process {t_hm:.3f} s")
     print(f"         result: {info['faces']} triangles, closed {info['closed']}, genus {info['genus']}, "
           f"volume {info['volume']:.9f}; manifold3d {m3d_runs[0][1]} triangles, volume {m3d_runs[0][2]:.9f}")
