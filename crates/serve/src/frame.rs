@@ -299,7 +299,7 @@ pub fn encode_sparse(
 
 /// A frame that commits what the tabs already show as `version`:
 /// positions only, sparse, with no vertex moved, and not a preview
-/// (`web/PROTOCOL.md`, "Commit frames"). A stroke whose frames left every
+/// (`web/PROTOCOL.md`, "A commit frame"). A stroke whose frames left every
 /// tab showing the document's display slot for slot
 /// ([`crate::doc::Document::commit_shown`]) ends with it instead of the
 /// whole mesh, which on a million triangles is 38 MB every tab holds
