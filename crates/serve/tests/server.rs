@@ -2469,3 +2469,68 @@ fn a_tab_opened_mid_stroke_can_apply_its_patches() {
     assert!(patches > 0, "the stroke went on remeshing");
     a.ok(json!({"op": "stroke_end"}));
 }
+
+/// A stroke that in the end changes nothing (every vertex under the
+/// brush masked) commits no undo step, and its commit frame keeps what
+/// the tabs show: the document's display, as a tab opened afterwards is
+/// sent it. A grab released where nothing vanishes commits what its
+/// preview showed, with a commit frame that also clears the preview.
+#[test]
+fn strokes_that_leave_the_shown_mesh_end_with_a_commit_frame() {
+    let (_dir, addr) = server();
+    let mut a = sculpt_sphere(addr);
+    let start = showing(&a);
+    a.ok(json!({"op": "mask_invert"}));
+    let v = a.state["version"].as_u64().expect("version");
+    a.ok(
+        json!({"op": "stroke_begin", "brush": "inflate", "radius": 0.5,
+                "strength": 0.03, "point": [0, 0, 1]}),
+    );
+    a.ok(json!({"op": "stroke_frame", "point": [0.2, 0, 0.98]}));
+    a.ok(json!({"op": "stroke_end"}));
+    assert_eq!(
+        a.state["version"], v,
+        "no undo step for a stroke that moved nothing"
+    );
+    assert!(is_commit(a.frames.last().expect("the commit")));
+    let mut shown = Shown::default();
+    let whole = a
+        .frames
+        .iter()
+        .rposition(|f| frame_word(f, 2) & (4 | 32) == 0)
+        .expect("a whole frame");
+    for f in &a.frames[whole..] {
+        shown.take(f);
+    }
+    assert_eq!(shown, document_shown(addr));
+    assert_eq!(showing(&a).positions, start.positions);
+
+    // A grab that drags the top a little: nothing goes inside, nothing
+    // vanishes, and the commit is what the preview showed.
+    a.ok(json!({"op": "mask_clear"}));
+    let v = a.state["version"].as_u64().expect("version");
+    a.ok(json!({"op": "stroke_begin", "brush": "grab", "radius": 0.5,
+                "strength": 1, "point": [0, 0, 1]}));
+    a.ok(json!({"op": "stroke_frame", "point": [0, 0, 1.1]}));
+    a.ok(json!({"op": "stroke_end"}));
+    assert!(
+        a.state["version"].as_u64().expect("version") > v,
+        "committed"
+    );
+    let commit = a.frames.last().expect("the commit");
+    assert!(
+        is_commit(commit),
+        "a grab that deleted nothing commits what it showed"
+    );
+    let mut shown = Shown::default();
+    let whole = a
+        .frames
+        .iter()
+        .rposition(|f| frame_word(f, 2) & (4 | 32) == 0)
+        .expect("a whole frame");
+    for f in &a.frames[whole..] {
+        shown.take(f);
+    }
+    assert_eq!(shown, document_shown(addr));
+    assert_ne!(showing(&a).positions, start.positions, "the top moved");
+}
