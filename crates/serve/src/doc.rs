@@ -11,7 +11,7 @@ use holey_dlfl::convert::{ImportOptions, to_dlfl, to_poly};
 use holey_dlfl::dlfl_info;
 use holey_dlfl::{CornerId, Mesh};
 use holey_mesh::PolyMesh;
-use holey_mesh::analysis::{MeshInfo, analyze_topology};
+use holey_mesh::analysis::{MeshInfo, analyze_triangle_topology};
 use holey_model::rind::Rind;
 use holey_sculpt::{Handover, LiveStroke};
 use holey_topo::TriMesh;
@@ -550,11 +550,11 @@ fn stats_json(info: &MeshInfo, triangles: usize) -> Value {
 }
 
 /// [`stats_json`] of a sculpture: only the counts the stats show
-/// ([`analyze_topology`]; they count the vertices the triangles use, so
+/// ([`analyze_triangle_topology`]; they count the vertices the triangles use, so
 /// the mesh needs no compaction), not the areas and volumes of a whole
 /// analysis, which the modeller would pay for after every stroke.
 fn sculpt_stats_json(mesh: &TriMesh, triangles: usize) -> Value {
-    let (counts, surface, components) = analyze_topology(&tri_to_poly(mesh));
+    let (counts, surface, components) = analyze_triangle_topology(mesh);
     json!({
         "vertices": counts.vertices,
         "edges": counts.edges,

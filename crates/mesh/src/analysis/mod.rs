@@ -196,6 +196,18 @@ pub fn analyze_topology(mesh: &PolyMesh) -> (Counts, Surface, usize) {
     (topo.total, surface, topo.component_count)
 }
 
+/// [`analyze_topology`] of a triangle mesh's triangles over its
+/// positions, the same as of `PolyMesh::from(mesh)` but without that copy
+/// of the mesh, its corner table filled in parallel runs
+/// (`soup::Soup::of_triangles`): the modeller counts its sculpture, a
+/// million triangles, after every stroke.
+pub fn analyze_triangle_topology(mesh: &crate::tri::TriMesh) -> (Counts, Surface, usize) {
+    let soup = soup::Soup::of_triangles(mesh.positions.len(), &mesh.triangles);
+    let topo = topology::topology(&soup, mesh.positions.len(), false);
+    let surface = topo.total.surface(topo.component_count);
+    (topo.total, surface, topo.component_count)
+}
+
 /// Per-component measures, components numbered by smallest vertex index.
 pub fn analyze_components(mesh: &PolyMesh) -> Vec<ComponentInfo> {
     measure(mesh, true).1

@@ -226,6 +226,57 @@ fn the_topology_alone_is_what_the_whole_analysis_counts() {
     }
 }
 
+/// A triangle mesh's topology counted from its triangles
+/// (`analyze_triangle_topology`, a corner table filled in parallel runs)
+/// is the polygon path's (`analyze_topology` of `PolyMesh::from`): a
+/// torus grid large enough for parallel runs (2 × 200 × 100 triangles)
+/// with cells taken out, a second piece, an unused vertex, a bow tie; and
+/// the same with a triangle that names a vertex out of range, which both
+/// leave out.
+#[test]
+fn the_triangles_topology_is_the_polygon_paths() {
+    let (w, h) = (200u32, 100u32);
+    let at = |i: u32, j: u32| (i % w) + w * (j % h);
+    let mut positions: Vec<DVec3> = (0..w * h)
+        .map(|k| p(f64::from(k % w), f64::from(k / w), 0.0))
+        .collect();
+    let mut triangles = Vec::new();
+    for j in 0..h {
+        for i in 0..w {
+            // Holes: every cell with i and j both multiples of 7.
+            if i % 7 == 0 && j % 7 == 0 {
+                continue;
+            }
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    // A separate bow tie (two triangles sharing a vertex) and an unused
+    // vertex.
+    let n = positions.len() as u32;
+    positions.extend((0..6).map(|k| p(f64::from(k), -5.0, 1.0)));
+    triangles.push([n, n + 1, n + 2]);
+    triangles.push([n + 2, n + 3, n + 4]);
+    let mut mesh = crate::tri::TriMesh {
+        positions,
+        triangles,
+    };
+    assert!(mesh.triangles.len() > 2 * crate::PARALLEL_RUN);
+    let polygon = |m: &crate::tri::TriMesh| analyze_topology(&PolyMesh::from(m));
+    let (c, s, k) = analyze_triangle_topology(&mesh);
+    assert_eq!((c.clone(), s, k), polygon(&mesh));
+    assert_eq!(k, 2);
+    assert_eq!(c.nonmanifold_vertices, 1);
+    assert_eq!(c.vertices, (w * h) as usize + 5);
+    // A triangle past the last vertex: left out by both.
+    mesh.triangles
+        .insert(17, [0, 1, mesh.positions.len() as u32]);
+    let (c2, s2, k2) = analyze_triangle_topology(&mesh);
+    assert_eq!((c2.clone(), s2, k2), polygon(&mesh));
+    assert_eq!(c2, c, "the triangle out of range is left out");
+}
+
 #[test]
 fn bowtie_has_one_nonmanifold_vertex() {
     let i = analyze(&PolyMesh::from_faces(
