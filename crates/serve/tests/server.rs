@@ -1300,6 +1300,19 @@ fn decode(b: &[u8]) -> Decoded {
 /// (positions only, sparse, patches, the commit) left, as a page applies
 /// them ([`Shown::take`]).
 fn showing(tab: &Tab) -> Decoded {
+    let (whole, shown) = shown_since_whole(tab);
+    let mut d = decode(&tab.frames[whole]);
+    d.positions = shown
+        .positions
+        .iter()
+        .map(|p| p.map(f32::from_bits))
+        .collect();
+    d
+}
+
+/// The index of a tab's last whole frame (not positions-only, not a
+/// patch), and what the tab shows after it and every frame since.
+fn shown_since_whole(tab: &Tab) -> (usize, Shown) {
     let flags = |f: &Vec<u8>| u32::from_le_bytes(f[8..12].try_into().expect("flags"));
     let whole = tab
         .frames
@@ -1310,13 +1323,7 @@ fn showing(tab: &Tab) -> Decoded {
     for f in &tab.frames[whole..] {
         shown.take(f);
     }
-    let mut d = decode(&tab.frames[whole]);
-    d.positions = shown
-        .positions
-        .iter()
-        .map(|p| p.map(f32::from_bits))
-        .collect();
-    d
+    (whole, shown)
 }
 
 /// The sculpt mask of a whole frame as flags (none masked without one).
@@ -2493,16 +2500,7 @@ fn strokes_that_leave_the_shown_mesh_end_with_a_commit_frame() {
         "no undo step for a stroke that moved nothing"
     );
     assert!(is_commit(a.frames.last().expect("the commit")));
-    let mut shown = Shown::default();
-    let whole = a
-        .frames
-        .iter()
-        .rposition(|f| frame_word(f, 2) & (4 | 32) == 0)
-        .expect("a whole frame");
-    for f in &a.frames[whole..] {
-        shown.take(f);
-    }
-    assert_eq!(shown, document_shown(addr));
+    assert_eq!(shown_since_whole(&a).1, document_shown(addr));
     assert_eq!(showing(&a).positions, start.positions);
 
     // A grab that drags the top a little: nothing goes inside, nothing
@@ -2522,15 +2520,6 @@ fn strokes_that_leave_the_shown_mesh_end_with_a_commit_frame() {
         is_commit(commit),
         "a grab that deleted nothing commits what it showed"
     );
-    let mut shown = Shown::default();
-    let whole = a
-        .frames
-        .iter()
-        .rposition(|f| frame_word(f, 2) & (4 | 32) == 0)
-        .expect("a whole frame");
-    for f in &a.frames[whole..] {
-        shown.take(f);
-    }
-    assert_eq!(shown, document_shown(addr));
+    assert_eq!(shown_since_whole(&a).1, document_shown(addr));
     assert_ne!(showing(&a).positions, start.positions, "the top moved");
 }
