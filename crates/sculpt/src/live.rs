@@ -311,11 +311,9 @@ pub struct LiveStroke {
     /// by the guard, which skips its count of the result's pieces while
     /// it can show from a frame's region that one piece stays one
     /// (`holey_topo::Options::one_piece`). Moving and remeshing keep a
-    /// piece whole.
-    one_piece: bool,
-    /// Whether `one_piece` has been counted or handed on (a drag never
-    /// counts it).
-    one_piece_known: bool,
+    /// piece whole. `None` until counted or handed on; a drag, which
+    /// never counts it, starts with `Some(false)` ("not known").
+    one_piece: Option<bool>,
     /// The surface's far field, kept between a paint stroke's frames
     /// (`holey_topo::FarField`): built by the engine when frames keep
     /// asking for it, and told of every change a frame and its remeshing
@@ -400,8 +398,7 @@ impl LiveStroke {
             remesh: None,
             cleanup: None,
             held: std::collections::HashSet::new(),
-            one_piece: false,
-            one_piece_known: settings.brush.is_drag(),
+            one_piece: settings.brush.is_drag().then_some(false),
             far: (!settings.brush.is_drag()).then(FarField::new),
             far_sound: true,
             remeshed: RemeshTally::default(),
@@ -426,9 +423,8 @@ impl LiveStroke {
         {
             self.far = Some(far);
         }
-        if handover.one_piece && !self.one_piece_known {
-            self.one_piece = true;
-            self.one_piece_known = true;
+        if handover.one_piece && self.one_piece.is_none() {
+            self.one_piece = Some(true);
         }
     }
 
@@ -546,12 +542,11 @@ impl LiveStroke {
                 }
                 // What the stroke knows of the surface it began on,
                 // counted before the first frame changes it.
-                if !self.one_piece_known {
-                    self.one_piece = holey_topo::is_one_piece(mesh);
-                    self.one_piece_known = true;
-                }
-                if self.remesh.is_none() && self.cleanup.is_none() {
-                    self.cleanup = Some(cleanup_options(mesh));
+                let one_piece = self
+                    .one_piece
+                    .get_or_insert_with(|| holey_topo::is_one_piece(mesh));
+                if self.remesh.is_none() {
+                    self.cleanup.get_or_insert_with(|| cleanup_options(mesh));
                 }
                 let mut step = PaintStep {
                     falloff: settings.falloff,
@@ -560,7 +555,7 @@ impl LiveStroke {
                     mask: &self.mask,
                     options: &self.options,
                     held: &mut self.held,
-                    one_piece: &mut self.one_piece,
+                    one_piece,
                     far: self.far.as_ref(),
                     remesh: self.remesh.as_ref(),
                     cleanup: self.cleanup.as_ref().and_then(Option::as_ref),
@@ -670,7 +665,7 @@ impl LiveStroke {
             connectivity_changed,
             topology_changed,
             corrected_odd,
-            one_piece: self.one_piece,
+            one_piece: self.one_piece.unwrap_or(false),
             seconds: started.elapsed().as_secs_f64(),
         })
     }
@@ -689,7 +684,7 @@ impl LiveStroke {
         let handover = match self.state {
             State::Paint { .. } if self.far_sound => Handover {
                 far_field: self.far,
-                one_piece: self.one_piece,
+                one_piece: self.one_piece.unwrap_or(false),
             },
             _ => Handover::default(),
         };

@@ -190,8 +190,13 @@ pub fn analyze(mesh: &PolyMesh) -> MeshInfo {
 /// (a pass over every corner's position fewer: the modeller counts its
 /// sculpture after every stroke).
 pub fn analyze_topology(mesh: &PolyMesh) -> (Counts, Surface, usize) {
-    let soup = soup::Soup::new(mesh);
-    let topo = topology::topology(&soup, mesh.positions.len(), false);
+    counted(&soup::Soup::new(mesh), mesh.positions.len())
+}
+
+/// The whole soup's counts over `vertex_slots` vertices, its surface and
+/// its number of components.
+fn counted(soup: &soup::Soup, vertex_slots: usize) -> (Counts, Surface, usize) {
+    let topo = topology::topology(soup, vertex_slots, false);
     let surface = topo.total.surface(topo.component_count);
     (topo.total, surface, topo.component_count)
 }
@@ -202,10 +207,8 @@ pub fn analyze_topology(mesh: &PolyMesh) -> (Counts, Surface, usize) {
 /// (`soup::Soup::of_triangles`): the modeller counts its sculpture, a
 /// million triangles, after every stroke.
 pub fn analyze_triangle_topology(mesh: &crate::tri::TriMesh) -> (Counts, Surface, usize) {
-    let soup = soup::Soup::of_triangles(mesh.positions.len(), &mesh.triangles);
-    let topo = topology::topology(&soup, mesh.positions.len(), false);
-    let surface = topo.total.surface(topo.component_count);
-    (topo.total, surface, topo.component_count)
+    let n = mesh.positions.len();
+    counted(&soup::Soup::of_triangles(n, &mesh.triangles), n)
 }
 
 /// Per-component measures, components numbered by smallest vertex index.
