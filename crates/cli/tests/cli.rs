@@ -1025,9 +1025,11 @@ fn crossing_and_many_solids_by_the_winding_number() {
 /// circumscribed spheres (radius 1), and the result is checked against
 /// the exact lens formula within the polyhedral gap. The shifted sphere's
 /// curve points meet the first's exactly in places (the icosphere is
-/// symmetric about x = ½), so the containment's cut merges points and the
-/// policy lets the exact arrangement answer; `--exact` keeps the
-/// containment's own first attempt, which the synthesized motion matches.
+/// symmetric about x = ½), so the containment's cut merges points. They
+/// are points, not faces on faces, and no triangle of the cut crosses
+/// anything: the policy keeps the containment's exact result, which the
+/// arrangement (`--winding`), the containment's own first attempt
+/// (`--exact`) and the synthesized motion match.
 #[test]
 fn union_of_two_spheres_is_one_closed_solid() {
     let dir = tmp();
@@ -1048,9 +1050,16 @@ fn union_of_two_spheres_is_one_closed_solid() {
         (v - want).abs() < 0.01 * want,
         "union volume {v}, expected about {want}"
     );
-    assert_eq!(report["method"], "winding");
+    assert_eq!(report["method"], "containment");
+    assert!(report["merged_points"].as_u64().unwrap() > 0);
+    assert_eq!(report["output_intersecting_pairs"], 0);
     assert_eq!(report["perturbation_retries"], 0);
     assert_eq!(report["intersection_curves"], 1);
+    let uw = dir.path().join("uw.ply");
+    let arranged = reported(dir.path(), &["union", s(&a), s(&b), s(&uw), "--winding"]);
+    assert_eq!(arranged["method"], "winding");
+    let vw = info(s(&uw), &[])["volume"].as_f64().unwrap();
+    assert!((v - vw).abs() < 1e-12 * vw, "{v} vs the arrangement's {vw}");
     assert!(report["seconds"]["total"].as_f64().is_some());
     // No self-intersection is left.
     assert_eq!(selfint(&u)["intersecting_pairs"], 0);

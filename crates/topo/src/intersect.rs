@@ -27,7 +27,7 @@ use std::cmp::Ordering;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering as AtomicOrdering};
 
 use glam::{DVec2, DVec3};
-use holey_geom::orient::{Sign, orient2d};
+use holey_geom::orient::{Sign, orient2d, orient3d};
 use holey_geom::{
     Aabb, BoxFrame, Bvh, SegEnd, SymPoint, edge_triangle_point, triangle_triangle_segment,
     triangle_triangle_triangle_point, triple_point,
@@ -122,6 +122,13 @@ pub struct Intersections {
     /// Of the candidates, those that gave no intersection segment (`candidates`
     /// minus the segments found).
     pub filtered: usize,
+    /// Of the candidates, the pairs whose triangles lie exactly in one
+    /// plane and are not told apart in a coordinate projection: where
+    /// they touch, the perturbation decides whether they overlap, and
+    /// the exact coordinates can put faces on faces (walls). Counted
+    /// where the stage prepared every triangle's plane (whole meshes and
+    /// two parts); 0 for a subset's pairs.
+    pub coplanar_candidates: usize,
 }
 
 impl Intersections {
@@ -348,6 +355,9 @@ fn pair_segment(tris: &[[u32; 3]], sym: &Symbolic<'_>, t1: u32, t2: u32) -> Opti
 struct Prepared {
     planes: Vec<Plane>,
     flat_stars: Option<Vec<bool>>,
+    /// Pairs tested whose triangles lie exactly in one plane and overlap
+    /// in every coordinate projection ([`Intersections::coplanar_candidates`]).
+    coplanar: AtomicUsize,
 }
 
 /// A triangle's plane as [`side_filter`] evaluates it, computed once: the
@@ -462,6 +472,18 @@ fn pair_segment_with(
         || (f2 == Side::Unsure && separated(p2, p1, s1))
     {
         return None;
+    }
+    // Exactly coplanar triangles leave every corner within rounding of
+    // the other's plane, so the exact test runs only after both filters
+    // were unsure.
+    if let Some(pre) = prepared
+        && f1 == Side::Unsure
+        && f2 == Side::Unsure
+        && p2
+            .iter()
+            .all(|&q| orient3d(p1[0], p1[1], p1[2], q) == Sign::Zero)
+    {
+        pre.coplanar.fetch_add(1, AtomicOrdering::Relaxed);
     }
     triangle_triangle_segment(sym.tri(tris[t1 as usize]), sym.tri(tris[t2 as usize]))
 }
@@ -697,6 +719,20 @@ fn segments(
     limit: usize,
     abort: &AtomicBool,
 ) -> Result<(Vec<Segment>, usize), IntersectError> {
+    segments_counted(mesh, positions, ids, candidates, limit, abort).map(|(s, c, _)| (s, c))
+}
+
+/// [`segments`], with how many candidates were exactly coplanar
+/// ([`Intersections::coplanar_candidates`]; 0 for
+/// [`Candidates::Among`], which tests without prepared planes).
+fn segments_counted(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    ids: &[u32],
+    candidates: Candidates<'_>,
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<(Vec<Segment>, usize, usize), IntersectError> {
     let sym = Symbolic { positions, ids };
     let tris = &mesh.triangles;
     let hits = AtomicUsize::new(0);
@@ -713,6 +749,7 @@ fn segments(
             Some(Prepared {
                 planes: Plane::all(tris, positions),
                 flat_stars: None,
+                coplanar: AtomicUsize::new(0),
             }),
             Vec::new(),
         ),
@@ -737,6 +774,7 @@ fn segments(
             let prepared = Prepared {
                 planes,
                 flat_stars: Some(flat_stars),
+                coplanar: AtomicUsize::new(0),
             };
             (Some(prepared), flat_patches)
         }
@@ -808,7 +846,10 @@ fn segments(
             triangles: tris.len(),
         });
     }
-    Ok((segs, candidates))
+    let coplanar = prepared
+        .as_ref()
+        .map_or(0, |pre| pre.coplanar.load(AtomicOrdering::Relaxed));
+    Ok((segs, candidates, coplanar))
 }
 
 /// Whether any two of `triangles` (of `mesh` at `positions`, with
@@ -942,6 +983,43 @@ pub fn crossing_pairs_within(mesh: &TriMesh, region: (DVec3, DVec3)) -> usize {
     intersecting_pair_count(&part, usize::MAX).unwrap_or(0)
 }
 
+/// [`crossing_pairs_involving`] of the triangles of `mesh` flagged in
+/// `marked` (one flag per triangle), against the others whose boxes meet
+/// one of theirs: every crossing pair a marked triangle takes part in.
+/// Where the unmarked triangles are known not to cross one another (the
+/// whole input triangles a cut kept), it is the count of the whole mesh,
+/// at the cost of the marked ones. Triangles with a corner out of range
+/// are left out.
+pub fn crossing_pairs_of_marked(mesh: &TriMesh, marked: &[bool]) -> usize {
+    let corners = |t: &[u32; 3]| {
+        t.iter()
+            .all(|&v| (v as usize) < mesh.positions.len())
+            .then(|| t.map(|v| mesh.positions[v as usize]))
+    };
+    let is_marked = |i: usize| marked.get(i).copied().unwrap_or(false);
+    let chosen: Vec<[DVec3; 3]> = (mesh.triangles.iter().enumerate())
+        .filter(|&(i, _)| is_marked(i))
+        .filter_map(|(_, t)| corners(t))
+        .collect();
+    if chosen.is_empty() {
+        return 0;
+    }
+    let boxes: Vec<Aabb> = chosen.iter().map(|p| Aabb::from_points(p)).collect();
+    let Ok(tree) = Bvh::build(&boxes) else {
+        return 0;
+    };
+    let rest: Vec<[DVec3; 3]> = (mesh.triangles.par_iter().enumerate())
+        .filter(|&(i, _)| !is_marked(i))
+        .filter_map(|(_, t)| corners(t))
+        .filter(|p| {
+            let mut meets = false;
+            tree.for_each_overlap(&Aabb::from_points(p), |_| meets = true);
+            meets
+        })
+        .collect();
+    crossing_pairs_involving(&chosen, &rest)
+}
+
 /// How many pairs of triangles cross (tested exactly, as
 /// [`intersections`] tests them) among `marked` and `rest` taken as one
 /// surface, counting only the pairs a `marked` triangle takes part in.
@@ -1069,7 +1147,8 @@ pub(crate) fn intersections_among(
 ) -> Result<Intersections, IntersectError> {
     let tris = &mesh.triangles;
     let sym = Symbolic { positions, ids };
-    let (mut segs, candidates) = segments(mesh, positions, ids, candidates, limit, abort)?;
+    let (mut segs, candidates, coplanar_candidates) =
+        segments_counted(mesh, positions, ids, candidates, limit, abort)?;
     // Copies of a repeated triangle ([`Distinct`]) add pairs the
     // descent never counted.
     let filtered = candidates.saturating_sub(segs.len());
@@ -1103,6 +1182,7 @@ pub(crate) fn intersections_among(
         cut_edges,
         candidates,
         filtered,
+        coplanar_candidates,
     })
 }
 

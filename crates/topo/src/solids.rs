@@ -315,9 +315,17 @@ pub fn solid_boolean(
                 // for their intersection). Solids that meet without a
                 // crossing in the perturbed world may touch at exact
                 // coordinates (a box resting on another kept as two boxes
-                // and a wall). In both, the arrangement answers first.
+                // and a wall). In both, the arrangement answers first,
+                // unless the merges are points where no face lies on a
+                // face and no sliver of the cut crosses anything (a solid
+                // against its mirror image): then the result stands.
                 let suspect = pair.suspect(&out);
-                if !suspect && pair.first_is_clean(&mut out, &mut best) {
+                let stands = if suspect {
+                    pair.clean_despite_merges(&mut out)
+                } else {
+                    pair.first_is_clean(&mut out, &mut best)
+                };
+                if stands {
                     Ok(out)
                 } else if let Some(mut w) = pair
                     .both_oriented()

@@ -66,8 +66,8 @@ use crate::clean_solids::needs_arrangement_when_closed;
 use crate::cut::{Cut, Deletion, cut};
 use crate::engine::{Options, Outcome, Report, Timings, TopoError, split_new_pinches};
 use crate::intersect::{
-    FramedTree, any_intersection_among, default_pair_limit, intersecting_pair_count,
-    intersections_among, triangle_boxes,
+    FramedTree, any_intersection_among, crossing_pairs_of_marked, default_pair_limit,
+    intersecting_pair_count, intersections_among, triangle_boxes,
 };
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::orient::orient_consistently;
@@ -661,6 +661,52 @@ impl<'a> PreparedPair<'a> {
         out.report.cut.merged_points > 0 || out.intersections.pairs.is_empty()
     }
 
+    /// Whether the exact attempt `out`, [`suspect`](Self::suspect) only
+    /// for the points its cut merged, is the answer anyway: the merges
+    /// are curve points meeting at exact coordinates (an edge crossing an
+    /// edge, a vertex on a face: a solid against its mirror image), not
+    /// faces lying on faces. Then, with both solids oriented, the
+    /// perturbed world's surface is the boundary of the Boolean, and at
+    /// exact coordinates it can only touch itself where points met,
+    /// which the cut glued; what can still go wrong is rounding there,
+    /// slivers of the cut that cross. So it must be:
+    /// - crossing the other solid somewhere (solids that only touch are
+    ///   the arrangement's to decide);
+    /// - free of exactly coplanar candidate pairs of A and B
+    ///   ([`Intersections::coplanar_candidates`]): without them no face
+    ///   of the result lies on another (no wall), and no merge glued
+    ///   points of a face's overlay;
+    /// - a closed 2-manifold;
+    /// - crossing itself nowhere, counted exactly among the triangles
+    ///   with a point of the cut ([`crossing_pairs_of_marked`]): the
+    ///   others are whole input triangles, which cross neither one
+    ///   another (a triangle of A crossing one of B would have been cut,
+    ///   and the check keeps each solid free of its own crossings) nor,
+    ///   but through a marked one, anything else. The count goes in the
+    ///   report: the whole output's, but for crossings an unchecked
+    ///   input brought along.
+    ///
+    /// The cost follows the cut, not the surface: on two 262k-triangle
+    /// spheres, one the other's mirror image (1,236 merged points), it
+    /// replaces the arrangement and a whole-output check.
+    pub(crate) fn clean_despite_merges(&self, out: &mut Outcome) -> bool {
+        if !self.both_oriented()
+            || out.intersections.pairs.is_empty()
+            || out.intersections.coplanar_candidates > 0
+            || !out.mesh.is_closed_manifold()
+        {
+            return false;
+        }
+        let origin = &out.vertex_origin;
+        let made = |v: u32| origin.get(v as usize).is_none_or(|&o| o == u32::MAX);
+        let marked: Vec<bool> = (out.mesh.triangles.par_iter())
+            .map(|t| t.iter().any(|&v| made(v)))
+            .collect();
+        let crossing = crossing_pairs_of_marked(&out.mesh, &marked);
+        out.report.output_intersecting_pairs = Some(crossing);
+        crossing == 0
+    }
+
     /// Both surfaces are closed and consistently oriented: their winding
     /// numbers mean what containment means.
     pub(crate) fn both_oriented(&self) -> bool {
@@ -685,6 +731,7 @@ impl<'a> PreparedPair<'a> {
         // volume).
         out.mesh.is_closed_manifold()
             && (!self.suspect(out)
+                || self.clean_despite_merges(out)
                 || (keep_if_clean(out, best)
                     && crate::coplanar::wall_groups(&out.mesh.positions, &out.mesh.triangles)
                         .is_empty()))

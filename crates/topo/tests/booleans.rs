@@ -319,6 +319,86 @@ fn spot_minus_a_copy_moved_a_fifth_of_its_width_has_no_pinched_vertex() {
     );
 }
 
+/// The shared `spot_triangulated.obj` against its images under the seven
+/// sign changes of its coordinates (mirrors in one, two or three axes,
+/// all exact), through the policy (`solid_boolean` with its defaults):
+/// each image meets spot where edges cross edges exactly, so every cut
+/// merges points, which sent every one of these to the winding-number
+/// arrangement and a whole-output check. Without coplanar candidates
+/// the containment's exact result stands where the triangles of its cut
+/// cross nothing, and it must be a clean solid (closed, a 2-manifold at
+/// edges and vertices, crossing itself nowhere, counted over the whole
+/// output here), classify points as the winding-number rule does, and
+/// have the arrangement's volume. Spot is its own mirror image in x, so
+/// that image lies on it face for face: the arrangement's.
+#[test]
+fn spot_and_its_mirror_images_through_the_policy() {
+    use holey_topo::solids::{BooleanOptions, Computed, Method, solid_boolean};
+    let dir =
+        holey_testkit::shared_meshes_or_return!("spot_and_its_mirror_images_through_the_policy");
+    let a = read_shared(&dir, "spot_triangulated.obj");
+    let signed_volume = |m: &TriMesh| -> f64 {
+        (m.triangles.iter())
+            .map(|t| {
+                let [p, q, r] = t.map(|v| m.positions[v as usize]);
+                p.dot(q.cross(r)) / 6.0
+            })
+            .sum()
+    };
+    for signs in 1..8u32 {
+        let s = DVec3::new(
+            if signs & 1 != 0 { -1.0 } else { 1.0 },
+            if signs & 2 != 0 { -1.0 } else { 1.0 },
+            if signs & 4 != 0 { -1.0 } else { 1.0 },
+        );
+        let mut b = map_positions(&a, |p| p * s);
+        if s.x * s.y * s.z < 0.0 {
+            // A mirror turns the surface inside out: turn it back.
+            for t in &mut b.triangles {
+                t.swap(1, 2);
+            }
+        }
+        for op in [
+            Operation::Union,
+            Operation::Intersection,
+            Operation::Difference,
+        ] {
+            let what = format!("spot {} spot by {s}", op.name());
+            let out = solid_boolean(&[&a, &b], op, &BooleanOptions::default())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let m = out.mesh();
+            if signs == 1 {
+                assert_eq!(out.method, Method::Winding, "{what}");
+            } else {
+                assert_eq!(out.method, Method::Containment, "{what}");
+                let Computed::Parity(parity) = &out.computed else {
+                    panic!("{what}: not the containment's outcome");
+                };
+                assert!(parity.report.cut.merged_points > 0, "{what}: no merge");
+                assert_eq!(parity.report.perturbation_retries, 0, "{what}");
+            }
+            assert!(m.is_closed_manifold(), "{what}");
+            assert!(!m.pinched_vertices().contains(&true), "{what}");
+            assert_eq!(self_intersecting_pairs(m), 0, "{what}");
+            assert_classifies_by_rule(&[&a, &b], op, m, 60, 3 + u64::from(signs), &what);
+            let arranged = solid_boolean(
+                &[&a, &b],
+                op,
+                &BooleanOptions {
+                    method: Some(Method::Winding),
+                    ..BooleanOptions::default()
+                },
+            )
+            .unwrap();
+            let (got, want) = (signed_volume(m), signed_volume(arranged.mesh()));
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs(),
+                "{what}: {got} vs {want}"
+            );
+        }
+    }
+}
+
 /// The shared `spot_triangulated.obj` and its copy turned a quarter turn
 /// about the vertical axis through its bounding box's centre: the exact
 /// result's cut merged points the perturbation kept apart, and rounding

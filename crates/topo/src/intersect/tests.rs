@@ -384,10 +384,10 @@ fn crossings_within_a_box_are_those_of_the_triangles_meeting_it() {
     assert_eq!(crossing_pairs_within(&broken, everything), l + r);
 }
 
-/// `crossing_pairs_involving` counts exactly the crossing pairs that a
-/// marked triangle takes part in: checked against every pair tested on
-/// its own (a two-triangle mesh each), for several markings of two
-/// overlapping octahedra.
+/// `crossing_pairs_involving` (and `crossing_pairs_of_marked`) count
+/// exactly the crossing pairs that a marked triangle takes part in:
+/// checked against every pair tested on its own (a two-triangle mesh
+/// each), for several markings of two overlapping octahedra.
 #[test]
 fn crossing_pairs_involving_counts_the_marked_triangles_pairs() {
     let mut m = octahedron(DVec3::ZERO, 1.0);
@@ -432,6 +432,8 @@ fn crossing_pairs_involving_counts_the_marked_triangles_pairs() {
             want,
             "{marking:?}"
         );
+        // The same, the marked triangles named by flag on the mesh.
+        assert_eq!(crossing_pairs_of_marked(&m, &marking), want, "{marking:?}");
         // Corners are shared by position, not by where they are listed:
         // a rest triangle given as a corner-wise copy (and turned to
         // start at another corner) meets its neighbours as before.
@@ -726,4 +728,29 @@ fn sliver_prisms_with_repeated_triangles_cross_as_every_pair_says() {
     let brute = brute_pairs(&m);
     assert!(brute.len() > 20, "the prisms cross: {}", brute.len());
     assert_eq!(run(&m).pairs, brute);
+}
+
+/// Candidate pairs lying exactly in one plane are counted, and only
+/// they: a triangle inside another in the plane x + y + z = 0 (integer
+/// corners, so exactly in it, a plane that is no coordinate plane), and
+/// in z = 0 one overlapping another; the same lifted by a hair or tilted
+/// by one corner; and two coplanar triangles whose boxes overlap though
+/// a line of the plane tells them apart.
+#[test]
+fn coplanar_candidates_are_the_pairs_in_one_plane() {
+    let count = |a: [DVec3; 3], b: [DVec3; 3]| run(&soup(&[a, b])).coplanar_candidates;
+    let slanted = tri([0.0, 0.0, 0.0], [4.0, -4.0, 0.0], [0.0, 4.0, -4.0]);
+    let inside = tri([1.0, 0.0, -1.0], [3.0, -2.0, -1.0], [1.0, 2.0, -3.0]);
+    assert_eq!(count(slanted, inside), 1, "inside, in x + y + z = 0");
+    let flat = tri([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let over = tri([0.25, 0.25, 0.0], [1.25, 0.25, 0.0], [0.25, 1.25, 0.0]);
+    assert_eq!(count(flat, over), 1, "overlapping in z = 0");
+    let lifted = over.map(|p| p + DVec3::new(0.0, 0.0, 1e-9));
+    assert_eq!(count(flat, lifted), 0, "a hair above");
+    let mut tilted = over;
+    tilted[2].z = 1e-9;
+    assert_eq!(count(flat, tilted), 0, "one corner off the plane");
+    // The boxes overlap; the line x + y = 1 separates the triangles.
+    let beside = tri([0.9, 0.9, 0.0], [0.6, 0.95, 0.0], [0.95, 0.6, 0.0]);
+    assert_eq!(count(flat, beside), 0, "apart in the plane");
 }
