@@ -326,6 +326,8 @@ pub fn solid_boolean(
                     pair.first_is_clean(&mut out, &mut best)
                 };
                 if stands {
+                    // The check of the result is part of the Boolean.
+                    out.report.timings.total = started.elapsed().as_secs_f64();
                     Ok(out)
                 } else if let Some(mut w) = pair
                     .both_oriented()
