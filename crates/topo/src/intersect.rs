@@ -709,23 +709,11 @@ pub(crate) fn framed_triangle_boxes(
 
 /// The intersection segments of every candidate pair of triangles (in the
 /// BVH descent's order, possibly repeated) and the number of candidate
-/// pairs tested; [`IntersectError::TooManyPairs`] past `limit` (see
-/// [`intersections_limited`]).
+/// pairs tested, and how many of those were exactly coplanar
+/// ([`Intersections::coplanar_candidates`]; 0 for [`Candidates::Among`],
+/// which tests without prepared planes); [`IntersectError::TooManyPairs`]
+/// past `limit` (see [`intersections_limited`]).
 fn segments(
-    mesh: &TriMesh,
-    positions: &[DVec3],
-    ids: &[u32],
-    candidates: Candidates<'_>,
-    limit: usize,
-    abort: &AtomicBool,
-) -> Result<(Vec<Segment>, usize), IntersectError> {
-    segments_counted(mesh, positions, ids, candidates, limit, abort).map(|(s, c, _)| (s, c))
-}
-
-/// [`segments`], with how many candidates were exactly coplanar
-/// ([`Intersections::coplanar_candidates`]; 0 for
-/// [`Candidates::Among`], which tests without prepared planes).
-fn segments_counted(
     mesh: &TriMesh,
     positions: &[DVec3],
     ids: &[u32],
@@ -907,6 +895,7 @@ fn all_segments(
         limit,
         abort,
     )
+    .map(|(found, candidates, _)| (found, candidates))
 }
 
 /// A surface's tree of every triangle's box, in the frame the boxes are
@@ -1148,7 +1137,7 @@ pub(crate) fn intersections_among(
     let tris = &mesh.triangles;
     let sym = Symbolic { positions, ids };
     let (mut segs, candidates, coplanar_candidates) =
-        segments_counted(mesh, positions, ids, candidates, limit, abort)?;
+        segments(mesh, positions, ids, candidates, limit, abort)?;
     // Copies of a repeated triangle ([`Distinct`]) add pairs the
     // descent never counted.
     let filtered = candidates.saturating_sub(segs.len());
