@@ -107,7 +107,9 @@ pub struct Options {
     /// Skip the exact check that the two solids are closed 2-manifolds
     /// that do not cross themselves (about the time of `holey selfint` on
     /// both): for inputs known to be such solids. If one does cross
-    /// itself, the result keeps its crossings.
+    /// itself, the result keeps its crossings, and the report's
+    /// `output_intersecting_pairs` may leave them out (where the cut
+    /// merged points, it counts only pairs with a triangle of the cut).
     #[arg(long, conflicts_with = "winding")]
     pub no_check: bool,
     /// Direction B arrives from, as x,y,z.
