@@ -1006,7 +1006,7 @@ pub fn crossing_pairs_of_marked(mesh: &TriMesh, marked: &[bool]) -> usize {
             meets
         })
         .collect();
-    crossing_pairs_involving(&chosen, &rest)
+    crossing_pairs_in_tree(&chosen, &rest, &tree)
 }
 
 /// How many pairs of triangles cross (tested exactly, as
@@ -1022,6 +1022,16 @@ pub fn crossing_pairs_of_marked(mesh: &TriMesh, marked: &[bool]) -> usize {
 /// Two surfaces that differ only in their marked triangles have the same
 /// unmarked pairs, so their full counts compare as these do.
 pub fn crossing_pairs_involving(marked: &[[DVec3; 3]], rest: &[[DVec3; 3]]) -> usize {
+    let boxes: Vec<Aabb> = marked.iter().map(|p| Aabb::from_points(p)).collect();
+    match Bvh::build(&boxes) {
+        Ok(tree) => crossing_pairs_in_tree(marked, rest, &tree),
+        Err(_) => 0,
+    }
+}
+
+/// [`crossing_pairs_involving`] with the tree of the marked triangles'
+/// boxes (primitive `i` is `marked[i]`) already built.
+fn crossing_pairs_in_tree(marked: &[[DVec3; 3]], rest: &[[DVec3; 3]], tree: &Bvh) -> usize {
     if marked.is_empty() {
         return 0;
     }
@@ -1038,10 +1048,6 @@ pub fn crossing_pairs_involving(marked: &[[DVec3; 3]], rest: &[[DVec3; 3]]) -> u
     let tris = &part.triangles;
     let bounds = |t: &[u32; 3]| Aabb::from_points(&t.map(|v| part.positions[v as usize]));
     let split = marked.len();
-    let boxes: Vec<Aabb> = tris[..split].iter().map(bounds).collect();
-    let Ok(tree) = Bvh::build(&boxes) else {
-        return 0;
-    };
     let sym = Symbolic {
         positions: &part.positions,
         ids: &ids,

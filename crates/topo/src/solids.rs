@@ -321,7 +321,7 @@ pub fn solid_boolean(
                 // against its mirror image): then the result stands.
                 let suspect = pair.suspect(&out);
                 let stands = if suspect {
-                    pair.clean_despite_merges(&mut out)
+                    out.mesh.is_closed_manifold() && pair.clean_despite_merges(&mut out)
                 } else {
                     pair.first_is_clean(&mut out, &mut best)
                 };

@@ -679,7 +679,8 @@ impl<'a> PreparedPair<'a> {
     ///   ([`Intersections::coplanar_candidates`]): without them no face
     ///   of the result lies on another (no wall), and no merge glued
     ///   points of a face's overlay;
-    /// - a closed 2-manifold;
+    /// - a closed 2-manifold (the caller's test: both callers make it
+    ///   anyway);
     /// - crossing itself nowhere, counted exactly among the triangles
     ///   with a point of the cut ([`crossing_pairs_of_marked`]): the
     ///   others are whole input triangles, which cross neither one
@@ -696,7 +697,6 @@ impl<'a> PreparedPair<'a> {
         if !self.both_oriented()
             || out.intersections.pairs.is_empty()
             || out.intersections.coplanar_candidates > 0
-            || !out.mesh.is_closed_manifold()
         {
             return false;
         }

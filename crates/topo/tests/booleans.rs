@@ -337,14 +337,6 @@ fn spot_and_its_mirror_images_through_the_policy() {
     let dir =
         holey_testkit::shared_meshes_or_return!("spot_and_its_mirror_images_through_the_policy");
     let a = read_shared(&dir, "spot_triangulated.obj");
-    let signed_volume = |m: &TriMesh| -> f64 {
-        (m.triangles.iter())
-            .map(|t| {
-                let [p, q, r] = t.map(|v| m.positions[v as usize]);
-                p.dot(q.cross(r)) / 6.0
-            })
-            .sum()
-    };
     for signs in 1..8u32 {
         let s = DVec3::new(
             if signs & 1 != 0 { -1.0 } else { 1.0 },
@@ -390,7 +382,7 @@ fn spot_and_its_mirror_images_through_the_policy() {
                 },
             )
             .unwrap();
-            let (got, want) = (signed_volume(m), signed_volume(arranged.mesh()));
+            let (got, want) = (volume(m), volume(arranged.mesh()));
             assert!(
                 (got - want).abs() <= 1e-12 * want.abs(),
                 "{what}: {got} vs {want}"
