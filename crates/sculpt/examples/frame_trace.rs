@@ -7,7 +7,7 @@
 //! frames as the modeler sent them.
 //!
 //! ```text
-//! cargo run --release -p holey-sculpt --example frame_trace -- MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--dump K]
+//! cargo run --release -p holey-sculpt --example frame_trace -- MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--no-window | --window-min N] [--dump K]
 //! ```
 //!
 //! A recorded stroke remeshes to the range the modeller derived from the
@@ -42,11 +42,33 @@ fn write_obj(path: &str, positions: &[glam::DVec3], tris: &[[u32; 3]]) -> std::i
     std::fs::write(path, s)
 }
 
+/// A hash of the mesh's exact content (position bits, triangles in
+/// order): two replays that agree bit for bit print the same.
+fn content_hash(mesh: &holey_topo::TriMesh) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for p in &mesh.positions {
+        p.to_array().map(f64::to_bits).hash(&mut h);
+    }
+    mesh.triangles.hash(&mut h);
+    h.finish()
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let no_remesh = args.iter().any(|a| a == "--no-remesh");
     let mesh_range = args.iter().any(|a| a == "--mesh-range");
     let no_audit = args.iter().any(|a| a == "--no-audit");
+    // The working window's threshold (`LiveStroke::set_window_min`):
+    // `--window-min 0` works in a window on any mesh, `--no-window` never.
+    let window_min: Option<usize> = if args.iter().any(|a| a == "--no-window") {
+        Some(usize::MAX)
+    } else {
+        args.iter()
+            .position(|a| a == "--window-min")
+            .and_then(|i| args.get(i + 1))
+            .and_then(|k| k.parse().ok())
+    };
     let (mut plain, mut changed): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
     let dump: Option<usize> = args
         .iter()
@@ -55,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|k| k.parse().ok());
     if args.len() < 3 {
         return Err(
-            "usage: frame_trace MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--dump K]"
+            "usage: frame_trace MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--no-window | --window-min N] [--dump K]"
                 .into(),
         );
     }
@@ -91,6 +113,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let first = stroke.path.first().copied().unwrap_or_default();
         let mut live = LiveStroke::begin(&mesh, settings, first, Options::default())?;
         live.take_over(std::mem::take(&mut kept));
+        if let Some(k) = window_min {
+            live.set_window_min(k);
+        }
         if !no_remesh {
             // The stroke's own range (the modeler records it), else the
             // file's, else one derived from the mesh the stroke starts on,
@@ -117,7 +142,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 write_obj("trace_after.obj", &end, &m.triangles)?;
                 println!("wrote trace_before.obj and trace_after.obj (frame {frame_no})");
             }
+            let t0 = std::time::Instant::now();
             let f = live.frame_together(dabs)?;
+            if std::env::var_os("STAMPS").is_some() { eprintln!("STAMP {frame_no} {:?} {:?}", t0, std::time::Instant::now()); }
             if dump == Some(frame_no) {
                 write_obj("trace_result.obj", &f.mesh.positions, &f.mesh.triangles)?;
                 println!("wrote trace_result.obj (after frame {frame_no})");
@@ -160,7 +187,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         mesh = done.mesh;
         kept = done.handover;
         // Each stroke's end is audited even with `--no-audit`.
-        println!("stroke {s} done: {}", SurfaceAudit::of(&mesh)?);
+        println!(
+            "stroke {s} done: {}; content {:016x}",
+            SurfaceAudit::of(&mesh)?,
+            content_hash(&mesh)
+        );
     }
     let summary = |v: &mut Vec<f64>| {
         v.sort_by(f64::total_cmp);

@@ -57,6 +57,7 @@ pub mod report;
 pub mod session;
 pub mod strokes;
 pub mod symmetry;
+mod window;
 
 pub use brush::{Brush, Falloff, PressureDrives, falloff};
 pub use live::{BrushSettings, FinishedStroke, Handover, LiveFrame, LiveStroke};

@@ -38,6 +38,7 @@ use crate::remesh::{
 };
 use crate::report::{Diagnostics, SculptError, StrokeReport};
 use crate::symmetry::{Mirror, Symmetry};
+use crate::window::{WINDOW_MIN_TRIANGLES, Window};
 
 /// The share of the bounding-box diagonal within which a move's first
 /// point must lie from the surface: a move picks a whole component, so it
@@ -331,6 +332,12 @@ pub struct LiveStroke {
     started: Instant,
     /// For a grab: the picked point and where it was dragged to.
     grab_tube: Option<(DVec3, DVec3)>,
+    /// The paint frames' working window ([`Window`]): built when a frame
+    /// reaches past the one before it, dropped when a frame changes
+    /// topology.
+    window: Option<Window>,
+    /// The mesh size from which paint frames work in a window.
+    window_min: usize,
 }
 
 impl LiveStroke {
@@ -408,6 +415,8 @@ impl LiveStroke {
             diagnostics: None,
             started: Instant::now(),
             grab_tube: None,
+            window: None,
+            window_min: WINDOW_MIN_TRIANGLES,
         })
     }
 
@@ -455,6 +464,16 @@ impl LiveStroke {
     /// turns it off.
     pub fn set_remesh(&mut self, remesh: Option<RemeshOptions>) {
         self.remesh = remesh;
+    }
+
+    /// Paint frames on a mesh of at least `triangles` triangles find what
+    /// their dabs touch in a working window kept from frame to frame,
+    /// instead of passes over the whole mesh (by default from
+    /// 131,072 triangles). The frames' results are the same either way,
+    /// bit for bit; only their cost differs. `usize::MAX` turns the window
+    /// off.
+    pub fn set_window_min(&mut self, triangles: usize) {
+        self.window_min = triangles;
     }
 
     /// Remeshing operations so far.
@@ -562,6 +581,8 @@ impl LiveStroke {
                     report: &mut self.report,
                     remeshed: &mut self.remeshed,
                     diagnostics: &mut self.diagnostics,
+                    window: &mut self.window,
+                    window_min: self.window_min,
                     connectivity_changed: false,
                     topology_changed: false,
                     hook_met: false,
@@ -720,9 +741,11 @@ impl LiveStroke {
             // The stretched region of a grab: within the radius of the
             // segment from the picked point to where it was dragged.
             let radius = self.settings.radius;
-            let active = remesh_active(&mesh, |p| {
-                point_segment_distance(p, tube.0, tube.1) < radius
-            });
+            let active = remesh_active(
+                &mesh,
+                |p| point_segment_distance(p, tube.0, tube.1) < radius,
+                None,
+            );
             if active.contains(&true) {
                 let r = remesh_in_place_checked(&mut mesh, &active, opts).map_err(|source| {
                     SculptError::Remesh {
@@ -749,6 +772,16 @@ impl LiveStroke {
 /// crumples the surface too much for one frame: 2⁶ = 64 sub-frames.
 pub const MAX_SUBFRAME_DEPTH: u32 = 6;
 
+/// How far past a frame's reach a new working window reaches, in widest
+/// dab radii: room for the frames after it, as the stroke moves on.
+const WINDOW_GROWTH: f64 = 1.5;
+
+/// How much room past a frame's reach the window it has must leave, in
+/// widest dab radii, to be kept: enough for the rings around the reached
+/// vertices to lie inside it as a rule (where they do not, a pass goes
+/// over the whole mesh, and the result is the same).
+const WINDOW_SLACK: f64 = 0.25;
+
 /// What a paint frame writes into its stroke.
 struct PaintStep<'a> {
     falloff: Falloff,
@@ -770,6 +803,10 @@ struct PaintStep<'a> {
     report: &'a mut StrokeReport,
     remeshed: &'a mut RemeshTally,
     diagnostics: &'a mut Option<Diagnostics>,
+    /// The stroke's working window ([`LiveStroke`]'s `window`).
+    window: &'a mut Option<Window>,
+    /// From how many triangles frames use it.
+    window_min: usize,
     connectivity_changed: bool,
     topology_changed: bool,
     /// A snake hook's step changed the topology (the Euler
@@ -844,6 +881,30 @@ impl PaintStep<'_> {
         self.changed_within(r.changed);
         self.remeshed.add(&r);
         Ok(())
+    }
+
+    /// The stroke's working window for a frame of `reach`, on a mesh large
+    /// enough for one: the window it has when that holds the reach's box
+    /// with [`WINDOW_SLACK`] of the widest radius to spare, otherwise a
+    /// new one over the box grown by [`WINDOW_GROWTH`] of it (one pass
+    /// over the mesh), so that the next frames of a stroke moving on find
+    /// it still holds theirs.
+    fn window_over(&mut self, mesh: &TriMesh, reach: &Reach) -> Option<&Window> {
+        if mesh.triangles.len() < self.window_min || !(reach.lo.is_finite() && reach.hi.is_finite())
+        {
+            *self.window = None;
+            return None;
+        }
+        let slack = DVec3::splat(WINDOW_SLACK * reach.widest());
+        let keeps = self
+            .window
+            .as_ref()
+            .is_some_and(|w| w.holds_box(reach.lo - slack, reach.hi + slack));
+        if !keeps {
+            let grow = DVec3::splat(WINDOW_GROWTH * reach.widest());
+            *self.window = Some(Window::build(mesh, reach.lo - grow, reach.hi + grow));
+        }
+        self.window.as_ref()
     }
 
     /// Tells the stroke's kept far field that the surface changed within
@@ -943,7 +1004,8 @@ impl PaintStep<'_> {
         // them, as between frames; the motion is resolved once. The steps
         // run on the piece of the surface they can read, not on the whole
         // mesh.
-        let mut piece = Piece::around(mesh, &|p| reach.contains(p));
+        let window = self.window_over(mesh, &reach);
+        let mut piece = Piece::around(mesh, &|p| reach.contains(p), window);
         let start = piece.mesh.positions.clone();
         let long =
             |piece: &Piece| substeps_of(&start, &piece.mesh.triangles, &piece.mesh.positions) > 1;
@@ -1027,7 +1089,8 @@ impl PaintStep<'_> {
         // on the whole mesh, as they always were.)
         let on_piece = matches!(dab, Dab::At(_)) && brush != Brush::Layer;
         let (end, steps) = if on_piece {
-            let piece = Piece::around(mesh, &|p| reach.contains(p));
+            let window = self.window_over(mesh, &reach);
+            let piece = Piece::around(mesh, &|p| reach.contains(p), window);
             let moved = self.end(&piece.mesh, brush, dab, radius, strength);
             // Every triangle at a vertex the dab moves is in the piece,
             // in mesh order: the step is the whole mesh's.
@@ -1038,6 +1101,9 @@ impl PaintStep<'_> {
             }
             (end, steps)
         } else {
+            // Not painted on a piece: the window's promise (only what the
+            // reach admits moves) is not checked here.
+            *self.window = None;
             let end = self.end(mesh, brush, dab, radius, strength);
             let steps = substeps(mesh, &end);
             (end, steps)
@@ -1145,14 +1211,27 @@ impl PaintStep<'_> {
                 one_piece: *self.one_piece,
                 ..*self.options
             };
+            // The window survives a frame that only moves vertices its
+            // box held (every vertex the reach admits); a frame that
+            // changes topology renumbers too much to follow.
+            let window = self
+                .window
+                .take()
+                .filter(|w| w.holds_box(reach.lo, reach.hi));
             let run = if sure_only {
                 topology_change_guarded_if_sure(mesh, end, &options, &already, self.far)
             } else {
                 topology_change_guarded_holding(mesh, end, &options, &already, self.far).map(Some)
             };
             match run {
-                Ok(None) => return Ok(Settled::TooCrumpled),
+                Ok(None) => {
+                    *self.window = window;
+                    return Ok(Settled::TooCrumpled);
+                }
                 Ok(Some(guarded)) => {
+                    if guarded.local.positions_only {
+                        *self.window = window;
+                    }
                     *self.one_piece = guarded.local.one_piece;
                     self.changed_within(guarded.local.changed);
                     self.held
@@ -1193,6 +1272,7 @@ impl PaintStep<'_> {
                     }
                 }
                 Err(TopoError::Intersections(IntersectError::TooManyPairs { .. })) => {
+                    *self.window = window;
                     return Ok(Settled::TooCrumpled);
                 }
                 Err(e) => return Err(StepError::Topo(e)),
@@ -1201,14 +1281,26 @@ impl PaintStep<'_> {
         if let Some(opts) = self.remesh {
             // After the topology change (§4): the vertices the brush
             // reaches, at their new positions.
-            let active = remesh_active(mesh, |p| {
-                reach.contains(p) && !self.mask.contains(&position_key(p))
-            });
+            // The window holds every vertex the reach admits, or is not
+            // used.
+            if self
+                .window
+                .as_ref()
+                .is_some_and(|w| !w.holds_box(reach.lo, reach.hi))
+            {
+                *self.window = None;
+            }
+            let active = remesh_active(
+                mesh,
+                |p| reach.contains(p) && !self.mask.contains(&position_key(p)),
+                self.window.as_ref(),
+            );
             if active.contains(&true) {
                 // Once the guard has checked the mesh, remeshing need not.
                 let r = if guarded {
-                    remesh_valid_in_place_checked(mesh, &active, opts)
+                    remesh_valid_in_place_checked(mesh, &active, opts, self.window.as_mut())
                 } else {
+                    *self.window = None;
                     remesh_in_place_checked(mesh, &active, opts)
                 }
                 .map_err(StepError::Remesh)?;
@@ -1244,28 +1336,61 @@ struct Piece {
 }
 
 impl Piece {
-    fn around(mesh: &TriMesh, reaches: &(dyn Fn(DVec3) -> bool + Sync)) -> Piece {
+    /// The piece of `mesh` around the vertices `reaches` admits. With a
+    /// `window` whose box holds every such vertex ([`Window`]), the passes
+    /// read the window's lists instead of the whole mesh: the first ring's
+    /// triangles all meet its box, and so do the second ring's when the
+    /// first ring's vertices lie in it (otherwise the second ring is found
+    /// in the whole mesh). The piece is the same either way.
+    fn around(
+        mesh: &TriMesh,
+        reaches: &(dyn Fn(DVec3) -> bool + Sync),
+        window: Option<&Window>,
+    ) -> Piece {
         // Each pass over the whole mesh runs in parallel runs and gathers
         // what the piece needs, which is small beside it.
         let n = mesh.positions.len();
-        let near: Vec<bool> = mesh
-            .positions
-            .par_iter()
-            .with_min_len(PARALLEL_RUN)
-            .map(|&p| reaches(p))
-            .collect();
-        // The first ring: the vertices of the triangles at a reached one.
-        let touching = |ring: &[bool]| triangles_with_vertex(&mesh.triangles, |v| ring[v as usize]);
-        let mut ring = vec![false; n];
-        for t in touching(&near) {
-            for v in mesh.triangles[t] {
-                ring[v as usize] = true;
+        let mut near = vec![false; n];
+        match window {
+            Some(w) => {
+                let picked: Vec<u32> = w
+                    .vertices()
+                    .par_iter()
+                    .with_min_len(PARALLEL_RUN)
+                    .copied()
+                    .filter(|&v| reaches(mesh.positions[v as usize]))
+                    .collect();
+                for v in picked {
+                    near[v as usize] = true;
+                }
             }
+            None => near
+                .par_iter_mut()
+                .with_min_len(PARALLEL_RUN)
+                .zip(&mesh.positions)
+                .for_each(|(near, &p)| *near = reaches(p)),
         }
-        drop(near);
+        let touching = |ring: &[bool], window: Option<&Window>| match window {
+            Some(w) => w.triangles_with_vertex(&mesh.triangles, |v| ring[v as usize]),
+            None => triangles_with_vertex(&mesh.triangles, |v| ring[v as usize]),
+        };
+        // The first ring: the vertices of the triangles at a reached one,
+        // in mesh order.
+        let mut first: Vec<u32> = touching(&near, window)
+            .into_iter()
+            .flat_map(|t| mesh.triangles[t])
+            .collect();
+        first.sort_unstable();
+        first.dedup();
+        let mut ring = near;
+        ring.fill(false);
+        for &v in &first {
+            ring[v as usize] = true;
+        }
+        let window = window.filter(|w| w.holds_all(mesh, first.iter().copied()));
         // And every vertex at the position of one of them: only those in
-        // the ring's box need their position looked up.
-        let first: Vec<u32> = (0..n as u32).filter(|&v| ring[v as usize]).collect();
+        // the ring's box need their position looked up (in the window,
+        // when that holds the box).
         let keys: rustc_hash::FxHashSet<[u64; 3]> = first
             .iter()
             .map(|&v| position_key(mesh.positions[v as usize]))
@@ -1276,25 +1401,30 @@ impl Piece {
                 Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
             },
         ) {
-            let copies: Vec<usize> = mesh
-                .positions
-                .par_iter()
-                .with_min_len(PARALLEL_RUN)
-                .enumerate()
-                .filter(|&(v, p)| {
-                    !ring[v]
-                        && p.cmpge(lo).all()
-                        && p.cmple(hi).all()
-                        && keys.contains(&position_key(*p))
-                })
-                .map(|(v, _)| v)
-                .collect();
+            let copy = |v: usize| {
+                let p = mesh.positions[v];
+                !ring[v] && p.cmpge(lo).all() && p.cmple(hi).all() && keys.contains(&position_key(p))
+            };
+            let copies: Vec<usize> = match window {
+                Some(w) => w
+                    .vertices()
+                    .par_iter()
+                    .with_min_len(PARALLEL_RUN)
+                    .map(|&v| v as usize)
+                    .filter(|&v| copy(v))
+                    .collect(),
+                None => (0..n)
+                    .into_par_iter()
+                    .with_min_len(PARALLEL_RUN)
+                    .filter(|&v| copy(v))
+                    .collect(),
+            };
             for v in copies {
                 ring[v] = true;
             }
         }
         // The second ring's triangles, and their vertices in mesh order.
-        let kept: Vec<[u32; 3]> = touching(&ring)
+        let kept: Vec<[u32; 3]> = touching(&ring, window)
             .into_iter()
             .map(|t| mesh.triangles[t])
             .collect();
@@ -1543,27 +1673,54 @@ fn cleanup_options(mesh: &TriMesh) -> Option<RemeshOptions> {
 /// of a seam split or collapsed alone would open a crack there, so seams
 /// are left as they are (the collapse of a neighbour onto them never
 /// moves them: inactive vertices stay put).
-fn remesh_active(mesh: &TriMesh, near: impl Fn(DVec3) -> bool + Sync) -> Vec<bool> {
-    let mut active: Vec<bool> = mesh
-        .positions
-        .par_iter()
-        .with_min_len(PARALLEL_RUN)
-        .map(|&p| near(p))
-        .collect();
+///
+/// With a `window` whose box holds every vertex `near` picks, only the
+/// window's vertices are asked.
+fn remesh_active(
+    mesh: &TriMesh,
+    near: impl Fn(DVec3) -> bool + Sync,
+    window: Option<&Window>,
+) -> Vec<bool> {
+    let (mut active, picked): (Vec<bool>, Vec<u32>) = match window {
+        Some(w) => {
+            let picked: Vec<u32> = w
+                .vertices()
+                .par_iter()
+                .with_min_len(PARALLEL_RUN)
+                .copied()
+                .filter(|&v| near(mesh.positions[v as usize]))
+                .collect();
+            let mut active = vec![false; mesh.positions.len()];
+            for &v in &picked {
+                active[v as usize] = true;
+            }
+            (active, picked)
+        }
+        None => {
+            let active: Vec<bool> = mesh
+                .positions
+                .par_iter()
+                .with_min_len(PARALLEL_RUN)
+                .map(|&p| near(p))
+                .collect();
+            let picked = (0..mesh.positions.len() as u32)
+                .filter(|&v| active[v as usize])
+                .collect();
+            (active, picked)
+        }
+    };
     let key = holey_geom::position_key;
     let mut first: std::collections::HashMap<[u64; 3], u32> = std::collections::HashMap::new();
     let mut copies: Vec<u32> = Vec::new();
-    for (v, p) in mesh.positions.iter().enumerate() {
-        if !active[v] {
-            continue;
-        }
+    for v in picked {
+        let p = &mesh.positions[v as usize];
         match first.entry(key(*p)) {
             std::collections::hash_map::Entry::Vacant(e) => {
-                e.insert(v as u32);
+                e.insert(v);
             }
             std::collections::hash_map::Entry::Occupied(e) => {
                 copies.push(*e.get());
-                copies.push(v as u32);
+                copies.push(v);
             }
         }
     }

@@ -45,6 +45,7 @@ use holey_topo::mesh::MeshError;
 use rayon::prelude::*;
 
 use crate::strokes::Remesh;
+use crate::window::Window;
 
 /// Parameters of [`remesh_with`]. [`RemeshOptions::new`] takes the edge
 /// range of a stroke file and the authors' angle bounds, 5° and 170°.
@@ -268,7 +269,7 @@ pub fn remesh_in_place(
     options: &RemeshOptions,
 ) -> Result<RemeshReport, RemeshError> {
     mesh.check().map_err(RemeshError::Mesh)?;
-    remesh_run(mesh, active, options, false)
+    remesh_run(mesh, active, options, false, None)
 }
 
 /// [`remesh_in_place`] that never makes the surface intersect itself
@@ -285,20 +286,24 @@ pub fn remesh_in_place_checked(
     options: &RemeshOptions,
 ) -> Result<RemeshReport, RemeshError> {
     mesh.check().map_err(RemeshError::Mesh)?;
-    remesh_run(mesh, active, options, true)
+    remesh_run(mesh, active, options, true, None)
 }
 
 /// [`remesh_in_place_checked`] of a mesh known to be valid: a live
 /// stroke's, which the guarded topology change has just checked and
 /// rebuilt. The mesh is not read once more for its check (a whole-mesh
-/// pass, a few milliseconds a frame at a million triangles).
+/// pass, a few milliseconds a frame at a million triangles). With a
+/// `window` whose box holds every `active` vertex, the run finds its
+/// work set and the triangles its check compares against in the window
+/// where that is exact, and tells the window what it wrote.
 pub(crate) fn remesh_valid_in_place_checked(
     mesh: &mut TriMesh,
     active: &[bool],
     options: &RemeshOptions,
+    window: Option<&mut Window>,
 ) -> Result<RemeshReport, RemeshError> {
     debug_assert!(mesh.check().is_ok());
-    remesh_run(mesh, active, options, true)
+    remesh_run(mesh, active, options, true, window)
 }
 
 /// Loads the work set of `mesh` (checked by the caller), runs the passes,
@@ -311,6 +316,7 @@ fn remesh_run(
     active: &[bool],
     options: &RemeshOptions,
     checked: bool,
+    window: Option<&mut Window>,
 ) -> Result<RemeshReport, RemeshError> {
     options.check()?;
     if active.len() != mesh.positions.len() {
@@ -320,7 +326,7 @@ fn remesh_run(
         });
     }
     let mut report = RemeshReport::default();
-    let Some(mut work) = Work::load(mesh, active, options, &mut report) else {
+    let Some(mut work) = Work::load(mesh, active, options, &mut report, window.as_deref()) else {
         return Ok(report);
     };
     for _ in 0..options.passes {
@@ -336,14 +342,19 @@ fn remesh_run(
     // Checked only when the run changed something (most frames of a
     // stroke over a remeshed surface change nothing).
     let changed = report.splits + report.collapses + report.flips > 0;
-    if checked && changed && work.worse_than(mesh) {
+    if checked && changed && work.worse_than(mesh, window.as_deref()) {
         report.undone = true;
         return Ok(report);
     }
     if changed {
         report.changed = work.bounds(mesh);
     }
-    work.store(mesh, &mut report);
+    let written = work.store(mesh, &mut report);
+    if let Some(w) = window {
+        let mut vertices = report.new_vertices.clone();
+        vertices.extend(report.renumbered.iter().map(|&(_, to)| to));
+        w.written(mesh, &written, &vertices);
+    }
     Ok(report)
 }
 
@@ -365,7 +376,10 @@ impl Changes {
     /// unmade one has a box meeting that triangle's, so it is among
     /// these. A triangle's box misses the region exactly when its three
     /// corners lie beyond one face of it ([`Aabb::outcode`]).
-    fn rest(&self, mesh: &TriMesh) -> Vec<[DVec3; 3]> {
+    ///
+    /// With a `window` whose box holds the region, the window's triangles
+    /// are all that can meet it ([`Window`]).
+    fn rest(&self, mesh: &TriMesh, window: Option<&Window>) -> Vec<[DVec3; 3]> {
         let (lo, hi) = self
             .made
             .iter()
@@ -375,6 +389,21 @@ impl Changes {
                 (lo.min(p), hi.max(p))
             });
         let region = Aabb::new(lo, hi);
+        let kept = |slot: usize, t: &[u32; 3], code: &dyn Fn(u32) -> u8| {
+            code(t[0]) & code(t[1]) & code(t[2]) == 0
+                && self.unmade_slots.binary_search(&(slot as u32)).is_err()
+        };
+        if let Some(w) = window.filter(|w| w.holds_box(lo, hi)) {
+            let code = |v: u32| region.outcode(mesh.positions[v as usize]);
+            return w
+                .triangles()
+                .par_iter()
+                .with_min_len(PARALLEL_RUN)
+                .map(|&slot| (slot as usize, &mesh.triangles[slot as usize]))
+                .filter(|(slot, t)| kept(*slot, t, &code))
+                .map(|(_, t)| t.map(|v| mesh.positions[v as usize]))
+                .collect();
+        }
         let code: Vec<u8> = mesh
             .positions
             .par_iter()
@@ -385,10 +414,7 @@ impl Changes {
             .par_iter()
             .with_min_len(PARALLEL_RUN)
             .enumerate()
-            .filter(|(slot, t)| {
-                code[t[0] as usize] & code[t[1] as usize] & code[t[2] as usize] == 0
-                    && self.unmade_slots.binary_search(&(*slot as u32)).is_err()
-            })
+            .filter(|(slot, t)| kept(*slot, t, &|v| code[v as usize]))
             .map(|(_, t)| t.map(|v| mesh.positions[v as usize]))
             .collect()
     }
@@ -544,13 +570,21 @@ impl Work {
         active: &[bool],
         opts: &RemeshOptions,
         report: &mut RemeshReport,
+        window: Option<&Window>,
     ) -> Option<Work> {
         let n = mesh.positions.len();
+        // The window holds every triangle at an active vertex (the
+        // caller's promise); the rings of their vertices, when it holds
+        // those vertices too.
+        let triangles_with_vertex = |pick: &(dyn Fn(u32) -> bool + Sync), exact: bool| match window {
+            Some(w) if exact => w.triangles_with_vertex(&mesh.triangles, pick),
+            _ => triangles_with_vertex(&mesh.triangles, pick),
+        };
         let mut local = vec![NONE; n];
         let mut global = Vec::new();
         // Scan 1: the vertices of triangles with an active vertex get
         // their whole rings loaded.
-        let first = triangles_with_vertex(&mesh.triangles, |v| active[v as usize]);
+        let first = triangles_with_vertex(&|v| active[v as usize], true);
         report.active_triangles += first.len();
         for &slot in &first {
             for v in mesh.triangles[slot] {
@@ -565,7 +599,8 @@ impl Work {
         }
         let full_count = global.len() as u32;
         // Scan 2: every triangle around those vertices.
-        let around = triangles_with_vertex(&mesh.triangles, |v| local[v as usize] < full_count);
+        let in_window = window.is_some_and(|w| w.holds_all(mesh, global.iter().copied()));
+        let around = triangles_with_vertex(&|v| local[v as usize] < full_count, in_window);
         let mut tris = Vec::with_capacity(around.len());
         let mut origin = Vec::with_capacity(around.len());
         for slot in around {
@@ -1364,17 +1399,19 @@ impl Work {
     /// counts compare as the counts of pairs a made (or unmade) triangle
     /// takes part in do ([`crossing_pairs_involving`]). The start is
     /// counted only when the result has any.
-    fn worse_than(&self, mesh: &TriMesh) -> bool {
+    fn worse_than(&self, mesh: &TriMesh, window: Option<&Window>) -> bool {
         let changes = self.changes(mesh);
         if changes.made_flat > 0 && changes.made_flat > changes.unmade_flat {
             return true;
         }
-        let rest = changes.rest(mesh);
+        let rest = changes.rest(mesh, window);
         let after = crossing_pairs_involving(&changes.made, &rest);
         after > 0 && after > crossing_pairs_involving(&changes.unmade, &rest)
     }
 
-    fn store(self, mesh: &mut TriMesh, report: &mut RemeshReport) {
+    /// Returns the triangle slots written: rewritten, filled, appended,
+    /// or moved into by [`fill_holes`].
+    fn store(self, mesh: &mut TriMesh, report: &mut RemeshReport) -> Vec<u32> {
         let nl = self.pos.len();
         let mut free_v: Vec<u32> = Vec::new();
         let mut final_id = vec![NONE; nl];
@@ -1411,11 +1448,15 @@ impl Work {
         // Triangles: changed ones in place, new ones into freed slots.
         let mut free_t: Vec<u32> = Vec::new();
         let mut fresh: Vec<[u32; 3]> = Vec::new();
+        let mut written = Vec::new();
         for (i, t) in self.tris.iter().enumerate() {
             let mapped = t.map(|v| final_id[v as usize]);
             match (self.alive_t[i], self.origin[i]) {
                 (true, NONE) => fresh.push(mapped),
-                (true, slot) => mesh.triangles[slot as usize] = mapped,
+                (true, slot) => {
+                    mesh.triangles[slot as usize] = mapped;
+                    written.push(slot);
+                }
                 (false, NONE) => {}
                 (false, slot) => free_t.push(slot),
             }
@@ -1425,16 +1466,21 @@ impl Work {
         let mut holes_t = Vec::new();
         for &slot in &free_t {
             match fresh.next() {
-                Some(t) => mesh.triangles[slot as usize] = t,
+                Some(t) => {
+                    mesh.triangles[slot as usize] = t;
+                    written.push(slot);
+                }
                 None => holes_t.push(slot),
             }
         }
+        let appended = mesh.triangles.len() as u32;
         mesh.triangles.extend(fresh);
-        fill_holes(&mut mesh.triangles, &holes_t, |_, _| {});
+        written.extend(appended..mesh.triangles.len() as u32);
+        fill_holes(&mut mesh.triangles, &holes_t, |_, to| written.push(to as u32));
         // Vertices: the last ones move into the slots left free.
         let holes_v = &free_v[next_free..];
         if holes_v.is_empty() {
-            return;
+            return written;
         }
         let mut moves = Vec::new();
         fill_holes(&mut mesh.positions, holes_v, |from, to| {
@@ -1456,6 +1502,7 @@ impl Work {
             }
         }
         report.renumbered = moves;
+        written
     }
 }
 
