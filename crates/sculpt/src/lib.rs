@@ -57,7 +57,6 @@ pub mod report;
 pub mod session;
 pub mod strokes;
 pub mod symmetry;
-mod window;
 
 pub use brush::{Brush, Falloff, PressureDrives, falloff};
 pub use live::{BrushSettings, FinishedStroke, Handover, LiveFrame, LiveStroke};

@@ -21,8 +21,9 @@ use holey_mesh::PARALLEL_RUN;
 use holey_mesh::tri::triangles_with_vertex;
 use holey_topo::intersect::IntersectError;
 use holey_topo::{
-    Accumulator, FarField, Options, Report, TopoError, TriMesh, topology_change_guarded_holding,
-    topology_change_guarded_if_sure,
+    Accumulator, FarField, Options, Report, TopoError, TriMesh, Window,
+    topology_change_guarded_holding, topology_change_guarded_holding_in,
+    topology_change_guarded_if_sure, topology_change_guarded_if_sure_in,
 };
 use rayon::prelude::*;
 
@@ -38,7 +39,6 @@ use crate::remesh::{
 };
 use crate::report::{Diagnostics, SculptError, StrokeReport};
 use crate::symmetry::{Mirror, Symmetry};
-use crate::window::{WINDOW_MIN_TRIANGLES, Window};
 
 /// The share of the bounding-box diagonal within which a move's first
 /// point must lie from the surface: a move picks a whole component, so it
@@ -338,6 +338,11 @@ pub struct LiveStroke {
     window: Option<Window>,
     /// The mesh size from which paint frames work in a window.
     window_min: usize,
+    /// The engine has checked the paint mesh (indices, finite
+    /// positions) at an earlier frame; everything since is the engine's
+    /// and the remesher's making, so a frame in a window need only check
+    /// what moves.
+    engine_checked: bool,
 }
 
 impl LiveStroke {
@@ -417,6 +422,7 @@ impl LiveStroke {
             grab_tube: None,
             window: None,
             window_min: WINDOW_MIN_TRIANGLES,
+            engine_checked: false,
         })
     }
 
@@ -469,7 +475,7 @@ impl LiveStroke {
     /// Paint frames on a mesh of at least `triangles` triangles find what
     /// their dabs touch in a working window kept from frame to frame,
     /// instead of passes over the whole mesh (by default from
-    /// 131,072 triangles). The frames' results are the same either way,
+    /// 32,768 triangles). The frames' results are the same either way,
     /// bit for bit; only their cost differs. `usize::MAX` turns the window
     /// off.
     pub fn set_window_min(&mut self, triangles: usize) {
@@ -583,6 +589,7 @@ impl LiveStroke {
                     diagnostics: &mut self.diagnostics,
                     window: &mut self.window,
                     window_min: self.window_min,
+                    engine_checked: &mut self.engine_checked,
                     connectivity_changed: false,
                     topology_changed: false,
                     hook_met: false,
@@ -772,6 +779,11 @@ impl LiveStroke {
 /// crumples the surface too much for one frame: 2⁶ = 64 sub-frames.
 pub const MAX_SUBFRAME_DEPTH: u32 = 6;
 
+/// The size of mesh from which a live stroke works in a window
+/// ([`LiveStroke::set_window_min`]): below it a pass over the whole mesh
+/// costs about what building the window does.
+const WINDOW_MIN_TRIANGLES: usize = 2 * PARALLEL_RUN;
+
 /// How far past a frame's reach a new working window reaches, in widest
 /// dab radii: room for the frames after it, as the stroke moves on.
 const WINDOW_GROWTH: f64 = 1.5;
@@ -807,6 +819,8 @@ struct PaintStep<'a> {
     window: &'a mut Option<Window>,
     /// From how many triangles frames use it.
     window_min: usize,
+    /// [`LiveStroke`]'s `engine_checked`.
+    engine_checked: &'a mut bool,
     connectivity_changed: bool,
     topology_changed: bool,
     /// A snake hook's step changed the topology (the Euler
@@ -1171,9 +1185,26 @@ impl PaintStep<'_> {
         // A frame that moves nothing cannot collide; skipping it also
         // keeps a brush that wanders off the surface from re-cutting
         // intersections the mesh already had.
-        // Whether the guard checked the mesh and rebuilt it this frame.
-        let guarded = end != mesh.positions;
-        if guarded {
+        // The window (kept only if it holds every vertex the reach admits,
+        // so every vertex that can move) survives a frame that only moves
+        // vertices; a frame that changes topology renumbers too much to
+        // follow.
+        let window = self
+            .window
+            .take()
+            .filter(|w| w.holds_box(reach.lo, reach.hi));
+        // Whether the guard checked the mesh and rebuilt it this frame
+        // (only the window's vertices can have moved).
+        let guarded = match &window {
+            Some(w) => w
+                .vertices()
+                .iter()
+                .any(|&v| end[v as usize] != mesh.positions[v as usize]),
+            None => end != mesh.positions,
+        };
+        if !guarded {
+            *self.window = window;
+        } else {
             // Only the region the brush reaches is recomputed, and never
             // left worse than it was (the guard).
             // Vertices an earlier frame of the stroke had to hold stay
@@ -1211,18 +1242,25 @@ impl PaintStep<'_> {
                 one_piece: *self.one_piece,
                 ..*self.options
             };
-            // The window survives a frame that only moves vertices its
-            // box held (every vertex the reach admits); a frame that
-            // changes topology renumbers too much to follow.
-            let window = self
-                .window
-                .take()
-                .filter(|w| w.holds_box(reach.lo, reach.hi));
-            let run = if sure_only {
-                topology_change_guarded_if_sure(mesh, end, &options, &already, self.far)
-            } else {
-                topology_change_guarded_holding(mesh, end, &options, &already, self.far).map(Some)
+            let far = self.far;
+            let run = match window.as_ref().filter(|_| *self.engine_checked) {
+                Some(w) if sure_only => {
+                    topology_change_guarded_if_sure_in(mesh, end, &options, &already, far, w)
+                }
+                Some(w) => {
+                    topology_change_guarded_holding_in(mesh, end, &options, &already, far, w)
+                        .map(Some)
+                }
+                None if sure_only => {
+                    topology_change_guarded_if_sure(mesh, end, &options, &already, far)
+                }
+                None => {
+                    topology_change_guarded_holding(mesh, end, &options, &already, far).map(Some)
+                }
             };
+            if run.is_ok() {
+                *self.engine_checked = true;
+            }
             match run {
                 Ok(None) => {
                     *self.window = window;

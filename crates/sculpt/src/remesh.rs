@@ -38,14 +38,13 @@ use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
 use holey_mesh::slots::fill_holes;
 use holey_mesh::tri::triangles_with_vertex;
-use holey_topo::TriMesh;
+use holey_topo::{TriMesh, Window};
 use holey_topo::audit::{is_degenerate, is_flat};
 use holey_topo::intersect::crossing_pairs_involving;
 use holey_topo::mesh::MeshError;
 use rayon::prelude::*;
 
 use crate::strokes::Remesh;
-use crate::window::Window;
 
 /// Parameters of [`remesh_with`]. [`RemeshOptions::new`] takes the edge
 /// range of a stroke file and the authors' angle bounds, 5° and 170°.

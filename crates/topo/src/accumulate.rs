@@ -196,6 +196,7 @@ impl Accumulator {
                 path: self.path.as_ref(),
             },
             None,
+            None,
         )?;
         let release = if run.worse.is_empty() {
             Release {

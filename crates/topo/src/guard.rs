@@ -69,10 +69,11 @@ use crate::hidden::{
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{
-    Bounds, LocalReport, Plan, Region, first_copies, from_whole, swept_box, with_margin,
+    Bounds, LocalReport, Plan, Region, first_copies, from_whole, swept_box_in, with_margin,
     with_wide_margin,
 };
 use crate::mesh::TriMesh;
+use crate::window::Window;
 use crate::union_find::UnionFind;
 
 /// What [`topology_change_guarded`] did.
@@ -131,7 +132,24 @@ pub fn topology_change_guarded_holding(
     already: &[bool],
     far: Option<&FarField>,
 ) -> Result<GuardedReport, TopoError> {
-    guarded(mesh, end, options, already, false, far).map(|r| r.unwrap_or_default())
+    guarded(mesh, end, options, already, false, far, None).map(|r| r.unwrap_or_default())
+}
+
+/// [`topology_change_guarded_holding`] that finds what the motion reaches
+/// in `window` ([`Window`]) instead of passes over the whole mesh, where
+/// that is exact: the same result, at a cost that follows the window.
+/// The caller promises that `end` moves only vertices the window lists,
+/// and that `mesh` passed its checks before (a stroke's, at an earlier
+/// frame): only `end` at the listed vertices is checked here.
+pub fn topology_change_guarded_holding_in(
+    mesh: &mut TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    already: &[bool],
+    far: Option<&FarField>,
+    window: &Window,
+) -> Result<GuardedReport, TopoError> {
+    guarded(mesh, end, options, already, false, far, Some(window)).map(|r| r.unwrap_or_default())
 }
 
 /// [`topology_change_guarded_holding`] for a motion that is to be taken
@@ -153,7 +171,20 @@ pub fn topology_change_guarded_if_sure(
     already: &[bool],
     far: Option<&FarField>,
 ) -> Result<Option<GuardedReport>, TopoError> {
-    guarded(mesh, end, options, already, true, far)
+    guarded(mesh, end, options, already, true, far, None)
+}
+
+/// [`topology_change_guarded_if_sure`] in a `window`, as
+/// [`topology_change_guarded_holding_in`] is.
+pub fn topology_change_guarded_if_sure_in(
+    mesh: &mut TriMesh,
+    end: &[DVec3],
+    options: &Options,
+    already: &[bool],
+    far: Option<&FarField>,
+    window: &Window,
+) -> Result<Option<GuardedReport>, TopoError> {
+    guarded(mesh, end, options, already, true, far, Some(window))
 }
 
 /// [`topology_change_guarded_holding`]; with `sure_only`, `None` (and
@@ -165,43 +196,49 @@ fn guarded(
     already: &[bool],
     sure_only: bool,
     far: Option<&FarField>,
+    window: Option<&Window>,
 ) -> Result<Option<GuardedReport>, TopoError> {
-    check(mesh, end)?;
+    let checked_in_window = window.is_some_and(|w| {
+        end.len() == mesh.positions.len()
+            && w.vertices()
+                .iter()
+                .all(|&v| end.get(v as usize).is_some_and(|p| p.is_finite()))
+    });
+    if !checked_in_window {
+        check(mesh, end)?;
+    }
     let n = mesh.positions.len();
-    let already = |v: usize| already.get(v).copied().unwrap_or(false);
-    let target: Vec<DVec3> = (0..n)
-        .map(|v| {
-            if already(v) {
-                mesh.positions[v]
-            } else {
-                end[v]
-            }
-        })
-        .collect();
+    let held_from_start = |v: usize| already.get(v).copied().unwrap_or(false);
+    let mut target = end.to_vec();
+    for (v, _) in already.iter().enumerate().filter(|(_, a)| **a) {
+        if v < n {
+            target[v] = mesh.positions[v];
+        }
+    }
     let first = if sure_only {
         // Whether the motion is sure as one frame is all that is asked:
         // the engine's correction does not run on a motion the caller
         // will take in shorter frames anyway.
-        match run_if_sure(mesh, &target, options, far)? {
+        match run_if_sure(mesh, &target, options, far, window)? {
             Some(run) if run.worse.is_empty() => run,
             _ => return Ok(None),
         }
     } else {
-        run_once(mesh, &target, options, &Motion::Frame, far)?
+        run_once(mesh, &target, options, &Motion::Frame, far, window)?
     };
     let mut report = GuardedReport {
         attempts: 1,
         ..GuardedReport::default()
     };
     let (run, held, moved_to): (Run, Vec<bool>, Option<Vec<DVec3>>) = if first.worse.is_empty() {
-        (first, (0..n).map(already).collect(), Some(target))
+        (first, (0..n).map(held_from_start).collect(), Some(target))
     } else {
         // Hold everything that moves: the frame becomes a no-op.
         report.refused = first.worse;
         report.held_all = true;
         report.attempts += 1;
         let still = mesh.positions.clone();
-        let run = run_once(mesh, &still, options, &Motion::Frame, far)?;
+        let run = run_once(mesh, &still, options, &Motion::Frame, far, window)?;
         (run, vec![true; n], None)
     };
     report.held_positions = (0..n)
@@ -272,6 +309,7 @@ pub(crate) fn run_once(
     options: &Options,
     motion: &Motion<'_>,
     far: Option<&FarField>,
+    window: Option<&Window>,
 ) -> Result<Run, TopoError> {
     let first = run_with(
         mesh,
@@ -279,6 +317,7 @@ pub(crate) fn run_once(
         options,
         motion,
         Containment { allowed: true, far },
+        window,
     )?;
     if first.worse.is_empty() || !first.report.report.cut.solid_relabelled {
         return Ok(first);
@@ -292,6 +331,7 @@ pub(crate) fn run_once(
             allowed: false,
             far,
         },
+        window,
     )?;
     Ok(if second.worse.len() < first.worse.len() {
         second
@@ -306,9 +346,10 @@ fn run_with(
     options: &Options,
     motion: &Motion<'_>,
     containment: Containment<'_>,
+    window: Option<&Window>,
 ) -> Result<Run, TopoError> {
     let n = mesh.positions.len();
-    let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
+    let Some(bx) = swept_box_in(&mesh.triangles, &mesh.positions, end, window) else {
         return Ok(Run {
             mesh: None,
             report: LocalReport::no_motion(n),
@@ -322,7 +363,7 @@ fn run_with(
     // as context (the box grown by half its size: four times the
     // triangles on a surface) is gathered at all.
     if matches!(motion, Motion::Frame)
-        && let Some((tight, freedom)) = Tight::of(mesh, end, options, bx)
+        && let Some((tight, freedom)) = Tight::of(mesh, end, options, bx, window)
     {
         match freedom {
             Freedom::Free => return Ok(free_run(mesh, end, &tight)),
@@ -351,7 +392,7 @@ fn run_with(
     // 26k of its 70k triangles and about half the time).
     let mut tried = 0;
     for grown in [with_margin(bx), with_wide_margin(bx)] {
-        let region = Region::select(&mesh.triangles, &mesh.positions, end, grown);
+        let region = Region::select_in(&mesh.triangles, &mesh.positions, end, grown, window);
         if !region.worth_it() || region.count <= tried {
             break;
         }
@@ -411,8 +452,9 @@ impl Tight {
         end: &[DVec3],
         options: &Options,
         bx: Bounds,
+        window: Option<&Window>,
     ) -> Option<(Tight, Freedom)> {
-        let region = Region::select(&mesh.triangles, &mesh.positions, end, bx);
+        let region = Region::select_in(&mesh.triangles, &mesh.positions, end, bx, window);
         if !region.worth_it() {
             return None;
         }
@@ -505,9 +547,10 @@ fn run_if_sure(
     end: &[DVec3],
     options: &Options,
     far: Option<&FarField>,
+    window: Option<&Window>,
 ) -> Result<Option<Run>, TopoError> {
     let n = mesh.positions.len();
-    let Some(bx) = swept_box(&mesh.triangles, &mesh.positions, end) else {
+    let Some(bx) = swept_box_in(&mesh.triangles, &mesh.positions, end, window) else {
         return Ok(Some(Run {
             mesh: None,
             report: LocalReport::no_motion(n),
@@ -515,7 +558,7 @@ fn run_if_sure(
             euler_change: 0,
         }));
     };
-    Ok(match Tight::of(mesh, end, options, bx) {
+    Ok(match Tight::of(mesh, end, options, bx, window) {
         Some((tight, Freedom::Free)) => Some(free_run(mesh, end, &tight)),
         Some((
             tight,

@@ -36,6 +36,7 @@ mod unzip;
 mod weights;
 pub mod winding;
 pub mod winding_boolean;
+pub mod window;
 pub mod zero_area;
 
 pub use accumulate::{Accumulator, Release};
@@ -50,12 +51,14 @@ pub use engine::{
 pub use far_field::{EVERY_ASK_FROM, FarField};
 pub use guard::{
     GuardedReport, topology_change_guarded, topology_change_guarded_holding,
-    topology_change_guarded_if_sure,
+    topology_change_guarded_holding_in, topology_change_guarded_if_sure,
+    topology_change_guarded_if_sure_in,
 };
 pub use hidden::is_one_piece;
 pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::{MeshError, TriMesh};
+pub use window::Window;
 pub use overlaps::coplanar_overlaps;
 pub use solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method, solid_boolean};
 pub use union::{

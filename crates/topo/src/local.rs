@@ -34,6 +34,7 @@ use rayon::prelude::*;
 use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
 use crate::intersect::intersecting_pair_count;
 use crate::mesh::TriMesh;
+use crate::window::Window;
 
 /// What [`topology_change_local`] and
 /// [`Accumulator::release_local`](crate::Accumulator::release_local) did.
@@ -129,6 +130,44 @@ pub(crate) fn union(a: Option<Bounds>, b: Option<Bounds>) -> Option<Bounds> {
     }
 }
 
+/// [`swept_box`] read from a `window` ([`Window`]) of a motion that moves
+/// only vertices the window lists (the caller's promise): the moving
+/// triangles are all listed.
+pub(crate) fn swept_box_in(
+    tris: &[[u32; 3]],
+    start: &[DVec3],
+    end: &[DVec3],
+    window: Option<&Window>,
+) -> Option<Bounds> {
+    let Some(w) = window else {
+        return swept_box(tris, start, end);
+    };
+    debug_assert!(
+        (0..start.len() as u32)
+            .filter(|&v| start[v as usize] != end[v as usize])
+            .all(|v| w.vertices().binary_search(&v).is_ok()),
+        "a vertex the window does not list moved"
+    );
+    let moved = |v: u32| start[v as usize] != end[v as usize];
+    w.triangles()
+        .par_iter()
+        .with_min_len(PARALLEL_RUN)
+        .map(|&t| tris[t as usize])
+        .filter(|t| t.iter().any(|&v| moved(v)))
+        .fold(
+            || None,
+            |b, t| {
+                let corners = t.iter().flat_map(|&v| [start[v as usize], end[v as usize]]);
+                let (lo, hi) = corners
+                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                        (lo.min(p), hi.max(p))
+                    });
+                union(b, Some((lo, hi)))
+            },
+        )
+        .reduce(|| None, union)
+}
+
 /// The box of the triangles that move from `start` to `end` (those with a
 /// vertex whose position changes), over both positions; `None` when no
 /// triangle moves.
@@ -202,6 +241,37 @@ pub(crate) struct Region {
 }
 
 impl Region {
+    /// [`Region::select`] read from a `window` ([`Window`]) that holds
+    /// `bx`, of a motion `a` → `b` that moves only vertices the window
+    /// lists: a triangle it does not list stays where it was, outside the
+    /// window's box, so outside `bx`. Otherwise (no window, or `bx`
+    /// reaching past it) the whole mesh is read. The region is the same.
+    pub fn select_in(
+        tris: &[[u32; 3]],
+        a: &[DVec3],
+        b: &[DVec3],
+        bx: Bounds,
+        window: Option<&Window>,
+    ) -> Region {
+        let Some(w) = window.filter(|w| w.holds_box(bx.0, bx.1)) else {
+            return Region::select(tris, a, b, bx);
+        };
+        let region = Aabb::new(bx.0, bx.1);
+        let code = |v: u32| region.outcode(a[v as usize]) & region.outcode(b[v as usize]);
+        let inside: Vec<usize> = w
+            .triangles()
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .map(|&t| t as usize)
+            .filter(|&t| tris[t].iter().fold(0x3f, |c, &v| c & code(v)) == 0)
+            .collect();
+        let mut mask = vec![false; tris.len()];
+        for &t in &inside {
+            mask[t] = true;
+        }
+        Region::of_inside(tris, a.len(), mask, &inside)
+    }
+
     /// The triangles whose box over `a` and `b` meets `bx`.
     ///
     /// A box misses `bx` exactly when all its points lie beyond one face
@@ -233,10 +303,15 @@ impl Region {
             .filter(|(_, m)| **m)
             .map(|(t, _)| t)
             .collect();
-        let n = a.len();
+        Region::of_inside(tris, a.len(), mask, &inside)
+    }
+
+    /// The region of the triangles `inside` (flagged in `mask`) of a mesh
+    /// of `n` vertices.
+    fn of_inside(tris: &[[u32; 3]], n: usize, mask: Vec<bool>, inside: &[usize]) -> Region {
         let mut local = vec![u32::MAX; n];
         let mut global = Vec::new();
-        for &t in &inside {
+        for &t in inside {
             for v in tris[t] {
                 if local[v as usize] == u32::MAX {
                     local[v as usize] = 0;

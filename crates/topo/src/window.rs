@@ -1,4 +1,5 @@
-//! A stroke's working window: a superset of the triangles and vertices of
+//! A working window for a sequence of local frames (a sculpting
+//! stroke's): a superset of the triangles and vertices of
 //! the surface near the brush, kept from frame to frame, so that the
 //! passes a frame makes to find what its dabs touch read a few thousand
 //! slots instead of every triangle of a million-triangle mesh.
@@ -27,16 +28,12 @@
 use glam::DVec3;
 use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
-use holey_topo::TriMesh;
+use crate::TriMesh;
 use rayon::prelude::*;
-
-/// The size of mesh from which a live stroke works in a window: below it
-/// a pass over the whole mesh costs about what building the window does.
-pub(crate) const WINDOW_MIN_TRIANGLES: usize = 8 * PARALLEL_RUN;
 
 /// See the module documentation.
 #[derive(Clone, Debug)]
-pub(crate) struct Window {
+pub struct Window {
     lo: DVec3,
     hi: DVec3,
     /// Sorted slots of the mesh's triangles; every triangle whose box
@@ -52,7 +49,7 @@ impl Window {
     /// vertices and one over its triangles, in parallel runs. A triangle's
     /// box misses the window's exactly when its three corners lie beyond
     /// one face of it ([`Aabb::outcode`]).
-    pub(crate) fn build(mesh: &TriMesh, lo: DVec3, hi: DVec3) -> Window {
+    pub fn build(mesh: &TriMesh, lo: DVec3, hi: DVec3) -> Window {
         let region = Aabb::new(lo, hi);
         let code: Vec<u8> = mesh
             .positions
@@ -91,37 +88,37 @@ impl Window {
     }
 
     /// Whether the box `[lo, hi]` lies inside the window's.
-    pub(crate) fn holds_box(&self, lo: DVec3, hi: DVec3) -> bool {
+    pub fn holds_box(&self, lo: DVec3, hi: DVec3) -> bool {
         lo.cmpge(self.lo).all() && hi.cmple(self.hi).all()
     }
 
     /// Whether `p` lies inside the window's box.
-    pub(crate) fn holds(&self, p: DVec3) -> bool {
+    pub fn holds(&self, p: DVec3) -> bool {
         p.cmpge(self.lo).all() && p.cmple(self.hi).all()
     }
 
     /// Whether every vertex `vertices` names lies inside the window's box:
     /// then every triangle at one of them is listed.
-    pub(crate) fn holds_all(&self, mesh: &TriMesh, vertices: impl IntoIterator<Item = u32>) -> bool {
+    pub fn holds_all(&self, mesh: &TriMesh, vertices: impl IntoIterator<Item = u32>) -> bool {
         vertices
             .into_iter()
             .all(|v| mesh.positions.get(v as usize).is_some_and(|&p| self.holds(p)))
     }
 
     /// The listed triangles' slots, in mesh order.
-    pub(crate) fn triangles(&self) -> &[u32] {
+    pub fn triangles(&self) -> &[u32] {
         &self.triangles
     }
 
     /// The listed vertices' slots, in mesh order.
-    pub(crate) fn vertices(&self) -> &[u32] {
+    pub fn vertices(&self) -> &[u32] {
         &self.vertices
     }
 
     /// The listed triangles with a vertex `pick` takes, in mesh order: what
     /// [`holey_mesh::tri::triangles_with_vertex`] finds in the whole mesh
     /// when every vertex `pick` takes lies in the window's box.
-    pub(crate) fn triangles_with_vertex(
+    pub fn triangles_with_vertex(
         &self,
         triangles: &[[u32; 3]],
         pick: impl Fn(u32) -> bool + Sync,
@@ -137,7 +134,7 @@ impl Window {
     /// Takes in the slots a remeshing run wrote into `mesh` (already
     /// written): `triangles` it rewrote, filled or appended, `vertices` it
     /// made or moved. Slots past the mesh's end (removed) leave the lists.
-    pub(crate) fn written(&mut self, mesh: &TriMesh, triangles: &[u32], vertices: &[u32]) {
+    pub fn written(&mut self, mesh: &TriMesh, triangles: &[u32], vertices: &[u32]) {
         merge_into(&mut self.triangles, triangles, mesh.triangles.len());
         merge_into(&mut self.vertices, vertices, mesh.positions.len());
     }
@@ -145,8 +142,7 @@ impl Window {
     /// The first triangle or vertex of `mesh` the invariant misses (a
     /// triangle meeting the box, or a vertex in it, that is not listed):
     /// `None` when it holds. A whole-mesh check, for tests.
-    #[cfg(test)]
-    pub(crate) fn misses(&self, mesh: &TriMesh) -> Option<String> {
+    pub fn misses(&self, mesh: &TriMesh) -> Option<String> {
         let full = Window::build(mesh, self.lo, self.hi);
         if let Some(t) = full
             .triangles
