@@ -144,7 +144,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
             let t0 = std::time::Instant::now();
             let f = live.frame_together(dabs)?;
-            if std::env::var_os("STAMPS").is_some() { eprintln!("STAMP {frame_no} {:?} {:?}", t0, std::time::Instant::now()); }
+            if std::env::var_os("STAMPS").is_some() {
+                eprintln!("STAMP {frame_no} {:?} {:?}", t0, std::time::Instant::now());
+            }
             if dump == Some(frame_no) {
                 write_obj("trace_result.obj", &f.mesh.positions, &f.mesh.triangles)?;
                 println!("wrote trace_result.obj (after frame {frame_no})");

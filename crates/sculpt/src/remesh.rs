@@ -38,10 +38,10 @@ use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
 use holey_mesh::slots::fill_holes;
 use holey_mesh::tri::triangles_with_vertex;
-use holey_topo::{TriMesh, Window};
 use holey_topo::audit::{is_degenerate, is_flat};
 use holey_topo::intersect::crossing_pairs_involving;
 use holey_topo::mesh::MeshError;
+use holey_topo::{TriMesh, Window};
 use rayon::prelude::*;
 
 use crate::strokes::Remesh;
@@ -575,7 +575,8 @@ impl Work {
         // The window holds every triangle at an active vertex (the
         // caller's promise); the rings of their vertices, when it holds
         // those vertices too.
-        let triangles_with_vertex = |pick: &(dyn Fn(u32) -> bool + Sync), exact: bool| match window {
+        let triangles_with_vertex = |pick: &(dyn Fn(u32) -> bool + Sync), exact: bool| match window
+        {
             Some(w) if exact => w.triangles_with_vertex(&mesh.triangles, pick),
             _ => triangles_with_vertex(&mesh.triangles, pick),
         };
@@ -1475,7 +1476,9 @@ impl Work {
         let appended = mesh.triangles.len() as u32;
         mesh.triangles.extend(fresh);
         written.extend(appended..mesh.triangles.len() as u32);
-        fill_holes(&mut mesh.triangles, &holes_t, |_, to| written.push(to as u32));
+        fill_holes(&mut mesh.triangles, &holes_t, |_, to| {
+            written.push(to as u32)
+        });
         // Vertices: the last ones move into the slots left free.
         let holes_v = &free_v[next_free..];
         if holes_v.is_empty() {
@@ -1850,7 +1853,7 @@ pub(crate) mod tests {
         // zero-length edge again here, but cannot where the link
         // condition forbids it, as in the fuzz loop's case).
         let mut report = RemeshReport::default();
-        let mut work = Work::load(&m, &all(&m), &opts, &mut report).unwrap();
+        let mut work = Work::load(&m, &all(&m), &opts, &mut report, None).unwrap();
         assert!(!work.split(0, 1), "the sliver's long edge was split");
         assert!(work.split(0, 3), "a fair edge is split");
         let (out, r) = remesh_checked(&m, &all(&m), &opts);
@@ -2007,7 +2010,7 @@ pub(crate) mod tests {
             let opts = RemeshOptions::new(r);
             let active: Vec<bool> = (0..m.positions.len()).map(|v| v % 3 != 0).collect();
             let mut report = RemeshReport::default();
-            let mut work = Work::load(&m, &active, &opts, &mut report).unwrap();
+            let mut work = Work::load(&m, &active, &opts, &mut report, None).unwrap();
             work.split_pass(&mut report);
             work.collapse_pass(&mut report);
             work.flip_pass(&mut report);
@@ -2173,7 +2176,7 @@ pub(crate) mod tests {
         for (a2, joins) in [(DVec3::ZERO, false), (DVec3::new(0.0, -0.001, 0.0), true)] {
             let m = mesh(a2);
             let mut report = RemeshReport::default();
-            let work = Work::load(&m, &all(&m), &opts, &mut report).unwrap();
+            let work = Work::load(&m, &all(&m), &opts, &mut report, None).unwrap();
             let local = |v: u32| work.global.iter().position(|&g| g == v).unwrap();
             assert_eq!([work.copy[local(0)], work.copy[local(1)]], [!joins; 2]);
             let (x, y) = (local(2) as u32, local(3) as u32);

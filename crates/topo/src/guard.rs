@@ -73,8 +73,8 @@ use crate::local::{
     with_wide_margin,
 };
 use crate::mesh::TriMesh;
-use crate::window::Window;
 use crate::union_find::UnionFind;
+use crate::window::Window;
 
 /// What [`topology_change_guarded`] did.
 #[derive(Clone, Debug, Default, PartialEq)]

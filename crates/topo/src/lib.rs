@@ -58,7 +58,6 @@ pub use hidden::is_one_piece;
 pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::{MeshError, TriMesh};
-pub use window::Window;
 pub use overlaps::coplanar_overlaps;
 pub use solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method, solid_boolean};
 pub use union::{
@@ -68,6 +67,7 @@ pub use union::{
 pub use winding_boolean::{
     WindingError, WindingOutcome, WindingReport, boolean_by_winding, boolean_by_winding_robust,
 };
+pub use window::Window;
 
 /// Installs a panic hook that does not print the panics holey-topo
 /// raises and catches itself, and prints every other panic as the hook

@@ -775,6 +775,57 @@ mod tests {
     use super::*;
     use crate::test_meshes::uv_sphere;
 
+    /// A window's reads find what the whole mesh's passes find: the
+    /// swept box and the regions of boxes inside the window, the same
+    /// field by field, for a motion of vertices inside it; a box reaching
+    /// past the window reads the whole mesh, the same again.
+    #[test]
+    fn window_reads_are_the_whole_mesh_reads() {
+        let mesh = uv_sphere(DVec3::ZERO, 1.0, 48, 96);
+        let (lo, hi) = (DVec3::new(0.2, -0.5, -0.5), DVec3::new(1.2, 0.5, 0.5));
+        let w = Window::build(&mesh, lo, hi);
+        assert!(w.triangles().len() < mesh.triangles.len() / 4);
+        // Push the vertices near (1, 0, 0) outward.
+        let end: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .map(|&p| {
+                let d = p.distance(DVec3::X);
+                if d < 0.3 {
+                    p * (1.0 + 0.2 * (0.3 - d))
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let whole = swept_box(&mesh.triangles, &mesh.positions, &end);
+        assert!(whole.is_some());
+        assert_eq!(
+            swept_box_in(&mesh.triangles, &mesh.positions, &end, Some(&w)),
+            whole
+        );
+        let Some(bx) = whole else { return };
+        for b in [bx, with_margin(bx), with_wide_margin(bx)] {
+            let a = Region::select(&mesh.triangles, &mesh.positions, &end, b);
+            let c = Region::select_in(&mesh.triangles, &mesh.positions, &end, b, Some(&w));
+            assert!(a.count > 0);
+            assert_eq!(a.mask, c.mask);
+            assert_eq!(a.count, c.count);
+            assert_eq!(a.global, c.global);
+            assert_eq!(a.local, c.local);
+            assert_eq!(a.triangles, c.triangles);
+        }
+        // The widest box reaches past the window (and is read whole).
+        let wide = with_wide_margin(bx);
+        assert!(!w.holds_box(wide.0, wide.1));
+        assert!(w.holds_box(bx.0, bx.1));
+        // Nothing moves: no box either way.
+        assert_eq!(
+            swept_box_in(&mesh.triangles, &mesh.positions, &mesh.positions, Some(&w)),
+            None
+        );
+    }
+
     fn components(m: &TriMesh) -> usize {
         let mut parent: Vec<usize> = (0..m.positions.len()).collect();
         fn find(p: &mut [usize], mut x: usize) -> usize {

@@ -25,10 +25,10 @@
 //! - a frame that changes topology renumbers too much to follow: the
 //!   stroke drops its window and builds a new one at its next frame.
 
+use crate::TriMesh;
 use glam::DVec3;
 use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
-use crate::TriMesh;
 use rayon::prelude::*;
 
 /// See the module documentation.
@@ -100,9 +100,11 @@ impl Window {
     /// Whether every vertex `vertices` names lies inside the window's box:
     /// then every triangle at one of them is listed.
     pub fn holds_all(&self, mesh: &TriMesh, vertices: impl IntoIterator<Item = u32>) -> bool {
-        vertices
-            .into_iter()
-            .all(|v| mesh.positions.get(v as usize).is_some_and(|&p| self.holds(p)))
+        vertices.into_iter().all(|v| {
+            mesh.positions
+                .get(v as usize)
+                .is_some_and(|&p| self.holds(p))
+        })
     }
 
     /// The listed triangles' slots, in mesh order.
