@@ -209,12 +209,17 @@ fn guarded(
     }
     let n = mesh.positions.len();
     let held_from_start = |v: usize| already.get(v).copied().unwrap_or(false);
-    let mut target = end.to_vec();
-    for (v, _) in already.iter().enumerate().filter(|(_, a)| **a) {
-        if v < n {
+    // `end`, with the vertices held from the start where they are; no
+    // copy of a million positions when none is.
+    let target: std::borrow::Cow<'_, [DVec3]> = if already.iter().take(n).any(|&a| a) {
+        let mut target = end.to_vec();
+        for (v, _) in already.iter().take(n).enumerate().filter(|(_, a)| **a) {
             target[v] = mesh.positions[v];
         }
-    }
+        std::borrow::Cow::Owned(target)
+    } else {
+        std::borrow::Cow::Borrowed(end)
+    };
     let first = if sure_only {
         // Whether the motion is sure as one frame is all that is asked:
         // the engine's correction does not run on a motion the caller
@@ -230,17 +235,18 @@ fn guarded(
         attempts: 1,
         ..GuardedReport::default()
     };
-    let (run, held, moved_to): (Run, Vec<bool>, Option<Vec<DVec3>>) = if first.worse.is_empty() {
-        (first, (0..n).map(held_from_start).collect(), Some(target))
-    } else {
-        // Hold everything that moves: the frame becomes a no-op.
-        report.refused = first.worse;
-        report.held_all = true;
-        report.attempts += 1;
-        let still = mesh.positions.clone();
-        let run = run_once(mesh, &still, options, &Motion::Frame, far, window)?;
-        (run, vec![true; n], None)
-    };
+    let (run, held, moved_to): (Run, Vec<bool>, Option<std::borrow::Cow<'_, [DVec3]>>) =
+        if first.worse.is_empty() {
+            (first, (0..n).map(held_from_start).collect(), Some(target))
+        } else {
+            // Hold everything that moves: the frame becomes a no-op.
+            report.refused = first.worse;
+            report.held_all = true;
+            report.attempts += 1;
+            let still = mesh.positions.clone();
+            let run = run_once(mesh, &still, options, &Motion::Frame, far, window)?;
+            (run, vec![true; n], None)
+        };
     report.held_positions = (0..n)
         .filter(|&v| held[v] && mesh.positions[v] != end[v])
         .map(|v| mesh.positions[v])
@@ -254,7 +260,15 @@ fn guarded(
     }
     match (run.mesh, moved_to) {
         (Some(result), _) => *mesh = result,
-        (None, Some(positions)) => mesh.positions = positions,
+        // Only moved: in a window, only its vertices can have.
+        (None, Some(positions)) => match window {
+            Some(w) => {
+                for &v in w.vertices() {
+                    mesh.positions[v as usize] = positions[v as usize];
+                }
+            }
+            None => mesh.positions = positions.into_owned(),
+        },
         (None, None) => {}
     }
     Ok(Some(report))
