@@ -467,6 +467,11 @@ pub struct SlotSplice {
     /// The number of the first added vertex: the surviving ones of
     /// `positions` come before it, the used added ones from it on.
     pub first_added: usize,
+    /// The triangle slots written: those of the skipped triangles (each
+    /// now holding an extra triangle or one moved from the end, or past
+    /// the end) and the extra triangles appended. Every other slot holds
+    /// its triangle, its vertices renumbered as `moved` says.
+    pub written_triangles: Vec<u32>,
 }
 
 /// The mesh of the triangles of `triangles` that `skip` does not flag,
@@ -555,8 +560,12 @@ pub fn splice_keeping_slots(
             None => holes.push(slot),
         }
     }
+    let appended = spliced.len() as u32;
     spliced.extend(extra);
+    // The holes are skipped slots, already among `free`.
     crate::slots::fill_holes(&mut spliced, &holes, |_, _| {});
+    let mut written_triangles = free;
+    written_triangles.extend(appended..spliced.len() as u32);
     SlotSplice {
         mesh: TriMesh {
             positions: kept,
@@ -564,6 +573,7 @@ pub fn splice_keeping_slots(
         },
         moved,
         first_added,
+        written_triangles,
     }
 }
 
@@ -1141,6 +1151,15 @@ mod tests {
                         triangles[slot]
                     };
                     assert_eq!(at(&got.mesh, tri), old(want), "{what}: slot {slot}");
+                }
+                // A slot not reported written holds its own triangle.
+                let written: std::collections::HashSet<u32> =
+                    got.written_triangles.iter().copied().collect();
+                for (slot, &tri) in got.mesh.triangles.iter().enumerate() {
+                    if !written.contains(&(slot as u32)) {
+                        assert!(slot < t && !skip[slot], "{what}: slot {slot} not written");
+                        assert_eq!(at(&got.mesh, tri), old(triangles[slot]), "{what}: {slot}");
+                    }
                 }
                 let moved_from: std::collections::HashMap<u32, u32> =
                     got.moved.iter().map(|&(f, to)| (to, f)).collect();

@@ -1267,7 +1267,11 @@ impl PaintStep<'_> {
                 ..*self.options
             };
             let far = self.far;
-            let run = match window.as_ref().filter(|_| *self.engine_checked) {
+            // The engine reads the window once it has checked the mesh
+            // whole, and tells it what a topology change wrote.
+            let in_window = *self.engine_checked && window.is_some();
+            let mut window = window;
+            let run = match window.as_mut().filter(|_| in_window) {
                 Some(w) if sure_only => {
                     topology_change_guarded_if_sure_in(mesh, end, &options, &already, far, w)
                 }
@@ -1291,7 +1295,7 @@ impl PaintStep<'_> {
                     return Ok(Settled::TooCrumpled);
                 }
                 Ok(Some(guarded)) => {
-                    if guarded.local.positions_only {
+                    if guarded.local.positions_only || (in_window && guarded.window_kept) {
                         *self.window = window;
                     }
                     *self.one_piece = guarded.local.one_piece;
@@ -1330,6 +1334,7 @@ impl PaintStep<'_> {
                             .any(|p| p.distance(to) < radius);
                     }
                     if self.remesh.is_none() && out.new_vertices > 0 {
+                        *self.window = None;
                         self.clean_up(mesh, out.new_vertices)?;
                     }
                 }

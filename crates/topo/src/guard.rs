@@ -103,6 +103,11 @@ pub struct GuardedReport {
     /// into one (−2 each), positive where it cut one loose or opened a
     /// handle; 0 when it only moved the surface or was held.
     pub euler_change: i64,
+    /// For a frame in a window ([`topology_change_guarded_holding_in`]):
+    /// whether the window still lists what it must of the result (it was
+    /// told every slot the splice wrote). False when the frame's result
+    /// was built whole: the caller builds a new window.
+    pub window_kept: bool,
 }
 
 /// [`crate::topology_change_local`] that keeps the surface's invariants
@@ -140,14 +145,16 @@ pub fn topology_change_guarded_holding(
 /// that is exact: the same result, at a cost that follows the window.
 /// The caller promises that `end` moves only vertices the window lists,
 /// and that `mesh` passed its checks before (a stroke's, at an earlier
-/// frame): only `end` at the listed vertices is checked here.
+/// frame): only `end` at the listed vertices is checked here. The window
+/// is told what the frame wrote; [`GuardedReport::window_kept`] says
+/// whether it still holds for the result.
 pub fn topology_change_guarded_holding_in(
     mesh: &mut TriMesh,
     end: &[DVec3],
     options: &Options,
     already: &[bool],
     far: Option<&FarField>,
-    window: &Window,
+    window: &mut Window,
 ) -> Result<GuardedReport, TopoError> {
     guarded(mesh, end, options, already, false, far, Some(window)).map(|r| r.unwrap_or_default())
 }
@@ -182,7 +189,7 @@ pub fn topology_change_guarded_if_sure_in(
     options: &Options,
     already: &[bool],
     far: Option<&FarField>,
-    window: &Window,
+    window: &mut Window,
 ) -> Result<Option<GuardedReport>, TopoError> {
     guarded(mesh, end, options, already, true, far, Some(window))
 }
@@ -196,8 +203,9 @@ fn guarded(
     already: &[bool],
     sure_only: bool,
     far: Option<&FarField>,
-    window: Option<&Window>,
+    window_mut: Option<&mut Window>,
 ) -> Result<Option<GuardedReport>, TopoError> {
+    let window = window_mut.as_deref();
     let checked_in_window = window.is_some_and(|w| {
         end.len() == mesh.positions.len()
             && w.vertices()
@@ -258,6 +266,8 @@ fn guarded(
         // Only moved (or held): as whole as it was.
         report.local.one_piece = options.one_piece;
     }
+    report.window_kept = run.mesh.is_none() || run.written.is_some();
+    let written = run.written;
     match (run.mesh, moved_to) {
         (Some(result), _) => *mesh = result,
         // Only moved: in a window, only its vertices can have.
@@ -270,6 +280,9 @@ fn guarded(
             None => mesh.positions = positions.into_owned(),
         },
         (None, None) => {}
+    }
+    if let (Some(w), Some((triangles, vertices))) = (window_mut, written) {
+        w.written(mesh, &triangles, &vertices);
     }
     Ok(Some(report))
 }
@@ -285,6 +298,9 @@ pub(crate) struct Run {
     pub worse: Vec<String>,
     /// The change of the Euler characteristic ([`GuardedReport::euler_change`]).
     pub euler_change: i64,
+    /// With `mesh`, when it was spliced into the input keeping slots: the
+    /// triangle and vertex slots the splice wrote ([`Window::written`]).
+    pub written: Option<(Vec<u32>, Vec<u32>)>,
 }
 
 /// Where the collision parity of a motion comes from, when the motion is
@@ -369,6 +385,7 @@ fn run_with(
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
             euler_change: 0,
+            written: None,
         });
     };
     // Most frames collide with nothing and cross nothing: that is settled
@@ -446,6 +463,7 @@ fn run_with(
         report,
         worse,
         euler_change,
+        written: None,
     })
 }
 
@@ -492,6 +510,7 @@ fn free_run(mesh: &TriMesh, end: &[DVec3], tight: &Tight) -> Run {
         },
         worse: flat_growth(&tight.sub, &tight.moved).into_iter().collect(),
         euler_change: 0,
+        written: None,
     }
 }
 
@@ -570,6 +589,7 @@ fn run_if_sure(
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
             euler_change: 0,
+            written: None,
         }));
     };
     Ok(match Tight::of(mesh, end, options, bx, window) {
@@ -754,11 +774,19 @@ fn spliced_and_audited(
             |v: u32| v as usize >= s.first_added || near(moved_from.get(&v).copied().unwrap_or(v));
         worse.extend(piece_growth(mesh, &s.mesh, &near, &near_result, options));
     }
+    // What the splice wrote: its triangle slots, and the vertices it
+    // moved into freed slots or made.
+    let written = spliced.as_ref().map(|s| {
+        let mut vertices: Vec<u32> = s.moved.iter().map(|&(_, to)| to).collect();
+        vertices.extend(s.first_added as u32..s.mesh.positions.len() as u32);
+        (s.written_triangles.clone(), vertices)
+    });
     Ok(Some(Run {
         mesh: spliced.map(|s| s.mesh),
         report,
         worse,
         euler_change,
+        written,
     }))
 }
 
