@@ -1211,8 +1211,8 @@ impl PaintStep<'_> {
         // intersections the mesh already had.
         // The window (kept only if it holds every vertex the reach admits,
         // so every vertex that can move) survives a frame that only moves
-        // vertices; a frame that changes topology renumbers too much to
-        // follow.
+        // vertices, and one whose splice told it what it wrote; a frame
+        // whose result was built whole drops it.
         let window = self
             .window
             .take()

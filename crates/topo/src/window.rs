@@ -22,8 +22,12 @@
 //!   ([`Window::written`]): the triangles it rewrote, made or moved into
 //!   freed slots, the vertices it made or moved. Every other slot holds
 //!   what it held;
-//! - a frame that changes topology renumbers too much to follow: the
-//!   stroke drops its window and builds a new one at its next frame.
+//! - a frame that changes topology keeps every slot its splice does not
+//!   write, and the splice reports those it does
+//!   (`holey_mesh::tri::SlotSplice::written_triangles`, and the vertices
+//!   it moved or made); the guard tells the window. A frame whose result
+//!   was built whole renumbers everything: the stroke drops its window
+//!   and builds a new one at its next frame.
 
 use crate::TriMesh;
 use glam::DVec3;
