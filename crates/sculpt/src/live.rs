@@ -1420,14 +1420,7 @@ impl Piece {
         let mut near = vec![false; n];
         match window {
             Some(w) => {
-                let picked: Vec<u32> = w
-                    .vertices()
-                    .par_iter()
-                    .with_min_len(PARALLEL_RUN)
-                    .copied()
-                    .filter(|&v| reaches(mesh.positions[v as usize]))
-                    .collect();
-                for v in picked {
+                for v in w.vertices_where(|v| reaches(mesh.positions[v as usize])) {
                     near[v as usize] = true;
                 }
             }
@@ -1753,13 +1746,7 @@ fn remesh_active(
 ) -> Vec<bool> {
     let (mut active, picked): (Vec<bool>, Vec<u32>) = match window {
         Some(w) => {
-            let picked: Vec<u32> = w
-                .vertices()
-                .par_iter()
-                .with_min_len(PARALLEL_RUN)
-                .copied()
-                .filter(|&v| near(mesh.positions[v as usize]))
-                .collect();
+            let picked = w.vertices_where(|v| near(mesh.positions[v as usize]));
             let mut active = vec![false; mesh.positions.len()];
             for &v in &picked {
                 active[v as usize] = true;

@@ -403,12 +403,7 @@ impl Changes {
                 .map(|(_, t)| t.map(|v| mesh.positions[v as usize]))
                 .collect();
         }
-        let code: Vec<u8> = mesh
-            .positions
-            .par_iter()
-            .with_min_len(PARALLEL_RUN)
-            .map(|&p| region.outcode(p))
-            .collect();
+        let code = holey_topo::window::outcodes(&region, &mesh.positions);
         mesh.triangles
             .par_iter()
             .with_min_len(PARALLEL_RUN)

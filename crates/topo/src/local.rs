@@ -149,11 +149,25 @@ pub(crate) fn swept_box_in(
         "a vertex the window does not list moved"
     );
     let moved = |v: u32| start[v as usize] != end[v as usize];
-    w.triangles()
-        .par_iter()
-        .with_min_len(PARALLEL_RUN)
-        .map(|&t| tris[t as usize])
-        .filter(|t| t.iter().any(|&v| moved(v)))
+    box_of_moving(
+        w.triangles()
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .map(|&t| tris[t as usize])
+            .filter(|t| t.iter().any(|&v| moved(v))),
+        start,
+        end,
+    )
+}
+
+/// The box of the triangles `moving` over their positions at `start` and
+/// at `end`; the box is a min and a max, the same in any order.
+fn box_of_moving(
+    moving: impl ParallelIterator<Item = [u32; 3]>,
+    start: &[DVec3],
+    end: &[DVec3],
+) -> Option<Bounds> {
+    moving
         .fold(
             || None,
             |b, t| {
@@ -185,21 +199,14 @@ pub(crate) fn swept_box(tris: &[[u32; 3]], start: &[DVec3], end: &[DVec3]) -> Op
     if !moved.contains(&true) {
         return None;
     }
-    tris.par_iter()
-        .with_min_len(PARALLEL_RUN)
-        .filter(|t| t.iter().any(|&v| moved[v as usize]))
-        .fold(
-            || None,
-            |b, t| {
-                let corners = t.iter().flat_map(|&v| [start[v as usize], end[v as usize]]);
-                let (lo, hi) = corners
-                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
-                        (lo.min(p), hi.max(p))
-                    });
-                union(b, Some((lo, hi)))
-            },
-        )
-        .reduce(|| None, union)
+    box_of_moving(
+        tris.par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .copied()
+            .filter(|t| t.iter().any(|&v| moved[v as usize])),
+        start,
+        end,
+    )
 }
 
 /// `b` grown by half its largest side on every side: context for the

@@ -54,13 +54,7 @@ impl Window {
     /// box misses the window's exactly when its three corners lie beyond
     /// one face of it ([`Aabb::outcode`]).
     pub fn build(mesh: &TriMesh, lo: DVec3, hi: DVec3) -> Window {
-        let region = Aabb::new(lo, hi);
-        let code: Vec<u8> = mesh
-            .positions
-            .par_iter()
-            .with_min_len(PARALLEL_RUN)
-            .map(|&p| region.outcode(p))
-            .collect();
+        let code = outcodes(&Aabb::new(lo, hi), &mesh.positions);
         let vertices = code
             .par_iter()
             .with_min_len(PARALLEL_RUN)
@@ -109,6 +103,16 @@ impl Window {
                 .get(v as usize)
                 .is_some_and(|&p| self.holds(p))
         })
+    }
+
+    /// The listed vertices `pick` takes, in mesh order.
+    pub fn vertices_where(&self, pick: impl Fn(u32) -> bool + Sync) -> Vec<u32> {
+        self.vertices
+            .par_iter()
+            .with_min_len(PARALLEL_RUN)
+            .copied()
+            .filter(|&v| pick(v))
+            .collect()
     }
 
     /// The listed triangles' slots, in mesh order.
@@ -162,6 +166,16 @@ impl Window {
             .find(|v| self.vertices.binary_search(v).is_err())
             .map(|v| format!("vertex {v}"))
     }
+}
+
+/// Each point's [`Aabb::outcode`] against `region`, in parallel runs: a
+/// whole-mesh scan then reads a byte per triangle corner.
+pub fn outcodes(region: &Aabb, points: &[DVec3]) -> Vec<u8> {
+    points
+        .par_iter()
+        .with_min_len(PARALLEL_RUN)
+        .map(|&p| region.outcode(p))
+        .collect()
 }
 
 /// Merges the slots of `more` below `len` into the sorted `list`, and
