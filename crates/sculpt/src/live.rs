@@ -922,7 +922,7 @@ impl PaintStep<'_> {
         let keeps = self
             .window
             .as_ref()
-            .is_some_and(|w| w.holds_box(reach.lo - slack, reach.hi + slack));
+            .is_some_and(|w| w.fits(mesh) && w.holds_box(reach.lo - slack, reach.hi + slack));
         if !keeps {
             let grow = DVec3::splat(WINDOW_GROWTH * reach.widest());
             *self.window = Some(Window::build(mesh, reach.lo - grow, reach.hi + grow));

@@ -205,6 +205,8 @@ fn guarded(
     far: Option<&FarField>,
     window_mut: Option<&mut Window>,
 ) -> Result<Option<GuardedReport>, TopoError> {
+    // A window of another mesh is not read, nor told anything.
+    let window_mut = window_mut.filter(|w| w.fits(mesh));
     let window = window_mut.as_deref();
     let checked_in_window = window.is_some_and(|w| {
         end.len() == mesh.positions.len()
@@ -266,7 +268,7 @@ fn guarded(
         // Only moved (or held): as whole as it was.
         report.local.one_piece = options.one_piece;
     }
-    report.window_kept = run.mesh.is_none() || run.written.is_some();
+    report.window_kept = window_mut.is_some() && (run.mesh.is_none() || run.written.is_some());
     let written = run.written;
     match (run.mesh, moved_to) {
         (Some(result), _) => *mesh = result,
@@ -1504,6 +1506,57 @@ mod tests {
             inside > 300 && outside > 300,
             "{inside} inside, {outside} outside"
         );
+    }
+
+    /// The fuse above in a window over the two spheres: the same result
+    /// as without one, and the window, told what the splice wrote, lists
+    /// what it must of the result. A window of another mesh is not read:
+    /// the same result again, and the window is not kept.
+    #[test]
+    fn a_fuse_in_a_window_is_the_fuse_without_one() {
+        let mesh = spheres_and_far_ones(&[([0.0, 0.0, 0.0], 1.0), ([2.6, 0.0, 0.0], 0.8)]);
+        let second = 130..260u32;
+        let shift = DVec3::new(-1.3, 0.05, 0.03);
+        let end: Vec<DVec3> = (0..mesh.positions.len() as u32)
+            .map(|v| {
+                let p = mesh.positions[v as usize];
+                if second.contains(&v) { p + shift } else { p }
+            })
+            .collect();
+        let options = Options::default();
+        let mut whole = mesh.clone();
+        let want = topology_change_guarded_holding(&mut whole, &end, &options, &[], None).unwrap();
+        assert!(!want.local.positions_only);
+        let mut windowed = mesh.clone();
+        let mut w = Window::build(&mesh, DVec3::splat(-1.5), DVec3::new(3.5, 1.5, 1.5));
+        assert!(w.triangles().len() < mesh.triangles.len());
+        let got =
+            topology_change_guarded_holding_in(&mut windowed, &end, &options, &[], None, &mut w)
+                .unwrap();
+        assert!(windowed == whole, "the windowed fuse differs");
+        assert_eq!(got.euler_change, want.euler_change);
+        assert!(got.window_kept);
+        assert!(w.fits(&windowed));
+        assert_eq!(w.misses(&windowed), None);
+        // A window of a smaller mesh.
+        let other = spheres_and_far_ones(&[([0.0, 0.0, 0.0], 1.0)]);
+        let mut stranger = Window::build(&other, DVec3::splat(-1.5), DVec3::splat(1.5));
+        assert!(!stranger.fits(&mesh));
+        let mut again = mesh.clone();
+        let r = topology_change_guarded_holding_in(
+            &mut again,
+            &end,
+            &options,
+            &[],
+            None,
+            &mut stranger,
+        )
+        .unwrap();
+        assert!(
+            again == whole,
+            "a window of another mesh changed the result"
+        );
+        assert!(!r.window_kept);
     }
 
     /// A triangle folded over its hinge and a vertex pushed through a

@@ -46,6 +46,9 @@ pub struct Window {
     /// Sorted slots of the mesh's vertices; every vertex in `[lo, hi]` is
     /// among them.
     vertices: Vec<u32>,
+    /// The numbers of triangles and vertices of the mesh the lists are
+    /// of ([`Window::fits`]).
+    sizes: (usize, usize),
 }
 
 impl Window {
@@ -82,7 +85,17 @@ impl Window {
             hi,
             triangles,
             vertices,
+            sizes: (mesh.triangles.len(), mesh.positions.len()),
         }
+    }
+
+    /// Whether `mesh` has as many triangles and vertices as the mesh the
+    /// window was built for and last told of: every listed slot is then
+    /// one of `mesh`'s. A window of some other mesh is not read (the
+    /// engine reads the whole mesh instead), so a wrong window cannot
+    /// index past a mesh's end.
+    pub fn fits(&self, mesh: &TriMesh) -> bool {
+        self.sizes == (mesh.triangles.len(), mesh.positions.len())
     }
 
     /// Whether the box `[lo, hi]` lies inside the window's.
@@ -147,6 +160,7 @@ impl Window {
     pub fn written(&mut self, mesh: &TriMesh, triangles: &[u32], vertices: &[u32]) {
         merge_into(&mut self.triangles, triangles, mesh.triangles.len());
         merge_into(&mut self.vertices, vertices, mesh.positions.len());
+        self.sizes = (mesh.triangles.len(), mesh.positions.len());
     }
 
     /// The first triangle or vertex of `mesh` the invariant misses (a
