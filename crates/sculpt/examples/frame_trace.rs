@@ -54,6 +54,14 @@ fn content_hash(mesh: &holey_topo::TriMesh) -> u64 {
     h.finish()
 }
 
+/// The number after the flag `name` in `args`, if any.
+fn value_after(args: &[String], name: &str) -> Option<usize> {
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+        .and_then(|k| k.parse().ok())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let no_remesh = args.iter().any(|a| a == "--no-remesh");
@@ -64,17 +72,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let window_min: Option<usize> = if args.iter().any(|a| a == "--no-window") {
         Some(usize::MAX)
     } else {
-        args.iter()
-            .position(|a| a == "--window-min")
-            .and_then(|i| args.get(i + 1))
-            .and_then(|k| k.parse().ok())
+        value_after(&args, "--window-min")
     };
     let (mut plain, mut changed): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
-    let dump: Option<usize> = args
-        .iter()
-        .position(|a| a == "--dump")
-        .and_then(|i| args.get(i + 1))
-        .and_then(|k| k.parse().ok());
+    let dump: Option<usize> = value_after(&args, "--dump");
     if args.len() < 3 {
         return Err(
             "usage: frame_trace MESH STROKES.json [--no-remesh] [--mesh-range] [--no-audit] [--no-window | --window-min N] [--dump K]"
@@ -142,11 +143,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 write_obj("trace_after.obj", &end, &m.triangles)?;
                 println!("wrote trace_before.obj and trace_after.obj (frame {frame_no})");
             }
-            let t0 = std::time::Instant::now();
             let f = live.frame_together(dabs)?;
-            if std::env::var_os("STAMPS").is_some() {
-                eprintln!("STAMP {frame_no} {:?} {:?}", t0, std::time::Instant::now());
-            }
             if dump == Some(frame_no) {
                 write_obj("trace_result.obj", &f.mesh.positions, &f.mesh.triangles)?;
                 println!("wrote trace_result.obj (after frame {frame_no})");
