@@ -201,10 +201,7 @@ impl Accumulator {
         let release = if run.worse.is_empty() {
             Release {
                 vanishing: run.report.corrected_odd.clone(),
-                mesh: run.mesh.unwrap_or_else(|| TriMesh {
-                    positions: self.current.clone(),
-                    triangles: self.mesh.triangles.clone(),
-                }),
+                mesh: run.made.into_mesh(&self.mesh, &self.current),
                 report: run.report,
                 refused: Vec::new(),
             }

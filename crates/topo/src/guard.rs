@@ -53,6 +53,7 @@
 
 use glam::DVec3;
 use holey_geom::Aabb;
+use holey_mesh::tri::SlotChanges;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use crate::audit::SurfaceAudit;
@@ -69,8 +70,8 @@ use crate::hidden::{
 };
 use crate::intersect::{crossing_pairs_within, pair_count_at, pairs_intersect_at};
 use crate::local::{
-    Bounds, LocalReport, Plan, Region, first_copies, from_whole, swept_box_in, with_margin,
-    with_wide_margin,
+    Bounds, LocalReport, Plan, Region, RegionSplice, first_copies, from_whole, swept_box_in,
+    with_margin, with_wide_margin,
 };
 use crate::mesh::TriMesh;
 use crate::union_find::UnionFind;
@@ -245,9 +246,11 @@ fn guarded(
         attempts: 1,
         ..GuardedReport::default()
     };
-    let (run, held, moved_to): (Run, Vec<bool>, Option<std::borrow::Cow<'_, [DVec3]>>) =
+    // The kept run, who is held, the run's end positions, and whether
+    // they are the motion's (not the start's, held whole).
+    let (run, held, run_end, moves): (Run, Vec<bool>, std::borrow::Cow<'_, [DVec3]>, bool) =
         if first.worse.is_empty() {
-            (first, (0..n).map(held_from_start).collect(), Some(target))
+            (first, (0..n).map(held_from_start).collect(), target, true)
         } else {
             // Hold everything that moves: the frame becomes a no-op.
             report.refused = first.worse;
@@ -255,7 +258,7 @@ fn guarded(
             report.attempts += 1;
             let still = mesh.positions.clone();
             let run = run_once(mesh, &still, options, &Motion::Frame, far, window)?;
-            (run, vec![true; n], None)
+            (run, vec![true; n], std::borrow::Cow::Owned(still), false)
         };
     report.held_positions = (0..n)
         .filter(|&v| held[v] && mesh.positions[v] != end[v])
@@ -264,24 +267,23 @@ fn guarded(
     report.held_vertices = report.held_positions.len();
     report.local = run.report;
     report.euler_change = run.euler_change;
-    if run.mesh.is_none() {
+    let moved_only = matches!(run.made, Made::Moved);
+    if moved_only {
         // Only moved (or held): as whole as it was.
         report.local.one_piece = options.one_piece;
     }
-    report.window_kept = window_mut.is_some() && (run.mesh.is_none() || run.written.is_some());
-    let written = run.written;
-    match (run.mesh, moved_to) {
-        (Some(result), _) => *mesh = result,
+    report.window_kept = window_mut.is_some() && !matches!(run.made, Made::Whole(_));
+    let written = run.made.write_into(mesh, &run_end);
+    if moved_only && moves {
         // Only moved: in a window, only its vertices can have.
-        (None, Some(positions)) => match window {
+        match window {
             Some(w) => {
                 for &v in w.vertices() {
-                    mesh.positions[v as usize] = positions[v as usize];
+                    mesh.positions[v as usize] = run_end[v as usize];
                 }
             }
-            None => mesh.positions = positions.into_owned(),
-        },
-        (None, None) => {}
+            None => mesh.positions = run_end.into_owned(),
+        }
     }
     if let (Some(w), Some((triangles, vertices))) = (window_mut, written) {
         w.written(mesh, &triangles, &vertices);
@@ -291,18 +293,65 @@ fn guarded(
 
 /// One run of the frame and its audit.
 pub(crate) struct Run {
-    /// The result; `None` when only positions changed: the mesh's own
-    /// triangles at the run's end positions (a frame on a million
-    /// triangles does not copy them to say so).
-    pub mesh: Option<TriMesh>,
+    /// The result.
+    pub made: Made,
     pub report: LocalReport,
     /// What got worse (empty: the result is clean).
     pub worse: Vec<String>,
     /// The change of the Euler characteristic ([`GuardedReport::euler_change`]).
     pub euler_change: i64,
-    /// With `mesh`, when it was spliced into the input keeping slots: the
-    /// triangle and vertex slots the splice wrote ([`Window::written`]).
-    pub written: Option<(Vec<u32>, Vec<u32>)>,
+}
+
+/// The result of a [`Run`] of `mesh` moving to `end`.
+pub(crate) enum Made {
+    /// Only positions changed: the mesh's own triangles at the end
+    /// positions (a frame on a million triangles does not copy them to
+    /// say so).
+    Moved,
+    /// A result built whole.
+    Whole(TriMesh),
+    /// A region's result, to be spliced into the mesh in place.
+    Splice(RegionSplice),
+    /// A region's result spliced into a copy of the mesh (the audit read
+    /// it), and what the splice changed.
+    Spliced(TriMesh, SlotChanges),
+}
+
+impl Made {
+    /// Writes the result into `mesh` (the run's input; `end` its end
+    /// positions), except for [`Made::Moved`], whose positions the caller
+    /// writes as it sees fit. Returns the triangle and vertex slots
+    /// written ([`Window::written`]) where the result was spliced, and
+    /// `None` where it was built whole or only moved.
+    pub fn write_into(self, mesh: &mut TriMesh, end: &[DVec3]) -> Option<(Vec<u32>, Vec<u32>)> {
+        let changes = match self {
+            Made::Moved => return None,
+            Made::Whole(result) => {
+                *mesh = result;
+                return None;
+            }
+            Made::Splice(splice) => splice.apply(mesh, end),
+            Made::Spliced(result, changes) => {
+                *mesh = result;
+                changes
+            }
+        };
+        let vertices = changes.written_vertices(mesh.positions.len());
+        Some((changes.written_triangles, vertices))
+    }
+
+    /// The result as a mesh of its own, `mesh` (the run's input, `end`
+    /// its end positions) left as it is.
+    pub fn into_mesh(self, mesh: &TriMesh, end: &[DVec3]) -> TriMesh {
+        match self {
+            Made::Moved => TriMesh {
+                positions: end.to_vec(),
+                triangles: mesh.triangles.clone(),
+            },
+            Made::Whole(result) | Made::Spliced(result, _) => result,
+            Made::Splice(splice) => splice.into_mesh(mesh, end),
+        }
+    }
 }
 
 /// Where the collision parity of a motion comes from, when the motion is
@@ -383,11 +432,10 @@ fn run_with(
     let n = mesh.positions.len();
     let Some(bx) = swept_box_in(&mesh.triangles, &mesh.positions, end, window) else {
         return Ok(Run {
-            mesh: None,
+            made: Made::Moved,
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
             euler_change: 0,
-            written: None,
         });
     };
     // Most frames collide with nothing and cross nothing: that is settled
@@ -461,11 +509,10 @@ fn run_with(
     report.one_piece = options.one_piece && report.positions_only;
     report.changed = Some((DVec3::NEG_INFINITY, DVec3::INFINITY));
     Ok(Run {
-        mesh: Some(result),
+        made: Made::Whole(result),
         report,
         worse,
         euler_change,
-        written: None,
     })
 }
 
@@ -504,7 +551,7 @@ impl Tight {
 /// triangle.
 fn free_run(mesh: &TriMesh, end: &[DVec3], tight: &Tight) -> Run {
     Run {
-        mesh: None,
+        made: Made::Moved,
         report: LocalReport {
             region_triangles: tight.region.count,
             changed: tight.region.bounds(&mesh.positions, end),
@@ -512,7 +559,6 @@ fn free_run(mesh: &TriMesh, end: &[DVec3], tight: &Tight) -> Run {
         },
         worse: flat_growth(&tight.sub, &tight.moved).into_iter().collect(),
         euler_change: 0,
-        written: None,
     }
 }
 
@@ -587,11 +633,10 @@ fn run_if_sure(
     let n = mesh.positions.len();
     let Some(bx) = swept_box_in(&mesh.triangles, &mesh.positions, end, window) else {
         return Ok(Some(Run {
-            mesh: None,
+            made: Made::Moved,
             report: LocalReport::no_motion(n),
             worse: Vec::new(),
             euler_change: 0,
-            written: None,
         }));
     };
     Ok(match Tight::of(mesh, end, options, bx, window) {
@@ -739,56 +784,60 @@ fn spliced_and_audited(
     let one_piece = options.one_piece
         && (map.is_none() || stays_one_piece(mesh, region, &out.mesh, &out.vertex_origin));
     report.one_piece = one_piece;
-    // The splice and the count of the result's pieces are passes over the
-    // whole mesh, the audit works on the region: on two cores the splice
-    // goes beside the audit and the count, which reads the spliced
-    // triangles without waiting for the spliced mesh (on a million
-    // triangles each pass takes 10-30 ms).
-    let (spliced, (audited, pieces)) = rayon::join(
+    // The audit works on the region; the count of the result's pieces is
+    // a pass over the whole mesh, which reads the spliced triangles
+    // without building the spliced mesh, so the two go side by side. The
+    // splice itself is written in place once the frame is kept
+    // ([`Made::Splice`]): a frame that is refused or run again costs no
+    // copy of the mesh.
+    let (audited, pieces) = rayon::join(
+        || audit_region(mesh, end, region, sub, out, &report, options),
         || {
-            map.as_ref()
-                .map(|map| region.spliced(mesh, end, &out.mesh, map))
-        },
-        || {
-            let audited = audit_region(mesh, end, region, sub, out, &report, options);
-            let pieces = map.as_ref().filter(|_| !one_piece).map(|map| {
+            map.as_ref().filter(|_| !one_piece).map(|map| {
                 piece_count_welded(
                     n + map.added.len(),
                     &|v| map.position(end, v),
                     &|f| region.for_each_spliced_triangle(mesh, &out.mesh, map, f),
                     &near_after,
                 )
-            });
-            (audited, pieces)
+            })
         },
     );
     let (mut worse, euler_change) = audited?;
     // A count of one by shared vertices alone tells the next frame that
     // it starts on one piece, where this one could not show it.
     report.one_piece |= pieces.is_some_and(PieceCount::one_piece);
-    // One piece cannot have grown in pieces: the rules that compare
-    // pieces run only on a result of more than one.
-    if let (Some(s), Some(2..)) = (&spliced, pieces.map(|p| p.count)) {
-        // The splice numbers its result its own way: the region's
-        // vertices and the points the frame made are found through it.
-        let moved_from: FxHashMap<u32, u32> = s.moved.iter().map(|&(f, t)| (t, f)).collect();
-        let near_result =
-            |v: u32| v as usize >= s.first_added || near(moved_from.get(&v).copied().unwrap_or(v));
-        worse.extend(piece_growth(mesh, &s.mesh, &near, &near_result, options));
-    }
-    // What the splice wrote: its triangle slots, and the vertices it
-    // moved into freed slots or made.
-    let written = spliced.as_ref().map(|s| {
-        let mut vertices: Vec<u32> = s.moved.iter().map(|&(_, to)| to).collect();
-        vertices.extend(s.first_added as u32..s.mesh.positions.len() as u32);
-        (s.written_triangles.clone(), vertices)
-    });
+    let made = match map {
+        None => Made::Moved,
+        Some(map) => {
+            let splice = region.splice_of(mesh, &out.mesh, map);
+            if pieces.is_some_and(|p| p.count >= 2) {
+                // One piece cannot have grown in pieces: the rules that
+                // compare pieces run only on a result of more than one,
+                // and read it whole.
+                let mut result = mesh.clone();
+                let changes = splice.apply(&mut result, end);
+                // The splice numbers its result its own way: the
+                // region's vertices and the points the frame made are
+                // found through it.
+                let moved_from: FxHashMap<u32, u32> =
+                    changes.moved.iter().map(|&(f, t)| (t, f)).collect();
+                let near_result = |v: u32| {
+                    v as usize >= changes.first_added
+                        || near(moved_from.get(&v).copied().unwrap_or(v))
+                };
+                worse.extend(piece_growth(mesh, &result, &near, &near_result, options));
+                Made::Spliced(result, changes)
+            } else {
+                Made::Splice(splice)
+            }
+        }
+    };
     Ok(Some(Run {
-        mesh: spliced.map(|s| s.mesh),
+        made,
         report,
         worse,
         euler_change,
-        written,
     }))
 }
 

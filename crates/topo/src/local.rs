@@ -28,7 +28,7 @@ use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use glam::DVec3;
 use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
-use holey_mesh::tri::SlotSplice;
+use holey_mesh::tri::SlotChanges;
 use rayon::prelude::*;
 
 use crate::engine::{Options, Outcome, Report, TopoError, check, topology_change};
@@ -236,6 +236,8 @@ pub(crate) struct Region {
     /// Per triangle of the mesh: inside.
     pub mask: Vec<bool>,
     pub count: usize,
+    /// The region's triangle slots in the mesh, increasing.
+    pub slots: Vec<u32>,
     /// Local vertex → global vertex, increasing.
     pub global: Vec<u32>,
     /// Global vertex → local vertex, or `u32::MAX`.
@@ -340,6 +342,7 @@ impl Region {
             .collect();
         Region {
             count: triangles.len(),
+            slots: inside.iter().map(|&t| t as u32).collect(),
             mask,
             global,
             local,
@@ -546,7 +549,18 @@ impl Region {
         origin: &[u32],
     ) -> Option<TriMesh> {
         let map = self.splice_map(mesh, end.len(), out, origin)?;
-        Some(self.spliced(mesh, end, out, &map).mesh)
+        // A mesh given to the engine may have unused vertices, which
+        // this splice drops everywhere (the stroke's in-place splice
+        // keeps those outside the region).
+        let extra = map.triangles(out);
+        let spliced = holey_mesh::tri::splice_keeping_slots(
+            end,
+            &map.added,
+            &mesh.triangles,
+            &self.mask,
+            &extra,
+        );
+        Some(spliced.mesh)
     }
 
     /// Where each vertex of the engine's output `out` goes in the spliced
@@ -624,24 +638,35 @@ impl Region {
         SpliceMap { vertex, added }
     }
 
-    /// The spliced mesh of [`Region::splice_map`]'s `map`, without the
-    /// vertices it no longer uses, numbered to keep every slot it can
-    /// ([`holey_mesh::tri::splice_keeping_slots`]): the output's
-    /// triangles take the region's slots, and the points the frame made
-    /// come last.
-    pub(crate) fn spliced(
-        &self,
-        mesh: &TriMesh,
-        end: &[DVec3],
-        out: &TriMesh,
-        map: &SpliceMap,
-    ) -> SlotSplice {
-        let extra: Vec<[u32; 3]> = out
-            .triangles
+    /// What splicing `out` (the engine's output for the region, placed
+    /// by `map` from [`Region::splice_map`]) into `mesh` writes, ready to
+    /// be written in place ([`RegionSplice::apply`]) once the frame is
+    /// kept: no pass over the mesh. The vertices that go are the
+    /// region's that neither the ring ([`Region::ring`], found by the
+    /// splice map) nor the output uses; every other vertex of a mesh
+    /// without unused vertices is used outside the region.
+    pub(crate) fn splice_of(&self, mesh: &TriMesh, out: &TriMesh, map: SpliceMap) -> RegionSplice {
+        let extra = map.triangles(out);
+        let mut used = self.interface_vertices(&mesh.triangles);
+        for &v in extra.iter().flatten() {
+            if let Some(&l) = self.local.get(v as usize).filter(|&&l| l != u32::MAX) {
+                used[l as usize] = true;
+            }
+        }
+        let dropped = self
+            .global
             .iter()
-            .map(|t| t.map(|v| map.vertex[v as usize]))
+            .zip(&used)
+            .filter(|(_, used)| !**used)
+            .map(|(&v, _)| v)
             .collect();
-        holey_mesh::tri::splice_keeping_slots(end, &map.added, &mesh.triangles, &self.mask, &extra)
+        RegionSplice {
+            vertices: self.global.clone(),
+            skipped: self.slots.clone(),
+            dropped,
+            added: map.added,
+            extra,
+        }
     }
 
     /// Every triangle of the spliced mesh of `map` before its unused
@@ -694,6 +719,15 @@ pub(crate) struct SpliceMap {
 }
 
 impl SpliceMap {
+    /// The triangles of `out` (the output the map was made for) in the
+    /// spliced mesh's numbers before the splice drops its unused vertices.
+    pub fn triangles(&self, out: &TriMesh) -> Vec<[u32; 3]> {
+        out.triangles
+            .iter()
+            .map(|t| t.map(|v| self.vertex[v as usize]))
+            .collect()
+    }
+
     /// The position of vertex `v` of the spliced mesh before the splice
     /// drops its unused vertices: the mesh's own at `end`, then the added
     /// ones.
@@ -702,6 +736,50 @@ impl SpliceMap {
             None => end[v as usize],
             Some(k) => self.added[k],
         }
+    }
+}
+
+/// A region's output placed in the mesh it goes into
+/// ([`Region::splice_of`]), not yet written.
+#[derive(Clone, Debug)]
+pub(crate) struct RegionSplice {
+    /// The region's vertices: they take their end positions (no other
+    /// vertex moves in a frame).
+    vertices: Vec<u32>,
+    /// The region's triangle slots, increasing.
+    skipped: Vec<u32>,
+    /// The region's vertices nothing uses after the splice, increasing.
+    dropped: Vec<u32>,
+    /// The positions of the vertices numbered after the mesh's own.
+    added: Vec<DVec3>,
+    /// The output's triangles in the mesh's numbers before the splice.
+    extra: Vec<[u32; 3]>,
+}
+
+impl RegionSplice {
+    /// Writes the splice into `mesh` (the mesh it was made for, at its
+    /// start positions; `end` its end positions): the region's vertices
+    /// move to `end`, and [`holey_mesh::tri::splice_in_place`] does the
+    /// rest, so the result is the copying splice's
+    /// ([`holey_mesh::tri::splice_keeping_slots`]) number for number.
+    pub fn apply(&self, mesh: &mut TriMesh, end: &[DVec3]) -> SlotChanges {
+        for &v in &self.vertices {
+            mesh.positions[v as usize] = end[v as usize];
+        }
+        holey_mesh::tri::splice_in_place(
+            mesh,
+            &self.added,
+            &self.skipped,
+            &self.dropped,
+            &self.extra,
+        )
+    }
+
+    /// The spliced mesh as a mesh of its own, `mesh` left as it is.
+    pub fn into_mesh(self, mesh: &TriMesh, end: &[DVec3]) -> TriMesh {
+        let mut result = mesh.clone();
+        self.apply(&mut result, end);
+        result
     }
 }
 
@@ -926,6 +1004,47 @@ mod tests {
             c
         };
         assert_eq!(key(&local_mesh), key(&global.mesh));
+    }
+
+    /// A frame's region spliced in place ([`Region::splice_of`], which
+    /// finds the vertices that go from the region's ring alone) is the
+    /// copying splice's mesh number for number, on a mesh that uses
+    /// every vertex: the first sphere's cap pushed into the second,
+    /// which deletes vertices inside it and makes points on the curve.
+    #[test]
+    fn a_region_spliced_in_place_is_the_copying_splice() {
+        let m = scene();
+        let end: Vec<DVec3> = m
+            .positions
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| {
+                if i < 2 + 15 * 24 && p.x > 0.6 {
+                    p + DVec3::X * 1.2
+                } else {
+                    p
+                }
+            })
+            .collect();
+        let bx = swept_box(&m.triangles, &m.positions, &end).unwrap();
+        let region = Region::select(&m.triangles, &m.positions, &end, with_margin(bx));
+        assert!(region.worth_it());
+        let sub = region.submesh(&m.positions);
+        let out = topology_change(&sub, &region.gather(&end), &Options::default()).unwrap();
+        let copied = region
+            .splice(&m, &end, &out.mesh, &out.vertex_origin)
+            .unwrap();
+        let map = region
+            .splice_map(&m, m.positions.len(), &out.mesh, &out.vertex_origin)
+            .unwrap();
+        let splice = region.splice_of(&m, &out.mesh, map);
+        assert!(!splice.dropped.is_empty() && !splice.added.is_empty());
+        let mut in_place = m.clone();
+        let changes = splice.apply(&mut in_place, &end);
+        assert!(!changes.moved.is_empty());
+        assert_eq!(in_place, copied);
+        in_place.check().unwrap();
+        assert_eq!(components(&in_place), 2, "the two spheres joined");
     }
 
     #[test]
