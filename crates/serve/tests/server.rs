@@ -2138,7 +2138,7 @@ fn remeshing_strokes_send_patches_that_build_the_committed_mesh() {
 
 /// Issue 15 item 6, through the modeller: a frame that cuts the surface
 /// keeps every vertex and triangle number the cut did not touch (the
-/// engine's splice, `holey_mesh::tri::splice_keeping_slots`), so it
+/// engine's splice, `holey_mesh::tri::splice_in_place`), so it
 /// travels as a patch, as a remeshing frame does, and not as the whole
 /// mesh (38 MB a frame on a million triangles). The snake hook pulled
 /// through the far side of a sphere opens a tunnel mid-stroke: each frame

@@ -24,7 +24,7 @@
 //!   what it held;
 //! - a frame that changes topology keeps every slot its splice does not
 //!   write, and the splice reports those it does
-//!   (`holey_mesh::tri::SlotSplice::written_triangles`, and the vertices
+//!   (`holey_mesh::tri::SlotChanges::written_triangles`, and the vertices
 //!   it moved or made); the guard tells the window. A frame whose result
 //!   was built whole renumbers everything: the stroke drops its window
 //!   and builds a new one at its next frame.
