@@ -1984,6 +1984,40 @@ mod tests {
         assert!(kept >= frames.len() / 2, "the window was kept {kept} times");
     }
 
+    /// The same with vertices no triangle uses (the Stanford bunny's
+    /// file has 1,113), some under the brush's path, inside the window,
+    /// some far from it: the frames that cut the surface splice in place
+    /// around them, and every frame is the same with the window as
+    /// without.
+    #[test]
+    fn a_stroke_in_a_window_among_unused_vertices_is_the_stroke_without_one() {
+        let mut mesh = facing_sheets(32, 0.05);
+        let under: Vec<DVec3> = (0..6)
+            .map(|k| DVec3::new(0.3 + 0.08 * k as f64, 0.5, 0.02))
+            .collect();
+        let far = [DVec3::new(5.0, 5.0, 5.0), DVec3::new(-3.0, 0.5, 0.0)];
+        mesh.positions.extend(&under);
+        mesh.positions.extend(far);
+        let settings = BrushSettings::new(Brush::Inflate, 0.09, 0.6);
+        let frames: Vec<Vec<(DVec3, f64)>> = (0..16)
+            .map(|k| vec![(DVec3::new(0.3 + 0.4 * k as f64 / 15.0, 0.5, 0.0), 1.0)])
+            .collect();
+        let remesh = Some(RemeshOptions::new(crate::strokes::Remesh {
+            min_edge: 0.015,
+            max_edge: 0.035,
+        }));
+        let (kept, changed, through) = windowed_and_whole_agree(
+            "sheets with loose vertices",
+            &mesh,
+            settings,
+            &frames,
+            remesh,
+        );
+        assert!(changed >= 4, "{changed} frames changed topology");
+        assert!(through >= 4, "the window was kept through {through} cuts");
+        assert!(kept >= frames.len() / 2, "the window was kept {kept} times");
+    }
+
     /// The same on a real scan: the first haunch stroke the modeler
     /// recorded on the Stanford bunny (`bench/sculpt/recorded`), frame by
     /// frame as it was sent, at the recorded remeshing range. Reads
