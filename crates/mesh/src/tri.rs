@@ -1136,6 +1136,27 @@ mod tests {
         assert_eq!(m, expected);
     }
 
+    /// A pseudo-random number below `m` per call (a linear congruential
+    /// generator from `seed`): the splice tests' meshes.
+    fn numbers(seed: u64) -> impl FnMut(u32) -> u32 {
+        let mut x = seed;
+        move |m: u32| {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 33) as u32 % m
+        }
+    }
+
+    /// `n` points of a mesh and `a` added ones, told apart by `y`.
+    fn splice_points(n: u32, a: u32) -> (Vec<DVec3>, Vec<DVec3>) {
+        let positions = (0..n).map(|i| DVec3::new(f64::from(i), 1.0, 0.5)).collect();
+        let added = (0..a)
+            .map(|i| DVec3::new(-f64::from(i), 2.0, 0.5))
+            .collect();
+        (positions, added)
+    }
+
     /// The splice that keeps slots is the mesh built and then compacted,
     /// up to numbering (kept triangles, then the extra ones, over the
     /// positions and the added ones; vertices unused before, every fifth,
@@ -1147,22 +1168,12 @@ mod tests {
     /// runs); with more, fewer and no extra triangles than skipped ones.
     #[test]
     fn a_splice_keeping_slots_is_the_built_mesh_compacted_and_renumbers_only_what_it_touched() {
-        let mut x = 99u64;
-        let mut next = |m: u32| {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (x >> 33) as u32 % m
-        };
+        let mut next = numbers(99);
         for (n, t, a) in [(50u32, 30usize, 4u32), (100_000, 40_000, 300)] {
-            let positions: Vec<DVec3> =
-                (0..n).map(|i| DVec3::new(f64::from(i), 1.0, 0.5)).collect();
-            let added: Vec<DVec3> = (0..a)
-                .map(|i| DVec3::new(-f64::from(i), 2.0, 0.5))
-                .collect();
+            let (positions, added) = splice_points(n, a);
             let mut used = || loop {
                 let v = next(n);
-                if v % 5 != 0 {
+                if !v.is_multiple_of(5) {
                     return v;
                 }
             };
@@ -1250,19 +1261,9 @@ mod tests {
     /// vertices dropped from the middle and from the end.
     #[test]
     fn a_splice_in_place_is_the_copying_splice() {
-        let mut x = 7u64;
-        let mut next = |m: u32| {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (x >> 33) as u32 % m
-        };
+        let mut next = numbers(7);
         for (n, t, a) in [(40u32, 60usize, 5u32), (60_000, 150_000, 200)] {
-            let positions: Vec<DVec3> =
-                (0..n).map(|i| DVec3::new(f64::from(i), 1.0, 0.5)).collect();
-            let added: Vec<DVec3> = (0..a)
-                .map(|i| DVec3::new(-f64::from(i), 2.0, 0.5))
-                .collect();
+            let (positions, added) = splice_points(n, a);
             // Every vertex used: the first n / 3 triangles run through
             // them all.
             let triangles: Vec<[u32; 3]> = (0..t)

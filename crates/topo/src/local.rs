@@ -962,12 +962,10 @@ mod tests {
         assert_eq!(moved.triangles, m.triangles);
     }
 
-    #[test]
-    fn matches_the_whole_mesh_engine_on_a_union() {
-        let m = scene();
-        // Push the first sphere's +x cap into the second sphere.
-        let end: Vec<DVec3> = m
-            .positions
+    /// The end positions of [`scene`] with the first sphere's +x cap
+    /// pushed into the second sphere.
+    fn cap_pushed_in(m: &TriMesh) -> Vec<DVec3> {
+        m.positions
             .iter()
             .enumerate()
             .map(|(i, &p)| {
@@ -977,7 +975,13 @@ mod tests {
                     p
                 }
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn matches_the_whole_mesh_engine_on_a_union() {
+        let m = scene();
+        let end = cap_pushed_in(&m);
         let mut local_mesh = m.clone();
         let local = topology_change_local(&mut local_mesh, &end, &Options::default()).unwrap();
         let global = topology_change(&m, &end, &Options::default()).unwrap();
@@ -1014,18 +1018,7 @@ mod tests {
     #[test]
     fn a_region_spliced_in_place_is_the_copying_splice() {
         let m = scene();
-        let end: Vec<DVec3> = m
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(i, &p)| {
-                if i < 2 + 15 * 24 && p.x > 0.6 {
-                    p + DVec3::X * 1.2
-                } else {
-                    p
-                }
-            })
-            .collect();
+        let end = cap_pushed_in(&m);
         let bx = swept_box(&m.triangles, &m.positions, &end).unwrap();
         let region = Region::select(&m.triangles, &m.positions, &end, with_margin(bx));
         assert!(region.worth_it());
