@@ -71,6 +71,7 @@ use rayon::prelude::*;
 use crate::local::Bounds;
 use crate::mesh::TriMesh;
 use crate::winding::{FEW_POINTS, Octree, Residue, WindingField, classified_sums};
+use crate::window::{corners_meet_box, outcodes};
 
 /// A snapshot is rebuilt when more than this share of its triangles lies
 /// in the changed box: the pass over those costs as much as one over all.
@@ -358,12 +359,8 @@ fn kept_query(state: &State, ask: &Ask<'_>, residue: &Residue) -> Option<(Vec<f6
     // in the volume. A triangle's box misses it exactly when its corners'
     // outcodes share a bit (`corners_meet`), so the pass reads a code
     // byte per corner and only the meeting triangles' corners.
-    let code: Vec<u8> = end
-        .par_iter()
-        .with_min_len(PARALLEL_RUN)
-        .map(|&p| b.outcode(p))
-        .collect();
-    let meets = |tri: &[u32; 3]| tri.iter().fold(0x3f, |c, &v| c & code[v as usize]) == 0;
+    let code = outcodes(&b, end);
+    let meets = |tri: &[u32; 3]| corners_meet_box(&code, tri);
     let (mut w, volume_now) = if points.len() <= FEW_POINTS {
         classified_sums(&mesh.triangles, &|v| end[v as usize], points, &|t, tri| {
             let meets = meets(tri);

@@ -75,7 +75,7 @@ use crate::local::{
 };
 use crate::mesh::TriMesh;
 use crate::union_find::UnionFind;
-use crate::window::Window;
+use crate::window::{Window, corners_meet_box, outcodes};
 
 /// What [`topology_change_guarded`] did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -721,11 +721,11 @@ fn parity_across_sheets(sub: &TriMesh, odd_pairs: &[(u32, u32)]) -> Vec<Option<b
 /// piece or crossing is added by deleting everything).
 fn unreached_deleted(sub: &TriMesh, out: &Outcome, bx: Bounds) -> Option<String> {
     let bx = Aabb::new(bx.0, bx.1);
-    let code: Vec<u8> = sub.positions.iter().map(|&p| bx.outcode(p)).collect();
+    let code = outcodes(&bx, &sub.positions);
     let far: Vec<[u32; 3]> = sub
         .triangles
         .iter()
-        .filter(|t| t.iter().fold(u8::MAX, |c, &v| c & code[v as usize]) != 0)
+        .filter(|t| !corners_meet_box(&code, t))
         .copied()
         .collect();
     if far.is_empty() {

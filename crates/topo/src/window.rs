@@ -73,10 +73,7 @@ impl Window {
             .filter(|(_, t)| {
                 // Indices the mesh does not have are the engine's to
                 // report; the window lists such a triangle, never panics.
-                t.iter()
-                    .map(|&v| code.get(v as usize).copied().unwrap_or(0))
-                    .fold(0x3f, |a, c| a & c)
-                    == 0
+                corners_meet_box(&code, t)
             })
             .map(|(t, _)| t as u32)
             .collect();
@@ -190,6 +187,18 @@ pub fn outcodes(region: &Aabb, points: &[DVec3]) -> Vec<u8> {
         .with_min_len(PARALLEL_RUN)
         .map(|&p| region.outcode(p))
         .collect()
+}
+
+/// Whether the box of the triangle `tri` meets the box whose
+/// [`outcodes`] `code` holds for its corners: it misses exactly when all
+/// three corners lie beyond one face (their codes share a bit). A corner
+/// `code` does not have counts as inside, so a bad index is listed, not
+/// a panic.
+pub fn corners_meet_box(code: &[u8], tri: &[u32; 3]) -> bool {
+    tri.iter()
+        .map(|&v| code.get(v as usize).copied().unwrap_or(0))
+        .fold(0x3f, |a, c| a & c)
+        == 0
 }
 
 /// Merges the slots of `more` below `len` into the sorted `list`, and
