@@ -22,9 +22,11 @@
 //! and rounded once, all before any side is inserted
 //! ([`crate::side_crossings`]), and lifted back onto the plane; the
 //! faces around the group are split at the points that land on their
-//! sides by the Boolean's T-junction repair, and a group whose overlay
-//! fails (a panic of the splitting insertion, a count of ±2, a
-//! projection that flattens a face) keeps its faces.
+//! sides by the Boolean's T-junction repair. Where spade's splitting
+//! insertion panics (sides crossing a few ulps from a corner), the
+//! crossings are found first, as `resolve` does. A group whose overlay
+//! fails even so (a panic of the insertion, a count of ±2, a projection
+//! that flattens a face) keeps its faces.
 
 use glam::{DVec2, DVec3};
 use holey_geom::expansion::Expansion;
@@ -386,7 +388,8 @@ type SideVertices = rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>>;
 /// side panics), every side of a face with an area a constraint, split
 /// where sides cross ([`crate::side_crossings`]: each side goes in as
 /// its pieces between its crossings, so spade's splitting insertion is
-/// left only the pieces whose rounded ends cross another).
+/// left only the pieces whose rounded ends cross another) when
+/// `found_first`, else by spade's splitting insertion alone.
 fn triangulate(
     positions: &[DVec3],
     faces: &[[u32; 3]],
@@ -394,6 +397,7 @@ fn triangulate(
     signs: &[Sign],
     axis: usize,
     keep: Keep,
+    found_first: bool,
 ) -> Option<Triangulated> {
     let proj = |v: u32| project(positions[v as usize], axis);
     let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
@@ -439,21 +443,17 @@ fn triangulate(
         .map(|(a, b)| (handle_of[&a], handle_of[&b]))
         .filter(|(a, b)| a != b)
         .collect();
-    let (pieces, split_sides) = match keep {
-        // The Booleans' walls: spade's splitting insertion, side by side.
-        // (With the crossings found first, the OpenSCAD export's union
-        // merges 18 of its 28 walls instead of 21: the Boolean's
-        // T-junction repair does not follow the split points as
-        // `resolve`'s chains do.)
-        Keep::Count => (sides, Default::default()),
-        Keep::Once => presplit(&mut cdt, &sides)?,
+    let (pieces, split_sides) = if found_first {
+        presplit(&mut cdt, &sides)?
+    } else {
+        (sides, Default::default())
     };
     // The vertices each piece went in through (`Once`): where spade split
     // it, at a vertex exactly on it or a crossing it met, in order.
     let mut through: rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>> = Default::default();
     let inserted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         for &(a, b) in &pieces {
-            if keep == Keep::Count {
+            if !found_first {
                 // The Booleans: crossings split where spade meets them.
                 cdt.add_constraint_and_split(a, b, split);
                 continue;
@@ -683,7 +683,19 @@ pub(crate) fn overlay(
         handle_of,
         renamed,
         split_sides,
-    } = triangulate(positions, faces, group, &signs, axis, keep)?;
+    } = match keep {
+        // The Booleans' walls: spade's splitting insertion, side by side
+        // (with the crossings found first, the OpenSCAD export's union
+        // merges 18 of its 28 walls instead of 21: the Boolean's
+        // T-junction repair does not follow the split points as
+        // `resolve`'s chains do), and where that panics (sides crossing
+        // at ulps from a corner, as on a CAD part's faces in one plane
+        // against its mirror image's: 31 of its difference's 64 walls),
+        // with the crossings found first.
+        Keep::Count => triangulate(positions, faces, group, &signs, axis, keep, false)
+            .or_else(|| triangulate(positions, faces, group, &signs, axis, keep, true))?,
+        Keep::Once => triangulate(positions, faces, group, &signs, axis, keep, true)?,
+    };
     let proj = |v: u32| project(positions[v as usize], axis);
     // The group's faces, counterclockwise in the projection, with the
     // count each adds inside it.
@@ -1034,5 +1046,77 @@ mod tests {
         assert!(wall_groups(&positions, &[[0, 1, 2], [3, 4, 5]]).is_empty());
         assert!(wall_groups(&positions, &[[0, 1, 2], [6, 8, 7]]).is_empty());
         assert_eq!(wall_groups(&positions, &[[0, 1, 2], [3, 5, 4]]).len(), 1);
+    }
+
+    /// Ten faces of one wall of `thingi10k_1063852.stl` minus its mirror
+    /// image in x (all at y = 13.385283470153809, the part's face and
+    /// its image's, with the cut's points on them), the smallest subset
+    /// of the 16-face group on which spade's splitting insertion panics:
+    /// sides crossing a few ulps from a corner. The overlay then inserts
+    /// the crossings found first, and its cells cover the plane as the
+    /// faces do: each cell counted by the faces over it, so the cells'
+    /// signed areas (y dropped) add up to the faces'.
+    #[test]
+    fn a_wall_that_panics_the_splitting_insertion_is_overlaid_with_its_crossings_found_first() {
+        let at = [
+            (-3.019016248445839, -2.8433787218624027),
+            (-2.5876708030700684, -2.989004135131836),
+            (-3.045091595392058, -2.8349172599194614),
+            (-3.031394471140626, -2.8391997423118034),
+            (-2.722344398498535, -3.098073959350586),
+            (-3.00341037264669, -2.9874120080475177),
+            (-2.855867385864258, -3.2141571044921875),
+            (-3.0032924523159252, -2.9878434308790656),
+            (-2.912061358911717, -3.188620579798563),
+            (-2.9504255694645125, -3.1711865284759155),
+            (-2.951905247436828, -3.170514110580731),
+            (-3.003309524356804, -2.987780971181332),
+        ];
+        let mut positions: Vec<DVec3> = at
+            .iter()
+            .map(|&(x, z)| DVec3::new(x, 13.385283470153809, z))
+            .collect();
+        let faces = vec![
+            [0, 2, 3],
+            [2, 1, 5],
+            [6, 8, 7],
+            [9, 10, 7],
+            [7, 11, 4],
+            [11, 5, 4],
+            [9, 0, 3],
+            [9, 3, 10],
+            [3, 11, 7],
+            [10, 3, 7],
+        ];
+        let group: Vec<usize> = (0..faces.len()).collect();
+        let signs: Vec<Sign> = faces
+            .iter()
+            .map(|&f| projected_sign(&positions, f, 1))
+            .collect();
+        assert!(
+            triangulate(&positions, &faces, &group, &signs, 1, Keep::Count, false).is_none(),
+            "the splitting insertion alone makes it: no case for the fallback"
+        );
+        // Twice the signed area in the plane y = const, seen from +y.
+        let twice = |p: &[DVec3], f: [u32; 3]| {
+            let [a, b, c] = f.map(|v| p[v as usize]);
+            (b - a).cross(c - a).y
+        };
+        let faces_area: f64 = faces.iter().map(|&f| twice(&positions, f)).sum();
+        let o = overlay(
+            &mut positions,
+            &faces,
+            &group,
+            &Default::default(),
+            Keep::Count,
+        )
+        .expect("overlaid with the crossings found first");
+        let cells_area: f64 = o.cells.iter().map(|&c| twice(&positions, c)).sum();
+        let scale: f64 = faces.iter().map(|&f| twice(&positions, f).abs()).sum();
+        assert!(
+            (cells_area - faces_area).abs() <= 1e-9 * scale,
+            "cells {cells_area}, faces {faces_area}"
+        );
+        assert!(!o.cells.is_empty());
     }
 }
