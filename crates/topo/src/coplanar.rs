@@ -141,24 +141,35 @@ pub(crate) enum Overlap {
     Opposite,
 }
 
+/// A face's normal in floating point, and whether it means something
+/// there: a sliver's can point anywhere, and goes to the exact tests.
+fn float_normal(positions: &[DVec3], t: [u32; 3]) -> Option<DVec3> {
+    let p = |v: u32| positions[v as usize];
+    let (u, w) = (p(t[1]) - p(t[0]), p(t[2]) - p(t[0]));
+    let n = u.cross(w);
+    let size = u.length_squared().max(w.length_squared());
+    (n.length() > 1e-6 * size).then_some(n)
+}
+
+/// Whether two faces with these float normals may overlap in one plane
+/// facing `facing` ways (`None`: either way): coplanar faces have
+/// parallel normals, and faces facing opposite ways opposite ones. Only
+/// a filter: [`overlap`] decides exactly.
+fn may_overlap(nf: Option<DVec3>, ng: Option<DVec3>, facing: Option<Overlap>) -> bool {
+    let (Some(nf), Some(ng)) = (nf, ng) else {
+        return true;
+    };
+    let (dot, scale) = (nf.dot(ng), nf.length() * ng.length());
+    match facing {
+        Some(Overlap::Opposite) => dot < -0.5 * scale,
+        _ => dot.abs() >= 0.5 * scale,
+    }
+}
+
 /// How faces `f` and `g` overlap: exactly coplanar, and interiors that
 /// meet in their plane, facing the same or opposite ways.
 fn overlap(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> Overlap {
     let p = |v: u32| positions[v as usize];
-    let normal = |t: [u32; 3]| (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
-    let size = |t: [u32; 3]| {
-        (p(t[1]) - p(t[0]))
-            .length_squared()
-            .max((p(t[2]) - p(t[0])).length_squared())
-    };
-    let (nf, ng) = (normal(f), normal(g));
-    // A cheap filter: coplanar faces have parallel normals. Only for
-    // faces whose normal means something in floating point (a sliver's
-    // can point anywhere; those go to the exact test).
-    let sure = |n: DVec3, t: [u32; 3]| n.length() > 1e-6 * size(t);
-    if sure(nf, f) && sure(ng, g) && nf.dot(ng).abs() < 0.5 * nf.length() * ng.length() {
-        return Overlap::Apart;
-    }
     let [a, b, c] = f.map(p);
     if g.iter()
         .any(|&v| !f.contains(&v) && orient3d(a, b, c, p(v)) != Sign::Zero)
@@ -191,35 +202,87 @@ pub(crate) fn for_each_overlapping_pair(
     faces: &[[u32; 3]],
     mut f: impl FnMut(usize, usize, Overlap),
 ) {
-    let boxes: Vec<Aabb> = faces
-        .iter()
-        .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
-        .collect();
-    let Ok(tree) = Bvh::build(&boxes) else {
+    let Some(tree) = FaceTree::new(positions, faces) else {
         return;
     };
-    // Found in parallel (nearly every face's box meets a few of its
-    // neighbours', which the filters reject one by one), then reported
-    // in order.
-    let found: Vec<(u32, u32, Overlap)> = (0..faces.len())
-        .into_par_iter()
-        .with_min_len(1 << 10)
-        .flat_map_iter(|i| {
-            let mut hits = Vec::new();
-            tree.for_each_overlap(&boxes[i], |j| {
-                let j = j as usize;
-                if j > i {
-                    let how = overlap(positions, faces[i], faces[j]);
-                    if how != Overlap::Apart {
-                        hits.push((i as u32, j as u32, how));
-                    }
-                }
-            });
-            hits
-        })
-        .collect();
-    for (i, j, how) in found {
+    for (i, j, how) in tree.pairs(None) {
         f(i as usize, j as usize, how);
+    }
+}
+
+/// Faces with a tree of their boxes and their float normals, for finding
+/// the pairs that overlap in their plane: each pair whose boxes meet is
+/// filtered by its normals ([`may_overlap`]) before the exact test (a
+/// CAD part's union with its mirror image has 1.5M pairs of faces whose
+/// boxes meet, long thin triangles, and none overlapping).
+struct FaceTree<'a> {
+    positions: &'a [DVec3],
+    faces: &'a [[u32; 3]],
+    boxes: Vec<Aabb>,
+    tree: Bvh,
+    normals: Vec<Option<DVec3>>,
+}
+
+impl<'a> FaceTree<'a> {
+    /// `None` when a box is not finite.
+    fn new(positions: &'a [DVec3], faces: &'a [[u32; 3]]) -> Option<FaceTree<'a>> {
+        let boxes: Vec<Aabb> = faces
+            .par_iter()
+            .map(|t| Aabb::from_points(&t.map(|v| positions[v as usize])))
+            .collect();
+        let tree = Bvh::build(&boxes).ok()?;
+        let normals = faces
+            .par_iter()
+            .map(|&t| float_normal(positions, t))
+            .collect();
+        Some(FaceTree {
+            positions,
+            faces,
+            boxes,
+            tree,
+            normals,
+        })
+    }
+
+    /// Calls `f(j, how)` for each face `j` after `i` that overlaps it in
+    /// their plane, facing `facing` ways (`None`: either way).
+    fn overlapping(&self, i: usize, facing: Option<Overlap>, mut f: impl FnMut(usize, Overlap)) {
+        self.tree.for_each_overlap(&self.boxes[i], |j| {
+            let j = j as usize;
+            if j > i && may_overlap(self.normals[i], self.normals[j], facing) {
+                let how = overlap(self.positions, self.faces[i], self.faces[j]);
+                if how != Overlap::Apart && facing.is_none_or(|w| w == how) {
+                    f(j, how);
+                }
+            }
+        });
+    }
+
+    /// The pairs `i < j` that overlap facing `facing` ways, in order;
+    /// the faces in parallel.
+    fn pairs(&self, facing: Option<Overlap>) -> Vec<(u32, u32, Overlap)> {
+        (0..self.faces.len())
+            .into_par_iter()
+            .with_min_len(1 << 10)
+            .flat_map_iter(|i| {
+                let mut hits = Vec::new();
+                self.overlapping(i, facing, |j, how| hits.push((i as u32, j as u32, how)));
+                hits
+            })
+            .collect()
+    }
+
+    /// Whether some pair overlaps facing `facing` ways: the faces in
+    /// parallel, until one is found.
+    fn any(&self, facing: Option<Overlap>) -> bool {
+        (0..self.faces.len())
+            .into_par_iter()
+            .with_min_len(1 << 8)
+            .any(|i| {
+                let mut found = false;
+                self.overlapping(i, facing, |_, _| found = true);
+                found
+            })
     }
 }
 
@@ -252,19 +315,31 @@ pub(crate) fn overlap_groups(
     faces: &[[u32; 3]],
     walls_only: bool,
 ) -> Vec<Vec<usize>> {
+    let Some(tree) = FaceTree::new(positions, faces) else {
+        return Vec::new();
+    };
+    // Without a pair facing opposite ways there is no wall: on most
+    // results there is none, and faces facing the same way (every face's
+    // coplanar neighbours on a CAD part) are rejected by their normals
+    // (65–85 ms against 215–245 for every pair on the part's union with
+    // its mirror image).
+    if walls_only && !tree.any(Some(Overlap::Opposite)) {
+        return Vec::new();
+    }
+    let pairs = tree.pairs(None);
     let mut sets = UnionFind::new(faces.len());
     let mut in_wall = vec![false; faces.len()];
     let mut joined = vec![false; faces.len()];
-    for_each_overlapping_pair(positions, faces, |i, j, o| {
-        sets.union(i as u32, j as u32);
+    for (i, j, o) in pairs {
+        sets.union(i, j);
         let flag = if o == Overlap::Opposite {
             &mut in_wall
         } else {
             &mut joined
         };
-        flag[i] = true;
-        flag[j] = true;
-    });
+        flag[i as usize] = true;
+        flag[j as usize] = true;
+    }
     let walls: rustc_hash::FxHashSet<u32> = (0..faces.len())
         .filter(|&i| in_wall[i])
         .map(|i| sets.find(i as u32))
@@ -363,6 +438,29 @@ pub(crate) struct Overlay {
     /// (only by [`Keep::Once`]): (corner, the one it is taken as). The
     /// cells use the second; every face must.
     pub renamed: Vec<(u32, u32)>,
+}
+
+impl Overlay {
+    /// The overlay with its new points (those from `first_new` on)
+    /// numbered `by` later.
+    pub(crate) fn shifted(mut self, first_new: u32, by: u32) -> Overlay {
+        let shift = |v: &mut u32| {
+            if *v >= first_new {
+                *v += by;
+            }
+        };
+        self.cells.iter_mut().flatten().for_each(shift);
+        for ((a, b), on) in &mut self.sides {
+            shift(a);
+            shift(b);
+            on.iter_mut().for_each(shift);
+        }
+        for (a, b) in &mut self.renamed {
+            shift(a);
+            shift(b);
+        }
+        self
+    }
 }
 
 type Handle = spade::handles::FixedVertexHandle;
@@ -663,6 +761,22 @@ pub(crate) fn overlay(
     existing: &rustc_hash::FxHashMap<[u64; 3], u32>,
     keep: Keep,
 ) -> Option<Overlay> {
+    let (made, new_points) = overlay_beside(positions, faces, group, existing, keep)?;
+    positions.extend(new_points);
+    Some(made)
+}
+
+/// [`overlay`] without appending: the crossing points it would append
+/// are returned, numbered from `positions.len()` on, so that groups can
+/// be overlaid side by side ([`Overlay::shifted`] numbers them after
+/// another group's).
+pub(crate) fn overlay_beside(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    group: &[usize],
+    existing: &rustc_hash::FxHashMap<[u64; 3], u32>,
+    keep: Keep,
+) -> Option<(Overlay, Vec<DVec3>)> {
     // The plane's axis and face: the first face with an area (faces of no
     // area, absorbed by `absorb_flat_faces`, count nothing).
     let first = *group.iter().find(|&&i| !flat(positions, faces[i]))?;
@@ -714,6 +828,17 @@ pub(crate) fn overlay(
     let inside = |t: &[DVec2; 3], cell: &[DVec2; 3]| {
         (0..3).all(|k| centroid_side(t[k], t[(k + 1) % 3], cell) == Sign::Positive)
     };
+    // A face holds a cell's centroid only if its box meets the cell's
+    // (the centroid is in both): each cell tests only those faces, where
+    // testing every face against every cell took 13% of a CAD part's
+    // difference with its mirror image (walls of 300 faces).
+    let flat_box = |t: &[DVec2; 3]| {
+        let lo = t[0].min(t[1]).min(t[2]);
+        let hi = t[0].max(t[1]).max(t[2]);
+        Aabb::new(lo.extend(0.0), hi.extend(0.0))
+    };
+    let cover_boxes: Vec<Aabb> = covers.iter().map(|(t, _)| flat_box(t)).collect();
+    let cover_tree = Bvh::build(&cover_boxes).ok()?;
     // The plane the crossing points are lifted onto: through the first
     // face's first corner, with its normal.
     let [a, b, c] = faces[first].map(|v| positions[v as usize]);
@@ -777,17 +902,19 @@ pub(crate) fn overlay(
             let p = v.position();
             DVec2::new(p.x, p.y)
         });
-        let mut covering = covers
-            .iter()
-            .filter(|(t, _)| inside(t, &q))
-            .map(|(_, c)| *c);
-        let first_cover = covering.next();
-        let count: i32 = first_cover.unwrap_or(0) + covering.sum::<i32>();
+        let (mut covered, mut count) = (false, 0i32);
+        cover_tree.for_each_overlap(&flat_box(&q), |c| {
+            let (t, add) = &covers[c as usize];
+            if inside(t, &q) {
+                covered = true;
+                count += add;
+            }
+        });
         let [i, j, k] = f.vertices().map(|v| global[v.fix().index()]);
         // A crossing taken as an existing vertex can make a cell's corners
         // repeat: a cell of no area, never kept (the check of the merge
         // decides whether the result stays closed without it).
-        if first_cover.is_none() || i == j || j == k || i == k {
+        if !covered || i == j || j == k || i == k {
             continue;
         }
         // A cell with a corner on its opposite side's line, to rounding
@@ -839,12 +966,14 @@ pub(crate) fn overlay(
             }
         }
     }
-    positions.extend(new_points);
-    Some(Overlay {
-        cells,
-        sides,
-        renamed,
-    })
+    Some((
+        Overlay {
+            cells,
+            sides,
+            renamed,
+        },
+        new_points,
+    ))
 }
 
 #[cfg(test)]
@@ -868,6 +997,52 @@ mod tests {
         .map(|(x, y)| DVec3::new(x, y, 1.0))
         .to_vec();
         (positions, vec![[0, 1, 2], [0, 2, 3], [4, 7, 5], [5, 7, 6]])
+    }
+
+    /// Two walls (the two squares, and a copy of them in the plane
+    /// z = 3) overlaid side by side, the second's new points numbered
+    /// after the first's ([`Overlay::shifted`]), give the points and
+    /// cells of the two overlaid one after the other.
+    #[test]
+    fn walls_overlaid_side_by_side_are_walls_overlaid_in_turn() {
+        let (mut positions, mut faces) = two_squares();
+        let n = positions.len() as u32;
+        positions.extend(
+            positions
+                .clone()
+                .iter()
+                .map(|p| *p + DVec3::new(0.0, 0.0, 2.0)),
+        );
+        faces.extend(faces.clone().iter().map(|f| f.map(|v| v + n)));
+        let groups = wall_groups(&positions, &faces);
+        assert_eq!(groups.len(), 2);
+        let existing = Default::default();
+        let mut in_turn = positions.clone();
+        let cells_in_turn: Vec<Vec<[u32; 3]>> = groups
+            .iter()
+            .map(|g| {
+                overlay(&mut in_turn, &faces, g, &existing, Keep::Count)
+                    .unwrap()
+                    .cells
+            })
+            .collect();
+        let mut beside = positions.clone();
+        let first_new = beside.len() as u32;
+        let mut cells_beside = Vec::new();
+        for g in &groups {
+            let (o, new_points) =
+                overlay_beside(&positions, &faces, g, &existing, Keep::Count).unwrap();
+            let o = o.shifted(first_new, beside.len() as u32 - first_new);
+            beside.extend(new_points);
+            cells_beside.push(o.cells);
+        }
+        assert!(beside.len() as u32 > first_new + 1, "no crossing points");
+        assert!(
+            cells_beside[1].iter().flatten().any(|&v| v >= first_new),
+            "the second wall's cells use no new point"
+        );
+        assert_eq!(beside, in_turn);
+        assert_eq!(cells_beside, cells_in_turn);
     }
 
     /// Two unit squares in the plane z = 1, the second shifted by ½ along
