@@ -1319,25 +1319,36 @@ fn vertices_on_edges(arr: &TriMesh, edges: &Edges) -> Vec<bool> {
     let Ok(tree) = Bvh::build(&boxes) else {
         return vec![false; edges.len()];
     };
-    let mut through = vec![false; edges.len()];
-    for (w, &p) in pos.iter().enumerate() {
-        if !used[w] {
-            continue;
-        }
-        tree.for_each_overlap(&Aabb::new(p, p), |e| {
-            let [u, v] = edges.ends[e as usize];
-            if u as usize == w || v as usize == w || through[e as usize] {
-                return;
-            }
-            let (a, b) = (pos[u as usize], pos[v as usize]);
-            let collinear = crate::intersect::COORDINATE_PLANES.iter().all(|proj| {
-                holey_geom::orient2d(proj(a), proj(b), proj(p)) == holey_geom::Sign::Zero
+    // The vertices in parallel (a serial walk was 6% of a CAD part's
+    // union with its mirror image: long edges, whose boxes hold many
+    // vertices).
+    let hits: Vec<u32> = (0..pos.len())
+        .into_par_iter()
+        .with_min_len(1 << 10)
+        .filter(|&w| used[w])
+        .flat_map_iter(|w| {
+            let p = pos[w];
+            let mut found = Vec::new();
+            tree.for_each_overlap(&Aabb::new(p, p), |e| {
+                let [u, v] = edges.ends[e as usize];
+                if u as usize == w || v as usize == w {
+                    return;
+                }
+                let (a, b) = (pos[u as usize], pos[v as usize]);
+                let collinear = crate::intersect::COORDINATE_PLANES.iter().all(|proj| {
+                    holey_geom::orient2d(proj(a), proj(b), proj(p)) == holey_geom::Sign::Zero
+                });
+                let t = (p - a).dot(b - a);
+                if collinear && t > 0.0 && t < (b - a).dot(b - a) {
+                    found.push(e);
+                }
             });
-            let t = (p - a).dot(b - a);
-            if collinear && t > 0.0 && t < (b - a).dot(b - a) {
-                through[e as usize] = true;
-            }
-        });
+            found
+        })
+        .collect();
+    let mut through = vec![false; edges.len()];
+    for e in hits {
+        through[e as usize] = true;
     }
     through
 }
