@@ -10,7 +10,9 @@
 //!   coordinates though clean (its cut merged points, or the solids cross
 //!   nowhere and may only touch), the exact winding-number arrangement
 //!   answers first and is kept when clean; then the scale-relative nudges
-//!   of [`crate::union::NUDGES`], unless `exact`.
+//!   of [`crate::union::NUDGES`], unless `exact`. Solids that share a
+//!   triangle (exact coplanar contact, where the cut merges points) go to
+//!   the arrangement before the containment, unless `exact`.
 //! - **Winding** ([`crate::winding_boolean`]): anything else (open input,
 //!   an edge of more than two triangles, self-crossing or nested shells,
 //!   one input or more than two), by the winding-number rule; nudged per
