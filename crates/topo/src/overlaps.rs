@@ -32,9 +32,10 @@ use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
 
 use holey_geom::{Aabb, Bvh};
+use rayon::prelude::*;
 
 use crate::coplanar::{
-    Keep, Overlay, for_each_overlapping_pair, overlap_groups, overlay, position_index,
+    Keep, Overlay, for_each_overlapping_pair, overlap_groups, overlay_beside, position_index,
 };
 use crate::mesh::Edges;
 use crate::mesh::TriMesh;
@@ -200,13 +201,20 @@ pub(crate) fn merge_overlaps(
         return (faces, Merged::default());
     }
     let existing = position_index(positions);
-    let overlays: Vec<(usize, Overlay)> = groups
-        .iter()
-        .enumerate()
-        .filter_map(|(g, group)| {
-            overlay(positions, &faces, group, &existing, Keep::Once).map(|o| (g, o))
-        })
+    // The groups side by side, their new points numbered after one
+    // another's in the groups' order ([`Overlay::shifted`]).
+    let made: Vec<Option<(Overlay, Vec<DVec3>)>> = groups
+        .par_iter()
+        .map(|group| overlay_beside(positions, &faces, group, &existing, Keep::Once))
         .collect();
+    let first_new = positions.len() as u32;
+    let mut overlays: Vec<(usize, Overlay)> = Vec::new();
+    for (g, o) in made.into_iter().enumerate() {
+        if let Some((o, new_points)) = o {
+            overlays.push((g, o.shifted(first_new, positions.len() as u32 - first_new)));
+            positions.extend(new_points);
+        }
+    }
     let positions_now: &[DVec3] = positions;
     // The faces with the overlays `taken` (indices into `overlays`) merged.
     let merge = |taken: &[usize]| -> Vec<[u32; 3]> {
