@@ -32,11 +32,8 @@ use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
 
 use holey_geom::{Aabb, Bvh};
-use rayon::prelude::*;
 
-use crate::coplanar::{
-    Keep, Overlay, for_each_overlapping_pair, overlap_groups, overlay_beside, position_index,
-};
+use crate::coplanar::{Keep, Overlay, for_each_overlapping_pair, overlap_groups, position_index};
 use crate::mesh::Edges;
 use crate::mesh::TriMesh;
 use crate::on_side::{near_line, on_side_between, on_side_reach};
@@ -201,20 +198,12 @@ pub(crate) fn merge_overlaps(
         return (faces, Merged::default());
     }
     let existing = position_index(positions);
-    // The groups side by side, their new points numbered after one
-    // another's in the groups' order ([`Overlay::shifted`]).
-    let made: Vec<Option<(Overlay, Vec<DVec3>)>> = groups
-        .par_iter()
-        .map(|group| overlay_beside(positions, &faces, group, &existing, Keep::Once))
-        .collect();
-    let first_new = positions.len() as u32;
-    let mut overlays: Vec<(usize, Overlay)> = Vec::new();
-    for (g, o) in made.into_iter().enumerate() {
-        if let Some((o, new_points)) = o {
-            overlays.push((g, o.shifted(first_new, positions.len() as u32 - first_new)));
-            positions.extend(new_points);
-        }
-    }
+    let overlays: Vec<(usize, Overlay)> =
+        crate::coplanar::overlays(positions, &faces, &groups, &existing, Keep::Once)
+            .into_iter()
+            .enumerate()
+            .filter_map(|(g, o)| o.map(|o| (g, o)))
+            .collect();
     let positions_now: &[DVec3] = positions;
     // The faces with the overlays `taken` (indices into `overlays`) merged.
     let merge = |taken: &[usize]| -> Vec<[u32; 3]> {

@@ -99,7 +99,7 @@ use holey_geom::sos::{Poly, sos_sign};
 use holey_geom::{Aabb, Bvh, SosSign, SymPoint, orient3d_sos, position_classes};
 use rayon::prelude::*;
 
-use crate::coplanar::{Keep, Overlay, overlay, overlay_beside, position_index};
+use crate::coplanar::{Keep, Overlay, overlay, overlays, position_index};
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
@@ -444,17 +444,9 @@ fn close_up(
     let mut gone = vec![false; faces.len()];
     let mut added: Vec<[u32; 3]> = Vec::new();
     let mut made = 0;
-    // The groups side by side (64 walls, 0.55 s one after another, on a
-    // CAD part's difference with its mirror image), their new points
-    // numbered after one another's in the groups' order.
-    let overlays: Vec<Option<(Overlay, Vec<DVec3>)>> = groups
-        .par_iter()
-        .map(|group| overlay_beside(positions, &faces, group, &existing, Keep::Count))
-        .collect();
-    for (group, o) in groups.iter().zip(overlays) {
-        if let Some((o, new_points)) = o {
-            let o = o.shifted(first_new as u32, (positions.len() - first_new) as u32);
-            positions.extend(new_points);
+    let made_all = overlays(positions, &faces, &groups, &existing, Keep::Count);
+    for (group, o) in groups.iter().zip(made_all) {
+        if let Some(o) = o {
             group.iter().for_each(|&i| gone[i] = true);
             added.extend(o.cells);
             made += 1;
