@@ -791,7 +791,10 @@ fn segments(
             second,
             second_triangles,
         } => first.overlaps_with_filter_map(second, |i, j| {
-            test(first_triangles.triangle(i), second_triangles.triangle(j))
+            // The lower number first, as for a pair found within one tree
+            // (two parts of one mesh may come in either order).
+            let (t1, t2) = (first_triangles.triangle(i), second_triangles.triangle(j));
+            test(t1.min(t2), t1.max(t2))
         }),
         Candidates::Among { tree, triangles } => tree.self_overlaps_filter_map(|i, j| {
             let (t1, t2) = (triangles[i as usize], triangles[j as usize]);
@@ -1140,10 +1143,126 @@ pub(crate) fn intersections_among(
     limit: usize,
     abort: &AtomicBool,
 ) -> Result<Intersections, IntersectError> {
+    let found = segments(mesh, positions, ids, candidates, limit, abort)?;
+    assembled(mesh, positions, edges, ids, found, limit, abort)
+}
+
+/// [`intersections_limited`] of a mesh made of two parts, each of which
+/// crosses itself nowhere: triangles `..split` with vertices
+/// `..split_vertex`, and the rest (two solids joined, as the
+/// winding-number arrangement joins them, each checked by
+/// [`crosses_itself_keeping_tree`] on its own).
+///
+/// A crossing is decided by exact predicates with simulation of
+/// simplicity, where the perturbation follows the order of the corners'
+/// identities. The first part's identities here are the ones its own
+/// check used (an identity is the smallest index of a point at the same
+/// position, and the first part's vertices come first), so its pairs
+/// cross nowhere here either. The second part's are its own shifted by
+/// `split_vertex`, in the same order, except where a vertex lies exactly
+/// on a point of the first part: it takes that point's identity, which
+/// comes before every other. So a pair of the second part can be decided
+/// differently only if one of its triangles has such a corner; those
+/// pairs are tested again. The rest of the candidates are the pairs
+/// across the parts. The result is [`intersections_limited`]'s, without
+/// the pairs that touch within each part (most of a closed surface's
+/// candidates: every triangle's box meets its neighbours').
+pub(crate) fn intersections_of_clean_parts(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    (split, split_vertex): (u32, u32),
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<Intersections, IntersectError> {
+    let n = mesh.triangles.len() as u32;
+    let split = split.min(n);
+    let frame = BoxFrame::of_triangles(&[(positions, &mesh.triangles)]);
+    let boxes = framed_triangle_boxes(mesh, positions, 0..n as usize, &frame);
+    let tree_of = |list: &[u32]| {
+        let listed: Vec<Aabb> = list.iter().map(|&t| boxes[t as usize]).collect();
+        Bvh::build(&listed)
+    };
+    let (first, second) = boxes.split_at(split as usize);
+    let (tree_a, tree_b) = rayon::join(|| Bvh::build(first), || Bvh::build(second));
+    let (tree_a, tree_b) = (tree_a?, tree_b?);
+    let mut found = segments(
+        mesh,
+        positions,
+        ids,
+        Candidates::Across {
+            first: &tree_a,
+            first_triangles: Primitives::From(0),
+            second: &tree_b,
+            second_triangles: Primitives::From(split),
+        },
+        limit,
+        abort,
+    )?;
+    let (touching, rest): (Vec<u32>, Vec<u32>) = (split..n).partition(|&t| {
+        mesh.triangles[t as usize]
+            .iter()
+            .any(|&v| ids[v as usize] < split_vertex)
+    });
+    if !touching.is_empty() {
+        let tree_t = tree_of(&touching)?;
+        let mut more = vec![segments(
+            mesh,
+            positions,
+            ids,
+            Candidates::Among {
+                tree: &tree_t,
+                triangles: &touching,
+            },
+            limit,
+            abort,
+        )?];
+        if !rest.is_empty() {
+            let tree_r = tree_of(&rest)?;
+            more.push(segments(
+                mesh,
+                positions,
+                ids,
+                Candidates::Across {
+                    first: &tree_t,
+                    first_triangles: Primitives::Listed(&touching),
+                    second: &tree_r,
+                    second_triangles: Primitives::Listed(&rest),
+                },
+                limit,
+                abort,
+            )?);
+        }
+        for (segs, candidates, coplanar) in more {
+            found.0.extend(segs);
+            found.1 += candidates;
+            found.2 += coplanar;
+        }
+    }
+    if found.0.len() > limit {
+        return Err(IntersectError::TooManyPairs {
+            limit,
+            triangles: n as usize,
+        });
+    }
+    assembled(mesh, positions, edges, ids, found, limit, abort)
+}
+
+/// The intersections of the segments `found` ([`segments`]: the segments,
+/// how many candidate pairs were tested, how many of them lay exactly in
+/// one plane): their points, triple points, pieces and curves.
+fn assembled(
+    mesh: &TriMesh,
+    positions: &[DVec3],
+    edges: &Edges,
+    ids: &[u32],
+    (mut segs, candidates, coplanar_candidates): (Vec<Segment>, usize, usize),
+    limit: usize,
+    abort: &AtomicBool,
+) -> Result<Intersections, IntersectError> {
     let tris = &mesh.triangles;
     let sym = Symbolic { positions, ids };
-    let (mut segs, candidates, coplanar_candidates) =
-        segments(mesh, positions, ids, candidates, limit, abort)?;
     // Copies of a repeated triangle ([`Distinct`]) add pairs the
     // descent never counted.
     let filtered = candidates.saturating_sub(segs.len());

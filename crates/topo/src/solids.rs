@@ -309,7 +309,7 @@ pub fn solid_boolean(
     // exact arithmetic (1.4 s of a sponge minus itself, whose arrangement
     // takes 0.14 s). The arrangement is tried first, kept when clean.
     let shared = prepared.is_some() && !options.exact && shares_a_triangle(a, b);
-    if shared && let Some(mut w) = exact_winding_if_clean(inputs, op, options)? {
+    if shared && let Some(mut w) = exact_winding_if_clean(inputs, op, options, shared)? {
         w.report.seconds.total = started.elapsed().as_secs_f64();
         return Ok(finish(Method::Winding, Computed::Winding(w), None));
     }
@@ -344,7 +344,7 @@ pub fn solid_boolean(
                     out.report.timings.total = started.elapsed().as_secs_f64();
                     Ok(out)
                 } else if let Some(mut w) = (pair.both_oriented() && !shared)
-                    .then(|| exact_winding_if_clean(inputs, op, options))
+                    .then(|| exact_winding_if_clean(inputs, op, options, shared))
                     .transpose()?
                     .flatten()
                 {
@@ -424,12 +424,19 @@ fn shares_a_triangle(a: &TriMesh, b: &TriMesh) -> bool {
 /// ([`boolean_by_winding_first_try`]) when its result is clean: closed, a
 /// 2-manifold at edges and vertices, and crossing itself nowhere
 /// (checked exactly; the count goes in the report). `None` otherwise.
+///
+/// Called only once [`PreparedPair::with_checks`] found each solid
+/// crossing itself nowhere, so the arrangement tests the pairs across the
+/// two, not the neighbours within each; except for solids that `share` a
+/// triangle (a solid and its copy), where the whole-mesh search, which
+/// tests one copy of each repeated triangle, does less.
 fn exact_winding_if_clean(
     inputs: &[&TriMesh],
     op: Operation,
     options: &BooleanOptions,
+    share: bool,
 ) -> Result<Option<WindingOutcome>, BooleanError> {
-    let mut out = boolean_by_winding_first_try(inputs, op, &options.engine)?;
+    let mut out = boolean_by_winding_first_try(inputs, op, &options.engine, !share)?;
     if out.report.shape_defects() > 0 {
         return Ok(None);
     }

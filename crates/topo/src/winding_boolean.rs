@@ -103,7 +103,7 @@ use crate::coplanar::{Keep, Overlay, overlay, overlays, position_index};
 use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
-use crate::intersect::{default_pair_limit, intersections_limited};
+use crate::intersect::{default_pair_limit, intersections_limited, intersections_of_clean_parts};
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::on_side::on_side_between;
 use crate::union::Operation;
@@ -269,7 +269,7 @@ pub fn boolean_by_winding(
     op: Operation,
     options: &Options,
 ) -> Result<WindingOutcome, WindingError> {
-    arranged(inputs, op, options, true)
+    arranged(inputs, op, options, true, false)
 }
 
 /// [`boolean_by_winding`] as a first try, for a caller that keeps only a
@@ -277,21 +277,31 @@ pub fn boolean_by_winding(
 /// open or less manifold, the walls are not tried one at a time (a pass
 /// over the whole result per wall: a minute on a snapped sponge and its
 /// copy a cell away, which came out unclean anyway).
+///
+/// `clean_solids`: the caller has checked that each of the two inputs,
+/// with its zero-area triangles repaired ([`crate::union::solid`]),
+/// crosses itself nowhere ([`crate::intersect::crosses_itself_keeping_tree`]):
+/// then only the pairs across them, and the few of the second whose
+/// decision the joined identities can change, are tested
+/// ([`crate::intersect::intersections_of_clean_parts`]).
 pub(crate) fn boolean_by_winding_first_try(
     inputs: &[&TriMesh],
     op: Operation,
     options: &Options,
+    clean_solids: bool,
 ) -> Result<WindingOutcome, WindingError> {
-    arranged(inputs, op, options, false)
+    arranged(inputs, op, options, false, clean_solids)
 }
 
 /// [`boolean_by_winding`]; the walls are merged one at a time where all
-/// at once is worse only with `walls_one_by_one`.
+/// at once is worse only with `walls_one_by_one`; `clean_solids` as
+/// [`boolean_by_winding_first_try`] says.
 fn arranged(
     inputs: &[&TriMesh],
     op: Operation,
     options: &Options,
     walls_one_by_one: bool,
+    clean_solids: bool,
 ) -> Result<WindingOutcome, WindingError> {
     let started = Instant::now();
     if inputs.is_empty() {
@@ -322,14 +332,25 @@ fn arranged(
     let limit = options
         .max_intersecting_pairs
         .unwrap_or_else(|| default_pair_limit(joined.triangles.len()));
-    let x = intersections_limited(
-        &joined,
-        &joined.positions,
-        &edges,
-        &ids,
-        limit,
-        &AtomicBool::new(false),
-    )
+    let x = match inputs {
+        [first, _] if clean_solids => intersections_of_clean_parts(
+            &joined,
+            &joined.positions,
+            &edges,
+            &ids,
+            (first.triangles.len() as u32, first.positions.len() as u32),
+            limit,
+            &AtomicBool::new(false),
+        ),
+        _ => intersections_limited(
+            &joined,
+            &joined.positions,
+            &edges,
+            &ids,
+            limit,
+            &AtomicBool::new(false),
+        ),
+    }
     .map_err(TopoError::from)?;
     report.intersecting_pairs = x.pairs.len();
     report.intersection_points = x.points.len();

@@ -754,3 +754,92 @@ fn coplanar_candidates_are_the_pairs_in_one_plane() {
     let beside = tri([0.9, 0.9, 0.0], [0.6, 0.95, 0.0], [0.95, 0.6, 0.0]);
     assert_eq!(count(flat, beside), 0, "apart in the plane");
 }
+
+/// Two boxes with corners on a lattice of quarters, as one mesh (not
+/// welded): they touch, cross or lie apart, and where they touch, their
+/// faces lie in one plane and their corners on each other's.
+fn lattice_box_pair(rng: &mut holey_testkit::Rng) -> TriMesh {
+    let corner = |rng: &mut holey_testkit::Rng| {
+        DVec3::new(
+            rng.below(5) as f64 * 0.25,
+            rng.below(5) as f64 * 0.25,
+            rng.below(5) as f64 * 0.25,
+        )
+    };
+    let mut boxed = || loop {
+        let (p, q) = (corner(rng), corner(rng));
+        let (lo, hi) = (p.min(q), p.max(q));
+        if (hi - lo).min_element() > 0.0 {
+            return crate::test_meshes::cuboid(lo, hi);
+        }
+    };
+    let mut m = boxed();
+    m.append(&boxed());
+    m
+}
+
+/// `intersections_of_clean_parts` finds what the whole-mesh search finds
+/// when each part crosses itself nowhere by its own identities: pairs,
+/// points and curves alike. Each part is two lattice boxes (touching
+/// ones are degenerate pairs within the part, decided by the order of
+/// the corners' identities), its vertices numbered backwards half the
+/// time, so that joining the parts reorders the second's identities
+/// where its corners lie on the first's.
+#[test]
+fn clean_parts_intersect_as_the_whole_mesh_does() {
+    let mut rng = holey_testkit::Rng::new(2026);
+    let (mut compared, mut retested, mut crossing, mut repeats) = (0, 0, 0, 0);
+    for _ in 0..1500 {
+        let a = lattice_box_pair(&mut rng);
+        let mut b = lattice_box_pair(&mut rng);
+        if rng.chance(0.5) {
+            let last = b.positions.len() as u32 - 1;
+            b.positions.reverse();
+            for t in &mut b.triangles {
+                *t = t.map(|v| last - v);
+            }
+        }
+        let clean = |m: &TriMesh| !crosses_itself_keeping_tree(m, None).unwrap().0;
+        if !clean(&a) || !clean(&b) {
+            continue;
+        }
+        let mut m = a.clone();
+        m.append(&b);
+        let edges = Edges::new(&m);
+        let ids = position_classes(&m.positions).unwrap();
+        // A repeated triangle: the parts share one, or a part has one
+        // twice (no 2-manifold); the policy takes neither this way.
+        if Distinct::of(&m.triangles, &ids).is_some() {
+            repeats += 1;
+            continue;
+        }
+        let whole = intersections(&m, &m.positions, &edges, &ids).unwrap();
+        let split = (a.triangles.len() as u32, a.positions.len() as u32);
+        let parts = intersections_of_clean_parts(
+            &m,
+            &m.positions,
+            &edges,
+            &ids,
+            split,
+            usize::MAX,
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(parts.pairs, whole.pairs);
+        let at = |x: &Intersections| x.points.iter().map(|p| p.position).collect::<Vec<_>>();
+        assert_eq!(at(&parts), at(&whole));
+        assert_eq!(parts.pieces, whole.pieces);
+        assert_eq!(parts.curve_count, whole.curve_count);
+        assert_eq!(parts.cut_edges, whole.cut_edges);
+        compared += 1;
+        crossing += usize::from(!whole.pairs.is_empty());
+        retested += usize::from(b.positions.iter().any(|p| a.positions.contains(p)));
+    }
+    // Not vacuous: many pairs of parts compared (the others cross
+    // themselves or repeat a triangle), many of them crossing, many with
+    // corners of the second on the first.
+    assert!(
+        compared > 200 && crossing > 150 && retested > 150,
+        "{compared} compared, {crossing} crossing, {retested} retested ({repeats} with repeats)"
+    );
+}
