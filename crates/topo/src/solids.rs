@@ -423,7 +423,7 @@ fn shares_a_triangle(a: &TriMesh, b: &TriMesh) -> bool {
 /// The exact winding-number Boolean of `inputs`
 /// ([`boolean_by_winding_first_try`]) when its result is clean: closed, a
 /// 2-manifold at edges and vertices, and crossing itself nowhere
-/// (checked exactly; the count goes in the report). `None` otherwise.
+/// (checked exactly; the report says 0). `None` otherwise.
 ///
 /// Called only once [`PreparedPair::with_checks`] found each solid
 /// crossing itself nowhere, so the arrangement tests the pairs across the
@@ -440,9 +440,17 @@ fn exact_winding_if_clean(
     if out.report.shape_defects() > 0 {
         return Ok(None);
     }
-    let crossing = crate::engine::self_intersections(&out.mesh)?.pairs.len();
-    out.report.output_intersecting_pairs = Some(crossing);
-    Ok((crossing == 0).then_some(out))
+    // Only a result crossing itself nowhere is kept: the search stops at
+    // its first crossing pair (`TooManyPairs` past a limit of none), and
+    // builds no points or curves.
+    match crate::intersect::intersecting_pair_count(&out.mesh, 0) {
+        Ok(0) => {
+            out.report.output_intersecting_pairs = Some(0);
+            Ok(Some(out))
+        }
+        Ok(_) | Err(crate::intersect::IntersectError::TooManyPairs { .. }) => Ok(None),
+        Err(e) => Err(TopoError::from(e).into()),
+    }
 }
 
 /// The start positions of `a` joined with `b` moved away along `d` (a
