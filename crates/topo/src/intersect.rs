@@ -1166,7 +1166,9 @@ pub(crate) fn intersections_among(
 /// pairs are tested again. The rest of the candidates are the pairs
 /// across the parts. The result is [`intersections_limited`]'s, without
 /// the pairs that touch within each part (most of a closed surface's
-/// candidates: every triangle's box meets its neighbours').
+/// candidates: every triangle's box meets its neighbours'), except its
+/// counts of candidates: the coplanar ones among the retested pairs are
+/// not counted ([`Candidates::Among`] tests without prepared planes).
 pub(crate) fn intersections_of_clean_parts(
     mesh: &TriMesh,
     positions: &[DVec3],
