@@ -385,39 +385,33 @@ pub fn solid_boolean(
 /// Whether some triangle of `b` has the three positions of one of `a`'s
 /// (bit for bit, in any order).
 ///
-/// Positions are named first: each distinct position of `a` gets a number,
-/// and `b`'s positions the number of the same position of `a`, if any. A
-/// triangle is then its three numbers, sorted (12 bytes, not the 72 of its
-/// coordinates), and only the triangles of `b` whose corners all lie on
-/// `a` are looked up. Solids that merely cross (two spheres) share few
-/// positions, and the test costs one pass over each vertex array: on two
-/// 262k-triangle spheres, 90 ms of coordinate hashing became a few.
+/// Positions are named first ([`crate::coplanar::position_index`]: one
+/// vertex of `a` for each position of `a`), and `b`'s positions by the
+/// vertex of `a` at the same position, if any. A triangle is then its
+/// three names, sorted (12 bytes, not the 72 of its coordinates), and
+/// only the triangles of `b` whose corners all lie on `a` are looked up.
+/// Solids that merely cross (two spheres) share few positions, and the
+/// test costs a pass over each vertex array: on two 262k-triangle
+/// spheres, 90 ms of coordinate hashing became about 20.
 fn shares_a_triangle(a: &TriMesh, b: &TriMesh) -> bool {
-    use rustc_hash::{FxHashMap, FxHashSet};
-    let mut number = FxHashMap::default();
-    number.reserve(a.positions.len());
-    let of_a: Vec<u32> = (a.positions.iter())
-        .map(|&p| {
-            let next = number.len() as u32;
-            *number.entry(holey_geom::position_key(p)).or_insert(next)
-        })
-        .collect();
-    let of_b: Vec<u32> = (b.positions.par_iter())
-        .map(|&p| (number.get(&holey_geom::position_key(p)).copied()).unwrap_or(u32::MAX))
-        .collect();
-    let key = |numbers: &[u32], t: &[u32; 3]| {
-        let mut k = t.map(|v| numbers.get(v as usize).copied().unwrap_or(u32::MAX));
+    let index = crate::coplanar::position_index(&a.positions);
+    let name = |positions: &[DVec3]| -> Vec<u32> {
+        (positions.par_iter())
+            .map(|&p| (index.get(&holey_geom::position_key(p)).copied()).unwrap_or(u32::MAX))
+            .collect()
+    };
+    let (of_a, of_b) = (name(&a.positions), name(&b.positions));
+    let key = |names: &[u32], t: &[u32; 3]| {
+        let mut k = t.map(|v| names.get(v as usize).copied().unwrap_or(u32::MAX));
         k.sort_unstable();
         (k[2] != u32::MAX).then_some(k)
     };
-    let wanted: Vec<[u32; 3]> = b.triangles.iter().filter_map(|t| key(&of_b, t)).collect();
-    if wanted.is_empty() {
-        return false;
-    }
-    let wanted: FxHashSet<[u32; 3]> = wanted.into_iter().collect();
-    a.triangles
-        .iter()
-        .any(|t| key(&of_a, t).is_some_and(|k| wanted.contains(&k)))
+    let wanted: rustc_hash::FxHashSet<[u32; 3]> =
+        b.triangles.iter().filter_map(|t| key(&of_b, t)).collect();
+    !wanted.is_empty()
+        && a.triangles
+            .iter()
+            .any(|t| key(&of_a, t).is_some_and(|k| wanted.contains(&k)))
 }
 
 /// The exact winding-number Boolean of `inputs`
