@@ -485,9 +485,11 @@ type SideVertices = rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>>;
 /// to one point and `keep` is [`Keep::Count`], or when the insertion of a
 /// side panics), every side of a face with an area a constraint, split
 /// where sides cross ([`crate::side_crossings`]: each side goes in as
-/// its pieces between its crossings, so spade's splitting insertion is
-/// left only the pieces whose rounded ends cross another) when
-/// `found_first`, else by spade's splitting insertion alone.
+/// its pieces between its crossings). `None` also where a piece's
+/// rounded ends make it cross another: spade's splitting insertion,
+/// which would split it, can circle forever (spade 2.15 ran ten minutes
+/// on a 34-face wall of a snapped OpenSCAD export, turning about a
+/// vertex in `trace_direction_out_of_vertex`), so it is never asked.
 fn triangulate(
     positions: &[DVec3],
     faces: &[[u32; 3]],
@@ -495,7 +497,6 @@ fn triangulate(
     signs: &[Sign],
     axis: usize,
     keep: Keep,
-    found_first: bool,
 ) -> Option<Triangulated> {
     let proj = |v: u32| project(positions[v as usize], axis);
     let mut cdt: ConstrainedDelaunayTriangulation<ChartVertex> =
@@ -525,10 +526,6 @@ fn triangulate(
             }
         }
     }
-    let split = |p: Point2<f64>| ChartVertex {
-        pos: p,
-        global: NONE,
-    };
     // Every side of a face with an area, in the faces' order.
     let sides: Vec<(Handle, Handle)> = group
         .iter()
@@ -541,29 +538,20 @@ fn triangulate(
         .map(|(a, b)| (handle_of[&a], handle_of[&b]))
         .filter(|(a, b)| a != b)
         .collect();
-    let (pieces, split_sides) = if found_first {
-        presplit(&mut cdt, &sides)?
-    } else {
-        (sides, Default::default())
-    };
+    let (pieces, split_sides) = presplit(&mut cdt, &sides)?;
     // The vertices each piece went in through (`Once`): where spade split
     // it, at a vertex exactly on it or a crossing it met, in order.
     let mut through: rustc_hash::FxHashMap<(Handle, Handle), Vec<Handle>> = Default::default();
     let inserted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         for &(a, b) in &pieces {
-            if !found_first {
-                // The Booleans: crossings split where spade meets them.
-                cdt.add_constraint_and_split(a, b, split);
-                continue;
-            }
             let edges = if cdt.exists_constraint(a, b) {
                 Vec::new()
             } else if cdt.can_add_constraint(a, b) {
                 cdt.try_add_constraint(a, b)
             } else {
                 // A piece that the rounding of its ends made cross
-                // another (rare).
-                cdt.add_constraint_and_split(a, b, split)
+                // another (rare): no overlay (see above).
+                return false;
             };
             let (pa, pb) = (cdt.vertex(a).position(), cdt.vertex(b).position());
             let along = |h: Handle| {
@@ -581,6 +569,7 @@ fn triangulate(
                 through.insert((a, b), mid);
             }
         }
+        true
     }));
     let mut split_sides = split_sides;
     for on in split_sides.values_mut() {
@@ -595,7 +584,7 @@ fn triangulate(
         }
         *on = expanded;
     }
-    inserted.is_ok().then_some(Triangulated {
+    matches!(inserted, Ok(true)).then_some(Triangulated {
         cdt,
         handle_of,
         renamed,
@@ -825,19 +814,7 @@ fn overlay_beside(
         handle_of,
         renamed,
         split_sides,
-    } = match keep {
-        // The Booleans' walls: spade's splitting insertion, side by side
-        // (with the crossings found first, the OpenSCAD export's union
-        // merges 18 of its 28 walls instead of 21: the Boolean's
-        // T-junction repair does not follow the split points as
-        // `resolve`'s chains do), and where that panics (sides crossing
-        // at ulps from a corner, as on a CAD part's faces in one plane
-        // against its mirror image's: 31 of its difference's 64 walls),
-        // with the crossings found first.
-        Keep::Count => triangulate(positions, faces, group, &signs, axis, keep, false)
-            .or_else(|| triangulate(positions, faces, group, &signs, axis, keep, true))?,
-        Keep::Once => triangulate(positions, faces, group, &signs, axis, keep, true)?,
-    };
+    } = triangulate(positions, faces, group, &signs, axis, keep)?;
     let proj = |v: u32| project(positions[v as usize], axis);
     // The group's faces, counterclockwise in the projection, with the
     // count each adds inside it.
@@ -1293,10 +1270,7 @@ mod tests {
             .iter()
             .map(|&f| projected_sign(&positions, f, 1))
             .collect();
-        assert!(
-            triangulate(&positions, &faces, &group, &signs, 1, Keep::Count, false).is_none(),
-            "the splitting insertion alone makes it: no case for the fallback"
-        );
+        assert!(triangulate(&positions, &faces, &group, &signs, 1, Keep::Count).is_some());
         // Twice the signed area in the plane y = const, seen from +y.
         let twice = |p: &[DVec3], f: [u32; 3]| {
             let [a, b, c] = f.map(|v| p[v as usize]);
@@ -1318,5 +1292,94 @@ mod tests {
             "cells {cells_area}, faces {faces_area}"
         );
         assert!(!o.cells.is_empty());
+    }
+
+    /// 34 faces of one wall (all at x = −16) met while snap-rounding the
+    /// OpenSCAD export's self-union (`openscad-nonmanifold-crash.obj`,
+    /// snapped to a grid of 2⁻³¹ and resolved): slivers whose sides cross
+    /// a few ulps from each other. spade's splitting insertion turned
+    /// about one of their vertices for ten minutes on them. The overlay no
+    /// longer asks it: with the crossings found first, one piece still
+    /// crosses another where its rounded ends put it, and the overlay
+    /// returns at once, declining the wall (which the Boolean then keeps,
+    /// and counts).
+    #[test]
+    fn a_wall_on_which_the_splitting_insertion_circled_is_declined_at_once() {
+        let at = [
+            (-7.847175987530775, -206.71203754984023),
+            (-7.847175990977017, -206.71203755481974),
+            (-7.847175988333235, -206.71198274030647),
+            (-7.8471759884790435, -206.71198274020963),
+            (-7.847194627393037, -207.1209882046096),
+            (-7.847196641824835, -206.71206739351646),
+            (-7.84717598748616, -206.7120405971352),
+            (-7.847175991115918, -206.71204060280553),
+            (-7.8471759876819185, -206.71202722646527),
+            (-7.847175990862027, -206.71203503151537),
+            (-7.847175990866654, -206.7120351330354),
+            (-7.847175987567722, -206.71203502636908),
+            (-7.847175987566235, -206.71203512787957),
+            (-7.847175987641704, -206.7120299731957),
+            (-7.847175990506528, -206.71202723057925),
+            (-7.847175990631725, -206.71202997786665),
+            (-7.847175988464453, -206.71198242004445),
+            (-7.84717598836869, -206.7119803186506),
+            (-9.79738093772903, -209.75860320031643),
+        ];
+        let faces = vec![
+            [0, 1, 2],
+            [3, 2, 1],
+            [1, 4, 5],
+            [4, 6, 7],
+            [8, 9, 10],
+            [11, 7, 12],
+            [13, 7, 11],
+            [12, 7, 0],
+            [8, 7, 13],
+            [0, 7, 6],
+            [2, 3, 14],
+            [9, 8, 15],
+            [15, 8, 14],
+            [8, 10, 1],
+            [2, 14, 8],
+            [8, 1, 7],
+            [5, 4, 7],
+            [5, 7, 1],
+            [5, 3, 16],
+            [5, 9, 15],
+            [5, 15, 14],
+            [5, 14, 3],
+            [17, 14, 8],
+            [5, 18, 1],
+            [1, 0, 12],
+            [18, 7, 1],
+            [10, 1, 12],
+            [11, 9, 12],
+            [12, 9, 10],
+            [13, 15, 11],
+            [11, 15, 9],
+            [13, 8, 14],
+            [13, 14, 15],
+            [4, 7, 18],
+        ];
+        let mut positions: Vec<DVec3> = at.iter().map(|&(y, z)| DVec3::new(-16.0, y, z)).collect();
+        let group: Vec<usize> = (0..faces.len()).collect();
+        let before = positions.len();
+        let made = overlay(
+            &mut positions,
+            &faces,
+            &group,
+            &Default::default(),
+            Keep::Count,
+        );
+        assert!(
+            made.is_none(),
+            "the wall was overlaid: check its cells' areas instead"
+        );
+        assert_eq!(
+            positions.len(),
+            before,
+            "a declined overlay appends nothing"
+        );
     }
 }

@@ -1096,9 +1096,11 @@ fn fuzz_boxes_on_a_quarter_lattice_through_the_policy() {
 /// arrays; trueform agrees on the union) within 1e-12, and all are clean
 /// and not nudged. Before this stop all of them were nudged and crossed
 /// themselves (48, 77 and 9 pairs with the copy; 17 and 64 with the
-/// turn). A − turn is still nudged with 9 crossing pairs (the note of
-/// stop 44), and is not checked here. Reads ../shared/data/meshes;
-/// skipped visibly without it.
+/// turn). A − turn is the slabs a rounding thick where the two differ
+/// (volume 4.9e-8 of the sponge's 0.41): manifold3d's volume within
+/// 1e-12 of the sponge's, and clean; until stop 59 its walls of
+/// no thickness were not all merged (1,571 non-manifold edges, nudged).
+/// Reads ../shared/data/meshes; skipped visibly without it.
 #[test]
 fn shared_menger_sponge_with_its_copy_and_its_quarter_turn() {
     let dir = holey_testkit::shared_meshes_or_return!(
@@ -1122,6 +1124,12 @@ fn shared_menger_sponge_with_its_copy_and_its_quarter_turn() {
             Operation::Intersection,
             0.406_442_052_365_286_7,
         ),
+        (
+            &turned,
+            "quarter turn",
+            Operation::Difference,
+            4.896_165_342_651_902e-8,
+        ),
     ];
     for (b, name, op, want) in cases {
         let what = format!("{} with its {name}", op.name());
@@ -1135,9 +1143,11 @@ fn shared_menger_sponge_with_its_copy_and_its_quarter_turn() {
                 m.triangles.len()
             );
         } else {
+            // Relative to the operands' volume: the difference is slabs
+            // whose own volume is rounded at the sponge's scale.
             let v = volume(m);
             assert!(
-                (v - want).abs() <= 1e-12 * want,
+                (v - want).abs() <= 1e-12 * want.max(whole),
                 "{what}: {v} against {want}"
             );
         }
