@@ -26,6 +26,7 @@ mod orient;
 mod overlaps;
 mod report_json;
 mod side_crossings;
+pub mod snap_round;
 mod solid;
 pub mod solids;
 #[cfg(test)]
@@ -59,6 +60,7 @@ pub use intersect::{IntersectError, Intersections};
 pub use local::{LocalReport, topology_change_local};
 pub use mesh::{MeshError, TriMesh};
 pub use overlaps::coplanar_overlaps;
+pub use snap_round::SnapRounding;
 pub use solids::{BooleanError, BooleanOptions, BooleanOutcome, Computed, Method, solid_boolean};
 pub use union::{
     Operation, PreparedSolid, UnionError, boolean, boolean_robust, difference, intersection, union,

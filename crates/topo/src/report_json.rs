@@ -89,6 +89,13 @@ impl WindingOutcome {
             "split_vertices": r.split_vertices,
             "unsampled_regions": r.unsampled_regions,
             "perturbation_retries": r.perturbation_retries,
+            "snap_rounding": r.snap_rounding.map(|s| json!({
+                "grid": s.grid,
+                "moved_points": s.moved_points,
+                "grids_tried": s.grids_tried,
+                "rounds": s.rounds,
+                "seconds": s.seconds,
+            })),
             "unpaired_edges": r.unpaired_edges,
             "nonmanifold_edges": r.nonmanifold_edges,
             "pinched_vertices": r.pinched_vertices,

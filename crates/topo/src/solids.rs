@@ -417,7 +417,8 @@ fn shares_a_triangle(a: &TriMesh, b: &TriMesh) -> bool {
 /// The exact winding-number Boolean of `inputs`
 /// ([`boolean_by_winding_first_try`]) when its result is clean: closed, a
 /// 2-manifold at edges and vertices, and crossing itself nowhere
-/// (checked exactly; the report says 0). `None` otherwise.
+/// (checked exactly; the report says 0), or when snap rounding makes it
+/// so ([`crate::snap_round`]). `None` otherwise.
 ///
 /// Called only once [`PreparedPair::with_checks`] found each solid
 /// crossing itself nowhere, so the arrangement tests the pairs across the
@@ -431,20 +432,22 @@ fn exact_winding_if_clean(
     share: bool,
 ) -> Result<Option<WindingOutcome>, BooleanError> {
     let mut out = boolean_by_winding_first_try(inputs, op, &options.engine, !share)?;
-    if out.report.shape_defects() > 0 {
-        return Ok(None);
-    }
     // Only a result crossing itself nowhere is kept: the search stops at
     // its first crossing pair (`TooManyPairs` past a limit of none), and
     // builds no points or curves.
-    match crate::intersect::intersecting_pair_count(&out.mesh, 0) {
-        Ok(0) => {
-            out.report.output_intersecting_pairs = Some(0);
-            Ok(Some(out))
-        }
-        Ok(_) | Err(crate::intersect::IntersectError::TooManyPairs { .. }) => Ok(None),
-        Err(e) => Err(TopoError::from(e).into()),
+    let clean = out.report.shape_defects() == 0
+        && match crate::intersect::intersecting_pair_count(&out.mesh, 0) {
+            Ok(n) => n == 0,
+            Err(crate::intersect::IntersectError::TooManyPairs { .. }) => false,
+            Err(e) => return Err(TopoError::from(e).into()),
+        };
+    if clean {
+        out.report.output_intersecting_pairs = Some(0);
+        return Ok(Some(out));
     }
+    // Rounded points that cross, or walls the overlay left: snapped to
+    // a fine grid and resolved ([`crate::snap_round`]), when that is clean.
+    Ok(crate::snap_round::snap_rounded(&out, &options.engine)?)
 }
 
 /// The start positions of `a` joined with `b` moved away along `d` (a
