@@ -23,10 +23,10 @@
 //! multiplying back are exact in floating point, so the snapped points
 //! are exactly on the grid.
 //!
-//! The snapped surface is closed and consistently oriented (only a result
-//! with no open edge is snapped), so its winding number is an integer off
-//! it; it differs from the exact result's only within √3·h/2 of the
-//! surface, where the snap moved it.
+//! The exact result of closed inputs is closed and consistently oriented
+//! (but where rounding left a slit: see [`snap_rounded`]), so its winding
+//! number is an integer off it; the snapped surface's differs from it
+//! only within √3·h/2 of the surface, where the snap moved it.
 
 use std::time::Instant;
 
@@ -99,15 +99,21 @@ pub(crate) fn snapped_to_grid(positions: &[DVec3], h: f64) -> (Vec<DVec3>, usize
 /// is a closed 2-manifold that crosses itself nowhere (checked exactly),
 /// on the first grid of [`SNAP_ULPS_LOG2`] that gives one. Its report is
 /// `exact`'s, with the shape of the snapped result, its crossings (0),
-/// and [`SnapRounding`]. `None` when `exact` is open (its winding number
-/// would not be an integer), has no points, or no grid gives a clean
-/// result.
+/// and [`SnapRounding`]. `None` when an input was open (the result's
+/// winding number would be fractional by design), the result has no
+/// points, or no grid gives a clean result.
+///
+/// A result of closed inputs left open by rounding (a few edges unpaired
+/// where a constructed point missed the vertex it should be) is snapped
+/// too: its generalized winding number is an integer but within reach of
+/// those slits, which are a rounding wide, and the snap's result must
+/// itself be closed to be kept.
 pub(crate) fn snap_rounded(
     exact: &WindingOutcome,
     options: &Options,
 ) -> Result<Option<WindingOutcome>, WindingError> {
     let started = Instant::now();
-    if exact.report.unpaired_edges > 0 || exact.mesh.triangles.is_empty() {
+    if !exact.report.inputs_closed.iter().all(|&c| c) || exact.mesh.triangles.is_empty() {
         return Ok(None);
     }
     for (tried, &ulps_log2) in (1..).zip(&SNAP_ULPS_LOG2) {

@@ -38,8 +38,8 @@ one and stops.
 As for `holey union`, where coplanar faces of A and B overlap and the
 exactly placed result is not a clean closed surface (or its points were
 rounded together, or the solids only touch), the winding-number
-arrangement answers first, exactly; only if that is not clean is the
-run retried with B moved by a deterministic nudge of 2^-30 of the
+arrangement answers first, exactly (snap-rounded where its rounded
+points cross, as there); only if that is not clean is the run retried with B moved by a deterministic nudge of 2^-30 of the
 scene's diagonal (then 16 and 256 times that, while each nudge leaves
 fewer open edges, non-manifold edges and vertices, and crossing pairs);
 --exact makes the containment's first attempt the only one.

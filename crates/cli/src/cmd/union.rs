@@ -29,7 +29,11 @@ from one exact ray (simulation of simplicity); the regions with inside on
 one side and outside on the other are kept, facing out. One input alone
 gives the solid its surface encloses: self-intersections and inner shells
 removed. Every input must be closed. The output is checked for crossing
-triangles; if it has any (coplanar faces that touch), a warning says so.
+triangles. Where it has some (sheets that nearly coincide, whose
+constructed points the rounding to f64 moved past one another), it is
+snap-rounded (see below), and, if that does not clean it, every input
+piece but the first is nudged as below; a result that still crosses is
+written with a warning that says so.
 
 Otherwise, for two solids that do not cross themselves, the union of
 Theorem 5.2 below.
@@ -68,8 +72,12 @@ rounded together or the solids only touch. There the winding-number
 arrangement answers first, exactly: coplanar faces facing opposite ways
 cancel, and where the result touches itself along an edge or at a point
 it is split there into a 2-manifold without moving a point (the report
-names the method: winding). Only if that result is not clean is the run
-retried with B moved by a deterministic, scale-relative nudge: 2^-30 of
+names the method: winding). Where that result's rounded points cross
+(sheets that nearly coincide), it is snap-rounded: its points put on a
+power-of-two grid of 256 ulps of its largest coordinate (then 2^14 and
+2^20 ulps), resolved by its own winding number and checked exactly; the
+report's snap_rounding gives the grid and the points moved. Only if
+that is not clean either is the run retried with B moved by a deterministic, scale-relative nudge: 2^-30 of
 the scene's diagonal along a fixed generic direction (about 1e-9
 relative, far below any modelling precision), then 16 and 256 times
 that along other directions, while each nudge leaves fewer open edges,

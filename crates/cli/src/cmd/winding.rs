@@ -57,21 +57,28 @@ pub fn write(
 
 fn report_text(out: &WindingOutcome, crossing: usize) -> String {
     let r = &out.report;
-    format!(
-        "winding-number arrangement: {} intersecting pairs, {} curves, {} triangles in {} cells ({} coincident groups), {} rays\n\
+    let snapped = r.snap_rounding.map_or(String::new(), |s| {
+        format!(
+            "snap-rounded: {} points moved onto a grid of {:e} ({} grids, {} rounds on the last; {:.3} s)\n",
+            s.moved_points, s.grid, s.grids_tried, s.rounds, s.seconds
+        )
+    });
+    snapped
+        + &format!(
+            "winding-number arrangement: {} intersecting pairs, {} curves, {} triangles in {} cells ({} coincident groups), {} rays\n\
          result: {} triangles, {} unpaired edges, {} crossing pairs; {:.3} s (intersections {:.3}, cut {:.3}, classify {:.3})\n",
-        r.intersecting_pairs,
-        r.intersection_curves,
-        r.arrangement_triangles,
-        r.regions,
-        r.coincident_groups,
-        r.rays,
-        out.mesh.triangles.len(),
-        r.unpaired_edges,
-        crossing,
-        r.seconds.total,
-        r.seconds.intersections,
-        r.seconds.cut,
-        r.seconds.classify,
-    )
+            r.intersecting_pairs,
+            r.intersection_curves,
+            r.arrangement_triangles,
+            r.regions,
+            r.coincident_groups,
+            r.rays,
+            out.mesh.triangles.len(),
+            r.unpaired_edges,
+            crossing,
+            r.seconds.total,
+            r.seconds.intersections,
+            r.seconds.cut,
+            r.seconds.classify,
+        )
 }
