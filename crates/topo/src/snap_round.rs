@@ -24,7 +24,8 @@
 //! are exactly on the grid.
 //!
 //! The exact result of closed inputs is closed and consistently oriented
-//! (but where rounding left a slit: see [`snap_rounded`]), so its winding
+//! (but where rounding left a slit: see `winding_boolean::snap_rounded`),
+//! so its winding
 //! number is an integer off it; the snapped surface's differs from it
 //! only within √3·h/2 of the surface, where the snap moved it.
 
@@ -32,11 +33,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
-use crate::engine::Options;
-use crate::intersect::{IntersectError, intersecting_pair_count};
 use crate::mesh::TriMesh;
-use crate::union::Operation;
-use crate::winding_boolean::{WindingError, WindingOutcome, boolean_by_winding};
 
 /// The grid steps tried, as base-2 logarithms of units in the last place
 /// of the largest coordinate: 256, 16,384 and 1,048,576 ulps. On
@@ -95,41 +92,30 @@ pub(crate) fn snapped_to_grid(positions: &[DVec3], h: f64) -> (Vec<DVec3>, usize
     (snapped, moved)
 }
 
-/// `exact`, the result of [`boolean_by_winding`], snap-rounded until it
-/// is a closed 2-manifold that crosses itself nowhere (checked exactly),
-/// on the first grid of [`SNAP_ULPS_LOG2`] that gives one. Its report is
-/// `exact`'s, with the shape of the snapped result, its crossings (0),
-/// and [`SnapRounding`]. `None` when an input was open (the result's
-/// winding number would be fractional by design), the result has no
-/// points, or no grid gives a clean result.
+/// `mesh` snap-rounded until `resolve` calls it clean, on the first grid
+/// of [`SNAP_ULPS_LOG2`] that gives a clean result, and how.
 ///
-/// A result of closed inputs left open by rounding (a few edges unpaired
-/// where a constructed point missed the vertex it should be) is snapped
-/// too: its generalized winding number is an integer but within reach of
-/// those slits, which are a rounding wide, and the snap's result must
-/// itself be closed to be kept.
-pub(crate) fn snap_rounded(
-    exact: &WindingOutcome,
-    options: &Options,
-) -> Result<Option<WindingOutcome>, WindingError> {
+/// `resolve(snapped, before)` resolves a snapped surface (by its winding
+/// number: [`crate::winding_boolean`]) and counts its defects (open and
+/// non-manifold edges, pinched vertices, crossing pairs), any count at or
+/// above `before` standing for "no better". `defects` are `mesh`'s own.
+/// On one grid the rounds go on from the last result, up to
+/// [`SNAP_ROUNDS`], while the defects fall; each grid starts from `mesh`.
+/// `None` when `mesh` has no scale (no grid) or no grid gives a clean
+/// result.
+pub(crate) fn snap_round<E>(
+    mesh: &TriMesh,
+    defects: usize,
+    mut resolve: impl FnMut(&TriMesh, usize) -> Result<(TriMesh, usize), E>,
+) -> Result<Option<(TriMesh, SnapRounding)>, E> {
     let started = Instant::now();
-    if !exact.report.inputs_closed.iter().all(|&c| c) || exact.mesh.triangles.is_empty() {
-        return Ok(None);
-    }
     for (tried, &ulps_log2) in (1..).zip(&SNAP_ULPS_LOG2) {
-        let Some(h) = grid_step(&exact.mesh.positions, ulps_log2) else {
+        let Some(h) = grid_step(&mesh.positions, ulps_log2) else {
             return Ok(None);
         };
-        let mut current = std::borrow::Cow::Borrowed(&exact.mesh);
+        let mut current = std::borrow::Cow::Borrowed(mesh);
         let mut moved = 0;
-        // Defects (open and non-manifold edges, pinched vertices and
-        // crossing pairs) before the round: another round on this grid
-        // only while they fall.
-        let mut before = exact.report.shape_defects()
-            + exact
-                .report
-                .output_intersecting_pairs
-                .unwrap_or(usize::MAX / 2);
+        let mut before = defects;
         for round in 1..=SNAP_ROUNDS {
             let (positions, n) = snapped_to_grid(&current.positions, h);
             moved += n;
@@ -137,39 +123,22 @@ pub(crate) fn snap_rounded(
                 positions,
                 triangles: current.triangles.clone(),
             };
-            let resolved = boolean_by_winding(&[&snapped], Operation::Union, options)?;
-            let report = &resolved.report;
-            let shape = report.shape_defects();
-            // Counted up to where the round would be no better.
-            let limit = before.saturating_sub(shape + 1);
-            let crossing = match intersecting_pair_count(&resolved.mesh, limit) {
-                Ok(n) => n,
-                Err(IntersectError::TooManyPairs { .. }) => limit + 1,
-                Err(e) => return Err(crate::engine::TopoError::from(e).into()),
-            };
-            if shape == 0 && crossing == 0 {
-                let mut report = exact.report.clone();
-                report.unpaired_edges = 0;
-                report.nonmanifold_edges = 0;
-                report.pinched_vertices = 0;
-                report.output_intersecting_pairs = Some(0);
-                report.snap_rounding = Some(SnapRounding {
+            let (resolved, left) = resolve(&snapped, before)?;
+            if left == 0 {
+                let how = SnapRounding {
                     grid: h,
                     moved_points: moved,
                     grids_tried: tried,
                     rounds: round,
                     seconds: started.elapsed().as_secs_f64(),
-                });
-                return Ok(Some(WindingOutcome {
-                    mesh: resolved.mesh,
-                    report,
-                }));
+                };
+                return Ok(Some((resolved, how)));
             }
-            if shape + crossing >= before {
+            if left >= before {
                 break;
             }
-            before = shape + crossing;
-            current = std::borrow::Cow::Owned(resolved.mesh);
+            before = left;
+            current = std::borrow::Cow::Owned(resolved);
         }
     }
     Ok(None)
@@ -219,5 +188,43 @@ mod tests {
         }
         let (again, none) = snapped_to_grid(&snapped, h);
         assert_eq!((again, none), (snapped, 0));
+    }
+
+    /// The rounds on one grid go on while the defects fall and stop when
+    /// they do not; the next grid starts again from the mesh; the first
+    /// clean result is kept, with the grid, the rounds and the points
+    /// moved. A resolver that never cleans gives `None` after every grid.
+    #[test]
+    fn rounds_go_on_while_the_defects_fall_and_grids_coarsen() {
+        let mesh = TriMesh {
+            positions: vec![
+                DVec3::new(0.1, 0.2, 0.3),
+                DVec3::new(1.7, 0.2, 0.3),
+                DVec3::new(0.1, 1.9, 0.3),
+            ],
+            triangles: vec![[0, 1, 2]],
+        };
+        // Defects after each call: grid 1 falls to 5, then rises to 7
+        // (stop); grid 2 falls to 3, then 0 (clean).
+        let script = [5, 7, 3, 0];
+        let mut calls = Vec::new();
+        let found = snap_round(&mesh, 10, |snapped: &TriMesh, before| {
+            calls.push((snapped.positions.clone(), before));
+            Ok::<_, ()>((snapped.clone(), script[calls.len() - 1]))
+        })
+        .unwrap()
+        .expect("clean on the second grid");
+        let h2 = grid_step(&mesh.positions, SNAP_ULPS_LOG2[1]).unwrap();
+        assert_eq!(
+            (found.1.grid, found.1.grids_tried, found.1.rounds),
+            (h2, 2, 2)
+        );
+        assert_eq!(found.1.moved_points, 3, "moved on the first round only");
+        let befores: Vec<usize> = calls.iter().map(|c| c.1).collect();
+        assert_eq!(befores, [10, 5, 10, 3]);
+        // Each grid's first round starts from the mesh itself.
+        assert_eq!(calls[2].0, snapped_to_grid(&mesh.positions, h2).0);
+        let none = snap_round(&mesh, 10, |m: &TriMesh, _| Ok::<_, ()>((m.clone(), 1))).unwrap();
+        assert!(none.is_none());
     }
 }

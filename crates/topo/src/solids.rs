@@ -447,7 +447,7 @@ fn exact_winding_if_clean(
     }
     // Rounded points that cross, or walls the overlay left: snapped to
     // a fine grid and resolved ([`crate::snap_round`]), when that is clean.
-    Ok(crate::snap_round::snap_rounded(&out, &options.engine)?)
+    Ok(crate::winding_boolean::snap_rounded(&out, &options.engine)?)
 }
 
 /// The start positions of `a` joined with `b` moved away along `d` (a

@@ -112,7 +112,7 @@ use crate::hidden::vertex_components;
 use crate::intersect::{default_pair_limit, intersections_limited, intersections_of_clean_parts};
 use crate::mesh::{Edges, MeshError, TriMesh};
 use crate::on_side::on_side_between;
-use crate::snap_round::{SnapRounding, snap_rounded};
+use crate::snap_round::{SnapRounding, snap_round};
 use crate::union::Operation;
 use crate::union_find::UnionFind;
 use crate::winding::WindingField;
@@ -640,6 +640,59 @@ pub fn boolean_by_winding_robust(
     // Every attempt and check counts.
     out.report.seconds.total = started.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// `exact`, the result of [`boolean_by_winding`], snap-rounded
+/// ([`crate::snap_round`]) until it is a closed 2-manifold that crosses
+/// itself nowhere (checked exactly), each snapped surface resolved by
+/// its own winding number (its union with nothing). Its report is
+/// `exact`'s, with the clean shape, no crossing and
+/// [`WindingReport::snap_rounding`]. `None` when an input was open (the
+/// result's winding number is fractional by design), the result is
+/// empty, or no grid gives a clean result.
+///
+/// A result of closed inputs left open by rounding (a few edges unpaired
+/// where a constructed point missed the vertex it should be) is snapped
+/// too: its generalized winding number is an integer but within reach of
+/// those slits, which are a rounding wide, and only a closed result of
+/// the snap is kept.
+pub(crate) fn snap_rounded(
+    exact: &WindingOutcome,
+    options: &Options,
+) -> Result<Option<WindingOutcome>, WindingError> {
+    if !exact.report.inputs_closed.iter().all(|&c| c) || exact.mesh.triangles.is_empty() {
+        return Ok(None);
+    }
+    let defects = exact.report.shape_defects()
+        + exact
+            .report
+            .output_intersecting_pairs
+            .unwrap_or(usize::MAX / 2);
+    let resolve = |snapped: &TriMesh, before: usize| {
+        let resolved = boolean_by_winding(&[snapped], Operation::Union, options)?;
+        let shape = resolved.report.shape_defects();
+        if shape >= before {
+            return Ok((resolved.mesh, shape));
+        }
+        // Counted only up to where the round would be no better.
+        let limit = before - shape - 1;
+        let crossing = match crate::intersect::intersecting_pair_count(&resolved.mesh, limit) {
+            Ok(n) => n,
+            Err(crate::intersect::IntersectError::TooManyPairs { .. }) => limit + 1,
+            Err(e) => return Err(WindingError::from(TopoError::from(e))),
+        };
+        Ok((resolved.mesh, shape + crossing))
+    };
+    let Some((mesh, how)) = snap_round(&exact.mesh, defects, resolve)? else {
+        return Ok(None);
+    };
+    let mut report = exact.report.clone();
+    report.unpaired_edges = 0;
+    report.nonmanifold_edges = 0;
+    report.pinched_vertices = 0;
+    report.output_intersecting_pairs = Some(0);
+    report.snap_rounding = Some(how);
+    Ok(Some(WindingOutcome { mesh, report }))
 }
 
 /// A unit direction for piece `j`, none for piece 0: points of a
