@@ -209,9 +209,11 @@ pub struct WindingReport {
     /// How many nudges of the inputs after the first the result took
     /// ([`boolean_by_winding_robust`]).
     pub perturbation_retries: usize,
-    /// Where the exact result's rounded points crossed: the grid its
-    /// points were snapped to and how many moved
-    /// ([`crate::snap_round`]); `None` when it was not snapped.
+    /// Where the exact result was not clean (rounded points crossing,
+    /// walls left, a few edges left open by rounding) and snap rounding
+    /// made it so: the grid its points were snapped to, how many moved,
+    /// the grids and rounds it took ([`crate::snap_round`]); `None` when
+    /// it was not snapped.
     pub snap_rounding: Option<SnapRounding>,
     /// What cutting and gluing along every curve did (resolve mode: nothing
     /// deleted).
@@ -540,8 +542,8 @@ fn nonmanifold_edges(faces: &[[u32; 3]]) -> usize {
 /// more than two triangles, a pinched vertex) or crosses itself (checked
 /// exactly: one self-intersection pass over the result), it is first
 /// snap-rounded ([`crate::snap_round`]; kept if that makes it clean, the
-/// report's `snap_rounding` saying how). Else, or when it is open, every
-/// connected piece of every input but the first piece of the first is
+/// report's `snap_rounding` saying how; a result that rounding left open
+/// by a few edges is snapped too). Else every connected piece of every input but the first piece of the first is
 /// moved its own generic way by the next step of
 /// [`crate::union::NUDGES`] (scale-relative: 2⁻³⁰ of the scene's
 /// diagonal first, then 2⁻²⁶ and 2⁻²²) and the operation redone, up to
