@@ -243,7 +243,7 @@ pub(crate) fn pow2(k: i32) -> f64 {
 
 /// The exponent `e` with `2^e <= |x| < 2^(e+1)` for a normal nonzero `x`
 /// (0 for zero or non-finite values).
-pub(crate) fn exponent_of(x: f64) -> i32 {
+pub fn exponent_of(x: f64) -> i32 {
     if x == 0.0 || !x.is_finite() {
         return 0;
     }

@@ -74,8 +74,7 @@ pub(crate) fn grid_step(positions: &[DVec3], ulps_log2: i32) -> Option<f64> {
     if !largest.is_normal() {
         return None;
     }
-    // The unbiased binary exponent of a normal f64.
-    let exponent = ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let exponent = holey_geom::expansion::exponent_of(largest);
     let step = 2f64.powi(exponent - 52 + ulps_log2);
     step.is_normal().then_some(step)
 }

@@ -607,10 +607,10 @@ pub fn boolean_by_winding_robust(
         let closed = out.report.inputs_closed.iter().all(|&c| c);
         let defects = out.report.shape_defects() + crossing;
         // The exact result, unclean: snapped to a grid a few hundred ulps
-        // fine first, which moves it far less than the smallest nudge.
+        // fine first, which moves it far less than the smallest nudge
+        // (`snap_rounded` declines the results of open inputs).
         if k == 0
             && defects > 0
-            && closed
             && let Some(snapped) = snap_rounded(&out, options)?
         {
             best = Some((0, snapped));
