@@ -122,7 +122,14 @@ fn order_along(sides: &[[DVec2; 2]], splits: &mut [Vec<DVec2>]) {
     for (k, points) in splits.iter_mut().enumerate() {
         let [a, b] = sides[k];
         let u = b - a;
-        points.retain(|&p| p != a && p != b);
+        // Strictly between the ends: a crossing within rounding of an end
+        // can be snapped to a corner just beyond it, and a split there
+        // would fold the side back on itself (a hairpin whose pieces
+        // cross the sides at that end, failing the overlay).
+        points.retain(|&p| {
+            let t = (p - a).dot(u);
+            t > 0.0 && t < u.dot(u)
+        });
         points.sort_by(|p, q| (*p - a).dot(u).total_cmp(&(*q - a).dot(u)));
         points.dedup();
     }
@@ -219,6 +226,27 @@ mod tests {
         assert_eq!(all.len(), 3, "each side split once: {splits:?}");
         assert!(all.iter().all(|&p| p == all[0]), "one point: {all:?}");
         assert!((all[0] - c).length() < 1e-12);
+    }
+
+    /// A split point snapped to a corner just beyond a side's end (a
+    /// crossing within rounding of the end, computed on a nearly parallel
+    /// side) is dropped: splitting there would fold the side back on
+    /// itself, its first piece running backwards.
+    #[test]
+    fn split_points_beyond_a_sides_ends_are_dropped() {
+        let sides = [[DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0)]];
+        let mut splits = vec![vec![
+            DVec2::new(0.5, 0.0),
+            DVec2::new(-1e-12, 0.0),
+            DVec2::new(1.0 + 1e-12, 1e-13),
+            DVec2::new(0.25, 1e-17),
+            DVec2::new(1.0, 0.0),
+        ]];
+        order_along(&sides, &mut splits);
+        assert_eq!(
+            splits[0],
+            vec![DVec2::new(0.25, 1e-17), DVec2::new(0.5, 0.0)]
+        );
     }
 
     #[test]
