@@ -210,6 +210,7 @@ pub fn resolve<'py>(
         "intersecting_pairs": x.pairs.len(),
         "intersection_curves": x.curve_count,
         "triangles_split": cut.triangles_split,
+        "points_welded": cut.points_welded,
         "coplanar_groups_merged": cut.coplanar_groups_merged,
         "coplanar_groups_left": cut.coplanar_groups_left,
         "output_triangles": out.triangles.len(),

@@ -103,6 +103,10 @@ pub struct CutReport {
     /// Vertices split because the solid guard's result touched itself
     /// there at a single point (one vertex per fan).
     pub pinches_split: usize,
+    /// Points of the cut that `resolve` took as an input corner or as
+    /// another such point within rounding of them, before merging the
+    /// coplanar overlaps (`crate::overlaps::weld_constructed`).
+    pub points_welded: usize,
     /// Groups of coplanar triangles overlapping in their plane that
     /// `resolve` replaced by their overlay (`crate::overlaps`).
     pub coplanar_groups_merged: usize,

@@ -842,6 +842,7 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
     let Cut {
         mesh: out,
         mut report,
+        origin,
         ..
     } = cut(
         mesh,
@@ -856,6 +857,10 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
         mut positions,
         triangles,
     } = out;
+    let constructed: Vec<bool> = origin.iter().map(|&o| o == u32::MAX).collect();
+    let (triangles, welded) =
+        crate::overlaps::weld_constructed(&positions, triangles, &constructed);
+    report.points_welded = welded;
     let (triangles, merged) = crate::overlaps::merge_overlaps(&mut positions, triangles);
     report.coplanar_groups_merged = merged.groups;
     report.coplanar_groups_left = merged.left;

@@ -36,7 +36,7 @@ use holey_geom::{Aabb, Bvh};
 use crate::coplanar::{Keep, Overlay, for_each_overlapping_pair, overlap_groups, position_index};
 use crate::mesh::Edges;
 use crate::mesh::TriMesh;
-use crate::on_side::{near_line, on_side_between, on_side_reach};
+use crate::on_side::{near_line, on_side_between, on_side_reach, snap_crossings};
 
 /// What merging the overlaps did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -320,6 +320,40 @@ pub(crate) fn merge_overlaps(
     (out, merged)
 }
 
+/// The cut's own points (`constructed[v]`: rounded from exact crossings,
+/// or split points) taken as a corner of the input within
+/// [`crate::on_side::SNAP`] of the points' size, or as one point where
+/// such points lie that close to each other ([`snap_crossings`], the
+/// overlay's rule for its crossings); corners are never moved. Returns
+/// the faces renamed so, without those whose corners now repeat (the
+/// slivers between the points), and how many points were taken as
+/// another.
+///
+/// Where sheets meet near a vertex or near each other's edges, the exact
+/// arrangement has points a few ulps apart that rounding cannot keep in
+/// order: on the OpenSCAD export, seven of the cut's points lie within
+/// 4·10⁻¹⁵ of the corner (−17.9, 0.6, −204) at coordinates of 200. The
+/// coplanar groups through them cannot be overlaid without opening the
+/// surface (their slivers fold in the plane's projection), so `resolve`
+/// left three such groups unmerged until these points were taken as one.
+pub(crate) fn weld_constructed(
+    positions: &[DVec3],
+    faces: Vec<[u32; 3]>,
+    constructed: &[bool],
+) -> (Vec<[u32; 3]>, usize) {
+    let to = snap_crossings(positions, constructed);
+    let welded = to.iter().enumerate().filter(|&(i, &t)| i != t).count();
+    if welded == 0 {
+        return (faces, 0);
+    }
+    let faces = faces
+        .into_iter()
+        .map(|f| f.map(|v| to[v as usize] as u32))
+        .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
+        .collect();
+    (faces, welded)
+}
+
 /// The sides that only one triangle of `faces` has (the surface's
 /// boundary, whatever the orientations), by their ends.
 fn lone_sides(faces: &[[u32; 3]]) -> Vec<[u32; 2]> {
@@ -386,4 +420,48 @@ pub fn coplanar_overlaps(mesh: &TriMesh) -> usize {
     let mut pairs = 0;
     for_each_overlapping_pair(&mesh.positions, &mesh.triangles, |_, _, _| pairs += 1);
     pairs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit square's corners and points of a cut beside them: one a
+    /// hundredth of an ulp-scale bound from a corner (taken as it), two
+    /// within that of each other (taken as the first), one a thousand
+    /// times farther (kept). A corner as close to another corner stays:
+    /// the input is never moved. The faces whose corners then repeat go.
+    #[test]
+    fn cut_points_within_rounding_of_a_corner_or_each_other_are_welded() {
+        let positions = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            // Constructed: beside corner 0.
+            DVec3::new(1e-14, 0.0, 0.0),
+            // Constructed: two within 1e-14 of each other.
+            DVec3::new(0.5, 0.5, 0.0),
+            DVec3::new(0.5 + 1e-14, 0.5, 0.0),
+            // Constructed: 1e-9 from point 5, beyond the bound
+            // (√2·2⁻⁴⁰ ≈ 1.3e-12 here).
+            DVec3::new(0.5, 0.5 + 1e-9, 0.0),
+            // A corner 1e-14 from corner 3.
+            DVec3::new(0.0, 1.0 + 1e-14, 0.0),
+        ];
+        let constructed = [false, false, false, false, true, true, true, true, false];
+        let faces = vec![[0, 1, 4], [5, 6, 2], [4, 1, 2], [3, 8, 7], [0, 6, 7]];
+        let (welded_faces, welded) = weld_constructed(&positions, faces, &constructed);
+        assert_eq!(welded, 2);
+        assert_eq!(welded_faces, vec![[0, 1, 2], [3, 8, 7], [0, 5, 7]]);
+    }
+
+    #[test]
+    fn nothing_within_rounding_leaves_the_faces_as_they_are() {
+        let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.25, 0.25, 0.0)];
+        let faces = vec![[0, 1, 3], [1, 2, 3], [2, 0, 3]];
+        let (same, welded) =
+            weld_constructed(&positions, faces.clone(), &[false, false, false, true]);
+        assert_eq!((same, welded), (faces, 0));
+    }
 }

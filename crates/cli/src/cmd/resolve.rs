@@ -51,11 +51,13 @@ pub fn run_file(input: &str, output: &str) -> Result<String> {
     crate::tri::write_triangles(output, &out)?;
     Ok(format!(
         "{} intersecting pairs, {} curves; {} triangles split into {} triangles total; \
+         {} points within rounding of another welded; \
          {} groups of overlapping coplanar triangles merged, {} left",
         x.pairs.len(),
         x.curve_count,
         report.triangles_split,
         out.triangles.len(),
+        report.points_welded,
         report.coplanar_groups_merged,
         report.coplanar_groups_left,
     ))
