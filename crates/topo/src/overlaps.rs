@@ -36,7 +36,7 @@ use holey_geom::{Aabb, Bvh};
 use crate::coplanar::{Keep, Overlay, for_each_overlapping_pair, overlap_groups, position_index};
 use crate::mesh::Edges;
 use crate::mesh::TriMesh;
-use crate::on_side::{near_line, on_side_between, on_side_reach, snap_crossings};
+use crate::on_side::{near_line, on_side_between, on_side_reach, welded_classes};
 
 /// What merging the overlaps did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -320,38 +320,41 @@ pub(crate) fn merge_overlaps(
     (out, merged)
 }
 
-/// The cut's own points (`constructed[v]`: rounded from exact crossings,
-/// or split points) taken as a corner of the input within
-/// [`crate::on_side::SNAP`] of the points' size, or as one point where
-/// such points lie that close to each other ([`snap_crossings`], the
-/// overlay's rule for its crossings); corners are never moved. Returns
-/// the faces renamed so, without those whose corners now repeat (the
-/// slivers between the points), and how many points were taken as
-/// another.
-///
-/// Where sheets meet near a vertex or near each other's edges, the exact
-/// arrangement has points a few ulps apart that rounding cannot keep in
-/// order: on the OpenSCAD export, seven of the cut's points lie within
-/// 4·10⁻¹⁵ of the corner (−17.9, 0.6, −204) at coordinates of 200. The
-/// coplanar groups through them cannot be overlaid without opening the
-/// surface (their slivers fold in the plane's projection), so `resolve`
-/// left three such groups unmerged until these points were taken as one.
+/// The faces with the cut's points taken as input corners or as each
+/// other where they are one to rounding ([`welded_classes`]; the input's
+/// own vertices are left as they are), without
+/// those whose corners then repeat (the slivers between such points), and
+/// how many points were so taken: the coplanar groups through a cluster
+/// of such points cannot be overlaid without opening the surface (their
+/// slivers fold in the plane's projection).
 pub(crate) fn weld_constructed(
     positions: &[DVec3],
     faces: Vec<[u32; 3]>,
     constructed: &[bool],
-) -> (Vec<[u32; 3]>, usize) {
-    let to = snap_crossings(positions, constructed);
-    let welded = to.iter().enumerate().filter(|&(i, &t)| i != t).count();
+) -> Result<(Vec<[u32; 3]>, usize), holey_geom::GeomError> {
+    // Only the cut's points move: the input's coincident vertices stay
+    // apart, as `resolve` found them (the overlay renames those it needs
+    // as one).
+    let to: Vec<u32> = welded_classes(positions, constructed)?
+        .into_iter()
+        .zip(constructed)
+        .enumerate()
+        .map(|(v, (class, &moves))| if moves { class } else { v as u32 })
+        .collect();
+    let welded = to
+        .iter()
+        .enumerate()
+        .filter(|&(i, &t)| i != t as usize)
+        .count();
     if welded == 0 {
-        return (faces, 0);
+        return Ok((faces, 0));
     }
     let faces = faces
         .into_iter()
-        .map(|f| f.map(|v| to[v as usize] as u32))
+        .map(|f| f.map(|v| to[v as usize]))
         .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
         .collect();
-    (faces, welded)
+    Ok((faces, welded))
 }
 
 /// The sides that only one triangle of `faces` has (the surface's
@@ -426,34 +429,49 @@ pub fn coplanar_overlaps(mesh: &TriMesh) -> usize {
 mod tests {
     use super::*;
 
-    /// A unit square's corners and points of a cut beside them: one a
-    /// hundredth of an ulp-scale bound from a corner (taken as it), two
-    /// within that of each other (taken as the first), one a thousand
-    /// times farther (kept). A corner as close to another corner stays:
-    /// the input is never moved. The faces whose corners then repeat go.
+    /// A unit square's corners and points of a cut beside them, the
+    /// bound being 8 ulps of the largest coordinate (1): one 1e-15 from a
+    /// corner (taken as it), two at one position (one point), one 3e-15
+    /// from a corner and one 1e-9 from a point (both kept). A corner an
+    /// ulp from another stays: the input is never moved. The faces whose
+    /// corners then repeat go.
     #[test]
-    fn cut_points_within_rounding_of_a_corner_or_each_other_are_welded() {
+    fn cut_points_within_rounding_of_a_corner_or_at_one_position_are_welded() {
         let positions = vec![
             DVec3::new(0.0, 0.0, 0.0),
             DVec3::new(1.0, 0.0, 0.0),
             DVec3::new(1.0, 1.0, 0.0),
             DVec3::new(0.0, 1.0, 0.0),
-            // Constructed: beside corner 0.
-            DVec3::new(1e-14, 0.0, 0.0),
-            // Constructed: two within 1e-14 of each other.
+            // Constructed: 1e-15 from corner 0, within 8·2⁻⁵² ≈ 1.8e-15.
+            DVec3::new(1e-15, 0.0, 0.0),
+            // Constructed: two at one position.
             DVec3::new(0.5, 0.5, 0.0),
-            DVec3::new(0.5 + 1e-14, 0.5, 0.0),
-            // Constructed: 1e-9 from point 5, beyond the bound
-            // (√2·2⁻⁴⁰ ≈ 1.3e-12 here).
+            DVec3::new(0.5, 0.5, 0.0),
+            // Constructed: 1e-9 from point 5.
             DVec3::new(0.5, 0.5 + 1e-9, 0.0),
-            // A corner 1e-14 from corner 3.
-            DVec3::new(0.0, 1.0 + 1e-14, 0.0),
+            // A corner an ulp from corner 3.
+            DVec3::new(0.0, 1.0 + f64::EPSILON, 0.0),
+            // Constructed: 3e-15 from corner 0, beyond the bound.
+            DVec3::new(0.0, 0.0, 3e-15),
         ];
-        let constructed = [false, false, false, false, true, true, true, true, false];
-        let faces = vec![[0, 1, 4], [5, 6, 2], [4, 1, 2], [3, 8, 7], [0, 6, 7]];
-        let (welded_faces, welded) = weld_constructed(&positions, faces, &constructed);
+        let constructed = [
+            false, false, false, false, true, true, true, true, false, true,
+        ];
+        let faces = vec![
+            [0, 1, 4],
+            [5, 6, 2],
+            [4, 1, 2],
+            [3, 8, 7],
+            [0, 6, 7],
+            [9, 1, 2],
+        ];
+        let (welded_faces, welded) =
+            weld_constructed(&positions, faces, &constructed).expect("finite");
         assert_eq!(welded, 2);
-        assert_eq!(welded_faces, vec![[0, 1, 2], [3, 8, 7], [0, 5, 7]]);
+        assert_eq!(
+            welded_faces,
+            vec![[0, 1, 2], [3, 8, 7], [0, 5, 7], [9, 1, 2]]
+        );
     }
 
     #[test]
@@ -461,7 +479,8 @@ mod tests {
         let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.25, 0.25, 0.0)];
         let faces = vec![[0, 1, 3], [1, 2, 3], [2, 0, 3]];
         let (same, welded) =
-            weld_constructed(&positions, faces.clone(), &[false, false, false, true]);
+            weld_constructed(&positions, faces.clone(), &[false, false, false, true])
+                .expect("finite");
         assert_eq!((same, welded), (faces, 0));
     }
 }

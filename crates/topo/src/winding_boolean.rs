@@ -757,62 +757,25 @@ fn closed_inputs(triangles: &[[u32; 3]], ids: &[u32], owner: &[u32], inputs: usi
     closed
 }
 
-/// How near, in units of the scene's largest coordinate's ulp, a
-/// constructed point is snapped onto an input vertex.
-const SNAP_ULPS: f64 = 8.0;
-
 /// The arrangement with vertices at equal positions merged (two
 /// constructed points can round to one place, and the inputs' coincident
-/// vertices are still apart), and each constructed point within
-/// [`SNAP_ULPS`] ulps of the scene's largest coordinate of an input vertex
-/// (`origin[v]` is the input vertex an arrangement vertex is, or
-/// `u32::MAX`) snapped onto it: nearly coincident shells put curves
-/// through points a rounding away from their vertices, which would
-/// otherwise leave the result open there. Triangles that collapse are
-/// dropped with their sources. Returns how many vertices merged.
+/// vertices are still apart), and each constructed point near an input
+/// vertex snapped onto it ([`crate::on_side::welded_classes`]; `origin[v]`
+/// is the input vertex an arrangement vertex is, or `u32::MAX`): nearly
+/// coincident shells put curves through points a rounding away from
+/// their vertices, which would otherwise leave the result open there.
+/// Triangles that collapse are dropped with their sources. Returns how
+/// many vertices merged.
 fn weld(
     mesh: TriMesh,
     source: Vec<Source>,
     origin: &[u32],
 ) -> Result<(TriMesh, Vec<Source>, usize), WindingError> {
-    let mut class = position_classes(&mesh.positions).map_err(TopoError::from)?;
-    let scale = mesh
-        .positions
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
-    let reach = SNAP_ULPS * scale * f64::EPSILON;
-    if reach > 0.0 {
-        let cell = |p: DVec3| (p / (2.0 * reach)).floor().as_i64vec3().to_array();
-        let mut anchors: HashMap<[i64; 3], Vec<u32>> = HashMap::default();
-        for (v, p) in mesh.positions.iter().enumerate() {
-            if origin.get(v).is_some_and(|&o| o != u32::MAX) && class[v] as usize == v {
-                anchors.entry(cell(*p)).or_default().push(v as u32);
-            }
-        }
-        for (v, p) in mesh.positions.iter().enumerate() {
-            if origin.get(v).is_none_or(|&o| o != u32::MAX) || class[v] as usize != v {
-                continue;
-            }
-            let c = cell(*p);
-            let mut best: Option<(f64, u32)> = None;
-            for d in 0..27i64 {
-                let k = [c[0] + d / 9 - 1, c[1] + (d / 3) % 3 - 1, c[2] + d % 3 - 1];
-                for &a in anchors.get(&k).into_iter().flatten() {
-                    let gap = (mesh.positions[a as usize] - *p).abs().max_element();
-                    if gap <= reach && best.is_none_or(|(g, _)| gap < g) {
-                        best = Some((gap, a));
-                    }
-                }
-            }
-            if let Some((_, a)) = best {
-                class[v] = a;
-            }
-        }
-        // Points that shared a constructed point's position follow it.
-        for v in 0..class.len() {
-            class[v] = class[class[v] as usize];
-        }
-    }
+    let constructed: Vec<bool> = (0..mesh.positions.len())
+        .map(|v| origin.get(v).is_some_and(|&o| o == u32::MAX))
+        .collect();
+    let class =
+        crate::on_side::welded_classes(&mesh.positions, &constructed).map_err(TopoError::from)?;
     let merged = class
         .iter()
         .enumerate()
