@@ -322,11 +322,11 @@ pub(crate) fn merge_overlaps(
 
 /// The faces with the cut's points taken as input corners or as each
 /// other where they are one to rounding ([`welded_classes`]; the input's
-/// own vertices are left as they are), without
-/// those whose corners then repeat (the slivers between such points), and
-/// how many points were so taken: the coplanar groups through a cluster
-/// of such points cannot be overlaid without opening the surface (their
-/// slivers fold in the plane's projection).
+/// own vertices are left as they are), without those whose corners then
+/// repeat (the slivers between such points), and how many points were so
+/// taken: the coplanar groups through a cluster of such points cannot be
+/// overlaid without opening the surface (their slivers fold in the
+/// plane's projection).
 pub(crate) fn weld_constructed(
     positions: &[DVec3],
     faces: Vec<[u32; 3]>,
