@@ -857,9 +857,7 @@ pub fn resolve(mesh: &TriMesh) -> Result<(TriMesh, Intersections, CutReport), To
         mut positions,
         triangles,
     } = out;
-    let constructed: Vec<bool> = origin.iter().map(|&o| o == u32::MAX).collect();
-    let (triangles, welded) =
-        crate::overlaps::weld_constructed(&positions, triangles, &constructed)?;
+    let (triangles, welded) = crate::overlaps::weld_constructed(&positions, triangles, &origin)?;
     report.points_welded = welded;
     let (triangles, merged) = crate::overlaps::merge_overlaps(&mut positions, triangles);
     report.coplanar_groups_merged = merged.groups;

@@ -127,9 +127,9 @@ pub(crate) fn snap_crossings(points: &[DVec3], crossing: &[bool]) -> Vec<usize> 
 pub(crate) const WELD_ULPS: f64 = 8.0;
 
 /// For each of `positions`, the vertex it is taken as: points at equal
-/// positions are one (the first), and each constructed point
-/// (`constructed[v]`: rounded from an exact crossing, or a split point)
-/// within [`WELD_ULPS`] ulps of the largest coordinate of an input vertex
+/// positions are one (the first), and each constructed point (`origin[v]`
+/// is `u32::MAX`, the cut's mark for a point rounded from an exact
+/// crossing or a split point; else the input vertex it is) within [`WELD_ULPS`] ulps of the largest coordinate of an input vertex
 /// (per axis) is the nearest such vertex; input vertices never move.
 ///
 /// Where sheets meet at or near a vertex, the exact arrangement has
@@ -139,10 +139,8 @@ pub(crate) const WELD_ULPS: f64 = 8.0;
 /// export, points of the cut lie within 4·10⁻¹⁵ of the corner
 /// (−17.9, 0.6, −204) at coordinates of 200, and groups through them
 /// opened the surface when overlaid).
-pub(crate) fn welded_classes(
-    positions: &[DVec3],
-    constructed: &[bool],
-) -> Result<Vec<u32>, GeomError> {
+pub(crate) fn welded_classes(positions: &[DVec3], origin: &[u32]) -> Result<Vec<u32>, GeomError> {
+    let constructed = |v: usize| origin.get(v) == Some(&u32::MAX);
     let mut class = position_classes(positions)?;
     let scale = positions
         .iter()
@@ -152,12 +150,12 @@ pub(crate) fn welded_classes(
         let cell = |p: DVec3| (p / (2.0 * reach)).floor().as_i64vec3().to_array();
         let mut anchors: HashMap<[i64; 3], Vec<u32>> = HashMap::default();
         for (v, p) in positions.iter().enumerate() {
-            if !constructed[v] && class[v] as usize == v {
+            if !constructed(v) && class[v] as usize == v {
                 anchors.entry(cell(*p)).or_default().push(v as u32);
             }
         }
         for (v, p) in positions.iter().enumerate() {
-            if !constructed[v] || class[v] as usize != v {
+            if !constructed(v) || class[v] as usize != v {
                 continue;
             }
             let c = cell(*p);

@@ -330,16 +330,21 @@ pub(crate) fn merge_overlaps(
 pub(crate) fn weld_constructed(
     positions: &[DVec3],
     faces: Vec<[u32; 3]>,
-    constructed: &[bool],
+    origin: &[u32],
 ) -> Result<(Vec<[u32; 3]>, usize), holey_geom::GeomError> {
     // Only the cut's points move: the input's coincident vertices stay
     // apart, as `resolve` found them (the overlay renames those it needs
     // as one).
-    let to: Vec<u32> = welded_classes(positions, constructed)?
+    let to: Vec<u32> = welded_classes(positions, origin)?
         .into_iter()
-        .zip(constructed)
         .enumerate()
-        .map(|(v, (class, &moves))| if moves { class } else { v as u32 })
+        .map(|(v, class)| {
+            if origin.get(v) == Some(&u32::MAX) {
+                class
+            } else {
+                v as u32
+            }
+        })
         .collect();
     let welded = to
         .iter()
@@ -454,9 +459,9 @@ mod tests {
             // Constructed: 3e-15 from corner 0, beyond the bound.
             DVec3::new(0.0, 0.0, 3e-15),
         ];
-        let constructed = [
-            false, false, false, false, true, true, true, true, false, true,
-        ];
+        // The cut's mark for its own points, else the input vertex.
+        const CUT: u32 = u32::MAX;
+        let origin = [0, 1, 2, 3, CUT, CUT, CUT, CUT, 8, CUT];
         let faces = vec![
             [0, 1, 4],
             [5, 6, 2],
@@ -465,8 +470,7 @@ mod tests {
             [0, 6, 7],
             [9, 1, 2],
         ];
-        let (welded_faces, welded) =
-            weld_constructed(&positions, faces, &constructed).expect("finite");
+        let (welded_faces, welded) = weld_constructed(&positions, faces, &origin).expect("finite");
         assert_eq!(welded, 2);
         assert_eq!(
             welded_faces,
@@ -479,8 +483,7 @@ mod tests {
         let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.25, 0.25, 0.0)];
         let faces = vec![[0, 1, 3], [1, 2, 3], [2, 0, 3]];
         let (same, welded) =
-            weld_constructed(&positions, faces.clone(), &[false, false, false, true])
-                .expect("finite");
+            weld_constructed(&positions, faces.clone(), &[0, 1, 2, u32::MAX]).expect("finite");
         assert_eq!((same, welded), (faces, 0));
     }
 }

@@ -25,9 +25,9 @@
 //!
 //! The exact result of closed inputs is closed and consistently oriented
 //! (but where rounding left a slit: see `winding_boolean::snap_rounded`),
-//! so its winding
-//! number is an integer off it; the snapped surface's differs from it
-//! only within √3·h/2 of the surface, where the snap moved it.
+//! so its winding number is an integer off it; the snapped surface's
+//! differs from it only within √3·h/2 of the surface, where the snap
+//! moved it.
 
 use std::time::Instant;
 

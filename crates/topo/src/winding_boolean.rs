@@ -543,8 +543,9 @@ fn nonmanifold_edges(faces: &[[u32; 3]]) -> usize {
 /// exactly: one self-intersection pass over the result), it is first
 /// snap-rounded ([`crate::snap_round`]; kept if that makes it clean, the
 /// report's `snap_rounding` saying how; a result that rounding left open
-/// by a few edges is snapped too). Else every connected piece of every input but the first piece of the first is
-/// moved its own generic way by the next step of
+/// by a few edges is snapped too). Else every connected piece of every
+/// input but the first piece of the first is moved its own generic way
+/// by the next step of
 /// [`crate::union::NUDGES`] (scale-relative: 2⁻³⁰ of the scene's
 /// diagonal first, then 2⁻²⁶ and 2⁻²²) and the operation redone, up to
 /// three times, until two nudges in a row do not lessen the defects
@@ -771,11 +772,7 @@ fn weld(
     source: Vec<Source>,
     origin: &[u32],
 ) -> Result<(TriMesh, Vec<Source>, usize), WindingError> {
-    let constructed: Vec<bool> = (0..mesh.positions.len())
-        .map(|v| origin.get(v).is_some_and(|&o| o == u32::MAX))
-        .collect();
-    let class =
-        crate::on_side::welded_classes(&mesh.positions, &constructed).map_err(TopoError::from)?;
+    let class = crate::on_side::welded_classes(&mesh.positions, origin).map_err(TopoError::from)?;
     let merged = class
         .iter()
         .enumerate()
