@@ -28,6 +28,18 @@
 //! polynomial degrees used in this crate unless a single predicate mixes
 //! coordinates more than about 10^±40 apart.
 
+use smallvec::{SmallVec, smallvec};
+
+/// The components of an expansion: up to [`INLINE`] kept in place, more
+/// on the heap. The perturbed stage of [`crate::sos`] builds polynomials
+/// whose coefficients are mostly one or two components, and allocating each
+/// of them (and freeing it) was a fifth of `holey selfint` on the coplanar
+/// overlaps of an OpenSCAD export.
+pub(crate) type Components = SmallVec<[f64; INLINE]>;
+
+/// Components an [`Expansion`] holds without allocating.
+pub(crate) const INLINE: usize = 4;
+
 /// `(fl(a + b), err)` with `fl(a + b) + err == a + b` exactly.
 #[inline]
 pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
@@ -50,7 +62,7 @@ pub(crate) fn two_prod(a: f64, b: f64) -> (f64, f64) {
 /// here keeps an expansion free of zero components (zero elimination), so
 /// its length stays the number of components that carry value.
 #[inline]
-fn push_nonzero(h: &mut Vec<f64>, x: f64) {
+fn push_nonzero(h: &mut Components, x: f64) {
     if x != 0.0 {
         h.push(x);
     }
@@ -60,7 +72,7 @@ fn push_nonzero(h: &mut Vec<f64>, x: f64) {
 /// into `out`, which is cleared first: the two lists merged by magnitude
 /// (`e`'s first on a tie) feeding one `two_sum` chain, without a merged
 /// copy; either operand empty gives the other.
-fn sum_into(e: &[f64], f: &[f64], sign: f64, out: &mut Vec<f64>) {
+fn sum_into(e: &[f64], f: &[f64], sign: f64, out: &mut Components) {
     out.clear();
     if e.is_empty() {
         out.extend(f.iter().map(|x| sign * x));
@@ -92,7 +104,7 @@ fn sum_into(e: &[f64], f: &[f64], sign: f64, out: &mut Vec<f64>) {
 
 /// The components of `c · b` into `out`, which is cleared first
 /// (Scale-Expansion with zero elimination).
-fn scale_into(c: &[f64], b: f64, out: &mut Vec<f64>) {
+fn scale_into(c: &[f64], b: f64, out: &mut Components) {
     out.clear();
     if b == 0.0 || c.is_empty() {
         return;
@@ -115,13 +127,15 @@ fn scale_into(c: &[f64], b: f64, out: &mut Vec<f64>) {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Expansion {
     /// Nonzero, nonoverlapping components by increasing magnitude.
-    c: Vec<f64>,
+    c: Components,
 }
 
 impl Expansion {
     /// Zero.
     pub fn zero() -> Self {
-        Expansion { c: Vec::new() }
+        Expansion {
+            c: Components::new(),
+        }
     }
 
     /// The exact value of one double.
@@ -129,7 +143,7 @@ impl Expansion {
         if x == 0.0 {
             Self::zero()
         } else {
-            Expansion { c: vec![x] }
+            Expansion { c: smallvec![x] }
         }
     }
 
@@ -162,14 +176,14 @@ impl Expansion {
 
     /// Exact sum.
     pub fn add(&self, o: &Expansion) -> Expansion {
-        let mut h = Vec::new();
+        let mut h = Components::new();
         sum_into(&self.c, &o.c, 1.0, &mut h);
         Expansion { c: h }
     }
 
     /// `self += o` exactly, through `scratch` (any contents; it is left
     /// holding this expansion's old buffer, for the next call to reuse).
-    pub(crate) fn add_assign_with(&mut self, o: &Expansion, scratch: &mut Vec<f64>) {
+    pub(crate) fn add_assign_with(&mut self, o: &Expansion, scratch: &mut Components) {
         sum_into(&self.c, &o.c, 1.0, scratch);
         std::mem::swap(&mut self.c, scratch);
     }
@@ -183,14 +197,14 @@ impl Expansion {
 
     /// Exact difference.
     pub fn sub(&self, o: &Expansion) -> Expansion {
-        let mut h = Vec::new();
+        let mut h = Components::new();
         sum_into(&self.c, &o.c, -1.0, &mut h);
         Expansion { c: h }
     }
 
     /// Exact product with one double (Scale-Expansion with zero elimination).
     pub fn scale(&self, b: f64) -> Expansion {
-        let mut h = Vec::new();
+        let mut h = Components::new();
         scale_into(&self.c, b, &mut h);
         Expansion { c: h }
     }
@@ -207,7 +221,8 @@ impl Expansion {
         let Some((&first, rest)) = small.c.split_first() else {
             return Expansion::zero();
         };
-        let (mut acc, mut part, mut next) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut acc, mut part, mut next) =
+            (Components::new(), Components::new(), Components::new());
         scale_into(&big.c, first, &mut acc);
         for &b in rest {
             scale_into(&big.c, b, &mut part);
@@ -220,7 +235,7 @@ impl Expansion {
     /// Exact `a - b` of two doubles.
     pub fn diff(a: f64, b: f64) -> Expansion {
         let (x, y) = two_sum(a, -b);
-        let mut c = Vec::with_capacity(2);
+        let mut c = Components::new();
         push_nonzero(&mut c, y);
         push_nonzero(&mut c, x);
         Expansion { c }

@@ -209,7 +209,7 @@ impl EpsPoly {
     fn from_terms(mut t: Vec<(Mono, Expansion)>) -> EpsPoly {
         t.sort_by_key(|a| a.0);
         let mut out: Vec<(Mono, Expansion)> = Vec::with_capacity(t.len());
-        let mut scratch = Vec::new();
+        let mut scratch = crate::expansion::Components::new();
         for (m, c) in t {
             if let Some(last) = out.last_mut()
                 && last.0 == m
