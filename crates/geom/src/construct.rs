@@ -34,7 +34,7 @@ use crate::dd::{Dd, certified_div};
 use crate::error::{GeomError, NonFinite};
 use crate::expansion::{Expansion, pow2};
 use crate::ring::{Ring, V3, cross, dot, normal, orient3, scale3, sub3};
-use crate::sos::{EpsPoly, Poly, SymPoint, scale_exponent, scaled_by};
+use crate::sos::{EpsPoly, Mono, Poly, SymPoint, scale_exponent, scaled_by};
 use glam::DVec3;
 
 /// The correctly rounded quotient of two exact values (`d ≠ 0`).
@@ -137,6 +137,8 @@ fn ratios<N: Polys, D: Poly>(
 /// The perturbed limits of `nums/den` where `den` vanishes exactly: the
 /// coefficients of the denominator's lowest monomial (see
 /// [`crate::sos`]) in each numerator and in the denominator, divided.
+/// The numerators are evaluated only up to that monomial (the
+/// [`EpsPoly`] cap): nothing above it bears on the limit.
 fn limit_ratios<N: Polys, D: Poly>(
     nums: &N,
     den: &D,
@@ -144,14 +146,27 @@ fn limit_ratios<N: Polys, D: Poly>(
     s: f64,
 ) -> Result<Vec<f64>, GeomError> {
     let (ep, d) = lowest_level(den, pts, s)?;
+    let Some((lowest, _)) = d.lowest() else {
+        return Err(GeomError::Degenerate(
+            "the denominator vanishes identically in the perturbed world",
+        ));
+    };
+    let ep = capped(ep, lowest);
     nums.eval_all(&ep).iter().map(|n| limit_of(n, &d)).collect()
 }
 
+/// The points `ep` with every coordinate capped at `cap` (see
+/// [`EpsPoly`]).
+fn capped(ep: Vec<V3<EpsPoly>>, cap: Mono) -> Vec<V3<EpsPoly>> {
+    ep.into_iter().map(|p| p.map(|c| c.capped(cap))).collect()
+}
+
 /// The points (scaled by `s`) as polynomials in the first `L`
-/// perturbation variables, for the least `L` at which `den` is not the
-/// zero polynomial, and `den` there. Its lowest monomial is then the
-/// lowest of the whole perturbed polynomial (every monomial in a later
-/// variable is larger), and so is every other polynomial's below it.
+/// perturbation variables, for the first `L` of [`crate::sos::levels`]
+/// at which `den` is not the zero polynomial, and `den` there. Its lowest
+/// monomial is then the lowest of the whole perturbed polynomial (every
+/// monomial in a later variable is larger), and so is every other
+/// polynomial's below it.
 fn lowest_level<D: Poly>(
     den: &D,
     pts: &[SymPoint],
@@ -161,7 +176,7 @@ fn lowest_level<D: Poly>(
     ids.sort_unstable();
     ids.dedup();
     let nvars = 3 * ids.len();
-    for level in 1..=nvars {
+    for level in crate::sos::levels(nvars) {
         let ep: Vec<V3<EpsPoly>> = pts
             .iter()
             .map(|p| {
@@ -510,7 +525,25 @@ fn triple_point_exact(pts: &[SymPoint; 9]) -> Result<TriplePoint, GeomError> {
 /// overlaps). `None` when a barycentric denominator is still zero at that
 /// level (a triangle of no area), for the search per triangle to decide.
 fn triple_point_limit(pts: &[SymPoint; 9], k: i32) -> Result<Option<TriplePoint>, GeomError> {
-    let (ep, _) = lowest_level(&TpW, pts, pow2(-k))?;
+    let (ep, w) = lowest_level(&TpW, pts, pow2(-k))?;
+    // Every denominator below is `w` or `w |n|²`; their lowest monomials
+    // are `w`'s times `|n|²`'s (a product's lowest term is its factors'
+    // lowest terms' product), so nothing above the largest of them bears
+    // on a limit, and the evaluation keeps only what is below (the
+    // [`EpsPoly`] cap).
+    let Some((mut cap, _)) = w.lowest() else {
+        return Ok(None);
+    };
+    let mut norms = Mono::default();
+    for t in ep.chunks_exact(3) {
+        let n = normal(&t[0], &t[1], &t[2]);
+        let Some((m, _)) = dot(&n, &n).lowest() else {
+            return Ok(None);
+        };
+        norms = norms.max(m);
+    }
+    cap = cap.mul(norms);
+    let ep = capped(ep, cap);
     let (xh, w) = triple_h(&ep);
     let back = pow2(k);
     let mut pos = [0.0; 3];
@@ -828,6 +861,108 @@ mod tests {
             assert_eq!(x.bary[2], y.bary[0]);
             assert_eq!(x.bary[0], [y.bary[1][2], y.bary[1][0], y.bary[1][1]]);
         }
+    }
+
+    /// The points as polynomials in the first `level` perturbation
+    /// variables, uncapped.
+    fn at_level(pts: &[SymPoint], s: f64, level: usize) -> Vec<V3<EpsPoly>> {
+        let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        pts.iter()
+            .map(|p| {
+                let r = ids.binary_search(&p.id).unwrap();
+                let c = (p.pos * s).to_array();
+                std::array::from_fn(|j| EpsPoly::coordinate(c[j], 3 * r + j, level))
+            })
+            .collect()
+    }
+
+    /// The limits of `nums/den` as they were computed before the
+    /// [`crate::sos::levels`] steps and the [`EpsPoly`] caps: every level
+    /// in turn until `den` is not zero, everything evaluated in full.
+    fn limits_level_by_level<N: Polys, D: Poly>(
+        nums: &N,
+        den: &D,
+        pts: &[SymPoint],
+        s: f64,
+    ) -> Option<Vec<f64>> {
+        let ep = (1..=3 * pts.len())
+            .map(|l| at_level(pts, s, l))
+            .find(|ep| !den.eval(ep).is_empty())?;
+        let d = den.eval(&ep);
+        let n = nums.eval_all(&ep);
+        n.iter().map(|n| limit_of(n, &d).ok()).collect()
+    }
+
+    /// The triple point's limit as [`triple_point_limit`] computed it
+    /// before the steps and caps.
+    fn triple_limit_level_by_level(pts: &[SymPoint; 9], k: i32) -> Option<TriplePoint> {
+        let ep = (1..=27)
+            .map(|l| at_level(pts, pow2(-k), l))
+            .find(|ep| !TpW.eval(ep).is_empty())?;
+        let (xh, w) = triple_h(&ep);
+        let pos = xh
+            .clone()
+            .map(|h| limit_of(&h, &w).ok().map(|x| x * pow2(k)));
+        let mut bary = [[0.0; 3]; 3];
+        for (tri, b) in bary.iter_mut().enumerate() {
+            let (num, den) = tp_bary_terms(&ep, &xh, &w, tri);
+            for (x, n) in b.iter_mut().zip(&num) {
+                *x = limit_of(n, &den).ok()?;
+            }
+        }
+        Some(TriplePoint {
+            pos: DVec3::new(pos[0]?, pos[1]?, pos[2]?),
+            bary,
+        })
+    }
+
+    /// Lattice points with shared and repeated coordinates make planes
+    /// that coincide and edges that lie in planes, so every construction
+    /// below is a perturbed limit; the stepped levels and the caps give
+    /// the doubles the full level-by-level evaluation gives.
+    #[test]
+    fn capped_limits_are_the_uncapped_ones() {
+        let mut rng = Rng::new(2026);
+        let (mut edge_limits, mut triple_limits) = (0, 0);
+        for _ in 0..200 {
+            let pts: [SymPoint; 9] = std::array::from_fn(|i| {
+                let c = [0; 3].map(|_: i32| rng.below(3) as f64 - 1.0);
+                let c = if i >= 3 && rng.chance(0.5) {
+                    [c[0], c[1], 0.0]
+                } else {
+                    c
+                };
+                SymPoint::new(
+                    DVec3::from_array(c),
+                    if rng.chance(0.1) { 0 } else { i as u32 },
+                )
+            });
+            let et = [pts[0], pts[1], pts[2], pts[3], pts[4]];
+            let s = pow2(-scale_exponent(et.iter().map(|p| &p.pos)));
+            if EtDen.eval(&scaled_by(&et, s)).is_zero() {
+                let want = limits_level_by_level(&EtNums, &EtDen, &et, s);
+                assert_eq!(limit_ratios(&EtNums, &EtDen, &et, s).ok(), want, "{et:?}");
+                let want = limits_level_by_level(&EtBarys, &EtBaryDen, &et, s);
+                assert_eq!(
+                    limit_ratios(&EtBarys, &EtBaryDen, &et, s).ok(),
+                    want,
+                    "{et:?}"
+                );
+                edge_limits += 1;
+            }
+            let k = scale_exponent(pts.iter().map(|p| &p.pos));
+            if TpW.eval(&scaled_by(&pts, pow2(-k))).is_zero() {
+                let got = triple_point_limit(&pts, k).ok().flatten();
+                assert_eq!(got, triple_limit_level_by_level(&pts, k), "{pts:?}");
+                triple_limits += usize::from(got.is_some());
+            }
+        }
+        assert!(
+            edge_limits > 50 && triple_limits > 10,
+            "{edge_limits} {triple_limits}"
+        );
     }
 
     #[test]
