@@ -98,11 +98,7 @@ impl TriMesh {
     /// sorted, must be pairs `(x, along), (x, against)` with `x` strictly
     /// increasing: every edge once each way and no more.
     pub fn is_closed_manifold(&self) -> bool {
-        if self
-            .triangles
-            .par_iter()
-            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-        {
+        if self.triangles.par_iter().any(repeats_a_corner) {
             return false;
         }
         let vertices = vertex_bound(&self.triangles);
@@ -662,6 +658,15 @@ fn renumbered(
     )
 }
 
+/// Whether triangle `t` names one vertex twice: no triangle at all, but
+/// what a weld or a snap leaves where it merged two of its corners. The
+/// one test every stage that drops such triangles (or leaves them out of
+/// its geometry) asks.
+#[inline]
+pub fn repeats_a_corner(t: &[u32; 3]) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
+}
+
 /// Checks that every position is finite; `what` names the array in errors.
 pub fn check_positions(what: &'static str, positions: &[DVec3]) -> Result<(), MeshError> {
     NonFinite::check("vertex", positions).map_err(|e| MeshError::NonFinite(e.in_input(what)))
@@ -884,9 +889,7 @@ impl Edges {
     /// (`triangles`): no triangle repeats a vertex and every edge has
     /// exactly two triangles.
     pub fn closed(&self, triangles: &[[u32; 3]]) -> bool {
-        !triangles
-            .iter()
-            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        !triangles.iter().any(repeats_a_corner)
             && (0..self.ends.len())
                 .into_par_iter()
                 .all(|e| self.triangles(e).len() == 2)
@@ -897,10 +900,7 @@ impl Edges {
     /// and the two triangles of every edge run along it in opposite
     /// directions.
     pub fn closed_oriented(&self, triangles: &[[u32; 3]]) -> bool {
-        self.summary.all_opposite
-            && !triangles
-                .par_iter()
-                .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+        self.summary.all_opposite && !triangles.par_iter().any(repeats_a_corner)
     }
 
     /// Whether triangle `t` (of `triangles`, the mesh these edges were

@@ -37,7 +37,7 @@ use glam::DVec3;
 use holey_geom::Aabb;
 use holey_mesh::PARALLEL_RUN;
 use holey_mesh::slots::fill_holes;
-use holey_mesh::tri::triangles_with_vertex;
+use holey_mesh::tri::{repeats_a_corner, triangles_with_vertex};
 use holey_topo::audit::{is_degenerate, is_flat};
 use holey_topo::intersect::crossing_pairs_involving;
 use holey_topo::mesh::MeshError;
@@ -536,10 +536,6 @@ fn unpacked(mut edges: Vec<u64>) -> Vec<(u32, u32)> {
         .collect()
 }
 
-fn degenerate(t: [u32; 3]) -> bool {
-    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
-}
-
 fn normal(p: [DVec3; 3]) -> DVec3 {
     (p[1] - p[0]).cross(p[2] - p[0])
 }
@@ -788,7 +784,7 @@ impl Work {
         pairs.clear();
         for (i, &t) in ring.iter().enumerate() {
             let tri = self.tris[t as usize];
-            if degenerate(tri) {
+            if repeats_a_corner(&tri) {
                 return (Class::Singular, 0);
             }
             pairs.extend(tri.iter().filter(|&&x| x != v).map(|&x| (x, i as u32)));
@@ -945,7 +941,7 @@ impl Work {
     /// Splits edge `a`–`b` at its midpoint, with all its triangles.
     fn split(&mut self, a: u32, b: u32) -> bool {
         let ts = self.edge_tris(a, b);
-        if ts.is_empty() || ts.iter().any(|&t| degenerate(self.tris[t as usize])) {
+        if ts.is_empty() || ts.iter().any(|&t| repeats_a_corner(&self.tris[t as usize])) {
             return false;
         }
         // A rim edge between two copies is one side of a seam, whose twin
@@ -1244,7 +1240,7 @@ impl Work {
             std::mem::swap(&mut t1, &mut t2);
         }
         let (r1, r2) = (rot(t1, a), rot(t2, b));
-        if r1[1] != b || r2[1] != a || degenerate(r1) || degenerate(r2) {
+        if r1[1] != b || r2[1] != a || repeats_a_corner(&r1) || repeats_a_corner(&r2) {
             return false;
         }
         let (c, d) = (r1[2], r2[2]);
@@ -1374,7 +1370,7 @@ impl Work {
             }
             if self.alive_t[i] {
                 let corners = self.corners(t);
-                changes.made_flat += usize::from(degenerate(t) || is_flat(corners));
+                changes.made_flat += usize::from(repeats_a_corner(&t) || is_flat(corners));
                 changes.made.push(corners);
             }
             if slot != NONE {
@@ -1704,7 +1700,7 @@ pub(crate) mod tests {
     /// already had such triangles.
     fn clean_triangles(m: &TriMesh) -> bool {
         let keys = sorted_triangles(m);
-        keys.windows(2).all(|w| w[0] != w[1]) && !m.triangles.iter().any(|&t| degenerate(t))
+        keys.windows(2).all(|w| w[0] != w[1]) && !m.triangles.iter().any(repeats_a_corner)
     }
 
     fn range(lo: f64, hi: f64) -> Remesh {

@@ -12,6 +12,7 @@
 //! ([`crate::intersect`]), which ignore the contact of triangles that
 //! share a vertex or an edge.
 
+use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 use holey_geom::{Sign, orient2d};
 use rayon::prelude::*;
@@ -291,7 +292,7 @@ impl std::fmt::Display for SurfaceAudit {
 /// exactly when their projections onto the three coordinate planes all
 /// are.
 pub fn is_degenerate(mesh: &TriMesh, t: [u32; 3]) -> bool {
-    if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+    if repeats_a_corner(&t) {
         return true;
     }
     is_flat(t.map(|v| mesh.positions[v as usize]))

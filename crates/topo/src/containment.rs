@@ -33,6 +33,7 @@
 //! is not within a quarter of an integer on both sides makes the frame
 //! fall back to parity.
 
+use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 
 use crate::cut::{AroundCurve, Deletion, cancel_opposite, cut, reconnect_crossings, same_corners};
@@ -664,11 +665,7 @@ fn closed(mesh: &TriMesh, members: &[usize]) -> bool {
 /// whether the surface is closed enough there) or two running opposite
 /// ways, and no triangle repeats a vertex.
 fn piece_of_a_solid(sub: &TriMesh, edges: &Edges) -> bool {
-    if sub
-        .triangles
-        .iter()
-        .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-    {
+    if sub.triangles.iter().any(repeats_a_corner) {
         return false;
     }
     (0..edges.len()).all(|e| match edges.triangles(e).len() {

@@ -36,6 +36,7 @@
 //! deleted: the result is the mesh cut along all its self-intersections and
 //! glued there, the arrangement.
 
+use crate::mesh::repeats_a_corner;
 use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
@@ -758,7 +759,7 @@ fn subdivide(
         .par_iter()
         .zip(&on.touched)
         .map(|(tri, &touched)| {
-            let degenerate = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
+            let degenerate = repeats_a_corner(tri);
             degenerate || !touched
         })
         .collect();
@@ -766,7 +767,7 @@ fn subdivide(
         for &t in edges.triangles(e) {
             let tri = tris[t as usize];
             // A degenerate triangle stays whole: its chart has no area.
-            if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+            if !repeats_a_corner(&tri) {
                 whole[t as usize] = false;
             }
         }
@@ -1200,7 +1201,7 @@ fn trim(
         .zip(&keep)
         .filter(|(_, k)| **k)
         .map(|((i, t), _)| (*t, sub.source.get(i)))
-        .filter(|(t, _)| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .filter(|(t, _)| !repeats_a_corner(t))
         .unzip();
     let (mesh, origin) = TriMesh {
         positions: globals.positions,

@@ -28,6 +28,7 @@
 //! arrangement had (a rounded crossing that the sides around it do not
 //! follow) is not made.
 
+use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
 
@@ -246,7 +247,7 @@ pub(crate) fn merge_overlaps(
             out = out
                 .into_iter()
                 .map(|f| f.map(named))
-                .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
+                .filter(|f| !repeats_a_corner(f))
                 .collect();
         }
         out
@@ -357,7 +358,7 @@ pub(crate) fn weld_constructed(
     let faces = faces
         .into_iter()
         .map(|f| f.map(|v| to[v as usize]))
-        .filter(|f| f[0] != f[1] && f[1] != f[2] && f[0] != f[2])
+        .filter(|f| !repeats_a_corner(f))
         .collect();
     Ok((faces, welded))
 }

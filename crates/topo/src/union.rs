@@ -54,6 +54,7 @@
 //! union refuses ([`UnionError::SelfIntersecting`]) and the motion
 //! (`topology_change`) resolves it.
 
+use crate::mesh::repeats_a_corner;
 use std::borrow::Cow;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -253,12 +254,7 @@ impl Surface {
             || {
                 rayon::join(
                     || Edges::new(mesh),
-                    || {
-                        !mesh
-                            .triangles
-                            .par_iter()
-                            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-                    },
+                    || !mesh.triangles.par_iter().any(repeats_a_corner),
                 )
             },
             || signed_volume(&mesh.positions, &mesh.triangles) > 0.0,

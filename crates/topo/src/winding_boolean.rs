@@ -95,6 +95,7 @@
 //! to it, which can leave the result open there. The report counts both
 //! (`unpaired_edges`, and the CLI checks the result for crossings).
 
+use crate::mesh::repeats_a_corner;
 use rustc_hash::FxHashMap as HashMap;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -783,7 +784,7 @@ fn weld(
         .iter()
         .zip(source)
         .map(|(t, s)| (t.map(|v| class[v as usize]), s))
-        .filter(|(t, _)| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .filter(|(t, _)| !repeats_a_corner(t))
         .unzip();
     Ok((
         TriMesh {

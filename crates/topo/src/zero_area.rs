@@ -35,6 +35,7 @@
 //! not the surface's to say), and one whose neighbour is flat too until
 //! that neighbour is resolved (a fan of them goes one by one).
 
+use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
@@ -80,7 +81,7 @@ pub fn without_zero_area_triangles(
 /// [`without_zero_area_triangles`] of a checked mesh.
 pub(crate) fn repaired(mesh: &TriMesh) -> Option<(TriMesh, ZeroAreaRepair)> {
     let positions = &mesh.positions;
-    let proper = |t: &[u32; 3]| t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+    let proper = |t: &[u32; 3]| !repeats_a_corner(t);
     let zero: Vec<u32> = (0..mesh.triangles.len() as u32)
         .into_par_iter()
         .with_min_len(1 << 12)

@@ -15,6 +15,7 @@
 //! themselves one triangle twice are paired: an input's own double-sided
 //! sheet stays as it was.
 
+use crate::mesh::repeats_a_corner;
 use rustc_hash::FxHashMap as HashMap;
 
 /// The kept triangles on one set of three vertices: those running them
@@ -41,7 +42,7 @@ pub(crate) fn cancel_opposite(
     };
     let mut open: HashMap<(u32, u32, u32), Facing> = HashMap::default();
     for (i, t) in tris.iter().enumerate() {
-        if !keep[i] || !candidate(i) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+        if !keep[i] || !candidate(i) || repeats_a_corner(t) {
             continue;
         }
         let (k, forward) = key(*t);

@@ -54,6 +54,7 @@
 //! triangles are certified (all 26,580 of 1514499's patches of four or
 //! more, 66,705 of 1063852's 68,548 triangles).
 
+use crate::mesh::repeats_a_corner;
 use glam::{DVec2, DVec3};
 use holey_geom::orient::{Sign, orient2d};
 use holey_mesh::UnionFind;
@@ -189,7 +190,7 @@ fn project(axis: u8, p: DVec3) -> DVec2 {
 /// negative projected orientation; [`NO_CLASS`] when it has none.
 fn class_of(t: [u32; 3], positions: &[DVec3], ids: &[u32]) -> u8 {
     let i = t.map(|v| ids[v as usize]);
-    if i[0] == i[1] || i[1] == i[2] || i[0] == i[2] {
+    if repeats_a_corner(&i) {
         return NO_CLASS;
     }
     let p = t.map(|v| positions[v as usize]);

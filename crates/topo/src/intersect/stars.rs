@@ -32,6 +32,7 @@
 //! perturbed world of simulation of simplicity. (A star that fails any
 //! test is simply not certified, and its pairs are tested as before.)
 
+use crate::mesh::repeats_a_corner;
 use glam::{DVec2, DVec3};
 use holey_geom::orient::{Sign, orient2d};
 use rayon::prelude::*;
@@ -50,7 +51,7 @@ pub(crate) fn flat_stars(tris: &[[u32; 3]], positions: &[DVec3], ids: &[u32]) ->
     let tri_ids = |t: &[u32; 3]| t.map(|c| ids[c as usize]);
     for t in tris {
         let i = tri_ids(t);
-        if i[0] == i[1] || i[1] == i[2] || i[0] == i[2] {
+        if repeats_a_corner(&i) {
             for c in i {
                 repeats[c as usize] = true;
             }
@@ -67,7 +68,7 @@ pub(crate) fn flat_stars(tris: &[[u32; 3]], positions: &[DVec3], ids: &[u32]) ->
     let mut link = vec![[0u32; 2]; start[n] as usize];
     for t in tris {
         let i = tri_ids(t);
-        if i[0] == i[1] || i[1] == i[2] || i[0] == i[2] {
+        if repeats_a_corner(&i) {
             continue;
         }
         for k in 0..3 {
