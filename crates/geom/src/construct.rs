@@ -34,7 +34,7 @@ use crate::dd::{Dd, certified_div};
 use crate::error::{GeomError, NonFinite};
 use crate::expansion::{Expansion, pow2};
 use crate::ring::{Ring, V3, cross, dot, normal, orient3, scale3, sub3};
-use crate::sos::{EpsPoly, Mono, Poly, SymPoint, scale_exponent, scaled_by};
+use crate::sos::{EpsPoly, Mono, Poly, Ranks, SymPoint, scale_exponent, scaled_by};
 use glam::DVec3;
 
 /// The correctly rounded quotient of two exact values (`d ≠ 0`).
@@ -172,20 +172,9 @@ fn lowest_level<D: Poly>(
     pts: &[SymPoint],
     s: f64,
 ) -> Result<(Vec<V3<EpsPoly>>, EpsPoly), GeomError> {
-    let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
-    ids.sort_unstable();
-    ids.dedup();
-    let nvars = 3 * ids.len();
-    for level in crate::sos::levels(nvars) {
-        let ep: Vec<V3<EpsPoly>> = pts
-            .iter()
-            .map(|p| {
-                let r = ids.binary_search(&p.id).unwrap_or(0);
-                let q = p.pos * s;
-                let c = [q.x, q.y, q.z];
-                std::array::from_fn(|j| EpsPoly::coordinate(c[j], 3 * r + j, level))
-            })
-            .collect();
+    let ranks = Ranks::of(pts);
+    for level in crate::sos::levels(ranks.nvars) {
+        let ep = ranks.at_level(pts, s, level);
         let d = den.eval(&ep);
         if !d.is_empty() {
             return Ok((ep, d));
@@ -866,16 +855,7 @@ mod tests {
     /// The points as polynomials in the first `level` perturbation
     /// variables, uncapped.
     fn at_level(pts: &[SymPoint], s: f64, level: usize) -> Vec<V3<EpsPoly>> {
-        let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
-        ids.sort_unstable();
-        ids.dedup();
-        pts.iter()
-            .map(|p| {
-                let r = ids.binary_search(&p.id).unwrap();
-                let c = (p.pos * s).to_array();
-                std::array::from_fn(|j| EpsPoly::coordinate(c[j], 3 * r + j, level))
-            })
-            .collect()
+        Ranks::of(pts).at_level(pts, s, level)
     }
 
     /// The limits of `nums/den` as they were computed before the

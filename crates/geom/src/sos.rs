@@ -468,27 +468,51 @@ pub(crate) fn levels(nvars: usize) -> impl Iterator<Item = usize> {
         .filter(move |&l| l <= nvars)
 }
 
-/// Stage 3 of [`sos_sign`], public within the crate for tests.
-pub(crate) fn perturbed_sign<P: Poly>(poly: &P, pts: &[SymPoint], s: f64) -> SosSign {
-    let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
-    ids.sort_unstable();
-    ids.dedup();
-    let rank: Vec<usize> = pts
-        .iter()
-        .map(|p| ids.binary_search(&p.id).unwrap_or(0))
-        .collect();
-    let nvars = 3 * ids.len();
-    for level in levels(nvars) {
-        let ep: Vec<V3<EpsPoly>> = pts
+/// The variables of one call of the perturbed stage: each point's rank
+/// among the distinct identities of the call's points (only their order
+/// matters, see the module docs), and how many variables there are, three
+/// per identity.
+pub(crate) struct Ranks {
+    rank: Vec<usize>,
+    /// The number of perturbation variables.
+    pub(crate) nvars: usize,
+}
+
+impl Ranks {
+    /// The ranks of the identities of `pts`.
+    pub(crate) fn of(pts: &[SymPoint]) -> Ranks {
+        let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        let rank = pts
             .iter()
-            .zip(&rank)
+            .map(|p| ids.binary_search(&p.id).unwrap_or(0))
+            .collect();
+        Ranks {
+            rank,
+            nvars: 3 * ids.len(),
+        }
+    }
+
+    /// The points `pts` (those ranked) scaled by `s`, coordinate `j` of
+    /// the point of rank `r` perturbed by variable `3r + j` if that is
+    /// below `level`.
+    pub(crate) fn at_level(&self, pts: &[SymPoint], s: f64, level: usize) -> Vec<V3<EpsPoly>> {
+        pts.iter()
+            .zip(&self.rank)
             .map(|(p, &r)| {
-                let q = p.pos * s;
-                let c = [q.x, q.y, q.z];
+                let c = (p.pos * s).to_array();
                 std::array::from_fn(|j| EpsPoly::coordinate(c[j], 3 * r + j, level))
             })
-            .collect();
-        let sg = poly.eval(&ep).sign();
+            .collect()
+    }
+}
+
+/// Stage 3 of [`sos_sign`], public within the crate for tests.
+pub(crate) fn perturbed_sign<P: Poly>(poly: &P, pts: &[SymPoint], s: f64) -> SosSign {
+    let ranks = Ranks::of(pts);
+    for level in levels(ranks.nvars) {
+        let sg = poly.eval(&ranks.at_level(pts, s, level)).sign();
         if sg != 0 {
             return SosSign::from_i8(sg);
         }
@@ -543,19 +567,9 @@ mod tests {
     /// The sign the perturbed stage gave before [`levels`]: every level
     /// `1, 2, …` evaluated in turn, the first nonzero one answering.
     fn sign_level_by_level<P: Poly>(poly: &P, pts: &[SymPoint]) -> SosSign {
-        let mut ids: Vec<u32> = pts.iter().map(|p| p.id).collect();
-        ids.sort_unstable();
-        ids.dedup();
-        for level in 1..=3 * ids.len() {
-            let ep: Vec<V3<EpsPoly>> = pts
-                .iter()
-                .map(|p| {
-                    let r = ids.binary_search(&p.id).unwrap();
-                    let c = p.pos.to_array();
-                    std::array::from_fn(|j| EpsPoly::coordinate(c[j], 3 * r + j, level))
-                })
-                .collect();
-            let sg = poly.eval(&ep).sign();
+        let ranks = Ranks::of(pts);
+        for level in 1..=ranks.nvars {
+            let sg = poly.eval(&ranks.at_level(pts, 1.0, level)).sign();
             if sg != 0 {
                 return SosSign::from_i8(sg);
             }
