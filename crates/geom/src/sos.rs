@@ -45,11 +45,12 @@
 //! 1. interval arithmetic (a filter; most calls end here);
 //! 2. exact [`Expansion`] arithmetic;
 //! 3. if the exact value is zero, the exact polynomial in the perturbation
-//!    variables, restricted to the first `L` variables for `L = 1, 2, …`
-//!    ([`EpsPoly`]). Restricting is exact for the monomials kept: every
-//!    monomial involving a variable `≥ L` is larger (in the order above)
-//!    than every monomial in variables `< L`, so the first nonzero
-//!    restricted polynomial's smallest monomial is the global answer.
+//!    variables, restricted to the first `L` variables for `L = 1, 3, 6, …`
+//!    ([`EpsPoly`], `levels`). Restricting is exact for the monomials
+//!    kept: every monomial involving a variable `≥ L` is larger (in the
+//!    order above) than every monomial in variables `< L`, so the first
+//!    nonzero restricted polynomial's smallest monomial is the global
+//!    answer.
 //!
 //! Inputs are first scaled by a power of two (exact) so that the largest
 //! coordinate has magnitude in `[1, 2)`: every polynomial used here is
@@ -181,7 +182,7 @@ impl PartialOrd for Mono {
 /// order (the empty monomial is least, and `a < b` gives `a·c < b·c`,
 /// digits adding without carries), so a term above `C` only makes terms
 /// above `C`, in a product as in a sum. A result's cap is the least of
-/// its operands' caps; [`Mono::TOP`] keeps everything.
+/// its operands' caps; `Mono::TOP` keeps everything.
 #[derive(Clone, Debug)]
 pub struct EpsPoly {
     terms: Vec<(Mono, Expansion)>,
