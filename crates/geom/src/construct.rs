@@ -576,10 +576,9 @@ fn triple_point_limit(pts: &[SymPoint; 9], k: i32) -> Result<Option<TriplePoint>
     }
     let mut bary = [[0.0; 3]; 3];
     for (tri, b) in bary.iter_mut().enumerate() {
+        // `den` is `w |n|²`, not zero: its lowest term is at or below
+        // the cap.
         let (num, den) = tp_bary_terms(&ep, &xh, &w, tri);
-        if den.is_empty() {
-            return Ok(None);
-        }
         for (x, n) in b.iter_mut().zip(&num) {
             *x = limit_of(n, &den)?;
         }

@@ -12,13 +12,12 @@
 //! ([`crate::intersect`]), which ignore the contact of triangles that
 //! share a vertex or an edge.
 
-use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 use holey_geom::{Sign, orient2d};
 use rayon::prelude::*;
 
 use crate::intersect::{COORDINATE_PLANES, IntersectError, intersecting_pair_count};
-use crate::mesh::{Edges, TriMesh, coincident_pairs};
+use crate::mesh::{Edges, TriMesh, coincident_pairs, repeats_a_corner};
 use crate::union_find::UnionFind;
 
 /// The exact properties of a triangle mesh.

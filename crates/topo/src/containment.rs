@@ -33,7 +33,6 @@
 //! is not within a quarter of an integer on both sides makes the frame
 //! fall back to parity.
 
-use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 
 use crate::cut::{AroundCurve, Deletion, cancel_opposite, cut, reconnect_crossings, same_corners};
@@ -42,7 +41,7 @@ use crate::engine::{
 };
 use crate::far_field::{Ask, FarField};
 use crate::local::Bounds;
-use crate::mesh::{Edges, TriMesh};
+use crate::mesh::{Edges, TriMesh, repeats_a_corner};
 use crate::solid::{regions, signed_volume};
 use crate::union_find::UnionFind;
 use crate::winding::{

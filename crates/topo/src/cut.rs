@@ -36,7 +36,6 @@
 //! deleted: the result is the mesh cut along all its self-intersections and
 //! glued there, the arrangement.
 
-use crate::mesh::repeats_a_corner;
 use rustc_hash::FxHashMap as HashMap;
 
 use glam::DVec3;
@@ -44,7 +43,7 @@ use rayon::prelude::*;
 use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 use crate::intersect::{Intersections, Node, PointKind, shared_ids};
-use crate::mesh::{Edges, TriMesh};
+use crate::mesh::{Edges, TriMesh, repeats_a_corner};
 
 /// What the subdivision did.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

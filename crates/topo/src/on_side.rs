@@ -129,8 +129,9 @@ pub(crate) const WELD_ULPS: f64 = 8.0;
 /// For each of `positions`, the vertex it is taken as: points at equal
 /// positions are one (the first), and each constructed point (`origin[v]`
 /// is `u32::MAX`, the cut's mark for a point rounded from an exact
-/// crossing or a split point; else the input vertex it is) within [`WELD_ULPS`] ulps of the largest coordinate of an input vertex
-/// (per axis) is the nearest such vertex; input vertices never move.
+/// crossing or a split point; else the input vertex it is) within
+/// [`WELD_ULPS`] ulps of the largest coordinate of an input vertex (per
+/// axis) is the nearest such vertex; input vertices never move.
 ///
 /// Where sheets meet at or near a vertex, the exact arrangement has
 /// points that rounding puts a few ulps from it: the Booleans' results

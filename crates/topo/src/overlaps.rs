@@ -28,15 +28,13 @@
 //! arrangement had (a rounded crossing that the sides around it do not
 //! follow) is not made.
 
-use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 use rustc_hash::FxHashMap as HashMap;
 
 use holey_geom::{Aabb, Bvh};
 
 use crate::coplanar::{Keep, Overlay, for_each_overlapping_pair, overlap_groups, position_index};
-use crate::mesh::Edges;
-use crate::mesh::TriMesh;
+use crate::mesh::{Edges, TriMesh, repeats_a_corner};
 use crate::on_side::{near_line, on_side_between, on_side_reach, welded_classes};
 
 /// What merging the overlaps did.

@@ -54,7 +54,6 @@
 //! union refuses ([`UnionError::SelfIntersecting`]) and the motion
 //! (`topology_change`) resolves it.
 
-use crate::mesh::repeats_a_corner;
 use std::borrow::Cow;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -70,7 +69,7 @@ use crate::intersect::{
     FramedTree, any_intersection_among, crossing_pairs_of_marked, default_pair_limit,
     intersecting_pair_count, intersections_among, triangle_boxes,
 };
-use crate::mesh::{Edges, MeshError, TriMesh};
+use crate::mesh::{Edges, MeshError, TriMesh, repeats_a_corner};
 use crate::orient::orient_consistently;
 use crate::solid::{ray_crossings_odd_in, signed_volume};
 use crate::union_find::UnionFind;

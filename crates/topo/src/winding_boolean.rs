@@ -95,7 +95,6 @@
 //! to it, which can leave the result open there. The report counts both
 //! (`unpaired_edges`, and the CLI checks the result for crossings).
 
-use crate::mesh::repeats_a_corner;
 use rustc_hash::FxHashMap as HashMap;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -111,7 +110,7 @@ use crate::cut::{Cut, CutReport, Deletion, SourcePoint, cut};
 use crate::engine::{Options, TopoError};
 use crate::hidden::vertex_components;
 use crate::intersect::{default_pair_limit, intersections_limited, intersections_of_clean_parts};
-use crate::mesh::{Edges, MeshError, TriMesh};
+use crate::mesh::{Edges, MeshError, TriMesh, repeats_a_corner};
 use crate::on_side::on_side_between;
 use crate::snap_round::{SnapRounding, snap_round};
 use crate::union::Operation;

@@ -35,13 +35,12 @@
 //! not the surface's to say), and one whose neighbour is flat too until
 //! that neighbour is resolved (a fan of them goes one by one).
 
-use crate::mesh::repeats_a_corner;
 use glam::DVec3;
 use rayon::prelude::*;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 use crate::audit::is_flat;
-use crate::mesh::{MeshError, TriMesh};
+use crate::mesh::{MeshError, TriMesh, repeats_a_corner};
 use crate::union_find::UnionFind;
 
 /// The most passes over the mesh the flat repair makes: a fan of flat
